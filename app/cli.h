@@ -1,0 +1,53 @@
+// Options every subcommand shares, parsed the same way everywhere (CLI11), and the helpers
+// that turn them into a scene, a device and a renderer.
+#pragma once
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "renderer/options.h"
+#include "renderer/renderer.h"
+#include "renderer/scene.h"
+
+namespace gb {
+
+struct CommonOptions {
+  std::string scene = "builtin:temple";
+  std::string size = "1280x720";
+  std::string path = "two-pass", method = "deferred", eyeDepth = "on", stencilCulling = "on";
+  RenderOptions render;
+  int frames = 1;
+  bool stats = false;
+  std::string device;
+  bool validate = false;
+  std::string output;
+};
+
+// SCENE, --size, --time, --lights, --camera, --path, --eye-depth, --stencil-culling, --method,
+// --frames, --stats, --device, --validate. (-o is added by the commands that write something.)
+void addCommonOptions(CLI::App* cmd, CommonOptions& o);
+
+// Completes RenderOptions from the parsed strings; on a malformed value returns false with a
+// one-line message naming the flag.
+bool finishCommonOptions(CommonOptions& o, std::string& error);
+
+// A registered subcommand: its CLI11 node and what to run when it was chosen.
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+
+Command addRenderCommand(CLI::App& root);
+
+// Loads SCENE; on a user mistake prints one line and returns false (caller exits 2).
+bool loadSceneOrReport(const CommonOptions& o, Scene& scene);
+
+// Prints the validation summary; returns the number of error/warning messages seen.
+int reportValidation(const GpuContext& ctx);
+
+// Median of a list (the --frames report).
+double median(std::vector<double> values);
+
+}  // namespace gb

@@ -1,0 +1,21 @@
+// CPU decoding of stored G-buffer texels: the mirror of shaders/gbuffer_codec.glsl.
+#pragma once
+#include <glm/glm.hpp>
+
+#include "renderer/image.h"
+#include "renderer/options.h"
+
+namespace gb {
+
+glm::dvec2 octEncode(glm::dvec3 n);
+glm::dvec3 octDecode(glm::dvec2 p);
+
+// The stored normal as the shaders decode it (unit length) and before normalization.
+struct DecodedNormal {
+  glm::dvec3 unit{0.0};
+  glm::dvec3 stored{0.0};  // the vector as stored (for the length error)
+  double shadow = 1.0;
+};
+DecodedNormal decodeNormalTexel(const CpuImage& normalShadow, uint32_t x, uint32_t y, NormalFormat format);
+
+}  // namespace gb

@@ -1,0 +1,219 @@
+// The scene on the GPU: vertex/index buffers, textures, materials, samplers, and the descriptor
+// set 0 that every pipeline shares (set 1 is pushed per pass).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "renderer/geometry.h"
+#include "renderer/renderer.h"
+#include "renderer/vk/check.h"
+
+namespace gb {
+
+static VkSampler makeSampler(GpuContext& ctx, VkFilter filter, VkSamplerAddressMode mode, bool compare,
+                             float maxLod) {
+  VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  ci.magFilter = ci.minFilter = filter;
+  ci.mipmapMode = filter == VK_FILTER_LINEAR ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  ci.addressModeU = ci.addressModeV = ci.addressModeW = mode;
+  ci.borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;  // shadow map: outside is lit
+  ci.compareEnable = compare;
+  ci.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;  // lit when the receiver is not behind the stored depth
+  ci.maxLod = maxLod;
+  VkSampler s;
+  VK_CHECK(vkCreateSampler(ctx.device, &ci, nullptr, &s));
+  return s;
+}
+
+static gpu::Material toGpu(const MaterialDesc& m) {
+  gpu::Material g{};
+  g.baseColor = m.baseColor;
+  g.params = glm::vec4(m.specular, m.alphaMode == AlphaMode::Opaque ? -1.0f : m.alphaCutoff, m.normalScale, 0.0f);
+  g.textures = glm::ivec4(m.baseColorTexture, m.normalTexture, m.baseColorUv, m.normalUv);
+  g.flags = glm::uvec4(uint32_t(m.alphaMode), m.doubleSided ? 1u : 0u, 0u, 0u);
+  auto rows = [](const glm::mat3& t, glm::vec4& r0, glm::vec4& r1) {
+    r0 = glm::vec4(t[0][0], t[1][0], t[2][0], 0.0f);
+    r1 = glm::vec4(t[0][1], t[1][1], t[2][1], 0.0f);
+  };
+  rows(m.baseUvTransform, g.baseUv0, g.baseUv1);
+  rows(m.normalUvTransform, g.normalUv0, g.normalUv1);
+  return g;
+}
+
+static uint32_t mipCount(uint32_t w, uint32_t h) {
+  uint32_t n = 1;
+  while ((w | h) >> n) ++n;
+  return n;
+}
+
+void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
+  r.ctx = &ctx;
+  r.scene = &scene;
+  const VkBufferUsageFlags dst = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+
+  // Geometry. Empty scenes still get valid (tiny) buffers.
+  VkDeviceSize vbytes = std::max<VkDeviceSize>(scene.vertices.size() * sizeof(Vertex), 64);
+  VkDeviceSize ibytes = std::max<VkDeviceSize>(scene.indices.size() * sizeof(uint32_t), 64);
+  r.vertexBuffer = createBuffer(ctx, vbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | dst, MemoryUse::Device);
+  r.indexBuffer = createBuffer(ctx, ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | dst, MemoryUse::Device);
+  uploadBuffer(ctx, r.vertexBuffer, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex));
+  uploadBuffer(ctx, r.indexBuffer, scene.indices.data(), scene.indices.size() * sizeof(uint32_t));
+
+  // The light volume: a non-indexed icosahedron, 60 vertices.
+  const Icosahedron& ico = icosahedron();
+  std::vector<glm::vec3> icoVerts;
+  for (uint16_t i : ico.indices) icoVerts.push_back(ico.vertices[i]);
+  r.icosahedronBuffer =
+      createBuffer(ctx, icoVerts.size() * sizeof(glm::vec3), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | dst, MemoryUse::Device);
+  uploadBuffer(ctx, r.icosahedronBuffer, icoVerts.data(), icoVerts.size() * sizeof(glm::vec3));
+
+  std::vector<gpu::Material> materials;
+  for (const MaterialDesc& m : scene.materials) materials.push_back(toGpu(m));
+  if (materials.empty()) materials.push_back(toGpu(MaterialDesc{}));
+  r.materialBuffer = createBuffer(ctx, materials.size() * sizeof(gpu::Material),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | dst, MemoryUse::Device);
+  uploadBuffer(ctx, r.materialBuffer, materials.data(), materials.size() * sizeof(gpu::Material));
+
+  // Per-frame data: host-visible, rewritten every frame (one frame in flight).
+  r.frameBuffer = createBuffer(ctx, sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::Upload);
+  r.drawBuffer = createBuffer(ctx, std::max<size_t>(scene.instances.size(), 1) * sizeof(gpu::DrawData),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload);
+  const size_t maxLights = 65536;  // --lights range; the buffers never need to grow
+  r.lightBuffer = createBuffer(ctx, std::max<size_t>(scene.lights.size(), maxLights) * sizeof(gpu::PointLight),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload);
+  r.visibleBuffer = createBuffer(ctx, std::max<size_t>(scene.lights.size(), maxLights) * sizeof(uint32_t),
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload);
+
+  // Textures (RGBA8, full mip chain) and a 1x1 white stand-in so the array is never empty.
+  std::vector<Texture> placeholder;
+  const std::vector<Texture>* texList = &scene.textures;
+  if (scene.textures.empty()) {
+    placeholder.push_back(Texture{"white", 1, 1, {255, 255, 255, 255}, false, true});
+    texList = &placeholder;
+  }
+  for (const Texture& t : *texList) {
+    ImageDesc d;
+    d.format = t.srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+    d.width = t.width;
+    d.height = t.height;
+    d.mipLevels = mipCount(t.width, t.height);
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    d.name = t.name.c_str();
+    Image img = createImage(ctx, d);
+    uploadTexture(ctx, img, t.rgba8);
+    r.textures.push_back(img);
+  }
+
+  r.samplerRepeat = makeSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT, false, VK_LOD_CLAMP_NONE);
+  r.samplerClamp = makeSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false, VK_LOD_CLAMP_NONE);
+  r.samplerShadow = makeSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER, true, 0.0f);
+  r.samplerPoint = makeSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false, 0.0f);
+
+  // Set 0: scene + frame.
+  const VkShaderStageFlags all = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
+  VkDescriptorSetLayoutBinding sceneBindings[] = {
+      {gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, all, nullptr},
+      {gpu::kBindingDraws, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingVisible, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingTextures, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint32_t(r.textures.size()), all, nullptr},
+  };
+  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  lci.bindingCount = 6;
+  lci.pBindings = sceneBindings;
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &r.sceneSetLayout));
+
+  // Set 1: pushed per pass.
+  VkDescriptorSetLayoutBinding passBindings[] = {
+      {gpu::kBindingAlbedo, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
+      {gpu::kBindingNormal, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
+      {gpu::kBindingDepth, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
+      {gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
+      {gpu::kBindingHdr, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
+      {gpu::kBindingCoverage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, all, nullptr},
+      {gpu::kBindingTileLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+  };
+  lci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+  lci.bindingCount = 7;
+  lci.pBindings = passBindings;
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &r.passSetLayout));
+  // The single-pass path reads the G-buffer and hdr as subpass inputs at the same bindings.
+  for (uint32_t b : {gpu::kBindingAlbedo, gpu::kBindingNormal, gpu::kBindingDepth, gpu::kBindingHdr}) {
+    passBindings[b].descriptorType = VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT;
+    passBindings[b].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
+  }
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &r.passSetLayoutInput));
+
+  VkDescriptorSetLayout layouts[] = {r.sceneSetLayout, r.passSetLayout};
+  VkPipelineLayoutCreateInfo pci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pci.setLayoutCount = 2;
+  pci.pSetLayouts = layouts;
+  VK_CHECK(vkCreatePipelineLayout(ctx.device, &pci, nullptr, &r.pipelineLayout));
+  layouts[1] = r.passSetLayoutInput;
+  VK_CHECK(vkCreatePipelineLayout(ctx.device, &pci, nullptr, &r.pipelineLayoutInput));
+
+  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
+                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint32_t(r.textures.size())}};
+  VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  dpci.maxSets = 1;
+  dpci.poolSizeCount = 3;
+  dpci.pPoolSizes = sizes;
+  VK_CHECK(vkCreateDescriptorPool(ctx.device, &dpci, nullptr, &r.descriptorPool));
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = r.descriptorPool;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &r.sceneSetLayout;
+  VK_CHECK(vkAllocateDescriptorSets(ctx.device, &ai, &r.sceneSet));
+
+  VkDescriptorBufferInfo bufs[] = {{r.frameBuffer.buffer, 0, VK_WHOLE_SIZE},
+                                   {r.drawBuffer.buffer, 0, VK_WHOLE_SIZE},
+                                   {r.materialBuffer.buffer, 0, VK_WHOLE_SIZE},
+                                   {r.lightBuffer.buffer, 0, VK_WHOLE_SIZE},
+                                   {r.visibleBuffer.buffer, 0, VK_WHOLE_SIZE}};
+  std::vector<VkDescriptorImageInfo> imgs;
+  for (size_t i = 0; i < r.textures.size(); ++i) {
+    bool repeat = scene.textures.empty() || scene.textures[i].repeat;
+    imgs.push_back({repeat ? r.samplerRepeat : r.samplerClamp, r.textures[i].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+  }
+  std::vector<VkWriteDescriptorSet> writes;
+  for (uint32_t b = 0; b < 5; ++b) {
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = r.sceneSet;
+    w.dstBinding = b;
+    w.descriptorCount = 1;
+    w.descriptorType = b == gpu::kBindingFrame ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &bufs[b];
+    writes.push_back(w);
+  }
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = r.sceneSet;
+  w.dstBinding = gpu::kBindingTextures;
+  w.descriptorCount = uint32_t(imgs.size());
+  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  w.pImageInfo = imgs.data();
+  writes.push_back(w);
+  vkUpdateDescriptorSets(ctx.device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+
+  // Draw order: opaque first (early depth), then alpha-tested (discard).
+  for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+    const Mesh& m = scene.meshes[scene.instances[i].mesh];
+    if (m.indexCount && scene.materials[m.material].alphaMode == AlphaMode::Opaque) r.drawOrder.push_back(i);
+  }
+  r.opaqueDraws = uint32_t(r.drawOrder.size());
+  for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+    const Mesh& m = scene.meshes[scene.instances[i].mesh];
+    if (m.indexCount && scene.materials[m.material].alphaMode != AlphaMode::Opaque) r.drawOrder.push_back(i);
+  }
+
+  VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  cai.commandPool = ctx.commandPool;
+  cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  cai.commandBufferCount = 1;
+  VK_CHECK(vkAllocateCommandBuffers(ctx.device, &cai, &r.cmd));
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &r.fence));
+}
+
+}  // namespace gb

@@ -1,0 +1,25 @@
+// Point lights on the CPU: eye-space positions, frustum culling, the near-plane class that the
+// stencil scheme cannot handle, and the ideal (pixel, light) pair count that culling is measured by.
+#pragma once
+#include "renderer/camera.h"
+#include "renderer/image.h"
+#include "renderer/renderer.h"
+
+namespace gb {
+
+// Fills lights.eye (all lights at `time`, eye space) and lights.visible / stencilCount.
+void classifyLights(const Scene& scene, const View& view, double time, FrameLights& lights);
+
+// True when the light's icosahedron may reach the near plane (or contain the camera): its front
+// faces would be clipped, so the stencil mask cannot be used for it.
+bool touchesNearPlane(const View& view, const glm::dvec3& eyeCenter, double radius);
+
+// (pixel, light) pairs whose surface point, reconstructed from the read-back eye depth, lies
+// strictly inside the light's radius. Only pixels within each light's screen rectangle are tested.
+uint64_t idealPairs(const View& view, const CpuImage& eyeDepth, const std::vector<gpu::PointLight>& eyeLights);
+
+// The same count by testing every pixel against every light (for tests on small images).
+uint64_t idealPairsBruteForce(const View& view, const CpuImage& eyeDepth,
+                              const std::vector<gpu::PointLight>& eyeLights);
+
+}  // namespace gb

@@ -1,0 +1,59 @@
+// Every render option, one struct, one name per option: the CLI flags, the viewer's toggles,
+// the capture manifest and the bench report all use these names.
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace gb {
+
+enum class Path { TwoPass, SinglePass };
+enum class Method { Deferred, Forward, Tiled };
+enum class NormalFormat { Rgba16f, Rgba8Snorm, OctRg16, Rgb10a2 };
+enum class DepthFormat { D32S8, D24S8 };        // the hardware depth/stencil target
+enum class AccumFormat { Rgba16f, Rgba32f, Rgba8 };  // the light accumulation (hdr) target
+enum class ShadowFormat { D32f, D16 };
+
+struct RenderOptions {
+  uint32_t width = 1280, height = 720;
+  double time = 0.0;  // animation time in seconds
+  int lights = 256;   // generated point lights (built-in scene, files without lights)
+  int camera = 0;     // index into Scene::cameras
+  Path path = Path::TwoPass;
+  Method method = Method::Deferred;
+  bool eyeDepth = true;        // USE_EYE_DEPTH: reconstruct positions from the eye-depth target
+  bool stencilCulling = true;  // LIGHT_STENCIL_CULLING
+  bool reversedZ = false;
+  NormalFormat normalFormat = NormalFormat::Rgba16f;
+  DepthFormat depthFormat = DepthFormat::D32S8;
+  AccumFormat accumFormat = AccumFormat::Rgba16f;
+  ShadowFormat shadowFormat = ShadowFormat::D32f;
+  uint32_t shadowMapSize = 2048;
+  // Shadow-map depth bias (vkCmdSetDepthBias): the Apple sample's 0.015 / 7 / 0.02 adapted to
+  // a [0,1] depth range in texels.
+  float shadowBiasConstant = 2.0f;
+  float shadowBiasSlope = 2.5f;
+  float shadowBiasClamp = 0.01f;
+  bool fairies = true;
+  bool sky = true;
+  float exposure = 1.0f;
+  // What the caller will look at: targets that are not needed are not computed.
+  bool coverage = false;      // masked/full coverage targets (views 8, 9, --stats, captures)
+  bool keepGBuffer = true;    // single-pass: store the G-buffer (views, captures) instead of transient
+};
+
+const char* name(Path p);
+const char* name(Method m);
+const char* name(NormalFormat f);
+const char* name(DepthFormat f);
+const char* name(AccumFormat f);
+const char* name(ShadowFormat f);
+
+// Parse the names above; false when the text names nothing.
+bool parse(const std::string& text, Path& out);
+bool parse(const std::string& text, Method& out);
+bool parse(const std::string& text, NormalFormat& out);
+bool parse(const std::string& text, DepthFormat& out);
+bool parse(const std::string& text, AccumFormat& out);
+bool parse(const std::string& text, ShadowFormat& out);
+
+}  // namespace gb

@@ -1,0 +1,30 @@
+// Fairy lights: a camera-facing sprite at each visible light, alpha-blended (premultiplied),
+// depth-tested against the scene.
+#include "renderer/passes/passes.h"
+
+namespace gb {
+
+void addFairyPass(FrameGraph& g, Renderer& r) {
+  std::vector<Use> uses = gbufferReads(r);
+  uses.push_back(hdrUse(Access::ColorBlend));
+  uses.push_back(depthStencilUse(Access::DepthStencilRead));
+  g.addPass("fairy_lights", uses, [&r](PassContext& pc) {
+    VkPipeline p = graphicsPipeline(r, pc, "fairy", [&r](GraphicsPipelineDesc& d) {
+      d.vertexShader = "fairy.vert";
+      d.fragmentShader = "fairy.frag";
+      d.layout = lightingLayout(r);
+      d.depthTest = true;
+      d.depthCompare = closerOrEqual(r);
+      d.colorBlend[0] = BlendState{true, VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA, VK_BLEND_FACTOR_ONE,
+                                   VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA};
+    });
+    bindGBuffer(r, pc);
+    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_NONE);
+    vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
+    vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
+    vkCmdDraw(pc.cmd, 6, uint32_t(r.lights.visible.size()), 0, 0);
+  });
+}
+
+}  // namespace gb

@@ -1,0 +1,44 @@
+// G-buffer: albedo_specular, normal_shadow (with the shadow-map compare), eye depth, and the
+// depth/stencil target where geometry writes stencil 128.
+#include "renderer/passes/passes.h"
+
+namespace gb {
+
+void addGBufferPass(FrameGraph& g, Renderer& r) {
+  auto clear = [](Target t) {
+    Use u{t, Access::ColorWrite, true};
+    u.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // depth 0: no geometry
+    return u;
+  };
+  Use depth{Target::DepthStencil, Access::DepthStencilWrite, true};
+  depth.clearValue.depthStencil = {farDepth(r), 0};
+  std::vector<Use> uses = {clear(Target::AlbedoSpecular), clear(Target::NormalShadow), clear(Target::Depth), depth,
+                           {Target::ShadowMap, Access::SampledFragment}};
+  g.addPass("gbuffer", uses, [&r](PassContext& pc) {
+    auto describe = [&](bool alpha) {
+      return [&r, alpha](GraphicsPipelineDesc& d) {
+        d.vertexShader = "gbuffer.vert";
+        d.fragmentShader = "gbuffer.frag";
+        d.vertexInput = VertexInput::SceneVertex;
+        d.depthTest = d.depthWrite = true;
+        d.depthCompare = r.options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
+        d.stencilTest = true;
+        d.stencil = stencil(VK_COMPARE_OP_ALWAYS, 0xFF, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_REPLACE);
+        d.spec.push_back({gpu::kSpecAlphaTest, alpha ? 1u : 0u});
+      };
+    };
+    VkPipeline opaque = graphicsPipeline(r, pc, "gbuffer.opaque", describe(false));
+    VkPipeline alpha = graphicsPipeline(r, pc, "gbuffer.alpha", describe(true));
+    const GraphTarget& shadow = r.targets[size_t(Target::ShadowMap)];
+    bindDescriptors(r, pc.cmd, r.pipelineLayout,
+                    {{gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, shadow.image.depthView,
+                      pc.layouts[size_t(Target::ShadowMap)], r.samplerShadow}});
+    vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);
+    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque);
+    drawInstances(r, pc.cmd, 0, r.opaqueDraws, false);
+    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, alpha);
+    drawInstances(r, pc.cmd, r.opaqueDraws, uint32_t(r.drawOrder.size()), false);
+  });
+}
+
+}  // namespace gb

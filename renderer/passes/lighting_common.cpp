@@ -1,0 +1,103 @@
+// Helpers the lighting passes share: G-buffer reads per path, descriptors, draws.
+#include "renderer/passes/passes.h"
+#include "renderer/vk/check.h"
+
+namespace gb {
+
+bool singlePass(const Renderer& r) { return r.options.path == Path::SinglePass; }
+
+static Target positionSource(const Renderer& r) { return r.options.eyeDepth ? Target::Depth : Target::DepthStencil; }
+
+std::vector<Use> gbufferReads(const Renderer& r) {
+  Access a = singlePass(r) ? Access::InputAttachment : Access::SampledFragment;
+  return {{Target::AlbedoSpecular, a}, {Target::NormalShadow, a}, {positionSource(r), a}};
+}
+
+Use hdrUse(Access access, bool clear) {
+  Use u{Target::Hdr, access, clear};
+  u.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+  return u;
+}
+
+Use depthStencilUse(Access access) { return {Target::DepthStencil, access}; }
+
+std::string lightingShader(const Renderer& r, const char* base) {
+  return std::string(base) + (singlePass(r) ? ".input.frag" : ".frag");
+}
+
+VkPipelineLayout lightingLayout(const Renderer& r) { return singlePass(r) ? r.pipelineLayoutInput : r.pipelineLayout; }
+
+void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassImage> extra) {
+  const bool input = singlePass(r);
+  const VkDescriptorType type = input ? VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  const VkSampler sampler = input ? VK_NULL_HANDLE : r.samplerPoint;
+  Target pos = positionSource(r);
+  const Image& posImage = r.targets[size_t(pos)].image;
+  VkImageView posView = pos == Target::DepthStencil ? posImage.depthView : posImage.view;
+  std::vector<PassImage> images = {
+      {gpu::kBindingAlbedo, type, r.targets[size_t(Target::AlbedoSpecular)].image.view,
+       pc.layouts[size_t(Target::AlbedoSpecular)], sampler},
+      {gpu::kBindingNormal, type, r.targets[size_t(Target::NormalShadow)].image.view,
+       pc.layouts[size_t(Target::NormalShadow)], sampler},
+      {gpu::kBindingDepth, type, posView, pc.layouts[size_t(pos)], sampler},
+  };
+  images.insert(images.end(), extra.begin(), extra.end());
+  // bindDescriptors takes an initializer_list; push through a small adapter.
+  VkPipelineLayout layout = lightingLayout(r);
+  vkCmdBindDescriptorSets(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, gpu::kSetScene, 1, &r.sceneSet, 0, nullptr);
+  std::vector<VkDescriptorImageInfo> infos(images.size());
+  std::vector<VkWriteDescriptorSet> writes(images.size(), {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET});
+  for (size_t i = 0; i < images.size(); ++i) {
+    infos[i] = {images[i].sampler, images[i].view, images[i].layout};
+    writes[i].dstBinding = images[i].binding;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = images[i].type;
+    writes[i].pImageInfo = &infos[i];
+  }
+  r.ctx->cmdPushDescriptorSet(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, gpu::kSetPass, uint32_t(writes.size()),
+                              writes.data());
+}
+
+void drawLightVolumes(Renderer& r, VkCommandBuffer cmd, uint32_t first, uint32_t count) {
+  if (count == 0) return;
+  VkDeviceSize offset = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &r.icosahedronBuffer.buffer, &offset);
+  vkCmdDraw(cmd, 60, count, 0, first);
+}
+
+void drawInstances(Renderer& r, VkCommandBuffer cmd, uint32_t begin, uint32_t end, bool shadowCastersOnly) {
+  const Scene& s = *r.scene;
+  VkDeviceSize offset = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &r.vertexBuffer.buffer, &offset);
+  vkCmdBindIndexBuffer(cmd, r.indexBuffer.buffer, 0, VK_INDEX_TYPE_UINT32);
+  VkCullModeFlags lastCull = ~0u;
+  VkFrontFace lastFront = VK_FRONT_FACE_MAX_ENUM;
+  for (uint32_t k = begin; k < end; ++k) {
+    uint32_t i = r.drawOrder[k];
+    const Instance& inst = s.instances[i];
+    if (shadowCastersOnly && !inst.castsShadow) continue;
+    const Mesh& m = s.meshes[inst.mesh];
+    const MaterialDesc& mat = s.materials[m.material];
+    VkCullModeFlags cull = mat.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+    // glTF front faces are counter-clockwise; a mirroring transform reverses the winding.
+    bool flipped = glm::determinant(glm::dmat3(inst.worldFromObject)) < 0.0;
+    VkFrontFace front = flipped ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    if (cull != lastCull) vkCmdSetCullMode(cmd, lastCull = cull);
+    if (front != lastFront) vkCmdSetFrontFace(cmd, lastFront = front);
+    vkCmdDrawIndexed(cmd, m.indexCount, 1, m.firstIndex, int32_t(m.firstVertex), i);
+  }
+}
+
+VkStencilOpState stencil(VkCompareOp compare, uint32_t compareMask, VkStencilOp depthFail, VkStencilOp pass) {
+  VkStencilOpState s{};
+  s.failOp = VK_STENCIL_OP_KEEP;
+  s.passOp = pass;
+  s.depthFailOp = depthFail;
+  s.compareOp = compare;
+  s.compareMask = compareMask;
+  s.writeMask = 0xFF;
+  s.reference = gpu::kStencilGeometry;
+  return s;
+}
+
+}  // namespace gb

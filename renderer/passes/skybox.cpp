@@ -1,0 +1,28 @@
+// Skybox: a procedural gradient drawn at the far plane, depth-tested against the G-buffer depth
+// so it lands exactly where no geometry was drawn.
+#include "renderer/passes/passes.h"
+
+namespace gb {
+
+void addSkyboxPass(FrameGraph& g, Renderer& r) {
+  std::vector<Use> uses = gbufferReads(r);
+  uses.push_back(hdrUse(Access::ColorBlend));
+  uses.push_back(depthStencilUse(Access::DepthStencilRead));
+  g.addPass("skybox", uses, [&r](PassContext& pc) {
+    VkPipeline p = graphicsPipeline(r, pc, "skybox", [&r](GraphicsPipelineDesc& d) {
+      d.vertexShader = "fullscreen.vert";
+      d.fragmentShader = "sky.frag";
+      d.layout = lightingLayout(r);
+      d.depthTest = true;
+      d.depthCompare = closerOrEqual(r);  // passes only at the cleared far depth
+    });
+    bindGBuffer(r, pc);
+    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_NONE);
+    vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
+    vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
+    vkCmdDraw(pc.cmd, 3, 1, 0, 0);
+  });
+}
+
+}  // namespace gb

@@ -1,0 +1,28 @@
+// Tone map: hdr -> final (sRGB). In the single-pass path hdr is read as a subpass input.
+#include "renderer/passes/passes.h"
+
+namespace gb {
+
+void addToneMapPass(FrameGraph& g, Renderer& r) {
+  Use hdr = hdrUse(singlePass(r) ? Access::InputAttachment : Access::SampledFragment);
+  Use final{Target::Final, Access::ColorWrite, true};  // fully overwritten: never load the old one
+  g.addPass("tonemap", {hdr, final}, [&r](PassContext& pc) {
+    VkPipeline p = graphicsPipeline(r, pc, "tonemap", [&r](GraphicsPipelineDesc& d) {
+      d.vertexShader = "fullscreen.vert";
+      d.fragmentShader = lightingShader(r, "tonemap");
+      d.layout = lightingLayout(r);
+    });
+    const bool input = singlePass(r);
+    bindDescriptors(r, pc.cmd, lightingLayout(r),
+                    {{gpu::kBindingHdr, input ? VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                      r.targets[size_t(Target::Hdr)].image.view, pc.layouts[size_t(Target::Hdr)],
+                      input ? VK_NULL_HANDLE : r.samplerPoint}});
+    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_NONE);
+    vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
+    vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
+    vkCmdDraw(pc.cmd, 3, 1, 0, 0);
+  });
+}
+
+}  // namespace gb

@@ -1,0 +1,416 @@
+// renderFrame: per-frame CPU work (view, draws, lights, frame data), target (re)creation,
+// recording the frame graph, submission, timings, read-back and culling statistics.
+#include "renderer/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+#include "renderer/frame.h"
+#include "renderer/light_culling.h"
+#include "renderer/vk/check.h"
+
+namespace gb {
+
+// ---- targets -------------------------------------------------------------------------------
+
+static std::string targetsKey(const GpuContext& ctx, const Scene& s, const RenderOptions& o) {
+  std::ostringstream k;
+  k << o.width << 'x' << o.height << ' ' << name(o.normalFormat) << ' ' << name(o.depthFormat) << ' '
+    << name(o.accumFormat) << ' ' << name(o.shadowFormat) << ' ' << (s.sun.enabled ? o.shadowMapSize : 1) << ' '
+    << o.coverage << ' ' << (o.path == Path::SinglePass && !o.keepGBuffer) << ' ' << ctx.deviceName;
+  return k.str();
+}
+
+static ImageDesc targetDesc(Target t, const Scene& s, const RenderOptions& o) {
+  ImageDesc d;
+  d.format = targetFormat(t, o);
+  d.width = o.width;
+  d.height = o.height;
+  d.name = targetName(t);
+  const VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                  VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  switch (t) {
+    case Target::AlbedoSpecular:
+    case Target::NormalShadow:
+    case Target::Depth:
+      d.transient = o.path == Path::SinglePass && !o.keepGBuffer;
+      d.usage = d.transient ? (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT) : color;
+      break;
+    case Target::DepthStencil:
+      d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+      break;
+    case Target::ShadowMap:
+      d.width = d.height = s.sun.enabled ? o.shadowMapSize : 1;
+      d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+      break;
+    case Target::Hdr: d.usage = color | VK_IMAGE_USAGE_STORAGE_BIT; break;
+    case Target::Final: d.usage = color; break;
+    case Target::CoverageMasked:
+    case Target::CoverageFull:
+      if (!o.coverage) d.width = d.height = 1;  // not computed: keep a valid, tiny image
+      d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                VK_IMAGE_USAGE_SAMPLED_BIT;
+      break;
+    case Target::Count: break;
+  }
+  return d;
+}
+
+static void destroyTargets(Renderer& r) {
+  GpuContext& ctx = *r.ctx;
+  for (GraphTarget& t : r.targets) {
+    destroyImage(ctx, t.image);
+    t = GraphTarget{};
+  }
+  for (Buffer& b : r.readbackBuffers) destroyBuffer(ctx, b);
+  clearFramebuffers(ctx, r.graphCache);
+  r.shadowKey.clear();
+  r.targetsValid = false;
+}
+
+static void ensureTargets(Renderer& r, const RenderOptions& o) {
+  std::string key = targetsKey(*r.ctx, *r.scene, o);
+  if (r.targetsValid && key == r.targetsKey) return;
+  vkDeviceWaitIdle(r.ctx->device);
+  destroyTargets(r);
+  for (size_t i = 0; i < kTargetCount; ++i) r.targets[i].image = createImage(*r.ctx, targetDesc(Target(i), *r.scene, o));
+  r.targets[size_t(Target::ShadowMap)].keep = true;  // reused while the sun and geometry stay
+  r.targetsValid = true;
+  r.targetsKey = key;
+}
+
+// ---- pipelines and descriptors ---------------------------------------------------------------
+
+VkPipeline graphicsPipeline(Renderer& r, const PassContext& pc, const std::string& id,
+                            const std::function<void(GraphicsPipelineDesc&)>& fill) {
+  std::string key = id + "@" + pc.compatKey + "#";
+  for (const SpecConstant& c : commonSpec(r)) key += std::to_string(c.value) + ",";
+  VkPipeline& p = r.pipelines[key];
+  if (!p) {
+    GraphicsPipelineDesc d;
+    d.renderPass = pc.renderPass;
+    d.subpass = pc.subpass;
+    d.layout = r.pipelineLayout;
+    d.spec = commonSpec(r);
+    d.colorBlend.assign(pc.colorAttachments, BlendState{});
+    fill(d);
+    GB_ASSERT(d.colorBlend.size() == pc.colorAttachments);
+    p = createGraphicsPipeline(*r.ctx, d);
+  }
+  return p;
+}
+
+std::vector<SpecConstant> commonSpec(const Renderer& r) {
+  uint32_t normal = 0;
+  switch (r.options.normalFormat) {
+    case NormalFormat::Rgba16f: normal = gpu::kNormalRgba16f; break;
+    case NormalFormat::Rgba8Snorm: normal = gpu::kNormalRgba8Snorm; break;
+    case NormalFormat::OctRg16: normal = gpu::kNormalOctRg16; break;
+    case NormalFormat::Rgb10a2: normal = gpu::kNormalRgb10a2; break;
+  }
+  return {{gpu::kSpecEyeDepth, r.options.eyeDepth ? 1u : 0u},
+          {gpu::kSpecReversedZ, r.options.reversedZ ? 1u : 0u},
+          {gpu::kSpecNormalEncoding, normal},
+          {gpu::kSpecTextureCount, uint32_t(r.textures.size())},
+          {gpu::kSpecCoverage, r.options.coverage ? 1u : 0u}};
+}
+
+void bindDescriptors(Renderer& r, VkCommandBuffer cmd, VkPipelineLayout layout, std::initializer_list<PassImage> images,
+                     VkPipelineBindPoint bindPoint) {
+  vkCmdBindDescriptorSets(cmd, bindPoint, layout, gpu::kSetScene, 1, &r.sceneSet, 0, nullptr);
+  if (images.size() == 0) return;
+  std::vector<VkDescriptorImageInfo> infos;
+  infos.reserve(images.size());
+  std::vector<VkWriteDescriptorSet> writes;
+  for (const PassImage& img : images) {
+    infos.push_back({img.sampler, img.view, img.layout});
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstBinding = img.binding;
+    w.descriptorCount = 1;
+    w.descriptorType = img.type;
+    w.pImageInfo = &infos.back();
+    writes.push_back(w);
+  }
+  r.ctx->cmdPushDescriptorSet(cmd, bindPoint, layout, gpu::kSetPass, uint32_t(writes.size()), writes.data());
+}
+
+VkCompareOp closerOrEqual(const Renderer& r) {
+  return r.options.reversedZ ? VK_COMPARE_OP_GREATER_OR_EQUAL : VK_COMPARE_OP_LESS_OR_EQUAL;
+}
+VkCompareOp fartherOrEqual(const Renderer& r) {
+  return r.options.reversedZ ? VK_COMPARE_OP_LESS_OR_EQUAL : VK_COMPARE_OP_GREATER_OR_EQUAL;
+}
+float farDepth(const Renderer& r) { return r.options.reversedZ ? 0.0f : 1.0f; }
+
+// ---- per-frame CPU work -----------------------------------------------------------------------
+
+// The sun's orthographic view, fitted to the scene's bounding sphere (stable as the camera moves).
+static glm::dmat4 fitShadowMap(const Scene& s) {
+  glm::dvec3 centre = s.bounds.center();
+  double radius = std::max(s.bounds.radius(), 1e-6);
+  glm::dvec3 up = std::abs(s.sun.toSun.y) > 0.99 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  glm::dmat4 lightFromWorld = glm::inverse(lookAt(centre + s.sun.toSun * (2.0 * radius), centre, up));
+  double n = 0.5 * radius, f = 3.5 * radius;
+  glm::dmat4 clipFromLight(1.0);
+  clipFromLight[0][0] = 1.0 / radius;
+  clipFromLight[1][1] = 1.0 / radius;
+  clipFromLight[2][2] = -1.0 / (f - n);
+  clipFromLight[3][2] = -n / (f - n);
+  return clipFromLight * lightFromWorld;
+}
+
+static void prepareFrame(Renderer& r) {
+  const Scene& s = *r.scene;
+  const RenderOptions& o = r.options;
+  GB_ASSERT(!s.cameras.empty());
+  const CameraDesc& cam = s.cameras[size_t(o.camera) < s.cameras.size() ? size_t(o.camera) : 0];
+  r.view = makeView(cam, o.width, o.height, o.reversedZ);
+  r.lightClipFromWorld = fitShadowMap(s);
+
+  // Draws: camera-relative transforms formed in double.
+  auto* draws = static_cast<gpu::DrawData*>(r.drawBuffer.mapped);
+  for (size_t i = 0; i < s.instances.size(); ++i) {
+    const Instance& inst = s.instances[i];
+    glm::dmat4 eyeFromObject = r.view.eyeFromWorld * inst.worldFromObject;
+    glm::dmat3 normal = glm::transpose(glm::inverse(glm::dmat3(eyeFromObject)));
+    gpu::DrawData d{};
+    d.eyeFromObject = glm::mat4(eyeFromObject);
+    d.normalEyeFromObject = glm::mat4(glm::mat3(normal));
+    d.lightClipFromObject = glm::mat4(r.lightClipFromWorld * inst.worldFromObject);
+    d.info = glm::uvec4(uint32_t(s.meshes[inst.mesh].material), glm::determinant(glm::dmat3(inst.worldFromObject)) < 0.0,
+                        0u, 0u);
+    draws[i] = d;
+  }
+
+  classifyLights(s, r.view, o.time, r.lights);
+  GB_ASSERT(r.lights.eye.size() <= r.lightBuffer.size / sizeof(gpu::PointLight));
+  std::memcpy(r.lightBuffer.mapped, r.lights.eye.data(), r.lights.eye.size() * sizeof(gpu::PointLight));
+  std::memcpy(r.visibleBuffer.mapped, r.lights.visible.data(), r.lights.visible.size() * sizeof(uint32_t));
+
+  gpu::FrameData f{};
+  f.clipFromEye = glm::mat4(r.view.clipFromEye);
+  f.eyeFromClip = glm::mat4(r.view.eyeFromClip);
+  f.worldFromEye = glm::mat4(r.view.worldFromEye);
+  f.lightClipFromEye = glm::mat4(r.lightClipFromWorld * r.view.worldFromEye);
+  f.viewport = glm::vec4(o.width, o.height, 1.0 / o.width, 1.0 / o.height);
+  const glm::dmat4& p = r.view.clipFromEye;
+  f.eyeRay = glm::vec4(1.0 / p[0][0], 1.0 / p[1][1], p[2][0], p[2][1]);
+  glm::dvec3 sunEye = glm::normalize(glm::dmat3(r.view.eyeFromWorld) * s.sun.toSun);
+  f.sunEyeDirection = glm::vec4(glm::vec3(sunEye), s.sun.enabled ? 1.0f : 0.0f);
+  f.sunColor = glm::vec4(s.sun.color, 0.0f);
+  f.ambientColor = glm::vec4(s.sky.ambient, 0.0f);
+  f.skyZenith = glm::vec4(s.sky.zenith, 0.0f);
+  f.skyHorizon = glm::vec4(s.sky.horizon, 0.0f);
+  f.skyGround = glm::vec4(s.sky.ground, 0.0f);
+  f.params = glm::vec4(o.exposure, 0.05f, 1.0f / float(o.shadowMapSize), float(o.time));
+  f.counts = glm::uvec4(uint32_t(r.lights.visible.size()), uint32_t(r.lights.visible.size()) - r.lights.stencilCount,
+                        0u, 0u);
+  std::memcpy(r.frameBuffer.mapped, &f, sizeof(f));
+}
+
+// ---- read-back ----------------------------------------------------------------------------------
+
+static VkDeviceSize readbackBytes(const GraphTarget& t) {
+  VkDeviceSize texels = VkDeviceSize(t.image.desc.width) * t.image.desc.height;
+  VkDeviceSize bytes = texels * bytesPerPixel(t.image.desc.format);
+  if (hasStencil(t.image.desc.format)) bytes += texels;  // stencil aspect after depth
+  return bytes;
+}
+
+void recordReadback(Renderer& r, VkCommandBuffer cmd, Target t) {
+  GraphTarget& gt = r.targets[size_t(t)];
+  Buffer& buf = r.readbackBuffers[size_t(t)];
+  VkDeviceSize bytes = readbackBytes(gt);
+  if (buf.size < bytes) {
+    destroyBuffer(*r.ctx, buf);
+    buf = createBuffer(*r.ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
+  }
+  const ImageDesc& d = gt.image.desc;
+  VkBufferImageCopy copies[2]{};
+  uint32_t n = 0;
+  VkImageAspectFlags aspect = isDepthFormat(d.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+  copies[n].imageSubresource = {aspect, 0, 0, 1};
+  copies[n++].imageExtent = {d.width, d.height, 1};
+  if (hasStencil(d.format)) {
+    copies[n].bufferOffset = VkDeviceSize(d.width) * d.height * bytesPerPixel(d.format);
+    copies[n].imageSubresource = {VK_IMAGE_ASPECT_STENCIL_BIT, 0, 0, 1};
+    copies[n++].imageExtent = {d.width, d.height, 1};
+  }
+  vkCmdCopyImageToBuffer(cmd, gt.image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buf.buffer, n, copies);
+  VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  mb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+  mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+  mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+  mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.memoryBarrierCount = 1;
+  dep.pMemoryBarriers = &mb;
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+static CpuImage unpackReadback(Renderer& r, Target t) {
+  const GraphTarget& gt = r.targets[size_t(t)];
+  const ImageDesc& d = gt.image.desc;
+  const uint8_t* src = static_cast<const uint8_t*>(r.readbackBuffers[size_t(t)].mapped);
+  CpuImage img;
+  describeReadback(t, r.options, img);
+  img.width = d.width;
+  img.height = d.height;
+  size_t texels = size_t(d.width) * d.height;
+  img.data.resize(texels * img.texelBytes());
+  if (t == Target::DepthStencil) {  // F32 Depth, F32 Stencil
+    float* out = reinterpret_cast<float*>(img.data.data());
+    const uint8_t* stencil = src + texels * 4;
+    for (size_t i = 0; i < texels; ++i) {
+      uint32_t bits;
+      std::memcpy(&bits, src + i * 4, 4);
+      float depth;
+      if (d.format == VK_FORMAT_D24_UNORM_S8_UINT)
+        depth = float(double(bits & 0xFFFFFF) / 16777215.0);
+      else
+        std::memcpy(&depth, &bits, 4);
+      out[2 * i] = depth;
+      out[2 * i + 1] = float(stencil[i]);
+    }
+  } else if (d.format == VK_FORMAT_A2B10G10R10_UNORM_PACK32) {
+    uint16_t* out = reinterpret_cast<uint16_t*>(img.data.data());
+    for (size_t i = 0; i < texels; ++i) {
+      uint32_t v;
+      std::memcpy(&v, src + i * 4, 4);
+      out[4 * i + 0] = uint16_t(v & 0x3FF);
+      out[4 * i + 1] = uint16_t((v >> 10) & 0x3FF);
+      out[4 * i + 2] = uint16_t((v >> 20) & 0x3FF);
+      out[4 * i + 3] = uint16_t(v >> 30);
+    }
+  } else {
+    GB_ASSERT(img.data.size() == texels * bytesPerPixel(d.format));
+    std::memcpy(img.data.data(), src, img.data.size());
+  }
+  return img;
+}
+
+// ---- the frame ----------------------------------------------------------------------------------
+
+const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const FrameRequest& userRequest) {
+  auto start = std::chrono::steady_clock::now();
+  GpuContext& ctx = *r.ctx;
+  // Culling statistics count from coverage_masked and the eye depth.
+  FrameRequest request = userRequest;
+  if (request.cullingStats && options.coverage)
+    for (Target t : {Target::CoverageMasked, Target::Depth})
+      if (std::find(request.readback.begin(), request.readback.end(), t) == request.readback.end())
+        request.readback.push_back(t);
+  ensureTargets(r, options);
+  for (Target t : request.readback) GB_ASSERT(!r.targets[size_t(t)].image.desc.transient);
+  r.options = options;
+  prepareFrame(r);
+
+  FrameGraph graph;
+  buildFrame(graph, r, request);
+
+  uint32_t queries = std::max(graph.timestampCount(), 2u);
+  uint32_t& capacity = r.timestampCapacity;
+  if (!r.timestampPool || capacity < queries) {
+    if (r.timestampPool) vkDestroyQueryPool(ctx.device, r.timestampPool, nullptr);
+    VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    qci.queryCount = capacity = std::max(queries, 64u);
+    VK_CHECK(vkCreateQueryPool(ctx.device, &qci, nullptr, &r.timestampPool));
+  }
+  vkResetQueryPool(ctx.device, r.timestampPool, 0, capacity);
+  if (request.cullingStats && ctx.features.pipelineStatistics) {
+    if (!r.statisticsPool) {
+      VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+      qci.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
+      qci.queryCount = 1;
+      qci.pipelineStatistics = VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT;
+      VK_CHECK(vkCreateQueryPool(ctx.device, &qci, nullptr, &r.statisticsPool));
+    }
+    vkResetQueryPool(ctx.device, r.statisticsPool, 0, 1);
+  }
+
+  VK_CHECK(vkResetCommandBuffer(r.cmd, 0));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(r.cmd, &bi));
+  graph.record(ctx, r.cmd, r.targets, r.graphCache, ctx.features.timestamps ? r.timestampPool : VK_NULL_HANDLE);
+  VK_CHECK(vkEndCommandBuffer(r.cmd));
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &r.cmd;
+  VK_CHECK(vkResetFences(ctx.device, 1, &r.fence));
+  VK_CHECK(vkQueueSubmit(ctx.queue, 1, &si, r.fence));
+  VK_CHECK(vkWaitForFences(ctx.device, 1, &r.fence, VK_TRUE, UINT64_MAX));
+  auto end = std::chrono::steady_clock::now();
+
+  FrameStats& st = r.stats;
+  st = FrameStats{};
+  st.frameMs = std::chrono::duration<double, std::milli>(end - start).count();
+  st.passes = graph.stats();
+  st.lights = uint32_t(r.scene->lights.size());
+  st.lightsVisible = uint32_t(r.lights.visible.size());
+  st.lightsInside = uint32_t(r.lights.visible.size()) - r.lights.stencilCount;
+  st.lightsCulled = r.lights.culledFrustum + r.lights.culledEmpty;
+  if (ctx.features.timestamps) {
+    double first = 1e300, last = -1e300;
+    for (size_t i = 0; i < st.passes.size(); ++i) {
+      if (st.passes[i].skipped) continue;
+      uint64_t ts[2];
+      VK_CHECK(vkGetQueryPoolResults(ctx.device, r.timestampPool, uint32_t(2 * i), 2, sizeof(ts), ts, sizeof(uint64_t),
+                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+      double period = ctx.properties.limits.timestampPeriod * 1e-6;
+      st.passes[i].ms = double(ts[1] - ts[0]) * period;
+      first = std::min(first, double(ts[0]) * period);
+      last = std::max(last, double(ts[1]) * period);
+    }
+    if (last > first) st.gpuMs = last - first;
+  }
+  for (Target t : request.readback) r.readback[size_t(t)] = unpackReadback(r, t);
+
+  if (request.cullingStats && options.coverage) {
+    CullingStats& c = st.culling;
+    c.valid = true;
+    const CpuImage& masked = r.readback[size_t(Target::CoverageMasked)];
+    for (size_t i = 0; i < size_t(masked.width) * masked.height; ++i) c.invocations += masked.raw(uint32_t(i % masked.width), uint32_t(i / masked.width), 0);
+    c.idealPairs = idealPairs(r.view, r.readback[size_t(Target::Depth)], r.lights.eye);
+    c.workOverIdeal = c.idealPairs ? double(c.invocations) / double(c.idealPairs) : 0.0;
+    if (r.statisticsPool) {
+      uint64_t v = 0;
+      VK_CHECK(vkGetQueryPoolResults(ctx.device, r.statisticsPool, 0, 1, sizeof(v), &v, sizeof(v),
+                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+      c.pipelineInvocations = v;
+    }
+  }
+  return st;
+}
+
+void destroyRenderer(Renderer& r) {
+  if (!r.ctx) return;
+  GpuContext& ctx = *r.ctx;
+  vkDeviceWaitIdle(ctx.device);
+  destroyTargets(r);
+  destroyGraphCache(ctx, r.graphCache);
+  for (auto& [k, p] : r.pipelines) vkDestroyPipeline(ctx.device, p, nullptr);
+  if (r.timestampPool) vkDestroyQueryPool(ctx.device, r.timestampPool, nullptr);
+  if (r.statisticsPool) vkDestroyQueryPool(ctx.device, r.statisticsPool, nullptr);
+  for (Buffer* b : {&r.vertexBuffer, &r.indexBuffer, &r.icosahedronBuffer, &r.frameBuffer, &r.drawBuffer,
+                    &r.materialBuffer, &r.lightBuffer, &r.visibleBuffer})
+    destroyBuffer(ctx, *b);
+  for (Image& img : r.textures) destroyImage(ctx, img);
+  for (VkSampler s : {r.samplerRepeat, r.samplerClamp, r.samplerShadow, r.samplerPoint}) vkDestroySampler(ctx.device, s, nullptr);
+  vkDestroyDescriptorPool(ctx.device, r.descriptorPool, nullptr);
+  vkDestroyPipelineLayout(ctx.device, r.pipelineLayout, nullptr);
+  vkDestroyPipelineLayout(ctx.device, r.pipelineLayoutInput, nullptr);
+  vkDestroyDescriptorSetLayout(ctx.device, r.sceneSetLayout, nullptr);
+  vkDestroyDescriptorSetLayout(ctx.device, r.passSetLayout, nullptr);
+  vkDestroyDescriptorSetLayout(ctx.device, r.passSetLayoutInput, nullptr);
+  vkFreeCommandBuffers(ctx.device, ctx.commandPool, 1, &r.cmd);
+  vkDestroyFence(ctx.device, r.fence, nullptr);
+  r = Renderer{};
+}
+
+}  // namespace gb

@@ -1,0 +1,125 @@
+// The renderer: a scene on the GPU, the frame's targets, and renderFrame(), which builds the
+// frame graph (frame.cpp), records it, submits, waits, and reads back what was asked for.
+#pragma once
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "renderer/camera.h"
+#include "renderer/graph.h"
+#include "renderer/image.h"
+#include "renderer/options.h"
+#include "renderer/scene.h"
+#include "renderer/vk/pipeline.h"
+#include "renderer/vk/resources.h"
+#include "shaders/shared.h"
+
+namespace gb {
+
+struct FrameRequest {
+  std::vector<Target> readback;     // copied to the CPU after the frame (Renderer::readback)
+  std::vector<Target> sampleAfter;  // left readable by fragment shaders (the viewer samples them)
+  bool cullingStats = false;        // ideal pairs + pipeline statistics (needs options.coverage)
+};
+
+// Lights of this frame after CPU culling. Drawn instanced from `visible`:
+// [0, stencilCount) use the stencil mask; [stencilCount, visible.size()) contain or touch the
+// near plane and are drawn as back faces with the depth test reversed (no stencil).
+struct FrameLights {
+  std::vector<gpu::PointLight> eye;  // every light, eye space (index = Scene::lights index)
+  std::vector<uint32_t> visible;
+  uint32_t stencilCount = 0;
+  uint32_t culledFrustum = 0;  // outside the view frustum
+  uint32_t culledEmpty = 0;    // zero radius, intensity or colour: nothing to add
+};
+
+struct CullingStats {
+  bool valid = false;
+  uint64_t invocations = 0;          // sum of coverage_masked: point-light fragment shader runs
+  uint64_t idealPairs = 0;           // (pixel, light) pairs whose surface point is inside the radius
+  uint64_t pipelineInvocations = 0;  // pipeline-statistics count for the point-light pass
+  double workOverIdeal = 0.0;        // invocations / idealPairs
+};
+
+struct FrameStats {
+  double frameMs = 0.0;  // CPU wall time of the frame: record + submit + wait
+  double gpuMs = 0.0;    // first to last GPU timestamp
+  std::vector<PassStat> passes;
+  CullingStats culling;
+  uint32_t lights = 0, lightsVisible = 0, lightsInside = 0, lightsCulled = 0;
+};
+
+struct Renderer {
+  GpuContext* ctx = nullptr;
+  const Scene* scene = nullptr;
+
+  // The scene on the GPU (gpu_scene.cpp).
+  Buffer vertexBuffer, indexBuffer, icosahedronBuffer;
+  Buffer frameBuffer, drawBuffer, materialBuffer, lightBuffer, visibleBuffer;
+  std::vector<Image> textures;
+  std::vector<uint32_t> drawOrder;  // instance indices: opaque materials first, then alpha-tested
+  uint32_t opaqueDraws = 0;
+  VkSampler samplerRepeat = VK_NULL_HANDLE, samplerClamp = VK_NULL_HANDLE;
+  VkSampler samplerShadow = VK_NULL_HANDLE, samplerPoint = VK_NULL_HANDLE;
+  VkDescriptorSetLayout sceneSetLayout = VK_NULL_HANDLE, passSetLayout = VK_NULL_HANDLE;
+  VkDescriptorSetLayout passSetLayoutInput = VK_NULL_HANDLE;  // set 1 with subpass inputs
+  VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
+  VkPipelineLayout pipelineLayoutInput = VK_NULL_HANDLE;      // single-pass lighting pipelines
+  VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
+  VkDescriptorSet sceneSet = VK_NULL_HANDLE;
+
+  // Frame resources.
+  RenderOptions options;  // the options the targets were created for
+  bool targetsValid = false;
+  std::string targetsKey;  // size, formats and usage the targets were created for
+  uint32_t timestampCapacity = 0;
+  GraphTargets targets;
+  GraphCache graphCache;
+  std::map<std::string, VkPipeline> pipelines;
+  VkQueryPool timestampPool = VK_NULL_HANDLE, statisticsPool = VK_NULL_HANDLE;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VkFence fence = VK_NULL_HANDLE;
+  std::array<Buffer, kTargetCount> readbackBuffers;
+  std::array<CpuImage, kTargetCount> readback;  // filled for the targets a request named
+
+  // This frame, as the frame function and the passes see it.
+  View view;
+  FrameLights lights;
+  glm::dmat4 lightClipFromWorld{1.0};
+  std::string shadowKey;  // what the shadow map was rendered for (reuse when unchanged)
+  FrameStats stats;
+};
+
+// Uploads the scene; the Renderer keeps a pointer to it (the scene must outlive the renderer;
+// lights may change between frames).
+void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene);
+void destroyRenderer(Renderer& r);
+
+// Renders one frame with these options and waits for it. Targets are re-created when the size
+// or a format changes.
+const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const FrameRequest& request = {});
+
+// ---- used by the frame function and the passes ----
+// Cached graphics pipeline for the current render pass / subpass; `fill` describes it once.
+VkPipeline graphicsPipeline(Renderer& r, const PassContext& pc, const std::string& id,
+                            const std::function<void(GraphicsPipelineDesc&)>& fill);
+struct PassImage {
+  uint32_t binding;
+  VkDescriptorType type;
+  VkImageView view;
+  VkImageLayout layout;
+  VkSampler sampler = VK_NULL_HANDLE;
+};
+// Binds set 0 (scene) and pushes set 1 (this pass's images) for a pipeline of `layout`.
+void bindDescriptors(Renderer& r, VkCommandBuffer cmd, VkPipelineLayout layout, std::initializer_list<PassImage> images,
+                     VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS);
+// Depth-test helpers that follow options.reversedZ.
+VkCompareOp closerOrEqual(const Renderer& r);   // LESS_OR_EQUAL, or GREATER_OR_EQUAL reversed
+VkCompareOp fartherOrEqual(const Renderer& r);  // the opposite
+float farDepth(const Renderer& r);
+
+// Specialization constants every pipeline gets (eye depth, reversed Z, normal encoding, ...).
+std::vector<SpecConstant> commonSpec(const Renderer& r);
+
+}  // namespace gb

@@ -1,0 +1,22 @@
+// SCENE argument dispatch: built-in scenes by name, glTF files by extension.
+#include <filesystem>
+
+#include "renderer/builtin.h"
+#include "renderer/gltf.h"
+
+namespace gb {
+
+Scene loadScene(const std::string& spec, int lightCount) {
+  if (spec == "builtin:temple") return builtinTemple(lightCount);
+  if (spec.rfind("builtin:", 0) == 0)
+    throw SceneError{"unknown built-in scene '" + spec + "' (available: builtin:temple)"};
+  std::filesystem::path path(spec);
+  std::string ext = path.extension().string();
+  for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".gltf" && ext != ".glb")
+    throw SceneError{spec + ": not a scene (expected builtin:temple, a .gltf or a .glb file)"};
+  if (!std::filesystem::exists(path)) throw SceneError{spec + ": no such file"};
+  return loadGltf(spec, lightCount);
+}
+
+}  // namespace gb

@@ -1,0 +1,68 @@
+// The Vulkan instance, the chosen physical device, one graphics+compute queue, and the
+// validation messenger whose counts every test checks.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <atomic>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace gb {
+
+// Counts validation messages; tests fail when errors or warnings is non-zero.
+struct ValidationLog {
+  std::atomic<int> errors{0};
+  std::atomic<int> warnings{0};
+  std::mutex mutex;
+  std::vector<std::string> messages;  // the text of every counted message
+  bool echo = true;                   // also print each one to stderr
+};
+ValidationLog& validationLog();
+
+struct ContextOptions {
+  bool validation = false;     // --validate, or GBLENS_VALIDATE=1 in the environment (tests)
+  std::string device;          // --device NAME|INDEX; empty: first discrete/integrated GPU, else CPU
+  std::vector<std::string> instanceExtensions;  // e.g. the window system's (viewer)
+  bool swapchain = false;      // enable VK_KHR_swapchain on the device
+  bool quiet = false;          // do not print the chosen device
+};
+
+struct DeviceFeatures {
+  bool rasterOrderAttachmentAccess = false;  // VK_EXT_rasterization_order_attachment_access
+  bool lazilyAllocatedMemory = false;        // a memory type with LAZILY_ALLOCATED
+  bool pipelineStatistics = false;
+  bool depthClamp = false;
+  bool fragmentStoresAndAtomics = false;
+  bool timestamps = false;
+};
+
+struct GpuContext {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;
+  VkCommandPool commandPool = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties{};
+  VkPhysicalDeviceMemoryProperties memory{};
+  DeviceFeatures features;
+  std::string deviceName;
+  std::string driverName;  // driver name + info, e.g. "llvmpipe: Mesa 22.3.6 (LLVM 15.0.6)"
+  bool isCpu = false;
+  bool validation = false;
+  PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;  // VK_KHR_push_descriptor
+};
+
+// One line per physical device: "INDEX: NAME (type)". For --device help and errors.
+std::vector<std::string> listDevices(VkInstance instance);
+
+// Creates everything; on a user mistake (no such --device) prints one line and exits 2.
+GpuContext createContext(const ContextOptions& options);
+void destroyContext(GpuContext& ctx);
+
+// True when GBLENS_VALIDATE is set to a non-zero value.
+bool validationRequestedByEnvironment();
+
+}  // namespace gb

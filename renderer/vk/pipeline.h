@@ -1,0 +1,56 @@
+// Shader modules from the embedded registry and a plain-struct description of a graphics or
+// compute pipeline. Pipelines use dynamic viewport/scissor, cull mode and front face.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "renderer/vk/context.h"
+
+namespace gb {
+
+// The SPIR-V of an embedded shader variant by name (e.g. "gbuffer.frag"); asserts if unknown.
+std::span<const uint32_t> shaderCode(const std::string& name);
+VkShaderModule createShaderModule(GpuContext& ctx, const std::string& name);
+
+struct SpecConstant {
+  uint32_t id;
+  uint32_t value;
+};
+
+enum class VertexInput { None, SceneVertex, Position };  // Position: a bare vec3 stream (light volumes)
+
+struct BlendState {
+  bool enable = false;
+  VkBlendFactor src = VK_BLEND_FACTOR_ONE, dst = VK_BLEND_FACTOR_ONE;
+  VkBlendFactor srcAlpha = VK_BLEND_FACTOR_ONE, dstAlpha = VK_BLEND_FACTOR_ONE;
+  VkColorComponentFlags writeMask = 0xF;
+};
+
+struct GraphicsPipelineDesc {
+  std::string vertexShader;
+  std::string fragmentShader;  // empty: no fragment stage (depth/stencil only)
+  std::vector<SpecConstant> spec;
+  VertexInput vertexInput = VertexInput::None;
+  uint32_t vertexAttributes = 0x1F;  // SceneVertex: bit i = location i is read by the vertex shader
+  bool depthTest = false, depthWrite = false;
+  VkCompareOp depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
+  bool depthClamp = false;
+  bool depthBias = false;  // values are dynamic state
+  bool stencilTest = false;
+  VkStencilOpState stencil{};  // used for both faces
+  std::vector<BlendState> colorBlend;  // one per colour attachment of the subpass
+  bool rasterOrderColor = false;       // VK_EXT_rasterization_order_attachment_access
+  VkRenderPass renderPass = VK_NULL_HANDLE;
+  uint32_t subpass = 0;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+};
+
+VkPipeline createGraphicsPipeline(GpuContext& ctx, const GraphicsPipelineDesc& desc);
+VkPipeline createComputePipeline(GpuContext& ctx, const std::string& shader, std::span<const SpecConstant> spec,
+                                 VkPipelineLayout layout);
+
+}  // namespace gb

@@ -1,0 +1,68 @@
+// Buffers, images and one-shot command submission as plain structs + free functions
+// (in the manner of niagara's resources.h). One allocation per resource: gblens holds few.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <functional>
+#include <span>
+
+#include "renderer/vk/context.h"
+
+namespace gb {
+
+enum class MemoryUse { Device, Upload, Readback };
+
+struct Buffer {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkDeviceSize size = 0;
+  void* mapped = nullptr;  // host-visible buffers stay mapped
+};
+
+struct ImageDesc {
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  uint32_t width = 1, height = 1;
+  uint32_t mipLevels = 1;
+  VkImageUsageFlags usage = 0;
+  bool transient = false;  // transient attachment: lazily allocated memory when the device has it
+  const char* name = nullptr;
+};
+
+struct Image {
+  VkImage image = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;         // every aspect (attachments)
+  VkImageView depthView = VK_NULL_HANDLE;    // depth aspect only (sampling / input attachment)
+  VkImageView stencilView = VK_NULL_HANDLE;  // stencil aspect only
+  ImageDesc desc;
+  bool lazilyAllocated = false;  // memory came from a LAZILY_ALLOCATED type
+};
+
+uint32_t findMemoryType(const GpuContext& ctx, uint32_t typeBits, VkMemoryPropertyFlags required,
+                        VkMemoryPropertyFlags preferred = 0);
+
+Buffer createBuffer(GpuContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use);
+void destroyBuffer(GpuContext& ctx, Buffer& buffer);
+
+Image createImage(GpuContext& ctx, const ImageDesc& desc);
+void destroyImage(GpuContext& ctx, Image& image);
+
+bool isDepthFormat(VkFormat format);
+bool hasStencil(VkFormat format);
+VkImageAspectFlags aspectsOf(VkFormat format);
+uint32_t bytesPerPixel(VkFormat format);  // of the aspect copied to a buffer (depth aspect for D/S)
+
+// Records into a fresh command buffer, submits, waits. For uploads and read-backs outside a frame.
+void submitOnce(GpuContext& ctx, const std::function<void(VkCommandBuffer)>& record);
+
+// Copies bytes into a device-local buffer through a staging buffer.
+void uploadBuffer(GpuContext& ctx, Buffer& dst, const void* data, VkDeviceSize size);
+
+// Uploads RGBA8 level 0, generates the mip chain by blits and leaves the image SHADER_READ_ONLY.
+void uploadTexture(GpuContext& ctx, Image& image, std::span<const uint8_t> rgba8);
+
+// Sets a debug name (shows in validation messages).
+void setName(GpuContext& ctx, uint64_t handle, VkObjectType type, const char* name);
+
+}  // namespace gb

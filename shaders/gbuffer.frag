@@ -1,0 +1,34 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// G-buffer: albedo_specular, normal_shadow (normal + shadow-map compare), depth (eye depth).
+#include "common.glsl"
+#include "material.glsl"
+#include "gbuffer_codec.glsl"
+
+layout(set = 1, binding = kBindingShadowMap) uniform sampler2DShadow shadowMap;
+
+layout(location = 0) in vec3 inEye;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec4 inUv;
+layout(location = 3) in vec4 inTangent;
+layout(location = 4) in vec4 inLightClip;
+layout(location = 5) flat in uint inMaterial;
+
+layout(location = 0) out vec4 outAlbedoSpecular;
+layout(location = 1) out vec4 outNormalShadow;
+layout(location = 2) out float outDepth;
+
+void main() {
+  Material m = materials[inMaterial];
+  vec4 base = baseColor(m, inUv);
+  if (ALPHA_TEST != 0 && base.a < m.params.y) discard;
+  vec3 N = surfaceNormal(m, inNormal, inTangent, inUv, gl_FrontFacing);
+  float shadow = 1.0;
+  if (frame.sunEyeDirection.w > 0.0) {
+    vec3 lc = inLightClip.xyz / inLightClip.w;
+    shadow = texture(shadowMap, vec3(lc.xy * 0.5 + 0.5, lc.z));
+  }
+  outAlbedoSpecular = vec4(base.rgb, m.params.x);
+  outNormalShadow = encodeNormalShadow(N, shadow);
+  outDepth = -inEye.z;
+}

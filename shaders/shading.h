@@ -1,0 +1,75 @@
+// The lighting formulas, written once in the subset of GLSL that GLM also compiles:
+// the shaders use them in float, the CPU reference (renderer/reference) in double.
+#ifndef GBLENS_SHADING_H
+#define GBLENS_SHADING_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+namespace gb::shading {
+using real = double;
+using vec3 = glm::dvec3;
+using glm::clamp;
+using glm::dot;
+using glm::exp;
+using glm::max;
+using glm::normalize;
+using glm::pow;
+using glm::sqrt;
+#define GB_FN inline
+#else
+#define real float
+#define GB_FN
+#endif
+
+// Blinn-Phong exponent; the G-buffer stores only a specular intensity (as the Apple sample).
+#define GB_SHININESS 32.0
+
+// Window falloff: 1 at the centre, exactly 0 at (and beyond) the radius, so culling to the
+// light volume loses nothing. x = squared distance / squared radius.
+GB_FN real pointAttenuation(real distanceSquared, real radius) {
+  real x = distanceSquared / (radius * radius);
+  real w = clamp(1.0 - x, 0.0, 1.0);
+  return w * w;
+}
+
+// Diffuse + specular of one light of radiance `radiance` arriving from unit direction L.
+// N unit normal, V unit vector toward the eye.
+GB_FN vec3 blinnPhong(vec3 albedo, real specular, vec3 N, vec3 V, vec3 L, vec3 radiance) {
+  real nDotL = dot(N, L);
+  if (nDotL <= 0.0) return vec3(0.0);
+  vec3 H = normalize(L + V);
+  real nDotH = max(dot(N, H), 0.0);
+  return radiance * (albedo * nDotL + vec3(specular * pow(nDotH, GB_SHININESS)));
+}
+
+// The sun: ambient everywhere geometry is, direct light scaled by the shadow term (1 lit, 0 shadowed).
+GB_FN vec3 shadeDirectional(vec3 albedo, real specular, vec3 N, vec3 V, vec3 toSun, vec3 sunColor,
+                            vec3 ambient, real shadow) {
+  return albedo * ambient + shadow * blinnPhong(albedo, specular, N, V, toSun, sunColor);
+}
+
+// One point light at eye-space `lightPosition` lighting the surface point P (eye space).
+GB_FN vec3 shadePoint(vec3 albedo, real specular, vec3 N, vec3 P, vec3 lightPosition, real radius,
+                      vec3 color) {
+  vec3 toLight = lightPosition - P;
+  real d2 = dot(toLight, toLight);
+  real attenuation = pointAttenuation(d2, radius);
+  if (attenuation <= 0.0) return vec3(0.0);
+  vec3 L = toLight / sqrt(max(d2, 1e-30));
+  vec3 V = normalize(-P);
+  return blinnPhong(albedo, specular, N, V, L, color * attenuation);
+}
+
+// HDR -> display: exposure and an exponential shoulder (monotonic, never NaN: the input is
+// clamped to the largest half first so +Inf from saturated fp16 blending stays white).
+GB_FN vec3 toneMap(vec3 hdr, real exposure) {
+  vec3 x = clamp(hdr, vec3(0.0), vec3(65504.0)) * exposure;
+  return vec3(1.0) - exp(-x);
+}
+
+#ifdef __cplusplus
+}  // namespace gb::shading
+#undef GB_FN
+#endif
+
+#endif

@@ -1,0 +1,116 @@
+// Structs, binding indices and enums shared by C++ and GLSL: one definition for both sides.
+// Layout rule: only vec4/uvec4/ivec4/mat4 members, so std140/std430 and C++ agree byte for byte.
+#ifndef GBLENS_SHARED_H
+#define GBLENS_SHARED_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace gb::gpu {
+using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+using ivec4 = glm::ivec4;
+using mat4 = glm::mat4;
+using uint = uint32_t;
+#define GB_CONST(type, name, value) constexpr type name = value
+#define GB_STRUCT(name) struct alignas(16) name
+#else
+#define GB_CONST(type, name, value) const type name = value
+#define GB_STRUCT(name) struct name
+#endif
+
+// ---- descriptor set 0: the scene and the frame (one set, written when the scene loads) ----
+GB_CONST(uint, kSetScene, 0);
+GB_CONST(uint, kBindingFrame, 0);      // uniform FrameData
+GB_CONST(uint, kBindingDraws, 1);      // buffer DrawData[]
+GB_CONST(uint, kBindingMaterials, 2);  // buffer Material[]
+GB_CONST(uint, kBindingLights, 3);     // buffer PointLight[] (eye space, this frame)
+GB_CONST(uint, kBindingVisible, 4);    // buffer uint[]: indices of the lights drawn this frame
+GB_CONST(uint, kBindingTextures, 5);   // sampler2D[]: scene textures
+
+// ---- descriptor set 1: the pass's inputs (push descriptors) ----
+GB_CONST(uint, kSetPass, 1);
+GB_CONST(uint, kBindingAlbedo, 0);      // albedo_specular (texture or input attachment)
+GB_CONST(uint, kBindingNormal, 1);      // normal_shadow
+GB_CONST(uint, kBindingDepth, 2);       // the position source: depth (eye depth) or depth_stencil's depth
+GB_CONST(uint, kBindingShadowMap, 3);   // shadow_map with compare sampler
+GB_CONST(uint, kBindingHdr, 4);         // hdr (tone-map input)
+GB_CONST(uint, kBindingCoverage, 5);    // coverage_masked / coverage_full: r32ui storage image
+GB_CONST(uint, kBindingTileLights, 6);  // tiled deferred: per-tile light lists
+
+// Input attachment indices of the single-pass path (subpass inputs, in this order).
+GB_CONST(uint, kInputAlbedo, 0);
+GB_CONST(uint, kInputNormal, 1);
+GB_CONST(uint, kInputDepth, 2);
+GB_CONST(uint, kInputHdr, 0);           // tone-map subpass
+
+// ---- specialization constants ----
+GB_CONST(uint, kSpecEyeDepth, 0);       // 1: position from the eye-depth target; 0: from hardware depth
+GB_CONST(uint, kSpecAlphaTest, 1);      // 1: the material may cut out fragments
+GB_CONST(uint, kSpecCoverage, 2);       // 1: count fragment invocations into kBindingCoverage
+GB_CONST(uint, kSpecReversedZ, 3);      // 1: depth 1 at the near plane
+GB_CONST(uint, kSpecNormalEncoding, 4); // kNormal* below
+GB_CONST(uint, kSpecTextureCount, 5);   // size of the scene texture array (at least 1)
+
+// How normal_shadow stores the eye-space normal.
+GB_CONST(uint, kNormalRgba16f, 0);
+GB_CONST(uint, kNormalRgba8Snorm, 1);
+GB_CONST(uint, kNormalOctRg16, 2);
+GB_CONST(uint, kNormalRgb10a2, 3);
+
+GB_CONST(uint, kAlphaOpaque, 0);
+GB_CONST(uint, kAlphaMask, 1);
+GB_CONST(uint, kAlphaBlend, 2);
+
+GB_CONST(uint, kStencilGeometry, 128);  // G-buffer writes this where geometry is (as the sample)
+GB_CONST(uint, kTileSize, 16);
+
+GB_STRUCT(FrameData) {
+  mat4 clipFromEye;
+  mat4 eyeFromClip;
+  mat4 worldFromEye;      // rotation part turns eye rays into sky directions
+  mat4 lightClipFromEye;  // shadow-map clip space from eye space (point lights, probes)
+  vec4 viewport;          // width, height, 1/width, 1/height
+  vec4 eyeRay;            // 1/P00, 1/P11, P20, P21: eye-depth reconstruction
+  vec4 sunEyeDirection;   // xyz: unit vector toward the sun, eye space; w: 1 when there is a sun
+  vec4 sunColor;          // rgb radiance
+  vec4 ambientColor;      // rgb
+  vec4 skyZenith;         // rgb
+  vec4 skyHorizon;        // rgb
+  vec4 skyGround;         // rgb
+  vec4 params;            // x exposure, y fairy size (fraction of radius), z shadow-map texel size, w time
+  uvec4 counts;           // x visible lights, y lights drawn in the "inside" class, z tiles x, w tiles y
+};
+
+GB_STRUCT(DrawData) {
+  mat4 eyeFromObject;         // computed in double on the CPU: camera-relative, precise far from the origin
+  mat4 normalEyeFromObject;   // inverse transpose of eyeFromObject's 3x3
+  mat4 lightClipFromObject;   // the sun's shadow-map clip space
+  uvec4 info;                 // x material index, y 1 if the winding is flipped
+};
+
+GB_STRUCT(Material) {
+  vec4 baseColor;     // linear rgba factor
+  vec4 params;        // x specular intensity, y alpha cut-off, z normal scale, w unused
+  ivec4 textures;     // x base-colour texture (-1 none), y normal texture, z base UV set, w normal UV set
+  uvec4 flags;        // x alpha mode, y double sided
+  vec4 baseUv0;       // KHR_texture_transform as a 2x3 matrix: row 0
+  vec4 baseUv1;       // row 1
+  vec4 normalUv0;
+  vec4 normalUv1;
+};
+
+GB_STRUCT(PointLight) {
+  vec4 eyePositionRadius;  // xyz eye space, w radius (attenuation is exactly zero at the radius)
+  vec4 color;              // rgb colour * intensity
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(FrameData) == 4 * 64 + 10 * 16);
+static_assert(sizeof(DrawData) == 3 * 64 + 16);
+static_assert(sizeof(Material) == 8 * 16);
+static_assert(sizeof(PointLight) == 32);
+}  // namespace gb::gpu
+#endif
+
+#endif

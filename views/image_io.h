@@ -1,0 +1,23 @@
+// Writing images for people (PNG) atomically: a temporary file in the same folder, then rename,
+// so an interrupted write never leaves a half file under the real name.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace gb {
+
+struct Rgba8Image {
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> pixels;  // sRGB-encoded RGBA, rows top to bottom
+};
+
+// Returns false and fills `error` (naming the file) on failure.
+bool writePng(const std::string& path, const Rgba8Image& image, std::string& error);
+
+// Runs `write(tmpPath)`, then renames tmpPath to `path`. Removes the temporary on failure.
+bool writeAtomically(const std::string& path, const std::string& suffix,
+                     const std::function<bool(const std::string& tmpPath)>& write);
+
+}  // namespace gb

@@ -1,0 +1,15 @@
+// Frame statistics as JSON (the --stats output, bench rows, capture manifests): pass names,
+// per-pass ms (median over frames), skips with reasons, culling statistics.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "renderer/renderer.h"
+
+namespace gb {
+
+nlohmann::json optionsJson(const RenderOptions& o);
+nlohmann::json statsJson(const std::vector<FrameStats>& frames, const GpuContext& ctx, const RenderOptions& o,
+                         const Scene& scene);
+
+}  // namespace gb
