@@ -16,14 +16,14 @@ class GpuTest : public ::testing::Test {
  public:
   static GpuContext& ctx();
 
- protected:
-  void SetUp() override;
-  void TearDown() override;
-
   // Renders one frame of `scene` (a renderer per scene, kept for the test) and returns its stats.
   const FrameStats& render(const Scene& scene, const RenderOptions& options, const FrameRequest& request = {});
   // The renderer used for `scene` by render().
   Renderer& renderer(const Scene& scene);
+
+ protected:
+  void SetUp() override;
+  void TearDown() override;
 
  private:
   int errorsBefore_ = 0, warningsBefore_ = 0;
