@@ -27,6 +27,9 @@ void addCommonOptions(CLI::App* cmd, CommonOptions& o) {
   cmd->add_option("--stencil-culling", o.stencilCulling, "LIGHT_STENCIL_CULLING: on | off")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  cmd->add_option("--stencil-mask", o.stencilMask, "per-light (exact, 7 lights per stencil batch) | shared (the sample's one mask)")
+      ->check(CLI::IsMember({"per-light", "shared"}))
+      ->capture_default_str();
   cmd->add_option("--method", o.method, "deferred | forward | tiled")
       ->check(CLI::IsMember({"deferred", "forward", "tiled"}))
       ->capture_default_str();
@@ -52,6 +55,7 @@ bool finishCommonOptions(CommonOptions& o, std::string& error) {
   parse(o.method, o.render.method);
   o.render.eyeDepth = o.eyeDepth == "on";
   o.render.stencilCulling = o.stencilCulling == "on";
+  parse(o.stencilMask, o.render.stencilMask);
   return true;
 }
 

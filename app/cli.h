@@ -17,6 +17,7 @@ struct CommonOptions {
   std::string scene = "builtin:temple";
   std::string size = "1280x720";
   std::string path = "two-pass", method = "deferred", eyeDepth = "on", stencilCulling = "on";
+  std::string stencilMask = "per-light";
   RenderOptions render;
   int frames = 1;
   bool stats = false;

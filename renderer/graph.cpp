@@ -471,16 +471,12 @@ void FrameGraph::recordGroup(GpuContext& ctx, VkCommandBuffer cmd, int g, GraphT
   bi.clearValueCount = uint32_t(clears.size());
   bi.pClearValues = clears.data();
   vkCmdBeginRenderPass(cmd, &bi, VK_SUBPASS_CONTENTS_INLINE);
-  VkViewport viewport{0, 0, float(extent.width), float(extent.height), 0.0f, 1.0f};
-  VkRect2D scissor{{0, 0}, extent};
   for (uint32_t si = 0; si < nsub; ++si) {
     if (si > 0) vkCmdNextSubpass(cmd, VK_SUBPASS_CONTENTS_INLINE);
     for (int pi : group.passes) {
       PassNode& p = passes_[pi];
       if (p.subpass != si) continue;
       timestamp(cmd, timestamps, 2 * p.stat, false);
-      vkCmdSetViewport(cmd, 0, 1, &viewport);
-      vkCmdSetScissor(cmd, 0, 1, &scissor);
       PassContext pc;
       pc.cmd = cmd;
       pc.renderPass = rp;

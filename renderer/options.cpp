@@ -20,6 +20,7 @@ static const Names<DepthFormat, 2> kDepth = {{{DepthFormat::D32S8, "d32s8"}, {De
 static const Names<AccumFormat, 3> kAccum = {
     {{AccumFormat::Rgba16f, "rgba16f"}, {AccumFormat::Rgba32f, "rgba32f"}, {AccumFormat::Rgba8, "rgba8"}}};
 static const Names<ShadowFormat, 2> kShadow = {{{ShadowFormat::D32f, "d32f"}, {ShadowFormat::D16, "d16"}}};
+static const Names<StencilMask, 2> kMask = {{{StencilMask::PerLight, "per-light"}, {StencilMask::Shared, "shared"}}};
 
 template <class E, size_t N>
 static const char* lookup(const Names<E, N>& names, E v) {
@@ -43,11 +44,13 @@ const char* name(NormalFormat v) { return lookup(kNormal, v); }
 const char* name(DepthFormat v) { return lookup(kDepth, v); }
 const char* name(AccumFormat v) { return lookup(kAccum, v); }
 const char* name(ShadowFormat v) { return lookup(kShadow, v); }
+const char* name(StencilMask v) { return lookup(kMask, v); }
 bool parse(const std::string& t, Path& o) { return find(kPath, t, o); }
 bool parse(const std::string& t, Method& o) { return find(kMethod, t, o); }
 bool parse(const std::string& t, NormalFormat& o) { return find(kNormal, t, o); }
 bool parse(const std::string& t, DepthFormat& o) { return find(kDepth, t, o); }
 bool parse(const std::string& t, AccumFormat& o) { return find(kAccum, t, o); }
 bool parse(const std::string& t, ShadowFormat& o) { return find(kShadow, t, o); }
+bool parse(const std::string& t, StencilMask& o) { return find(kMask, t, o); }
 
 }  // namespace gb

@@ -12,6 +12,10 @@ enum class NormalFormat { Rgba16f, Rgba8Snorm, OctRg16, Rgb10a2 };
 enum class DepthFormat { D32S8, D24S8 };        // the hardware depth/stencil target
 enum class AccumFormat { Rgba16f, Rgba32f, Rgba8 };  // the light accumulation (hdr) target
 enum class ShadowFormat { D32f, D16 };
+// How LIGHT_STENCIL_CULLING marks pixels: one shared mask for all lights (the Apple sample:
+// cheap to draw, but one light's mark lets another light shade), or an exact mask per light
+// (Z-fail toggles one stencil bit per light, 7 lights per batch).
+enum class StencilMask { PerLight, Shared };
 
 struct RenderOptions {
   uint32_t width = 1280, height = 720;
@@ -22,6 +26,7 @@ struct RenderOptions {
   Method method = Method::Deferred;
   bool eyeDepth = true;        // USE_EYE_DEPTH: reconstruct positions from the eye-depth target
   bool stencilCulling = true;  // LIGHT_STENCIL_CULLING
+  StencilMask stencilMask = StencilMask::PerLight;
   bool reversedZ = false;
   NormalFormat normalFormat = NormalFormat::Rgba16f;
   DepthFormat depthFormat = DepthFormat::D32S8;
@@ -47,6 +52,7 @@ const char* name(NormalFormat f);
 const char* name(DepthFormat f);
 const char* name(AccumFormat f);
 const char* name(ShadowFormat f);
+const char* name(StencilMask m);
 
 // Parse the names above; false when the text names nothing.
 bool parse(const std::string& text, Path& out);
@@ -55,5 +61,6 @@ bool parse(const std::string& text, NormalFormat& out);
 bool parse(const std::string& text, DepthFormat& out);
 bool parse(const std::string& text, AccumFormat& out);
 bool parse(const std::string& text, ShadowFormat& out);
+bool parse(const std::string& text, StencilMask& out);
 
 }  // namespace gb

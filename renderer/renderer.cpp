@@ -322,7 +322,8 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
     VK_CHECK(vkCreateQueryPool(ctx.device, &qci, nullptr, &r.timestampPool));
   }
   vkResetQueryPool(ctx.device, r.timestampPool, 0, capacity);
-  if (request.cullingStats && ctx.features.pipelineStatistics) {
+  r.statisticsActive = request.cullingStats && ctx.features.pipelineStatistics;
+  if (r.statisticsActive) {
     if (!r.statisticsPool) {
       VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
       qci.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
@@ -378,7 +379,9 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
     for (size_t i = 0; i < size_t(masked.width) * masked.height; ++i) c.invocations += masked.raw(uint32_t(i % masked.width), uint32_t(i / masked.width), 0);
     c.idealPairs = idealPairs(r.view, r.readback[size_t(Target::Depth)], r.lights.eye);
     c.workOverIdeal = c.idealPairs ? double(c.invocations) / double(c.idealPairs) : 0.0;
-    if (r.statisticsPool) {
+    bool pointLightsRan = false;
+    for (const PassStat& p : st.passes) pointLightsRan |= p.name == "point_lights" && !p.skipped;
+    if (r.statisticsActive && pointLightsRan) {
       uint64_t v = 0;
       VK_CHECK(vkGetQueryPoolResults(ctx.device, r.statisticsPool, 0, 1, sizeof(v), &v, sizeof(v),
                                      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));

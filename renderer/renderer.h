@@ -78,6 +78,7 @@ struct Renderer {
   GraphCache graphCache;
   std::map<std::string, VkPipeline> pipelines;
   VkQueryPool timestampPool = VK_NULL_HANDLE, statisticsPool = VK_NULL_HANDLE;
+  bool statisticsActive = false;  // this frame counts fragment invocations of the point-light pass
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
   std::array<Buffer, kTargetCount> readbackBuffers;

@@ -6,6 +6,9 @@
 #include "gbuffer_read.glsl"
 #include "shading.h"
 
+// Depth/stencil tests before the shader: culling must stop the shader, and with it the coverage
+// counter (a shader with side effects would otherwise run ahead of late tests).
+layout(early_fragment_tests) in;
 layout(set = 1, binding = kBindingCoverage, r32ui) uniform uimage2D coverage;
 layout(location = 0) flat in uint inLight;
 layout(location = 0) out vec4 outColor;

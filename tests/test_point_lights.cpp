@@ -46,9 +46,12 @@ TEST_F(GpuTest, StencilCulledAndUnculledImagesAgree) {
     CpuImage unculled = renderer(scene).readback[size_t(Target::Hdr)];
     CpuImage coverage = renderer(scene).readback[size_t(Target::CoverageMasked)];
     o.stencilCulling = true;
-    render(scene, o, {{Target::Hdr}});
-    EXPECT_EQ(countOutOfBound(renderer(scene).readback[size_t(Target::Hdr)], unculled, coverage), 0)
-        << lights << " lights";
+    for (StencilMask mask : {StencilMask::PerLight, StencilMask::Shared}) {
+      o.stencilMask = mask;
+      render(scene, o, {{Target::Hdr}});
+      EXPECT_EQ(countOutOfBound(renderer(scene).readback[size_t(Target::Hdr)], unculled, coverage), 0)
+          << lights << " lights, " << name(mask) << " mask";
+    }
   }
 }
 
@@ -116,8 +119,13 @@ static Scene oneLightScene(glm::dvec3 light, double radius) {
   return s;
 }
 
-TEST_F(GpuTest, NoLightIsLostWhenTheVolumeContainsTheCameraOrCrossesNearOrFar) {
+class PointLightMasks : public GpuTest, public ::testing::WithParamInterface<StencilMask> {};
+INSTANTIATE_TEST_SUITE_P(Masks, PointLightMasks, ::testing::Values(StencilMask::PerLight, StencilMask::Shared),
+                         [](const auto& info) { return std::string(info.param == StencilMask::PerLight ? "PerLight" : "Shared"); });
+
+TEST_P(PointLightMasks, NoLightIsLostWhenTheVolumeContainsTheCameraOrCrossesNearOrFar) {
   RenderOptions o = lightOptions(96, 64);
+  o.stencilMask = GetParam();
   o.lights = 1;
   FrameRequest req{{Target::Hdr, Target::Depth, Target::AlbedoSpecular}};
   {  // The camera inside the light's sphere.
@@ -174,9 +182,10 @@ TEST_F(GpuTest, OneLightOverTheFloorLightsExactlyTheAnalyticDisc) {
   EXPECT_EQ(offEdge, 0) << "lit/unlit pixels away from the disc's edge";
 }
 
-TEST_F(GpuTest, EveryIdealPairIsShadedAndTheCountMatchesBruteForce) {
+TEST_P(PointLightMasks, EveryIdealPairIsShadedAndTheCountMatchesBruteForce) {
   Scene scene = builtinTemple(96);
   RenderOptions o = lightOptions(80, 45);
+  o.stencilMask = GetParam();
   o.lights = 96;
   const FrameStats& st = render(scene, o, {{Target::Depth, Target::CoverageMasked}, {}, true});
   Renderer& r = renderer(scene);

@@ -21,6 +21,7 @@ nlohmann::json optionsJson(const RenderOptions& o) {
           {"method", name(o.method)},
           {"eye_depth", o.eyeDepth ? "on" : "off"},
           {"stencil_culling", o.stencilCulling ? "on" : "off"},
+          {"stencil_mask", name(o.stencilMask)},
           {"reversed_z", o.reversedZ},
           {"normal_format", name(o.normalFormat)},
           {"depth_format", name(o.depthFormat)},

@@ -19,7 +19,7 @@ void addFairyPass(FrameGraph& g, Renderer& r) {
                                    VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA};
     });
     bindGBuffer(r, pc);
-    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    bindPipeline(pc, p);
     vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_NONE);
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);

@@ -34,9 +34,9 @@ void addGBufferPass(FrameGraph& g, Renderer& r) {
                     {{gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, shadow.image.depthView,
                       pc.layouts[size_t(Target::ShadowMap)], r.samplerShadow}});
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);
-    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque);
+    bindPipeline(pc, opaque);
     drawInstances(r, pc.cmd, 0, r.opaqueDraws, false);
-    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, alpha);
+    bindPipeline(pc, alpha);
     drawInstances(r, pc.cmd, r.opaqueDraws, uint32_t(r.drawOrder.size()), false);
   });
 }

@@ -21,7 +21,7 @@ void addLightCoveragePass(FrameGraph& g, Renderer& r) {
     const GraphTarget& coverage = r.targets[size_t(Target::CoverageFull)];
     bindGBuffer(r, pc, {{gpu::kBindingCoverage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, coverage.image.view,
                          VK_IMAGE_LAYOUT_GENERAL}});
-    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    bindPipeline(pc, p);
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);
     // Front faces cover the volume's screen footprint; near-class volumes are clipped at the

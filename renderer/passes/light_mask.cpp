@@ -24,7 +24,7 @@ void addLightMaskPass(FrameGraph& g, Renderer& r) {
       for (BlendState& b : d.colorBlend) b.writeMask = 0;
     });
     bindGBuffer(r, pc);
-    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    bindPipeline(pc, p);
     vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_FRONT_BIT);
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);

@@ -88,6 +88,14 @@ void drawInstances(Renderer& r, VkCommandBuffer cmd, uint32_t begin, uint32_t en
   }
 }
 
+void bindPipeline(const PassContext& pc, VkPipeline pipeline) {
+  vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+  VkViewport viewport{0, 0, float(pc.extent.width), float(pc.extent.height), 0.0f, 1.0f};
+  VkRect2D scissor{{0, 0}, pc.extent};
+  vkCmdSetViewport(pc.cmd, 0, 1, &viewport);
+  vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
+}
+
 VkStencilOpState stencil(VkCompareOp compare, uint32_t compareMask, VkStencilOp depthFail, VkStencilOp pass) {
   VkStencilOpState s{};
   s.failOp = VK_STENCIL_OP_KEEP;

@@ -36,6 +36,9 @@ void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassI
 void drawLightVolumes(Renderer& r, VkCommandBuffer cmd, uint32_t first, uint32_t count);
 // Draws the scene's instances in drawOrder [begin, end).
 void drawInstances(Renderer& r, VkCommandBuffer cmd, uint32_t begin, uint32_t end, bool shadowCastersOnly);
+// Binds a graphics pipeline and sets the viewport/scissor to the pass's extent, so every pass's
+// dynamic state is complete whatever ran before it.
+void bindPipeline(const PassContext& pc, VkPipeline pipeline);
 VkStencilOpState stencil(VkCompareOp compare, uint32_t compareMask, VkStencilOp depthFail = VK_STENCIL_OP_KEEP,
                          VkStencilOp pass = VK_STENCIL_OP_KEEP);
 

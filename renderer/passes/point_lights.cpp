@@ -1,54 +1,115 @@
 // Point lights: each light volume shades the pixels it may light, adding into hdr.
-//  - stencil class, culling on: front faces in front of the geometry, where the mask marked
-//    the pixel (stencil > 128);
-//  - stencil class, culling off: front faces in front of the geometry (the sample's full coverage);
-//  - near class (the volume touches the near plane or contains the camera): back faces behind
-//    or at the geometry, depth test reversed, no mask; depth clamp keeps the far plane.
+//  - per-light mask (default): for batches of 7 lights, Z-fail marks each light's own stencil
+//    bit (INVERT where a face lies behind the geometry: odd = the surface is inside the volume;
+//    depth clamp keeps back faces beyond the far plane, and a near-clipped front face only makes
+//    the mark conservative), then the light's back faces shade where its bit is set and clear
+//    it. Exact per light, and the camera may be inside the volume.
+//  - shared mask (the sample): front faces in front of the geometry where the shared light_mask
+//    marked the pixel (stencil > 128). Lights touching the near plane are drawn as back faces
+//    behind or at the geometry, depth test reversed, no mask; depth clamp keeps the far plane.
+//  - culling off: front faces in front of the geometry (the sample's full coverage), same near class.
 #include "renderer/passes/passes.h"
 
 namespace gb {
 
+static constexpr uint32_t kBatch = 7;  // stencil bits 0..6; bit 7 marks geometry
+
+
+static void describeShading(Renderer& r, GraphicsPipelineDesc& d) {
+  d.vertexShader = "light_volume.vert";
+  d.fragmentShader = lightingShader(r, "point_light");
+  d.vertexInput = VertexInput::Position;
+  d.layout = lightingLayout(r);
+  d.depthClamp = true;
+  d.stencilTest = true;
+  d.colorBlend[0] = BlendState{true};  // additive: ONE, ONE
+  d.rasterOrderColor = singlePass(r);
+}
+
+// Per-light stencil bits: mask 7 lights, then shade them, batch after batch.
+static void drawPerLight(Renderer& r, PassContext& pc) {
+  VkPipeline mask = graphicsPipeline(r, pc, "point_light.mask_bits", [&r](GraphicsPipelineDesc& d) {
+    d.vertexShader = "light_volume.vert";
+    d.vertexInput = VertexInput::Position;
+    d.layout = lightingLayout(r);
+    d.depthTest = true;
+    d.depthCompare = closerOrEqual(r);  // fails where the face lies behind the geometry
+    d.depthClamp = true;
+    d.stencilTest = true;
+    d.stencil = stencil(VK_COMPARE_OP_ALWAYS, 0, VK_STENCIL_OP_INVERT);
+    d.dynamicStencilMasks = true;
+    for (BlendState& b : d.colorBlend) b.writeMask = 0;
+  });
+  VkPipeline shade = graphicsPipeline(r, pc, "point_light.per_light", [&r](GraphicsPipelineDesc& d) {
+    describeShading(r, d);
+    d.stencil = stencil(VK_COMPARE_OP_EQUAL, 0, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_ZERO);  // shade, clear the bit
+    d.dynamicStencilMasks = true;
+  });
+  const uint32_t n = uint32_t(r.lights.visible.size());
+  for (uint32_t first = 0; first < n; first += kBatch) {
+    uint32_t count = std::min(kBatch, n - first);
+    bindPipeline(pc, mask);
+    vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_NONE);
+    vkCmdSetStencilCompareMask(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);  // ALWAYS: unused, but dynamic
+    for (uint32_t k = 0; k < count; ++k) {
+      vkCmdSetStencilWriteMask(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1u << k);
+      drawLightVolumes(r, pc.cmd, first + k, 1);
+    }
+    bindPipeline(pc, shade);
+    vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_FRONT_BIT);  // back faces: never clipped by the near plane
+    for (uint32_t k = 0; k < count; ++k) {
+      vkCmdSetStencilCompareMask(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1u << k);
+      vkCmdSetStencilWriteMask(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1u << k);
+      vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1u << k);
+      drawLightVolumes(r, pc.cmd, first + k, 1);
+    }
+  }
+}
+
+// Shared mask or no culling: instanced front faces, then the near-plane class.
+static void drawInstanced(Renderer& r, PassContext& pc) {
+  const bool culled = r.options.stencilCulling;
+  VkPipeline front = graphicsPipeline(r, pc, culled ? "point_light.shared" : "point_light.unculled",
+                                      [&r, culled](GraphicsPipelineDesc& d) {
+                                        describeShading(r, d);
+                                        d.depthTest = true;
+                                        d.depthCompare = closerOrEqual(r);
+                                        d.stencil = culled ? stencil(VK_COMPARE_OP_LESS, 0xFF)    // 128 < stencil
+                                                           : stencil(VK_COMPARE_OP_EQUAL, 0x80);  // any geometry
+                                      });
+  VkPipeline nearClass = graphicsPipeline(r, pc, "point_light.near", [&r](GraphicsPipelineDesc& d) {
+    describeShading(r, d);
+    d.depthTest = true;
+    d.depthCompare = fartherOrEqual(r);
+    d.stencil = stencil(VK_COMPARE_OP_EQUAL, 0x80);
+  });
+  vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);
+  bindPipeline(pc, front);
+  vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_BACK_BIT);
+  drawLightVolumes(r, pc.cmd, 0, r.lights.stencilCount);
+  bindPipeline(pc, nearClass);
+  vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_FRONT_BIT);
+  drawLightVolumes(r, pc.cmd, r.lights.stencilCount, uint32_t(r.lights.visible.size()) - r.lights.stencilCount);
+}
+
 void addPointLightPass(FrameGraph& g, Renderer& r) {
+  const bool perLight = r.options.stencilCulling && r.options.stencilMask == StencilMask::PerLight;
   std::vector<Use> uses = gbufferReads(r);
   uses.push_back(hdrUse(Access::ColorBlend));
-  uses.push_back(depthStencilUse(Access::DepthStencilRead));
+  uses.push_back(depthStencilUse(perLight ? Access::DepthTestStencilWrite : Access::DepthStencilRead));
   // Declared even when coverage is off (then a 1x1 image nobody writes): the shader binds it.
   uses.push_back({Target::CoverageMasked, Access::StorageFragment});
-  g.addPass("point_lights", uses, [&r](PassContext& pc) {
-    auto describe = [&r](bool culled, bool nearClass) {
-      return [&r, culled, nearClass](GraphicsPipelineDesc& d) {
-        d.vertexShader = "light_volume.vert";
-        d.fragmentShader = lightingShader(r, "point_light");
-        d.vertexInput = VertexInput::Position;
-        d.layout = lightingLayout(r);
-        d.depthTest = true;
-        d.depthCompare = nearClass ? fartherOrEqual(r) : closerOrEqual(r);
-        d.depthClamp = true;
-        d.stencilTest = true;
-        d.stencil = culled ? stencil(VK_COMPARE_OP_LESS, 0xFF)   // 128 < stencil: marked by the mask
-                           : stencil(VK_COMPARE_OP_EQUAL, 0x80);  // any geometry pixel
-        d.colorBlend[0] = BlendState{true};  // additive: ONE, ONE
-        d.rasterOrderColor = singlePass(r);
-      };
-    };
-    const bool culled = r.options.stencilCulling;
-    VkPipeline front = graphicsPipeline(r, pc, culled ? "point_light.culled" : "point_light.unculled",
-                                        describe(culled, false));
-    VkPipeline nearClass = graphicsPipeline(r, pc, "point_light.near", describe(false, true));
+  g.addPass("point_lights", uses, [&r, perLight](PassContext& pc) {
     const GraphTarget& coverage = r.targets[size_t(Target::CoverageMasked)];
     bindGBuffer(r, pc, {{gpu::kBindingCoverage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, coverage.image.view,
                          VK_IMAGE_LAYOUT_GENERAL}});
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
-    vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);
-    bool stats = r.statisticsPool != VK_NULL_HANDLE;
-    if (stats) vkCmdBeginQuery(pc.cmd, r.statisticsPool, 0, 0);
-    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, front);
-    vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_BACK_BIT);
-    drawLightVolumes(r, pc.cmd, 0, r.lights.stencilCount);
-    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, nearClass);
-    vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_FRONT_BIT);
-    drawLightVolumes(r, pc.cmd, r.lights.stencilCount, uint32_t(r.lights.visible.size()) - r.lights.stencilCount);
-    if (stats) vkCmdEndQuery(pc.cmd, r.statisticsPool, 0);
+    if (r.statisticsActive) vkCmdBeginQuery(pc.cmd, r.statisticsPool, 0, 0);
+    if (perLight)
+      drawPerLight(r, pc);
+    else
+      drawInstanced(r, pc);
+    if (r.statisticsActive) vkCmdEndQuery(pc.cmd, r.statisticsPool, 0);
   });
 }
 

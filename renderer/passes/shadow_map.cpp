@@ -27,9 +27,9 @@ void addShadowMapPass(FrameGraph& g, Renderer& r) {
     bindDescriptors(r, pc.cmd, r.pipelineLayout, {});
     vkCmdSetDepthBias(pc.cmd, r.options.shadowBiasConstant, r.options.shadowBiasClamp, r.options.shadowBiasSlope);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
-    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, opaque);
+    bindPipeline(pc, opaque);
     drawInstances(r, pc.cmd, 0, r.opaqueDraws, true);
-    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, alpha);
+    bindPipeline(pc, alpha);
     drawInstances(r, pc.cmd, r.opaqueDraws, uint32_t(r.drawOrder.size()), true);
   });
   g.endRenderPass();

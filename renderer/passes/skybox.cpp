@@ -17,7 +17,7 @@ void addSkyboxPass(FrameGraph& g, Renderer& r) {
       d.depthCompare = closerOrEqual(r);  // passes only at the cleared far depth
     });
     bindGBuffer(r, pc);
-    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    bindPipeline(pc, p);
     vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_NONE);
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);

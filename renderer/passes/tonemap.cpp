@@ -17,7 +17,7 @@ void addToneMapPass(FrameGraph& g, Renderer& r) {
                     {{gpu::kBindingHdr, input ? VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                       r.targets[size_t(Target::Hdr)].image.view, pc.layouts[size_t(Target::Hdr)],
                       input ? VK_NULL_HANDLE : r.samplerPoint}});
-    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+    bindPipeline(pc, p);
     vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_NONE);
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);

@@ -104,7 +104,8 @@ VkPipeline createGraphicsPipeline(GpuContext& ctx, const GraphicsPipelineDesc& d
   ds.depthWriteEnable = d.depthWrite;
   ds.depthCompareOp = d.depthCompare;
   ds.stencilTestEnable = d.stencilTest;
-  ds.front = ds.back = d.stencil;
+  ds.front = d.stencil;
+  ds.back = d.separateBackStencil ? d.stencilBack : d.stencil;
   std::vector<VkPipelineColorBlendAttachmentState> blends;
   for (auto& b : d.colorBlend) {
     VkPipelineColorBlendAttachmentState s{};
@@ -126,6 +127,10 @@ VkPipeline createGraphicsPipeline(GpuContext& ctx, const GraphicsPipelineDesc& d
   std::vector<VkDynamicState> dyn = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR, VK_DYNAMIC_STATE_CULL_MODE,
                                      VK_DYNAMIC_STATE_FRONT_FACE, VK_DYNAMIC_STATE_STENCIL_REFERENCE};
   if (d.depthBias) dyn.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
+  if (d.dynamicStencilMasks) {
+    dyn.push_back(VK_DYNAMIC_STATE_STENCIL_COMPARE_MASK);
+    dyn.push_back(VK_DYNAMIC_STATE_STENCIL_WRITE_MASK);
+  }
   VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
   dy.dynamicStateCount = uint32_t(dyn.size());
   dy.pDynamicStates = dyn.data();

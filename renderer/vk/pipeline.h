@@ -41,7 +41,10 @@ struct GraphicsPipelineDesc {
   bool depthClamp = false;
   bool depthBias = false;  // values are dynamic state
   bool stencilTest = false;
-  VkStencilOpState stencil{};  // used for both faces
+  VkStencilOpState stencil{};  // front faces (and back faces unless separateBackStencil)
+  bool separateBackStencil = false;
+  VkStencilOpState stencilBack{};
+  bool dynamicStencilMasks = false;  // compare/write masks set per draw (per-light stencil bits)
   std::vector<BlendState> colorBlend;  // one per colour attachment of the subpass
   bool rasterOrderColor = false;       // VK_EXT_rasterization_order_attachment_access
   VkRenderPass renderPass = VK_NULL_HANDLE;
