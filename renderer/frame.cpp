@@ -38,7 +38,7 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   const std::string shadowKey = shadowMapKey(r);
   if (!scene.sun.enabled) {
     g.skipPass("shadow_map", "no sun (shadow term 1)");
-  } else if (r.opaqueDraws == 0 && r.drawOrder.empty()) {
+  } else if (r.drawOrder.empty()) {
     g.skipPass("shadow_map", "no shadow casters (shadow term 1)");
   } else if (shadowKey == r.shadowKey) {
     g.skipPass("shadow_map", "reused: sun and geometry unchanged");

@@ -46,6 +46,11 @@ static uint32_t mipCount(uint32_t w, uint32_t h) {
   return n;
 }
 
+uint32_t drawVariant(const Scene& scene, uint32_t instance) {
+  const MaterialDesc& m = scene.materials[scene.meshes[scene.instances[instance].mesh].material];
+  return (m.alphaMode != AlphaMode::Opaque ? 2u : 0u) + (m.normalTexture >= 0 ? 1u : 0u);
+}
+
 void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
   r.ctx = &ctx;
   r.scene = &scene;
@@ -84,14 +89,12 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
   r.visibleBuffer = createBuffer(ctx, std::max<size_t>(scene.lights.size(), maxLights) * sizeof(uint32_t),
                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload);
 
-  // Textures (RGBA8, full mip chain) and a 1x1 white stand-in so the array is never empty.
-  std::vector<Texture> placeholder;
-  const std::vector<Texture>* texList = &scene.textures;
-  if (scene.textures.empty()) {
-    placeholder.push_back(Texture{"white", 1, 1, {255, 255, 255, 255}, false, true});
-    texList = &placeholder;
-  }
-  for (const Texture& t : *texList) {
+  // Textures (RGBA8, full mip chain), then the stand-ins for materials without textures:
+  // white base colour and a flat normal.
+  std::vector<Texture> textures = scene.textures;
+  textures.push_back(Texture{"white", 1, 1, {255, 255, 255, 255}, true, true});
+  textures.push_back(Texture{"flat_normal", 1, 1, {128, 128, 255, 255}, false, true});
+  for (const Texture& t : textures) {
     ImageDesc d;
     d.format = t.srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
     d.width = t.width;
@@ -117,10 +120,9 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
       {gpu::kBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {gpu::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {gpu::kBindingVisible, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
-      {gpu::kBindingTextures, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint32_t(r.textures.size()), all, nullptr},
   };
   VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  lci.bindingCount = 6;
+  lci.bindingCount = 5;
   lci.pBindings = sceneBindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &r.sceneSetLayout));
 
@@ -133,9 +135,11 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
       {gpu::kBindingHdr, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
       {gpu::kBindingCoverage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, all, nullptr},
       {gpu::kBindingTileLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingBaseColorTexture, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
+      {gpu::kBindingNormalTexture, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
   };
   lci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
-  lci.bindingCount = 7;
+  lci.bindingCount = 9;
   lci.pBindings = passBindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &r.passSetLayout));
   // The single-pass path reads the G-buffer and hdr as subpass inputs at the same bindings.
@@ -154,11 +158,10 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &pci, nullptr, &r.pipelineLayoutInput));
 
   VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
-                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, uint32_t(r.textures.size())}};
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}};
   VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   dpci.maxSets = 1;
-  dpci.poolSizeCount = 3;
+  dpci.poolSizeCount = 2;
   dpci.pPoolSizes = sizes;
   VK_CHECK(vkCreateDescriptorPool(ctx.device, &dpci, nullptr, &r.descriptorPool));
   VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
@@ -172,11 +175,6 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
                                    {r.materialBuffer.buffer, 0, VK_WHOLE_SIZE},
                                    {r.lightBuffer.buffer, 0, VK_WHOLE_SIZE},
                                    {r.visibleBuffer.buffer, 0, VK_WHOLE_SIZE}};
-  std::vector<VkDescriptorImageInfo> imgs;
-  for (size_t i = 0; i < r.textures.size(); ++i) {
-    bool repeat = scene.textures.empty() || scene.textures[i].repeat;
-    imgs.push_back({repeat ? r.samplerRepeat : r.samplerClamp, r.textures[i].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
-  }
   std::vector<VkWriteDescriptorSet> writes;
   for (uint32_t b = 0; b < 5; ++b) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -187,25 +185,20 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
     w.pBufferInfo = &bufs[b];
     writes.push_back(w);
   }
-  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  w.dstSet = r.sceneSet;
-  w.dstBinding = gpu::kBindingTextures;
-  w.descriptorCount = uint32_t(imgs.size());
-  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  w.pImageInfo = imgs.data();
-  writes.push_back(w);
   vkUpdateDescriptorSets(ctx.device, uint32_t(writes.size()), writes.data(), 0, nullptr);
 
-  // Draw order: opaque first (early depth), then alpha-tested (discard).
-  for (uint32_t i = 0; i < scene.instances.size(); ++i) {
-    const Mesh& m = scene.meshes[scene.instances[i].mesh];
-    if (m.indexCount && scene.materials[m.material].alphaMode == AlphaMode::Opaque) r.drawOrder.push_back(i);
+  // Draw order by pipeline variant: opaque before alpha-tested (early depth before discard),
+  // without before with a normal texture; by material within a variant (fewer texture pushes).
+  for (uint32_t variant = 0; variant < 4; ++variant) {
+    r.drawVariants[variant] = uint32_t(r.drawOrder.size());
+    size_t begin = r.drawOrder.size();
+    for (uint32_t i = 0; i < scene.instances.size(); ++i)
+      if (scene.meshes[scene.instances[i].mesh].indexCount && drawVariant(scene, i) == variant) r.drawOrder.push_back(i);
+    std::stable_sort(r.drawOrder.begin() + begin, r.drawOrder.end(), [&](uint32_t a, uint32_t b) {
+      return scene.meshes[scene.instances[a].mesh].material < scene.meshes[scene.instances[b].mesh].material;
+    });
   }
-  r.opaqueDraws = uint32_t(r.drawOrder.size());
-  for (uint32_t i = 0; i < scene.instances.size(); ++i) {
-    const Mesh& m = scene.meshes[scene.instances[i].mesh];
-    if (m.indexCount && scene.materials[m.material].alphaMode != AlphaMode::Opaque) r.drawOrder.push_back(i);
-  }
+  r.drawVariants[4] = uint32_t(r.drawOrder.size());
 
   VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   cai.commandPool = ctx.commandPool;

@@ -115,7 +115,6 @@ std::vector<SpecConstant> commonSpec(const Renderer& r) {
   return {{gpu::kSpecEyeDepth, r.options.eyeDepth ? 1u : 0u},
           {gpu::kSpecReversedZ, r.options.reversedZ ? 1u : 0u},
           {gpu::kSpecNormalEncoding, normal},
-          {gpu::kSpecTextureCount, uint32_t(r.textures.size())},
           {gpu::kSpecCoverage, r.options.coverage ? 1u : 0u}};
 }
 

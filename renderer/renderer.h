@@ -57,9 +57,9 @@ struct Renderer {
   // The scene on the GPU (gpu_scene.cpp).
   Buffer vertexBuffer, indexBuffer, icosahedronBuffer;
   Buffer frameBuffer, drawBuffer, materialBuffer, lightBuffer, visibleBuffer;
-  std::vector<Image> textures;
-  std::vector<uint32_t> drawOrder;  // instance indices: opaque materials first, then alpha-tested
-  uint32_t opaqueDraws = 0;
+  std::vector<Image> textures;      // the scene's, then white and flat-normal stand-ins
+  std::vector<uint32_t> drawOrder;  // instance indices grouped by drawVariant()
+  std::array<uint32_t, 5> drawVariants{};  // drawOrder[drawVariants[v], drawVariants[v+1]) has variant v
   VkSampler samplerRepeat = VK_NULL_HANDLE, samplerClamp = VK_NULL_HANDLE;
   VkSampler samplerShadow = VK_NULL_HANDLE, samplerPoint = VK_NULL_HANDLE;
   VkDescriptorSetLayout sceneSetLayout = VK_NULL_HANDLE, passSetLayout = VK_NULL_HANDLE;
@@ -91,6 +91,9 @@ struct Renderer {
   std::string shadowKey;  // what the shadow map was rendered for (reuse when unchanged)
   FrameStats stats;
 };
+
+// G-buffer pipeline variant of an instance: bit 1 alpha-tested, bit 0 has a normal texture.
+uint32_t drawVariant(const Scene& scene, uint32_t instance);
 
 // Uploads the scene; the Renderer keeps a pointer to it (the scene must outlive the renderer;
 // lights may change between frames).

@@ -1,5 +1,7 @@
-// Material evaluation shared by the G-buffer and forward passes.
-layout(set = 0, binding = kBindingTextures) uniform sampler2D textures[TEXTURE_COUNT];
+// Material evaluation shared by the G-buffer, shadow and forward passes. The material's textures
+// are pushed per draw (a white / flat texture stands in when the material has none).
+layout(set = 1, binding = kBindingBaseColorTexture) uniform sampler2D baseColorTexture;
+layout(set = 1, binding = kBindingNormalTexture) uniform sampler2D normalTexture;
 
 vec2 materialUv(vec4 uvs, int set, vec4 row0, vec4 row1) {
   vec3 uv = vec3(set == 0 ? uvs.xy : uvs.zw, 1.0);
@@ -7,22 +9,20 @@ vec2 materialUv(vec4 uvs, int set, vec4 row0, vec4 row1) {
 }
 
 vec4 baseColor(Material m, vec4 uvs) {
-  vec4 c = m.baseColor;
-  if (m.textures.x >= 0) c *= texture(textures[m.textures.x], materialUv(uvs, m.textures.z, m.baseUv0, m.baseUv1));
-  return c;
+  return m.baseColor * texture(baseColorTexture, materialUv(uvs, m.textures.z, m.baseUv0, m.baseUv1));
 }
 
 // Unit eye-space normal: interpolated, flipped for back faces of double-sided materials,
-// perturbed by the normal texture when there is one.
+// perturbed by the normal texture in the NORMAL_MAP pipeline variant.
 vec3 surfaceNormal(Material m, vec3 normal, vec4 tangent, vec4 uvs, bool frontFacing) {
   vec3 N = normalize(normal);
   if (!frontFacing) N = -N;
-  if (m.textures.y >= 0) {
+  if (NORMAL_MAP != 0) {
     vec3 t = tangent.xyz - N * dot(N, tangent.xyz);
     if (dot(t, t) > 1e-20) {
       vec3 T = normalize(t);
       vec3 B = cross(N, T) * (tangent.w < 0.0 ? -1.0 : 1.0);
-      vec3 tn = texture(textures[m.textures.y], materialUv(uvs, m.textures.w, m.normalUv0, m.normalUv1)).xyz * 2.0 - 1.0;
+      vec3 tn = texture(normalTexture, materialUv(uvs, m.textures.w, m.normalUv0, m.normalUv1)).xyz * 2.0 - 1.0;
       tn.xy *= m.params.z;
       vec3 n = T * tn.x + B * tn.y + N * tn.z;
       if (dot(n, n) > 1e-20) N = normalize(n);

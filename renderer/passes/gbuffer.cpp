@@ -15,8 +15,8 @@ void addGBufferPass(FrameGraph& g, Renderer& r) {
   std::vector<Use> uses = {clear(Target::AlbedoSpecular), clear(Target::NormalShadow), clear(Target::Depth), depth,
                            {Target::ShadowMap, Access::SampledFragment}};
   g.addPass("gbuffer", uses, [&r](PassContext& pc) {
-    auto describe = [&](bool alpha) {
-      return [&r, alpha](GraphicsPipelineDesc& d) {
+    auto describe = [&](bool alpha, bool normalMap) {
+      return [&r, alpha, normalMap](GraphicsPipelineDesc& d) {
         d.vertexShader = "gbuffer.vert";
         d.fragmentShader = "gbuffer.frag";
         d.vertexInput = VertexInput::SceneVertex;
@@ -25,19 +25,21 @@ void addGBufferPass(FrameGraph& g, Renderer& r) {
         d.stencilTest = true;
         d.stencil = stencil(VK_COMPARE_OP_ALWAYS, 0xFF, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_REPLACE);
         d.spec.push_back({gpu::kSpecAlphaTest, alpha ? 1u : 0u});
+        d.spec.push_back({gpu::kSpecNormalMap, normalMap ? 1u : 0u});
       };
     };
-    VkPipeline opaque = graphicsPipeline(r, pc, "gbuffer.opaque", describe(false));
-    VkPipeline alpha = graphicsPipeline(r, pc, "gbuffer.alpha", describe(true));
     const GraphTarget& shadow = r.targets[size_t(Target::ShadowMap)];
     bindDescriptors(r, pc.cmd, r.pipelineLayout,
                     {{gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, shadow.image.depthView,
                       pc.layouts[size_t(Target::ShadowMap)], r.samplerShadow}});
-    vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);
-    bindPipeline(pc, opaque);
-    drawInstances(r, pc.cmd, 0, r.opaqueDraws, false);
-    bindPipeline(pc, alpha);
-    drawInstances(r, pc.cmd, r.opaqueDraws, uint32_t(r.drawOrder.size()), false);
+    for (uint32_t v = 0; v < 4; ++v) {  // drawVariant(): bit 1 alpha-tested, bit 0 normal texture
+      if (r.drawVariants[v] == r.drawVariants[v + 1]) continue;
+      bool alpha = v & 2, normalMap = v & 1;
+      std::string id = std::string("gbuffer") + (alpha ? ".alpha" : ".opaque") + (normalMap ? ".normal_map" : "");
+      bindPipeline(pc, graphicsPipeline(r, pc, id, describe(alpha, normalMap)));
+      vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);
+      drawInstances(r, pc.cmd, r.drawVariants[v], r.drawVariants[v + 1], false);
+    }
   });
 }
 

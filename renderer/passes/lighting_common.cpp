@@ -65,8 +65,29 @@ void drawLightVolumes(Renderer& r, VkCommandBuffer cmd, uint32_t first, uint32_t
   vkCmdDraw(cmd, 60, count, 0, first);
 }
 
+// The material's textures as pushed descriptors (stand-ins where it has none).
+static void pushMaterialTextures(Renderer& r, VkCommandBuffer cmd, const MaterialDesc& m) {
+  const Scene& s = *r.scene;
+  const size_t white = r.textures.size() - 2, flat = r.textures.size() - 1;
+  auto sampler = [&](int t) { return t < 0 || s.textures[t].repeat ? r.samplerRepeat : r.samplerClamp; };
+  VkDescriptorImageInfo infos[2] = {
+      {sampler(m.baseColorTexture), r.textures[m.baseColorTexture >= 0 ? size_t(m.baseColorTexture) : white].view,
+       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+      {sampler(m.normalTexture), r.textures[m.normalTexture >= 0 ? size_t(m.normalTexture) : flat].view,
+       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+  VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
+  for (int i = 0; i < 2; ++i) {
+    writes[i].dstBinding = i == 0 ? gpu::kBindingBaseColorTexture : gpu::kBindingNormalTexture;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    writes[i].pImageInfo = &infos[i];
+  }
+  r.ctx->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.pipelineLayout, gpu::kSetPass, 2, writes);
+}
+
 void drawInstances(Renderer& r, VkCommandBuffer cmd, uint32_t begin, uint32_t end, bool shadowCastersOnly) {
   const Scene& s = *r.scene;
+  int lastMaterial = -1;
   VkDeviceSize offset = 0;
   vkCmdBindVertexBuffers(cmd, 0, 1, &r.vertexBuffer.buffer, &offset);
   vkCmdBindIndexBuffer(cmd, r.indexBuffer.buffer, 0, VK_INDEX_TYPE_UINT32);
@@ -82,6 +103,8 @@ void drawInstances(Renderer& r, VkCommandBuffer cmd, uint32_t begin, uint32_t en
     // glTF front faces are counter-clockwise; a mirroring transform reverses the winding.
     bool flipped = glm::determinant(glm::dmat3(inst.worldFromObject)) < 0.0;
     VkFrontFace front = flipped ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    if (m.material != lastMaterial) pushMaterialTextures(r, cmd, mat);
+    lastMaterial = m.material;
     if (cull != lastCull) vkCmdSetCullMode(cmd, lastCull = cull);
     if (front != lastFront) vkCmdSetFrontFace(cmd, lastFront = front);
     vkCmdDrawIndexed(cmd, m.indexCount, 1, m.firstIndex, int32_t(m.firstVertex), i);

@@ -34,7 +34,8 @@ VkPipelineLayout lightingLayout(const Renderer& r);
 void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassImage> extra = {});
 // Draws the visible lights' icosahedra: [first, first + count) of the visible list.
 void drawLightVolumes(Renderer& r, VkCommandBuffer cmd, uint32_t first, uint32_t count);
-// Draws the scene's instances in drawOrder [begin, end).
+// Draws the scene's instances in drawOrder [begin, end), pushing each material's textures
+// (bindings kBindingBaseColorTexture/kBindingNormalTexture of r.pipelineLayout).
 void drawInstances(Renderer& r, VkCommandBuffer cmd, uint32_t begin, uint32_t end, bool shadowCastersOnly);
 // Binds a graphics pipeline and sets the viewport/scissor to the pass's extent, so every pass's
 // dynamic state is complete whatever ran before it.

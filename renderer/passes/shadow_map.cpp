@@ -27,10 +27,11 @@ void addShadowMapPass(FrameGraph& g, Renderer& r) {
     bindDescriptors(r, pc.cmd, r.pipelineLayout, {});
     vkCmdSetDepthBias(pc.cmd, r.options.shadowBiasConstant, r.options.shadowBiasClamp, r.options.shadowBiasSlope);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
+    // Opaque variants (0, 1) need no fragment stage; alpha-tested ones (2, 3) cut out texels.
     bindPipeline(pc, opaque);
-    drawInstances(r, pc.cmd, 0, r.opaqueDraws, true);
+    drawInstances(r, pc.cmd, r.drawVariants[0], r.drawVariants[2], true);
     bindPipeline(pc, alpha);
-    drawInstances(r, pc.cmd, r.opaqueDraws, uint32_t(r.drawOrder.size()), true);
+    drawInstances(r, pc.cmd, r.drawVariants[2], r.drawVariants[4], true);
   });
   g.endRenderPass();
 }
