@@ -47,6 +47,11 @@ Command addRenderCommand(CLI::App& root) {
                 parseTarget(name, t);
                 request.readback.push_back(t);
               }
+              // Single pass: the G-buffer stays in tile memory (transient) unless this view reads it.
+              ro.keepGBuffer = false;
+              for (Target t : request.readback)
+                ro.keepGBuffer |= t == Target::AlbedoSpecular || t == Target::NormalShadow || t == Target::Depth;
+              if (o->stats) ro.keepGBuffer = true;  // culling statistics read the eye depth
               request.cullingStats = o->stats;
               std::vector<FrameStats> frames;
               for (int i = 0; i < o->frames; ++i) frames.push_back(renderFrame(r, ro, request));

@@ -1,5 +1,6 @@
 // gblens: the command-line entry point. Each subcommand lives in its own file (cmd_*.cpp).
 #include <cstdio>
+#include <string>
 
 #include "app/cli.h"
 
@@ -10,6 +11,19 @@ int main(int argc, char** argv) {
   std::vector<gb::Command> commands = {
       gb::addRenderCommand(app),
   };
+  // An unknown first word is a mistyped command: name it and the commands there are.
+  if (argc > 1 && argv[1][0] != '-') {
+    bool known = false;
+    std::string list;
+    for (gb::Command& c : commands) {
+      known |= c.app->get_name() == argv[1];
+      list += (list.empty() ? "" : ", ") + c.app->get_name();
+    }
+    if (!known) {
+      std::fprintf(stderr, "gblens: unknown command '%s' (commands: %s; see gblens --help)\n", argv[1], list.c_str());
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -210,4 +210,28 @@ TEST_P(PointLightMasks, EveryIdealPairIsShadedAndTheCountMatchesBruteForce) {
   EXPECT_GE(st.culling.invocations, st.culling.idealPairs);
 }
 
+// The single-pass path with a transient G-buffer (nothing stored between subpasses; lazily
+// allocated memory where the device has it, a clean fallback where it does not, as on lavapipe)
+// gives the same pixels as the single-pass path that keeps the G-buffer for the views.
+TEST_F(GpuTest, SinglePassWithTransientGBufferGivesTheSameImage) {
+  Scene scene = builtinTemple(64);
+  RenderOptions o = lightOptions(96, 54);
+  o.lights = 64;
+  o.fairies = true;
+  o.sky = true;
+  o.path = Path::SinglePass;
+  o.keepGBuffer = true;
+  render(scene, o, {{Target::Hdr}});
+  CpuImage kept = renderer(scene).readback[size_t(Target::Hdr)];
+  o.keepGBuffer = false;
+  render(scene, o, {{Target::Hdr}});
+  Renderer& r = renderer(scene);
+  for (Target t : {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth}) {
+    const Image& img = r.targets[size_t(t)].image;
+    EXPECT_TRUE(img.desc.transient) << targetName(t);
+    EXPECT_EQ(img.lazilyAllocated, ctx().features.lazilyAllocatedMemory) << targetName(t);
+  }
+  EXPECT_EQ(r.readback[size_t(Target::Hdr)].data, kept.data);
+}
+
 }  // namespace gb

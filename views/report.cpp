@@ -54,11 +54,15 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const GpuContext
   j["gpu_ms"] = medianOf(gpuMs);
   nlohmann::json passes = nlohmann::json::array();
   for (size_t i = 0; i < last.passes.size(); ++i) {
+    // A pass is reported as the last frame ran it: a skipped pass costs 0 ms there even if an
+    // earlier frame ran it (the shadow map is rendered once, then reused); runs counts those.
     std::vector<double> ms;
     for (const FrameStats& f : frames)
       if (i < f.passes.size() && f.passes[i].name == last.passes[i].name && !f.passes[i].skipped) ms.push_back(f.passes[i].ms);
-    nlohmann::json p = {{"name", last.passes[i].name}, {"ms", medianOf(ms)}, {"skipped", last.passes[i].skipped}};
-    if (last.passes[i].skipped) p["reason"] = last.passes[i].reason;
+    const bool skipped = last.passes[i].skipped;
+    nlohmann::json p = {{"name", last.passes[i].name}, {"ms", skipped ? 0.0 : medianOf(ms)}, {"skipped", skipped},
+                        {"runs", ms.size()}};
+    if (skipped) p["reason"] = last.passes[i].reason;
     passes.push_back(p);
   }
   j["passes"] = passes;
