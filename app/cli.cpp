@@ -9,6 +9,8 @@
 namespace gb {
 
 void addCommonOptions(CLI::App* cmd, CommonOptions& o) {
+  // A later flag overrides an earlier one, so scripts can append overrides to a base command.
+  cmd->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   cmd->add_option("SCENE", o.scene, "builtin:temple, or a .gltf/.glb file")->capture_default_str();
   cmd->add_option("--size", o.size, "output size WxH")->capture_default_str();
   cmd->add_option("--time", o.render.time, "animation time in seconds (fixed)")->capture_default_str();
@@ -32,6 +34,9 @@ void addCommonOptions(CLI::App* cmd, CommonOptions& o) {
       ->capture_default_str();
   cmd->add_option("--method", o.method, "deferred | forward | tiled")
       ->check(CLI::IsMember({"deferred", "forward", "tiled"}))
+      ->capture_default_str();
+  cmd->add_option("--shadow-map-size", o.render.shadowMapSize, "shadow map size in texels (square)")
+      ->check(CLI::Range(1, 16384))
       ->capture_default_str();
   cmd->add_option("--frames", o.frames, "render N frames, report the median")
       ->check(CLI::Range(1, 100000))
@@ -81,6 +86,11 @@ int reportValidation(const GpuContext& ctx) {
   int n = log.errors + log.warnings;
   if (n) std::fprintf(stderr, "gblens: %d validation message(s) (%d errors)\n", n, int(log.errors));
   return n;
+}
+
+std::string& commandLine() {
+  static std::string line;
+  return line;
 }
 
 double median(std::vector<double> v) {
