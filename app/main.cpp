@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   app.set_help_all_flag("--help-all", "help for every subcommand");
   std::vector<gb::Command> commands = {
       gb::addRenderCommand(app),
+      gb::addViewCommand(app),
   };
   // An unknown first word is a mistyped command: name it and the commands there are.
   if (argc > 1 && argv[1][0] != '-') {

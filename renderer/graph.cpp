@@ -188,11 +188,15 @@ void FrameGraph::record(GpuContext& ctx, VkCommandBuffer cmd, GraphTargets& targ
       GraphTarget& t = targets[size_t(u.target)];
       GB_ASSERT(t.image.image);
       AccessInfo to = accessInfo(u.access, t.image.desc.format);
-      if (needsBarrier(t, to))
+      if (needsBarrier(t, to)) {
         imageBarrier(barriers, t, u.clear ? VK_IMAGE_LAYOUT_UNDEFINED : t.layout, to);
+        t.stage = to.stage;
+        t.access = to.access;
+      } else {  // a read after reads in the same layout: a later write must wait for all of them
+        t.stage |= to.stage;
+        t.access |= to.access;
+      }
       t.layout = to.layout;
-      t.stage = to.stage;
-      t.access = to.access;
     }
     flushBarriers(cmd, barriers);
     timestamp(cmd, timestamps, 2 * p.stat, false);

@@ -1,0 +1,421 @@
+// The viewer's loop. Renders on demand: a frame is rendered only when something it depends on
+// changed (camera, options, lights, time), the interface is redrawn only for a few frames after
+// an event, and with nothing to do the loop sleeps in glfwWaitEventsTimeout.
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui/backends/imgui_impl_glfw.h>
+#include <imgui/backends/imgui_impl_vulkan.h>
+
+#include <algorithm>
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+
+#include "app/viewer/viewer.h"
+#include "renderer/vk/check.h"
+
+namespace gb {
+
+ViewDrawCallback viewDrawCallback();  // window.cpp
+
+static std::atomic<bool> g_quit{false};
+
+static bool sameOptions(const RenderOptions& a, const RenderOptions& b) {
+  return a.width == b.width && a.height == b.height && a.time == b.time && a.lights == b.lights &&
+         a.camera == b.camera && a.path == b.path && a.method == b.method && a.eyeDepth == b.eyeDepth &&
+         a.stencilCulling == b.stencilCulling && a.stencilMask == b.stencilMask && a.reversedZ == b.reversedZ &&
+         a.normalFormat == b.normalFormat && a.depthFormat == b.depthFormat && a.accumFormat == b.accumFormat &&
+         a.shadowFormat == b.shadowFormat && a.shadowMapSize == b.shadowMapSize &&
+         a.shadowBiasConstant == b.shadowBiasConstant && a.shadowBiasSlope == b.shadowBiasSlope &&
+         a.shadowBiasClamp == b.shadowBiasClamp && a.fairies == b.fairies && a.sky == b.sky &&
+         a.exposure == b.exposure && a.coverage == b.coverage && a.keepGBuffer == b.keepGBuffer;
+}
+
+static Viewer& viewerOf(GLFWwindow* w) { return *static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }
+static void wake(GLFWwindow* w) { viewerOf(w).uiFramesLeft = std::max(viewerOf(w).uiFramesLeft, 3); }
+
+static void installCallbacks(Viewer& v) {
+  glfwSetWindowUserPointer(v.window, &v);
+  glfwSetKeyCallback(v.window, [](GLFWwindow* w, int key, int, int action, int mods) {
+    if (action != GLFW_RELEASE) viewerOf(w).pressedKeys.push_back(key | (mods & GLFW_MOD_CONTROL ? 0x10000 : 0));
+    wake(w);
+  });
+  glfwSetMouseButtonCallback(v.window, [](GLFWwindow* w, int button, int action, int) {
+    if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_PRESS) {
+      viewerOf(w).clickTime = std::chrono::steady_clock::now();  // click-to-dossier latency starts here
+      viewerOf(w).clickPending = true;
+    }
+    wake(w);
+  });
+  glfwSetCursorPosCallback(v.window, [](GLFWwindow* w, double, double) { wake(w); });
+  glfwSetScrollCallback(v.window, [](GLFWwindow* w, double, double) { wake(w); });
+  glfwSetCharCallback(v.window, [](GLFWwindow* w, unsigned) { wake(w); });
+  glfwSetWindowRefreshCallback(v.window, [](GLFWwindow* w) { wake(w); });
+  glfwSetFramebufferSizeCallback(v.window, [](GLFWwindow* w, int, int) { wake(w); });
+  glfwSetWindowFocusCallback(v.window, [](GLFWwindow* w, int) { wake(w); });
+  glfwSetCursorEnterCallback(v.window, [](GLFWwindow* w, int) { wake(w); });
+}
+
+// Keys of the seed (1..9, 0, Return) and the viewer's own.
+static void handleKeys(Viewer& v) {
+  ViewerModel& m = v.model;
+  std::vector<int> keys;
+  keys.swap(v.pressedKeys);
+  if (ImGui::GetIO().WantTextInput) return;
+  for (int k : keys) {
+    bool ctrl = k & 0x10000;
+    int key = k & 0xFFFF;
+    if (ctrl && key == GLFW_KEY_Q) glfwSetWindowShouldClose(v.window, 1);
+    if (ctrl) continue;
+    if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) applyViewKey(m, key - GLFW_KEY_0);
+    if (key >= GLFW_KEY_KP_0 && key <= GLFW_KEY_KP_9) applyViewKey(m, key - GLFW_KEY_KP_0);
+    if (key == GLFW_KEY_ENTER || key == GLFW_KEY_KP_ENTER) applyViewKey(m, 0);
+    if (key == GLFW_KEY_SPACE) m.playing = !m.playing;
+    if (key == GLFW_KEY_PERIOD) m.stepForward = true;
+    if (key == GLFW_KEY_COMMA) m.stepBack = true;
+    if (key == GLFW_KEY_HOME) m.resetCamera = true;
+    if (key == GLFW_KEY_G) m.grid = !m.grid;
+    if (key == GLFW_KEY_Z) m.transform = ViewTransform{};
+    glm::ivec2 step(key == GLFW_KEY_RIGHT ? 1 : key == GLFW_KEY_LEFT ? -1 : 0,
+                    key == GLFW_KEY_DOWN ? 1 : key == GLFW_KEY_UP ? -1 : 0);
+    if (step != glm::ivec2(0)) {
+      glm::ivec2 from = m.probePixel ? *m.probePixel : glm::ivec2(m.rendered.width / 2, m.rendered.height / 2);
+      m.probeRequest = from + step;
+    }
+  }
+}
+
+// Camera: scene cameras, reset, right-drag, ctrl+wheel, WASD/QE held. Returns true while keys move it.
+static bool updateCamera(Viewer& v, double dt) {
+  ViewerModel& m = v.model;
+  bool changed = false;
+  if (m.resetCamera || m.gltfCamera >= 0) {
+    int index = m.gltfCamera >= 0 ? m.gltfCamera : v.args.common.render.camera;
+    resetRig(v.rig, v.scene.cameras[size_t(index)], v.scene.bounds);
+    m.resetCamera = false;
+    m.gltfCamera = -1;
+    changed = true;
+  }
+  if (m.cameraDrag != glm::dvec2(0.0)) {
+    if (m.cameraMode == CameraMode::Orbit)
+      orbitRig(v.rig, m.cameraDrag);
+    else
+      lookRig(v.rig, m.cameraDrag);
+    m.cameraDrag = glm::dvec2(0.0);
+    changed = true;
+  }
+  if (m.cameraDolly != 0.0) {
+    dollyRig(v.rig, m.cameraDolly);
+    m.cameraDolly = 0.0;
+    changed = true;
+  }
+  glm::dvec3 move(0.0);
+  const bool ctrl = glfwGetKey(v.window, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+                    glfwGetKey(v.window, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+  if (!ImGui::GetIO().WantTextInput && !ctrl) {
+    auto held = [&](int key) { return glfwGetKey(v.window, key) == GLFW_PRESS; };
+    move.x = double(held(GLFW_KEY_D)) - double(held(GLFW_KEY_A));
+    move.y = double(held(GLFW_KEY_E)) - double(held(GLFW_KEY_Q));
+    move.z = double(held(GLFW_KEY_S)) - double(held(GLFW_KEY_W));
+    if (held(GLFW_KEY_LEFT_SHIFT)) move *= 4.0;
+  }
+  bool moving = move != glm::dvec3(0.0);
+  if (moving) {
+    moveRig(v.rig, move * (dt * m.moveSpeed * 0.25 * v.rig.sceneRadius));
+    changed = true;
+  }
+  if (changed) {
+    v.scene.cameras.back() = v.rig.desc;
+    v.cameraVersion++;
+  }
+  return moving;
+}
+
+static void updateLights(Viewer& v) {
+  ViewerModel& m = v.model;
+  if (v.scene.generatedLights && int(v.scene.lights.size()) != m.lightCount) {
+    generateLights(v.scene, m.lightCount);
+    v.baseRadius.clear();
+  }
+  if (v.baseRadius.size() != v.scene.lights.size()) {
+    v.baseRadius.clear();
+    for (const PointLightDesc& l : v.scene.lights) v.baseRadius.push_back(l.radius);
+    v.lightsVersion++;
+  }
+  static float appliedScale = 1.0f;
+  if (v.lightsVersion == 1 || m.lightRadiusScale != appliedScale) {
+    for (size_t i = 0; i < v.scene.lights.size(); ++i) v.scene.lights[i].radius = v.baseRadius[i] * m.lightRadiusScale;
+    appliedScale = m.lightRadiusScale;
+    v.lightsVersion++;
+  }
+}
+
+// The options the next frame needs: what the user chose, at the view area's size (or --size),
+// with coverage only when a coverage view is shown or culling is measured.
+static RenderOptions wantedOptions(Viewer& v, int fbWidth, int fbHeight) {
+  ViewerModel& m = v.model;
+  RenderOptions o = m.wanted;
+  if (!m.fixedSize) {
+    ImGuiIO& io = ImGui::GetIO();
+    int w = 0, h = 0;
+    glfwGetWindowSize(v.window, &w, &h);
+    Rect area = viewArea(m, w, h);
+    double sx = w ? double(fbWidth) / w : 1.0, sy = h ? double(fbHeight) / h : 1.0;
+    (void)io;
+    o.width = uint32_t(std::max(16.0, area.w * sx));
+    o.height = uint32_t(std::max(16.0, area.h * sy));
+  }
+  o.camera = int(v.scene.cameras.size()) - 1;  // the viewer's camera (a copy of a scene camera)
+  o.lights = m.lightCount;
+  o.coverage = m.cullingStats;
+  for (ViewKind k : visibleViews(m))
+    o.coverage |= k == ViewKind::CoverageMasked || k == ViewKind::CoverageFull;
+  o.keepGBuffer = true;  // views and the probe read the G-buffer in the single-pass path too
+  return o;
+}
+
+static void renderIfNeeded(Viewer& v, const RenderOptions& o) {
+  ViewerModel& m = v.model;
+  if (v.frameValid && sameOptions(o, v.renderer.options) && v.renderedCamera == v.cameraVersion &&
+      v.renderedLights == v.lightsVersion)
+    return;
+  FrameRequest request;
+  request.cullingStats = m.cullingStats;
+  // Every target that can be read stays readable for the views and the probe.
+  for (size_t i = 0; i < kTargetCount; ++i) {
+    Target t = Target(i);
+    if ((t == Target::CoverageMasked || t == Target::CoverageFull) && !o.coverage) continue;
+    request.sampleAfter.push_back(t);
+  }
+  const FrameStats& stats = renderFrame(v.renderer, o, request);
+  v.frameValid = true;
+  v.renderedCamera = v.cameraVersion;
+  v.renderedLights = v.lightsVersion;
+  v.rangesStale = true;
+  m.rendered = o;
+  m.stats = stats;
+  m.framesRendered++;
+  v.renderMs.push_back(stats.frameMs);
+  const ImageDesc& sm = v.renderer.targets[size_t(Target::ShadowMap)].image.desc;
+  m.shadowMapSize = {sm.width, sm.height};
+  for (int k = 0; k < kViewKindCount; ++k) {
+    const ViewDef& d = viewDef(ViewKind(k));
+    std::string& why = m.unavailable[k];
+    why.clear();
+    if (d.source.target == Target::ShadowMap && !v.scene.sun.enabled) why = "no sun: no shadow map";
+  }
+  // A pinned probe follows the frame (not logged: only clicks and arrow keys are).
+  if (m.probePixel && !m.probeRequest) {
+    std::ofstream none;
+    std::swap(none, v.probeLog);
+    std::ofstream noEvents;
+    std::swap(noEvents, v.eventLog);
+    probePixel(v, *m.probePixel);
+    std::swap(none, v.probeLog);
+    std::swap(noEvents, v.eventLog);
+  }
+  v.hoverRead.reset();  // re-read the value under the mouse
+  v.hoverReadView.reset();
+}
+
+static void updateRanges(Viewer& v) {
+  ViewerModel& m = v.model;
+  std::vector<RangeRequest> all;
+  std::vector<std::pair<ViewKind, size_t>> owners;  // view, count of its requests
+  std::string key;
+  for (ViewKind k : visibleViews(m)) {
+    std::vector<RangeRequest> q = rangeRequests(viewDef(k), m.settings[int(k)]);
+    key += std::to_string(int(k)) + ":" + std::to_string(m.settings[int(k)].channels) + (q.empty() ? "m;" : "a;");
+    if (std::any_of(owners.begin(), owners.end(), [&](auto& o) { return o.first == k; })) continue;
+    owners.push_back({k, q.size()});
+    all.insert(all.end(), q.begin(), q.end());
+  }
+  if (!v.rangesStale && key == v.rangesKey) return;
+  v.rangesStale = false;
+  v.rangesKey = key;
+  std::vector<RangeStats> stats = computeRanges(v.mapper, v.renderer, all, readableTargets(v.renderer));
+  size_t at = 0;
+  for (auto& [k, n] : owners) {
+    m.ranges[int(k)].assign(stats.begin() + long(at), stats.begin() + long(at + n));
+    at += n;
+  }
+  m.uiChanged = true;
+}
+
+static void logLayout(Viewer& v, int windowW, int windowH) {
+  ViewerModel& m = v.model;
+  std::vector<ViewKind> views = visibleViews(m);
+  Rect area = viewArea(m, windowW, windowH);
+  std::vector<Rect> rects = layoutViews(area, m.layout);
+  nlohmann::json j = {{"event", "layout"}, {"window", {windowW, windowH}}, {"size", {m.rendered.width, m.rendered.height}}};
+  nlohmann::json list = nlohmann::json::array();
+  for (size_t i = 0; i < views.size() && i < rects.size(); ++i) {
+    glm::uvec2 size = viewImageSize(m, views[i]);
+    Placement p = placeImage(rects[i], size.x, size.y, m.transform);
+    list.push_back({{"view", viewName(views[i])},
+                    {"rect", {rects[i].x, rects[i].y, rects[i].w, rects[i].h}},
+                    {"origin", {p.originX, p.originY}},
+                    {"scale", p.scale},
+                    {"image", {size.x, size.y}}});
+  }
+  j["views"] = list;
+  std::string key = j.dump();
+  if (key == v.layoutKey) return;
+  v.layoutKey = key;
+  logLine(v.eventLog, j);
+}
+
+static double medianOf(std::vector<double> x) { return median(std::move(x)); }
+
+int runViewer(const ViewerArgs& args) {
+  Viewer v;
+  v.args = args;
+  ViewerModel& m = v.model;
+  unsigned ww = 0, wh = 0;
+  char sep = 0;
+  if (std::sscanf(args.window.c_str(), "%u%c%u", &ww, &sep, &wh) != 3 || ww < 64 || wh < 64) {
+    std::fprintf(stderr, "gblens view: --window %s: expected WxH, at least 64x64\n", args.window.c_str());
+    return 2;
+  }
+  if (!loadSceneOrReport(args.common, v.scene)) return 2;
+  if (!args.probeLog.empty()) {
+    v.probeLog.open(args.probeLog, std::ios::app);
+    if (!v.probeLog) {
+      std::fprintf(stderr, "gblens view: --probe-log %s: cannot open for writing\n", args.probeLog.c_str());
+      return 2;
+    }
+  }
+  if (!args.eventLog.empty()) {
+    v.eventLog.open(args.eventLog, std::ios::app);
+    if (!v.eventLog) {
+      std::fprintf(stderr, "gblens view: --event-log %s: cannot open for writing\n", args.eventLog.c_str());
+      return 2;
+    }
+  }
+  if (!openWindow(v, ww, wh)) return 2;
+
+  ContextOptions co;
+  co.validation = args.common.validate;
+  co.device = args.common.device;
+  co.swapchain = true;
+  uint32_t n = 0;
+  const char** exts = glfwGetRequiredInstanceExtensions(&n);
+  for (uint32_t i = 0; i < n; ++i) co.instanceExtensions.push_back(exts[i]);
+  v.ctx = createContext(co);
+  VK_CHECK(glfwCreateWindowSurface(v.ctx.instance, v.window, nullptr, &v.swapchain.surface));
+  installCallbacks(v);
+  while (!recreateSwapchain(v)) glfwWaitEvents();  // a window may open minimised
+  initImGui(v);
+
+  // The scene camera the viewer starts from, copied to a camera of its own (the last one).
+  resetRig(v.rig, v.scene.cameras[size_t(args.common.render.camera)], v.scene.bounds);
+  v.scene.cameras.push_back(v.rig.desc);
+  initRenderer(v.renderer, v.ctx, v.scene);
+  initViewMapper(v.mapper, v.renderer);
+
+  for (int k = 0; k < kViewKindCount; ++k) m.settings[k] = defaultSettings(ViewKind(k));
+  m.wanted = args.common.render;
+  m.fixedSize = args.sizeGiven;
+  m.lightCount = int(v.scene.generatedLights ? args.common.render.lights : int(v.scene.lights.size()));
+  m.playing = !args.paused;
+  parseView(args.initialView, m.primary);
+  m.edited = m.primary;
+  m.deviceName = v.ctx.deviceName;
+  m.sceneName = args.common.scene;
+  for (size_t i = 0; i + 1 < v.scene.cameras.size(); ++i)
+    m.cameraNames.push_back(v.scene.cameras[i].name.empty() ? "camera " + std::to_string(i) : v.scene.cameras[i].name);
+  m.captureAvailable = false;
+  m.captureHint = "Writes a capture of this frame (Capture issue): not merged into this build yet";
+
+  std::signal(SIGINT, [](int) { g_quit = true; });
+  std::signal(SIGTERM, [](int) { g_quit = true; });
+  v.lastTick = std::chrono::steady_clock::now();
+  bool ready = false, minimised = false;
+  while (!glfwWindowShouldClose(v.window) && !g_quit) {
+    bool animating = m.playing && m.timeSpeed != 0.0f;
+    bool keysHeld = false;
+    for (int key : {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E})
+      keysHeld |= glfwGetKey(v.window, key) == GLFW_PRESS && glfwGetKey(v.window, GLFW_KEY_LEFT_CONTROL) != GLFW_PRESS;
+    if (!minimised && (animating || keysHeld || v.uiFramesLeft > 0))
+      glfwPollEvents();
+    else
+      glfwWaitEventsTimeout(0.5);  // idle: sleep until an event (wake twice a second to notice SIGTERM)
+    int fbw = 0, fbh = 0;
+    glfwGetFramebufferSize(v.window, &fbw, &fbh);
+    minimised = fbw == 0 || fbh == 0 || glfwGetWindowAttrib(v.window, GLFW_ICONIFIED);
+    if (minimised) {
+      v.pressedKeys.clear();
+      v.lastTick = std::chrono::steady_clock::now();
+      continue;
+    }
+    if (!animating && !keysHeld && v.uiFramesLeft <= 0) continue;
+    if (!v.swapchainValid || v.swapchain.extent.width != uint32_t(fbw) || v.swapchain.extent.height != uint32_t(fbh))
+      if (!recreateSwapchain(v)) continue;
+
+    auto now = std::chrono::steady_clock::now();
+    double dt = std::min(0.1, std::chrono::duration<double>(now - v.lastTick).count());
+    v.lastTick = now;
+    handleKeys(v);
+    if (animating) m.wanted.time += dt * m.timeSpeed;
+    if (m.stepForward || m.stepBack) {
+      m.wanted.time = std::max(0.0, m.wanted.time + (m.stepForward ? 1.0 : -1.0) / 30.0);
+      m.playing = false;
+      m.stepForward = m.stepBack = false;
+    }
+    updateCamera(v, dt);
+    updateLights(v);
+    renderIfNeeded(v, wantedOptions(v, fbw, fbh));
+    updateRanges(v);
+    if (m.probeRequest) {
+      probePixel(v, *m.probeRequest);
+      m.probeRequest.reset();
+    }
+    readHover(v);
+
+    m.uiChanged = false;
+    ImGui_ImplVulkan_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    v.draws.clear();
+    drawViewerUi(m, viewDrawCallback(), v.draws);
+    if (m.copyJson) {
+      glfwSetClipboardString(v.window, m.dossier.dump(2).c_str());
+      m.copyJson = false;
+    }
+    ImGui::Render();
+    if (!presentFrame(v)) recreateSwapchain(v);
+    int winW = 0, winH = 0;
+    glfwGetWindowSize(v.window, &winW, &winH);
+    logLayout(v, winW, winH);
+    if (!ready) {
+      ready = true;
+      logLine(v.eventLog, {{"event", "ready"}, {"size", {m.rendered.width, m.rendered.height}}});
+    }
+    // Changes made in this interface frame need another one (and maybe a render).
+    bool pending = m.uiChanged || m.probeRequest || m.resetCamera || m.gltfCamera >= 0 || m.cameraDrag != glm::dvec2(0.0) ||
+                   m.cameraDolly != 0.0 || m.stepForward || m.stepBack ||
+                   !sameOptions(wantedOptions(v, fbw, fbh), v.renderer.options);
+    v.uiFramesLeft = pending ? std::max(v.uiFramesLeft, 2) : v.uiFramesLeft - 1;
+  }
+
+  nlohmann::json summary = {{"event", "exit"},
+                            {"frames_rendered", m.framesRendered},
+                            {"frames_presented", m.framesPresented},
+                            {"render_ms_median", medianOf(v.renderMs)},
+                            {"present_ms_median", medianOf(v.presentMs)}};
+  logLine(v.eventLog, summary);
+  std::fprintf(stderr, "gblens view: %llu frames rendered (median %.2f ms), %llu presented (median %.2f ms)\n",
+               (unsigned long long)m.framesRendered, medianOf(v.renderMs), (unsigned long long)m.framesPresented,
+               medianOf(v.presentMs));
+  vkDeviceWaitIdle(v.ctx.device);
+  shutdownImGui(v);
+  destroyViewMapper(v.mapper, v.renderer);
+  destroyRenderer(v.renderer);
+  closeWindow(v);
+  int messages = reportValidation(v.ctx);
+  destroyContext(v.ctx);
+  return messages ? 1 : 0;
+}
+
+}  // namespace gb
