@@ -33,6 +33,9 @@ void addCommonOptions(CLI::App* cmd, CommonOptions& o) {
   cmd->add_option("--method", o.method, "deferred | forward | tiled")
       ->check(CLI::IsMember({"deferred", "forward", "tiled"}))
       ->capture_default_str();
+  cmd->add_option("--shadow-map-size", o.render.shadowMapSize, "shadow map size in texels (square)")
+      ->check(CLI::Range(1, 16384))
+      ->capture_default_str();
   cmd->add_option("--frames", o.frames, "render N frames, report the median")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
@@ -81,6 +84,11 @@ int reportValidation(const GpuContext& ctx) {
   int n = log.errors + log.warnings;
   if (n) std::fprintf(stderr, "gblens: %d validation message(s) (%d errors)\n", n, int(log.errors));
   return n;
+}
+
+std::string& commandLine() {
+  static std::string line;
+  return line;
 }
 
 double median(std::vector<double> v) {

@@ -27,7 +27,7 @@ struct CommonOptions {
 };
 
 // SCENE, --size, --time, --lights, --camera, --path, --eye-depth, --stencil-culling, --method,
-// --frames, --stats, --device, --validate. (-o is added by the commands that write something.)
+// --shadow-map-size, --frames, --stats, --device, --validate. (-o is added by the commands that write something.)
 void addCommonOptions(CLI::App* cmd, CommonOptions& o);
 
 // Completes RenderOptions from the parsed strings; on a malformed value returns false with a
@@ -38,10 +38,17 @@ bool finishCommonOptions(CommonOptions& o, std::string& error);
 struct Command {
   CLI::App* app = nullptr;
   std::function<int()> run;
+  int usageExit = 2;  // exit status for a malformed command line (compare: 4, as idiff's file error)
 };
 
 Command addRenderCommand(CLI::App& root);
 Command addViewCommand(CLI::App& root);
+Command addCaptureCommand(CLI::App& root);
+Command addCompareCommand(CLI::App& root);
+Command addProbeCommand(CLI::App& root);
+
+// The command line as typed (set by main; recorded in capture manifests).
+std::string& commandLine();
 
 // Loads SCENE; on a user mistake prints one line and returns false (caller exits 2).
 bool loadSceneOrReport(const CommonOptions& o, Scene& scene);

@@ -11,7 +11,11 @@ int main(int argc, char** argv) {
   std::vector<gb::Command> commands = {
       gb::addRenderCommand(app),
       gb::addViewCommand(app),
+      gb::addCaptureCommand(app),
+      gb::addCompareCommand(app),
+      gb::addProbeCommand(app),
   };
+  for (int i = 0; i < argc; ++i) gb::commandLine() += (i ? " " : "") + std::string(i ? argv[i] : "gblens");
   // An unknown first word is a mistyped command: name it and the commands there are.
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
@@ -33,9 +37,14 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::string where;
-    for (CLI::App* sub : app.get_subcommands()) where = " " + sub->get_name();
+    int status = 2;
+    for (CLI::App* sub : app.get_subcommands()) {
+      where = " " + sub->get_name();
+      for (gb::Command& c : commands)
+        if (c.app == sub) status = c.usageExit;
+    }
     std::fprintf(stderr, "gblens%s: %s (see gblens%s --help)\n", where.c_str(), e.what(), where.c_str());
-    return 2;
+    return status;
   }
   for (gb::Command& c : commands)
     if (c.app->parsed()) return c.run();

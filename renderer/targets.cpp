@@ -83,4 +83,21 @@ void describeReadback(Target t, const RenderOptions& o, CpuImage& img) {
   }
 }
 
+std::string targetUnavailable(Target t, const RenderOptions& o) {
+  switch (t) {
+    case Target::AlbedoSpecular:
+    case Target::NormalShadow:
+    case Target::Depth:
+      if (o.path == Path::SinglePass && !o.keepGBuffer)
+        return "transient: the single-pass G-buffer stays in tile memory (keep_gbuffer off)";
+      break;
+    case Target::CoverageMasked:
+    case Target::CoverageFull:
+      if (!o.coverage) return "not computed: coverage off";
+      break;
+    default: break;
+  }
+  return "";
+}
+
 }  // namespace gb

@@ -35,4 +35,9 @@ VkFormat targetFormat(Target t, const RenderOptions& options);
 // How read-back bytes are described on the CPU (type/encoding of each channel).
 void describeReadback(Target t, const RenderOptions& options, CpuImage& image);
 
+// Why a target cannot be read back under these options ("" when it can): transient targets
+// (single-pass G-buffer kept in tile memory) and targets that are not computed (coverage off).
+// Captures and the viewer list the reason instead of the target.
+std::string targetUnavailable(Target t, const RenderOptions& options);
+
 }  // namespace gb

@@ -2,6 +2,7 @@
 #include "views/report.h"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace gb {
 
@@ -30,7 +31,75 @@ nlohmann::json optionsJson(const RenderOptions& o) {
           {"shadow_map_size", o.shadowMapSize},
           {"shadow_bias", {{"constant", o.shadowBiasConstant}, {"slope", o.shadowBiasSlope}, {"clamp", o.shadowBiasClamp}}},
           {"fairies", o.fairies},
-          {"exposure", o.exposure}};
+          {"sky", o.sky},
+          {"exposure", o.exposure},
+          {"coverage", o.coverage},
+          {"keep_gbuffer", o.keepGBuffer}};
+}
+
+// Reads one member; a missing member keeps the default (manifests of older versions), a
+// member of the wrong type or an unknown name is an error.
+template <class T>
+static bool member(const nlohmann::json& j, const char* key, T& out, std::string& error) {
+  auto it = j.find(key);
+  if (it == j.end()) return true;
+  try {
+    out = it->get<T>();
+  } catch (const nlohmann::json::exception&) {
+    error = std::string("options.") + key + ": unexpected value " + it->dump();
+    return false;
+  }
+  return true;
+}
+template <class E>
+static bool named(const nlohmann::json& j, const char* key, E& out, std::string& error) {
+  std::string text;
+  if (!j.contains(key)) return true;
+  if (!member(j, key, text, error)) return false;
+  if (!parse(text, out)) {
+    error = std::string("options.") + key + ": unknown value \"" + text + "\"";
+    return false;
+  }
+  return true;
+}
+static bool onOff(const nlohmann::json& j, const char* key, bool& out, std::string& error) {
+  std::string text = out ? "on" : "off";
+  if (!member(j, key, text, error)) return false;
+  if (text != "on" && text != "off") {
+    error = std::string("options.") + key + ": expected on or off, got \"" + text + "\"";
+    return false;
+  }
+  out = text == "on";
+  return true;
+}
+
+bool optionsFromJson(const nlohmann::json& j, RenderOptions& o, std::string& error) {
+  if (!j.is_object()) {
+    error = "options: not an object";
+    return false;
+  }
+  std::string size = std::to_string(o.width) + "x" + std::to_string(o.height);
+  if (!member(j, "size", size, error)) return false;
+  unsigned w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(size.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' || !w || !h) {
+    error = "options.size: expected WxH, got \"" + size + "\"";
+    return false;
+  }
+  o.width = w;
+  o.height = h;
+  nlohmann::json bias = j.value("shadow_bias", nlohmann::json::object());
+  return member(j, "time", o.time, error) && member(j, "lights", o.lights, error) &&
+         member(j, "camera", o.camera, error) && named(j, "path", o.path, error) &&
+         named(j, "method", o.method, error) && onOff(j, "eye_depth", o.eyeDepth, error) &&
+         onOff(j, "stencil_culling", o.stencilCulling, error) && named(j, "stencil_mask", o.stencilMask, error) &&
+         member(j, "reversed_z", o.reversedZ, error) && named(j, "normal_format", o.normalFormat, error) &&
+         named(j, "depth_format", o.depthFormat, error) && named(j, "accum_format", o.accumFormat, error) &&
+         named(j, "shadow_format", o.shadowFormat, error) && member(j, "shadow_map_size", o.shadowMapSize, error) &&
+         member(bias, "constant", o.shadowBiasConstant, error) && member(bias, "slope", o.shadowBiasSlope, error) &&
+         member(bias, "clamp", o.shadowBiasClamp, error) && member(j, "fairies", o.fairies, error) &&
+         member(j, "sky", o.sky, error) && member(j, "exposure", o.exposure, error) &&
+         member(j, "coverage", o.coverage, error) && member(j, "keep_gbuffer", o.keepGBuffer, error);
 }
 
 nlohmann::json statsJson(const std::vector<FrameStats>& frames, const GpuContext& ctx, const RenderOptions& o,

@@ -2,6 +2,7 @@
 // per-pass ms (median over frames), skips with reasons, culling statistics.
 #pragma once
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "renderer/renderer.h"
@@ -9,6 +10,9 @@
 namespace gb {
 
 nlohmann::json optionsJson(const RenderOptions& o);
+// The inverse of optionsJson (capture manifests). Members left out keep their defaults; a
+// malformed member gives false and a message naming it.
+bool optionsFromJson(const nlohmann::json& j, RenderOptions& o, std::string& error);
 nlohmann::json statsJson(const std::vector<FrameStats>& frames, const GpuContext& ctx, const RenderOptions& o,
                          const Scene& scene);
 
