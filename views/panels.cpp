@@ -12,7 +12,7 @@ namespace gb {
 void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, std::vector<ViewDraw>& draws);
 void drawDossier(ViewerModel& m);  // probe_panel.cpp
 
-static constexpr double kMenuHeight = 20.0, kStatusHeight = 22.0, kControlsWidth = 310.0, kPixelWidth = 400.0;
+static constexpr double kMenuHeight = 20.0, kStatusHeight = 22.0, kControlsWidth = 310.0, kPixelWidth = 450.0;
 
 Rect viewArea(const ViewerModel& m, double w, double h) {
   double left = m.showControls ? kControlsWidth : 0.0, right = m.showPixel ? kPixelWidth : 0.0;

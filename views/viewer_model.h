@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/renderer.h"
+#include "views/probe.h"
 #include "views/view_layout.h"
 
 struct ImDrawList;
@@ -73,7 +74,8 @@ struct ViewerModel {
   std::optional<glm::ivec2> probePixel;     // the pixel of the dossier shown
   std::optional<glm::ivec2> shadowMark;     // shadow-map texel clicked: the pixels sampling it are marked
   std::optional<glm::ivec2> shadowTexelOfProbe;  // the texel the probed pixel's shadow lookup read
-  nlohmann::json dossier;                   // the shared dossier (views/probe.h), or null
+  std::optional<PixelDossier> dossier;      // the shared dossier (views/probe.h) of probePixel
+  nlohmann::json dossierJson;               // the same as JSON (copy, --probe-log)
   std::string probeError;
   double probeLatencyMs = 0.0;
   bool copyJson = false;

@@ -1,10 +1,13 @@
 // The pixel probe in the viewer: reads back only a 1x1 window of each target (plus the
 // shadow-map texels the pixel's lookup reads) and hands them to the shared dossier.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "app/viewer/viewer.h"
 #include "renderer/region_readback.h"
+#include "views/probe.h"
 
 namespace gb {
 
@@ -36,42 +39,54 @@ static std::string valuesText(const CpuImage& img) {
   return s;
 }
 
-// Provisional dossier (until the capture branch's views/probe.h lands): stored values only.
-static nlohmann::json provisionalDossier(const Viewer& v, glm::ivec2 p, const std::vector<RegionImage>& regions) {
-  nlohmann::json j;
-  j["pixel"] = {p.x, p.y};
-  nlohmann::json targets = nlohmann::json::object();
+// The frame as the probe sees it: matrices, lights and options of the live renderer, and the
+// read-back windows as region TargetImages (texel (x0, y0) of the target is image texel (0, 0)).
+static void addRegions(FrameSnapshot& s, const std::vector<RegionImage>& regions) {
   for (const RegionImage& ri : regions) {
     if (ri.image.empty()) continue;
-    nlohmann::json t = nlohmann::json::object();
-    for (uint32_t c = 0; c < ri.image.channelCount(); ++c)
-      t[ri.image.channels[c]] = {{"value", ri.image.value(0, 0, c)}, {"bits", ri.image.raw(0, 0, c)}};
-    targets[targetName(ri.target)] = t;
+    TargetImage& ti = s.target(ri.target);
+    ti.image = ri.image;
+    ti.x0 = ri.x0;
+    ti.y0 = ri.y0;
+    ti.targetWidth = ri.targetWidth;
+    ti.targetHeight = ri.targetHeight;
+    s.absent[size_t(ri.target)].clear();
   }
-  j["targets"] = targets;
-  j["time"] = v.renderer.options.time;
-  return j;
 }
 
-void probePixel(Viewer& v, glm::ivec2 p) {
+void probeViewerPixel(Viewer& v, glm::ivec2 p, bool logged) {
   auto start = v.clickPending ? v.clickTime : std::chrono::steady_clock::now();
   v.clickPending = false;
   Renderer& r = v.renderer;
   ViewerModel& m = v.model;
   p = glm::clamp(p, glm::ivec2(0), glm::ivec2(int(r.options.width) - 1, int(r.options.height) - 1));
+  const uint32_t x = uint32_t(p.x), y = uint32_t(p.y);
   std::vector<Target> readable = readableTargets(r);
+  // 1. The pixel in every screen-space target (1x1 windows).
   std::vector<RegionRequest> requests;
   for (Target t : readable)
-    if (t != Target::ShadowMap) requests.push_back({t, p.x, p.y, 1, 1});
-  std::vector<RegionImage> regions = readbackRegions(r, requests, readable);
+    if (screenSpaceTarget(t)) requests.push_back({t, p.x, p.y, 1, 1});
+  FrameSnapshot snapshot = snapshotFromRenderer(r, {});
+  addRegions(snapshot, readbackRegions(r, requests, readable));
+  // 2. The 2x2 shadow-map block its lookup reads, placed from the depth just read.
+  int32_t sx = 0, sy = 0;
+  bool hasShadowTexels = std::find(readable.begin(), readable.end(), Target::ShadowMap) != readable.end() &&
+                         shadowMapFootprint(snapshot, x, y, sx, sy);
+  if (hasShadowTexels) addRegions(snapshot, readbackRegions(r, {{Target::ShadowMap, sx, sy, 2, 2}}, readable));
+  PixelDossier d = gb::probePixel(snapshot, x, y);
   m.probePixel = p;
-  m.probeError.clear();
-  m.dossier = provisionalDossier(v, p, regions);
+  m.probeError = d.error;
+  m.dossier = d;
+  m.dossierJson = dossierJson(d);
+  m.shadowTexelOfProbe.reset();
+  if (d.shadowMap.valid)
+    m.shadowTexelOfProbe = glm::ivec2(int(std::floor(d.shadowMap.texel.x + 0.5)), int(std::floor(d.shadowMap.texel.y + 0.5)));
   double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   m.probeLatencyMs = ms;
-  logLine(v.probeLog, m.dossier);
+  if (!logged) return;
+  logLine(v.probeLog, m.dossierJson);
   logLine(v.eventLog, {{"event", "probe"}, {"pixel", {p.x, p.y}}, {"latency_ms", ms}});
-  std::fprintf(stderr, "gblens view: probe (%d, %d) answered in %.2f ms\n", p.x, p.y, ms);
+  std::fprintf(stderr, "gblens view: probe (%d, %d): dossier ready %.2f ms after the click\n", p.x, p.y, ms);
 }
 
 void readHover(Viewer& v) {

@@ -206,15 +206,7 @@ static void renderIfNeeded(Viewer& v, const RenderOptions& o) {
     if (d.source.target == Target::ShadowMap && !v.scene.sun.enabled) why = "no sun: no shadow map";
   }
   // A pinned probe follows the frame (not logged: only clicks and arrow keys are).
-  if (m.probePixel && !m.probeRequest) {
-    std::ofstream none;
-    std::swap(none, v.probeLog);
-    std::ofstream noEvents;
-    std::swap(noEvents, v.eventLog);
-    probePixel(v, *m.probePixel);
-    std::swap(none, v.probeLog);
-    std::swap(noEvents, v.eventLog);
-  }
+  if (m.probePixel && !m.probeRequest) probeViewerPixel(v, *m.probePixel, false);
   v.hoverRead.reset();  // re-read the value under the mouse
   v.hoverReadView.reset();
 }
@@ -368,7 +360,7 @@ int runViewer(const ViewerArgs& args) {
     renderIfNeeded(v, wantedOptions(v, fbw, fbh));
     updateRanges(v);
     if (m.probeRequest) {
-      probePixel(v, *m.probeRequest);
+      probeViewerPixel(v, *m.probeRequest, true);
       m.probeRequest.reset();
     }
     readHover(v);
@@ -380,7 +372,7 @@ int runViewer(const ViewerArgs& args) {
     v.draws.clear();
     drawViewerUi(m, viewDrawCallback(), v.draws);
     if (m.copyJson) {
-      glfwSetClipboardString(v.window, m.dossier.dump(2).c_str());
+      glfwSetClipboardString(v.window, m.dossierJson.dump(2).c_str());
       m.copyJson = false;
     }
     ImGui::Render();

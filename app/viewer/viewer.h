@@ -88,7 +88,9 @@ void shutdownImGui(Viewer& v);
 bool presentFrame(Viewer& v);
 
 // probe.cpp
-void probePixel(Viewer& v, glm::ivec2 pixel);
+// Reads back the pixel's texels (and the shadow-map block its lookup reads) and computes the
+// shared dossier (views/probe.h). `logged`: a user's probe (written to --probe-log).
+void probeViewerPixel(Viewer& v, glm::ivec2 pixel, bool logged);
 void readHover(Viewer& v);
 std::vector<Target> readableTargets(const Renderer& r);
 
