@@ -168,6 +168,7 @@ static void frameOptions(ViewerModel& m) {
   ImGui::Checkbox("LIGHT_STENCIL_CULLING", &o.stencilCulling);
   if (o.stencilCulling) {
     int mask = int(o.stencilMask);
+    ImGui::TextDisabled("  stencil mask");
     ImGui::SameLine();
     ImGui::RadioButton("per-light", &mask, int(StencilMask::PerLight));
     ImGui::SameLine();
@@ -218,10 +219,12 @@ static void cameraControls(ViewerModel& m) {
 
 static void statistics(ViewerModel& m) {
   const FrameStats& s = m.stats;
-  ImGui::Text("frame %.2f ms (GPU %.2f ms), present %.2f ms", s.frameMs, s.gpuMs, m.presentMs);
+  ImGui::Text("frame %.2f ms, GPU %.2f ms", s.frameMs, s.gpuMs);
+  ImGui::Text("present %.2f ms (views + interface)", m.presentMs);
   ImGui::Text("frames rendered %llu, presented %llu", (unsigned long long)m.framesRendered,
               (unsigned long long)m.framesPresented);
-  ImGui::Text("lights %u: %u drawn (%u near plane), %u culled", s.lights, s.lightsVisible, s.lightsInside, s.lightsCulled);
+  ImGui::TextWrapped("lights %u: %u drawn (%u near plane), %u culled", s.lights, s.lightsVisible, s.lightsInside,
+                     s.lightsCulled);
   if (ImGui::BeginTable("passes", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
     for (const PassStat& p : s.passes) {
       ImGui::TableNextRow();
@@ -241,8 +244,9 @@ static void statistics(ViewerModel& m) {
   tooltip("counts point-light shader runs per pixel (coverage) against the ideal (pixel, light) pairs;\n"
           "reads back coverage_masked and depth each frame");
   if (s.culling.valid)
-    ImGui::Text("shader runs %llu / ideal %llu = %.3f", (unsigned long long)s.culling.invocations,
-                (unsigned long long)s.culling.idealPairs, s.culling.workOverIdeal);
+    ImGui::TextWrapped("point-light shader runs %llu for %llu lit (pixel, light) pairs: %.3fx the ideal work",
+                       (unsigned long long)s.culling.invocations, (unsigned long long)s.culling.idealPairs,
+                       s.culling.workOverIdeal);
 }
 
 static void controlsPanel(ViewerModel& m, const Rect& at) {

@@ -60,8 +60,7 @@ static void heatLegend(ImDrawList* dl, ImVec2 at, float width, float maxCount, c
     float x = at.x + width * i / 4 - ImGui::CalcTextSize(text).x * (i == 0 ? 0.0f : i == 4 ? 1.0f : 0.5f);
     dl->AddText(ImVec2(x, at.y + h + 2), rgb(1, 1, 1), text);
   }
-  std::snprintf(text, sizeof text, "0 = black (none); %s", unit);
-  dl->AddText(ImVec2(at.x, at.y - 16), rgb(1, 1, 1), text);
+  dl->AddText(ImVec2(at.x, at.y - 16), rgb(1, 1, 1), unit);  // black: none
 }
 
 // Outline of one texel (or a crosshair where a texel is smaller than a few pixels).

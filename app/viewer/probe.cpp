@@ -55,8 +55,11 @@ static void addRegions(FrameSnapshot& s, const std::vector<RegionImage>& regions
 }
 
 void probeViewerPixel(Viewer& v, glm::ivec2 p, bool logged) {
-  auto start = v.clickPending ? v.clickTime : std::chrono::steady_clock::now();
-  v.clickPending = false;
+  auto start = v.clickPending && logged ? v.clickTime : std::chrono::steady_clock::now();
+  if (logged) {
+    v.clickPending = false;
+    v.probeStart = start;
+  }
   Renderer& r = v.renderer;
   ViewerModel& m = v.model;
   p = glm::clamp(p, glm::ivec2(0), glm::ivec2(int(r.options.width) - 1, int(r.options.height) - 1));

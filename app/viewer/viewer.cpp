@@ -260,6 +260,14 @@ static void logLayout(Viewer& v, int windowW, int windowH) {
 
 static double medianOf(std::vector<double> x) { return median(std::move(x)); }
 
+static void buildInterface(Viewer& v) {
+  ImGui_ImplVulkan_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  v.draws.clear();
+  drawViewerUi(v.model, viewDrawCallback(), v.draws);
+}
+
 int runViewer(const ViewerArgs& args) {
   Viewer v;
   v.args = args;
@@ -366,17 +374,26 @@ int runViewer(const ViewerArgs& args) {
     readHover(v);
 
     m.uiChanged = false;
-    ImGui_ImplVulkan_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    ImGui::NewFrame();
-    v.draws.clear();
-    drawViewerUi(m, viewDrawCallback(), v.draws);
+    buildInterface(v);
+    if (m.probeRequest) {
+      // A click in this interface frame: answer it now and show the dossier in the same frame.
+      ImGui::EndFrame();
+      probeViewerPixel(v, *m.probeRequest, true);
+      m.probeRequest.reset();
+      v.probeShownPending = true;
+      buildInterface(v);
+    }
     if (m.copyJson) {
       glfwSetClipboardString(v.window, m.dossierJson.dump(2).c_str());
       m.copyJson = false;
     }
     ImGui::Render();
     if (!presentFrame(v)) recreateSwapchain(v);
+    if (v.probeShownPending) {  // the frame that shows a clicked pixel's dossier is on screen
+      v.probeShownPending = false;
+      double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - v.probeStart).count();
+      logLine(v.eventLog, {{"event", "probe_shown"}, {"pixel", {m.probePixel->x, m.probePixel->y}}, {"latency_ms", ms}});
+    }
     int winW = 0, winH = 0;
     glfwGetWindowSize(v.window, &winW, &winH);
     logLayout(v, winW, winH);

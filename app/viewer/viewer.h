@@ -68,6 +68,8 @@ struct Viewer {
   int uiFramesLeft = 3;            // interface frames still to draw after the last event
   std::chrono::steady_clock::time_point lastTick, clickTime;
   bool clickPending = false;
+  bool probeShownPending = false;  // log when the dossier of a click is first on screen
+  std::chrono::steady_clock::time_point probeStart;
   std::optional<glm::ivec2> hoverRead;
   std::optional<ViewKind> hoverReadView;
   std::string layoutKey;           // logged layout, to log changes only
