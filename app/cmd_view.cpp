@@ -20,6 +20,8 @@ Command addViewCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--probe-log", a->probeLog, "append each pixel dossier as one JSON line to FILE");
   cmd->add_option("--event-log", a->eventLog, "append viewer events (layout, probe latency, exit) as JSON lines to FILE");
+  cmd->add_option("--capture", a->capture, "open a capture directory instead of rendering (gblens capture -o DIR)");
+  cmd->add_option("--compare", a->compare, "with --capture A: compare with capture B (A, B, |A-B|, split, both dossiers)");
   return {cmd, [a, cmd]() -> int {
             std::string error;
             if (!finishCommonOptions(a->common, error)) {

@@ -160,11 +160,16 @@ std::vector<RangeStats> computeRanges(ViewMapper& m, Renderer& r, const std::vec
 }
 
 void drawView(ViewMapper& m, Renderer& r, VkCommandBuffer cmd, VkRenderPass renderPass, VkFormat attachmentFormat,
-              const ViewSource& source, const gpu::ViewParams& params, VkRect2D viewport, VkRect2D scissor) {
+              const ViewSource& source, const gpu::ViewParams& params, VkRect2D viewport, VkRect2D scissor, Renderer* b) {
   const bool uintSource = isUintSource(r, source);
-  const bool mark = (params.mode.z & gpu::kViewFlagMark) && !uintSource;
+  const bool diff = params.mode.x == gpu::kViewMapDiff;
+  GB_ASSERT(!diff || (b && b->targets[size_t(source.target)].image.image));
+  const bool mark = (params.mode.z & gpu::kViewFlagMark) && !uintSource && !diff;
   const bool srgbOut = attachmentFormat == VK_FORMAT_B8G8R8A8_SRGB || attachmentFormat == VK_FORMAT_R8G8B8A8_SRGB;
-  std::string shader = uintSource ? "view_map.uint.frag" : mark ? "view_map.mark.frag" : "view_map.frag";
+  std::string shader = diff ? (uintSource ? "view_map.diff.uint.frag" : "view_map.diff.frag")
+                     : uintSource ? "view_map.uint.frag"
+                     : mark       ? "view_map.mark.frag"
+                                  : "view_map.frag";
   std::vector<SpecConstant> spec = commonSpec(r);
   spec.push_back({gpu::kSpecOutputSrgb, srgbOut ? 1u : 0u});
   std::string key = shader + "@" + std::to_string(uint64_t(renderPass)) + "#";
@@ -182,7 +187,13 @@ void drawView(ViewMapper& m, Renderer& r, VkCommandBuffer cmd, VkRenderPass rend
   }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
   const VkImageLayout readLayout = r.targets[size_t(source.target)].layout;
-  if (mark) {
+  if (diff) {
+    const GraphTarget& other = b->targets[size_t(source.target)];
+    pushImages(r, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.layout,
+               {{0u, {r.samplerPoint, sourceView(r, source), readLayout}},
+                {1u, {r.samplerPoint, sourceView(*b, source), other.layout}}},
+               nullptr);
+  } else if (mark) {
     const GraphTarget& depth = r.targets[size_t(Target::Depth)];
     pushImages(r, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.layout,
                {{0u, {r.samplerPoint, sourceView(r, source), readLayout}},

@@ -44,8 +44,10 @@ std::vector<RangeStats> computeRanges(ViewMapper& m, Renderer& r, const std::vec
 // Records one view into the current render pass: `viewport` is the view's rectangle in
 // framebuffer pixels (params.transform places the image in it), `scissor` its visible part.
 // The source target must be readable by fragment shaders (FrameRequest::sampleAfter).
+// With params.mode.x == kViewMapDiff, `b` holds the frame compared with (the same target is read).
 void drawView(ViewMapper& m, Renderer& r, VkCommandBuffer cmd, VkRenderPass renderPass, VkFormat attachmentFormat,
-              const ViewSource& source, const gpu::ViewParams& params, VkRect2D viewport, VkRect2D scissor);
+              const ViewSource& source, const gpu::ViewParams& params, VkRect2D viewport, VkRect2D scissor,
+              Renderer* b = nullptr);
 
 // Inverse of the shaders' orderedFromFloat (view_range.comp).
 float floatFromOrdered(uint32_t ordered);

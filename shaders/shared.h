@@ -116,6 +116,7 @@ GB_CONST(uint, kViewMapGrey, 1);    // the lowest selected channel as grey, rang
 GB_CONST(uint, kViewMapNormal, 2);  // the decoded unit normal's selected components, range -> [0, 1]
 GB_CONST(uint, kViewMapDepth, 3);   // one channel, near bright (1 - 0.9 t); invalid texels black
 GB_CONST(uint, kViewMapHeat, 4);    // one channel as a count, heat map over [0, white point]
+GB_CONST(uint, kViewMapDiff, 5);    // |A - B|: max over selected channels, heat map over [0, white point]
 // ViewParams.mode.z flags.
 GB_CONST(uint, kViewFlagSrgb, 1);      // the data is linear colour: display it sRGB-encoded
 GB_CONST(uint, kViewFlagSpecials, 2);  // NaN and +-Inf in a selected channel get their own colours

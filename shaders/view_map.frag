@@ -15,6 +15,13 @@ layout(set = 1, binding = 0) uniform sampler2D source;
 #ifdef GB_VIEW_MARK
 layout(set = 1, binding = 1) uniform sampler2D eyeDepth;  // where each screen texel's surface is
 #endif
+#ifdef GB_VIEW_DIFF  // compare mode: the same target of capture B
+#ifdef GB_VIEW_UINT
+layout(set = 1, binding = 1) uniform usampler2D sourceB;
+#else
+layout(set = 1, binding = 1) uniform sampler2D sourceB;
+#endif
+#endif
 layout(constant_id = kSpecOutputSrgb) const uint OUTPUT_SRGB = 0;
 layout(location = 0) out vec4 outColor;
 
@@ -81,6 +88,21 @@ void main() {
         infFound = infFound || isinf(v[c]);
         negFound = negFound || v[c] < 0.0;
       }
+#ifdef GB_VIEW_DIFF
+    if (mapping == kViewMapDiff) {
+      // Largest |A - B| over the selected channels; a NaN on one side only counts as infinite.
+      vec4 b = vec4(texelFetch(sourceB, t, 0));
+      float d = 0.0;
+      for (int c = 0; c < 4; ++c)
+        if ((mask & (1u << c)) != 0) {
+          bool na = isnan(v[c]), nb = isnan(b[c]);
+          float e = na || nb ? (na == nb ? 0.0 : uintBitsToFloat(0x7F800000u)) : (v[c] == b[c] ? 0.0 : abs(v[c] - b[c]));
+          d = max(d, e);
+        }
+      nanFound = infFound = negFound = false;
+      display = d > 0.0 ? heat(max(d, hi * 1e-3), hi) : vec3(0.0);
+    } else
+#endif
     if (mapping == kViewMapNormal) {
       vec3 n = v.xyz == vec3(0.0) && NORMAL_ENCODING != kNormalRgb10a2 ? vec3(0.0) : decodeNormal(v);
       bool empty = v == vec4(0.0);  // nothing drawn (the G-buffer clears to 0)

@@ -7,6 +7,7 @@
 
 #include "renderer/builtin.h"
 #include "renderer/region_readback.h"
+#include "renderer/upload_targets.h"
 #include "renderer/vk/check.h"
 #include "tests/gpu_test.h"
 #include "views/view_params.h"
@@ -338,6 +339,37 @@ TEST_F(GpuTest, RegionReadBackEqualsTheWholeTargetsTexels) {
   EXPECT_EQ(regions[1].x0, 0u);
   EXPECT_EQ(regions[1].image.width, 2u);  // x in [-2, 2) clamped to [0, 2)
   EXPECT_EQ(regions[2].image.width, 2u);
+}
+
+}  // namespace gb
+
+namespace gb {
+
+// A capture opened in the viewer is uploaded back into targets: pack -> upload -> read back must
+// return every stored bit, for every target and the formats whose packing is not a plain copy.
+TEST_F(GpuTest, UploadedTargetsReadBackBitForBit) {
+  Scene scene = builtinTemple(32);
+  for (auto [normal, depth] : {std::pair{NormalFormat::Rgb10a2, DepthFormat::D24S8},
+                               std::pair{NormalFormat::Rgba16f, DepthFormat::D32S8}}) {
+    RenderOptions o = smallFrame();
+    o.normalFormat = normal;
+    o.depthFormat = depth;
+    render(scene, o, {kAll, kAll});
+    Renderer& live = renderer(scene);
+    std::array<const CpuImage*, kTargetCount> images{};
+    for (Target t : kAll) images[size_t(t)] = &live.readback[size_t(t)];
+    Scene empty = floorScene();
+    Renderer& uploaded = renderer(empty);
+    uploadTargets(uploaded, o, images);
+    std::vector<RegionRequest> whole;
+    for (Target t : kAll) whole.push_back({t, 0, 0, images[size_t(t)]->width, images[size_t(t)]->height});
+    std::vector<RegionImage> back = readbackRegions(uploaded, whole, kAll);
+    for (const RegionImage& ri : back) {
+      const CpuImage& original = *images[size_t(ri.target)];
+      ASSERT_EQ(ri.image.data.size(), original.data.size()) << targetName(ri.target);
+      EXPECT_EQ(ri.image.data, original.data) << targetName(ri.target) << " with " << name(normal) << ", " << name(depth);
+    }
+  }
 }
 
 }  // namespace gb

@@ -14,8 +14,10 @@ void drawDossier(ViewerModel& m);  // probe_panel.cpp
 
 static constexpr double kMenuHeight = 20.0, kStatusHeight = 22.0, kControlsWidth = 310.0, kPixelWidth = 450.0;
 
+static double pixelWidth(const ViewerModel& m) { return m.source == FrameSource::Compare ? 1.5 * kPixelWidth : kPixelWidth; }
+
 Rect viewArea(const ViewerModel& m, double w, double h) {
-  double left = m.showControls ? kControlsWidth : 0.0, right = m.showPixel ? kPixelWidth : 0.0;
+  double left = m.showControls ? kControlsWidth : 0.0, right = m.showPixel ? pixelWidth(m) : 0.0;
   return {left, kMenuHeight, std::max(1.0, w - left - right), std::max(1.0, h - kMenuHeight - kStatusHeight)};
 }
 
@@ -255,10 +257,21 @@ static void controlsPanel(ViewerModel& m, const Rect& at) {
   ImGui::Begin("Controls", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                                         ImGuiWindowFlags_NoSavedSettings);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) viewSettings(m);
-  if (ImGui::CollapsingHeader("Frame", ImGuiTreeNodeFlags_DefaultOpen)) frameOptions(m);
-  if (ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) animation(m);
-  if (ImGui::CollapsingHeader("Camera")) cameraControls(m);
-  if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) statistics(m);
+  if (m.source == FrameSource::Compare && ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Checkbox("split A | B", &m.split);
+    if (m.split) ImGui::SliderFloat("split at", &m.splitAt, 0.0f, 1.0f, "%.2f");
+    ImGui::TextDisabled("single view: A, B and |A - B|; keys pick the view");
+    ImGui::TextWrapped("%s", m.compareSummary.c_str());
+  }
+  if (m.source != FrameSource::Live) {
+    if (ImGui::CollapsingHeader(m.source == FrameSource::Compare ? "Captures" : "Capture", ImGuiTreeNodeFlags_DefaultOpen))
+      ImGui::TextWrapped("%s", m.captureInfo.c_str());
+  } else {
+    if (ImGui::CollapsingHeader("Frame", ImGuiTreeNodeFlags_DefaultOpen)) frameOptions(m);
+    if (ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) animation(m);
+    if (ImGui::CollapsingHeader("Camera")) cameraControls(m);
+    if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) statistics(m);
+  }
   if (!m.captureAvailable) ImGui::BeginDisabled();
   if (ImGui::Button("Capture frame")) m.captureRequested = true;
   if (!m.captureAvailable) ImGui::EndDisabled();
@@ -283,8 +296,11 @@ static void statusBar(ViewerModel& m, double w, double h) {
   ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
                                          ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImGui::PopStyleVar();
-  ImGui::Text("%s | %s | %ux%u | %.1f ms", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height,
-              m.stats.frameMs);
+  if (m.source == FrameSource::Live)
+    ImGui::Text("%s | %s | %ux%u | %.1f ms", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height,
+                m.stats.frameMs);
+  else
+    ImGui::Text("%s | %s | %ux%u", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height);
   if (!m.hoverText.empty()) {
     ImGui::SameLine();
     ImGui::TextUnformatted(("| " + m.hoverText).c_str());
@@ -298,7 +314,7 @@ void drawViewerUi(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDra
   menuBar(m);
   Rect area = viewArea(m, w, h);
   if (m.showControls) controlsPanel(m, {0, kMenuHeight, kControlsWidth, area.h});
-  if (m.showPixel) pixelPanel(m, {w - kPixelWidth, kMenuHeight, kPixelWidth, area.h});
+  if (m.showPixel) pixelPanel(m, {w - pixelWidth(m), kMenuHeight, pixelWidth(m), area.h});
   drawViewArea(m, area, callback, draws);
   statusBar(m, w, h);
 }

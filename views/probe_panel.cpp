@@ -208,6 +208,20 @@ static void storedSection(const PixelDossier& d) {
   ImGui::EndTable();
 }
 
+static void dossierSections(const PixelDossier& d) {
+  if (!d.missing.empty()) {
+    std::string missing;
+    for (const std::string& s : d.missing) missing += (missing.empty() ? "" : ", ") + s;
+    ImGui::TextColored(ImVec4(1, 0.6f, 0.3f, 1), "missing: %s", missing.c_str());
+  }
+  colourSection(d);
+  gbufferSection(d);
+  positionSection(d);
+  shadowSection(d);
+  lightsSection(d);
+  storedSection(d);
+}
+
 void drawDossier(ViewerModel& m) {
   if (m.hover)
     ImGui::Text("mouse (%d, %d)", m.hover->x, m.hover->y);
@@ -236,18 +250,26 @@ void drawDossier(ViewerModel& m) {
     ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", m.probeError.c_str());
     return;
   }
-  if (!d.missing.empty()) {
-    std::string missing;
-    for (const std::string& s : d.missing) missing += (missing.empty() ? "" : ", ") + s;
-    ImGui::TextColored(ImVec4(1, 0.6f, 0.3f, 1), "missing: %s", missing.c_str());
+  if (!m.dossierB) {
+    ImGui::BeginChild("dossier");
+    dossierSections(d);
+    ImGui::EndChild();
+    return;
   }
-  ImGui::BeginChild("dossier");
-  colourSection(d);
-  gbufferSection(d);
-  positionSection(d);
-  shadowSection(d);
-  lightsSection(d);
-  storedSection(d);
+  // Compare: both dossiers side by side, section for section.
+  float half = ImGui::GetContentRegionAvail().x * 0.5f - 4.0f;
+  ImGui::BeginChild("dossierA", ImVec2(half, 0), true);
+  ImGui::TextColored(ImVec4(0.6f, 0.8f, 1, 1), "A  %s", m.captureA.c_str());
+  ImGui::PushID("A");
+  dossierSections(d);
+  ImGui::PopID();
+  ImGui::EndChild();
+  ImGui::SameLine();
+  ImGui::BeginChild("dossierB", ImVec2(half, 0), true);
+  ImGui::TextColored(ImVec4(1, 0.8f, 0.6f, 1), "B  %s", m.captureB.c_str());
+  ImGui::PushID("B");
+  dossierSections(*m.dossierB);
+  ImGui::PopID();
   ImGui::EndChild();
 }
 

@@ -25,6 +25,25 @@ std::vector<ViewKind> visibleViews(const ViewerModel& m) {
   return {};
 }
 
+std::vector<ViewSlot> viewSlots(const ViewerModel& m, const Rect& area) {
+  std::vector<ViewKind> views = visibleViews(m);
+  std::vector<ViewSlot> out;
+  if (m.source == FrameSource::Compare && m.layout == LayoutMode::Single) {
+    if (m.split) return {{views[0], FrameSide::A, area, true}};
+    // A, B and |A - B| in a row (a column when the area is taller than wide).
+    const double gap = 4.0;
+    const bool row = area.w >= area.h;
+    double len = std::floor(((row ? area.w : area.h) - 2 * gap) / 3);
+    for (int i = 0; i < 3; ++i)
+      out.push_back({views[0], FrameSide(i),
+                     row ? Rect{area.x + i * (len + gap), area.y, len, area.h} : Rect{area.x, area.y + i * (len + gap), area.w, len}});
+    return out;
+  }
+  std::vector<Rect> rects = layoutViews(area, m.layout);
+  for (size_t i = 0; i < views.size() && i < rects.size(); ++i) out.push_back({views[i], FrameSide::A, rects[i]});
+  return out;
+}
+
 bool applyViewKey(ViewerModel& m, int digit) {
   if (digit == 1) {
     m.layout = LayoutMode::Grid;
@@ -86,7 +105,7 @@ static void markTexel(ImDrawList* dl, const Placement& pl, glm::ivec2 t, ImU32 c
 }
 
 static void drawOneView(ViewerModel& m, ViewKind kind, const Rect& r, int index, ViewDrawCallback callback,
-                        std::vector<ViewDraw>& draws, bool showKey) {
+                        std::vector<ViewDraw>& draws, bool showKey, FrameSide side = FrameSide::A, bool split = false) {
   const ViewDef& def = viewDef(kind);
   const ViewSettings& s = m.settings[int(kind)];
   ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -112,11 +131,21 @@ static void drawOneView(ViewerModel& m, ViewKind kind, const Rect& r, int index,
     std::optional<glm::ivec2> mark = m.shadowMark;
     ViewDraw vd;
     vd.source = def.source;
+    vd.side = side;
     Placement fb = pl;  // framebuffer pixels (the same as window pixels unless the display scales)
     fb.originX *= io.DisplayFramebufferScale.x;
     fb.originY *= io.DisplayFramebufferScale.y;
     fb.scale *= io.DisplayFramebufferScale.x;
+    if (m.source != FrameSource::Live) mark.reset();  // marks need the live frame's matrices on the GPU
     vd.params = viewParams(def, s, range, fb, m.grid, mark, m.shadowMapSize);
+    if (side == FrameSide::Difference) {
+      // |A - B| over the selected channels as a heat map from 0 to the largest difference.
+      vd.params.mode.x = gpu::kViewMapDiff;
+      vd.params.mode.z &= gpu::kViewFlagGrid;
+      vd.params.range = glm::vec4(0.0f, float(std::max(m.differenceMax[int(kind)], 1e-30)), vd.params.range.z, 0.0f);
+      if (def.mapping == gpu::kViewMapNormal || def.mapping == gpu::kViewMapColor) vd.params.mode.y &= 0x7u;
+    }
+    if (split) vd.splitX = (r.x + r.w * m.splitAt) * io.DisplayFramebufferScale.x;
     vd.rect = {r.x * io.DisplayFramebufferScale.x, r.y * io.DisplayFramebufferScale.y, r.w * io.DisplayFramebufferScale.x,
                r.h * io.DisplayFramebufferScale.y};
     draws.push_back(vd);
@@ -138,10 +167,23 @@ static void drawOneView(ViewerModel& m, ViewKind kind, const Rect& r, int index,
 
     // Label and range.
     char label[160];
-    std::snprintf(label, sizeof label, "%s%s%s", showKey && def.key[0] ? def.key : "", showKey && def.key[0] ? "  " : "",
-                  def.label);
+    const char* prefix = m.source != FrameSource::Compare ? ""
+                         : split                           ? "A | B  "
+                         : side == FrameSide::A            ? "A  "
+                         : side == FrameSide::B            ? "B  "
+                                                           : "|A-B|  ";
+    std::snprintf(label, sizeof label, "%s%s%s%s", prefix, showKey && def.key[0] ? def.key : "",
+                  showKey && def.key[0] ? "  " : "", def.label);
     std::string line2;
-    if (s.autoRange) {
+    if (side == FrameSide::Difference) {
+      char buf[96];
+      double worst = m.differenceMax[int(kind)];
+      if (worst > 0.0)
+        std::snprintf(buf, sizeof buf, "largest |A - B| %.6g", worst);
+      else
+        std::snprintf(buf, sizeof buf, "identical (every texel, selected channels)");
+      line2 = buf;
+    } else if (s.autoRange) {
       char buf[128];
       if (range.fromData)
         std::snprintf(buf, sizeof buf, "auto %.6g .. %.6g", range.black, range.white);
@@ -163,9 +205,17 @@ static void drawOneView(ViewerModel& m, ViewKind kind, const Rect& r, int index,
     if (!line2.empty())
       dl->AddText(ImVec2(float(r.x) + 5, float(r.y) + 3 + ls.y),
                   range.stats.nan || range.stats.inf ? rgb(1, 0.4f, 1) : rgb(0.8f, 0.8f, 0.8f), line2.c_str());
-    if (def.mapping == gpu::kViewMapHeat && r.w > 120 && r.h > 80)
+    if (side == FrameSide::Difference && r.w > 120 && r.h > 80)
+      heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)),
+                 float(m.differenceMax[int(kind)]), "|A - B|, max over the selected channels");
+    else if (def.mapping == gpu::kViewMapHeat && r.w > 120 && r.h > 80)
       heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), range.white,
                  def.unit);
+    if (split) {  // the split line and its handle
+      float x = float(r.x + r.w * m.splitAt);
+      dl->AddLine(ImVec2(x, float(r.y)), ImVec2(x, float(r.y + r.h)), rgb(1, 1, 1), 2.0f);
+      dl->AddCircleFilled(ImVec2(x, float(r.y + r.h * 0.5)), 6.0f, rgb(1, 1, 1));
+    }
   }
 
   // The mouse.
@@ -186,7 +236,15 @@ static void drawOneView(ViewerModel& m, ViewKind kind, const Rect& r, int index,
         m.uiChanged = true;
       }
     }
-    if (ImGui::IsItemClicked(ImGuiMouseButton_Left) || (active && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f) &&
+    if (split && ImGui::IsItemClicked(ImGuiMouseButton_Left) && std::abs(mouse.x - (r.x + r.w * m.splitAt)) < 8.0)
+      m.draggingSplit = true;
+    if (m.draggingSplit) {
+      if (active && ImGui::IsMouseDown(ImGuiMouseButton_Left))
+        m.splitAt = float(std::clamp((mouse.x - r.x) / std::max(r.w, 1.0), 0.0, 1.0));
+      else
+        m.draggingSplit = false;
+      m.uiChanged = true;
+    } else if (ImGui::IsItemClicked(ImGuiMouseButton_Left) || (active && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f) &&
                                                          io.MouseDelta.x + io.MouseDelta.y != 0.0f && !io.KeyShift)) {
       m.edited = kind;
       if (inside && shadowMap) {
@@ -221,10 +279,10 @@ void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, s
   m.hover.reset();
   m.hoverView.reset();
   m.hoverShadowTexel.reset();
-  std::vector<ViewKind> views = visibleViews(m);
-  std::vector<Rect> rects = layoutViews(area, m.layout);
-  for (size_t i = 0; i < views.size() && i < rects.size(); ++i)
-    drawOneView(m, views[i], rects[i], int(i), callback, draws, m.layout == LayoutMode::Grid);
+  std::vector<ViewSlot> slots = viewSlots(m, area);
+  for (size_t i = 0; i < slots.size(); ++i)
+    drawOneView(m, slots[i].kind, slots[i].rect, int(i), callback, draws, m.layout == LayoutMode::Grid, slots[i].side,
+                slots[i].split);
   if (m.hover != hoverBefore || m.hoverShadowTexel != shadowBefore) m.uiChanged = true;
   ImGui::End();
 }

@@ -18,17 +18,34 @@ struct ImDrawCmd;
 
 namespace gb {
 
+// Which frame a view shows: the live one (or capture A), capture B, or |A - B|.
+enum class FrameSide { A, B, Difference };
+
 // A view to draw inside the ImGui draw data: the app's callback records it (renderer/view_map).
 struct ViewDraw {
   ViewSource source;
   gpu::ViewParams params;
   Rect rect;  // framebuffer pixels: the view's rectangle (the draw command's clip rect clips it)
+  FrameSide side = FrameSide::A;
+  double splitX = -1.0;  // framebuffer x: A left of it, B right of it (compare split); < 0: none
 };
+
+// Where the frame comes from: the live renderer, a capture (--capture), or two (--compare).
+enum class FrameSource { Live, Capture, Compare };
 using ViewDrawCallback = void (*)(const ImDrawList*, const ImDrawCmd*);
 
 enum class CameraMode { Orbit, Fly };
 
 struct ViewerModel {
+  FrameSource source = FrameSource::Live;
+  std::string captureA, captureB;    // directories (capture modes)
+  std::string captureInfo;           // what the capture(s) hold, for the panel
+  std::string compareSummary;        // `gblens compare`'s report of A vs B
+  bool split = false;                // compare: one view split A | B, else A, B, |A - B| in a row
+  float splitAt = 0.5f;              // split position, fraction of the view's width
+  bool draggingSplit = false;
+  std::array<double, kViewKindCount> differenceMax{};  // compare: largest |A - B| of each view (white point)
+
   // ---- what is shown ----
   LayoutMode layout = LayoutMode::Single;
   ViewKind primary = ViewKind::Final, secondary = ViewKind::Normal;
@@ -76,6 +93,7 @@ struct ViewerModel {
   std::optional<glm::ivec2> shadowTexelOfProbe;  // the texel the probed pixel's shadow lookup read
   std::optional<PixelDossier> dossier;      // the shared dossier (views/probe.h) of probePixel
   nlohmann::json dossierJson;               // the same as JSON (copy, --probe-log)
+  std::optional<PixelDossier> dossierB;     // compare: capture B's dossier of the same pixel
   std::string probeError;
   double probeLatencyMs = 0.0;
   bool copyJson = false;
@@ -102,6 +120,15 @@ Rect viewArea(const ViewerModel& m, double windowWidth, double windowHeight);
 
 // Which views are on screen now.
 std::vector<ViewKind> visibleViews(const ViewerModel& m);
+
+// Each view on screen with its rectangle and which frame it shows (compare: A, B, |A - B|).
+struct ViewSlot {
+  ViewKind kind;
+  FrameSide side = FrameSide::A;
+  Rect rect;
+  bool split = false;
+};
+std::vector<ViewSlot> viewSlots(const ViewerModel& m, const Rect& area);
 
 // Keyboard shortcuts of the seed: 1 grid, 2..9 views, 0 / Return final. Returns true if handled.
 bool applyViewKey(ViewerModel& m, int digit);

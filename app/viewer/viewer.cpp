@@ -237,16 +237,16 @@ static void updateRanges(Viewer& v) {
 
 static void logLayout(Viewer& v, int windowW, int windowH) {
   ViewerModel& m = v.model;
-  std::vector<ViewKind> views = visibleViews(m);
   Rect area = viewArea(m, windowW, windowH);
-  std::vector<Rect> rects = layoutViews(area, m.layout);
   nlohmann::json j = {{"event", "layout"}, {"window", {windowW, windowH}}, {"size", {m.rendered.width, m.rendered.height}}};
   nlohmann::json list = nlohmann::json::array();
-  for (size_t i = 0; i < views.size() && i < rects.size(); ++i) {
-    glm::uvec2 size = viewImageSize(m, views[i]);
-    Placement p = placeImage(rects[i], size.x, size.y, m.transform);
-    list.push_back({{"view", viewName(views[i])},
-                    {"rect", {rects[i].x, rects[i].y, rects[i].w, rects[i].h}},
+  static const char* const kSides[] = {"a", "b", "difference"};
+  for (const ViewSlot& slot : viewSlots(m, area)) {
+    glm::uvec2 size = viewImageSize(m, slot.kind);
+    Placement p = placeImage(slot.rect, size.x, size.y, m.transform);
+    list.push_back({{"view", viewName(slot.kind)},
+                    {"side", slot.split ? "split" : kSides[int(slot.side)]},
+                    {"rect", {slot.rect.x, slot.rect.y, slot.rect.w, slot.rect.h}},
                     {"origin", {p.originX, p.originY}},
                     {"scale", p.scale},
                     {"image", {size.x, size.y}}});
@@ -259,6 +259,15 @@ static void logLayout(Viewer& v, int windowW, int windowH) {
 }
 
 static double medianOf(std::vector<double> x) { return median(std::move(x)); }
+
+static void answerProbe(Viewer& v) {
+  ViewerModel& m = v.model;
+  if (m.source == FrameSource::Live)
+    probeViewerPixel(v, *m.probeRequest, true);
+  else
+    probeCapturePixel(v, *m.probeRequest);
+  m.probeRequest.reset();
+}
 
 static void buildInterface(Viewer& v) {
   ImGui_ImplVulkan_NewFrame();
@@ -278,7 +287,12 @@ int runViewer(const ViewerArgs& args) {
     std::fprintf(stderr, "gblens view: --window %s: expected WxH, at least 64x64\n", args.window.c_str());
     return 2;
   }
-  if (!loadSceneOrReport(args.common, v.scene)) return 2;
+  const bool live = args.capture.empty();
+  if (!args.compare.empty() && live) {
+    std::fprintf(stderr, "gblens view: --compare B needs --capture A\n");
+    return 2;
+  }
+  if (live && !loadSceneOrReport(args.common, v.scene)) return 2;
   if (!args.probeLog.empty()) {
     v.probeLog.open(args.probeLog, std::ios::app);
     if (!v.probeLog) {
@@ -308,10 +322,19 @@ int runViewer(const ViewerArgs& args) {
   while (!recreateSwapchain(v)) glfwWaitEvents();  // a window may open minimised
   initImGui(v);
 
-  // The scene camera the viewer starts from, copied to a camera of its own (the last one).
-  resetRig(v.rig, v.scene.cameras[size_t(args.common.render.camera)], v.scene.bounds);
-  v.scene.cameras.push_back(v.rig.desc);
-  initRenderer(v.renderer, v.ctx, v.scene);
+  if (live) {
+    // The scene camera the viewer starts from, copied to a camera of its own (the last one).
+    resetRig(v.rig, v.scene.cameras[size_t(args.common.render.camera)], v.scene.bounds);
+    v.scene.cameras.push_back(v.rig.desc);
+    initRenderer(v.renderer, v.ctx, v.scene);
+  } else if (!openCaptures(v)) {
+    shutdownImGui(v);
+    destroyRenderer(v.renderer);
+    destroyRenderer(v.rendererB);
+    closeWindow(v);
+    destroyContext(v.ctx);
+    return 2;
+  }
   initViewMapper(v.mapper, v.renderer);
 
   for (int k = 0; k < kViewKindCount; ++k) m.settings[k] = defaultSettings(ViewKind(k));
@@ -322,18 +345,21 @@ int runViewer(const ViewerArgs& args) {
   parseView(args.initialView, m.primary);
   m.edited = m.primary;
   m.deviceName = v.ctx.deviceName;
-  m.sceneName = args.common.scene;
-  for (size_t i = 0; i + 1 < v.scene.cameras.size(); ++i)
-    m.cameraNames.push_back(v.scene.cameras[i].name.empty() ? "camera " + std::to_string(i) : v.scene.cameras[i].name);
-  m.captureAvailable = false;
-  m.captureHint = "Writes a capture of this frame (Capture issue): not merged into this build yet";
+  m.sceneName = live ? args.common.scene : args.capture + (args.compare.empty() ? "" : " vs " + args.compare);
+  if (live) {
+    for (size_t i = 0; i + 1 < v.scene.cameras.size(); ++i)
+      m.cameraNames.push_back(v.scene.cameras[i].name.empty() ? "camera " + std::to_string(i) : v.scene.cameras[i].name);
+    m.captureAvailable = true;
+    m.captureHint = "Writes this frame, every target at full precision, to ./gblens-capture-<date>-<time>/\n"
+                    "(EXR per target + manifest.json; open it with gblens view --capture DIR)";
+  }
 
   std::signal(SIGINT, [](int) { g_quit = true; });
   std::signal(SIGTERM, [](int) { g_quit = true; });
   v.lastTick = std::chrono::steady_clock::now();
   bool ready = false, minimised = false;
   while (!glfwWindowShouldClose(v.window) && !g_quit) {
-    bool animating = m.playing && m.timeSpeed != 0.0f;
+    bool animating = live && m.playing && m.timeSpeed != 0.0f;  // a capture does not move
     bool keysHeld = false;
     for (int key : {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E})
       keysHeld |= glfwGetKey(v.window, key) == GLFW_PRESS && glfwGetKey(v.window, GLFW_KEY_LEFT_CONTROL) != GLFW_PRESS;
@@ -357,29 +383,41 @@ int runViewer(const ViewerArgs& args) {
     double dt = std::min(0.1, std::chrono::duration<double>(now - v.lastTick).count());
     v.lastTick = now;
     handleKeys(v);
-    if (animating) m.wanted.time += dt * m.timeSpeed;
-    if (m.stepForward || m.stepBack) {
-      m.wanted.time = std::max(0.0, m.wanted.time + (m.stepForward ? 1.0 : -1.0) / 30.0);
-      m.playing = false;
-      m.stepForward = m.stepBack = false;
+    if (live) {
+      if (animating) m.wanted.time += dt * m.timeSpeed;
+      if (m.stepForward || m.stepBack) {
+        m.wanted.time = std::max(0.0, m.wanted.time + (m.stepForward ? 1.0 : -1.0) / 30.0);
+        m.playing = false;
+      }
+      updateCamera(v, dt);
+      updateLights(v);
+      renderIfNeeded(v, wantedOptions(v, fbw, fbh));
     }
-    updateCamera(v, dt);
-    updateLights(v);
-    renderIfNeeded(v, wantedOptions(v, fbw, fbh));
+    m.stepForward = m.stepBack = false;
     updateRanges(v);
-    if (m.probeRequest) {
-      probeViewerPixel(v, *m.probeRequest, true);
-      m.probeRequest.reset();
+    if (m.probeRequest) answerProbe(v);
+    if (live) {
+      readHover(v);
+    } else {
+      std::optional<glm::ivec2> texel = m.hoverView && viewDef(*m.hoverView).source.target == Target::ShadowMap
+                                            ? m.hoverShadowTexel
+                                            : m.hover;
+      m.hoverText = texel && m.hoverView ? captureHoverText(v, *m.hoverView, *texel) : "";
     }
-    readHover(v);
+    if (m.captureRequested) {
+      m.captureRequested = false;
+      std::string dir, error;
+      m.captureStatus = captureLiveFrame(v, dir, error) ? "wrote " + dir : "capture failed: " + error;
+      logLine(v.eventLog, {{"event", "capture"}, {"status", m.captureStatus}});
+      v.rangesStale = true;
+    }
 
     m.uiChanged = false;
     buildInterface(v);
     if (m.probeRequest) {
       // A click in this interface frame: answer it now and show the dossier in the same frame.
       ImGui::EndFrame();
-      probeViewerPixel(v, *m.probeRequest, true);
-      m.probeRequest.reset();
+      answerProbe(v);
       v.probeShownPending = true;
       buildInterface(v);
     }
@@ -403,8 +441,8 @@ int runViewer(const ViewerArgs& args) {
     }
     // Changes made in this interface frame need another one (and maybe a render).
     bool pending = m.uiChanged || m.probeRequest || m.resetCamera || m.gltfCamera >= 0 || m.cameraDrag != glm::dvec2(0.0) ||
-                   m.cameraDolly != 0.0 || m.stepForward || m.stepBack ||
-                   !sameOptions(wantedOptions(v, fbw, fbh), v.renderer.options);
+                   m.cameraDolly != 0.0 || m.stepForward || m.stepBack || m.captureRequested ||
+                   (live && !sameOptions(wantedOptions(v, fbw, fbh), v.renderer.options));
     v.uiFramesLeft = pending ? std::max(v.uiFramesLeft, 2) : v.uiFramesLeft - 1;
   }
 
@@ -421,6 +459,7 @@ int runViewer(const ViewerArgs& args) {
   shutdownImGui(v);
   destroyViewMapper(v.mapper, v.renderer);
   destroyRenderer(v.renderer);
+  destroyRenderer(v.rendererB);
   closeWindow(v);
   int messages = reportValidation(v.ctx);
   destroyContext(v.ctx);

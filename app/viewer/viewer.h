@@ -10,6 +10,7 @@
 #include "app/cli.h"
 #include "renderer/view_map.h"
 #include "renderer/vk/swapchain.h"
+#include "views/capture.h"
 #include "views/viewer_model.h"
 
 struct GLFWwindow;
@@ -57,6 +58,11 @@ struct Viewer {
   Renderer renderer;
   bool rendererReady = false;
   ViewMapper mapper;
+  // --capture A / --compare B: the captures, their targets uploaded (A into `renderer`).
+  Capture captureA, captureB;
+  Renderer rendererB;
+  Scene sceneB;
+  bool hasB = false;
   ViewerModel model;
   CameraRig rig;
   uint64_t cameraVersion = 1, lightsVersion = 1;
@@ -95,6 +101,12 @@ bool presentFrame(Viewer& v);
 void probeViewerPixel(Viewer& v, glm::ivec2 pixel, bool logged);
 void readHover(Viewer& v);
 std::vector<Target> readableTargets(const Renderer& r);
+
+// captures.cpp
+bool captureLiveFrame(Viewer& v, std::string& written, std::string& error);
+bool openCaptures(Viewer& v);  // false: a message was printed (exit 2)
+void probeCapturePixel(Viewer& v, glm::ivec2 pixel);
+std::string captureHoverText(const Viewer& v, ViewKind view, glm::ivec2 texel);
 
 // Appends one JSON line to a log file (no-op when the file is not open).
 void logLine(std::ofstream& f, const nlohmann::json& j);

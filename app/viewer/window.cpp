@@ -121,10 +121,26 @@ static void drawViewCallback(const ImDrawList*, const ImDrawCmd* cmd) {
   float x1 = std::min(float(ext.width), (cmd->ClipRect.z - pos.x) * scale.x);
   float y1 = std::min(float(ext.height), (cmd->ClipRect.w - pos.y) * scale.y);
   if (x1 <= x0 || y1 <= y0 || d.rect.w < 1 || d.rect.h < 1) return;
-  VkRect2D scissor{{int32_t(x0), int32_t(y0)}, {uint32_t(x1 - int32_t(x0)), uint32_t(y1 - int32_t(y0))}};
   VkRect2D viewport{{int32_t(d.rect.x), int32_t(d.rect.y)}, {uint32_t(d.rect.w), uint32_t(d.rect.h)}};
-  drawView(v.mapper, v.renderer, v.swapchain.cmd, v.swapchain.renderPass, v.swapchain.format.format, d.source, d.params,
-           viewport, scissor);
+  auto draw = [&](Renderer& r, float from, float to, Renderer* b) {
+    from = std::max(from, x0);
+    to = std::min(to, x1);
+    if (to <= from) return;
+    VkRect2D scissor{{int32_t(from), int32_t(y0)}, {uint32_t(int32_t(to) - int32_t(from)), uint32_t(y1 - int32_t(y0))}};
+    if (scissor.extent.width == 0 || scissor.extent.height == 0) return;
+    drawView(v.mapper, r, v.swapchain.cmd, v.swapchain.renderPass, v.swapchain.format.format, d.source, d.params, viewport,
+             scissor, b);
+  };
+  if (d.splitX >= 0.0 && v.hasB) {  // compare split: A on the left, B on the right
+    draw(v.renderer, x0, float(d.splitX), nullptr);
+    draw(v.rendererB, float(d.splitX), x1, nullptr);
+  } else if (d.side == FrameSide::B && v.hasB) {
+    draw(v.rendererB, x0, x1, nullptr);
+  } else if (d.side == FrameSide::Difference && v.hasB) {
+    draw(v.renderer, x0, x1, &v.rendererB);
+  } else {
+    draw(v.renderer, x0, x1, nullptr);
+  }
 }
 
 ViewDrawCallback viewDrawCallback() { return drawViewCallback; }
