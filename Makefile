@@ -4,7 +4,7 @@ JOBS    ?= $(shell nproc)
 GBLENS  := $(BUILD)/gblens
 PACKAGES := $(shell grep -v '^\#' debian-packages.txt)
 
-.PHONY: deps build run test bench stress fuzz test-asan clean
+.PHONY: deps build run test bench stress fuzz test-asan clean golden
 
 # Install missing Debian packages when root; otherwise print the exact command and stop.
 deps:
@@ -34,6 +34,10 @@ run: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j 2 --timeout 900
+
+# Rewrite tests/golden/temple after an intended change to the rendered frame (then review and commit).
+golden: build
+	tests/golden/golden.sh regenerate $(GBLENS)
 
 bench: build
 	$(GBLENS) bench --out out/bench

@@ -9,6 +9,8 @@
 namespace gb {
 
 void addCommonOptions(CLI::App* cmd, CommonOptions& o) {
+  // A later flag overrides an earlier one, so scripts can append overrides to a base command.
+  cmd->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   cmd->add_option("SCENE", o.scene, "builtin:temple, or a .gltf/.glb file")->capture_default_str();
   cmd->add_option("--size", o.size, "output size WxH")->capture_default_str();
   cmd->add_option("--time", o.render.time, "animation time in seconds (fixed)")->capture_default_str();

@@ -70,8 +70,7 @@ Command addCaptureCommand(CLI::App& root) {
                 }
               }
             } else {
-              for (size_t i = 0; i < kTargetCount; ++i)
-                if (targetUnavailable(Target(i), ro).empty()) wanted.push_back(Target(i));
+              wanted = availableTargets(ro);
             }
             Scene scene;
             if (!loadSceneOrReport(*o, scene)) return 2;
@@ -84,11 +83,8 @@ Command addCaptureCommand(CLI::App& root) {
             {
               Renderer r;
               initRenderer(r, ctx, scene);
-              FrameRequest request;
-              request.readback = wanted;
+              FrameRequest request = captureRequest(wanted, ro);
               auto has = [&](Target t) { return std::find(wanted.begin(), wanted.end(), t) != wanted.end(); };
-              // Culling statistics only when they read nothing beyond what was asked for.
-              request.cullingStats = ro.coverage && has(Target::CoverageMasked) && has(Target::Depth);
               std::vector<FrameStats> frames;
               for (int i = 0; i < o->frames; ++i) frames.push_back(renderFrame(r, ro, request));
               auto start = std::chrono::steady_clock::now();

@@ -24,6 +24,13 @@ struct CaptureMeta {
   std::string commandLine;       // how it was made, for the record
 };
 
+// Every target that can be read back under these options (targetUnavailable() is empty).
+std::vector<Target> availableTargets(const RenderOptions& options);
+
+// The frame request of a capture of `targets`: those are read back and nothing else; culling
+// statistics only when they need no extra read-back (coverage on, coverage_masked and depth asked).
+FrameRequest captureRequest(const std::vector<Target>& targets, const RenderOptions& options);
+
 // SHA-256 over what was loaded: geometry, materials, textures, instances, cameras, sun, sky
 // (not the point lights: they have their own hash, of lights.json).
 std::string sceneContentSha256(const Scene& scene);

@@ -213,7 +213,11 @@ bool loadCapture(const std::string& dirText, Capture& out, std::string& error, C
     return fail(CaptureProblem::Corrupt, (dir / "manifest.json").string() + ": capture format version " +
                                              m.value("format_version", nlohmann::json(nullptr)).dump() +
                                              " (this gblens reads 1.." + std::to_string(kCaptureFormatVersion) + ")");
-  if (!checkFiles(dir, m.value("files", nlohmann::json()), error, problem)) return fail(problem, dirText + ": " + error);
+  try {
+    if (!checkFiles(dir, m.value("files", nlohmann::json()), error, problem)) return fail(problem, dirText + ": " + error);
+  } catch (const std::exception& e) {
+    return fail(CaptureProblem::Corrupt, (dir / "manifest.json").string() + ": files: " + e.what());
+  }
 
   Capture c;
   c.dir = dirText;

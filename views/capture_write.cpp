@@ -2,6 +2,7 @@
 // SHA-256, all in a temporary directory that is renamed into place only when complete.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
@@ -16,6 +17,21 @@
 namespace gb {
 
 namespace fs = std::filesystem;
+
+std::vector<Target> availableTargets(const RenderOptions& o) {
+  std::vector<Target> out;
+  for (size_t i = 0; i < kTargetCount; ++i)
+    if (targetUnavailable(Target(i), o).empty()) out.push_back(Target(i));
+  return out;
+}
+
+FrameRequest captureRequest(const std::vector<Target>& targets, const RenderOptions& o) {
+  FrameRequest r;
+  r.readback = targets;
+  auto has = [&](Target t) { return std::find(targets.begin(), targets.end(), t) != targets.end(); };
+  r.cullingStats = o.coverage && has(Target::CoverageMasked) && has(Target::Depth);
+  return r;
+}
 
 static nlohmann::json vec3Json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
@@ -58,7 +74,8 @@ static nlohmann::json statsJson(const FrameStats& st) {
                       {"lights", {{"total", st.lights}, {"visible", st.lightsVisible},
                                   {"near_plane", st.lightsInside}, {"culled", st.lightsCulled}}}};
   if (st.culling.valid)
-    j["culling"] = {{"invocations", st.culling.invocations},
+    j["culling"] = {{"valid", true},
+                    {"invocations", st.culling.invocations},
                     {"ideal_pairs", st.culling.idealPairs},
                     {"work_over_ideal", st.culling.workOverIdeal},
                     {"pipeline_invocations", st.culling.pipelineInvocations}};

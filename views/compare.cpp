@@ -203,11 +203,11 @@ static void compareGroup(Target t, const Capture& ca, const Capture& cb, GroupRe
 static void manifestDifferences(const nlohmann::json& a, const nlohmann::json& b, nlohmann::json& out) {
   nlohmann::json fa = nlohmann::json::object(), fb = nlohmann::json::object();
   for (const char* key : {"options", "scene", "device", "driver", "gblens", "lights", "sun"}) {
-    fa[key] = a.value(key, nlohmann::json());
-    fb[key] = b.value(key, nlohmann::json());
+    fa[key] = a.is_object() ? a.value(key, nlohmann::json()) : nlohmann::json();
+    fb[key] = b.is_object() ? b.value(key, nlohmann::json()) : nlohmann::json();
   }
-  fa["lights"].erase("file");
-  fb["lights"].erase("file");
+  for (nlohmann::json* j : {&fa, &fb})
+    if ((*j)["lights"].is_object()) (*j)["lights"].erase("file");
   nlohmann::json flatA = fa.flatten(), flatB = fb.flatten();
   for (auto& [k, v] : flatA.items())
     if (!flatB.contains(k) || flatB[k] != v) out.push_back({{"name", k.substr(1)}, {"a", v}, {"b", flatB.value(k, nlohmann::json())}});

@@ -56,29 +56,56 @@ bool writeExr(const std::string& path, const CpuImage& img, std::string& error) 
   spec.attribute("gblens:type", name(img.type));
   spec.attribute("gblens:encoding", name(img.encoding));
 
-  // Interleave the channels in their file formats (pixel by pixel, channel by channel).
+  // Interleave the channels in their file formats (pixel by pixel, channel by channel). The
+  // decoded value of an 8-bit channel comes from a table (sRGB decoding per texel is slow).
+  enum class Kind { Half, Bits, StencilUint, Decoded, Decoded8 };
+  struct Plan {
+    Kind kind;
+    uint32_t c;
+    std::vector<float> table;
+  };
+  std::vector<Plan> plans;
+  for (const ExrChannel& ch : chans) {
+    Plan p{ch.type == "half" ? Kind::Half : ch.raw ? Kind::Bits : ch.type == "uint" ? Kind::StencilUint : Kind::Decoded,
+           uint32_t(ch.source), {}};
+    if (p.kind == Kind::Decoded && pixelTypeSize(img.type) == 1) {
+      CpuImage one = img;  // one texel of the same description
+      one.width = one.height = 1;
+      one.data.assign(img.texelBytes(), 0);
+      for (uint32_t v = 0; v < 256; ++v) {
+        one.data[p.c] = uint8_t(v);
+        p.table.push_back(float(one.value(0, 0, p.c)));
+      }
+      p.kind = Kind::Decoded8;
+    }
+    plans.push_back(std::move(p));
+  }
   std::vector<uint8_t> buf(pixelBytes * img.width * img.height);
   uint8_t* p = buf.data();
   for (uint32_t y = 0; y < img.height; ++y)
     for (uint32_t x = 0; x < img.width; ++x)
-      for (const ExrChannel& ch : chans) {
-        uint32_t c = uint32_t(ch.source);
-        if (ch.type == "half") {
-          uint16_t h = uint16_t(img.raw(x, y, c));
-          std::memcpy(p, &h, 2);
-          p += 2;
-          continue;
-        }
-        uint32_t bits;
-        if (ch.raw) {
-          bits = img.raw(x, y, c);  // F32 bits, U32 value, or the stored 8/16-bit integer
-        } else if (ch.type == "uint") {  // Stencil read back as float
-          double v = img.value(x, y, c);
-          GB_ASSERT(v >= 0.0 && v <= 4294967295.0 && v == std::floor(v));
-          bits = uint32_t(v);
-        } else {  // decoded value of an integer-stored channel
-          float f = float(img.value(x, y, c));
-          std::memcpy(&bits, &f, 4);
+      for (const Plan& pl : plans) {
+        uint32_t bits = 0;
+        switch (pl.kind) {
+          case Kind::Half: {
+            uint16_t h = uint16_t(img.raw(x, y, pl.c));
+            std::memcpy(p, &h, 2);
+            p += 2;
+            continue;
+          }
+          case Kind::Bits: bits = img.raw(x, y, pl.c); break;  // F32 bits, U32, or the 8/16-bit integer
+          case Kind::StencilUint: {                            // read back as float
+            double v = img.value(x, y, pl.c);
+            GB_ASSERT(v >= 0.0 && v <= 4294967295.0 && v == std::floor(v));
+            bits = uint32_t(v);
+            break;
+          }
+          case Kind::Decoded:
+          case Kind::Decoded8: {
+            float f = pl.kind == Kind::Decoded8 ? pl.table[img.raw(x, y, pl.c)] : float(img.value(x, y, pl.c));
+            std::memcpy(&bits, &f, 4);
+            break;
+          }
         }
         std::memcpy(p, &bits, 4);
         p += 4;
@@ -113,30 +140,48 @@ bool readExr(const std::string& path, CpuImage& img, std::string& error) {
     error = path + ": " + std::to_string(spec.nchannels) + " channels, expected " + std::to_string(chans.size());
     return false;
   }
-  img.data.assign(size_t(img.width) * img.height * img.texelBytes(), 0);
-  const size_t texels = size_t(img.width) * img.height, size = pixelTypeSize(img.type);
-  std::vector<uint32_t> buf(texels);
-  for (const ExrChannel& ch : chans) {
-    int index = -1;
+  // Find every channel, check its type, then read the whole file once in its native formats.
+  std::vector<size_t> offset(size_t(spec.nchannels), 0);
+  size_t pixelBytes = 0;
+  for (int i = 0; i < spec.nchannels; ++i) {
+    offset[size_t(i)] = pixelBytes;
+    pixelBytes += spec.channelformat(i).size();
+  }
+  std::vector<int> index(chans.size(), -1);
+  for (size_t k = 0; k < chans.size(); ++k) {
+    const ExrChannel& ch = chans[k];
     for (int i = 0; i < spec.nchannels; ++i)
-      if (spec.channelnames[size_t(i)] == ch.name) index = i;
-    if (index < 0) {
+      if (spec.channelnames[size_t(i)] == ch.name) index[k] = i;
+    if (index[k] < 0) {
       error = path + ": channel " + ch.name + " is missing";
       return false;
     }
-    if (spec.channelformat(index) != typeOf(ch.type)) {
-      error = path + ": channel " + ch.name + " is " + spec.channelformat(index).c_str() + ", expected " + ch.type;
+    if (spec.channelformat(index[k]) != typeOf(ch.type)) {
+      error = path + ": channel " + ch.name + " is " + spec.channelformat(index[k]).c_str() + ", expected " + ch.type;
       return false;
     }
+  }
+  const size_t texels = size_t(img.width) * img.height, size = pixelTypeSize(img.type);
+  std::vector<uint8_t> buf(texels * pixelBytes);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, buf.data())) {
+    error = path + ": cannot read pixels (" + in->geterror() + ")";
+    return false;
+  }
+  img.data.assign(texels * img.texelBytes(), 0);
+  for (size_t k = 0; k < chans.size(); ++k) {
+    const ExrChannel& ch = chans[k];
     if (!ch.raw && ch.type == "float") continue;  // decoded convenience channel: the raw one is exact
-    if (!in->read_image(0, 0, index, index + 1, typeOf(ch.type), buf.data())) {
-      error = path + ": cannot read channel " + ch.name + " (" + in->geterror() + ")";
-      return false;
-    }
-    const uint16_t* halves = reinterpret_cast<const uint16_t*>(buf.data());
-    for (size_t i = 0; i < texels; ++i) {
+    const uint8_t* src = buf.data() + offset[size_t(index[k])];
+    for (size_t i = 0; i < texels; ++i, src += pixelBytes) {
       uint8_t* dst = img.data.data() + i * img.texelBytes() + size_t(ch.source) * size;
-      uint32_t v = ch.type == "half" ? halves[i] : buf[i];
+      uint32_t v = 0;
+      if (ch.type == "half") {
+        uint16_t h;
+        std::memcpy(&h, src, 2);
+        v = h;
+      } else {
+        std::memcpy(&v, src, 4);
+      }
       if (!ch.raw) {  // Stencil: float in memory
         float f = float(v);
         std::memcpy(dst, &f, 4);

@@ -2,6 +2,7 @@
 // light volumes met by the pixel's ray, and each light's contribution (shaders/shading.h in double).
 #include "views/probe.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "renderer/codec.h"
@@ -193,20 +194,21 @@ PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
     return false;
   };
 
-  if (need(Target::AlbedoSpecular)) {
+  if ((d.hasAlbedo = need(Target::AlbedoSpecular))) {
     const TargetImage& a = f.target(Target::AlbedoSpecular);
     d.albedo = {a.value(x, y, 0), a.value(x, y, 1), a.value(x, y, 2)};
     d.specular = a.value(x, y, 3);
   }
-  if (need(Target::NormalShadow)) {
+  if ((d.hasNormal = need(Target::NormalShadow))) {
     const TargetImage& n = f.target(Target::NormalShadow);
     DecodedNormal dn = decodeNormalTexel(n.image, x - n.x0, y - n.y0, f.options.normalFormat);
     d.normal = dn.unit;
     d.normalStored = dn.stored;
-    d.normalLengthError = std::abs(glm::length(dn.stored) - 1.0);
+    double length = glm::length(dn.stored);
+    d.normalLengthError = length > 0.0 ? std::abs(length - 1.0) : 0.0;  // zero: no geometry
     d.shadow = dn.shadow;
   }
-  bool hasEye = need(Target::Depth), hasHw = need(Target::DepthStencil);
+  bool hasEye = d.hasEyeDepth = need(Target::Depth), hasHw = d.hasHardwareDepth = need(Target::DepthStencil);
   if (hasEye) d.eyeDepth = f.target(Target::Depth).value(x, y, 0);
   if (hasHw) {
     d.hardwareDepth = f.target(Target::DepthStencil).value(x, y, 0);
@@ -253,6 +255,11 @@ PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
     for (int i = 0; i < 3; ++i)
       if (std::isnan(c[i])) c[i] = 0.0;  // as tonemap.frag
     d.finalExpected = shading::toneMap(c, f.options.exposure);
+    for (int i = 0; i < 3; ++i) {  // sRGB encoding, as the target's hardware conversion rounds it
+      double v = std::clamp(d.finalExpected[i], 0.0, 1.0);
+      v = v <= 0.0031308 ? v * 12.92 : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+      d.finalExpectedSrgb8[i] = uint32_t(std::lround(v * 255.0));
+    }
   }
   if (need(Target::Final)) {
     const TargetImage& fi = f.target(Target::Final);

@@ -70,7 +70,8 @@ struct PixelDossier {
   std::vector<std::string> missing;  // data the probe needed but the snapshot lacks
   std::vector<ProbeTarget> targets;  // raw values, every target (shadow map: see `shadow`)
 
-  // Decoded G-buffer.
+  // Decoded G-buffer (each valid only with its target: has* say which were available).
+  bool hasAlbedo = false, hasNormal = false, hasEyeDepth = false, hasHardwareDepth = false;
   bool geometry = false;
   glm::dvec3 albedo{0.0};
   double specular = 0.0;
@@ -102,6 +103,7 @@ struct PixelDossier {
   glm::dvec3 hdrExpected{0.0};     // directional + point-light total (fairy sprites not included)
   glm::dvec4 finalColor{0.0};      // stored, decoded to linear
   glm::dvec3 finalExpected{0.0};   // toneMap(stored hdr, exposure), linear
+  glm::uvec3 finalExpectedSrgb8{0}; // the same, encoded as the final target stores it
 };
 
 // The 2x2 shadow-map block the probe of (x, y) reads (for region read-back): false when the

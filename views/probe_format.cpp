@@ -43,16 +43,17 @@ nlohmann::json dossierJson(const PixelDossier& d) {
     targets.push_back(e);
   }
   j["targets"] = targets;
+  auto opt = [](bool has, nlohmann::json v) { return has ? v : nlohmann::json(nullptr); };
   j["decoded"] = {{"geometry", d.geometry},
-                  {"albedo", v3(d.albedo)},
-                  {"specular", d.specular},
-                  {"normal", v3(d.normal)},
-                  {"normal_stored", v3(d.normalStored)},
-                  {"normal_length_error", d.normalLengthError},
-                  {"shadow", d.shadow},
-                  {"eye_depth", d.eyeDepth},
-                  {"hardware_depth", d.hardwareDepth},
-                  {"stencil", d.stencil}};
+                  {"albedo", opt(d.hasAlbedo, v3(d.albedo))},
+                  {"specular", opt(d.hasAlbedo, d.specular)},
+                  {"normal", opt(d.hasNormal, v3(d.normal))},
+                  {"normal_stored", opt(d.hasNormal, v3(d.normalStored))},
+                  {"normal_length_error", opt(d.hasNormal, d.normalLengthError)},
+                  {"shadow", opt(d.hasNormal, d.shadow)},
+                  {"eye_depth", opt(d.hasEyeDepth, d.eyeDepth)},
+                  {"hardware_depth", opt(d.hasHardwareDepth, d.hardwareDepth)},
+                  {"stencil", opt(d.hasHardwareDepth, d.stencil)}};
   j["position"] = {{"source", d.positionSource},
                    {"from_eye_depth", position(d.fromEyeDepth)},
                    {"from_hardware_depth", position(d.fromHardwareDepth)},
@@ -97,11 +98,13 @@ nlohmann::json dossierJson(const PixelDossier& d) {
                    {"coverage_full", d.coverageFull < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.coverageFull)},
                    {"coverage_masked", d.coverageMasked < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.coverageMasked)},
                    {"point_light_total", v3(d.pointLightTotal)}};
-  j["hdr"] = {{"stored", d.hasHdr ? v4(d.hdr) : nlohmann::json(nullptr)},
-              {"expected", v3(d.hdrExpected)},
-              {"residual", d.hasHdr ? v3(glm::dvec3(d.hdr) - d.hdrExpected) : nlohmann::json(nullptr)}};
-  j["final"] = {{"stored", d.hasFinal ? v4(d.finalColor) : nlohmann::json(nullptr)},
-                {"expected", d.hasHdr ? v3(d.finalExpected) : nlohmann::json(nullptr)}};
+  // Without geometry the skybox wrote hdr: there is no lighting to expect.
+  j["hdr"] = {{"stored", opt(d.hasHdr, v4(d.hdr))},
+              {"expected", opt(d.geometry, v3(d.hdrExpected))},
+              {"residual", opt(d.hasHdr && d.geometry, v3(glm::dvec3(d.hdr) - d.hdrExpected))}};
+  j["final"] = {{"stored", opt(d.hasFinal, v4(d.finalColor))},
+                {"expected", opt(d.hasHdr, v3(d.finalExpected))},
+                {"expected_srgb8", opt(d.hasHdr, {d.finalExpectedSrgb8.x, d.finalExpectedSrgb8.y, d.finalExpectedSrgb8.z})}};
   return j;
 }
 
@@ -143,13 +146,14 @@ std::string dossierText(const PixelDossier& d) {
   }
   o += "\ndecoded\n";
   o += "  geometry        " + std::string(d.geometry ? "yes" : "no (sky)") + "\n";
-  o += "  albedo          " + t3(d.albedo) + "   specular " + f9(d.specular) + "\n";
-  o += "  normal          " + t3(d.normal) + "   stored length error " + f9(d.normalLengthError) + "\n";
-  o += "  shadow          " + f9(d.shadow) + "\n";
-  o += "  eye depth       " + f9(d.eyeDepth) + "\n";
-  o += "  hardware depth  " + f9(d.hardwareDepth) + "\n";
-  o += "  stencil         " + std::to_string(d.stencil) + " (bit 7 geometry: " + ((d.stencil & 0x80) ? "set" : "clear") +
-       ", low bits " + std::to_string(d.stencil & 0x7F) + ")\n";
+  o += "  albedo          " + (d.hasAlbedo ? t3(d.albedo) + "   specular " + f9(d.specular) : "-") + "\n";
+  o += "  normal          " + (d.hasNormal ? t3(d.normal) + "   stored length error " + f9(d.normalLengthError) : "-") + "\n";
+  o += "  shadow          " + (d.hasNormal ? f9(d.shadow) : "-") + "\n";
+  o += "  eye depth       " + (d.hasEyeDepth ? f9(d.eyeDepth) : "-") + "\n";
+  o += "  hardware depth  " + (d.hasHardwareDepth ? f9(d.hardwareDepth) : "-") + "\n";
+  if (d.hasHardwareDepth)
+    o += "  stencil         " + std::to_string(d.stencil) + " (bit 7 geometry: " + ((d.stencil & 0x80) ? "set" : "clear") +
+         ", low bits " + std::to_string(d.stencil & 0x7F) + ")\n";
   o += "\npositions (eye space | world space); the lighting used " + d.positionSource + "\n";
   for (auto [label, p] : {std::pair{"from eye depth     ", &d.fromEyeDepth}, {"from hardware depth", &d.fromHardwareDepth}})
     o += std::string("  ") + label + " " + (p->valid ? t3(p->eye) + " | " + t3(p->world) : std::string("-")) + "\n";
@@ -182,13 +186,19 @@ std::string dossierText(const PixelDossier& d) {
   o += "  point-light total   " + t3(d.pointLightTotal) + "\n";
   o += "  directional+ambient " + t3(d.directional) + "\n";
   if (d.hasHdr) {
-    o += "\nhdr stored          " + t3(glm::dvec3(d.hdr)) + " a " + f9(d.hdr.w) + "\n";
-    o += "  expected          " + t3(d.hdrExpected) + " (directional + point lights; fairy sprites not included)\n";
-    o += "  residual          " + t3(glm::dvec3(d.hdr) - d.hdrExpected) + "\n";
+    o += "\nhdr stored          " + t3(glm::dvec3(d.hdr)) + " a " + f9(d.hdr.w) + (d.geometry ? "" : " (the skybox)") + "\n";
+    if (d.geometry) {
+      o += "  expected          " + t3(d.hdrExpected) + " (directional + point lights; fairy sprites not included)\n";
+      o += "  residual          " + t3(glm::dvec3(d.hdr) - d.hdrExpected) + "\n";
+    }
   }
   if (d.hasFinal) {
     o += "final (linear)      " + t3(glm::dvec3(d.finalColor)) + " a " + f9(d.finalColor.w) + "\n";
-    if (d.hasHdr) o += "  toneMap(hdr)      " + t3(d.finalExpected) + "\n";
+    if (d.hasHdr) {
+      std::snprintf(line, sizeof(line), "  toneMap(hdr)      %s = sRGB 0x%02x 0x%02x 0x%02x\n", t3(d.finalExpected).c_str(),
+                    d.finalExpectedSrgb8.x, d.finalExpectedSrgb8.y, d.finalExpectedSrgb8.z);
+      o += line;
+    }
   }
   return o;
 }
