@@ -145,20 +145,24 @@ static void lightsSection(const PixelDossier& d) {
   auto count = [](int64_t v) { return v < 0 ? std::string("n/a") : std::to_string(v); };
   std::snprintf(title, sizeof title, "Point lights: %zu reach the ray, %u shaded###lights", d.lights.size(), d.shadedLights);
   if (!ImGui::CollapsingHeader(title, ImGuiTreeNodeFlags_DefaultOpen)) return;
-  ImGui::TextDisabled("coverage_full %s, coverage_masked %s", count(d.coverageFull).c_str(), count(d.coverageMasked).c_str());
+  ImGui::TextDisabled("coverage_full %s, coverage_masked %s; * near-plane class", count(d.coverageFull).c_str(),
+                      count(d.coverageMasked).c_str());
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("the counts the coverage targets stored at this pixel: volumes covering it, and\n"
                       "point-light shader runs; they should equal the lights listed and the lights shaded");
-  if (ImGui::BeginTable("lights", 6, kTable | ImGuiTableFlags_ScrollY, ImVec2(0, std::min(260.0f, 26.0f + 19.0f * (d.lights.size() + 2))))) {
+  if (ImGui::BeginTable("lights", 5, kTable | ImGuiTableFlags_ScrollY, ImVec2(0, std::min(260.0f, 26.0f + 19.0f * (d.lights.size() + 2))))) {
     ImGui::TableSetupScrollFreeze(0, 1);
-    for (const char* h : {"light", "class", "d / r", "atten.", "stencil", "contribution"}) ImGui::TableSetupColumn(h);
+    for (const char* h : {"light", "d / r", "atten.", "stencil", "contribution"}) ImGui::TableSetupColumn(h);
     ImGui::TableHeadersRow();
     for (const ProbeLight& l : d.lights) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      ImGui::Text("%u", l.index);
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(l.lightClass.c_str());
+      const bool nearPlane = l.lightClass != "stencil";
+      ImGui::Text("%u%s", l.index, nearPlane ? "*" : "");
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("light %u (%s class): eye position %s, radius %s\nthe ray meets its volume at eye depth %s .. %s",
+                          l.index, l.lightClass.c_str(), v3(l.eyePosition).c_str(), f9(l.radius).c_str(),
+                          f9(l.enter).c_str(), f9(l.exit).c_str());
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(g5(l.distance / l.radius).c_str());
       ImGui::TableNextColumn();
@@ -175,7 +179,7 @@ static void lightsSection(const PixelDossier& d) {
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
     ImGui::TextUnformatted("total");
-    for (int c = 0; c < 4; ++c) ImGui::TableNextColumn();
+    for (int c = 0; c < 3; ++c) ImGui::TableNextColumn();
     ImGui::TableNextColumn();
     ImGui::TextUnformatted(c3(d.pointLightTotal).c_str());
     ImGui::EndTable();

@@ -380,6 +380,7 @@ int runViewer(const ViewerArgs& args) {
       if (!recreateSwapchain(v)) continue;
 
     auto now = std::chrono::steady_clock::now();
+    const uint64_t renderedBefore = m.framesRendered;
     double dt = std::min(0.1, std::chrono::duration<double>(now - v.lastTick).count());
     v.lastTick = now;
     handleKeys(v);
@@ -432,6 +433,8 @@ int runViewer(const ViewerArgs& args) {
       double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - v.probeStart).count();
       logLine(v.eventLog, {{"event", "probe_shown"}, {"pixel", {m.probePixel->x, m.probePixel->y}}, {"latency_ms", ms}});
     }
+    if (m.framesRendered != renderedBefore)
+      v.renderedLoopMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - now).count());
     int winW = 0, winH = 0;
     glfwGetWindowSize(v.window, &winW, &winH);
     logLayout(v, winW, winH);
@@ -450,11 +453,15 @@ int runViewer(const ViewerArgs& args) {
                             {"frames_rendered", m.framesRendered},
                             {"frames_presented", m.framesPresented},
                             {"render_ms_median", medianOf(v.renderMs)},
-                            {"present_ms_median", medianOf(v.presentMs)}};
+                            {"present_ms_median", medianOf(v.presentMs)},
+                            {"rendered_iteration_ms_median", medianOf(v.renderedLoopMs)},
+                            {"size", {m.rendered.width, m.rendered.height}}};
   logLine(v.eventLog, summary);
-  std::fprintf(stderr, "gblens view: %llu frames rendered (median %.2f ms), %llu presented (median %.2f ms)\n",
+  std::fprintf(stderr,
+               "gblens view: %llu frames rendered (median %.2f ms), %llu presented (median %.2f ms); "
+               "render + present %.2f ms\n",
                (unsigned long long)m.framesRendered, medianOf(v.renderMs), (unsigned long long)m.framesPresented,
-               medianOf(v.presentMs));
+               medianOf(v.presentMs), medianOf(v.renderedLoopMs));
   vkDeviceWaitIdle(v.ctx.device);
   shutdownImGui(v);
   destroyViewMapper(v.mapper, v.renderer);

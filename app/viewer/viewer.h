@@ -81,6 +81,7 @@ struct Viewer {
   std::string layoutKey;           // logged layout, to log changes only
   std::ofstream probeLog, eventLog;
   std::vector<double> renderMs, presentMs;
+  std::vector<double> renderedLoopMs;  // whole iterations that rendered a frame: render + views + present
   std::vector<int> pressedKeys;    // key presses since the last loop iteration
 };
 
