@@ -373,3 +373,44 @@ TEST_F(GpuTest, UploadedTargetsReadBackBitForBit) {
 }
 
 }  // namespace gb
+
+#include "views/probe.h"
+
+namespace gb {
+
+// Clicking a shadow-map texel marks the screen pixels whose shadow lookup reads it: mark the
+// texel the dossier says a pixel read (the 2x2 footprint's top-left) and that pixel is marked,
+// while pixels far from it are drawn as without the mark.
+TEST_F(GpuTest, ShadowTexelMarksThePixelsThatSampleIt) {
+  Scene scene = builtinTemple(8);
+  RenderOptions o = smallFrame();
+  render(scene, o, {kAll, kAll});
+  Renderer& r = renderer(scene);
+  FrameSnapshot snap = snapshotFromRenderer(r, kAll);
+  const uint32_t px = 48, py = 44;
+  PixelDossier d = probePixel(snap, px, py);
+  ASSERT_TRUE(d.shadowMap.valid) << d.shadowMap.note;
+  ViewMapper mapper;
+  initViewMapper(mapper, r);
+  const ViewDef& def = viewDef(ViewKind::Normal);
+  ViewSettings s = defaultSettings(ViewKind::Normal);
+  Canvas canvas(ctx(), o.width, o.height);
+  auto draw = [&](std::optional<glm::ivec2> mark) {
+    return canvas.draw(mapper, r, def.source,
+                       viewParams(def, s, resolveRange(def, s, nullptr), Placement{0, 0, 1}, false, mark,
+                                  {o.shadowMapSize, o.shadowMapSize}));
+  };
+  std::vector<uint8_t> plain = draw(std::nullopt), marked = draw(glm::ivec2(d.shadowMap.x0, d.shadowMap.y0));
+  auto at = [&](const std::vector<uint8_t>& img, uint32_t x, uint32_t y) { return &img[(size_t(y) * o.width + x) * 4]; };
+  const uint8_t *p = at(plain, px, py), *q = at(marked, px, py);
+  EXPECT_TRUE(p[0] != q[0] || p[1] != q[1] || p[2] != q[2]) << "the pixel that reads the texel is not marked";
+  EXPECT_GT(int(q[0]) + int(q[2]) - 2 * int(q[1]), int(p[0]) + int(p[2]) - 2 * int(p[1])) << "the mark is magenta";
+  int markedPixels = 0;
+  for (uint32_t y = 0; y < o.height; ++y)
+    for (uint32_t x = 0; x < o.width; ++x) markedPixels += std::memcmp(at(plain, x, y), at(marked, x, y), 3) != 0;
+  EXPECT_LT(markedPixels, int(o.width * o.height / 4)) << "one texel is read by a few pixels, not most";
+  canvas.destroy(ctx());
+  destroyViewMapper(mapper, r);
+}
+
+}  // namespace gb

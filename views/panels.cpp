@@ -14,10 +14,15 @@ void drawDossier(ViewerModel& m);  // probe_panel.cpp
 
 static constexpr double kMenuHeight = 20.0, kStatusHeight = 22.0, kControlsWidth = 310.0, kPixelWidth = 450.0;
 
-static double pixelWidth(const ViewerModel& m) { return m.source == FrameSource::Compare ? 1.5 * kPixelWidth : kPixelWidth; }
+// Panels keep their width until the window gets narrow; then they give way to the views.
+static double controlsWidth(const ViewerModel& m, double w) { return m.showControls ? std::min(kControlsWidth, 0.25 * w) : 0.0; }
+static double pixelWidth(const ViewerModel& m, double w) {
+  if (!m.showPixel) return 0.0;
+  return std::min(m.source == FrameSource::Compare ? 1.5 * kPixelWidth : kPixelWidth, 0.35 * w);
+}
 
 Rect viewArea(const ViewerModel& m, double w, double h) {
-  double left = m.showControls ? kControlsWidth : 0.0, right = m.showPixel ? pixelWidth(m) : 0.0;
+  double left = controlsWidth(m, w), right = pixelWidth(m, w);
   return {left, kMenuHeight, std::max(1.0, w - left - right), std::max(1.0, h - kMenuHeight - kStatusHeight)};
 }
 
@@ -313,8 +318,8 @@ void drawViewerUi(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDra
   const double w = io.DisplaySize.x, h = io.DisplaySize.y;
   menuBar(m);
   Rect area = viewArea(m, w, h);
-  if (m.showControls) controlsPanel(m, {0, kMenuHeight, kControlsWidth, area.h});
-  if (m.showPixel) pixelPanel(m, {w - pixelWidth(m), kMenuHeight, pixelWidth(m), area.h});
+  if (m.showControls) controlsPanel(m, {0, kMenuHeight, controlsWidth(m, w), area.h});
+  if (m.showPixel) pixelPanel(m, {w - pixelWidth(m, w), kMenuHeight, pixelWidth(m, w), area.h});
   drawViewArea(m, area, callback, draws);
   statusBar(m, w, h);
 }

@@ -104,8 +104,15 @@ static void markTexel(ImDrawList* dl, const Placement& pl, glm::ivec2 t, ImU32 c
   dl->PopClipRect();
 }
 
+// Marks use the hover of the previous interface frame (this frame's is found while the views are
+// laid out; a change asks for another frame).
+struct HoverMarks {
+  std::optional<glm::ivec2> texel, shadowTexel;
+};
+
 static void drawOneView(ViewerModel& m, ViewKind kind, const Rect& r, int index, ViewDrawCallback callback,
-                        std::vector<ViewDraw>& draws, bool showKey, FrameSide side = FrameSide::A, bool split = false) {
+                        std::vector<ViewDraw>& draws, bool showKey, const HoverMarks& hover, FrameSide side = FrameSide::A,
+                        bool split = false) {
   const ViewDef& def = viewDef(kind);
   const ViewSettings& s = m.settings[int(kind)];
   ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -157,10 +164,10 @@ static void drawOneView(ViewerModel& m, ViewKind kind, const Rect& r, int index,
     // Marks: the hovered pixel on every screen view; on the shadow map, the texel the hovered
     // (or probed) pixel's lookup reads, and the clicked texel.
     if (!shadowMap) {
-      if (m.hover) markTexel(dl, pl, *m.hover, rgb(1, 1, 1), r);
+      if (hover.texel) markTexel(dl, pl, *hover.texel, rgb(1, 1, 1), r);
       if (m.probePixel) markTexel(dl, pl, *m.probePixel, rgb(0.2f, 1.0f, 0.4f), r);
     } else {
-      if (m.hoverShadowTexel) markTexel(dl, pl, *m.hoverShadowTexel, rgb(1, 1, 1), r);
+      if (hover.shadowTexel) markTexel(dl, pl, *hover.shadowTexel, rgb(1, 1, 1), r);
       if (m.shadowTexelOfProbe) markTexel(dl, pl, *m.shadowTexelOfProbe, rgb(0.2f, 1.0f, 0.4f), r);
       if (m.shadowMark) markTexel(dl, pl, *m.shadowMark, rgb(1, 0, 1), r);
     }
@@ -281,8 +288,8 @@ void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, s
   m.hoverShadowTexel.reset();
   std::vector<ViewSlot> slots = viewSlots(m, area);
   for (size_t i = 0; i < slots.size(); ++i)
-    drawOneView(m, slots[i].kind, slots[i].rect, int(i), callback, draws, m.layout == LayoutMode::Grid, slots[i].side,
-                slots[i].split);
+    drawOneView(m, slots[i].kind, slots[i].rect, int(i), callback, draws, m.layout == LayoutMode::Grid,
+                {hoverBefore, shadowBefore}, slots[i].side, slots[i].split);
   if (m.hover != hoverBefore || m.hoverShadowTexel != shadowBefore) m.uiChanged = true;
   ImGui::End();
 }
