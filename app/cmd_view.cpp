@@ -12,7 +12,7 @@ Command addViewCommand(CLI::App& root) {
   auto a = std::make_shared<ViewerArgs>();
   CLI::App* cmd = root.add_subcommand("view", "open the interactive viewer (needs a display)");
   addCommonOptions(cmd, a->common);
-  cmd->add_option("--window", a->window, "initial window size WxH")->capture_default_str();
+  cmd->add_option("--window", a->window, "initial window size WxH (default: 85% of the monitor, at most 1920x1080)");
   cmd->add_flag("--paused", a->paused, "start with the animation paused (at --time)");
   cmd->add_option("--view", a->initialView, "initial view (as render --target)")
       ->check(CLI::IsMember({"final", "albedo", "normal", "depth", "specular", "shadow", "shadowmap",
@@ -29,6 +29,7 @@ Command addViewCommand(CLI::App& root) {
               return 2;
             }
             a->sizeGiven = cmd->get_option("--size")->count() > 0;
+            a->windowGiven = cmd->get_option("--window")->count() > 0;
             return runViewer(*a);
           }};
 }

@@ -437,8 +437,14 @@ void FrameGraph::recordGroup(GpuContext& ctx, VkCommandBuffer cmd, int g, GraphT
   std::vector<VkSubpassDependency2> depList;
   for (auto& [k, d] : deps) {
     depList.push_back(d);
-    key << "|d" << d.srcSubpass << '>' << d.dstSubpass << ':' << d.srcStageMask << ':' << d.dstStageMask << ':'
+    std::ostringstream dep;
+    dep << "|d" << d.srcSubpass << '>' << d.dstSubpass << ':' << d.srcStageMask << ':' << d.dstStageMask << ':'
         << d.srcAccessMask << ':' << d.dstAccessMask << ':' << d.dependencyFlags;
+    key << dep.str();
+    // Render passes of more than one subpass are compatible only with identical dependencies
+    // (Vulkan spec, "Render Pass Compatibility"): pipelines cached per compatibility class must
+    // not be reused across frames whose options change the dependencies.
+    if (nsub > 1) compat << dep.str();
   }
 
   VkRenderPass& rp = cache.renderPasses[key.str()];

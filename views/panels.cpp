@@ -188,7 +188,15 @@ static void frameOptions(ViewerModel& m) {
   ImGui::SliderFloat("exposure", &o.exposure, 0.05f, 8.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
   ImGui::SliderInt("lights", &m.lightCount, 0, 4096, "%d", ImGuiSliderFlags_Logarithmic);
   ImGui::SliderFloat("light radius", &m.lightRadiusScale, 0.1f, 4.0f, "x%.2f", ImGuiSliderFlags_Logarithmic);
-  ImGui::Text("render size %ux%u%s", m.rendered.width, m.rendered.height, m.fixedSize ? " (fixed, --size)" : " (view area)");
+  ImGui::Text("render size %ux%u%s", m.rendered.width, m.rendered.height, m.fixedSize ? " (fixed, --size)" : "");
+  if (!m.fixedSize) {
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(90);
+    const char* scales[] = {"view area", "1/2 area", "1/3 area", "1/4 area"};
+    int scale = m.renderScale - 1;
+    if (ImGui::Combo("##scale", &scale, scales, 4)) m.renderScale = scale + 1;
+    tooltip("render at the view area's size, or a fraction of it (the views zoom it up, nearest texel)");
+  }
 }
 
 static void animation(ViewerModel& m) {
@@ -318,9 +326,9 @@ void drawViewerUi(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDra
   const double w = io.DisplaySize.x, h = io.DisplaySize.y;
   menuBar(m);
   Rect area = viewArea(m, w, h);
+  drawViewArea(m, area, callback, draws);  // first: the panels show this frame's hover
   if (m.showControls) controlsPanel(m, {0, kMenuHeight, controlsWidth(m, w), area.h});
   if (m.showPixel) pixelPanel(m, {w - pixelWidth(m, w), kMenuHeight, pixelWidth(m, w), area.h});
-  drawViewArea(m, area, callback, draws);
   statusBar(m, w, h);
 }
 

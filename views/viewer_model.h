@@ -69,6 +69,7 @@ struct ViewerModel {
   // ---- what the user asks for (the app compares with `rendered`) ----
   RenderOptions wanted;
   bool fixedSize = false;          // render at wanted.width x height, else at the view area's size
+  int renderScale = 1;             // render at 1/renderScale of the view area (faster camera moves)
   int lightCount = 256;
   float lightRadiusScale = 1.0f;
   bool cullingStats = true;        // culling efficiency: reads back coverage and depth each frame

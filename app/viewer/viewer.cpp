@@ -163,8 +163,8 @@ static RenderOptions wantedOptions(Viewer& v, int fbWidth, int fbHeight) {
     Rect area = viewArea(m, w, h);
     double sx = w ? double(fbWidth) / w : 1.0, sy = h ? double(fbHeight) / h : 1.0;
     (void)io;
-    o.width = uint32_t(std::max(16.0, area.w * sx));
-    o.height = uint32_t(std::max(16.0, area.h * sy));
+    o.width = uint32_t(std::max(16.0, area.w * sx / m.renderScale));
+    o.height = uint32_t(std::max(16.0, area.h * sy / m.renderScale));
   }
   o.camera = int(v.scene.cameras.size()) - 1;  // the viewer's camera (a copy of a scene camera)
   o.lights = m.lightCount;

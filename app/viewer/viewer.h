@@ -21,6 +21,7 @@ struct ViewerArgs {
   CommonOptions common;
   bool sizeGiven = false;          // --size: render at that size, else at the view area's size
   std::string window = "1280x800";  // initial window size
+  bool windowGiven = false;        // --window given (else sized to the monitor)
   bool paused = false;
   std::string initialView = "final";
   std::string probeLog;            // --probe-log: each dossier as one JSON line

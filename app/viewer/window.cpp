@@ -34,6 +34,13 @@ bool openWindow(Viewer& v, uint32_t width, uint32_t height) {
     return false;
   }
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+  if (!v.args.windowGiven) {  // no --window: most of the monitor, at most 1920x1080
+    if (GLFWmonitor* monitor = glfwGetPrimaryMonitor())
+      if (const GLFWvidmode* mode = glfwGetVideoMode(monitor)) {
+        width = uint32_t(std::min(1920.0, std::max(640.0, mode->width * 0.85)));
+        height = uint32_t(std::min(1080.0, std::max(480.0, mode->height * 0.85)));
+      }
+  }
   std::string title = "gblens - " + v.args.common.scene;
   v.window = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
   if (!v.window) {
