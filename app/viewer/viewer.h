@@ -1,6 +1,7 @@
 // gblens view: the window, the live renderer, the interface. Split over app/viewer/*.cpp:
 // window.cpp (GLFW, swapchain, Dear ImGui's backends), viewer.cpp (the loop: render on demand),
-// camera_rig.cpp (orbit/fly), probe.cpp (region read-back -> the shared dossier).
+// controls.cpp (keys, camera, lights), camera_rig.cpp (orbit/fly), probe.cpp (region read-back ->
+// the shared dossier), captures.cpp (capture button, --capture / --compare).
 #pragma once
 #include <chrono>
 #include <fstream>
@@ -67,6 +68,7 @@ struct Viewer {
   ViewerModel model;
   CameraRig rig;
   uint64_t cameraVersion = 1, lightsVersion = 1;
+  float appliedRadiusScale = 1.0f;  // the light radius scale the scene's lights carry
   uint64_t renderedCamera = 0, renderedLights = 0;
   bool frameValid = false;         // targets hold a frame that matches the model
   bool rangesStale = true;
@@ -87,6 +89,11 @@ struct Viewer {
 };
 
 int runViewer(const ViewerArgs& args);
+
+// controls.cpp
+void handleKeys(Viewer& v);
+bool updateCamera(Viewer& v, double dt);  // true while keys move the camera
+void updateLights(Viewer& v);
 
 // window.cpp
 bool openWindow(Viewer& v, uint32_t width, uint32_t height);
