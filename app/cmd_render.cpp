@@ -16,9 +16,11 @@ Command addRenderCommand(CLI::App& root) {
   CLI::App* cmd = root.add_subcommand("render", "render one frame headless and write a PNG");
   addCommonOptions(cmd, *o);
   cmd->add_option("-o,--output", o->output, "PNG to write")->capture_default_str();
-  cmd->add_option("--target", *target, "final | albedo | normal | depth | specular | shadow | shadowmap | coverage_masked | coverage_full")
+  cmd->add_option("--target", *target,
+                  "final | albedo | normal | depth | specular | shadow | shadowmap | coverage_masked | coverage_full | "
+                  "hdr | hardware_depth | stencil")
       ->check(CLI::IsMember({"final", "albedo", "normal", "depth", "specular", "shadow", "shadowmap",
-                             "coverage_masked", "coverage_full"}))
+                             "coverage_masked", "coverage_full", "hdr", "hardware_depth", "stencil"}))
       ->capture_default_str();
   return {cmd, [o, target]() -> int {
             std::string error;
@@ -64,6 +66,9 @@ Command addRenderCommand(CLI::App& root) {
               images.shadowMap = &r.readback[size_t(Target::ShadowMap)];
               images.coverageMasked = &r.readback[size_t(Target::CoverageMasked)];
               images.coverageFull = &r.readback[size_t(Target::CoverageFull)];
+              images.hdr = &r.readback[size_t(Target::Hdr)];
+              images.depthStencil = &r.readback[size_t(Target::DepthStencil)];
+              images.reversedZ = ro.reversedZ;
               if (!writePng(o->output, visualize(view, images), error)) {
                 std::fprintf(stderr, "gblens render: %s\n", error.c_str());
                 status = 2;

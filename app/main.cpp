@@ -10,10 +10,12 @@ int main(int argc, char** argv) {
   app.set_help_all_flag("--help-all", "help for every subcommand");
   std::vector<gb::Command> commands = {
       gb::addRenderCommand(app),
+      gb::addViewCommand(app),
       gb::addCaptureCommand(app),
       gb::addCompareCommand(app),
       gb::addProbeCommand(app),
   };
+  for (int i = 0; i < argc; ++i) gb::commandLine() += (i ? " " : "") + std::string(i ? argv[i] : "gblens");
   // An unknown first word is a mistyped command: name it and the commands there are.
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
@@ -27,7 +29,6 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  for (int i = 0; i < argc; ++i) gb::commandLine() += (i ? " " : "") + std::string(i ? argv[i] : "gblens");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -188,11 +188,15 @@ void FrameGraph::record(GpuContext& ctx, VkCommandBuffer cmd, GraphTargets& targ
       GraphTarget& t = targets[size_t(u.target)];
       GB_ASSERT(t.image.image);
       AccessInfo to = accessInfo(u.access, t.image.desc.format);
-      if (needsBarrier(t, to))
+      if (needsBarrier(t, to)) {
         imageBarrier(barriers, t, u.clear ? VK_IMAGE_LAYOUT_UNDEFINED : t.layout, to);
+        t.stage = to.stage;
+        t.access = to.access;
+      } else {  // a read after reads in the same layout: a later write must wait for all of them
+        t.stage |= to.stage;
+        t.access |= to.access;
+      }
       t.layout = to.layout;
-      t.stage = to.stage;
-      t.access = to.access;
     }
     flushBarriers(cmd, barriers);
     timestamp(cmd, timestamps, 2 * p.stat, false);
@@ -433,8 +437,14 @@ void FrameGraph::recordGroup(GpuContext& ctx, VkCommandBuffer cmd, int g, GraphT
   std::vector<VkSubpassDependency2> depList;
   for (auto& [k, d] : deps) {
     depList.push_back(d);
-    key << "|d" << d.srcSubpass << '>' << d.dstSubpass << ':' << d.srcStageMask << ':' << d.dstStageMask << ':'
+    std::ostringstream dep;
+    dep << "|d" << d.srcSubpass << '>' << d.dstSubpass << ':' << d.srcStageMask << ':' << d.dstStageMask << ':'
         << d.srcAccessMask << ':' << d.dstAccessMask << ':' << d.dependencyFlags;
+    key << dep.str();
+    // Render passes of more than one subpass are compatible only with identical dependencies
+    // (Vulkan spec, "Render Pass Compatibility"): pipelines cached per compatibility class must
+    // not be reused across frames whose options change the dependencies.
+    if (nsub > 1) compat << dep.str();
   }
 
   VkRenderPass& rp = cache.renderPasses[key.str()];

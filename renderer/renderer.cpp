@@ -10,6 +10,7 @@
 
 #include "renderer/frame.h"
 #include "renderer/light_culling.h"
+#include "renderer/passes/passes.h"
 #include "renderer/vk/check.h"
 
 namespace gb {
@@ -251,15 +252,13 @@ void recordReadback(Renderer& r, VkCommandBuffer cmd, Target t) {
   vkCmdPipelineBarrier2(cmd, &dep);
 }
 
-static CpuImage unpackReadback(Renderer& r, Target t) {
-  const GraphTarget& gt = r.targets[size_t(t)];
-  const ImageDesc& d = gt.image.desc;
-  const uint8_t* src = static_cast<const uint8_t*>(r.readbackBuffers[size_t(t)].mapped);
+CpuImage unpackTexels(Target t, const RenderOptions& options, VkFormat format, const uint8_t* src, uint32_t width,
+                      uint32_t height) {
   CpuImage img;
-  describeReadback(t, r.options, img);
-  img.width = d.width;
-  img.height = d.height;
-  size_t texels = size_t(d.width) * d.height;
+  describeReadback(t, options, img);
+  img.width = width;
+  img.height = height;
+  size_t texels = size_t(width) * height;
   img.data.resize(texels * img.texelBytes());
   if (t == Target::DepthStencil) {  // F32 Depth, F32 Stencil
     float* out = reinterpret_cast<float*>(img.data.data());
@@ -268,14 +267,14 @@ static CpuImage unpackReadback(Renderer& r, Target t) {
       uint32_t bits;
       std::memcpy(&bits, src + i * 4, 4);
       float depth;
-      if (d.format == VK_FORMAT_D24_UNORM_S8_UINT)
+      if (format == VK_FORMAT_D24_UNORM_S8_UINT)
         depth = float(double(bits & 0xFFFFFF) / 16777215.0);
       else
         std::memcpy(&depth, &bits, 4);
       out[2 * i] = depth;
       out[2 * i + 1] = float(stencil[i]);
     }
-  } else if (d.format == VK_FORMAT_A2B10G10R10_UNORM_PACK32) {
+  } else if (format == VK_FORMAT_A2B10G10R10_UNORM_PACK32) {
     uint16_t* out = reinterpret_cast<uint16_t*>(img.data.data());
     for (size_t i = 0; i < texels; ++i) {
       uint32_t v;
@@ -286,10 +285,24 @@ static CpuImage unpackReadback(Renderer& r, Target t) {
       out[4 * i + 3] = uint16_t(v >> 30);
     }
   } else {
-    GB_ASSERT(img.data.size() == texels * bytesPerPixel(d.format));
+    GB_ASSERT(img.data.size() == texels * bytesPerPixel(format));
     std::memcpy(img.data.data(), src, img.data.size());
   }
   return img;
+}
+
+static CpuImage unpackReadback(Renderer& r, Target t) {
+  const ImageDesc& d = r.targets[size_t(t)].image.desc;
+  return unpackTexels(t, r.options, d.format, static_cast<const uint8_t*>(r.readbackBuffers[size_t(t)].mapped),
+                      d.width, d.height);
+}
+
+void runAfterFrame(Renderer& r, const std::function<void(FrameGraph&)>& build, const std::vector<Target>& handOff) {
+  GB_ASSERT(r.targetsValid);
+  FrameGraph graph;
+  build(graph);
+  if (!handOff.empty()) addSampleAfterPass(graph, handOff);
+  submitOnce(*r.ctx, [&](VkCommandBuffer cmd) { graph.record(*r.ctx, cmd, r.targets, r.graphCache, VK_NULL_HANDLE); });
 }
 
 // ---- the frame ----------------------------------------------------------------------------------

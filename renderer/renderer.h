@@ -104,6 +104,16 @@ void destroyRenderer(Renderer& r);
 // or a format changes.
 const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const FrameRequest& request = {});
 
+// Decodes tightly packed texels as vkCmdCopyImageToBuffer wrote them (for depth/stencil: the
+// depth aspect, then one stencil byte per texel) into a CpuImage of the target's description.
+CpuImage unpackTexels(Target t, const RenderOptions& options, VkFormat format, const uint8_t* src, uint32_t width,
+                      uint32_t height);
+
+// Runs a small graph over this frame's targets after renderFrame (the viewer's region read-back
+// and view ranges): `build` adds passes, then the `handOff` targets are left readable by fragment
+// shaders again. Barriers come from the passes' declarations, as in the frame. Submits and waits.
+void runAfterFrame(Renderer& r, const std::function<void(FrameGraph&)>& build, const std::vector<Target>& handOff);
+
 // ---- used by the frame function and the passes ----
 // Cached graphics pipeline for the current render pass / subpass; `fill` describes it once.
 VkPipeline graphicsPipeline(Renderer& r, const PassContext& pc, const std::string& id,

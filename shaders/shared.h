@@ -54,6 +54,7 @@ GB_CONST(uint, kSpecCoverage, 2);       // 1: count fragment invocations into kB
 GB_CONST(uint, kSpecReversedZ, 3);      // 1: depth 1 at the near plane
 GB_CONST(uint, kSpecNormalEncoding, 4); // kNormal* below
 GB_CONST(uint, kSpecNormalMap, 5);      // 1: the material has a normal texture
+GB_CONST(uint, kSpecOutputSrgb, 6);     // 1: the view pipeline writes an sRGB attachment (hardware encodes)
 
 // How normal_shadow stores the eye-space normal.
 GB_CONST(uint, kNormalRgba16f, 0);
@@ -108,11 +109,55 @@ GB_STRUCT(PointLight) {
   vec4 color;              // rgb colour * intensity
 };
 
+// ---- the viewer's view mapping (renderer/view_map.cpp draws, views/view_params.cpp decides) ----
+// How a view turns a target's texel into a display colour.
+GB_CONST(uint, kViewMapColor, 0);   // selected channels as colour (others 0), range -> [0, 1]
+GB_CONST(uint, kViewMapGrey, 1);    // the lowest selected channel as grey, range -> [0, 1]
+GB_CONST(uint, kViewMapNormal, 2);  // the decoded unit normal's selected components, range -> [0, 1]
+GB_CONST(uint, kViewMapDepth, 3);   // one channel, near bright (1 - 0.9 t); invalid texels black
+GB_CONST(uint, kViewMapHeat, 4);    // one channel as a count, heat map over [0, white point]
+GB_CONST(uint, kViewMapDiff, 5);    // |A - B|: max over selected channels, heat map over [0, white point]
+// ViewParams.mode.z flags.
+GB_CONST(uint, kViewFlagSrgb, 1);      // the data is linear colour: display it sRGB-encoded
+GB_CONST(uint, kViewFlagSpecials, 2);  // NaN and +-Inf in a selected channel get their own colours
+GB_CONST(uint, kViewFlagNegative, 4);  // negative values (where none belong) get their own colour
+GB_CONST(uint, kViewFlagGrid, 8);      // texel grid (high zoom)
+GB_CONST(uint, kViewFlagMark, 16);     // mark texels whose shadow lookup uses shadow-map texel mark.xy
+// Which texels count for an automatic range (and which a depth view paints black).
+GB_CONST(uint, kRangeAll, 0);
+GB_CONST(uint, kRangePositive, 1);  // eye depth: > 0 where geometry was drawn
+GB_CONST(uint, kRangeBelowOne, 2);  // shadow map: cleared to 1
+GB_CONST(uint, kRangeNotFar, 3);    // hardware depth: not the far-plane value
+// Highlight colours (the legend in views/ names the same ones).
+#define GB_COLOR_NAN vec4(1.0, 0.0, 1.0, 1.0)
+#define GB_COLOR_INF vec4(0.0, 1.0, 1.0, 1.0)
+#define GB_COLOR_NEGATIVE vec4(1.0, 0.35, 0.0, 1.0)
+#define GB_COLOR_MARK vec4(1.0, 0.0, 1.0, 1.0)
+
+// Push constants of the view pipeline: one view drawn into a rectangle of the window.
+GB_STRUCT(ViewParams) {
+  vec4 transform;  // xy framebuffer position of texel (0,0)'s top-left corner, z framebuffer pixels per texel
+  vec4 range;      // x black point, y white point, z grid opacity
+  uvec4 mode;      // x kViewMap*, y channel mask (bit c = channel c), z kViewFlag*, w kRange* (valid texels)
+  ivec4 mark;      // xy shadow-map texel (kViewFlagMark), zw shadow-map size
+};
+
+// Push constants of the range reduction (view_range.comp).
+GB_STRUCT(RangeParams) {
+  uvec4 select;  // x channel, y kRange* predicate, z result slot, w unused
+};
+// One result slot: ordered-uint min/max of valid finite values (see orderedFromFloat), counts.
+GB_STRUCT(RangeResult) {
+  uvec4 minMax;  // x ordered min, y ordered max, z valid finite count, w NaN count
+  uvec4 counts;  // x Inf count, y negative count
+};
+
 #ifdef __cplusplus
 static_assert(sizeof(FrameData) == 4 * 64 + 10 * 16);
 static_assert(sizeof(DrawData) == 3 * 64 + 16);
 static_assert(sizeof(Material) == 8 * 16);
 static_assert(sizeof(PointLight) == 32);
+static_assert(sizeof(ViewParams) == 64);
 }  // namespace gb::gpu
 #endif
 

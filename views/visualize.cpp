@@ -8,13 +8,14 @@
 
 namespace gb {
 
-static const char* const kViewNames[] = {"final",     "albedo",    "normal",          "depth",        "specular",
-                                         "shadow",    "shadowmap", "coverage_masked", "coverage_full"};
+static const char* const kViewNames[kViewKindCount] = {
+    "final",  "albedo",    "normal",        "depth",         "specular", "shadow",
+    "shadowmap", "coverage_masked", "coverage_full", "hdr", "hardware_depth", "stencil"};
 
 const char* viewName(ViewKind v) { return kViewNames[int(v)]; }
 
 bool parseView(const std::string& name, ViewKind& out) {
-  for (int i = 0; i < 9; ++i)
+  for (int i = 0; i < kViewKindCount; ++i)
     if (name == kViewNames[i]) {
       out = ViewKind(i);
       return true;
@@ -33,6 +34,9 @@ std::vector<std::string> viewTargets(ViewKind v) {
     case ViewKind::ShadowMap: return {"shadow_map"};
     case ViewKind::CoverageMasked: return {"coverage_masked"};
     case ViewKind::CoverageFull: return {"coverage_full"};
+    case ViewKind::Hdr: return {"hdr"};
+    case ViewKind::HardwareDepth:
+    case ViewKind::Stencil: return {"depth_stencil"};
   }
   return {};
 }
@@ -70,18 +74,26 @@ Rgba8Image visualize(ViewKind view, const FrameImages& f) {
     case ViewKind::ShadowMap: src = f.shadowMap; break;
     case ViewKind::CoverageMasked: src = f.coverageMasked; break;
     case ViewKind::CoverageFull: src = f.coverageFull; break;
+    case ViewKind::Hdr: src = f.hdr; break;
+    case ViewKind::HardwareDepth:
+    case ViewKind::Stencil: src = f.depthStencil; break;
   }
   Rgba8Image out;
   if (!src) return out;
   out.width = src->width;
   out.height = src->height;
   out.pixels.assign(size_t(out.width) * out.height * 4, 255);
-  // Automatic ranges over what was drawn (depth > 0 for eye depth; < 1 for the shadow map).
+  // Automatic ranges over what was drawn (depth > 0 for eye depth; < 1 for the shadow map;
+  // hardware depth not at the far plane).
+  const double farDepth = f.reversedZ ? 0.0 : 1.0;
+  auto drawn = [&](double v) {
+    return view == ViewKind::Depth ? v > 0.0 : view == ViewKind::ShadowMap ? v < 1.0 : v != farDepth;
+  };
   double lo = 1e300, hi = -1e300, maxCount = 0;
   for (uint32_t y = 0; y < src->height; ++y)
     for (uint32_t x = 0; x < src->width; ++x) {
       double v = src->value(x, y, 0);
-      if ((view == ViewKind::Depth && v > 0.0) || (view == ViewKind::ShadowMap && v < 1.0)) {
+      if ((view == ViewKind::Depth || view == ViewKind::ShadowMap || view == ViewKind::HardwareDepth) && drawn(v)) {
         lo = std::min(lo, v);
         hi = std::max(hi, v);
       }
@@ -94,6 +106,7 @@ Rgba8Image visualize(ViewKind view, const FrameImages& f) {
       switch (view) {
         case ViewKind::Final:
         case ViewKind::Albedo:
+        case ViewKind::Hdr:
           for (int c = 0; c < 3; ++c) p[c] = encodeSrgb(src->value(x, y, c));
           break;
         case ViewKind::Specular: p[0] = p[1] = p[2] = encodeLinear(src->value(x, y, 3)); break;
@@ -104,12 +117,13 @@ Rgba8Image visualize(ViewKind view, const FrameImages& f) {
         }
         case ViewKind::Shadow: p[0] = p[1] = p[2] = encodeLinear(src->value(x, y, 3)); break;
         case ViewKind::Depth:
-        case ViewKind::ShadowMap: {
+        case ViewKind::ShadowMap:
+        case ViewKind::HardwareDepth: {
           double v = src->value(x, y, 0);
-          bool drawn = view == ViewKind::Depth ? v > 0.0 : v < 1.0;
-          p[0] = p[1] = p[2] = drawn ? encodeLinear(1.0 - 0.9 * (v - lo) / (hi - lo)) : 0;  // near bright
+          p[0] = p[1] = p[2] = drawn(v) ? encodeLinear(1.0 - 0.9 * (v - lo) / (hi - lo)) : 0;  // near bright
           break;
         }
+        case ViewKind::Stencil: p[0] = p[1] = p[2] = encodeLinear(src->value(x, y, 1) / 255.0); break;
         case ViewKind::CoverageMasked:
         case ViewKind::CoverageFull: heatColor(src->value(x, y, 0), maxCount, p); break;
       }

@@ -10,8 +10,12 @@
 
 namespace gb {
 
-// The view names of `render --target` and the viewer (keys 2..9, 0).
-enum class ViewKind { Final, Albedo, Normal, Depth, Specular, Shadow, ShadowMap, CoverageMasked, CoverageFull };
+// The view names of `render --target` and the viewer (keys 2..9, 0; the last three from its menu).
+enum class ViewKind {
+  Final, Albedo, Normal, Depth, Specular, Shadow, ShadowMap, CoverageMasked, CoverageFull,
+  Hdr, HardwareDepth, Stencil
+};
+constexpr int kViewKindCount = 12;
 bool parseView(const std::string& name, ViewKind& out);
 const char* viewName(ViewKind v);
 
@@ -23,6 +27,9 @@ struct FrameImages {
   const CpuImage* final = nullptr;
   const CpuImage* coverageMasked = nullptr;
   const CpuImage* coverageFull = nullptr;
+  const CpuImage* hdr = nullptr;
+  const CpuImage* depthStencil = nullptr;
+  bool reversedZ = false;
   NormalFormat normalFormat = NormalFormat::Rgba16f;
 };
 

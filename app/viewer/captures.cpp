@@ -1,0 +1,188 @@
+// Captures in the viewer: the capture button (the live frame, whole, through the capture
+// writer), and --capture A [--compare B]: captured targets uploaded so every view works on
+// them, the probe run on the captures' own snapshots, and A vs B with `gblens compare`'s report.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <sstream>
+
+#include "app/viewer/viewer.h"
+#include "renderer/upload_targets.h"
+#include "views/capture.h"
+#include "views/compare.h"
+#include "views/probe.h"
+
+namespace gb {
+
+bool captureLiveFrame(Viewer& v, std::string& written, std::string& error) {
+  Renderer& r = v.renderer;
+  std::vector<Target> targets = readableTargets(r);
+  FrameRequest request;
+  request.readback = targets;
+  request.sampleAfter = targets;
+  request.cullingStats = r.options.coverage;
+  const FrameStats& stats = renderFrame(r, r.options, request);  // the same frame again (deterministic), whole
+  FrameSnapshot snapshot = snapshotFromRenderer(r, targets);
+  char stamp[32];
+  std::time_t now = std::time(nullptr);
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+  written = std::string("gblens-capture-") + stamp;
+  CaptureMeta meta;
+  meta.device = v.ctx.deviceName;
+  meta.driver = v.ctx.driverName;
+  meta.scene = v.args.common.scene;
+  meta.sceneSha256 = sceneContentSha256(v.scene);
+  meta.sceneData = &v.scene;
+  meta.stats = stats;
+  meta.commandLine = commandLine() + " (capture button)";
+  return writeCapture(written, snapshot, meta, error);
+}
+
+static std::string describe(const Capture& c) {
+  const nlohmann::json& m = c.manifest;
+  std::ostringstream o;
+  const RenderOptions& opt = c.frame.options;
+  o << c.dir << "\n  " << m.value("scene", nlohmann::json("?")).dump() << ", " << opt.width << "x" << opt.height << ", time "
+    << opt.time << "\n  " << name(opt.path) << ", eye depth " << (opt.eyeDepth ? "on" : "off") << ", stencil culling "
+    << (opt.stencilCulling ? "on" : "off") << "\n  device " << m.value("device", nlohmann::json("?")).dump() << "\n  targets:";
+  for (size_t i = 0; i < kTargetCount; ++i)
+    if (c.frame.targets[i].present()) o << " " << targetName(Target(i));
+  return o.str();
+}
+
+static Scene emptyScene(const View& view) {
+  Scene s;
+  s.source = "capture";
+  s.materials.push_back(MaterialDesc{});
+  CameraDesc cam;
+  cam.worldFromEye = view.worldFromEye;
+  s.cameras.push_back(cam);
+  return s;
+}
+
+static void upload(Renderer& r, GpuContext& ctx, Scene& scene, const Capture& c) {
+  scene = emptyScene(c.frame.view);
+  initRenderer(r, ctx, scene);
+  std::array<const CpuImage*, kTargetCount> images{};
+  for (size_t i = 0; i < kTargetCount; ++i)
+    if (c.frame.targets[i].present()) images[i] = &c.frame.targets[i].image;
+  uploadTargets(r, c.frame.options, images);
+  r.view = c.frame.view;
+}
+
+bool openCaptures(Viewer& v) {
+  ViewerModel& m = v.model;
+  std::string error;
+  if (!loadCapture(v.args.capture, v.captureA, error)) {
+    std::fprintf(stderr, "gblens view: --capture %s\n", error.c_str());
+    return false;
+  }
+  upload(v.renderer, v.ctx, v.scene, v.captureA);
+  m.source = FrameSource::Capture;
+  m.captureA = v.args.capture;
+  m.captureInfo = describe(v.captureA);
+  if (!v.args.compare.empty()) {
+    if (!loadCapture(v.args.compare, v.captureB, error)) {
+      std::fprintf(stderr, "gblens view: --compare %s\n", error.c_str());
+      return false;
+    }
+    const RenderOptions &a = v.captureA.frame.options, &b = v.captureB.frame.options;
+    if (a.width != b.width || a.height != b.height) {
+      std::fprintf(stderr, "gblens view: --compare: %s is %ux%u, %s is %ux%u (captures of one size only)\n",
+                   v.args.capture.c_str(), a.width, a.height, v.args.compare.c_str(), b.width, b.height);
+      return false;
+    }
+    upload(v.rendererB, v.ctx, v.sceneB, v.captureB);
+    v.hasB = true;
+    m.source = FrameSource::Compare;
+    m.captureB = v.args.compare;
+    m.captureInfo = "A: " + describe(v.captureA) + "\nB: " + describe(v.captureB);
+    CompareReport report;
+    if (compareCaptures(v.captureA, v.captureB, ThresholdSettings{}, report, error))
+      m.compareSummary = report.text();
+    else
+      m.compareSummary = error;
+    // The white point of each |A - B| view: the largest difference over its channels.
+    for (int k = 0; k < kViewKindCount; ++k) {
+      const ViewDef& d = viewDef(ViewKind(k));
+      const TargetImage &ta = v.captureA.frame.target(d.source.target), &tb = v.captureB.frame.target(d.source.target);
+      double worst = 0.0;
+      if (ta.present() && tb.present() && ta.image.width == tb.image.width && ta.image.height == tb.image.height) {
+        uint32_t mask = d.source.stencil ? 0x2u : d.channels;
+        for (uint32_t y = 0; y < ta.image.height; ++y)
+          for (uint32_t x = 0; x < ta.image.width; ++x)
+            for (uint32_t c = 0; c < ta.image.channelCount(); ++c)
+              if (mask & (1u << c)) {
+                double e = std::abs(ta.image.value(x, y, c) - tb.image.value(x, y, c));
+                if (std::isfinite(e)) worst = std::max(worst, e);
+              }
+      }
+      m.differenceMax[k] = worst;
+    }
+  }
+  // What the views can show.
+  const FrameSnapshot& f = v.captureA.frame;
+  m.rendered = f.options;
+  const TargetImage& sm = f.target(Target::ShadowMap);
+  m.shadowMapSize = sm.present() ? glm::uvec2(sm.image.width, sm.image.height) : glm::uvec2(1, 1);
+  for (int k = 0; k < kViewKindCount; ++k) {
+    Target t = viewDef(ViewKind(k)).source.target;
+    m.unavailable[k].clear();
+    if (!f.target(t).present()) m.unavailable[k] = std::string(targetName(t)) + ": " + f.absent[size_t(t)];
+    else if (v.hasB && !v.captureB.frame.target(t).present())
+      m.unavailable[k] = std::string(targetName(t)) + " is not in B: " + v.captureB.frame.absent[size_t(t)];
+  }
+  m.captureAvailable = false;
+  m.captureHint = "This is a capture already";
+  v.frameValid = true;
+  return true;
+}
+
+void probeCapturePixel(Viewer& v, glm::ivec2 p) {
+  auto start = v.clickPending ? v.clickTime : std::chrono::steady_clock::now();
+  v.clickPending = false;
+  v.probeStart = start;
+  ViewerModel& m = v.model;
+  const FrameSnapshot& a = v.captureA.frame;
+  p = glm::clamp(p, glm::ivec2(0), glm::ivec2(int(a.options.width) - 1, int(a.options.height) - 1));
+  PixelDossier d = probePixel(a, uint32_t(p.x), uint32_t(p.y));
+  m.probePixel = p;
+  m.probeError = d.error;
+  m.dossier = d;
+  m.dossierJson = dossierJson(d);
+  m.dossierB.reset();
+  if (v.hasB) {
+    PixelDossier b = probePixel(v.captureB.frame, uint32_t(p.x), uint32_t(p.y));
+    m.dossierB = b;
+    m.dossierJson = {{"a", m.dossierJson}, {"b", dossierJson(b)}};
+  }
+  m.shadowTexelOfProbe.reset();
+  if (d.shadowMap.valid)
+    m.shadowTexelOfProbe = glm::ivec2(int(std::floor(d.shadowMap.texel.x + 0.5)), int(std::floor(d.shadowMap.texel.y + 0.5)));
+  double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  m.probeLatencyMs = ms;
+  logLine(v.probeLog, m.dossierJson);
+  logLine(v.eventLog, {{"event", "probe"}, {"pixel", {p.x, p.y}}, {"latency_ms", ms}});
+}
+
+std::string captureHoverText(const Viewer& v, ViewKind view, glm::ivec2 texel) {
+  const ViewDef& d = viewDef(view);
+  std::string out;
+  for (const Capture* c : {&v.captureA, v.hasB ? &v.captureB : nullptr}) {
+    if (!c) continue;
+    const TargetImage& ti = c->frame.target(d.source.target);
+    if (!ti.contains(uint32_t(texel.x), uint32_t(texel.y))) continue;
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%s%s (%d, %d):", out.empty() ? "" : " | ", v.hasB ? (c == &v.captureA ? "A" : "B") : targetName(d.source.target),
+                  texel.x, texel.y);
+    out += buf;
+    for (uint32_t ch = 0; ch < ti.image.channelCount(); ++ch) {
+      std::snprintf(buf, sizeof buf, " %s %.7g", ti.image.channels[ch].c_str(), ti.value(uint32_t(texel.x), uint32_t(texel.y), ch));
+      out += buf;
+    }
+  }
+  return out;
+}
+
+}  // namespace gb

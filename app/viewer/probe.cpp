@@ -1,0 +1,114 @@
+// The pixel probe in the viewer: reads back only a 1x1 window of each target (plus the
+// shadow-map texels the pixel's lookup reads) and hands them to the shared dossier.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "app/viewer/viewer.h"
+#include "renderer/region_readback.h"
+#include "views/probe.h"
+
+namespace gb {
+
+void logLine(std::ofstream& f, const nlohmann::json& j) {
+  if (!f.is_open()) return;
+  f << j.dump() << '\n';
+  f.flush();
+}
+
+std::vector<Target> readableTargets(const Renderer& r) {
+  std::vector<Target> out;
+  for (size_t i = 0; i < kTargetCount; ++i) {
+    Target t = Target(i);
+    const GraphTarget& g = r.targets[i];
+    if (!g.image.image || g.image.desc.transient) continue;
+    if ((t == Target::CoverageMasked || t == Target::CoverageFull) && !r.options.coverage) continue;
+    out.push_back(t);
+  }
+  return out;
+}
+
+static std::string valuesText(const CpuImage& img) {
+  std::string s;
+  char buf[64];
+  for (uint32_t c = 0; c < img.channelCount(); ++c) {
+    std::snprintf(buf, sizeof buf, "%s%s %.7g", c ? ", " : "", img.channels[c].c_str(), img.value(0, 0, c));
+    s += buf;
+  }
+  return s;
+}
+
+// The frame as the probe sees it: matrices, lights and options of the live renderer, and the
+// read-back windows as region TargetImages (texel (x0, y0) of the target is image texel (0, 0)).
+static void addRegions(FrameSnapshot& s, const std::vector<RegionImage>& regions) {
+  for (const RegionImage& ri : regions) {
+    if (ri.image.empty()) continue;
+    TargetImage& ti = s.target(ri.target);
+    ti.image = ri.image;
+    ti.x0 = ri.x0;
+    ti.y0 = ri.y0;
+    ti.targetWidth = ri.targetWidth;
+    ti.targetHeight = ri.targetHeight;
+    s.absent[size_t(ri.target)].clear();
+  }
+}
+
+void probeViewerPixel(Viewer& v, glm::ivec2 p, bool logged) {
+  auto start = v.clickPending && logged ? v.clickTime : std::chrono::steady_clock::now();
+  if (logged) {
+    v.clickPending = false;
+    v.probeStart = start;
+  }
+  Renderer& r = v.renderer;
+  ViewerModel& m = v.model;
+  p = glm::clamp(p, glm::ivec2(0), glm::ivec2(int(r.options.width) - 1, int(r.options.height) - 1));
+  const uint32_t x = uint32_t(p.x), y = uint32_t(p.y);
+  std::vector<Target> readable = readableTargets(r);
+  // 1. The pixel in every screen-space target (1x1 windows).
+  std::vector<RegionRequest> requests;
+  for (Target t : readable)
+    if (screenSpaceTarget(t)) requests.push_back({t, p.x, p.y, 1, 1});
+  FrameSnapshot snapshot = snapshotFromRenderer(r, {});
+  addRegions(snapshot, readbackRegions(r, requests, readable));
+  // 2. The 2x2 shadow-map block its lookup reads, placed from the depth just read.
+  int32_t sx = 0, sy = 0;
+  bool hasShadowTexels = std::find(readable.begin(), readable.end(), Target::ShadowMap) != readable.end() &&
+                         shadowMapFootprint(snapshot, x, y, sx, sy);
+  if (hasShadowTexels) addRegions(snapshot, readbackRegions(r, {{Target::ShadowMap, sx, sy, 2, 2}}, readable));
+  PixelDossier d = gb::probePixel(snapshot, x, y);
+  m.probePixel = p;
+  m.probeError = d.error;
+  m.dossier = d;
+  m.dossierJson = dossierJson(d);
+  m.shadowTexelOfProbe.reset();
+  if (d.shadowMap.valid)
+    m.shadowTexelOfProbe = glm::ivec2(int(std::floor(d.shadowMap.texel.x + 0.5)), int(std::floor(d.shadowMap.texel.y + 0.5)));
+  double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  m.probeLatencyMs = ms;
+  if (!logged) return;
+  logLine(v.probeLog, m.dossierJson);
+  logLine(v.eventLog, {{"event", "probe"}, {"pixel", {p.x, p.y}}, {"latency_ms", ms}});
+  std::fprintf(stderr, "gblens view: probe (%d, %d): dossier ready %.2f ms after the click\n", p.x, p.y, ms);
+}
+
+void readHover(Viewer& v) {
+  ViewerModel& m = v.model;
+  std::optional<glm::ivec2> texel = m.hover;
+  std::optional<ViewKind> view = m.hoverView;
+  if (view && viewDef(*view).source.target == Target::ShadowMap) texel = m.hoverShadowTexel;
+  if (texel == v.hoverRead && view == v.hoverReadView) return;
+  v.hoverRead = texel;
+  v.hoverReadView = view;
+  m.hoverText.clear();
+  if (!texel || !view || !v.frameValid || !m.unavailable[int(*view)].empty()) return;
+  const ViewDef& d = viewDef(*view);
+  std::vector<RegionImage> regions =
+      readbackRegions(v.renderer, {{d.source.target, texel->x, texel->y, 1, 1}}, readableTargets(v.renderer));
+  if (regions[0].image.empty()) return;
+  char head[96];
+  std::snprintf(head, sizeof head, "%s (%d, %d): ", targetName(d.source.target), texel->x, texel->y);
+  m.hoverText = head + valuesText(regions[0].image);
+}
+
+}  // namespace gb

@@ -1,0 +1,123 @@
+// gblens view: the window, the live renderer, the interface. Split over app/viewer/*.cpp:
+// window.cpp (GLFW, swapchain, Dear ImGui's backends), viewer.cpp (the loop: render on demand),
+// controls.cpp (keys, camera, lights), camera_rig.cpp (orbit/fly), probe.cpp (region read-back ->
+// the shared dossier), captures.cpp (capture button, --capture / --compare).
+#pragma once
+#include <chrono>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "app/cli.h"
+#include "renderer/view_map.h"
+#include "renderer/vk/swapchain.h"
+#include "views/capture.h"
+#include "views/viewer_model.h"
+
+struct GLFWwindow;
+
+namespace gb {
+
+struct ViewerArgs {
+  CommonOptions common;
+  bool sizeGiven = false;          // --size: render at that size, else at the view area's size
+  std::string window = "1280x800";  // initial window size
+  bool windowGiven = false;        // --window given (else sized to the monitor)
+  bool paused = false;
+  std::string initialView = "final";
+  std::string probeLog;            // --probe-log: each dossier as one JSON line
+  std::string eventLog;            // --event-log: layout/probe/exit events as JSON lines (tests)
+  std::string capture, compare;    // --capture DIR / --compare B (Capture issue)
+};
+
+// The camera the viewer renders: starts as an exact copy of a scene camera; moving it derives
+// orbit/fly parameters from that matrix once.
+struct CameraRig {
+  CameraDesc desc;
+  bool derived = false;
+  glm::dvec3 position{0.0}, target{0.0};
+  double yaw = 0.0, pitch = 0.0, distance = 1.0;
+  double sceneRadius = 1.0;
+  glm::dvec3 sceneCenter{0.0};
+};
+void resetRig(CameraRig& rig, const CameraDesc& from, const Bounds& bounds);
+void orbitRig(CameraRig& rig, glm::dvec2 pixels);  // turn around the target
+void lookRig(CameraRig& rig, glm::dvec2 pixels);   // turn in place (fly)
+void moveRig(CameraRig& rig, glm::dvec3 local);    // right, up, back in scene units
+void dollyRig(CameraRig& rig, double steps);
+
+struct ImGuiVulkan;  // window.cpp
+
+struct Viewer {
+  ViewerArgs args;
+  GLFWwindow* window = nullptr;
+  GpuContext ctx;
+  Swapchain swapchain;
+  bool swapchainValid = false;
+  VkDescriptorPool imguiPool = VK_NULL_HANDLE;
+  Scene scene;
+  std::vector<double> baseRadius;  // the scene's light radii before the radius scale
+  Renderer renderer;
+  bool rendererReady = false;
+  ViewMapper mapper;
+  // --capture A / --compare B: the captures, their targets uploaded (A into `renderer`).
+  Capture captureA, captureB;
+  Renderer rendererB;
+  Scene sceneB;
+  bool hasB = false;
+  ViewerModel model;
+  CameraRig rig;
+  uint64_t cameraVersion = 1, lightsVersion = 1;
+  float appliedRadiusScale = 1.0f;  // the light radius scale the scene's lights carry
+  uint64_t renderedCamera = 0, renderedLights = 0;
+  bool frameValid = false;         // targets hold a frame that matches the model
+  bool rangesStale = true;
+  std::string rangesKey;           // which automatic ranges are current
+  std::vector<ViewDraw> draws;     // this interface frame's views (ImGui callback data)
+  int uiFramesLeft = 3;            // interface frames still to draw after the last event
+  std::chrono::steady_clock::time_point lastTick, clickTime;
+  bool clickPending = false;
+  bool probeShownPending = false;  // log when the dossier of a click is first on screen
+  std::chrono::steady_clock::time_point probeStart;
+  std::optional<glm::ivec2> hoverRead;
+  std::optional<ViewKind> hoverReadView;
+  std::string layoutKey;           // logged layout, to log changes only
+  std::ofstream probeLog, eventLog;
+  std::vector<double> renderMs, presentMs;
+  std::vector<double> renderedLoopMs;  // whole iterations that rendered a frame: render + views + present
+  std::vector<int> pressedKeys;    // key presses since the last loop iteration
+};
+
+int runViewer(const ViewerArgs& args);
+
+// controls.cpp
+void handleKeys(Viewer& v);
+bool updateCamera(Viewer& v, double dt);  // true while keys move the camera
+void updateLights(Viewer& v);
+
+// window.cpp
+bool openWindow(Viewer& v, uint32_t width, uint32_t height);
+void closeWindow(Viewer& v);
+bool recreateSwapchain(Viewer& v);
+void initImGui(Viewer& v);
+void shutdownImGui(Viewer& v);
+// Draws the ImGui draw data into the swapchain (views through the renderer's view mapping).
+bool presentFrame(Viewer& v);
+
+// probe.cpp
+// Reads back the pixel's texels (and the shadow-map block its lookup reads) and computes the
+// shared dossier (views/probe.h). `logged`: a user's probe (written to --probe-log).
+void probeViewerPixel(Viewer& v, glm::ivec2 pixel, bool logged);
+void readHover(Viewer& v);
+std::vector<Target> readableTargets(const Renderer& r);
+
+// captures.cpp
+bool captureLiveFrame(Viewer& v, std::string& written, std::string& error);
+bool openCaptures(Viewer& v);  // false: a message was printed (exit 2)
+void probeCapturePixel(Viewer& v, glm::ivec2 pixel);
+std::string captureHoverText(const Viewer& v, ViewKind view, glm::ivec2 texel);
+
+// Appends one JSON line to a log file (no-op when the file is not open).
+void logLine(std::ofstream& f, const nlohmann::json& j);
+
+}  // namespace gb

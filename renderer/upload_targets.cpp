@@ -1,0 +1,115 @@
+// Uploading captured targets: pack, copy, transition to the layouts the graph expects after a
+// frame's hand-off (shader read / depth-stencil read).
+#include "renderer/upload_targets.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "renderer/vk/check.h"
+
+namespace gb {
+
+std::vector<uint8_t> packTexels(const CpuImage& img, VkFormat format) {
+  const size_t texels = size_t(img.width) * img.height;
+  std::vector<uint8_t> out;
+  if (isDepthFormat(format) && hasStencil(format)) {  // F32 Depth, F32 Stencil
+    out.resize(texels * 5);
+    for (size_t i = 0; i < texels; ++i) {
+      float depth = float(img.value(uint32_t(i % img.width), uint32_t(i / img.width), 0));
+      uint32_t bits;
+      if (format == VK_FORMAT_D24_UNORM_S8_UINT)
+        bits = uint32_t(std::lround(double(depth) * 16777215.0)) & 0xFFFFFF;
+      else
+        std::memcpy(&bits, &depth, 4);
+      std::memcpy(&out[i * 4], &bits, 4);
+      out[texels * 4 + i] = uint8_t(img.value(uint32_t(i % img.width), uint32_t(i / img.width), 1));
+    }
+  } else if (format == VK_FORMAT_A2B10G10R10_UNORM_PACK32) {
+    out.resize(texels * 4);
+    for (size_t i = 0; i < texels; ++i) {
+      uint32_t x = uint32_t(i % img.width), y = uint32_t(i / img.width);
+      uint32_t v = (img.raw(x, y, 0) & 0x3FF) | ((img.raw(x, y, 1) & 0x3FF) << 10) | ((img.raw(x, y, 2) & 0x3FF) << 20) |
+                   (img.raw(x, y, 3) << 30);
+      std::memcpy(&out[i * 4], &v, 4);
+    }
+  } else {
+    GB_ASSERT(img.data.size() == texels * bytesPerPixel(format));
+    out = img.data;
+  }
+  return out;
+}
+
+void uploadTargets(Renderer& r, const RenderOptions& options, const std::array<const CpuImage*, kTargetCount>& images) {
+  GpuContext& ctx = *r.ctx;
+  vkDeviceWaitIdle(ctx.device);
+  for (GraphTarget& t : r.targets) {
+    destroyImage(ctx, t.image);
+    t = GraphTarget{};
+  }
+  clearFramebuffers(ctx, r.graphCache);
+  r.options = options;
+  r.targetsKey = "uploaded";
+  r.targetsValid = true;
+  for (size_t i = 0; i < kTargetCount; ++i) {
+    const CpuImage* img = images[i];
+    if (!img || img->empty()) continue;
+    Target t = Target(i);
+    ImageDesc d;
+    d.format = targetFormat(t, options);
+    d.width = img->width;
+    d.height = img->height;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    // The read-only depth/stencil layout (as after a live frame) requires the attachment usage.
+    if (isDepthFormat(d.format)) d.usage |= VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+    d.name = targetName(t);
+    GraphTarget& gt = r.targets[i];
+    gt.image = createImage(ctx, d);
+    std::vector<uint8_t> bytes = packTexels(*img, d.format);
+    Buffer staging = createBuffer(ctx, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
+    std::memcpy(staging.mapped, bytes.data(), bytes.size());
+    const bool depth = isDepthFormat(d.format), stencil = hasStencil(d.format);
+    const VkImageLayout readLayout =
+        depth && stencil ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    submitOnce(ctx, [&](VkCommandBuffer cmd) {
+      auto barrier = [&](VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                         VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+        VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+        b.srcStageMask = srcStage;
+        b.srcAccessMask = srcAccess;
+        b.dstStageMask = dstStage;
+        b.dstAccessMask = dstAccess;
+        b.oldLayout = from;
+        b.newLayout = to;
+        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.image = gt.image.image;
+        b.subresourceRange = {aspectsOf(d.format), 0, 1, 0, 1};
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.imageMemoryBarrierCount = 1;
+        dep.pImageMemoryBarriers = &b;
+        vkCmdPipelineBarrier2(cmd, &dep);
+      };
+      barrier(VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
+              VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+      VkBufferImageCopy copies[2]{};
+      uint32_t n = 0;
+      copies[n].imageSubresource = {depth ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT) : VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      copies[n++].imageExtent = {d.width, d.height, 1};
+      if (stencil) {
+        copies[n].bufferOffset = VkDeviceSize(d.width) * d.height * 4;
+        copies[n].imageSubresource = {VK_IMAGE_ASPECT_STENCIL_BIT, 0, 0, 1};
+        copies[n++].imageExtent = {d.width, d.height, 1};
+      }
+      vkCmdCopyBufferToImage(cmd, staging.buffer, gt.image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, n, copies);
+      barrier(VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, readLayout, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+              VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+              VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    });
+    destroyBuffer(ctx, staging);
+    gt.layout = readLayout;
+    gt.stage = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    gt.access = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+    gt.keep = true;
+  }
+}
+
+}  // namespace gb

@@ -1,0 +1,52 @@
+#!/bin/sh
+# Measures the viewer under its own Xvfb: idle CPU over 10 s (no input, animation paused),
+# click-to-dossier latency (5 clicks), and frame time while the animation plays, with
+# presentation (the viewer's render + views + present) and without (gblens render --frames).
+# Usage: tests/gui/measure_viewer.sh [BUILD_DIR] [RENDER_SIZE]   (defaults: build 320x180)
+set -eu
+BUILD=${1:-build}
+SIZE=${2:-320x180}
+GBLENS=$BUILD/gblens
+OUT=$(mktemp -d)
+exec 3>"$OUT/display"
+Xvfb -displayfd 3 -screen 0 1600x900x24 -nolisten tcp >/dev/null 2>&1 &
+XVFB=$!
+trap 'kill $XVFB 2>/dev/null; rm -rf "$OUT"' EXIT
+while [ ! -s "$OUT/display" ]; do sleep 0.1; done
+export DISPLAY=:$(head -1 "$OUT/display")
+
+"$GBLENS" view --size "$SIZE" --window 1600x900 --paused --time 1 --event-log "$OUT/events" 2>"$OUT/viewer.log" &
+VIEWER=$!
+until grep -q '"ready"' "$OUT/events" 2>/dev/null; do sleep 0.2; done
+WID=$(xdotool search --onlyvisible --name '^gblens' | head -1)
+xdotool mousemove --window "$WID" 800 890   # status bar: off the views
+sleep 2
+
+ticks() { awk '{print $14 + $15}' /proc/"$1"/stat; }  # utime + stime of every thread
+T0=$(ticks $VIEWER); sleep 10; T1=$(ticks $VIEWER)
+HZ=$(getconf CLK_TCK)
+echo "idle CPU over 10 s: $((T1 - T0)) ticks of 1/$HZ s = $(awk "BEGIN { printf \"%.2f\", 100 * ($T1 - $T0) / ($HZ * 10) }") %"
+
+# Clicks on five pixels of the final view (window coordinates from the layout event).
+LAYOUT=$(grep '"layout"' "$OUT/events" | tail -1)
+OX=$(echo "$LAYOUT" | sed 's/.*"origin":\[\([0-9.]*\),\([0-9.]*\)\].*/\1/')
+OY=$(echo "$LAYOUT" | sed 's/.*"origin":\[\([0-9.]*\),\([0-9.]*\)\].*/\2/')
+SC=$(echo "$LAYOUT" | sed 's/.*"scale":\([0-9.]*\).*/\1/')
+for p in "40 30" "100 60" "160 90" "220 120" "280 150"; do
+  set -- $p
+  X=$(awk "BEGIN { print int($OX + ($1 + 0.5) * $SC) }"); Y=$(awk "BEGIN { print int($OY + ($2 + 0.5) * $SC) }")
+  xdotool mousemove --window "$WID" "$X" "$Y" click 1
+  sleep 1.5
+done
+echo "click -> dossier ready (ms):    $(grep '"probe"' "$OUT/events" | sed 's/.*"latency_ms":\([0-9.]*\).*/\1/' | tr '\n' ' ')"
+echo "click -> dossier on screen (ms): $(grep '"probe_shown"' "$OUT/events" | sed 's/.*"latency_ms":\([0-9.]*\).*/\1/' | tr '\n' ' ')"
+
+# Animation: 10 s of continuous rendering with presentation, then quit.
+xdotool mousemove --window "$WID" 800 890 key --window "$WID" space
+sleep 10
+xdotool key --window "$WID" ctrl+q
+wait $VIEWER || true
+echo "viewer (animation playing, $SIZE): $(grep '"exit"' "$OUT/events")"
+# Without presentation: the same frames headless.
+"$GBLENS" render --size "$SIZE" --time 1 --frames 20 --stats -o "$OUT/f.png" 2>/dev/null |
+  python3 -c 'import json,sys; j=json.load(sys.stdin); print("headless render (%s): frame_ms median %.1f (min %.1f)" % (j["options"]["size"], j["frame_ms"], j["frame_ms_min"]))'

@@ -1,0 +1,49 @@
+// Helpers for GUI tests: child processes, an Xvfb server of the test's own (display chosen by
+// Xvfb -displayfd, so parallel runs never collide), xdotool input, screenshots read as RGB.
+#pragma once
+#include <sys/types.h>
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace gb::gui {
+
+bool haveTool(const std::string& name);  // on PATH
+
+// Starts `argv` with extra environment entries ("NAME=value"); stdout+stderr go to `logFile`.
+pid_t spawn(const std::vector<std::string>& argv, const std::vector<std::string>& env, const std::string& logFile);
+// Waits up to `seconds`; true with the exit status when it exited (-1: killed by a signal).
+bool waitExit(pid_t pid, double seconds, int& status);
+void terminate(pid_t pid);  // SIGTERM, then SIGKILL after 3 s
+
+// Runs a shell command, returns stdout; status in `status`.
+std::string run(const std::string& command, int* status = nullptr);
+
+struct Xvfb {
+  pid_t pid = -1;
+  std::string display;  // ":N"
+  bool start(int width, int height, std::string& error);
+  void stop();
+};
+
+// Lines of a JSON-lines file from line `cursor` on; waits until `pred` holds for one (returns it
+// and moves `cursor` past it) or times out (null).
+nlohmann::json waitForLine(const std::string& file, double seconds, const std::function<bool(const nlohmann::json&)>& pred,
+                           size_t& cursor);
+
+struct Screenshot {
+  int width = 0, height = 0;
+  std::vector<float> rgb;  // row-major, 3 floats per pixel in [0, 1]
+  const float* at(int x, int y) const { return &rgb[(size_t(y) * width + x) * 3]; }
+};
+// Captures the root window of `display` (xwd), writes it as PNG to `png`, and reads it back.
+bool screenshot(const std::string& display, const std::string& png, Screenshot& out, std::string& error);
+
+// A thumbnail (n x n blocks, mean RGB each) of a rectangle of a screenshot: enough to tell views apart.
+std::vector<float> thumbnail(const Screenshot& s, int x0, int y0, int x1, int y1, int n);
+double meanAbsDifference(const std::vector<float>& a, const std::vector<float>& b);
+double standardDeviation(const std::vector<float>& v);
+
+}  // namespace gb::gui
