@@ -41,6 +41,7 @@ struct Command {
 };
 
 Command addRenderCommand(CLI::App& root);
+Command addInfoCommand(CLI::App& root);
 
 // Loads SCENE; on a user mistake prints one line and returns false (caller exits 2).
 bool loadSceneOrReport(const CommonOptions& o, Scene& scene);
