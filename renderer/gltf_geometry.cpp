@@ -105,6 +105,16 @@ void buildPrimitive(Doc& doc, const std::string& el, const tinygltf::Primitive& 
       fail(doc, el, "attribute " + name + " has " + std::to_string(model.accessors[size_t(accessor)].count) +
                         " elements, POSITION has " + std::to_string(vertexCount));
 
+  // Absurd sizes are refused before the index list, the triangle list or the vertices exist.
+  const size_t sourceIndices = prim.indices >= 0 ? model.accessors[size_t(prim.indices)].count : vertexCount;
+  const uint64_t triangleIndices =
+      prim.mode == TINYGLTF_MODE_TRIANGLES ? sourceIndices : sourceIndices < 3 ? 0 : 3 * uint64_t(sourceIndices - 2);
+  const bool flat = attribute(prim, "NORMAL") < 0;  // de-indexed: one vertex per triangle corner
+  if (scene.vertices.size() + (flat ? triangleIndices : vertexCount) > kMaxVertices ||
+      scene.indices.size() + triangleIndices > kMaxIndices)
+    fail(doc, el, "the scene would exceed " + std::to_string(kMaxVertices) + " vertices or " +
+                      std::to_string(kMaxIndices) + " indices (absurd size)");
+
   std::vector<uint32_t> indices;
   if (prim.indices >= 0) {
     indices = readIndices(doc, prim.indices, el + " indices");
@@ -122,11 +132,7 @@ void buildPrimitive(Doc& doc, const std::string& el, const tinygltf::Primitive& 
   const int material = prim.material >= 0 ? prim.material : defaultMaterial(doc);
   const MaterialDesc& mat = scene.materials[size_t(material)];
   const int normal = attribute(prim, "NORMAL"), tangent = attribute(prim, "TANGENT");
-  const bool flat = normal < 0;  // de-indexed: one vertex per triangle corner
   const size_t outVertices = flat ? indices.size() : vertexCount;
-  if (scene.vertices.size() + outVertices > kMaxVertices || scene.indices.size() + indices.size() > kMaxIndices)
-    fail(doc, el, "the scene would exceed " + std::to_string(kMaxVertices) + " vertices or " +
-                      std::to_string(kMaxIndices) + " indices (absurd size)");
 
   std::vector<float> p = readFloats(doc, position, 3, el + " POSITION");
   std::vector<float> n = flat ? std::vector<float>() : readFloats(doc, normal, 3, el + " NORMAL");

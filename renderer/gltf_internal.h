@@ -19,13 +19,25 @@ namespace gb::gltf {
 
 // Sizes beyond these are refused before anything is allocated for them. They are far above
 // what a debugging session needs and below what a GPU of this class (or lavapipe) can hold.
+// The fuzzer builds with smaller ones (GBLENS_FUZZING) so that it spends its time on structure,
+// not on allocating and filling a gigabyte of zeros that a 1 kB file may legally ask for.
+#ifndef GBLENS_FUZZING
 constexpr uint64_t kMaxFileBytes = 1ull << 31;       // a .gltf/.glb/.bin/image file
-constexpr uint64_t kMaxVertices = 1ull << 25;        // 33.5M vertices (1.9 GB as gb::Vertex)
-constexpr uint64_t kMaxIndices = 1ull << 27;         // 134M indices (45M triangles)
-constexpr uint64_t kMaxAccessorElements = 1ull << 27;
+constexpr uint64_t kMaxVertices = 1ull << 24;        // 16.7M vertices (940 MB as gb::Vertex)
+constexpr uint64_t kMaxIndices = 1ull << 26;         // 67M indices (22M triangles)
+constexpr uint64_t kMaxAccessorElements = 1ull << 26;
 constexpr uint64_t kMaxInstances = 1ull << 20;       // mesh primitives placed by nodes
 constexpr uint32_t kMaxTextureSide = 16384;          // maxImageDimension2D of common devices
 constexpr uint64_t kMaxTexels = 1ull << 28;          // all decoded textures together (1 GB RGBA8)
+#else
+constexpr uint64_t kMaxFileBytes = 1ull << 24;
+constexpr uint64_t kMaxVertices = 1ull << 16;
+constexpr uint64_t kMaxIndices = 1ull << 18;
+constexpr uint64_t kMaxAccessorElements = 1ull << 18;
+constexpr uint64_t kMaxInstances = 1ull << 12;
+constexpr uint32_t kMaxTextureSide = 1024;
+constexpr uint64_t kMaxTexels = 1ull << 20;
+#endif
 constexpr int kMaxJsonDepth = 64;                    // nesting of the JSON document
 
 // The document being loaded and what every step needs to report.

@@ -52,7 +52,7 @@ double specularOf(double metallic, double roughness, double luminance) {
 }
 
 // KHR_texture_transform as the extension's GLSL: translation * rotation * scale.
-glm::mat3 textureTransform(const Doc& doc, const tinygltf::ExtensionMap& ext, int& texCoord) {
+glm::mat3 textureTransform(const tinygltf::ExtensionMap& ext, int& texCoord) {
   const tinygltf::Value* t = extension(ext, "KHR_texture_transform");
   if (!t) return glm::mat3(1.0f);
   double ox = 0, oy = 0, rotation = 0, sx = 1, sy = 1, uv = 0;
@@ -66,7 +66,6 @@ glm::mat3 textureTransform(const Doc& doc, const tinygltf::ExtensionMap& ext, in
   pair(member(*t, "scale"), sx, sy);
   number(member(*t, "rotation"), rotation);
   if (number(member(*t, "texCoord"), uv) && uv >= 0 && uv < 1e6) texCoord = int(uv);
-  (void)doc;
   float c = float(std::cos(rotation)), s = float(std::sin(rotation));
   glm::mat3 translation(1, 0, 0, 0, 1, 0, float(ox), float(oy), 1);
   glm::mat3 rotate(c, s, 0, -s, c, 0, 0, 0, 1);
@@ -183,13 +182,13 @@ void buildMaterials(Doc& doc, std::vector<DecodedImage>& images) {
     if (pbr.baseColorTexture.index >= 0) {
       d.baseColorTexture = lookup(pbr.baseColorTexture.index, true);
       int uv = pbr.baseColorTexture.texCoord;
-      d.baseUvTransform = textureTransform(doc, pbr.baseColorTexture.extensions, uv);
+      d.baseUvTransform = textureTransform(pbr.baseColorTexture.extensions, uv);
       d.baseColorUv = uvSet(doc, el, "baseColor", uv);
     }
     if (m.normalTexture.index >= 0) {
       d.normalTexture = lookup(m.normalTexture.index, false);
       int uv = m.normalTexture.texCoord;
-      d.normalUvTransform = textureTransform(doc, m.normalTexture.extensions, uv);
+      d.normalUvTransform = textureTransform(m.normalTexture.extensions, uv);
       d.normalUv = uvSet(doc, el, "normal", uv);
       d.normalScale = std::isfinite(m.normalTexture.scale) ? float(m.normalTexture.scale) : 1.0f;
     }
