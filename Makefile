@@ -50,7 +50,7 @@ fuzz:
 	cmake -S tests/fuzz -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo
 	cmake --build build-fuzz -j $(JOBS)
 	mkdir -p build-fuzz/corpus build-fuzz/crashes
-	build-fuzz/fuzz_gltf build-fuzz/corpus tests/data/gltf/valid tests/data/gltf/invalid -dict=tests/fuzz/gltf.dict \
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp build-fuzz/fuzz_gltf build-fuzz/corpus tests/data/gltf/valid tests/data/gltf/invalid -dict=tests/fuzz/gltf.dict \
 	  -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=4096 -max_len=65536 \
 	  -artifact_prefix=build-fuzz/crashes/ -print_final_stats=1
 

@@ -56,6 +56,9 @@ const tinygltf::Value* extension(const tinygltf::ExtensionMap& extensions, const
 using Clock = std::chrono::steady_clock;
 static double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
+static Scene loadSteps(gltf::Doc& doc, const uint8_t* data, size_t size, const std::string& baseDir, int lightCount,
+                       SceneLoadStats* stats);
+
 Scene loadGltfMemory(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                      int lightCount, SceneLoadStats* stats) {
   SceneLoadStats local;
@@ -67,6 +70,22 @@ Scene loadGltfMemory(const uint8_t* data, size_t size, const std::string& name, 
   doc.scene = &scene;
   doc.stats = stats;
 
+  // Bad input ends in a SceneError; anything else escaping the steps (memory) becomes one too,
+  // so that no file can end the program with an uncaught exception.
+  try {
+    return loadSteps(doc, data, size, baseDir, lightCount, stats);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw SceneError{name + ": out of memory while loading"};
+  } catch (const std::exception& e) {
+    throw SceneError{name + ": " + e.what()};
+  }
+}
+
+static Scene loadSteps(gltf::Doc& doc, const uint8_t* data, size_t size, const std::string& baseDir, int lightCount,
+                       SceneLoadStats* stats) {
+  Scene& scene = *doc.scene;
   auto t = Clock::now();
   gltf::parseDocument(doc, data, size, baseDir);
   gltf::validateDocument(doc);
@@ -86,7 +105,7 @@ Scene loadGltfMemory(const uint8_t* data, size_t size, const std::string& name, 
   stats->fileNodes = uint32_t(doc.model.nodes.size());
   stats->fileImages = uint32_t(doc.model.images.size());
   for (const tinygltf::Mesh& m : doc.model.meshes) stats->filePrimitives += uint32_t(m.primitives.size());
-  return scene;
+  return std::move(scene);
 }
 
 Scene loadGltf(const std::string& path, int lightCount, SceneLoadStats* stats) {

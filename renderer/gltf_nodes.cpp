@@ -47,14 +47,21 @@ bool finite(const glm::dmat4& m) {
   return true;
 }
 
-// A camera's node transform without scale (cameras look down -Z, +Y up, as gb::CameraDesc).
+// A camera's node transform as a rotation + translation (cameras look down -Z, +Y up, as
+// gb::CameraDesc): scale, shear and mirroring removed, degenerate axes replaced, so the view
+// matrix is always invertible.
 glm::dmat4 rigid(const glm::dmat4& world) {
-  glm::dmat4 m = world;
-  for (int c = 0; c < 3; ++c) {
-    glm::dvec3 axis(m[c]);
-    double len = glm::length(axis);
-    m[c] = glm::dvec4(len > 0.0 ? axis / len : glm::dvec3(c == 0, c == 1, c == 2), 0.0);
-  }
+  glm::dvec3 back(world[2]), up(world[1]);
+  back = glm::length(back) > 1e-300 ? glm::normalize(back) : glm::dvec3(0, 0, 1);
+  up -= back * glm::dot(back, up);
+  if (!(glm::length(up) > 1e-12 * (1.0 + glm::length(glm::dvec3(world[1])))))
+    up = std::abs(back.y) < 0.9 ? glm::dvec3(0, 1, 0) - back * back.y : glm::dvec3(1, 0, 0) - back * back.x;
+  up = glm::normalize(up);
+  glm::dmat4 m(1.0);
+  m[0] = glm::dvec4(glm::cross(up, back), 0.0);
+  m[1] = glm::dvec4(up, 0.0);
+  m[2] = glm::dvec4(back, 0.0);
+  m[3] = world[3];
   return m;
 }
 

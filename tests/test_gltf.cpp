@@ -240,6 +240,19 @@ TEST(Gltf, CamerasListedWithAutoCameraLast) {
   EXPECT_TRUE(hasWarning(s, "orthographic"));
 }
 
+TEST(Gltf, DegenerateCameraTransformsBecomeRotations) {
+  Scene s = load("valid/degenerate_cameras.gltf");
+  ASSERT_EQ(s.cameras.size(), 4u);  // scale 0, mirrored, sheared (two equal axes), auto
+  for (const CameraDesc& c : s.cameras) {
+    glm::dmat3 r(c.worldFromEye);
+    EXPECT_NEAR(glm::determinant(r), 1.0, 1e-12) << c.name;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) EXPECT_NEAR(glm::dot(r[i], r[j]), i == j ? 1.0 : 0.0, 1e-12) << c.name;
+  }
+  EXPECT_EQ(s.cameras[0].worldFromEye[3], glm::dvec4(0, 0, 5, 1));
+  expectVec(-glm::dvec3(s.cameras[1].worldFromEye[2]), {0, 0, -1}, 1e-12);  // still looks down -Z
+}
+
 TEST(Gltf, PunctualLights) {
   Scene s = load("valid/lights.gltf", 8);
   EXPECT_FALSE(s.generatedLights);

@@ -316,6 +316,14 @@ def valid():
     g.write("valid/cameras.gltf", "loads: cameras persp (far from bounds), ortho (warning), auto")
 
     g = Gltf()
+    g.doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1, "zfar": 100}}]
+    g.mesh([triangle(g)])
+    g.scene([g.node(mesh=0), g.node(camera=0, translation=[0, 0, 5], scale=[0, 0, 0]),
+             g.node(camera=0, translation=[0, 0, 5], scale=[-1, 2, 1]),
+             g.node(camera=0, matrix=[1, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 5, 1])])
+    g.write("valid/degenerate_cameras.gltf", "loads: cameras with scale 0, mirrored, sheared -> rotations (det +1)")
+
+    g = Gltf()
     g.doc["extensionsUsed"] = ["KHR_lights_punctual"]
     g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [
         {"type": "point", "color": [1, 0.5, 0.25], "intensity": 10, "range": 3},
