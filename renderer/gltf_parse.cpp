@@ -19,8 +19,9 @@ struct FileAccess {
 bool fileExists(const std::string& path, void* user) {
   const auto* access = static_cast<const FileAccess*>(user);
   // tinygltf tries "<baseDir>/<uri>" and then "./<uri>"; only the first is the file's own folder.
-  if (access->baseDir.empty() || path.compare(0, access->baseDir.size() + 1, access->baseDir + "/") != 0)
-    return false;
+  if (access->baseDir.empty()) return false;
+  const std::string prefix = access->baseDir.back() == '/' ? access->baseDir : access->baseDir + "/";
+  if (path.compare(0, prefix.size(), prefix) != 0) return false;
   std::error_code ec;
   return std::filesystem::is_regular_file(path, ec);
 }
