@@ -45,5 +45,28 @@ bench: build
 stress: build
 	$(GBLENS) stress
 
+# The glTF loader under libFuzzer + ASan + UBSan (clang-14, libclang-rt-14-dev), seeded with the
+# test corpus; new inputs go to build-fuzz/corpus, crashes to build-fuzz/crashes. Not run in CI.
+FUZZ_SECONDS ?= 60
+fuzz:
+	@command -v clang++-14 >/dev/null && test -e /usr/lib/llvm-14/lib/clang/14.0.6/lib/linux/libclang_rt.fuzzer-x86_64.a || \
+	  { echo "make fuzz: needs clang-14 and libclang-rt-14-dev (sudo apt-get install clang-14 libclang-rt-14-dev)"; exit 1; }
+	cmake -S tests/fuzz -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo
+	cmake --build build-fuzz -j $(JOBS)
+	mkdir -p build-fuzz/corpus build-fuzz/crashes
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp build-fuzz/fuzz_gltf build-fuzz/corpus tests/data/gltf/valid tests/data/gltf/invalid -dict=tests/fuzz/gltf.dict \
+	  -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=4096 -max_len=65536 \
+	  -artifact_prefix=build-fuzz/crashes/ -print_final_stats=1
+
+# The test suite built with -DGBLENS_SANITIZE=ON (AddressSanitizer + UndefinedBehaviorSanitizer)
+# in build-asan. ASAN_TESTS narrows it (a ctest -R regex), e.g. ASAN_TESTS=Gltf.
+ASAN_TESTS ?= .
+test-asan: deps
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGBLENS_SANITIZE=ON
+	cmake --build build-asan -j $(JOBS)
+	cd build-asan && LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp ASAN_OPTIONS=abort_on_error=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest --output-on-failure -j 2 --timeout 1800 -R '$(ASAN_TESTS)'
+
 clean:
 	rm -rf $(BUILD)

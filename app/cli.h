@@ -42,6 +42,7 @@ struct Command {
 };
 
 Command addRenderCommand(CLI::App& root);
+Command addInfoCommand(CLI::App& root);
 Command addViewCommand(CLI::App& root);
 Command addCaptureCommand(CLI::App& root);
 Command addCompareCommand(CLI::App& root);

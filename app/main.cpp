@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
       gb::addCaptureCommand(app),
       gb::addCompareCommand(app),
       gb::addProbeCommand(app),
+      gb::addInfoCommand(app),
   };
   for (int i = 0; i < argc; ++i) gb::commandLine() += (i ? " " : "") + std::string(i ? argv[i] : "gblens");
   // An unknown first word is a mistyped command: name it and the commands there are.

@@ -188,8 +188,11 @@ static void prepareFrame(Renderer& r) {
 
   classifyLights(s, r.view, o.time, r.lights);
   GB_ASSERT(r.lights.eye.size() <= r.lightBuffer.size / sizeof(gpu::PointLight));
-  std::memcpy(r.lightBuffer.mapped, r.lights.eye.data(), r.lights.eye.size() * sizeof(gpu::PointLight));
-  std::memcpy(r.visibleBuffer.mapped, r.lights.visible.data(), r.lights.visible.size() * sizeof(uint32_t));
+  // (memcpy from an empty vector's null data() is undefined even for 0 bytes: UBSan reports it)
+  if (!r.lights.eye.empty())
+    std::memcpy(r.lightBuffer.mapped, r.lights.eye.data(), r.lights.eye.size() * sizeof(gpu::PointLight));
+  if (!r.lights.visible.empty())
+    std::memcpy(r.visibleBuffer.mapped, r.lights.visible.data(), r.lights.visible.size() * sizeof(uint32_t));
 
   gpu::FrameData f{};
   f.clipFromEye = glm::mat4(r.view.clipFromEye);

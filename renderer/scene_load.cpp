@@ -6,7 +6,7 @@
 
 namespace gb {
 
-Scene loadScene(const std::string& spec, int lightCount) {
+Scene loadScene(const std::string& spec, int lightCount, SceneLoadStats* stats) {
   if (spec == "builtin:temple") return builtinTemple(lightCount);
   if (spec.rfind("builtin:", 0) == 0)
     throw SceneError{"unknown built-in scene '" + spec + "' (available: builtin:temple)"};
@@ -15,8 +15,10 @@ Scene loadScene(const std::string& spec, int lightCount) {
   for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".gltf" && ext != ".glb")
     throw SceneError{spec + ": not a scene (expected builtin:temple, a .gltf or a .glb file)"};
-  if (!std::filesystem::exists(path)) throw SceneError{spec + ": no such file"};
-  return loadGltf(spec, lightCount);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw SceneError{spec + ": no such file"};
+  if (!std::filesystem::is_regular_file(path, ec)) throw SceneError{spec + ": not a regular file"};
+  return loadGltf(spec, lightCount, stats);
 }
 
 }  // namespace gb

@@ -14,5 +14,14 @@ layout(constant_id = kSpecReversedZ) const uint REVERSED_Z = 0;
 layout(constant_id = kSpecNormalEncoding) const uint NORMAL_ENCODING = kNormalRgba16f;
 layout(constant_id = kSpecNormalMap) const uint NORMAL_MAP = 0;
 
+// A material's texture coordinates: xy base colour, zw normal texture, each from its UV set with
+// its KHR_texture_transform applied. Computed per vertex: a fragment shader must not build them
+// from material data, because lavapipe's helper invocations read zeros from storage buffers and
+// the derivatives (texture LOD) along triangle edges would come out huge (dashed seams).
+vec4 materialUvs(Material m, vec2 uv0, vec2 uv1) {
+  vec3 b = vec3(m.textures.z == 0 ? uv0 : uv1, 1.0), n = vec3(m.textures.w == 0 ? uv0 : uv1, 1.0);
+  return vec4(dot(m.baseUv0.xyz, b), dot(m.baseUv1.xyz, b), dot(m.normalUv0.xyz, n), dot(m.normalUv1.xyz, n));
+}
+
 // Hardware depth of the far plane: where nothing was drawn.
 float farDepth() { return REVERSED_Z != 0 ? 0.0 : 1.0; }

@@ -23,7 +23,7 @@ void main() {
   outEye = eye.xyz;
   outNormal = mat3(d.normalEyeFromObject) * inNormal;
   outTangent = vec4(mat3(d.eyeFromObject) * inTangent.xyz, inTangent.w);
-  outUv = vec4(inUv0, inUv1);
+  outUv = materialUvs(materials[d.info.x], inUv0, inUv1);
   outLightClip = d.lightClipFromObject * vec4(inPosition, 1.0);
   outMaterial = d.info.x;
 }

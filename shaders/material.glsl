@@ -1,15 +1,11 @@
 // Material evaluation shared by the G-buffer, shadow and forward passes. The material's textures
-// are pushed per draw (a white / flat texture stands in when the material has none).
+// are pushed per draw (a white / flat texture stands in when the material has none). `uvs` are
+// the vertex stage's materialUvs() (common.glsl): xy base colour, zw normal texture.
 layout(set = 1, binding = kBindingBaseColorTexture) uniform sampler2D baseColorTexture;
 layout(set = 1, binding = kBindingNormalTexture) uniform sampler2D normalTexture;
 
-vec2 materialUv(vec4 uvs, int set, vec4 row0, vec4 row1) {
-  vec3 uv = vec3(set == 0 ? uvs.xy : uvs.zw, 1.0);
-  return vec2(dot(row0.xyz, uv), dot(row1.xyz, uv));
-}
-
 vec4 baseColor(Material m, vec4 uvs) {
-  return m.baseColor * texture(baseColorTexture, materialUv(uvs, m.textures.z, m.baseUv0, m.baseUv1));
+  return m.baseColor * texture(baseColorTexture, uvs.xy);
 }
 
 // Unit eye-space normal: interpolated, flipped for back faces of double-sided materials,
@@ -22,7 +18,7 @@ vec3 surfaceNormal(Material m, vec3 normal, vec4 tangent, vec4 uvs, bool frontFa
     if (dot(t, t) > 1e-20) {
       vec3 T = normalize(t);
       vec3 B = cross(N, T) * (tangent.w < 0.0 ? -1.0 : 1.0);
-      vec3 tn = texture(normalTexture, materialUv(uvs, m.textures.w, m.normalUv0, m.normalUv1)).xyz * 2.0 - 1.0;
+      vec3 tn = texture(normalTexture, uvs.zw).xyz * 2.0 - 1.0;
       tn.xy *= m.params.z;
       vec3 n = T * tn.x + B * tn.y + N * tn.z;
       if (dot(n, n) > 1e-20) N = normalize(n);

@@ -13,6 +13,6 @@ layout(location = 1) flat out uint outMaterial;
 void main() {
   DrawData d = draws[gl_InstanceIndex];
   gl_Position = d.lightClipFromObject * vec4(inPosition, 1.0);
-  outUv = vec4(inUv0, inUv1);
+  outUv = materialUvs(materials[d.info.x], inUv0, inUv1);
   outMaterial = d.info.x;
 }
