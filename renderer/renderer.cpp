@@ -16,15 +16,18 @@ namespace gb {
 
 // ---- targets -------------------------------------------------------------------------------
 
+bool primitiveIdOn(const GpuContext& ctx, const RenderOptions& o) { return o.primitiveId && ctx.features.primitiveId; }
+
 static std::string targetsKey(const GpuContext& ctx, const Scene& s, const RenderOptions& o) {
   std::ostringstream k;
   k << o.width << 'x' << o.height << ' ' << name(o.normalFormat) << ' ' << name(o.depthFormat) << ' '
     << name(o.accumFormat) << ' ' << name(o.shadowFormat) << ' ' << (s.sun.enabled ? o.shadowMapSize : 1) << ' '
-    << o.coverage << ' ' << (o.path == Path::SinglePass && !o.keepGBuffer) << ' ' << ctx.deviceName;
+    << o.coverage << ' ' << (o.path == Path::SinglePass && !o.keepGBuffer) << ' ' << primitiveIdOn(ctx, o) << ' '
+    << name(o.position) << ' ' << ctx.deviceName;
   return k.str();
 }
 
-static ImageDesc targetDesc(Target t, const Scene& s, const RenderOptions& o) {
+static ImageDesc targetDesc(const GpuContext& ctx, Target t, const Scene& s, const RenderOptions& o) {
   ImageDesc d;
   d.format = targetFormat(t, o);
   d.width = o.width;
@@ -55,6 +58,19 @@ static ImageDesc targetDesc(Target t, const Scene& s, const RenderOptions& o) {
       d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                 VK_IMAGE_USAGE_SAMPLED_BIT;
       break;
+    case Target::PrimitiveId:
+      if (!primitiveIdOn(ctx, o)) d.width = d.height = 1;  // not requested: a valid, tiny image
+      d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+      break;
+    case Target::Position:
+      if (o.position == PositionSource::Depth) {
+        d.width = d.height = 1;
+        d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+      } else {
+        d.transient = o.path == Path::SinglePass && !o.keepGBuffer;
+        d.usage = d.transient ? (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT) : color;
+      }
+      break;
     case Target::Count: break;
   }
   return d;
@@ -77,7 +93,8 @@ static void ensureTargets(Renderer& r, const RenderOptions& o) {
   if (r.targetsValid && key == r.targetsKey) return;
   vkDeviceWaitIdle(r.ctx->device);
   destroyTargets(r);
-  for (size_t i = 0; i < kTargetCount; ++i) r.targets[i].image = createImage(*r.ctx, targetDesc(Target(i), *r.scene, o));
+  for (size_t i = 0; i < kTargetCount; ++i)
+    r.targets[i].image = createImage(*r.ctx, targetDesc(*r.ctx, Target(i), *r.scene, o));
   r.targets[size_t(Target::ShadowMap)].keep = true;  // reused while the sun and geometry stay
   r.targetsValid = true;
   r.targetsKey = key;
@@ -112,7 +129,11 @@ std::vector<SpecConstant> commonSpec(const Renderer& r) {
     case NormalFormat::OctRg16: normal = gpu::kNormalOctRg16; break;
     case NormalFormat::Rgb10a2: normal = gpu::kNormalRgb10a2; break;
   }
+  uint32_t position = gpu::kPositionDepth;
+  if (r.options.position != PositionSource::Depth)
+    position = r.options.positionSpace == PositionSpace::World ? gpu::kPositionWorld : gpu::kPositionCamera;
   return {{gpu::kSpecEyeDepth, r.options.eyeDepth ? 1u : 0u},
+          {gpu::kSpecPosition, position},
           {gpu::kSpecReversedZ, r.options.reversedZ ? 1u : 0u},
           {gpu::kSpecNormalEncoding, normal},
           {gpu::kSpecCoverage, r.options.coverage ? 1u : 0u}};
@@ -172,6 +193,7 @@ static void prepareFrame(Renderer& r) {
 
   // Draws: camera-relative transforms formed in double.
   auto* draws = static_cast<gpu::DrawData*>(r.drawBuffer.mapped);
+  uint32_t firstPrimitive = 1;  // primitive_id: 0 is "no geometry"
   for (size_t i = 0; i < s.instances.size(); ++i) {
     const Instance& inst = s.instances[i];
     glm::dmat4 eyeFromObject = r.view.eyeFromWorld * inst.worldFromObject;
@@ -181,7 +203,8 @@ static void prepareFrame(Renderer& r) {
     d.normalEyeFromObject = glm::mat4(glm::mat3(normal));
     d.lightClipFromObject = glm::mat4(r.lightClipFromWorld * inst.worldFromObject);
     d.info = glm::uvec4(uint32_t(s.meshes[inst.mesh].material), glm::determinant(glm::dmat3(inst.worldFromObject)) < 0.0,
-                        0u, 0u);
+                        firstPrimitive, 0u);
+    firstPrimitive += s.meshes[inst.mesh].indexCount / 3;
     draws[i] = d;
   }
 

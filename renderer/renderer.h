@@ -123,6 +123,9 @@ VkCompareOp closerOrEqual(const Renderer& r);   // LESS_OR_EQUAL, or GREATER_OR_
 VkCompareOp fartherOrEqual(const Renderer& r);  // the opposite
 float farDepth(const Renderer& r);
 
+// The primitive_id target is written this frame (requested, and the device has gl_PrimitiveID).
+bool primitiveIdOn(const GpuContext& ctx, const RenderOptions& o);
+
 // Specialization constants every pipeline gets (eye depth, reversed Z, normal encoding, ...).
 std::vector<SpecConstant> commonSpec(const Renderer& r);
 

@@ -1,6 +1,9 @@
 # Every shader variant embedded in the binary: gblens_shader(NAME SOURCE [DEFINES...]).
 gblens_shader(gbuffer.vert gbuffer.vert)
 gblens_shader(gbuffer.frag gbuffer.frag)
+gblens_shader(gbuffer.id.frag gbuffer.frag GB_PRIMITIVE_ID)
+gblens_shader(gbuffer.position.frag gbuffer.frag GB_POSITION)
+gblens_shader(gbuffer.id.position.frag gbuffer.frag GB_PRIMITIVE_ID GB_POSITION)
 gblens_shader(shadow.vert shadow.vert)
 gblens_shader(shadow.frag shadow.frag)
 gblens_shader(fullscreen.vert fullscreen.vert)

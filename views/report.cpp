@@ -13,24 +13,18 @@ static double medianOf(std::vector<double> v) {
 }
 
 nlohmann::json optionsJson(const RenderOptions& o) {
-  return {{"size", std::to_string(o.width) + "x" + std::to_string(o.height)},
-          {"time", o.time},
-          {"lights", o.lights},
-          {"camera", o.camera},
-          {"path", name(o.path)},
-          {"method", name(o.method)},
-          {"eye_depth", o.eyeDepth ? "on" : "off"},
-          {"stencil_culling", o.stencilCulling ? "on" : "off"},
-          {"stencil_mask", name(o.stencilMask)},
-          {"reversed_z", o.reversedZ},
-          {"normal_format", name(o.normalFormat)},
-          {"depth_format", name(o.depthFormat)},
-          {"accum_format", name(o.accumFormat)},
-          {"shadow_format", name(o.shadowFormat)},
-          {"shadow_map_size", o.shadowMapSize},
-          {"shadow_bias", {{"constant", o.shadowBiasConstant}, {"slope", o.shadowBiasSlope}, {"clamp", o.shadowBiasClamp}}},
-          {"fairies", o.fairies},
-          {"exposure", o.exposure}};
+  // Every option-table entry under its one name; numbers as JSON numbers.
+  nlohmann::json j = nlohmann::json::object();
+  for (const OptionInfo& info : optionTable()) {
+    std::string v = getOption(o, info.name);
+    if (info.kind == OptionKind::Integer)
+      j[info.name] = std::stoll(v);
+    else if (info.kind == OptionKind::Real)
+      j[info.name] = std::stod(v);
+    else
+      j[info.name] = v;
+  }
+  return j;
 }
 
 nlohmann::json statsJson(const std::vector<FrameStats>& frames, const GpuContext& ctx, const RenderOptions& o,
