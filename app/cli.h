@@ -41,6 +41,8 @@ struct Command {
 };
 
 Command addRenderCommand(CLI::App& root);
+Command addErrorCommand(CLI::App& root);
+Command addBenchCommand(CLI::App& root);
 
 // Loads SCENE; on a user mistake prints one line and returns false (caller exits 2).
 bool loadSceneOrReport(const CommonOptions& o, Scene& scene);

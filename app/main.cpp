@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
   app.set_help_all_flag("--help-all", "help for every subcommand");
   std::vector<gb::Command> commands = {
       gb::addRenderCommand(app),
+      gb::addErrorCommand(app),
   };
   try {
     app.parse(argc, argv);

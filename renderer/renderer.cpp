@@ -169,7 +169,7 @@ float farDepth(const Renderer& r) { return r.options.reversedZ ? 0.0f : 1.0f; }
 // ---- per-frame CPU work -----------------------------------------------------------------------
 
 // The sun's orthographic view, fitted to the scene's bounding sphere (stable as the camera moves).
-static glm::dmat4 fitShadowMap(const Scene& s) {
+glm::dmat4 shadowClipFromWorld(const Scene& s) {
   glm::dvec3 centre = s.bounds.center();
   double radius = std::max(s.bounds.radius(), 1e-6);
   glm::dvec3 up = std::abs(s.sun.toSun.y) > 0.99 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
@@ -189,11 +189,11 @@ static void prepareFrame(Renderer& r) {
   GB_ASSERT(!s.cameras.empty());
   const CameraDesc& cam = s.cameras[size_t(o.camera) < s.cameras.size() ? size_t(o.camera) : 0];
   r.view = makeView(cam, o.width, o.height, o.reversedZ);
-  r.lightClipFromWorld = fitShadowMap(s);
+  r.lightClipFromWorld = shadowClipFromWorld(s);
 
   // Draws: camera-relative transforms formed in double.
   auto* draws = static_cast<gpu::DrawData*>(r.drawBuffer.mapped);
-  uint32_t firstPrimitive = 1;  // primitive_id: 0 is "no geometry"
+  const std::vector<uint32_t> firstPrimitive = firstPrimitiveIds(s);
   for (size_t i = 0; i < s.instances.size(); ++i) {
     const Instance& inst = s.instances[i];
     glm::dmat4 eyeFromObject = r.view.eyeFromWorld * inst.worldFromObject;
@@ -203,8 +203,7 @@ static void prepareFrame(Renderer& r) {
     d.normalEyeFromObject = glm::mat4(glm::mat3(normal));
     d.lightClipFromObject = glm::mat4(r.lightClipFromWorld * inst.worldFromObject);
     d.info = glm::uvec4(uint32_t(s.meshes[inst.mesh].material), glm::determinant(glm::dmat3(inst.worldFromObject)) < 0.0,
-                        firstPrimitive, 0u);
-    firstPrimitive += s.meshes[inst.mesh].indexCount / 3;
+                        firstPrimitive[i], 0u);
     draws[i] = d;
   }
 
@@ -232,6 +231,7 @@ static void prepareFrame(Renderer& r) {
   f.counts = glm::uvec4(uint32_t(r.lights.visible.size()), uint32_t(r.lights.visible.size()) - r.lights.stencilCount,
                         0u, 0u);
   std::memcpy(r.frameBuffer.mapped, &f, sizeof(f));
+  r.frameData = f;
 }
 
 // ---- read-back ----------------------------------------------------------------------------------
