@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "app/accuracy.h"
+#include "views/accuracy.h"
 #include "app/cli.h"
 #include "views/report.h"
 

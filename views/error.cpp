@@ -216,7 +216,9 @@ FrameError measureError(const GpuFrame& g, const ReferenceView& ref, unsigned th
         double d = std::abs(g.hdr->value(x, y, c) - s.hdr[i][c]);
         dMax = std::max(dMax, d);
         rMax = std::max(rMax, std::abs(s.hdr[i][c]));
-        per = std::max(per, d / std::max(std::max(s.count[i], 1u) * s.absSum[i][c], 1e-6));
+        // Below 2^-14 (the smallest normal half) relative precision is not representable in
+        // fp16: such sums are measured against 2^-14.
+        per = std::max(per, d / (std::max(s.count[i], 1u) * std::max(s.absSum[i][c], std::ldexp(1.0, -14))));
       }
       rel = dMax / std::max(rMax, 1e-3);
       lRel.push_back(rel);

@@ -104,12 +104,12 @@ UvSample uvSample(const Context& c, const Corner& k, uint32_t x, uint32_t y, dou
   return s;
 }
 
-Surface surfaceAt(const Context& c, uint32_t x, uint32_t y) {
+// The surface of triangle `h` where the ray through pixel (x, y) meets its plane (inside the
+// triangle when Embree found it there; extrapolated otherwise).
+Surface evaluate(const Context& c, RayScene::Hit h, uint32_t x, uint32_t y, bool sunRay) {
   Surface s;
   const View& view = c.view;
   glm::dvec3 d = eyeFromEyeDepth(view, x, y, 1.0);  // the pixel-centre ray, eye depth 1
-  RayScene::Hit h = c.rays.firstHit(c.cameraWorld, glm::dmat3(view.worldFromEye) * d);
-  if (!h.hit) return s;
   const Corner k = corners(c, h.instance, h.triangle);
   double t, b1, b2;
   if (!intersectPlane(d, k.eye[0], k.eye[1], k.eye[2], t, b1, b2) || !(t > 0.0)) return s;
@@ -164,7 +164,7 @@ Surface surfaceAt(const Context& c, uint32_t x, uint32_t y) {
   s.specular = std::clamp(double(m.specular), 0.0, 1.0);
 
   // The exact shadow, where it can matter: the face and the shading normal both turn toward the sun.
-  if (c.sun.enabled && glm::dot(N, c.sun.toSunEye) > 0.0 && glm::dot(s.geometricNormal, c.sun.toSunEye) > 0.0)
+  if (sunRay && c.sun.enabled && glm::dot(N, c.sun.toSunEye) > 0.0 && glm::dot(s.geometricNormal, c.sun.toSunEye) > 0.0)
     s.sunVisible = c.rays.reachesSun(s.world, c.toSunWorld, h.instance, h.triangle,
                                      c.shadowTnear + 1e-6 * glm::length(s.world))
                        ? 1
@@ -172,20 +172,40 @@ Surface surfaceAt(const Context& c, uint32_t x, uint32_t y) {
   return s;
 }
 
-}  // namespace
+Surface surfaceAt(const Context& c, uint32_t x, uint32_t y) {
+  glm::dvec3 d = eyeFromEyeDepth(c.view, x, y, 1.0);
+  RayScene::Hit h = c.rays.firstHit(c.cameraWorld, glm::dmat3(c.view.worldFromEye) * d);
+  return h.hit ? evaluate(c, h, x, y, true) : Surface{};
+}
 
-Frame renderFrame(const RayScene& rays, const View& view, unsigned threads) {
+// Everything a pixel needs; transforms of every instance, or only of `onlyInstance`.
+Context makeContext(const RayScene& rays, const View& view, int64_t onlyInstance = -1) {
   const Scene& scene = rays.scene();
   Context c{rays, scene, view, {}, firstPrimitiveIds(scene), glm::dvec3(view.worldFromEye[3]), sunOf(scene, view), {}, 0.0};
   c.toSunWorld = glm::normalize(scene.sun.toSun);
   c.shadowTnear = 1e-6 * std::max(scene.bounds.radius(), 1e-3);
-  for (const Instance& inst : scene.instances) {
-    InstanceTransform xf;
+  c.transforms.resize(scene.instances.size());
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    if (onlyInstance >= 0 && int64_t(i) != onlyInstance) continue;
+    const Instance& inst = scene.instances[i];
+    InstanceTransform& xf = c.transforms[i];
     xf.eyeFromObject = view.eyeFromWorld * inst.worldFromObject;  // camera-relative, as the renderer forms it
     xf.normalEyeFromObject = glm::transpose(glm::inverse(glm::dmat3(xf.eyeFromObject)));
     xf.mirrored = glm::determinant(glm::dmat3(inst.worldFromObject)) < 0.0;
-    c.transforms.push_back(xf);
   }
+  return c;
+}
+
+}  // namespace
+
+Surface surfaceOnTriangle(const RayScene& rays, const View& view, uint32_t instance, uint32_t triangle, uint32_t x,
+                          uint32_t y) {
+  Context c = makeContext(rays, view, instance);
+  return evaluate(c, {true, instance, triangle}, x, y, false);
+}
+
+Frame renderFrame(const RayScene& rays, const View& view, unsigned threads) {
+  Context c = makeContext(rays, view);
   Frame f;
   f.view = view;
   f.pixels.resize(size_t(view.width) * view.height);

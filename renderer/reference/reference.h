@@ -73,6 +73,11 @@ class RayScene {
 // Renders the reference for `view` (positions, normals, materials, sun visibility).
 Frame renderFrame(const RayScene& rays, const View& view, unsigned threads = 2);
 
+// The surface of one given triangle where the ray through pixel (x, y) meets its plane, even
+// outside the triangle (attribute changes per pixel, for tolerances); sunVisible stays -1.
+Surface surfaceOnTriangle(const RayScene& rays, const View& view, uint32_t instance, uint32_t triangle, uint32_t x,
+                          uint32_t y);
+
 // World size of one shadow-map texel for a map of `size` texels (the renderer's sun fit).
 double shadowTexelSize(const Scene& scene, uint32_t size);
 

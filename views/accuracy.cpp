@@ -1,5 +1,5 @@
 // ReferenceCache and measureFrame (see accuracy.h).
-#include "app/accuracy.h"
+#include "views/accuracy.h"
 
 #include <chrono>
 #include <sstream>
