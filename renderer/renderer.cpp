@@ -177,7 +177,11 @@ glm::dmat4 shadowClipFromWorld(const Scene& s) {
   double n = 0.5 * radius, f = 3.5 * radius;
   glm::dmat4 clipFromLight(1.0);
   clipFromLight[0][0] = 1.0 / radius;
-  clipFromLight[1][1] = 1.0 / radius;
+  // Clip y points down, as in the camera's projection: the same counter-clockwise front faces
+  // then face the sun, so back-face culling keeps the sun-facing casters. (With y up the winding
+  // was mirrored: only faces turned away from the sun were stored, open single-sided casters
+  // cast no shadow and closed ones leaked light at contacts.)
+  clipFromLight[1][1] = -1.0 / radius;
   clipFromLight[2][2] = -1.0 / (f - n);
   clipFromLight[3][2] = -n / (f - n);
   return clipFromLight * lightFromWorld;

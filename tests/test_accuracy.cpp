@@ -7,6 +7,7 @@
 
 #include "renderer/builtin.h"
 #include "renderer/codec.h"
+#include "renderer/geometry.h"
 #include "renderer/reference/reference.h"
 #include "tests/gpu_test.h"
 #include "views/accuracy.h"
@@ -225,6 +226,39 @@ TEST_F(Accuracy, PrimitiveIdIsOffByDefaultAndNamesTheReferenceTriangle) {
   EXPECT_GT(e.surface, total / 2);
   // Silhouettes are a thin line around objects: a few percent of the pixels at this size.
   EXPECT_LT(e.silhouette + e.coverageOnlyGpu + e.coverageOnlyReference, total * 3 / 100);
+}
+
+// An open, single-sided card facing the sun must cast its shadow (the shadow pass culls faces
+// turned away from the sun, so the winding of the light's projection must match the camera's),
+// and the shadow term must agree with the exact ray-traced one outside the penumbra band.
+TEST_F(Accuracy, AnOpenSingleSidedCardCastsTheExactShadow) {
+  Scene scene = floorScene(10.0);
+  MeshBuilder b{scene};
+  b.begin("card", 0);
+  b.quad({-1.0f, 2.0f, 1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -2.0f});  // y = 2, facing +Y
+  b.end();
+  scene.instances.push_back({b.meshIndex, glm::dmat4(1.0), true});
+  computeBounds(scene);
+  scene.sun.enabled = true;
+  scene.sun.toSun = glm::normalize(glm::dvec3(0.2, 1.0, 0.1));
+  scene.sky.ambient = glm::vec3(0.2f);
+  setCamera(scene, {0.0, 6.0, 7.0}, {0.0, 0.0, 0.0});
+  ReferenceCache cache(scene);
+  RenderOptions o = accuracyOptions();
+  o.lights = 0;
+  FrameError e = measureFrame(renderer(scene), o, cache);
+  Renderer& r = renderer(scene);
+  // The floor point under the card's centre, along the sun: shadowed; a point 4 units aside: lit.
+  glm::dvec3 under = glm::dvec3(0.0, 2.0, 0.0) - scene.sun.toSun * (2.0 / scene.sun.toSun.y);
+  auto shadowAt = [&](glm::dvec3 world) {
+    glm::dvec4 c = r.view.clipFromWorld * glm::dvec4(world, 1.0);
+    uint32_t x = uint32_t((c.x / c.w + 1.0) * 0.5 * o.width), y = uint32_t((c.y / c.w + 1.0) * 0.5 * o.height);
+    return r.readback[size_t(Target::NormalShadow)].value(x, y, 3);
+  };
+  EXPECT_EQ(shadowAt(under), 0.0);
+  EXPECT_EQ(shadowAt(under + glm::dvec3(4.0, 0.0, 0.0)), 1.0);
+  EXPECT_GT(e.shadow.compared, 3000u);
+  EXPECT_LT(e.shadow.fraction, 0.005) << e.shadow.mismatched << " of " << e.shadow.compared;
 }
 
 }  // namespace gb
