@@ -10,7 +10,8 @@
 namespace gb {
 
 void addCommonOptions(CLI::App* cmd, CommonOptions& o, const std::vector<std::string>& except) {
-  cmd->add_option("SCENE", o.scene, "builtin:temple, or a .gltf/.glb file")->capture_default_str();
+  if (std::find(except.begin(), except.end(), "scene") == except.end())
+    cmd->add_option("SCENE", o.scene, "builtin:temple, builtin:depth-range, or a .gltf/.glb file")->capture_default_str();
   // One flag per option-table entry: the flag, the JSON key and the bench name are one name.
   for (const OptionInfo& info : optionTable()) {
     if (std::find(except.begin(), except.end(), info.name) != except.end()) continue;

@@ -27,7 +27,8 @@ struct CommonOptions {
 
 // SCENE, one flag per entry of the option table (renderer/options.h: --size, --lights, --path,
 // --normal-format, ...), --frames, --stats, --device, --validate. (-o is added by the commands
-// that write something.) Flags a command does not want can be listed in `except`.
+// that write something.) Flags a command does not want, or "scene" for the positional, can be
+// listed in `except`.
 void addCommonOptions(CLI::App* cmd, CommonOptions& o, const std::vector<std::string>& except = {});
 
 // Completes RenderOptions from the parsed strings; on a malformed value returns false with a

@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   std::vector<gb::Command> commands = {
       gb::addRenderCommand(app),
       gb::addErrorCommand(app),
+      gb::addBenchCommand(app),
   };
   try {
     app.parse(argc, argv);
