@@ -72,8 +72,12 @@ TEST(Reference, SpherePositionsLieOnTheHitTriangleAndNormalsInterpolate) {
       glm::dvec3 d = glm::normalize(eyeFromEyeDepth(v, x, y, 1.0));
       double missDistance = glm::length(cEye - d * glm::dot(cEye, d));  // ray to centre
       const reference::Surface& s = f.at(x, y);
-      if (missDistance > R * 1.000001) ASSERT_FALSE(s.hit) << x << "," << y;
-      if (missDistance < inner) ASSERT_TRUE(s.hit) << x << "," << y;
+      if (missDistance > R * 1.000001) {
+        ASSERT_FALSE(s.hit) << x << "," << y;
+      }
+      if (missDistance < inner) {
+        ASSERT_TRUE(s.hit) << x << "," << y;
+      }
       if (!s.hit) continue;
       ++hits;
       // The hit triangle, independently: world-space vertices in double.

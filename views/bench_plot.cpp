@@ -87,8 +87,8 @@ static bool plotTimeVsError(const BenchReport& r, const std::string& dir, std::s
   const std::string tmp = (fs::path(dir) / ".time_vs_error.tmp.png").string();
   gp << header(int(std::max<size_t>(2, scenes.size()) * 640), int(430 * groups.size()), tmp);
   gp << "set multiplot layout " << groups.size() << "," << scenes.size()
-     << " title 'gblens bench: frame time vs error, one point per variant\n(bars: min-max of the timed frames; red line: "
-        "Pareto frontier; circle: the defaults)' font ',12'\n";
+     << " title \"gblens bench: frame time vs error, one point per variant\\n(bars: min-max of the timed frames; red "
+        "line: Pareto frontier; circle: the defaults)\" font ',12'\n";
   gp << "set key off\nset logscale x\nset format x '%.0e'\nset ylabel 'frame ms (median)'\nset offsets graph 0.08, "
         "graph 0.25, graph 0.12, graph 0.12\n";
   for (const BenchGroup* g : groups)
