@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "renderer/options.h"
 #include "views/bench_report.h"
 
 namespace gb {
@@ -17,8 +18,10 @@ struct BenchVariant {
   std::string label() const;  // short plot label: the values ("oct-rg16", "off+on")
 };
 
-// The default sweep: the defaults, then one axis at a time around them (normal, depth,
-// position, accumulation, shadow, path/culling), then light counts and sizes.
-std::vector<BenchVariant> defaultSweep(const std::vector<int>& lightCounts, const std::vector<std::string>& sizes);
+// The default sweep: the defaults, then one axis at a time around them (every other value of
+// normal_format, accum_format, path, culling, shadow format/size; fixed depth/position and bias
+// combinations), then light counts and sizes. Values equal to `base`'s are left out.
+std::vector<BenchVariant> defaultSweep(const RenderOptions& base, const std::vector<int>& lightCounts,
+                                       const std::vector<std::string>& sizes);
 
 }  // namespace gb

@@ -35,9 +35,12 @@ struct RenderOptions {
   bool stencilCulling = true;  // LIGHT_STENCIL_CULLING
   StencilMask stencilMask = StencilMask::PerLight;
   bool reversedZ = false;
-  NormalFormat normalFormat = NormalFormat::Rgba16f;
+  // Octahedral 16+16-bit normals and fp32 accumulation: `gblens bench` found each dominating the
+  // former defaults (rgba16f normals; fp16 accumulation) on lavapipe: same or lower frame time,
+  // lower error (normal 0.0029 -> 0.00045 deg mean; lighting 7e-4 -> 8e-8 relative).
+  NormalFormat normalFormat = NormalFormat::OctRg16;
   DepthFormat depthFormat = DepthFormat::D32S8;
-  AccumFormat accumFormat = AccumFormat::Rgba16f;
+  AccumFormat accumFormat = AccumFormat::Rgba32f;
   ShadowFormat shadowFormat = ShadowFormat::D32f;
   PositionSource position = PositionSource::Depth;
   PositionSpace positionSpace = PositionSpace::World;

@@ -72,13 +72,13 @@ TEST(CliAccuracy, ErrorWritesImagesAndRejectsBadFlags) {
 
 TEST(CliAccuracy, BenchWritesJsonCsvAndPlotsWithOneRowPerVariant) {
   std::string dir = tempDir("bench");
-  CliRun r = run("bench builtin:temple /nonexistent/model.gltf --only default,normal_format=oct-rg16,lights "
+  CliRun r = run("bench builtin:temple /nonexistent/model.gltf --only default,normal_format=rgba16f,lights "
               "--lights-sweep 0,4 --size 96x54 --frames 3 --warmup 1 --depth-range off --out " + dir);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("skipping /nonexistent/model.gltf"), std::string::npos) << r.out;
   std::ifstream jf(std::filesystem::path(dir) / "bench.json");
   nlohmann::json j = nlohmann::json::parse(jf);
-  ASSERT_EQ(j["rows"].size(), 5u);  // default, oct-rg16, lights=0, lights=4, default (repeat)
+  ASSERT_EQ(j["rows"].size(), 5u);  // default, rgba16f normals, lights=0, lights=4, default (repeat)
   for (const auto& row : j["rows"]) {
     EXPECT_TRUE(row["measured"].get<bool>()) << row["variant"];
     EXPECT_EQ(row["frames"].get<int>(), 3);
@@ -87,7 +87,7 @@ TEST(CliAccuracy, BenchWritesJsonCsvAndPlotsWithOneRowPerVariant) {
     EXPECT_GT(row["error"]["normal_deg_mean"].get<double>(), 0.0);
     EXPECT_EQ(row["options"]["size"], "96x54");
   }
-  EXPECT_EQ(j["rows"][1]["options"]["normal_format"], "oct-rg16");
+  EXPECT_EQ(j["rows"][1]["options"]["normal_format"], "rgba16f");
   EXPECT_EQ(j["rows"][2]["options"]["lights"], 0);
   ASSERT_EQ(j["defaults"].size(), 1u);
   EXPECT_EQ(j["skipped_scenes"].size(), 1u);

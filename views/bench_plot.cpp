@@ -176,18 +176,23 @@ static bool plotDepthRange(const BenchReport& r, const std::string& dir, std::st
   namespace fs = std::filesystem;
   if (r.depthRange.empty()) return true;
   const std::string plotDir = (fs::path(dir) / "plot").string();
-  std::map<std::string, std::string> series;
-  for (const DepthRangeRow& d : r.depthRange) series[d.source] += std::to_string(d.ratio) + " " + std::to_string(std::max(d.relMax, 1e-12)) + "\n";
+  std::map<std::string, std::ostringstream> series;
+  for (const DepthRangeRow& d : r.depthRange) {
+    std::ostringstream& s = series[d.source];
+    s.precision(9);
+    s << d.ratio << " " << std::max(d.relMax, 1e-12) << "\n";
+  }
   const std::string tmp = (fs::path(dir) / ".depth_range.tmp.png").string();
   std::ostringstream gp;
   gp << header(900, 560, tmp);
   gp << "set title 'builtin:depth-range: position reconstruction error vs far/near' font ',12'\n";
   gp << "set logscale xy\nset format y '%.0e'\nset key outside right\nset xlabel 'far / near'\n"
-        "set ylabel 'max |P - P_ref| / depth'\n";
+        "set ylabel 'max |P - P_ref| / depth'\nset label 1 'd24_standard lies on d32_standard: near depth 1 a float32 "
+        "has 24 bits too' at graph 0.02, graph 0.96 font ',9'\n";
   std::string plot = "plot 1e-6 with lines dt 2 lc rgb '#666666' title 'target 1e-6', 2e-6 with lines dt 3 lc rgb '#999999' title '2e-6'";
   for (auto& [source, data] : series) {
     std::string file = plotDir + "/depth_range_" + fileSafe(source) + ".dat";
-    writeText(file, data);
+    writeText(file, data.str());
     plot += ", " + gpQuote(file) + " using 1:2 with linespoints lw 2 pt 7 title " + gpQuote(source);
   }
   gp << plot << "\n";

@@ -90,9 +90,46 @@ void markFrontiers(std::vector<BenchRow>& rows) {
     }
 }
 
-// The figures a variant must not make worse to dominate the defaults.
-static const char* const kObjectives[] = {"normal_deg_mean", "position_rel_mean", "shadow_mismatch", "lighting_rel_mean",
-                                          "hdr_rel_mean"};
+const std::vector<std::pair<std::string, double>>& dominanceObjectives() {
+  static const std::vector<std::pair<std::string, double>> objectives = {
+      {"normal_deg_mean", 1e-4},    // a ten-thousandth of a degree
+      {"position_rel_mean", 1e-7},  // about one float32 ulp of relative precision
+      {"shadow_mismatch", 1e-4},    // a hundredth of a percent of the compared pixels
+      {"lighting_rel_mean", 1e-6},
+      {"hdr_rel_mean", 1e-4},
+  };
+  return objectives;
+}
+
+// Every compared error figure of v within tolerance of d's; `better`: one beyond it.
+static bool errorsNoWorse(const BenchRow& v, const BenchRow& d, const BenchTolerances& tol, bool& better) {
+  bool noWorse = true;
+  better = false;
+  for (const auto& [k, floor] : dominanceObjectives()) {
+    auto iv = v.error.find(k), id = d.error.find(k);
+    if (iv == v.error.end() || id == d.error.end()) continue;
+    noWorse &= iv->second <= id->second * (1.0 + tol.error) + floor;
+    better |= iv->second < id->second * (1.0 - tol.error) - floor;
+  }
+  return noWorse;
+}
+
+static bool qualityVariant(const BenchRow& v) {
+  const BenchGroup* g = findBenchGroup(v.group);
+  return v.measured && g && !g->metric.empty() && v.group != "default";
+}
+
+std::vector<std::string> errorNoWorseThanDefaults(const std::vector<BenchRow>& rows, const std::string& scene,
+                                                  const BenchTolerances& tol) {
+  std::vector<std::string> out;
+  const BenchRow* d = defaultRow(rows, scene);
+  if (!d) return out;
+  for (const BenchRow& v : rows) {
+    bool better;
+    if (v.scene == scene && qualityVariant(v) && errorsNoWorse(v, *d, tol, better)) out.push_back(v.name);
+  }
+  return out;
+}
 
 std::vector<DefaultsCheck> checkDefaults(const std::vector<BenchRow>& rows, const BenchTolerances& tol) {
   std::vector<DefaultsCheck> out;
@@ -109,18 +146,12 @@ std::vector<DefaultsCheck> checkDefaults(const std::vector<BenchRow>& rows, cons
     DefaultsCheck c;
     c.scene = scene;
     for (const BenchRow& v : rows) {
-      if (&v == first || v.scene != scene || !v.measured || !findBenchGroup(v.group) || findBenchGroup(v.group)->metric.empty())
-        continue;
+      if (&v == first || v.scene != scene || !qualityVariant(v)) continue;
       // No worse anywhere (within tolerance), better somewhere (beyond it).
-      bool noWorse = v.frameMs.median <= d->frameMs.median * (1.0 + tol.time);
-      bool better = v.frameMs.median < d->frameMs.median * (1.0 - tol.time);
-      for (const char* k : kObjectives) {
-        auto iv = v.error.find(k), id = d->error.find(k);
-        if (iv == v.error.end() || id == d->error.end()) continue;
-        double floor = 1e-12;
-        noWorse &= iv->second <= id->second * (1.0 + tol.error) + floor;
-        better |= iv->second < id->second * (1.0 - tol.error) - floor;
-      }
+      double ratio = v.abTimeRatio > 0.0 ? v.abTimeRatio : v.frameMs.median / d->frameMs.median;
+      bool errorBetter;
+      bool noWorse = errorsNoWorse(v, *d, tol, errorBetter) && ratio <= 1.0 + tol.time;
+      bool better = errorBetter || ratio < 1.0 - tol.time;
       if (noWorse && better) c.dominatedBy.push_back(v.name);
     }
     c.onFrontier = c.dominatedBy.empty();
@@ -160,18 +191,24 @@ static nlohmann::json targetsJson(const BenchReport& r) {
         if (row.scene == scene && row.name == name && row.measured) return &row;
       return nullptr;
     };
-    if (const BenchRow* d = find("default")) {
+    const BenchRow* d = find("default");
+    if (d) {
       double n = d->error.at("normal_deg_mean");
       t.push_back({{"target", "normal mean angular error <= 0.03 deg with the default format (" +
                                   std::string(name(d->options.normalFormat)) + ")"},
                    {"scene", scene}, {"measured", n}, {"bound", 0.03}, {"met", n <= 0.03}});
-      if (d->options.accumFormat == AccumFormat::Rgba16f) {
-        double l = d->error.at("lighting_per_contribution_max");
-        t.push_back({{"target", "HDR (lighting passes, silhouettes excluded) per light contribution <= 2^-10 with fp16"},
-                     {"scene", scene}, {"measured", l}, {"bound", std::ldexp(1.0, -10)}, {"met", l <= std::ldexp(1.0, -10)}});
-      }
     }
-    if (const BenchRow* f = find("accum_format=rgba32f")) {
+    // The defaults' row or the accum_format variant, whichever has the format.
+    auto accum = [&](AccumFormat f) -> const BenchRow* {
+      if (d && d->options.accumFormat == f) return d;
+      return find(std::string("accum_format=") + name(f));
+    };
+    if (const BenchRow* h = accum(AccumFormat::Rgba16f)) {
+      double l = h->error.at("lighting_per_contribution_max");
+      t.push_back({{"target", "HDR (lighting passes, silhouettes excluded) per light contribution <= 2^-10 with fp16"},
+                   {"scene", scene}, {"measured", l}, {"bound", std::ldexp(1.0, -10)}, {"met", l <= std::ldexp(1.0, -10)}});
+    }
+    if (const BenchRow* f = accum(AccumFormat::Rgba32f)) {
       double l = f->error.at("lighting_per_contribution_max");
       t.push_back({{"target", "HDR (lighting passes, silhouettes excluded) per light contribution <= 1e-5 with fp32"},
                    {"scene", scene}, {"measured", l}, {"bound", 1e-5}, {"met", l <= 1e-5}});
@@ -208,6 +245,7 @@ nlohmann::json benchJson(const BenchReport& r) {
       o["error"] = row.error;
       o["error_detail"] = row.errorDetail;
       o["frontier"] = row.frontier;
+      if (row.abPairs) o["ab_vs_defaults"] = {{"time_ratio", row.abTimeRatio}, {"pairs", row.abPairs}};
     }
     rows.push_back(o);
   }
@@ -224,7 +262,9 @@ nlohmann::json benchJson(const BenchReport& r) {
   for (const DefaultsCheck& c : r.defaults)
     defaults.push_back({{"scene", c.scene}, {"on_frontier", c.onFrontier}, {"dominated_by", c.dominatedBy}});
   j["defaults"] = defaults;
-  j["dominance_tolerance"] = {{"time", r.tolerances.time}, {"error", r.tolerances.error}};
+  nlohmann::json floors;
+  for (const auto& [k, f] : dominanceObjectives()) floors[k] = f;
+  j["dominance_tolerance"] = {{"time", r.tolerances.time}, {"error", r.tolerances.error}, {"error_floors", floors}};
   j["targets"] = targetsJson(r);
   return j;
 }
@@ -283,20 +323,21 @@ std::string benchMarkdown(const BenchReport& r) {
   for (const BenchRow& row : r.rows) scenes.insert(row.scene);
   for (const std::string& scene : scenes) {
     md << "## " << scene << "\n\n";
-    md << "| group | variant | frame ms (median [min-max]) | frames | error figure | value | frontier |\n";
-    md << "| --- | --- | --- | --- | --- | --- | --- |\n";
+    md << "| group | variant | frame ms (median [min-max]) | frames | error figure | value | frontier | A/B vs defaults |\n";
+    md << "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
     for (const BenchRow& row : r.rows) {
       if (row.scene != scene) continue;
       const BenchGroup* g = findBenchGroup(row.group);
       std::string metric = g && !g->metric.empty() ? g->metric : "hdr_rel_mean";
       md << "| " << row.group << " | " << row.name << " | ";
       if (!row.measured) {
-        md << "skipped: " << row.note << " | | | | |\n";
+        md << "skipped: " << row.note << " | | | | | |\n";
         continue;
       }
       md << num(row.frameMs.median, 4) << " [" << num(row.frameMs.min, 4) << "-" << num(row.frameMs.max, 4) << "] | "
          << row.frames << " | " << metric << " | " << (row.error.count(metric) ? num(row.error.at(metric)) : "") << " | "
-         << (row.frontier ? "yes" : "") << " |\n";
+         << (row.frontier ? "yes" : "") << " | " << (row.abPairs ? num(row.abTimeRatio) + "x (" + std::to_string(row.abPairs) + " pairs)" : "")
+         << " |\n";
     }
     for (const DefaultsCheck& c : r.defaults)
       if (c.scene == scene) {

@@ -46,6 +46,10 @@ struct BenchRow {
   std::map<std::string, double> error;  // the summary figures (keys: see errorSummaryKeys())
   nlohmann::json errorDetail;           // the full gblens error JSON
   bool frontier = false;                // on its group's time-vs-error Pareto frontier
+  // Interleaved A/B against the defaults (frames alternating, two renderers): median of the
+  // per-pair ratio variant / defaults. 0: not run. Measured for variants that seem to dominate.
+  double abTimeRatio = 0.0;
+  int abPairs = 0;
 };
 
 // Keys of BenchRow::error, in column order, with their meaning.
@@ -59,8 +63,10 @@ struct DepthRangeRow {
 };
 
 // A quality group's frontier and the defaults check: a variant dominates the defaults when it
-// is no worse in frame time (within timeTolerance) and in every error figure (within
-// errorTolerance, or an absolute floor), and better in at least one beyond them.
+// is no worse in frame time and in every error figure, and better in at least one, each beyond
+// a relative tolerance and the figure's significance floor (differences below it are not
+// meaningful: a fraction of a float ulp, a hundredth of a percent of pixels). Where an
+// interleaved A/B ran, its time ratio replaces the sweep's medians.
 struct DefaultsCheck {
   std::string scene;
   bool onFrontier = true;
@@ -70,7 +76,13 @@ struct BenchTolerances {
   double time = 0.05;   // 5%: timings on a shared machine are noisy
   double error = 0.05;  // 5%
 };
+// The error figures the defaults check compares, with their significance floors.
+const std::vector<std::pair<std::string, double>>& dominanceObjectives();
 void markFrontiers(std::vector<BenchRow>& rows);
+// Variants of a quality group whose error figures are all no worse than the defaults' (so only
+// frame time can decide whether they dominate): the ones to confirm by an interleaved A/B.
+std::vector<std::string> errorNoWorseThanDefaults(const std::vector<BenchRow>& rows, const std::string& scene,
+                                                  const BenchTolerances& tol);
 std::vector<DefaultsCheck> checkDefaults(const std::vector<BenchRow>& rows, const BenchTolerances& tol);
 
 struct BenchReport {
