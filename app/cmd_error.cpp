@@ -63,6 +63,8 @@ static void printReport(const FrameError& e, const RenderOptions& o, double band
   std::printf("lighting passes alone (reference shading of the GPU's own G-buffer, %s accumulation):\n", name(o.accumFormat));
   printStats("relative", "", e.lighting.relative);
   printStats("per light contribution", "", e.lighting.perContribution);
+  if (e.srgbDecodeMaxRelative >= 0.0)
+    std::printf("  (albedo as this device decodes sRGB: up to %.3g relative off the exact curve)\n", e.srgbDecodeMaxRelative);
 }
 
 Command addErrorCommand(CLI::App& root) {

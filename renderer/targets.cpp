@@ -46,7 +46,9 @@ VkFormat targetFormat(Target t, const RenderOptions& o) {
       switch (o.normalFormat) {
         case NormalFormat::Rgba16f: return VK_FORMAT_R16G16B16A16_SFLOAT;
         case NormalFormat::Rgba8Snorm: return VK_FORMAT_R8G8B8A8_SNORM;
-        case NormalFormat::OctRg16: return VK_FORMAT_R16G16B16A16_SNORM;  // oct normal in xy, shadow in w
+        // The normal is octahedral in x, y: 16 + 16 bits (SNORM). The shadow term keeps its own
+        // 16 bits in w, so the texel is 64 bits like rgba16f's; z is unused (written 0).
+        case NormalFormat::OctRg16: return VK_FORMAT_R16G16B16A16_SNORM;
         case NormalFormat::Rgb10a2: return VK_FORMAT_A2B10G10R10_UNORM_PACK32;
       }
       break;

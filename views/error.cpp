@@ -225,6 +225,13 @@ FrameError measureError(const GpuFrame& g, const ReferenceView& ref, unsigned th
       lPer.push_back(per);
       e.lighting.maxContributions = std::max(e.lighting.maxContributions, s.count[i]);
     }
+  if (g.srgbDecode) {
+    e.srgbDecodeMaxRelative = 0.0;
+    for (int b = 1; b < 256; ++b) {
+      double exact = srgbToLinear(b / 255.0);
+      e.srgbDecodeMaxRelative = std::max(e.srgbDecodeMaxRelative, std::abs((*g.srgbDecode)[b] - exact) / exact);
+    }
+  }
   e.lighting.relative = errorStats(std::move(lRel));
   e.lighting.perContribution = errorStats(std::move(lPer));
   return e;
@@ -272,7 +279,8 @@ nlohmann::json errorJson(const FrameError& e) {
                 {"relative", errorJson(e.hdrUntexturedOutsideBand.relative)}}}};
   j["lighting"] = {{"relative", errorJson(e.lighting.relative)},
                    {"per_contribution", errorJson(e.lighting.perContribution)},
-                   {"max_contributions", e.lighting.maxContributions}};
+                   {"max_contributions", e.lighting.maxContributions},
+                   {"device_srgb_decode_max_relative", e.srgbDecodeMaxRelative}};
   return j;
 }
 

@@ -74,6 +74,9 @@ struct FrameError {
   struct Hdr {
     ErrorStats absolute, relative;  // per pixel: max over R, G, B
   } hdr, hdrUntexturedOutsideBand;
+  // The device's sRGB decode (what the lighting passes read albedo through) vs the exact curve:
+  // largest relative deviation over the 255 non-zero byte values (-1: not probed).
+  double srgbDecodeMaxRelative = -1.0;
   struct Lighting {
     ErrorStats relative;         // |hdr - shade(GPU G-buffer)| / |shade|
     ErrorStats perContribution;  // |hdr - shade| / (contributions * sum |contribution|)
