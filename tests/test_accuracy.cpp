@@ -86,7 +86,9 @@ TEST_F(Accuracy, GBufferMatchesTheReferenceWithinEachNormalFormat) {
         double angle = std::atan2(glm::length(glm::cross(n, s.normal)), glm::dot(n, s.normal));
         double change = changePerPixel(cache, f, x, y, [](auto& a, auto& b) { return glm::length(a.normal - b.normal); });
         ASSERT_LE(angle, bound + change * snap() + 1e-5) << name(format) << " pixel " << x << "," << y;
-        if (format == NormalFormat::OctRg16) ASSERT_EQ(ns.raw(x, y, 2), 0u);  // the normal is x, y only
+        if (format == NormalFormat::OctRg16) {
+          ASSERT_EQ(ns.raw(x, y, 2), 0u);  // the normal is x, y only
+        }
         ++checked;
       }
     EXPECT_GT(checked, int(o.width * o.height / 2)) << name(format);
