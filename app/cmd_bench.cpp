@@ -173,19 +173,21 @@ Command addBenchCommand(CLI::App& root) {
                                                "). " + (s->shadowReuse == "on" ? "Shadow map reused in steady state. "
                                                                                 : "Every timed frame renders the shadow map (as with a moving sun). ") +
                                                "Error figures: one more frame with primitive_id on and fairies off."}};
+            // Every scene first: one that does not load is skipped before the budget is shared out.
             std::vector<std::string> skippedScenes;
-            const size_t rowsTotal = variants.size() * s->scenes.size();
-            size_t rowsDone = 0;
+            std::vector<std::unique_ptr<Scene>> scenes;
             for (const std::string& spec : s->scenes) {
-              Scene scene;
               try {
-                scene = loadScene(spec, o->render.lights);
+                scenes.push_back(std::make_unique<Scene>(loadScene(spec, o->render.lights)));
               } catch (const SceneError& e) {
                 std::fprintf(stderr, "gblens bench: skipping %s: %s\n", spec.c_str(), e.message.c_str());
                 skippedScenes.push_back(spec + ": " + e.message);
-                rowsDone += variants.size();
-                continue;
               }
+            }
+            const size_t rowsTotal = variants.size() * scenes.size();
+            size_t rowsDone = 0;
+            for (std::unique_ptr<Scene>& loaded : scenes) {
+              Scene& scene = *loaded;
               Renderer r;
               initRenderer(r, ctx, scene);
               ReferenceCache cache(scene);
@@ -267,7 +269,7 @@ Command addBenchCommand(CLI::App& root) {
               }
               // The defaults once more: drift of the machine during the sweep (the defaults check
               // takes the faster of the two runs, so noise cannot make a variant look better).
-              if (measuredRows.count(optionsJson(o->render).dump()) && since(start) < s->budget) {
+              if (measuredRows.count(optionsJson(o->render).dump()) && since(start) < 0.9 * s->budget) {
                 if (scene.generatedLights) generateLights(scene, o->render.lights);
                 BenchRow row;
                 row.scene = scene.source;
@@ -286,7 +288,10 @@ Command addBenchCommand(CLI::App& root) {
               std::fprintf(stderr, "gblens bench: %s done (reference: %.1f s of CPU time)\n", scene.source.c_str(),
                            cache.seconds);
             }
-            if (s->depthRange == "on") report.depthRange = depthRangeStudy(ctx, o->render);
+            if (s->depthRange == "on" && since(start) < 0.95 * s->budget)
+              report.depthRange = depthRangeStudy(ctx, o->render);
+            else if (s->depthRange == "on")
+              std::fprintf(stderr, "gblens bench: no time left for the depth-range study (--budget)\n");
             report.meta["skipped_scenes"] = skippedScenes;
             report.meta["seconds"] = since(start);
             markFrontiers(report.rows);

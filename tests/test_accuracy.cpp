@@ -264,4 +264,40 @@ TEST_F(Accuracy, AnOpenSingleSidedCardCastsTheExactShadow) {
   EXPECT_LT(e.shadow.fraction, 0.005) << e.shadow.mismatched << " of " << e.shadow.compared;
 }
 
+// The normal-map path (material.glsl: tangent frame, normal scale): a constant tilted normal
+// texture on a floor, so texture filtering cannot differ; the GPU's normal must match the
+// reference's to the normal format's bound plus float arithmetic.
+TEST_F(Accuracy, NormalMappedSurfaceMatchesTheReference) {
+  Scene scene = floorScene(10.0);
+  Texture t;
+  t.name = "tilted";
+  t.width = t.height = 4;
+  t.srgb = false;
+  for (int i = 0; i < 16; ++i) t.rgba8.insert(t.rgba8.end(), {200, 90, 220, 255});
+  scene.textures.push_back(t);
+  scene.materials[0].normalTexture = 0;
+  scene.materials[0].normalScale = 0.8f;
+  setCamera(scene, {1.0, 4.0, 6.0}, {0.0, 0.0, 0.0});
+  ReferenceCache cache(scene);
+  RenderOptions o = accuracyOptions();
+  o.lights = 0;
+  measureFrame(renderer(scene), o, cache);
+  Renderer& r = renderer(scene);
+  const reference::Frame& f = *cache.get(r.view, o.time, kShadowBandTexels, o.shadowMapSize).frame;
+  const CpuImage& ns = r.readback[size_t(Target::NormalShadow)];
+  const glm::dvec3 up = glm::dmat3(r.view.eyeFromWorld) * glm::dvec3(0, 1, 0);
+  int checked = 0;
+  for (uint32_t y = 0; y < o.height; ++y)
+    for (uint32_t x = 0; x < o.width; ++x) {
+      if (!surface(r, f, x, y)) continue;
+      const reference::Surface& s = f.at(x, y);
+      ASSERT_GT(std::acos(std::min(1.0, glm::dot(s.normal, up))), 0.2);  // the map really tilts it
+      glm::dvec3 n = decodeNormalTexel(ns, x, y, o.normalFormat).unit;
+      double angle = std::atan2(glm::length(glm::cross(n, s.normal)), glm::dot(n, s.normal));
+      ASSERT_LE(angle, std::sqrt(18.0) * 0.5 / 32767.0 + 1e-5) << x << "," << y;
+      ++checked;
+    }
+  EXPECT_GT(checked, int(o.width * o.height / 2));
+}
+
 }  // namespace gb

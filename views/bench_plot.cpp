@@ -73,6 +73,18 @@ static std::string header(int w, int h, const std::string& out) {
   return buf;
 }
 
+// Point labels cycling through four positions (above right, below right, above left, below
+// left), so clustered neighbours do not print over each other.
+static std::string labels(const std::string& file) {
+  const char* placements[4] = {"offset 0.8,0.7 left", "offset 0.8,-0.8 left", "offset -0.8,0.7 right",
+                               "offset -0.8,-0.8 right"};
+  std::string out;
+  for (int k = 0; k < 4; ++k)
+    out += std::string(k ? ", \\\n  " : "") + gpQuote(file) + " every 4::" + std::to_string(k) + " using 1:2:5 with labels " +
+           placements[k] + " font ',8' tc rgb '#222222'";
+  return out;
+}
+
 static bool plotTimeVsError(const BenchReport& r, const std::string& dir, std::string& error) {
   namespace fs = std::filesystem;
   std::vector<std::string> scenes;
@@ -96,15 +108,23 @@ static bool plotTimeVsError(const BenchReport& r, const std::string& dir, std::s
       std::string base = fileSafe(shortScene(scene) + "_" + g->name);
       std::ostringstream pts, front, def;
       std::vector<std::pair<double, double>> frontier;
-      for (const BenchRow& row : r.rows) {
-        if (row.scene != scene || !row.measured || (row.group != g->name && row.group != "default")) continue;
-        auto it = row.error.find(g->metric);
-        if (it == row.error.end()) continue;
-        double x = std::max(it->second, 1e-12);  // log axis: exact zeros drawn at 1e-12
-        pts << x << " " << row.frameMs.median << " " << row.frameMs.min << " " << row.frameMs.max << " "
-            << gpQuote(row.label) << "\n";
-        if (row.group == "default") def << x << " " << row.frameMs.median << "\n";
-        if (row.frontier) frontier.push_back({x, row.frameMs.median});
+      std::vector<const BenchRow*> shown;
+      for (const BenchRow& row : r.rows)
+        if (row.scene == scene && row.measured && (row.group == g->name || row.group == "default") &&
+            row.error.count(g->metric))
+          shown.push_back(&row);
+      // Sorted by error then time, so neighbours on the plot are neighbours in the file and
+      // their labels alternate above and below (every 2 / every 2::1 below).
+      std::sort(shown.begin(), shown.end(), [&](const BenchRow* a, const BenchRow* b) {
+        double ea = a->error.at(g->metric), eb = b->error.at(g->metric);
+        return ea != eb ? ea < eb : a->frameMs.median < b->frameMs.median;
+      });
+      for (const BenchRow* row : shown) {
+        double x = std::max(row->error.at(g->metric), 1e-12);  // log axis: exact zeros drawn at 1e-12
+        pts << x << " " << row->frameMs.median << " " << row->frameMs.min << " " << row->frameMs.max << " "
+            << gpQuote(row->label) << "\n";
+        if (row->group == "default") def << x << " " << row->frameMs.median << "\n";
+        if (row->frontier) frontier.push_back({x, row->frameMs.median});
       }
       std::sort(frontier.begin(), frontier.end());
       for (auto& [x, y] : frontier) front << x << " " << y << "\n";
@@ -121,7 +141,7 @@ static bool plotTimeVsError(const BenchReport& r, const std::string& dir, std::s
          << " using 1:2:3:4 with yerrorbars pt 7 ps 0.9 lc rgb '#4477aa', \\\n  "
          << gpQuote(plotDir + "/" + base + "_frontier.dat") << " using 1:2 with linespoints lw 2 pt 7 ps 0.9 lc rgb '#cc3311', \\\n  "
          << gpQuote(plotDir + "/" + base + "_default.dat") << " using 1:2 with points pt 6 ps 3 lw 2 lc rgb '#000000', \\\n  "
-         << gpQuote(plotDir + "/" + base + ".dat") << " using 1:2:5 with labels offset 0.8,0.6 left font ',8' tc rgb '#222222'\n";
+         << labels(plotDir + "/" + base + ".dat") << "\n";
     }
   gp << "unset multiplot\n";
   std::string script = plotDir + "/time_vs_error.gp";
