@@ -13,7 +13,7 @@ struct BenchSettings {  // gblens bench's own flags
   std::vector<std::string> scenes = {"builtin:temple"};
   std::string out = "out/bench";
   int warmup = 3;
-  double variantSeconds = 30.0;  // most time the timed frames of one variant may take
+  double variantSeconds = 60.0;  // most time the timed frames of one variant may take
   double budget = 780.0;         // the whole run (all scenes, A/B checks, depth study), seconds: 13 min
   int minFrames = 5;
   std::string lightsSweep = "0,16,256,1024,4096";
