@@ -1,6 +1,7 @@
 // Timing one variant, the interleaved A/B, and the depth-range study (see bench_run.h).
 #include "app/bench_run.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "renderer/builtin.h"
@@ -58,7 +59,8 @@ void timeVariant(Renderer& r, const RenderOptions& o, const BenchSettings& s, in
 // Interleaved A/B: frames of the defaults (renderer a) and of a variant (renderer b, its own
 // targets) alternate, order swapped every pair, so drift and load from other processes hit both
 // alike. Returns the median of the per-pair ratios b / a.
-double interleavedRatio(Renderer& a, const RenderOptions& oa, Renderer& b, const RenderOptions& ob, int pairs, bool reuse) {
+AbResult interleavedRatio(Renderer& a, const RenderOptions& oa, Renderer& b, const RenderOptions& ob, int pairs,
+                          bool reuse) {
   auto frame = [reuse](Renderer& r, const RenderOptions& o) {
     if (!reuse) r.shadowKey.clear();
     return renderFrame(r, o).frameMs;
@@ -79,7 +81,8 @@ double interleavedRatio(Renderer& a, const RenderOptions& oa, Renderer& b, const
     }
     ratios.push_back(tb / ta);
   }
-  return timingOf(ratios).median;
+  std::sort(ratios.begin(), ratios.end());
+  return {timingOf(ratios).median, ratios[std::min(ratios.size() - 1, ratios.size() * 3 / 4)]};
 }
 
 // Position error of every depth source across far/near ratios (the depth-precision targets).

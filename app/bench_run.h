@@ -30,9 +30,13 @@ struct BenchSettings {  // gblens bench's own flags
 void timeVariant(Renderer& r, const RenderOptions& o, const BenchSettings& s, int frames, double cap, BenchRow& row);
 
 // Frames of the defaults (renderer a) and of a variant (renderer b) alternate, the order
-// swapped every pair, so drift and other processes' load hit both alike: the median of the
-// per-pair frame-time ratios b / a.
-double interleavedRatio(Renderer& a, const RenderOptions& oa, Renderer& b, const RenderOptions& ob, int pairs, bool reuse);
+// swapped every pair, so drift and other processes' load hit both alike: the per-pair
+// frame-time ratios b / a (their median and upper quartile).
+struct AbResult {
+  double median = 0.0, upperQuartile = 0.0;
+};
+AbResult interleavedRatio(Renderer& a, const RenderOptions& oa, Renderer& b, const RenderOptions& ob, int pairs,
+                          bool reuse);
 
 // builtin:depth-range at far/near 1e2..1e6: max/mean |P - P_ref| / depth of eye depth, D32F
 // standard and reversed, D24, and stored positions.

@@ -257,19 +257,22 @@ Command addBenchCommand(CLI::App& root) {
                     for (BenchRow& row : report.rows)
                       if (row.scene == scene.source && row.name == name) v = &row;
                     if (!v || v->note.rfind("same options", 0) == 0) continue;
-                    // Up to 10 pairs, within a quarter of the budget left.
+                    // Up to 12 pairs, within a quarter of the budget left.
                     double left = s->budget - since(start);
-                    int pairs = std::clamp(int(left / 4.0 / std::max(v->frameMs.median * 2e-3, 1e-3)), 0, 10);
+                    int pairs = std::clamp(int(left / 4.0 / std::max(v->frameMs.median * 2e-3, 1e-3)), 0, 12);
                     if (pairs < 4) continue;
                     Renderer ra, rb;  // both fresh: neither side inherits the sweep's history
                     initRenderer(ra, ctx, scene);
                     initRenderer(rb, ctx, scene);
-                    v->abTimeRatio = interleavedRatio(ra, o->render, rb, v->options, pairs, s->shadowReuse == "on");
+                    AbResult ab = interleavedRatio(ra, o->render, rb, v->options, pairs, s->shadowReuse == "on");
+                    v->abTimeRatio = ab.median;
+                    v->abTimeRatioUpperQuartile = ab.upperQuartile;
                     v->abPairs = pairs;
                     destroyRenderer(rb);
                     destroyRenderer(ra);
-                    std::fprintf(stderr, "[a/b] %-16s %-44s %.3fx the defaults' frame time (%d interleaved pairs)\n",
-                                 scene.source.c_str(), name.c_str(), v->abTimeRatio, pairs);
+                    std::fprintf(stderr, "[a/b] %-16s %-44s %.3fx the defaults' frame time (upper quartile %.3fx, %d "
+                                 "interleaved pairs)\n",
+                                 scene.source.c_str(), name.c_str(), v->abTimeRatio, v->abTimeRatioUpperQuartile, pairs);
                   }
                 }
               }

@@ -49,6 +49,7 @@ struct BenchRow {
   // Interleaved A/B against the defaults (frames alternating, two renderers): median of the
   // per-pair ratio variant / defaults. 0: not run. Measured for variants that seem to dominate.
   double abTimeRatio = 0.0;
+  double abTimeRatioUpperQuartile = 0.0;  // faster in at least 3 of 4 pairs when below 1
   int abPairs = 0;
 };
 
@@ -66,7 +67,8 @@ struct DepthRangeRow {
 // is no worse in frame time and in every error figure, and better in at least one, each beyond
 // a relative tolerance and the figure's significance floor (differences below it are not
 // meaningful: a fraction of a float ulp, a hundredth of a percent of pixels). Where an
-// interleaved A/B ran, its time ratio replaces the sweep's medians.
+// interleaved A/B ran, its time ratios replace the sweep's medians, and being faster also needs
+// the upper quartile below 1 (faster in at least 3 of 4 pairs: noise alone rarely is).
 struct DefaultsCheck {
   std::string scene;
   bool onFrontier = true;
