@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
       gb::addCompareCommand(app),
       gb::addProbeCommand(app),
       gb::addInfoCommand(app),
+      gb::addErrorCommand(app),
+      gb::addBenchCommand(app),
   };
   for (int i = 0; i < argc; ++i) gb::commandLine() += (i ? " " : "") + std::string(i ? argv[i] : "gblens");
   // An unknown first word is a mistyped command: name it and the commands there are.

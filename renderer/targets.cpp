@@ -7,7 +7,8 @@ namespace gb {
 
 static const char* const kNames[kTargetCount] = {"albedo_specular", "normal_shadow", "depth",
                                                  "depth_stencil",   "shadow_map",    "hdr",
-                                                 "final",           "coverage_masked", "coverage_full"};
+                                                 "final",           "coverage_masked", "coverage_full",
+                                                 "primitive_id",    "position"};
 
 const char* targetName(Target t) { return kNames[size_t(t)]; }
 
@@ -31,6 +32,8 @@ std::vector<std::string> channelNames(Target t) {
     case Target::Final: return {"R", "G", "B", "A"};
     case Target::CoverageMasked:
     case Target::CoverageFull: return {"Count"};
+    case Target::PrimitiveId: return {"ID"};
+    case Target::Position: return {"P.X", "P.Y", "P.Z", "W"};
     case Target::Count: break;
   }
   return {};
@@ -43,7 +46,9 @@ VkFormat targetFormat(Target t, const RenderOptions& o) {
       switch (o.normalFormat) {
         case NormalFormat::Rgba16f: return VK_FORMAT_R16G16B16A16_SFLOAT;
         case NormalFormat::Rgba8Snorm: return VK_FORMAT_R8G8B8A8_SNORM;
-        case NormalFormat::OctRg16: return VK_FORMAT_R16G16B16A16_SNORM;  // oct normal in xy, shadow in w
+        // The normal is octahedral in x, y: 16 + 16 bits (SNORM). The shadow term keeps its own
+        // 16 bits in w, so the texel is 64 bits like rgba16f's; z is unused (written 0).
+        case NormalFormat::OctRg16: return VK_FORMAT_R16G16B16A16_SNORM;
         case NormalFormat::Rgb10a2: return VK_FORMAT_A2B10G10R10_UNORM_PACK32;
       }
       break;
@@ -61,6 +66,9 @@ VkFormat targetFormat(Target t, const RenderOptions& o) {
     case Target::Final: return VK_FORMAT_R8G8B8A8_SRGB;
     case Target::CoverageMasked:
     case Target::CoverageFull: return VK_FORMAT_R32_UINT;
+    case Target::PrimitiveId: return VK_FORMAT_R32_UINT;
+    case Target::Position:
+      return o.position == PositionSource::Rgba32f ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
     case Target::Count: break;
   }
   GB_ASSERT(!"targetFormat: unknown target");

@@ -14,63 +14,21 @@ static double medianOf(std::vector<double> v) {
 }
 
 nlohmann::json optionsJson(const RenderOptions& o) {
-  return {{"size", std::to_string(o.width) + "x" + std::to_string(o.height)},
-          {"time", o.time},
-          {"lights", o.lights},
-          {"camera", o.camera},
-          {"path", name(o.path)},
-          {"method", name(o.method)},
-          {"eye_depth", o.eyeDepth ? "on" : "off"},
-          {"stencil_culling", o.stencilCulling ? "on" : "off"},
-          {"stencil_mask", name(o.stencilMask)},
-          {"reversed_z", o.reversedZ},
-          {"normal_format", name(o.normalFormat)},
-          {"depth_format", name(o.depthFormat)},
-          {"accum_format", name(o.accumFormat)},
-          {"shadow_format", name(o.shadowFormat)},
-          {"shadow_map_size", o.shadowMapSize},
-          {"shadow_bias", {{"constant", o.shadowBiasConstant}, {"slope", o.shadowBiasSlope}, {"clamp", o.shadowBiasClamp}}},
-          {"fairies", o.fairies},
-          {"sky", o.sky},
-          {"exposure", o.exposure},
-          {"coverage", o.coverage},
-          {"keep_gbuffer", o.keepGBuffer}};
-}
-
-// Reads one member; a missing member keeps the default (manifests of older versions), a
-// member of the wrong type or an unknown name is an error.
-template <class T>
-static bool member(const nlohmann::json& j, const char* key, T& out, std::string& error) {
-  auto it = j.find(key);
-  if (it == j.end()) return true;
-  try {
-    out = it->get<T>();
-  } catch (const nlohmann::json::exception&) {
-    error = std::string("options.") + key + ": unexpected value " + it->dump();
-    return false;
+  // Every option-table entry under its one name (numbers as JSON numbers), plus the two
+  // internal switches a capture needs to know which targets were computed and stored.
+  nlohmann::json j = nlohmann::json::object();
+  for (const OptionInfo& info : optionTable()) {
+    std::string v = getOption(o, info.name);
+    if (info.kind == OptionKind::Integer)
+      j[info.name] = std::stoll(v);
+    else if (info.kind == OptionKind::Real)
+      j[info.name] = std::stod(v);
+    else
+      j[info.name] = v;
   }
-  return true;
-}
-template <class E>
-static bool named(const nlohmann::json& j, const char* key, E& out, std::string& error) {
-  std::string text;
-  if (!j.contains(key)) return true;
-  if (!member(j, key, text, error)) return false;
-  if (!parse(text, out)) {
-    error = std::string("options.") + key + ": unknown value \"" + text + "\"";
-    return false;
-  }
-  return true;
-}
-static bool onOff(const nlohmann::json& j, const char* key, bool& out, std::string& error) {
-  std::string text = out ? "on" : "off";
-  if (!member(j, key, text, error)) return false;
-  if (text != "on" && text != "off") {
-    error = std::string("options.") + key + ": expected on or off, got \"" + text + "\"";
-    return false;
-  }
-  out = text == "on";
-  return true;
+  j["coverage"] = o.coverage;
+  j["keep_gbuffer"] = o.keepGBuffer;
+  return j;
 }
 
 bool optionsFromJson(const nlohmann::json& j, RenderOptions& o, std::string& error) {
@@ -78,28 +36,38 @@ bool optionsFromJson(const nlohmann::json& j, RenderOptions& o, std::string& err
     error = "options: not an object";
     return false;
   }
-  std::string size = std::to_string(o.width) + "x" + std::to_string(o.height);
-  if (!member(j, "size", size, error)) return false;
-  unsigned w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(size.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' || !w || !h) {
-    error = "options.size: expected WxH, got \"" + size + "\"";
-    return false;
+  // A missing member keeps the default (manifests of older versions); a value of the wrong type
+  // or one the option table refuses is an error naming the member.
+  for (const OptionInfo& info : optionTable()) {
+    auto it = j.find(info.name);
+    if (it == j.end()) continue;
+    std::string text;
+    if (it->is_string() && (info.kind == OptionKind::Choice || info.kind == OptionKind::Text))
+      text = it->get<std::string>();
+    else if (it->is_number_integer() && info.kind == OptionKind::Integer)
+      text = std::to_string(it->get<long long>());
+    else if (it->is_number() && info.kind == OptionKind::Real)
+      text = it->dump();  // shortest text that reads back as the same double
+    else {
+      error = "options." + info.name + ": unexpected value " + it->dump();
+      return false;
+    }
+    std::string why;
+    if (!setOption(o, info.name, text, why)) {
+      error = "options." + info.name + ": " + why;
+      return false;
+    }
   }
-  o.width = w;
-  o.height = h;
-  nlohmann::json bias = j.value("shadow_bias", nlohmann::json::object());
-  return member(j, "time", o.time, error) && member(j, "lights", o.lights, error) &&
-         member(j, "camera", o.camera, error) && named(j, "path", o.path, error) &&
-         named(j, "method", o.method, error) && onOff(j, "eye_depth", o.eyeDepth, error) &&
-         onOff(j, "stencil_culling", o.stencilCulling, error) && named(j, "stencil_mask", o.stencilMask, error) &&
-         member(j, "reversed_z", o.reversedZ, error) && named(j, "normal_format", o.normalFormat, error) &&
-         named(j, "depth_format", o.depthFormat, error) && named(j, "accum_format", o.accumFormat, error) &&
-         named(j, "shadow_format", o.shadowFormat, error) && member(j, "shadow_map_size", o.shadowMapSize, error) &&
-         member(bias, "constant", o.shadowBiasConstant, error) && member(bias, "slope", o.shadowBiasSlope, error) &&
-         member(bias, "clamp", o.shadowBiasClamp, error) && member(j, "fairies", o.fairies, error) &&
-         member(j, "sky", o.sky, error) && member(j, "exposure", o.exposure, error) &&
-         member(j, "coverage", o.coverage, error) && member(j, "keep_gbuffer", o.keepGBuffer, error);
+  for (auto [key, member] : {std::pair{"coverage", &RenderOptions::coverage}, {"keep_gbuffer", &RenderOptions::keepGBuffer}}) {
+    auto it = j.find(key);
+    if (it == j.end()) continue;
+    if (!it->is_boolean()) {
+      error = std::string("options.") + key + ": unexpected value " + it->dump();
+      return false;
+    }
+    o.*member = it->get<bool>();
+  }
+  return true;
 }
 
 nlohmann::json statsJson(const std::vector<FrameStats>& frames, const GpuContext& ctx, const RenderOptions& o,
