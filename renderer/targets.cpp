@@ -103,6 +103,14 @@ std::string targetUnavailable(Target t, const RenderOptions& o) {
     case Target::CoverageFull:
       if (!o.coverage) return "not computed: coverage off";
       break;
+    case Target::PrimitiveId:
+      if (!o.primitiveId) return "not computed: primitive_id off";
+      break;
+    case Target::Position:
+      if (o.position == PositionSource::Depth) return "not stored: position is reconstructed from depth";
+      if (o.path == Path::SinglePass && !o.keepGBuffer)
+        return "transient: the single-pass G-buffer stays in tile memory (keep_gbuffer off)";
+      break;
     default: break;
   }
   return "";

@@ -104,7 +104,9 @@ void main() {
     } else
 #endif
     if (mapping == kViewMapNormal) {
-      vec3 n = v.xyz == vec3(0.0) && NORMAL_ENCODING != kNormalRgb10a2 ? vec3(0.0) : decodeNormal(v);
+      // Raw encodings may hold a zero normal; octahedral (0, 0) is +Z and rgb10a2 0 is (-1, -1, -1).
+      bool raw = NORMAL_ENCODING != kNormalRgb10a2 && NORMAL_ENCODING != kNormalOctRg16;
+      vec3 n = raw && v.xyz == vec3(0.0) ? vec3(0.0) : decodeNormal(v);
       bool empty = v == vec4(0.0);  // nothing drawn (the G-buffer clears to 0)
       display = empty ? vec3(0.0) : (n - lo) / span;
       for (int c = 0; c < 3; ++c)

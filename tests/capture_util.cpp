@@ -45,6 +45,8 @@ RenderOptions smallCaptureOptions() {
   o.lights = 24;
   o.shadowMapSize = 128;
   o.coverage = true;
+  o.primitiveId = true;                      // every target computed, so every target is captured
+  o.position = PositionSource::Rgba32f;
   o.time = 1.5;
   return o;
 }
@@ -77,6 +79,8 @@ FrameSnapshot syntheticFrame(uint32_t w, uint32_t h) {
   f.options.width = w;
   f.options.height = h;
   f.options.coverage = true;
+  f.options.normalFormat = NormalFormat::Rgba16f;  // N = (0, 0, 1) stored as is
+  f.options.accumFormat = AccumFormat::Rgba16f;
   CameraDesc cam;
   cam.worldFromEye = lookAt({0, 2, 5}, {0, 0, 0});
   f.view = makeView(cam, w, h, false);

@@ -53,6 +53,8 @@ TEST_F(GpuTest, CaptureRoundTripIsBitExactInEveryStorageFormat) {
   variants[3].eyeDepth = false;
   variants[3].reversedZ = true;
   variants[3].stencilMask = StencilMask::Shared;
+  variants[3].accumFormat = AccumFormat::Rgba16f;
+  variants[3].position = PositionSource::Rgba16f;
   std::set<PixelType> typesSeen;
   for (size_t v = 0; v < variants.size(); ++v) {
     const RenderOptions& o = variants[v];
@@ -229,6 +231,7 @@ TEST_F(GpuTest, TransientAndUncomputedTargetsAreSkippedWithTheReason) {
   o.path = Path::SinglePass;
   o.keepGBuffer = false;  // the G-buffer stays in tile memory
   o.coverage = false;
+  o.primitiveId = false;
   std::vector<Target> all = availableTargets(o);
   EXPECT_EQ(all, (std::vector<Target>{Target::DepthStencil, Target::ShadowMap, Target::Hdr, Target::Final}));
   Scene scene = builtinTemple(o.lights);

@@ -111,8 +111,11 @@ Rgba8Image visualize(ViewKind view, const FrameImages& f) {
           break;
         case ViewKind::Specular: p[0] = p[1] = p[2] = encodeLinear(src->value(x, y, 3)); break;
         case ViewKind::Normal: {
+          // Nothing drawn: the G-buffer clears to 0 in every channel (an octahedral (0, 0) is +Z).
+          bool empty = true;
+          for (uint32_t c = 0; c < src->channelCount(); ++c) empty = empty && src->value(x, y, c) == 0.0;
           DecodedNormal n = decodeNormalTexel(*src, x, y, f.normalFormat);
-          for (int c = 0; c < 3; ++c) p[c] = n.stored == glm::dvec3(0.0) ? 0 : encodeLinear(n.unit[c] * 0.5 + 0.5);
+          for (int c = 0; c < 3; ++c) p[c] = empty ? 0 : encodeLinear(n.unit[c] * 0.5 + 0.5);
           break;
         }
         case ViewKind::Shadow: p[0] = p[1] = p[2] = encodeLinear(src->value(x, y, 3)); break;
