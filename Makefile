@@ -39,8 +39,11 @@ test: build
 golden: build
 	tests/golden/golden.sh regenerate $(GBLENS)
 
+# The default sweep on the built-in temple and, when present, the shared VC model (a glTF that
+# does not load is skipped with a message). Budgeted to finish within 15 minutes on 2 cores.
+VC_SCENE := $(firstword $(wildcard ../shared/assets/VC/glTF/VC.gltf /work/shared/assets/VC/glTF/VC.gltf))
 bench: build
-	$(GBLENS) bench --out out/bench
+	$(GBLENS) bench builtin:temple $(VC_SCENE) --out out/bench
 
 stress: build
 	$(GBLENS) stress

@@ -3,41 +3,25 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 
 #include "renderer/builtin.h"
 
 namespace gb {
 
-void addCommonOptions(CLI::App* cmd, CommonOptions& o) {
+void addCommonOptions(CLI::App* cmd, CommonOptions& o, const std::vector<std::string>& except) {
   // A later flag overrides an earlier one, so scripts can append overrides to a base command.
   cmd->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  cmd->add_option("SCENE", o.scene, "builtin:temple, or a .gltf/.glb file")->capture_default_str();
-  cmd->add_option("--size", o.size, "output size WxH")->capture_default_str();
-  cmd->add_option("--time", o.render.time, "animation time in seconds (fixed)")->capture_default_str();
-  cmd->add_option("--lights", o.render.lights, "generated point lights (0..65536)")
-      ->check(CLI::Range(0, 65536))
-      ->capture_default_str();
-  cmd->add_option("--camera", o.render.camera, "camera index (gblens info lists them)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  cmd->add_option("--path", o.path, "two-pass | single-pass")
-      ->check(CLI::IsMember({"two-pass", "single-pass"}))
-      ->capture_default_str();
-  cmd->add_option("--eye-depth", o.eyeDepth, "USE_EYE_DEPTH: on | off")
-      ->check(CLI::IsMember({"on", "off"}))
-      ->capture_default_str();
-  cmd->add_option("--stencil-culling", o.stencilCulling, "LIGHT_STENCIL_CULLING: on | off")
-      ->check(CLI::IsMember({"on", "off"}))
-      ->capture_default_str();
-  cmd->add_option("--stencil-mask", o.stencilMask, "per-light (exact, 7 lights per stencil batch) | shared (the sample's one mask)")
-      ->check(CLI::IsMember({"per-light", "shared"}))
-      ->capture_default_str();
-  cmd->add_option("--method", o.method, "deferred | forward | tiled")
-      ->check(CLI::IsMember({"deferred", "forward", "tiled"}))
-      ->capture_default_str();
-  cmd->add_option("--shadow-map-size", o.render.shadowMapSize, "shadow map size in texels (square)")
-      ->check(CLI::Range(1, 16384))
-      ->capture_default_str();
+  if (std::find(except.begin(), except.end(), "scene") == except.end())
+    cmd->add_option("SCENE", o.scene, "builtin:temple, builtin:depth-range, or a .gltf/.glb file")->capture_default_str();
+  // One flag per option-table entry: the flag, the JSON key and the bench name are one name.
+  for (const OptionInfo& info : optionTable()) {
+    if (std::find(except.begin(), except.end(), info.name) != except.end()) continue;
+    std::string& value = o.values[info.name];
+    value = getOption(o.render, info.name);
+    CLI::Option* opt = cmd->add_option(flagName(info.name), value, info.help)->capture_default_str();
+    if (info.kind == OptionKind::Choice) opt->check(CLI::IsMember(info.choices));
+  }
   cmd->add_option("--frames", o.frames, "render N frames, report the median")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
@@ -47,20 +31,8 @@ void addCommonOptions(CLI::App* cmd, CommonOptions& o) {
 }
 
 bool finishCommonOptions(CommonOptions& o, std::string& error) {
-  unsigned w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(o.size.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w == 0 || h == 0 ||
-      w > 16384 || h > 16384) {
-    error = "--size " + o.size + ": expected WxH with 1..16384 each, e.g. 1280x720";
-    return false;
-  }
-  o.render.width = w;
-  o.render.height = h;
-  parse(o.path, o.render.path);
-  parse(o.method, o.render.method);
-  o.render.eyeDepth = o.eyeDepth == "on";
-  o.render.stencilCulling = o.stencilCulling == "on";
-  parse(o.stencilMask, o.render.stencilMask);
+  for (const auto& [name, value] : o.values)
+    if (!setOption(o.render, name, value, error)) return false;
   return true;
 }
 

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -15,10 +16,8 @@ namespace gb {
 
 struct CommonOptions {
   std::string scene = "builtin:temple";
-  std::string size = "1280x720";
-  std::string path = "two-pass", method = "deferred", eyeDepth = "on", stencilCulling = "on";
-  std::string stencilMask = "per-light";
-  RenderOptions render;
+  RenderOptions render;                        // defaults before parsing; the parsed options after
+  std::map<std::string, std::string> values;   // option table name -> text given (or the default)
   int frames = 1;
   bool stats = false;
   std::string device;
@@ -26,9 +25,11 @@ struct CommonOptions {
   std::string output;
 };
 
-// SCENE, --size, --time, --lights, --camera, --path, --eye-depth, --stencil-culling, --method,
-// --shadow-map-size, --frames, --stats, --device, --validate. (-o is added by the commands that write something.)
-void addCommonOptions(CLI::App* cmd, CommonOptions& o);
+// SCENE, one flag per entry of the option table (renderer/options.h: --size, --lights, --path,
+// --normal-format, ...), --frames, --stats, --device, --validate. (-o is added by the commands
+// that write something.) Flags a command does not want, or "scene" for the positional, can be
+// listed in `except`.
+void addCommonOptions(CLI::App* cmd, CommonOptions& o, const std::vector<std::string>& except = {});
 
 // Completes RenderOptions from the parsed strings; on a malformed value returns false with a
 // one-line message naming the flag.
@@ -48,6 +49,8 @@ Command addProbeCommand(CLI::App& root);
 
 // The command line as typed (set by main; recorded in capture manifests).
 std::string& commandLine();
+Command addErrorCommand(CLI::App& root);
+Command addBenchCommand(CLI::App& root);
 
 // Loads SCENE; on a user mistake prints one line and returns false (caller exits 2).
 bool loadSceneOrReport(const CommonOptions& o, Scene& scene);

@@ -13,6 +13,8 @@ int main(int argc, char** argv) {
       gb::addCaptureCommand(app),
       gb::addCompareCommand(app),
       gb::addProbeCommand(app),
+      gb::addErrorCommand(app),
+      gb::addBenchCommand(app),
   };
   // An unknown first word is a mistyped command: name it and the commands there are.
   if (argc > 1 && argv[1][0] != '-') {

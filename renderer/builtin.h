@@ -7,6 +7,9 @@
 namespace gb {
 
 Scene builtinTemple(int lightCount);
+// builtin:depth-range: camera-facing cards at depths spaced in log from 1.5 near to far / 1.5
+// (default 0.1 .. 1e5: a far/near ratio of 1e6), for depth-precision measurements.
+Scene depthRangeScene(double znear = 0.1, double zfar = 1e5);
 
 // A user mistake while loading (bad file, bad element): the message names the file and element.
 struct SceneError {

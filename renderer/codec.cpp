@@ -37,4 +37,25 @@ DecodedNormal decodeNormalTexel(const CpuImage& img, uint32_t x, uint32_t y, Nor
   return d;
 }
 
+static glm::vec2 shaderNdc(const gpu::FrameData& f, uint32_t x, uint32_t y) {
+  glm::vec2 fragCoord(float(x) + 0.5f, float(y) + 0.5f);
+  return fragCoord * glm::vec2(f.viewport.z, f.viewport.w) * 2.0f - 1.0f;
+}
+
+glm::vec3 shaderEyeFromEyeDepth(const gpu::FrameData& f, uint32_t x, uint32_t y, float stored) {
+  glm::vec2 ndc = shaderNdc(f, x, y);
+  glm::vec2 xy = stored * (ndc + glm::vec2(f.eyeRay.z, f.eyeRay.w)) * glm::vec2(f.eyeRay.x, f.eyeRay.y);
+  return {xy, -stored};
+}
+
+glm::vec3 shaderEyeFromHardwareDepth(const gpu::FrameData& f, uint32_t x, uint32_t y, float depth) {
+  glm::vec4 e = f.eyeFromClip * glm::vec4(shaderNdc(f, x, y), depth, 1.0f);
+  return glm::vec3(e) / e.w;
+}
+
+glm::vec3 shaderEyeFromStoredPosition(const gpu::FrameData& f, glm::vec3 stored, PositionSpace space) {
+  glm::mat3 eyeFromWorld = glm::transpose(glm::mat3(f.worldFromEye));
+  return eyeFromWorld * (space == PositionSpace::World ? stored - glm::vec3(f.worldFromEye[3]) : stored);
+}
+
 }  // namespace gb

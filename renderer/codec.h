@@ -4,6 +4,7 @@
 
 #include "renderer/image.h"
 #include "renderer/options.h"
+#include "shaders/shared.h"
 
 namespace gb {
 
@@ -17,5 +18,11 @@ struct DecodedNormal {
   double shadow = 1.0;
 };
 DecodedNormal decodeNormalTexel(const CpuImage& normalShadow, uint32_t x, uint32_t y, NormalFormat format);
+
+// The lighting shaders' position reconstructions (shaders/gbuffer_read.glsl), in float as they
+// compute them, from the frame's uniform data: what the lighting passes actually used.
+glm::vec3 shaderEyeFromEyeDepth(const gpu::FrameData& frame, uint32_t x, uint32_t y, float eyeDepth);
+glm::vec3 shaderEyeFromHardwareDepth(const gpu::FrameData& frame, uint32_t x, uint32_t y, float depth);
+glm::vec3 shaderEyeFromStoredPosition(const gpu::FrameData& frame, glm::vec3 stored, PositionSpace space);
 
 }  // namespace gb

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace gb {
 
@@ -12,6 +13,12 @@ enum class NormalFormat { Rgba16f, Rgba8Snorm, OctRg16, Rgb10a2 };
 enum class DepthFormat { D32S8, D24S8 };        // the hardware depth/stencil target
 enum class AccumFormat { Rgba16f, Rgba32f, Rgba8 };  // the light accumulation (hdr) target
 enum class ShadowFormat { D32f, D16 };
+// Where the lighting passes get the surface position: reconstructed from depth (eye depth or
+// hardware depth, per eyeDepth), or a stored position target (tutorials 001-003) in fp16/fp32.
+enum class PositionSource { Depth, Rgba16f, Rgba32f };
+// What a stored position is relative to: the world origin (the tutorials) or the camera
+// (world axes, camera at the origin: camera-relative rendering).
+enum class PositionSpace { World, Camera };
 // How LIGHT_STENCIL_CULLING marks pixels: one shared mask for all lights (the Apple sample:
 // cheap to draw, but one light's mark lets another light shade), or an exact mask per light
 // (Z-fail toggles one stencil bit per light, 7 lights per batch).
@@ -32,6 +39,8 @@ struct RenderOptions {
   DepthFormat depthFormat = DepthFormat::D32S8;
   AccumFormat accumFormat = AccumFormat::Rgba16f;
   ShadowFormat shadowFormat = ShadowFormat::D32f;
+  PositionSource position = PositionSource::Depth;
+  PositionSpace positionSpace = PositionSpace::World;
   uint32_t shadowMapSize = 2048;
   // Shadow-map depth bias (vkCmdSetDepthBias): the Apple sample's 0.015 / 7 / 0.02 adapted to
   // a [0,1] depth range in texels.
@@ -44,7 +53,27 @@ struct RenderOptions {
   // What the caller will look at: targets that are not needed are not computed.
   bool coverage = false;      // masked/full coverage targets (views 8, 9, --stats, captures)
   bool keepGBuffer = true;    // single-pass: store the G-buffer (views, captures) instead of transient
+  bool primitiveId = false;   // debug target primitive_id (instance + triangle), for the reference comparison
 };
+
+// ---- The option table: every user-settable option under one name ----------------------------
+// The name is the JSON key (reports, bench rows, capture manifests) and, with '_' -> '-', the CLI
+// flag: "normal_format" <-> --normal-format. Values are the same strings everywhere.
+enum class OptionKind { Choice, Integer, Real, Text };
+struct OptionInfo {
+  std::string name;
+  std::string help;
+  OptionKind kind = OptionKind::Choice;
+  std::vector<std::string> choices;  // Choice: the accepted values
+};
+const std::vector<OptionInfo>& optionTable();
+const OptionInfo* findOption(const std::string& name);
+std::string flagName(const std::string& optionName);  // "normal_format" -> "--normal-format"
+// The option's value as text ("rgba16f", "on", "2048", "1280x720").
+std::string getOption(const RenderOptions& o, const std::string& name);
+// Sets an option from text; false with a one-line message (naming the flag) when the name or
+// value is not accepted.
+bool setOption(RenderOptions& o, const std::string& name, const std::string& value, std::string& error);
 
 const char* name(Path p);
 const char* name(Method m);
@@ -53,6 +82,8 @@ const char* name(DepthFormat f);
 const char* name(AccumFormat f);
 const char* name(ShadowFormat f);
 const char* name(StencilMask m);
+const char* name(PositionSource p);
+const char* name(PositionSpace p);
 
 // Parse the names above; false when the text names nothing.
 bool parse(const std::string& text, Path& out);
@@ -62,5 +93,7 @@ bool parse(const std::string& text, DepthFormat& out);
 bool parse(const std::string& text, AccumFormat& out);
 bool parse(const std::string& text, ShadowFormat& out);
 bool parse(const std::string& text, StencilMask& out);
+bool parse(const std::string& text, PositionSource& out);
+bool parse(const std::string& text, PositionSpace& out);
 
 }  // namespace gb

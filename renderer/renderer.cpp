@@ -16,15 +16,18 @@ namespace gb {
 
 // ---- targets -------------------------------------------------------------------------------
 
+bool primitiveIdOn(const GpuContext& ctx, const RenderOptions& o) { return o.primitiveId && ctx.features.primitiveId; }
+
 static std::string targetsKey(const GpuContext& ctx, const Scene& s, const RenderOptions& o) {
   std::ostringstream k;
   k << o.width << 'x' << o.height << ' ' << name(o.normalFormat) << ' ' << name(o.depthFormat) << ' '
     << name(o.accumFormat) << ' ' << name(o.shadowFormat) << ' ' << (s.sun.enabled ? o.shadowMapSize : 1) << ' '
-    << o.coverage << ' ' << (o.path == Path::SinglePass && !o.keepGBuffer) << ' ' << ctx.deviceName;
+    << o.coverage << ' ' << (o.path == Path::SinglePass && !o.keepGBuffer) << ' ' << primitiveIdOn(ctx, o) << ' '
+    << name(o.position) << ' ' << ctx.deviceName;
   return k.str();
 }
 
-static ImageDesc targetDesc(Target t, const Scene& s, const RenderOptions& o) {
+static ImageDesc targetDesc(const GpuContext& ctx, Target t, const Scene& s, const RenderOptions& o) {
   ImageDesc d;
   d.format = targetFormat(t, o);
   d.width = o.width;
@@ -55,6 +58,19 @@ static ImageDesc targetDesc(Target t, const Scene& s, const RenderOptions& o) {
       d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                 VK_IMAGE_USAGE_SAMPLED_BIT;
       break;
+    case Target::PrimitiveId:
+      if (!primitiveIdOn(ctx, o)) d.width = d.height = 1;  // not requested: a valid, tiny image
+      d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+      break;
+    case Target::Position:
+      if (o.position == PositionSource::Depth) {
+        d.width = d.height = 1;
+        d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+      } else {
+        d.transient = o.path == Path::SinglePass && !o.keepGBuffer;
+        d.usage = d.transient ? (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT) : color;
+      }
+      break;
     case Target::Count: break;
   }
   return d;
@@ -77,7 +93,8 @@ static void ensureTargets(Renderer& r, const RenderOptions& o) {
   if (r.targetsValid && key == r.targetsKey) return;
   vkDeviceWaitIdle(r.ctx->device);
   destroyTargets(r);
-  for (size_t i = 0; i < kTargetCount; ++i) r.targets[i].image = createImage(*r.ctx, targetDesc(Target(i), *r.scene, o));
+  for (size_t i = 0; i < kTargetCount; ++i)
+    r.targets[i].image = createImage(*r.ctx, targetDesc(*r.ctx, Target(i), *r.scene, o));
   r.targets[size_t(Target::ShadowMap)].keep = true;  // reused while the sun and geometry stay
   r.targetsValid = true;
   r.targetsKey = key;
@@ -112,7 +129,11 @@ std::vector<SpecConstant> commonSpec(const Renderer& r) {
     case NormalFormat::OctRg16: normal = gpu::kNormalOctRg16; break;
     case NormalFormat::Rgb10a2: normal = gpu::kNormalRgb10a2; break;
   }
+  uint32_t position = gpu::kPositionDepth;
+  if (r.options.position != PositionSource::Depth)
+    position = r.options.positionSpace == PositionSpace::World ? gpu::kPositionWorld : gpu::kPositionCamera;
   return {{gpu::kSpecEyeDepth, r.options.eyeDepth ? 1u : 0u},
+          {gpu::kSpecPosition, position},
           {gpu::kSpecReversedZ, r.options.reversedZ ? 1u : 0u},
           {gpu::kSpecNormalEncoding, normal},
           {gpu::kSpecCoverage, r.options.coverage ? 1u : 0u}};
@@ -148,7 +169,7 @@ float farDepth(const Renderer& r) { return r.options.reversedZ ? 0.0f : 1.0f; }
 // ---- per-frame CPU work -----------------------------------------------------------------------
 
 // The sun's orthographic view, fitted to the scene's bounding sphere (stable as the camera moves).
-static glm::dmat4 fitShadowMap(const Scene& s) {
+glm::dmat4 shadowClipFromWorld(const Scene& s) {
   glm::dvec3 centre = s.bounds.center();
   double radius = std::max(s.bounds.radius(), 1e-6);
   glm::dvec3 up = std::abs(s.sun.toSun.y) > 0.99 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
@@ -156,7 +177,11 @@ static glm::dmat4 fitShadowMap(const Scene& s) {
   double n = 0.5 * radius, f = 3.5 * radius;
   glm::dmat4 clipFromLight(1.0);
   clipFromLight[0][0] = 1.0 / radius;
-  clipFromLight[1][1] = 1.0 / radius;
+  // Clip y points down, as in the camera's projection: the same counter-clockwise front faces
+  // then face the sun, so back-face culling keeps the sun-facing casters. (With y up the winding
+  // was mirrored: only faces turned away from the sun were stored, open single-sided casters
+  // cast no shadow and closed ones leaked light at contacts.)
+  clipFromLight[1][1] = -1.0 / radius;
   clipFromLight[2][2] = -1.0 / (f - n);
   clipFromLight[3][2] = -n / (f - n);
   return clipFromLight * lightFromWorld;
@@ -168,10 +193,11 @@ static void prepareFrame(Renderer& r) {
   GB_ASSERT(!s.cameras.empty());
   const CameraDesc& cam = s.cameras[size_t(o.camera) < s.cameras.size() ? size_t(o.camera) : 0];
   r.view = makeView(cam, o.width, o.height, o.reversedZ);
-  r.lightClipFromWorld = fitShadowMap(s);
+  r.lightClipFromWorld = shadowClipFromWorld(s);
 
   // Draws: camera-relative transforms formed in double.
   auto* draws = static_cast<gpu::DrawData*>(r.drawBuffer.mapped);
+  const std::vector<uint32_t> firstPrimitive = firstPrimitiveIds(s);
   for (size_t i = 0; i < s.instances.size(); ++i) {
     const Instance& inst = s.instances[i];
     glm::dmat4 eyeFromObject = r.view.eyeFromWorld * inst.worldFromObject;
@@ -181,7 +207,7 @@ static void prepareFrame(Renderer& r) {
     d.normalEyeFromObject = glm::mat4(glm::mat3(normal));
     d.lightClipFromObject = glm::mat4(r.lightClipFromWorld * inst.worldFromObject);
     d.info = glm::uvec4(uint32_t(s.meshes[inst.mesh].material), glm::determinant(glm::dmat3(inst.worldFromObject)) < 0.0,
-                        0u, 0u);
+                        firstPrimitive[i], 0u);
     draws[i] = d;
   }
 
@@ -209,6 +235,7 @@ static void prepareFrame(Renderer& r) {
   f.counts = glm::uvec4(uint32_t(r.lights.visible.size()), uint32_t(r.lights.visible.size()) - r.lights.stencilCount,
                         0u, 0u);
   std::memcpy(r.frameBuffer.mapped, &f, sizeof(f));
+  r.frameData = f;
 }
 
 // ---- read-back ----------------------------------------------------------------------------------

@@ -88,6 +88,8 @@ struct Renderer {
   View view;
   FrameLights lights;
   glm::dmat4 lightClipFromWorld{1.0};
+  gpu::FrameData frameData{};  // this frame's uniform data, as the shaders saw it
+  std::vector<float> srgbDecode;  // probeSrgbDecode's table (empty until probed)
   std::string shadowKey;  // what the shadow map was rendered for (reuse when unchanged)
   FrameStats stats;
 };
@@ -122,6 +124,15 @@ void bindDescriptors(Renderer& r, VkCommandBuffer cmd, VkPipelineLayout layout, 
 VkCompareOp closerOrEqual(const Renderer& r);   // LESS_OR_EQUAL, or GREATER_OR_EQUAL reversed
 VkCompareOp fartherOrEqual(const Renderer& r);  // the opposite
 float farDepth(const Renderer& r);
+
+// The sun's orthographic shadow-map clip space, fitted to the scene's bounding sphere.
+glm::dmat4 shadowClipFromWorld(const Scene& scene);
+
+// What this device's sampler returns for each 8-bit sRGB value (index = byte), measured once.
+const std::vector<float>& probeSrgbDecode(Renderer& r);
+
+// The primitive_id target is written this frame (requested, and the device has gl_PrimitiveID).
+bool primitiveIdOn(const GpuContext& ctx, const RenderOptions& o);
 
 // Specialization constants every pipeline gets (eye depth, reversed Z, normal encoding, ...).
 std::vector<SpecConstant> commonSpec(const Renderer& r);

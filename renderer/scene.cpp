@@ -91,6 +91,16 @@ CameraDesc autoCamera(const Bounds& b) {
   return c;
 }
 
+std::vector<uint32_t> firstPrimitiveIds(const Scene& scene) {
+  std::vector<uint32_t> first(scene.instances.size());
+  uint32_t next = 1;
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    first[i] = next;
+    next += scene.meshes[scene.instances[i].mesh].indexCount / 3;
+  }
+  return first;
+}
+
 uint64_t drawnTriangles(const Scene& scene) {
   uint64_t n = 0;
   for (const Instance& i : scene.instances) n += scene.meshes[i.mesh].indexCount / 3;

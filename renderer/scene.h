@@ -136,6 +136,10 @@ void generateLights(Scene& scene, int count);
 // A camera framing the bounds (files without cameras).
 CameraDesc autoCamera(const Bounds& bounds);
 
+// The primitive_id of each instance's first triangle (instance order, 1-based: 0 means no
+// geometry). Triangle t of instance i has primitive_id firstPrimitiveIds(scene)[i] + t.
+std::vector<uint32_t> firstPrimitiveIds(const Scene& scene);
+
 // Triangle count over all instances (what is drawn).
 uint64_t drawnTriangles(const Scene& scene);
 

@@ -8,8 +8,9 @@ namespace gb {
 
 Scene loadScene(const std::string& spec, int lightCount) {
   if (spec == "builtin:temple") return builtinTemple(lightCount);
+  if (spec == "builtin:depth-range") return depthRangeScene();
   if (spec.rfind("builtin:", 0) == 0)
-    throw SceneError{"unknown built-in scene '" + spec + "' (available: builtin:temple)"};
+    throw SceneError{"unknown built-in scene '" + spec + "' (available: builtin:temple, builtin:depth-range)"};
   std::filesystem::path path(spec);
   std::string ext = path.extension().string();
   for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));

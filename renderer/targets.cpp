@@ -7,7 +7,8 @@ namespace gb {
 
 static const char* const kNames[kTargetCount] = {"albedo_specular", "normal_shadow", "depth",
                                                  "depth_stencil",   "shadow_map",    "hdr",
-                                                 "final",           "coverage_masked", "coverage_full"};
+                                                 "final",           "coverage_masked", "coverage_full",
+                                                 "primitive_id",    "position"};
 
 const char* targetName(Target t) { return kNames[size_t(t)]; }
 
@@ -31,6 +32,8 @@ std::vector<std::string> channelNames(Target t) {
     case Target::Final: return {"R", "G", "B", "A"};
     case Target::CoverageMasked:
     case Target::CoverageFull: return {"Count"};
+    case Target::PrimitiveId: return {"ID"};
+    case Target::Position: return {"P.X", "P.Y", "P.Z", "W"};
     case Target::Count: break;
   }
   return {};
@@ -61,6 +64,9 @@ VkFormat targetFormat(Target t, const RenderOptions& o) {
     case Target::Final: return VK_FORMAT_R8G8B8A8_SRGB;
     case Target::CoverageMasked:
     case Target::CoverageFull: return VK_FORMAT_R32_UINT;
+    case Target::PrimitiveId: return VK_FORMAT_R32_UINT;
+    case Target::Position:
+      return o.position == PositionSource::Rgba32f ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
     case Target::Count: break;
   }
   GB_ASSERT(!"targetFormat: unknown target");
@@ -94,6 +100,14 @@ std::string targetUnavailable(Target t, const RenderOptions& o) {
     case Target::CoverageMasked:
     case Target::CoverageFull:
       if (!o.coverage) return "not computed: coverage off";
+      break;
+    case Target::PrimitiveId:
+      if (!o.primitiveId) return "not computed: primitive_id off";
+      break;
+    case Target::Position:
+      if (o.position == PositionSource::Depth) return "not computed: positions come from depth (position depth)";
+      if (o.path == Path::SinglePass && !o.keepGBuffer)
+        return "transient: the single-pass G-buffer stays in tile memory (keep_gbuffer off)";
       break;
     default: break;
   }

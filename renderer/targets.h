@@ -22,6 +22,8 @@ enum class Target : uint8_t {
   Final,            // "final": tone-mapped sRGB R/G/B/A
   CoverageMasked,   // "coverage_masked": point-light fragment shader runs per pixel
   CoverageFull,     // "coverage_full": light volumes covering the pixel in screen space
+  PrimitiveId,      // "primitive_id": ID (first triangle of the instance + triangle + 1; 0 = none), on request
+  Position,         // "position": stored P.X/P.Y/P.Z, W (1 = geometry), when options.position is a format
   Count
 };
 constexpr size_t kTargetCount = size_t(Target::Count);

@@ -13,6 +13,7 @@ layout(constant_id = kSpecCoverage) const uint COVERAGE = 0;
 layout(constant_id = kSpecReversedZ) const uint REVERSED_Z = 0;
 layout(constant_id = kSpecNormalEncoding) const uint NORMAL_ENCODING = kNormalRgba16f;
 layout(constant_id = kSpecNormalMap) const uint NORMAL_MAP = 0;
+layout(constant_id = kSpecPosition) const uint POSITION = kPositionDepth;
 
 // Hardware depth of the far plane: where nothing was drawn.
 float farDepth() { return REVERSED_Z != 0 ? 0.0 : 1.0; }

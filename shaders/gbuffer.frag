@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// G-buffer: albedo_specular, normal_shadow (normal + shadow-map compare), depth (eye depth).
+// G-buffer: albedo_specular, normal_shadow (normal + shadow-map compare), depth (eye depth);
+// variants add primitive_id (GB_PRIMITIVE_ID) and the stored position (GB_POSITION), in that order.
 #include "common.glsl"
 #include "material.glsl"
 #include "gbuffer_codec.glsl"
@@ -13,10 +14,21 @@ layout(location = 2) in vec4 inUv;
 layout(location = 3) in vec4 inTangent;
 layout(location = 4) in vec4 inLightClip;
 layout(location = 5) flat in uint inMaterial;
+layout(location = 6) flat in uint inFirstPrimitive;
 
 layout(location = 0) out vec4 outAlbedoSpecular;
 layout(location = 1) out vec4 outNormalShadow;
 layout(location = 2) out float outDepth;
+#ifdef GB_PRIMITIVE_ID
+layout(location = 3) out uint outPrimitiveId;
+#endif
+#ifdef GB_POSITION
+#ifdef GB_PRIMITIVE_ID
+layout(location = 4) out vec4 outPosition;
+#else
+layout(location = 3) out vec4 outPosition;
+#endif
+#endif
 
 void main() {
   Material m = materials[inMaterial];
@@ -31,4 +43,13 @@ void main() {
   outAlbedoSpecular = vec4(base.rgb, m.params.x);
   outNormalShadow = encodeNormalShadow(N, shadow);
   outDepth = -inEye.z;
+#ifdef GB_PRIMITIVE_ID
+  outPrimitiveId = inFirstPrimitive + uint(gl_PrimitiveID);
+#endif
+#ifdef GB_POSITION
+  // World position as the tutorials store it, or camera-relative (world axes): formed from the
+  // camera-relative eye position, so only the stored format rounds far from the origin.
+  vec3 relative = mat3(frame.worldFromEye) * inEye;
+  outPosition = vec4(POSITION == kPositionWorld ? relative + frame.worldFromEye[3].xyz : relative, 1.0);
+#endif
 }

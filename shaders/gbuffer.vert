@@ -15,6 +15,7 @@ layout(location = 2) out vec4 outUv;
 layout(location = 3) out vec4 outTangent;
 layout(location = 4) out vec4 outLightClip;
 layout(location = 5) flat out uint outMaterial;
+layout(location = 6) flat out uint outFirstPrimitive;
 
 void main() {
   DrawData d = draws[gl_InstanceIndex];
@@ -26,4 +27,5 @@ void main() {
   outUv = vec4(inUv0, inUv1);
   outLightClip = d.lightClipFromObject * vec4(inPosition, 1.0);
   outMaterial = d.info.x;
+  outFirstPrimitive = d.info.z;
 }

@@ -31,17 +31,27 @@ vec3 eyePosition(vec2 fragCoord, float stored) {
   return e.xyz / e.w;
 }
 
+// Eye-space position from the position target: world space, or world axes around the camera.
+vec3 eyeFromStoredPosition(vec3 stored) {
+  mat3 eyeFromWorld = transpose(mat3(frame.worldFromEye));  // a rotation: its inverse is its transpose
+  return eyeFromWorld * (POSITION == kPositionWorld ? stored - frame.worldFromEye[3].xyz : stored);
+}
+
 Surface readSurface(vec2 fragCoord) {
   ivec2 p = ivec2(fragCoord);
   Surface s;
-  float stored = GB_FETCH(gDepth, p).r;
-  s.geometry = EYE_DEPTH != 0 ? stored > 0.0 : stored != farDepth();
+  vec4 position = GB_FETCH(gDepth, p);
+  float stored = position.r;
+  if (POSITION != kPositionDepth)
+    s.geometry = position.w > 0.0;
+  else
+    s.geometry = EYE_DEPTH != 0 ? stored > 0.0 : stored != farDepth();
   vec4 a = GB_FETCH(gAlbedo, p);
   vec4 n = GB_FETCH(gNormal, p);
   s.albedo = a.rgb;
   s.specular = a.a;
   s.N = decodeNormal(n);
   s.shadow = n.w;
-  s.P = eyePosition(fragCoord, stored);
+  s.P = POSITION != kPositionDepth ? eyeFromStoredPosition(position.xyz) : eyePosition(fragCoord, stored);
   return s;
 }

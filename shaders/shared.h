@@ -31,7 +31,7 @@ GB_CONST(uint, kBindingVisible, 4);    // buffer uint[]: indices of the lights d
 GB_CONST(uint, kSetPass, 1);
 GB_CONST(uint, kBindingAlbedo, 0);      // albedo_specular (texture or input attachment)
 GB_CONST(uint, kBindingNormal, 1);      // normal_shadow
-GB_CONST(uint, kBindingDepth, 2);       // the position source: depth (eye depth) or depth_stencil's depth
+GB_CONST(uint, kBindingDepth, 2);       // the position source: depth (eye depth), depth_stencil's depth or position
 GB_CONST(uint, kBindingShadowMap, 3);   // shadow_map with compare sampler
 GB_CONST(uint, kBindingHdr, 4);         // hdr (tone-map input)
 GB_CONST(uint, kBindingCoverage, 5);    // coverage_masked / coverage_full: r32ui storage image
@@ -54,6 +54,12 @@ GB_CONST(uint, kSpecCoverage, 2);       // 1: count fragment invocations into kB
 GB_CONST(uint, kSpecReversedZ, 3);      // 1: depth 1 at the near plane
 GB_CONST(uint, kSpecNormalEncoding, 4); // kNormal* below
 GB_CONST(uint, kSpecNormalMap, 5);      // 1: the material has a normal texture
+GB_CONST(uint, kSpecPosition, 6);       // kPosition* below: where lighting gets the surface position
+
+// The lighting passes' position source.
+GB_CONST(uint, kPositionDepth, 0);      // reconstructed from eye depth or hardware depth (kSpecEyeDepth)
+GB_CONST(uint, kPositionWorld, 1);      // the position target, world space
+GB_CONST(uint, kPositionCamera, 2);     // the position target, world axes with the camera at the origin
 
 // How normal_shadow stores the eye-space normal.
 GB_CONST(uint, kNormalRgba16f, 0);
@@ -89,7 +95,7 @@ GB_STRUCT(DrawData) {
   mat4 eyeFromObject;         // computed in double on the CPU: camera-relative, precise far from the origin
   mat4 normalEyeFromObject;   // inverse transpose of eyeFromObject's 3x3
   mat4 lightClipFromObject;   // the sun's shadow-map clip space
-  uvec4 info;                 // x material index, y 1 if the winding is flipped
+  uvec4 info;                 // x material index, y 1 if the winding is flipped, z first primitive_id
 };
 
 GB_STRUCT(Material) {

@@ -158,7 +158,7 @@ TEST(Compare, ReportNamesOptionsThatDifferAndWritesHeatMaps) {
   std::vector<std::string> names;
   for (auto& d : j["differences"]) names.push_back(d["name"]);
   EXPECT_NE(std::find(names.begin(), names.end(), "options.eye_depth"), names.end());
-  EXPECT_NE(std::find(names.begin(), names.end(), "options.shadow_bias.slope"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "options.shadow_bias_slope"), names.end());
   EXPECT_EQ(j["result"], "fail");
   EXPECT_EQ(j["exit_code"], 2);
   bool depthFound = false;

@@ -14,62 +14,32 @@ static double medianOf(std::vector<double> v) {
 }
 
 nlohmann::json optionsJson(const RenderOptions& o) {
-  return {{"size", std::to_string(o.width) + "x" + std::to_string(o.height)},
-          {"time", o.time},
-          {"lights", o.lights},
-          {"camera", o.camera},
-          {"path", name(o.path)},
-          {"method", name(o.method)},
-          {"eye_depth", o.eyeDepth ? "on" : "off"},
-          {"stencil_culling", o.stencilCulling ? "on" : "off"},
-          {"stencil_mask", name(o.stencilMask)},
-          {"reversed_z", o.reversedZ},
-          {"normal_format", name(o.normalFormat)},
-          {"depth_format", name(o.depthFormat)},
-          {"accum_format", name(o.accumFormat)},
-          {"shadow_format", name(o.shadowFormat)},
-          {"shadow_map_size", o.shadowMapSize},
-          {"shadow_bias", {{"constant", o.shadowBiasConstant}, {"slope", o.shadowBiasSlope}, {"clamp", o.shadowBiasClamp}}},
-          {"fairies", o.fairies},
-          {"sky", o.sky},
-          {"exposure", o.exposure},
-          {"coverage", o.coverage},
-          {"keep_gbuffer", o.keepGBuffer}};
+  // Every option-table entry under its one name; numbers as JSON numbers. coverage and
+  // keep_gbuffer are not user options but say which targets a capture could hold.
+  nlohmann::json j = nlohmann::json::object();
+  for (const OptionInfo& info : optionTable()) {
+    std::string v = getOption(o, info.name);
+    if (info.kind == OptionKind::Integer)
+      j[info.name] = std::stoll(v);
+    else if (info.kind == OptionKind::Real)
+      j[info.name] = std::stod(v);
+    else
+      j[info.name] = v;
+  }
+  j["coverage"] = o.coverage;
+  j["keep_gbuffer"] = o.keepGBuffer;
+  return j;
 }
 
-// Reads one member; a missing member keeps the default (manifests of older versions), a
-// member of the wrong type or an unknown name is an error.
-template <class T>
-static bool member(const nlohmann::json& j, const char* key, T& out, std::string& error) {
+// Reads one boolean member; a missing member keeps the default.
+static bool flag(const nlohmann::json& j, const char* key, bool& out, std::string& error) {
   auto it = j.find(key);
   if (it == j.end()) return true;
-  try {
-    out = it->get<T>();
-  } catch (const nlohmann::json::exception&) {
+  if (!it->is_boolean()) {
     error = std::string("options.") + key + ": unexpected value " + it->dump();
     return false;
   }
-  return true;
-}
-template <class E>
-static bool named(const nlohmann::json& j, const char* key, E& out, std::string& error) {
-  std::string text;
-  if (!j.contains(key)) return true;
-  if (!member(j, key, text, error)) return false;
-  if (!parse(text, out)) {
-    error = std::string("options.") + key + ": unknown value \"" + text + "\"";
-    return false;
-  }
-  return true;
-}
-static bool onOff(const nlohmann::json& j, const char* key, bool& out, std::string& error) {
-  std::string text = out ? "on" : "off";
-  if (!member(j, key, text, error)) return false;
-  if (text != "on" && text != "off") {
-    error = std::string("options.") + key + ": expected on or off, got \"" + text + "\"";
-    return false;
-  }
-  out = text == "on";
+  out = it->get<bool>();
   return true;
 }
 
@@ -78,28 +48,43 @@ bool optionsFromJson(const nlohmann::json& j, RenderOptions& o, std::string& err
     error = "options: not an object";
     return false;
   }
-  std::string size = std::to_string(o.width) + "x" + std::to_string(o.height);
-  if (!member(j, "size", size, error)) return false;
-  unsigned w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(size.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' || !w || !h) {
-    error = "options.size: expected WxH, got \"" + size + "\"";
-    return false;
+  // Members left out keep their defaults (manifests of older versions); an unknown value or a
+  // member of the wrong type is an error naming it. Older manifests wrote on/off options as
+  // booleans and the shadow bias as one object: both are still read.
+  auto set = [&](const std::string& name, const nlohmann::json& v) {
+    std::string text;
+    if (v.is_string())
+      text = v.get<std::string>();
+    else if (v.is_boolean())
+      text = v.get<bool>() ? "on" : "off";
+    else if (v.is_number_integer() || v.is_number_unsigned())
+      text = std::to_string(v.get<long long>());
+    else if (v.is_number_float()) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.17g", v.get<double>());
+      text = buf;
+    } else {
+      error = "options." + name + ": unexpected value " + v.dump();
+      return false;
+    }
+    std::string why;
+    if (!setOption(o, name, text, why)) {
+      error = "options." + name + ": unknown value " + v.dump();
+      return false;
+    }
+    return true;
+  };
+  for (const OptionInfo& info : optionTable())
+    if (auto it = j.find(info.name); it != j.end() && !set(info.name, *it)) return false;
+  if (auto bias = j.find("shadow_bias"); bias != j.end()) {
+    if (!bias->is_object()) {
+      error = "options.shadow_bias: unexpected value " + bias->dump();
+      return false;
+    }
+    for (const char* part : {"constant", "slope", "clamp"})
+      if (auto it = bias->find(part); it != bias->end() && !set(std::string("shadow_bias_") + part, *it)) return false;
   }
-  o.width = w;
-  o.height = h;
-  nlohmann::json bias = j.value("shadow_bias", nlohmann::json::object());
-  return member(j, "time", o.time, error) && member(j, "lights", o.lights, error) &&
-         member(j, "camera", o.camera, error) && named(j, "path", o.path, error) &&
-         named(j, "method", o.method, error) && onOff(j, "eye_depth", o.eyeDepth, error) &&
-         onOff(j, "stencil_culling", o.stencilCulling, error) && named(j, "stencil_mask", o.stencilMask, error) &&
-         member(j, "reversed_z", o.reversedZ, error) && named(j, "normal_format", o.normalFormat, error) &&
-         named(j, "depth_format", o.depthFormat, error) && named(j, "accum_format", o.accumFormat, error) &&
-         named(j, "shadow_format", o.shadowFormat, error) && member(j, "shadow_map_size", o.shadowMapSize, error) &&
-         member(bias, "constant", o.shadowBiasConstant, error) && member(bias, "slope", o.shadowBiasSlope, error) &&
-         member(bias, "clamp", o.shadowBiasClamp, error) && member(j, "fairies", o.fairies, error) &&
-         member(j, "sky", o.sky, error) && member(j, "exposure", o.exposure, error) &&
-         member(j, "coverage", o.coverage, error) && member(j, "keep_gbuffer", o.keepGBuffer, error);
+  return flag(j, "coverage", o.coverage, error) && flag(j, "keep_gbuffer", o.keepGBuffer, error);
 }
 
 nlohmann::json statsJson(const std::vector<FrameStats>& frames, const GpuContext& ctx, const RenderOptions& o,

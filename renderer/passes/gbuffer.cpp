@@ -12,13 +12,21 @@ void addGBufferPass(FrameGraph& g, Renderer& r) {
   };
   Use depth{Target::DepthStencil, Access::DepthStencilWrite, true};
   depth.clearValue.depthStencil = {farDepth(r), 0};
-  std::vector<Use> uses = {clear(Target::AlbedoSpecular), clear(Target::NormalShadow), clear(Target::Depth), depth,
-                           {Target::ShadowMap, Access::SampledFragment}};
-  g.addPass("gbuffer", uses, [&r](PassContext& pc) {
+  // Colour attachments in this order = the shader's output locations (gbuffer.frag).
+  std::vector<Use> uses = {clear(Target::AlbedoSpecular), clear(Target::NormalShadow), clear(Target::Depth)};
+  const bool primitiveId = primitiveIdOn(*r.ctx, r.options);
+  const bool position = r.options.position != PositionSource::Depth;
+  if (primitiveId) uses.push_back(clear(Target::PrimitiveId));
+  if (position) uses.push_back(clear(Target::Position));
+  uses.push_back(depth);
+  uses.push_back({Target::ShadowMap, Access::SampledFragment});
+  const std::string fragment =
+      std::string("gbuffer") + (primitiveId ? ".id" : "") + (position ? ".position" : "") + ".frag";
+  g.addPass("gbuffer", uses, [&r, fragment](PassContext& pc) {
     auto describe = [&](bool alpha, bool normalMap) {
-      return [&r, alpha, normalMap](GraphicsPipelineDesc& d) {
+      return [&r, alpha, normalMap, fragment](GraphicsPipelineDesc& d) {
         d.vertexShader = "gbuffer.vert";
-        d.fragmentShader = "gbuffer.frag";
+        d.fragmentShader = fragment;
         d.vertexInput = VertexInput::SceneVertex;
         d.depthTest = d.depthWrite = true;
         d.depthCompare = r.options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
@@ -35,7 +43,7 @@ void addGBufferPass(FrameGraph& g, Renderer& r) {
     for (uint32_t v = 0; v < 4; ++v) {  // drawVariant(): bit 1 alpha-tested, bit 0 normal texture
       if (r.drawVariants[v] == r.drawVariants[v + 1]) continue;
       bool alpha = v & 2, normalMap = v & 1;
-      std::string id = std::string("gbuffer") + (alpha ? ".alpha" : ".opaque") + (normalMap ? ".normal_map" : "");
+      std::string id = fragment + (alpha ? ".alpha" : ".opaque") + (normalMap ? ".normal_map" : "");
       bindPipeline(pc, graphicsPipeline(r, pc, id, describe(alpha, normalMap)));
       vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);
       drawInstances(r, pc.cmd, r.drawVariants[v], r.drawVariants[v + 1], false);

@@ -6,7 +6,10 @@ namespace gb {
 
 bool singlePass(const Renderer& r) { return r.options.path == Path::SinglePass; }
 
-static Target positionSource(const Renderer& r) { return r.options.eyeDepth ? Target::Depth : Target::DepthStencil; }
+static Target positionSource(const Renderer& r) {
+  if (r.options.position != PositionSource::Depth) return Target::Position;
+  return r.options.eyeDepth ? Target::Depth : Target::DepthStencil;
+}
 
 std::vector<Use> gbufferReads(const Renderer& r) {
   Access a = singlePass(r) ? Access::InputAttachment : Access::SampledFragment;

@@ -35,6 +35,7 @@ struct DeviceFeatures {
   bool depthClamp = false;
   bool fragmentStoresAndAtomics = false;
   bool timestamps = false;
+  bool primitiveId = false;  // gl_PrimitiveID in fragment shaders (the geometryShader feature)
 };
 
 struct GpuContext {

@@ -110,7 +110,8 @@ uint32_t bytesPerPixel(VkFormat f) {
     case VK_FORMAT_D24_UNORM_S8_UINT:   // depth aspect copies out as 4 bytes (24 bits used)
     case VK_FORMAT_X8_D24_UNORM_PACK32: return 4;
     case VK_FORMAT_R16G16B16A16_SFLOAT:
-    case VK_FORMAT_R16G16B16A16_SNORM:  // normal_shadow with --normal-format oct-rg16
+    case VK_FORMAT_R16G16B16A16_SNORM:
+    case VK_FORMAT_R16G16B16A16_UNORM:
     case VK_FORMAT_R32G32_SFLOAT: return 8;
     case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
     default: GB_ASSERT(!"bytesPerPixel: format not listed"); return 0;

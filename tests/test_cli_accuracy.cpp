@@ -1,0 +1,112 @@
+// `gblens error` and `gblens bench` as a user runs them (validation on through GBLENS_VALIDATE):
+// the JSON has every quantity with sane values, the bench writes its files with one row per
+// variant, and user mistakes exit 2 with a message while a glTF that fails to load is skipped.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace gb {
+
+namespace {
+
+struct CliRun {
+  int status = -1;
+  std::string out;  // stdout and stderr
+};
+
+CliRun run(const std::string& args) {
+  CliRun r;
+  std::string cmd = std::string(GBLENS_BINARY) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, p)) r.out.append(buf, n);
+  int s = pclose(p);
+  r.status = WIFEXITED(s) ? WEXITSTATUS(s) : -1;
+  return r;
+}
+
+std::string tempDir(const char* name) {
+  auto dir = std::filesystem::temp_directory_path() / (std::string("gblens_test_") + name + "_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  return dir.string();
+}
+
+}  // namespace
+
+TEST(CliAccuracy, ErrorJsonReportsEveryQuantity) {
+  CliRun r = run("error --size 96x54 --lights 8 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  nlohmann::json j = nlohmann::json::parse(r.out.substr(r.out.find('{')));
+  const nlohmann::json& e = j["error"];
+  EXPECT_EQ(j["options"]["normal_format"], j["options"]["normal_format"].get<std::string>());
+  EXPECT_GT(e["pixels"]["surface"].get<int>(), 96 * 54 / 3);
+  EXPECT_EQ(e["pixels"]["silhouettes_from"], "primitive_id");
+  EXPECT_LT(e["pixels"]["silhouette"].get<double>(), 0.05 * 96 * 54);
+  EXPECT_LT(e["normal_deg"]["mean"].get<double>(), 0.03);
+  EXPECT_LT(e["position"]["eye_depth"]["relative"]["max"].get<double>(), 1e-3);
+  EXPECT_GT(e["position"]["hardware_depth"]["relative"]["mean"].get<double>(), 0.0);
+  EXPECT_GT(e["shadow"]["compared"].get<int>(), 100);
+  EXPECT_LT(e["shadow"]["fraction"].get<double>(), 0.02);
+  EXPECT_GT(e["hdr"]["relative"]["count"].get<int>(), 1000);
+  EXPECT_LT(e["lighting"]["per_contribution"]["max"].get<double>(), std::ldexp(1.0, -10) + 1e-5);
+}
+
+TEST(CliAccuracy, ErrorWritesImagesAndRejectsBadFlags) {
+  std::string dir = tempDir("error");
+  CliRun r = run("error --size 64x36 --lights 0 -o " + dir);
+  ASSERT_EQ(r.status, 0) << r.out;
+  for (const char* f : {"shadow.png", "silhouettes.png", "normal.png", "hdr.png"})
+    EXPECT_GT(std::filesystem::file_size(std::filesystem::path(dir) / f), 100u) << f;
+  std::filesystem::remove_all(dir);
+  CliRun bad = run("error --normal-format rgb9 --size 64x36");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.out.find("--normal-format"), std::string::npos) << bad.out;
+}
+
+TEST(CliAccuracy, BenchWritesJsonCsvAndPlotsWithOneRowPerVariant) {
+  std::string dir = tempDir("bench");
+  CliRun r = run("bench builtin:temple /nonexistent/model.gltf --only default,normal_format=oct-rg16,lights "
+              "--lights-sweep 0,4 --size 96x54 --frames 3 --warmup 1 --depth-range off --out " + dir);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("skipping /nonexistent/model.gltf"), std::string::npos) << r.out;
+  std::ifstream jf(std::filesystem::path(dir) / "bench.json");
+  nlohmann::json j = nlohmann::json::parse(jf);
+  ASSERT_EQ(j["rows"].size(), 5u);  // default, oct-rg16, lights=0, lights=4, default (repeat)
+  for (const auto& row : j["rows"]) {
+    EXPECT_TRUE(row["measured"].get<bool>()) << row["variant"];
+    EXPECT_EQ(row["frames"].get<int>(), 3);
+    EXPECT_GT(row["frame_ms"]["median"].get<double>(), 0.0);
+    EXPECT_LE(row["frame_ms"]["min"].get<double>(), row["frame_ms"]["median"].get<double>());
+    EXPECT_GT(row["error"]["normal_deg_mean"].get<double>(), 0.0);
+    EXPECT_EQ(row["options"]["size"], "96x54");
+  }
+  EXPECT_EQ(j["rows"][1]["options"]["normal_format"], "oct-rg16");
+  EXPECT_EQ(j["rows"][2]["options"]["lights"], 0);
+  ASSERT_EQ(j["defaults"].size(), 1u);
+  EXPECT_EQ(j["skipped_scenes"].size(), 1u);
+  std::ifstream cf(std::filesystem::path(dir) / "bench.csv");
+  std::string line;
+  int lines = 0;
+  while (std::getline(cf, line)) ++lines;
+  EXPECT_EQ(lines, 6);
+  for (const char* f : {"time_vs_error.png", "time_vs_lights.png", "bench.md"}) {
+    std::ifstream img(std::filesystem::path(dir) / f, std::ios::binary);
+    std::string head(8, '\0');
+    img.read(head.data(), 8);
+    EXPECT_TRUE(img) << f;
+    if (std::string(f).ends_with(".png")) {
+      EXPECT_EQ(head.substr(1, 3), "PNG") << f;
+    }
+  }
+  std::filesystem::remove_all(dir);
+  EXPECT_EQ(run("bench --only nosuch --out " + dir).status, 2);
+}
+
+}  // namespace gb

@@ -1,0 +1,42 @@
+// Measuring a frame against the reference: renders it with the targets the measure needs
+// (primitive_id on, fairies off: sprites are not part of the reference) and keeps the reference
+// of a scene per view, light set and band width, so a sweep pays for each only once.
+#pragma once
+#include <map>
+#include <memory>
+#include <string>
+
+#include "renderer/reference/reference.h"
+#include "renderer/renderer.h"
+#include "views/error.h"
+
+namespace gb {
+
+class ReferenceCache {
+ public:
+  explicit ReferenceCache(const Scene& scene, unsigned threads = 2);
+  // The reference for this view and time: surfaces, penumbra band, shading of the scene's lights.
+  ReferenceView get(const View& view, double time, double bandTexels, uint32_t shadowMapSize);
+  const reference::RayScene& rays() const { return *rays_; }
+  double seconds = 0.0;  // CPU time spent building references (reported by bench)
+
+ private:
+  const Scene& scene_;
+  unsigned threads_;
+  std::unique_ptr<reference::RayScene> rays_;
+  struct Entry {
+    reference::Frame frame;
+    std::map<double, std::vector<uint8_t>> bands;      // by radius
+    std::map<std::string, reference::Shaded> shaded;   // by light set and time
+  };
+  std::map<std::string, Entry> entries_;
+};
+
+// The penumbra band used for shadow comparisons, in shadow-map texels (half-width).
+constexpr double kShadowBandTexels = 2.0;
+
+// Renders `options` once more with the measure's read-backs and returns its error.
+FrameError measureFrame(Renderer& r, const RenderOptions& options, ReferenceCache& cache,
+                        double bandTexels = kShadowBandTexels);
+
+}  // namespace gb

@@ -1,0 +1,209 @@
+// Bench plots through gnuplot (pngcairo): time_vs_error.png (a panel per quality group and
+// scene: one point per variant with min-max bars, the Pareto frontier as a line, the defaults
+// circled), time_vs_lights.png (log-log time vs lights and vs pixels, a line per scene and
+// method) and depth_range.png (position error vs far/near per depth source). The data and the
+// script are kept in plot/ next to the images so a plot can be restyled by hand.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "views/bench_report.h"
+#include "views/image_io.h"
+
+namespace gb {
+
+static std::string fileSafe(std::string s) {
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.') c = '_';
+  return s;
+}
+
+static std::string gpQuote(const std::string& s) {  // a gnuplot string literal
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? '\'' : c;
+  return q + "\"";
+}
+
+static std::string shortScene(const std::string& scene) {
+  if (scene.rfind("builtin:", 0) == 0) return scene.substr(8);
+  return std::filesystem::path(scene).stem().string();
+}
+
+static bool writeText(const std::string& path, const std::string& text) {
+  std::ofstream f(path);
+  f << text;
+  return bool(f);
+}
+
+// Runs gnuplot on `script`, which writes `tmpImage`; renames it to `image` on success.
+static bool runGnuplot(const std::string& script, const std::string& tmpImage, const std::string& image,
+                       std::string& error) {
+  std::string cmd = "gnuplot " + gpQuote(script) + " 2>&1";
+  std::string output;
+  if (FILE* p = popen(cmd.c_str(), "r")) {
+    char buf[256];
+    while (fgets(buf, sizeof buf, p)) output += buf;
+    int status = pclose(p);
+    if (status != 0) {
+      error = "gnuplot failed on " + script + (output.empty() ? "" : ": " + output.substr(0, 400));
+      std::filesystem::remove(tmpImage);
+      return false;
+    }
+  } else {
+    error = "cannot run gnuplot (install gnuplot-nox)";
+    return false;
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmpImage, image, ec);
+  if (ec) error = image + ": " + ec.message();
+  return !ec;
+}
+
+static const char* kHeader =
+    "set terminal pngcairo size %d,%d font 'DejaVu Sans,10' noenhanced\nset output %s\nset grid lc rgb '#dddddd'\n";
+
+static std::string header(int w, int h, const std::string& out) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, kHeader, w, h, gpQuote(out).c_str());
+  return buf;
+}
+
+static bool plotTimeVsError(const BenchReport& r, const std::string& dir, std::string& error) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> scenes;
+  for (const BenchRow& row : r.rows)
+    if (row.measured && std::find(scenes.begin(), scenes.end(), row.scene) == scenes.end()) scenes.push_back(row.scene);
+  std::vector<const BenchGroup*> groups;
+  for (const BenchGroup& g : benchGroups())
+    if (!g.metric.empty()) groups.push_back(&g);
+  if (scenes.empty()) return true;
+  const std::string plotDir = (fs::path(dir) / "plot").string();
+  std::ostringstream gp;
+  const std::string tmp = (fs::path(dir) / ".time_vs_error.tmp.png").string();
+  gp << header(int(std::max<size_t>(2, scenes.size()) * 640), int(430 * groups.size()), tmp);
+  gp << "set multiplot layout " << groups.size() << "," << scenes.size()
+     << " title \"gblens bench: frame time vs error, one point per variant\\n(bars: min-max of the timed frames; red "
+        "line: Pareto frontier; circle: the defaults)\" font ',12'\n";
+  gp << "set key off\nset logscale x\nset format x '%.0e'\nset ylabel 'frame ms (median)'\nset offsets graph 0.08, "
+        "graph 0.25, graph 0.12, graph 0.12\n";
+  for (const BenchGroup* g : groups)
+    for (const std::string& scene : scenes) {
+      std::string base = fileSafe(shortScene(scene) + "_" + g->name);
+      std::ostringstream pts, front, def;
+      std::vector<std::pair<double, double>> frontier;
+      for (const BenchRow& row : r.rows) {
+        if (row.scene != scene || !row.measured || (row.group != g->name && row.group != "default")) continue;
+        auto it = row.error.find(g->metric);
+        if (it == row.error.end()) continue;
+        double x = std::max(it->second, 1e-12);  // log axis: exact zeros drawn at 1e-12
+        pts << x << " " << row.frameMs.median << " " << row.frameMs.min << " " << row.frameMs.max << " "
+            << gpQuote(row.label) << "\n";
+        if (row.group == "default") def << x << " " << row.frameMs.median << "\n";
+        if (row.frontier) frontier.push_back({x, row.frameMs.median});
+      }
+      std::sort(frontier.begin(), frontier.end());
+      for (auto& [x, y] : frontier) front << x << " " << y << "\n";
+      writeText(plotDir + "/" + base + ".dat", pts.str());
+      writeText(plotDir + "/" + base + "_frontier.dat", front.str());
+      writeText(plotDir + "/" + base + "_default.dat", def.str());
+      gp << "set title " << gpQuote(shortScene(scene) + ": " + g->title) << "\n";
+      gp << "set xlabel " << gpQuote(g->metric + " (log)") << "\n";
+      if (pts.str().empty()) {
+        gp << "set label 1 'no data' at graph 0.5, graph 0.5 center\nplot [1e-9:1] [0:1] 1/0\nunset label 1\n";
+        continue;
+      }
+      gp << "plot " << gpQuote(plotDir + "/" + base + ".dat")
+         << " using 1:2:3:4 with yerrorbars pt 7 ps 0.9 lc rgb '#4477aa', \\\n  "
+         << gpQuote(plotDir + "/" + base + "_frontier.dat") << " using 1:2 with linespoints lw 2 pt 7 ps 0.9 lc rgb '#cc3311', \\\n  "
+         << gpQuote(plotDir + "/" + base + "_default.dat") << " using 1:2 with points pt 6 ps 3 lw 2 lc rgb '#000000', \\\n  "
+         << gpQuote(plotDir + "/" + base + ".dat") << " using 1:2:5 with labels offset 0.8,0.6 left font ',8' tc rgb '#222222'\n";
+    }
+  gp << "unset multiplot\n";
+  std::string script = plotDir + "/time_vs_error.gp";
+  writeText(script, gp.str());
+  return runGnuplot(script, tmp, (fs::path(dir) / "time_vs_error.png").string(), error);
+}
+
+static bool plotWorkloads(const BenchReport& r, const std::string& dir, std::string& error) {
+  namespace fs = std::filesystem;
+  const std::string plotDir = (fs::path(dir) / "plot").string();
+  // One series per scene and method: Performance adds methods by adding rows.
+  std::map<std::string, std::vector<std::pair<double, double>>> lights, pixels;
+  for (const BenchRow& row : r.rows) {
+    if (!row.measured) continue;
+    std::string series = shortScene(row.scene) + " " + name(row.options.method);
+    if (row.group == "lights" || row.group == "default")
+      lights[series].push_back({std::max(row.options.lights, 1), row.frameMs.median});
+    if (row.group == "size" || row.group == "default")
+      pixels[series].push_back({double(row.options.width) * row.options.height / 1e6, row.frameMs.median});
+  }
+  if (lights.empty() && pixels.empty()) return true;
+  const std::string tmp = (fs::path(dir) / ".time_vs_lights.tmp.png").string();
+  std::ostringstream gp;
+  gp << header(1400, 520, tmp);
+  gp << "set multiplot layout 1,2 title 'gblens bench: frame time vs workload (log-log)' font ',12'\n";
+  gp << "set logscale xy\nset key top left\nset ylabel 'frame ms (median)'\n";
+  auto panel = [&](const char* title, const char* xlabel, const std::string& tag,
+                   std::map<std::string, std::vector<std::pair<double, double>>>& data) {
+    gp << "set title " << gpQuote(title) << "\nset xlabel " << gpQuote(xlabel) << "\n";
+    std::string plot = "plot ";
+    int k = 0;
+    for (auto& [series, pts] : data) {
+      std::sort(pts.begin(), pts.end());
+      pts.erase(std::unique(pts.begin(), pts.end(), [](auto& a, auto& b) { return a.first == b.first; }), pts.end());
+      std::ostringstream d;
+      for (auto& [x, y] : pts) d << x << " " << y << "\n";
+      std::string file = plotDir + "/" + tag + "_" + fileSafe(series) + ".dat";
+      writeText(file, d.str());
+      plot += std::string(k++ ? ", " : "") + gpQuote(file) + " using 1:2 with linespoints lw 2 pt 7 title " + gpQuote(series);
+    }
+    gp << (k ? plot : "plot [1:10] [1:10] 1/0 notitle") << "\n";
+  };
+  panel("time vs point lights (0 lights drawn at 1)", "point lights", "lights", lights);
+  panel("time vs output size", "megapixels", "pixels", pixels);
+  gp << "unset multiplot\n";
+  std::string script = plotDir + "/time_vs_lights.gp";
+  writeText(script, gp.str());
+  return runGnuplot(script, tmp, (fs::path(dir) / "time_vs_lights.png").string(), error);
+}
+
+static bool plotDepthRange(const BenchReport& r, const std::string& dir, std::string& error) {
+  namespace fs = std::filesystem;
+  if (r.depthRange.empty()) return true;
+  const std::string plotDir = (fs::path(dir) / "plot").string();
+  std::map<std::string, std::string> series;
+  for (const DepthRangeRow& d : r.depthRange) series[d.source] += std::to_string(d.ratio) + " " + std::to_string(std::max(d.relMax, 1e-12)) + "\n";
+  const std::string tmp = (fs::path(dir) / ".depth_range.tmp.png").string();
+  std::ostringstream gp;
+  gp << header(900, 560, tmp);
+  gp << "set title 'builtin:depth-range: position reconstruction error vs far/near' font ',12'\n";
+  gp << "set logscale xy\nset format y '%.0e'\nset key outside right\nset xlabel 'far / near'\n"
+        "set ylabel 'max |P - P_ref| / depth'\n";
+  std::string plot = "plot 1e-6 with lines dt 2 lc rgb '#666666' title 'target 1e-6', 2e-6 with lines dt 3 lc rgb '#999999' title '2e-6'";
+  for (auto& [source, data] : series) {
+    std::string file = plotDir + "/depth_range_" + fileSafe(source) + ".dat";
+    writeText(file, data);
+    plot += ", " + gpQuote(file) + " using 1:2 with linespoints lw 2 pt 7 title " + gpQuote(source);
+  }
+  gp << plot << "\n";
+  std::string script = plotDir + "/depth_range.gp";
+  writeText(script, gp.str());
+  return runGnuplot(script, tmp, (fs::path(dir) / "depth_range.png").string(), error);
+}
+
+bool writeBenchPlots(const BenchReport& r, const std::string& dir, std::string& error) {
+  std::error_code ec;
+  std::filesystem::create_directories(std::filesystem::path(dir) / "plot", ec);
+  if (ec) {
+    error = dir + "/plot: " + ec.message();
+    return false;
+  }
+  return plotTimeVsError(r, dir, error) && plotWorkloads(r, dir, error) && plotDepthRange(r, dir, error);
+}
+
+}  // namespace gb
