@@ -123,7 +123,14 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const GpuContext
   j["lights"] = {{"total", last.lights},
                  {"visible", last.lightsVisible},
                  {"near_plane", last.lightsInside},
-                 {"culled", last.lightsCulled}};
+                 {"culled", last.lightsCulled},
+                 {"culled_frustum", last.lightsCulledFrustum},
+                 {"culled_empty", last.lightsCulledEmpty},
+                 {"culled_subpixel", last.lightsCulledSubpixel},
+                 {"subpixel_rule",
+                  "skipped when the sphere's exact screen rectangle (+1/1000 px) holds no pixel centre: no shaded "
+                  "point can be inside it"}};
+  if (last.skyPixels >= 0) j["sky_pixels"] = last.skyPixels;
   if (last.culling.valid)
     j["culling"] = {{"invocations", last.culling.invocations},
                     {"ideal_pairs", last.culling.idealPairs},
