@@ -34,6 +34,15 @@ Command addRenderCommand(CLI::App& root) {
             parseView(*target, view);
             RenderOptions ro = o->render;
             ro.coverage = o->stats || view == ViewKind::CoverageMasked || view == ViewKind::CoverageFull;
+            for (const std::string& name : viewTargets(view)) {
+              Target t;
+              parseTarget(name, t);
+              if (std::string why = targetUnavailable(t, ro); !why.empty()) {
+                std::fprintf(stderr, "gblens render: --target %s needs %s, which is %s\n", target->c_str(), name.c_str(),
+                             why.c_str());
+                return 2;
+              }
+            }
 
             ContextOptions co;
             co.validation = o->validate;

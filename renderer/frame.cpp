@@ -1,6 +1,8 @@
 // The frame, top to bottom: shadow map -> G-buffer -> directional light -> light mask ->
-// point lights -> skybox -> fairy lights -> tone map, in the two-pass or single-pass path.
-// Every pass that does not run is listed with the reason (see --stats).
+// point lights -> skybox -> fairy lights -> tone map, in the two-pass or single-pass path;
+// method tiled replaces the three lighting passes by one compute pass, method forward replaces
+// the G-buffer and lighting by one forward pass. Every pass that does not run is listed with
+// the reason (see --stats).
 #include "renderer/frame.h"
 
 #include <algorithm>
@@ -22,11 +24,25 @@ static std::string shadowMapKey(const Renderer& r) {
   return k.str();
 }
 
+std::string skyVisibilityKey(const Renderer& r) {
+  const RenderOptions& o = r.options;
+  std::ostringstream k;
+  k.precision(17);
+  k << r.scene << ' ' << r.scene->instances.size() << ' ' << o.width << 'x' << o.height << ' ' << o.reversedZ << ' '
+    << name(o.depthFormat);
+  const glm::dmat4& m = r.view.clipFromWorld;
+  for (int c = 0; c < 4; ++c)
+    for (int i = 0; i < 4; ++i) k << ' ' << m[c][i];
+  return k.str();
+}
+
 void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   const Scene& scene = *r.scene;
   const RenderOptions& o = r.options;
-  const bool singlePass = o.path == Path::SinglePass;
+  const Method method = o.method;
+  const bool singlePass = singlePassFrame(o);  // deferred only
   const size_t visibleLights = r.lights.visible.size();
+  const char* methodName = name(method);
 
   // ── Coverage counters (views 8/9, --stats, captures) ─────────────────────────────────────
   if (o.coverage)
@@ -47,21 +63,34 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
     r.shadowKey = shadowKey;
   }
 
-  // ── 2. G-buffer ─────────────────────────────────────────────────────────────────────────────
-  g.beginRenderPass(singlePass ? "deferred (single pass)" : "gbuffer");
-  addGBufferPass(g, r);
-  if (singlePass) {
-    g.nextSubpass();  // lighting reads the G-buffer as subpass inputs, in tile memory where possible
+  // ── 2. G-buffer (deferred, tiled) or the forward pass ──────────────────────────────────────
+  if (method == Method::Forward) {
+    g.skipPass("gbuffer", "method forward: materials are shaded where they are drawn (no G-buffer)");
+    g.beginRenderPass("forward");
+    addForwardPass(g, r);  // sun + every visible point light per fragment, into hdr
   } else {
-    g.endRenderPass();
-    g.beginRenderPass("lighting");
+    g.beginRenderPass(singlePass ? "deferred (single pass)" : "gbuffer");
+    addGBufferPass(g, r);
+    if (singlePass) {
+      g.nextSubpass();  // lighting reads the G-buffer as subpass inputs, in tile memory where possible
+    } else {
+      g.endRenderPass();
+      if (method == Method::Tiled) addTiledLightingPass(g, r);  // compute: sun + binned point lights
+      g.beginRenderPass("lighting");
+    }
   }
 
   // ── 3. Directional light ──────────────────────────────────────────────────────────────────
-  addDirectionalLightPass(g, r);
+  if (method != Method::Deferred)
+    g.skipPass("directional_light", std::string("method ") + methodName + ": the sun is shaded in " +
+                                        (method == Method::Tiled ? "tiled_lighting" : "forward"));
+  else
+    addDirectionalLightPass(g, r);
 
   // ── 4. Light mask ─────────────────────────────────────────────────────────────────────────
-  if (visibleLights == 0)
+  if (method != Method::Deferred)
+    g.skipPass("light_mask", std::string("method ") + methodName + ": no stencil culling");
+  else if (visibleLights == 0)
     g.skipPass("light_mask", "no visible point lights");
   else if (!o.stencilCulling)
     g.skipPass("light_mask", "stencil culling off");
@@ -73,7 +102,11 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
     addLightMaskPass(g, r);
 
   // ── 5. Point lights ───────────────────────────────────────────────────────────────────────
-  if (visibleLights == 0)
+  if (method == Method::Tiled)
+    g.skipPass("point_lights", "method tiled: lights are binned per 16x16 tile and shaded in tiled_lighting");
+  else if (method == Method::Forward)
+    g.skipPass("point_lights", "method forward: every fragment loops over the visible lights");
+  else if (visibleLights == 0)
     g.skipPass("point_lights", "no visible point lights");
   else
     addPointLightPass(g, r);
@@ -85,8 +118,14 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
     addLightCoveragePass(g, r);
 
   // ── 6. Skybox ─────────────────────────────────────────────────────────────────────────────
+  // Sky pixels are where the depth buffer kept the far plane, so they depend only on the
+  // camera, the size and the geometry: the last frame with the same ones counted them
+  // (occlusion query around the skybox draw). Zero then means zero now.
+  const std::string skyKey = skyVisibilityKey(r);
   if (!o.sky)
     g.skipPass("skybox", "sky disabled");
+  else if (skyKey == r.skyKey && r.skyPixels == 0)
+    g.skipPass("skybox", "no sky visible: geometry covered every pixel in the last frame with this camera and geometry");
   else
     addSkyboxPass(g, r);
 

@@ -137,9 +137,11 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
       {gpu::kBindingTileLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {gpu::kBindingBaseColorTexture, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
       {gpu::kBindingNormalTexture, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
+      {gpu::kBindingHdrStorage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, all, nullptr},
   };
+  static_assert(gpu::kBindingHdrStorage == 9, "passBindings is indexed by binding");
   lci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
-  lci.bindingCount = 9;
+  lci.bindingCount = 10;
   lci.pBindings = passBindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &r.passSetLayout));
   // The single-pass path reads the G-buffer and hdr as subpass inputs at the same bindings.

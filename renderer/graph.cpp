@@ -104,11 +104,26 @@ void flushBarriers(VkCommandBuffer cmd, std::vector<VkImageMemoryBarrier2>& barr
   barriers.clear();
 }
 
-// Barrier into a use unless it is a read after a read in the same layout.
+// Barrier into a use unless it is a read after a read in the same layout in stages the last
+// barrier already reached (t.stage: the readers since then). A read in a new stage needs one:
+// the barrier that transitioned the image (or made the last write visible) did not include it,
+// and a barrier from the earlier readers' stages chains it on.
 bool needsBarrier(const GraphTarget& t, const AccessInfo& to) {
   bool lastWasWrite = (t.access & (VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
                                    VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT)) != 0;
-  return t.layout != to.layout || lastWasWrite || to.write;
+  return t.layout != to.layout || lastWasWrite || to.write || (to.stage & ~t.stage) != 0;
+}
+
+// After a use: a read after reads without a barrier joins them (a later writer waits for all).
+void afterUse(GraphTarget& t, bool barrier, VkImageLayout layout, VkPipelineStageFlags2 stage, VkAccessFlags2 access) {
+  if (barrier) {
+    t.stage = stage;
+    t.access = access;
+  } else {
+    t.stage |= stage;
+    t.access |= access;
+  }
+  t.layout = layout;
 }
 
 void timestamp(VkCommandBuffer cmd, VkQueryPool pool, uint32_t query, bool end) {
@@ -188,15 +203,9 @@ void FrameGraph::record(GpuContext& ctx, VkCommandBuffer cmd, GraphTargets& targ
       GraphTarget& t = targets[size_t(u.target)];
       GB_ASSERT(t.image.image);
       AccessInfo to = accessInfo(u.access, t.image.desc.format);
-      if (needsBarrier(t, to)) {
-        imageBarrier(barriers, t, u.clear ? VK_IMAGE_LAYOUT_UNDEFINED : t.layout, to);
-        t.stage = to.stage;
-        t.access = to.access;
-      } else {  // a read after reads in the same layout: a later write must wait for all of them
-        t.stage |= to.stage;
-        t.access |= to.access;
-      }
-      t.layout = to.layout;
+      const bool barrier = needsBarrier(t, to);
+      if (barrier) imageBarrier(barriers, t, u.clear ? VK_IMAGE_LAYOUT_UNDEFINED : t.layout, to);
+      afterUse(t, barrier, to.layout, to.stage, to.access);
     }
     flushBarriers(cmd, barriers);
     timestamp(cmd, timestamps, 2 * p.stat, false);
@@ -317,7 +326,8 @@ void FrameGraph::recordGroup(GpuContext& ctx, VkCommandBuffer cmd, int g, GraphT
         into.access |= sub[si][ti].access;
       }
     into.write = f.write;
-    if (needsBarrier(t, into)) imageBarrier(barriers, t, discard ? VK_IMAGE_LAYOUT_UNDEFINED : t.layout, into);
+    const bool barrier = needsBarrier(t, into);
+    if (barrier) imageBarrier(barriers, t, discard ? VK_IMAGE_LAYOUT_UNDEFINED : t.layout, into);
 
     if (attachmentIndex[ti] >= 0) {
       bool store = t.keep || usedAfter(Target(ti), size_t(lastPass));
@@ -359,9 +369,7 @@ void FrameGraph::recordGroup(GpuContext& ctx, VkCommandBuffer cmd, int g, GraphT
       if (extent.width == 0) extent = {t.image.desc.width, t.image.desc.height};
       GB_ASSERT(extent.width == t.image.desc.width && extent.height == t.image.desc.height);
     }
-    t.layout = l.layout;
-    t.stage = l.stage | storeStage[ti];
-    t.access = l.access | storeAccess[ti];
+    afterUse(t, barrier || storeStage[ti], l.layout, l.stage | storeStage[ti], l.access | storeAccess[ti]);
   }
   flushBarriers(cmd, barriers);
 

@@ -29,10 +29,46 @@ static bool sphereInFrustum(const View& view, const glm::dvec3& c, double r) {
   return true;
 }
 
+bool coversNoPixelCentre(const View& view, const glm::dvec3& c, double r) {
+  const double depth = -c.z;
+  if (depth - r <= view.znear) return false;  // reaches the near plane: unbounded projection
+  const glm::dmat4& p = view.clipFromEye;
+  // Along one screen axis: the lines through the eye tangent to the sphere's outline have
+  // slopes t = lateral / depth solving (lateral - t depth)^2 = r^2 (1 + t^2); ndc = scale t - offset.
+  auto noCentre = [&](double lateral, double scale, double offset, uint32_t size) {
+    double d2 = depth * depth - r * r;
+    double root = r * std::sqrt(lateral * lateral + d2);
+    double t0 = (lateral * depth - root) / d2, t1 = (lateral * depth + root) / d2;
+    double a = (scale * t0 - offset + 1.0) * 0.5 * size, b = (scale * t1 - offset + 1.0) * 0.5 * size;
+    double lo = std::min(a, b) - 1e-3, hi = std::max(a, b) + 1e-3;
+    // Pixel centres are at k + 0.5 for k in [0, size).
+    double k0 = std::max(std::ceil(lo - 0.5), 0.0), k1 = std::min(std::floor(hi - 0.5), double(size) - 1.0);
+    return k0 > k1;
+  };
+  return noCentre(c.x, p[0][0], p[2][0], view.width) || noCentre(c.y, p[1][1], p[2][1], view.height);
+}
+
+CpuImage eyeDepthFromHardware(const View& view, const CpuImage& ds) {
+  CpuImage out;
+  out.name = "depth";
+  out.channels = {"Z"};
+  out.width = ds.width;
+  out.height = ds.height;
+  out.data.resize(size_t(ds.width) * ds.height * sizeof(float));
+  const double far = view.reversedZ ? 0.0 : 1.0;
+  float* z = reinterpret_cast<float*>(out.data.data());
+  for (uint32_t y = 0; y < ds.height; ++y)
+    for (uint32_t x = 0; x < ds.width; ++x) {
+      double d = ds.value(x, y, 0);
+      z[size_t(y) * ds.width + x] = d == far ? 0.0f : float(-eyeFromHardwareDepth(view, x, y, d).z);
+    }
+  return out;
+}
+
 void classifyLights(const Scene& scene, const View& view, double time, FrameLights& out) {
   out.eye.resize(scene.lights.size());
   out.visible.clear();
-  out.culledFrustum = out.culledEmpty = 0;
+  out.culledFrustum = out.culledEmpty = out.culledSubpixel = 0;
   std::vector<uint32_t> nearClass;
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const PointLightDesc& l = scene.lights[i];
@@ -46,6 +82,10 @@ void classifyLights(const Scene& scene, const View& view, double time, FrameLigh
     }
     if (!sphereInFrustum(view, c, l.radius)) {
       out.culledFrustum++;
+      continue;
+    }
+    if (coversNoPixelCentre(view, c, l.radius)) {
+      out.culledSubpixel++;
       continue;
     }
     if (touchesNearPlane(view, c, l.radius))

@@ -59,6 +59,12 @@ struct RenderOptions {
   bool primitiveId = false;   // debug target primitive_id (instance + triangle), for the reference comparison
 };
 
+// The single-pass path (G-buffer and lighting as subpasses) applies to deferred lighting only:
+// forward has no G-buffer, and tiled reads it in a compute pass, outside any render pass.
+inline bool singlePassFrame(const RenderOptions& o) { return o.path == Path::SinglePass && o.method == Method::Deferred; }
+// The G-buffer lives only in tile memory (never stored): single pass and no view reads it.
+inline bool transientGBuffer(const RenderOptions& o) { return singlePassFrame(o) && !o.keepGBuffer; }
+
 // ---- The option table: every user-settable option under one name ----------------------------
 // The name is the JSON key (reports, bench rows, capture manifests) and, with '_' -> '-', the CLI
 // flag: "normal_format" <-> --normal-format. Values are the same strings everywhere.

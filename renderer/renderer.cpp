@@ -23,7 +23,7 @@ static std::string targetsKey(const GpuContext& ctx, const Scene& s, const Rende
   std::ostringstream k;
   k << o.width << 'x' << o.height << ' ' << name(o.normalFormat) << ' ' << name(o.depthFormat) << ' '
     << name(o.accumFormat) << ' ' << name(o.shadowFormat) << ' ' << (s.sun.enabled ? o.shadowMapSize : 1) << ' '
-    << o.coverage << ' ' << (o.path == Path::SinglePass && !o.keepGBuffer) << ' ' << primitiveIdOn(ctx, o) << ' '
+    << o.coverage << ' ' << transientGBuffer(o) << ' ' << primitiveIdOn(ctx, o) << ' '
     << name(o.position) << ' ' << ctx.deviceName;
   return k.str();
 }
@@ -40,7 +40,7 @@ static ImageDesc targetDesc(const GpuContext& ctx, Target t, const Scene& s, con
     case Target::AlbedoSpecular:
     case Target::NormalShadow:
     case Target::Depth:
-      d.transient = o.path == Path::SinglePass && !o.keepGBuffer;
+      d.transient = transientGBuffer(o);
       d.usage = d.transient ? (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT) : color;
       break;
     case Target::DepthStencil:
@@ -68,7 +68,7 @@ static ImageDesc targetDesc(const GpuContext& ctx, Target t, const Scene& s, con
         d.width = d.height = 1;
         d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
       } else {
-        d.transient = o.path == Path::SinglePass && !o.keepGBuffer;
+        d.transient = transientGBuffer(o);
         d.usage = d.transient ? (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT) : color;
       }
       break;
@@ -86,6 +86,7 @@ static void destroyTargets(Renderer& r) {
   for (Buffer& b : r.readbackBuffers) destroyBuffer(ctx, b);
   clearFramebuffers(ctx, r.graphCache);
   r.shadowKey.clear();
+  r.skyKey.clear();
   r.targetsValid = false;
 }
 
@@ -119,6 +120,15 @@ VkPipeline graphicsPipeline(Renderer& r, const PassContext& pc, const std::strin
     GB_ASSERT(d.colorBlend.size() == pc.colorAttachments);
     p = createGraphicsPipeline(*r.ctx, d);
   }
+  return p;
+}
+
+VkPipeline computePipeline(Renderer& r, const std::string& shader) {
+  std::string key = shader + "@compute#";
+  std::vector<SpecConstant> spec = commonSpec(r);
+  for (const SpecConstant& c : spec) key += std::to_string(c.value) + ",";
+  VkPipeline& p = r.pipelines[key];
+  if (!p) p = createComputePipeline(*r.ctx, shader, spec, r.pipelineLayout);
   return p;
 }
 
@@ -340,19 +350,36 @@ void runAfterFrame(Renderer& r, const std::function<void(FrameGraph&)>& build, c
 const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const FrameRequest& userRequest) {
   auto start = std::chrono::steady_clock::now();
   GpuContext& ctx = *r.ctx;
-  // Culling statistics count from coverage_masked and the eye depth.
+  // Culling statistics count from coverage_masked and the eye depth (forward has no eye-depth
+  // target: its surface points come from the hardware depth).
   FrameRequest request = userRequest;
+  const Target depthSource = options.method == Method::Forward ? Target::DepthStencil : Target::Depth;
   if (request.cullingStats && options.coverage)
-    for (Target t : {Target::CoverageMasked, Target::Depth})
+    for (Target t : {Target::CoverageMasked, depthSource})
       if (std::find(request.readback.begin(), request.readback.end(), t) == request.readback.end())
         request.readback.push_back(t);
   ensureTargets(r, options);
-  for (Target t : request.readback) GB_ASSERT(!r.targets[size_t(t)].image.desc.transient);
+  // Transient images have no memory to copy from, and forward frames never write the G-buffer.
+  for (Target t : request.readback) {
+    GB_ASSERT(!r.targets[size_t(t)].image.desc.transient);
+    GB_ASSERT(options.method != Method::Forward || (t != Target::AlbedoSpecular && t != Target::NormalShadow &&
+                                                    t != Target::Depth && t != Target::Position));
+  }
   r.options = options;
   prepareFrame(r);
 
   FrameGraph graph;
+  r.skyQueryActive = false;
   buildFrame(graph, r, request);
+  if (r.skyQueryActive) {
+    if (!r.occlusionPool) {
+      VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+      qci.queryType = VK_QUERY_TYPE_OCCLUSION;
+      qci.queryCount = 1;
+      VK_CHECK(vkCreateQueryPool(ctx.device, &qci, nullptr, &r.occlusionPool));
+    }
+    vkResetQueryPool(ctx.device, r.occlusionPool, 0, 1);
+  }
 
   uint32_t queries = std::max(graph.timestampCount(), 2u);
   uint32_t& capacity = r.timestampCapacity;
@@ -397,7 +424,18 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
   st.lights = uint32_t(r.scene->lights.size());
   st.lightsVisible = uint32_t(r.lights.visible.size());
   st.lightsInside = uint32_t(r.lights.visible.size()) - r.lights.stencilCount;
-  st.lightsCulled = r.lights.culledFrustum + r.lights.culledEmpty;
+  st.lightsCulled = r.lights.culledFrustum + r.lights.culledEmpty + r.lights.culledSubpixel;
+  st.lightsCulledFrustum = r.lights.culledFrustum;
+  st.lightsCulledEmpty = r.lights.culledEmpty;
+  st.lightsCulledSubpixel = r.lights.culledSubpixel;
+  if (r.skyQueryActive) {
+    uint64_t v = 0;  // non-zero exactly when some sample passed (a non-precise query may overcount)
+    VK_CHECK(vkGetQueryPoolResults(ctx.device, r.occlusionPool, 0, 1, sizeof(v), &v, sizeof(v),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    r.skyPixels = v;
+    r.skyKey = skyVisibilityKey(r);
+    st.skyPixels = int64_t(v);
+  }
   if (ctx.features.timestamps) {
     double first = 1e300, last = -1e300;
     for (size_t i = 0; i < st.passes.size(); ++i) {
@@ -419,7 +457,9 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
     c.valid = true;
     const CpuImage& masked = r.readback[size_t(Target::CoverageMasked)];
     for (size_t i = 0; i < size_t(masked.width) * masked.height; ++i) c.invocations += masked.raw(uint32_t(i % masked.width), uint32_t(i / masked.width), 0);
-    c.idealPairs = idealPairs(r.view, r.readback[size_t(Target::Depth)], r.lights.eye);
+    c.idealPairs = idealPairs(r.view, depthSource == Target::Depth ? r.readback[size_t(Target::Depth)]
+                                                                  : eyeDepthFromHardware(r.view, r.readback[size_t(depthSource)]),
+                              r.lights.eye);
     c.workOverIdeal = c.idealPairs ? double(c.invocations) / double(c.idealPairs) : 0.0;
     bool pointLightsRan = false;
     for (const PassStat& p : st.passes) pointLightsRan |= p.name == "point_lights" && !p.skipped;
@@ -442,6 +482,7 @@ void destroyRenderer(Renderer& r) {
   for (auto& [k, p] : r.pipelines) vkDestroyPipeline(ctx.device, p, nullptr);
   if (r.timestampPool) vkDestroyQueryPool(ctx.device, r.timestampPool, nullptr);
   if (r.statisticsPool) vkDestroyQueryPool(ctx.device, r.statisticsPool, nullptr);
+  if (r.occlusionPool) vkDestroyQueryPool(ctx.device, r.occlusionPool, nullptr);
   for (Buffer* b : {&r.vertexBuffer, &r.indexBuffer, &r.icosahedronBuffer, &r.frameBuffer, &r.drawBuffer,
                     &r.materialBuffer, &r.lightBuffer, &r.visibleBuffer})
     destroyBuffer(ctx, *b);

@@ -32,6 +32,7 @@ struct FrameLights {
   uint32_t stencilCount = 0;
   uint32_t culledFrustum = 0;  // outside the view frustum
   uint32_t culledEmpty = 0;    // zero radius, intensity or colour: nothing to add
+  uint32_t culledSubpixel = 0; // its screen rectangle holds no pixel centre (see light_culling.h)
 };
 
 struct CullingStats {
@@ -48,6 +49,8 @@ struct FrameStats {
   std::vector<PassStat> passes;
   CullingStats culling;
   uint32_t lights = 0, lightsVisible = 0, lightsInside = 0, lightsCulled = 0;
+  uint32_t lightsCulledFrustum = 0, lightsCulledEmpty = 0, lightsCulledSubpixel = 0;  // lightsCulled split
+  int64_t skyPixels = -1;  // sky pixels the skybox drew (occlusion query; -1: skybox not drawn)
 };
 
 struct Renderer {
@@ -79,6 +82,10 @@ struct Renderer {
   std::map<std::string, VkPipeline> pipelines;
   VkQueryPool timestampPool = VK_NULL_HANDLE, statisticsPool = VK_NULL_HANDLE;
   bool statisticsActive = false;  // this frame counts fragment invocations of the point-light pass
+  VkQueryPool occlusionPool = VK_NULL_HANDLE;  // sky pixels drawn by the skybox
+  bool skyQueryActive = false;                 // this frame's skybox counts them
+  std::string skyKey;                          // skyVisibilityKey() of the last count
+  uint64_t skyPixels = UINT64_MAX;             // the last count (UINT64_MAX: none yet)
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
   std::array<Buffer, kTargetCount> readbackBuffers;
@@ -120,6 +127,8 @@ void runAfterFrame(Renderer& r, const std::function<void(FrameGraph&)>& build, c
 // Cached graphics pipeline for the current render pass / subpass; `fill` describes it once.
 VkPipeline graphicsPipeline(Renderer& r, const PassContext& pc, const std::string& id,
                             const std::function<void(GraphicsPipelineDesc&)>& fill);
+// Cached compute pipeline of r.pipelineLayout with the common specialization constants.
+VkPipeline computePipeline(Renderer& r, const std::string& shader);
 struct PassImage {
   uint32_t binding;
   VkDescriptorType type;

@@ -92,11 +92,13 @@ void describeReadback(Target t, const RenderOptions& o, CpuImage& img) {
 }
 
 std::string targetUnavailable(Target t, const RenderOptions& o) {
+  const bool forward = o.method == Method::Forward;
   switch (t) {
     case Target::AlbedoSpecular:
     case Target::NormalShadow:
     case Target::Depth:
-      if (o.path == Path::SinglePass && !o.keepGBuffer)
+      if (forward) return "not produced: forward shading has no G-buffer (method forward)";
+      if (transientGBuffer(o))
         return "transient: the single-pass G-buffer stays in tile memory (keep_gbuffer off)";
       break;
     case Target::CoverageMasked:
@@ -105,10 +107,12 @@ std::string targetUnavailable(Target t, const RenderOptions& o) {
       break;
     case Target::PrimitiveId:
       if (!o.primitiveId) return "not computed: primitive_id off";
+      if (forward) return "not produced: forward shading has no G-buffer (method forward)";
       break;
     case Target::Position:
-      if (o.position == PositionSource::Depth) return "not stored: position is reconstructed from depth";
-      if (o.path == Path::SinglePass && !o.keepGBuffer)
+      if (o.position == PositionSource::Depth) return "not computed: positions come from depth (position depth)";
+      if (forward) return "not produced: forward shading has no G-buffer (method forward)";
+      if (transientGBuffer(o))
         return "transient: the single-pass G-buffer stays in tile memory (keep_gbuffer off)";
       break;
     default: break;

@@ -35,11 +35,12 @@ GB_CONST(uint, kBindingDepth, 2);       // the position source: depth (eye depth
 GB_CONST(uint, kBindingShadowMap, 3);   // shadow_map with compare sampler
 GB_CONST(uint, kBindingHdr, 4);         // hdr (tone-map input)
 GB_CONST(uint, kBindingCoverage, 5);    // coverage_masked / coverage_full: r32ui storage image
-GB_CONST(uint, kBindingTileLights, 6);  // tiled deferred: per-tile light lists
+GB_CONST(uint, kBindingTileLights, 6);  // a storage buffer for compute passes (sRGB decode probe)
 // Material textures, pushed per draw: a constant binding samples far faster on a CPU device
 // than an index into a descriptor array (lavapipe: 2.5x for the G-buffer pass).
 GB_CONST(uint, kBindingBaseColorTexture, 7);
 GB_CONST(uint, kBindingNormalTexture, 8);
+GB_CONST(uint, kBindingHdrStorage, 9);  // hdr as a storage image (tiled lighting writes it)
 
 // Input attachment indices of the single-pass path (subpass inputs, in this order).
 GB_CONST(uint, kInputAlbedo, 0);

@@ -49,7 +49,21 @@ FrameError measureFrame(Renderer& r, const RenderOptions& options, ReferenceCach
   if (o.position != PositionSource::Depth) request.readback.push_back(Target::Position);
   const bool ids = primitiveIdOn(*r.ctx, o);
   if (ids) request.readback.push_back(Target::PrimitiveId);
+  // Forward has no G-buffer: the surface figures come from the deferred frame of the same
+  // options (the same rasterized surfaces), the colour from the forward frame itself.
+  CpuImage forwardHdr;
+  if (o.method == Method::Forward) {
+    RenderOptions forward = o;
+    forward.primitiveId = false;
+    renderFrame(r, forward, {{Target::Hdr}});
+    forwardHdr = r.readback[size_t(Target::Hdr)];
+    o.method = Method::Deferred;
+  }
   renderFrame(r, o, request);
+  if (!forwardHdr.empty()) {
+    r.readback[size_t(Target::Hdr)] = forwardHdr;
+    o.method = Method::Forward;
+  }
   GpuFrame g;
   g.albedoSpecular = &r.readback[size_t(Target::AlbedoSpecular)];
   g.normalShadow = &r.readback[size_t(Target::NormalShadow)];

@@ -36,6 +36,7 @@ class ReferenceCache {
 constexpr double kShadowBandTexels = 2.0;
 
 // Renders `options` once more with the measure's read-backs and returns its error.
+// Method forward: surface figures from the deferred frame of the same options, hdr from forward.
 FrameError measureFrame(Renderer& r, const RenderOptions& options, ReferenceCache& cache,
                         double bandTexels = kShadowBandTexels);
 

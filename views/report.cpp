@@ -14,8 +14,8 @@ static double medianOf(std::vector<double> v) {
 }
 
 nlohmann::json optionsJson(const RenderOptions& o) {
-  // Every option-table entry under its one name (numbers as JSON numbers), plus the two
-  // internal switches a capture needs to know which targets were computed and stored.
+  // Every option-table entry under its one name; numbers as JSON numbers. coverage and
+  // keep_gbuffer are not user options but say which targets a capture could hold.
   nlohmann::json j = nlohmann::json::object();
   for (const OptionInfo& info : optionTable()) {
     std::string v = getOption(o, info.name);
@@ -31,43 +31,60 @@ nlohmann::json optionsJson(const RenderOptions& o) {
   return j;
 }
 
+// Reads one boolean member; a missing member keeps the default.
+static bool flag(const nlohmann::json& j, const char* key, bool& out, std::string& error) {
+  auto it = j.find(key);
+  if (it == j.end()) return true;
+  if (!it->is_boolean()) {
+    error = std::string("options.") + key + ": unexpected value " + it->dump();
+    return false;
+  }
+  out = it->get<bool>();
+  return true;
+}
+
 bool optionsFromJson(const nlohmann::json& j, RenderOptions& o, std::string& error) {
   if (!j.is_object()) {
     error = "options: not an object";
     return false;
   }
-  // A missing member keeps the default (manifests of older versions); a value of the wrong type
-  // or one the option table refuses is an error naming the member.
-  for (const OptionInfo& info : optionTable()) {
-    auto it = j.find(info.name);
-    if (it == j.end()) continue;
+  // Members left out keep their defaults (manifests of older versions); an unknown value or a
+  // member of the wrong type is an error naming it. Older manifests wrote on/off options as
+  // booleans and the shadow bias as one object: both are still read.
+  auto set = [&](const std::string& name, const nlohmann::json& v) {
     std::string text;
-    if (it->is_string() && (info.kind == OptionKind::Choice || info.kind == OptionKind::Text))
-      text = it->get<std::string>();
-    else if (it->is_number_integer() && info.kind == OptionKind::Integer)
-      text = std::to_string(it->get<long long>());
-    else if (it->is_number() && info.kind == OptionKind::Real)
-      text = it->dump();  // shortest text that reads back as the same double
-    else {
-      error = "options." + info.name + ": unexpected value " + it->dump();
+    if (v.is_string())
+      text = v.get<std::string>();
+    else if (v.is_boolean())
+      text = v.get<bool>() ? "on" : "off";
+    else if (v.is_number_integer() || v.is_number_unsigned())
+      text = std::to_string(v.get<long long>());
+    else if (v.is_number_float()) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.17g", v.get<double>());
+      text = buf;
+    } else {
+      error = "options." + name + ": unexpected value " + v.dump();
       return false;
     }
     std::string why;
-    if (!setOption(o, info.name, text, why)) {
-      error = "options." + info.name + ": " + why;
+    if (!setOption(o, name, text, why)) {
+      error = "options." + name + ": unknown value " + v.dump();
       return false;
     }
-  }
-  for (auto [key, member] : {std::pair{"coverage", &RenderOptions::coverage}, {"keep_gbuffer", &RenderOptions::keepGBuffer}}) {
-    auto it = j.find(key);
-    if (it == j.end()) continue;
-    if (!it->is_boolean()) {
-      error = std::string("options.") + key + ": unexpected value " + it->dump();
+    return true;
+  };
+  for (const OptionInfo& info : optionTable())
+    if (auto it = j.find(info.name); it != j.end() && !set(info.name, *it)) return false;
+  if (auto bias = j.find("shadow_bias"); bias != j.end()) {
+    if (!bias->is_object()) {
+      error = "options.shadow_bias: unexpected value " + bias->dump();
       return false;
     }
-    o.*member = it->get<bool>();
+    for (const char* part : {"constant", "slope", "clamp"})
+      if (auto it = bias->find(part); it != bias->end() && !set(std::string("shadow_bias_") + part, *it)) return false;
   }
-  return true;
+  return flag(j, "coverage", o.coverage, error) && flag(j, "keep_gbuffer", o.keepGBuffer, error);
 }
 
 nlohmann::json statsJson(const std::vector<FrameStats>& frames, const GpuContext& ctx, const RenderOptions& o,
@@ -106,7 +123,14 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const GpuContext
   j["lights"] = {{"total", last.lights},
                  {"visible", last.lightsVisible},
                  {"near_plane", last.lightsInside},
-                 {"culled", last.lightsCulled}};
+                 {"culled", last.lightsCulled},
+                 {"culled_frustum", last.lightsCulledFrustum},
+                 {"culled_empty", last.lightsCulledEmpty},
+                 {"culled_subpixel", last.lightsCulledSubpixel},
+                 {"subpixel_rule",
+                  "skipped when the sphere's exact screen rectangle (+1/1000 px) holds no pixel centre: no shaded "
+                  "point can be inside it"}};
+  if (last.skyPixels >= 0) j["sky_pixels"] = last.skyPixels;
   if (last.culling.valid)
     j["culling"] = {{"invocations", last.culling.invocations},
                     {"ideal_pairs", last.culling.idealPairs},

@@ -5,8 +5,8 @@
 namespace gb {
 
 void addFairyPass(FrameGraph& g, Renderer& r) {
-  std::vector<Use> uses = gbufferReads(r);
-  uses.push_back(hdrUse(Access::ColorBlend));
+  // No G-buffer reads: the same pass serves deferred, tiled and forward frames.
+  std::vector<Use> uses = {hdrUse(Access::ColorBlend)};
   uses.push_back(depthStencilUse(Access::DepthStencilRead));
   g.addPass("fairy_lights", uses, [&r](PassContext& pc) {
     VkPipeline p = graphicsPipeline(r, pc, "fairy", [&r](GraphicsPipelineDesc& d) {
@@ -18,7 +18,7 @@ void addFairyPass(FrameGraph& g, Renderer& r) {
       d.colorBlend[0] = BlendState{true, VK_BLEND_FACTOR_ONE, VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA, VK_BLEND_FACTOR_ONE,
                                    VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA};
     });
-    bindGBuffer(r, pc);
+    bindDescriptors(r, pc.cmd, lightingLayout(r), {});
     bindPipeline(pc, p);
     vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_NONE);
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);

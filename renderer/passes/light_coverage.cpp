@@ -5,8 +5,8 @@
 namespace gb {
 
 void addLightCoveragePass(FrameGraph& g, Renderer& r) {
-  std::vector<Use> uses = gbufferReads(r);
-  uses.push_back(hdrUse(Access::ColorBlend));
+  // No G-buffer reads: the same pass serves deferred, tiled and forward frames.
+  std::vector<Use> uses = {hdrUse(Access::ColorBlend)};
   uses.push_back(depthStencilUse(Access::DepthStencilRead));
   uses.push_back({Target::CoverageFull, Access::StorageFragment});
   g.addPass("light_coverage", uses, [&r](PassContext& pc) {
@@ -19,8 +19,8 @@ void addLightCoveragePass(FrameGraph& g, Renderer& r) {
       for (BlendState& b : d.colorBlend) b.writeMask = 0;
     });
     const GraphTarget& coverage = r.targets[size_t(Target::CoverageFull)];
-    bindGBuffer(r, pc, {{gpu::kBindingCoverage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, coverage.image.view,
-                         VK_IMAGE_LAYOUT_GENERAL}});
+    bindDescriptors(r, pc.cmd, lightingLayout(r),
+                    {{gpu::kBindingCoverage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, coverage.image.view, VK_IMAGE_LAYOUT_GENERAL}});
     bindPipeline(pc, p);
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);

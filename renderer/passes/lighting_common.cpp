@@ -4,7 +4,7 @@
 
 namespace gb {
 
-bool singlePass(const Renderer& r) { return r.options.path == Path::SinglePass; }
+bool singlePass(const Renderer& r) { return singlePassFrame(r.options); }
 
 static Target positionSource(const Renderer& r) {
   if (r.options.position != PositionSource::Depth) return Target::Position;
@@ -30,7 +30,7 @@ std::string lightingShader(const Renderer& r, const char* base) {
 
 VkPipelineLayout lightingLayout(const Renderer& r) { return singlePass(r) ? r.pipelineLayoutInput : r.pipelineLayout; }
 
-void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassImage> extra) {
+void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassImage> extra, VkPipelineBindPoint bindPoint) {
   const bool input = singlePass(r);
   const VkDescriptorType type = input ? VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   const VkSampler sampler = input ? VK_NULL_HANDLE : r.samplerPoint;
@@ -47,7 +47,7 @@ void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassI
   images.insert(images.end(), extra.begin(), extra.end());
   // bindDescriptors takes an initializer_list; push through a small adapter.
   VkPipelineLayout layout = lightingLayout(r);
-  vkCmdBindDescriptorSets(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, gpu::kSetScene, 1, &r.sceneSet, 0, nullptr);
+  vkCmdBindDescriptorSets(pc.cmd, bindPoint, layout, gpu::kSetScene, 1, &r.sceneSet, 0, nullptr);
   std::vector<VkDescriptorImageInfo> infos(images.size());
   std::vector<VkWriteDescriptorSet> writes(images.size(), {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET});
   for (size_t i = 0; i < images.size(); ++i) {
@@ -57,7 +57,7 @@ void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassI
     writes[i].descriptorType = images[i].type;
     writes[i].pImageInfo = &infos[i];
   }
-  r.ctx->cmdPushDescriptorSet(pc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, gpu::kSetPass, uint32_t(writes.size()),
+  r.ctx->cmdPushDescriptorSet(pc.cmd, bindPoint, layout, gpu::kSetPass, uint32_t(writes.size()),
                               writes.data());
 }
 

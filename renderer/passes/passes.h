@@ -12,6 +12,8 @@ void addGBufferPass(FrameGraph& g, Renderer& r);
 void addDirectionalLightPass(FrameGraph& g, Renderer& r);
 void addLightMaskPass(FrameGraph& g, Renderer& r);
 void addPointLightPass(FrameGraph& g, Renderer& r);
+void addForwardPass(FrameGraph& g, Renderer& r);
+void addTiledLightingPass(FrameGraph& g, Renderer& r);
 void addLightCoveragePass(FrameGraph& g, Renderer& r);
 void addSkyboxPass(FrameGraph& g, Renderer& r);
 void addFairyPass(FrameGraph& g, Renderer& r);
@@ -31,7 +33,8 @@ Use depthStencilUse(Access access);
 std::string lightingShader(const Renderer& r, const char* base);
 VkPipelineLayout lightingLayout(const Renderer& r);
 // Binds set 0 and pushes the G-buffer reads (+ extra images) for a lighting pass.
-void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassImage> extra = {});
+void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassImage> extra = {},
+                 VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS);
 // Draws the visible lights' icosahedra: [first, first + count) of the visible list.
 void drawLightVolumes(Renderer& r, VkCommandBuffer cmd, uint32_t first, uint32_t count);
 // Draws the scene's instances in drawOrder [begin, end), pushing each material's textures

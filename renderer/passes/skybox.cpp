@@ -5,9 +5,10 @@
 namespace gb {
 
 void addSkyboxPass(FrameGraph& g, Renderer& r) {
-  std::vector<Use> uses = gbufferReads(r);
-  uses.push_back(hdrUse(Access::ColorBlend));
+  // No G-buffer reads: the same pass serves deferred, tiled and forward frames.
+  std::vector<Use> uses = {hdrUse(Access::ColorBlend)};
   uses.push_back(depthStencilUse(Access::DepthStencilRead));
+  r.skyQueryActive = true;
   g.addPass("skybox", uses, [&r](PassContext& pc) {
     VkPipeline p = graphicsPipeline(r, pc, "skybox", [&r](GraphicsPipelineDesc& d) {
       d.vertexShader = "fullscreen.vert";
@@ -16,12 +17,15 @@ void addSkyboxPass(FrameGraph& g, Renderer& r) {
       d.depthTest = true;
       d.depthCompare = closerOrEqual(r);  // passes only at the cleared far depth
     });
-    bindGBuffer(r, pc);
+    bindDescriptors(r, pc.cmd, lightingLayout(r), {});
     bindPipeline(pc, p);
     vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_NONE);
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
+    // Count the sky pixels (depth test passed): zero lets later frames with the same camera skip.
+    if (r.skyQueryActive) vkCmdBeginQuery(pc.cmd, r.occlusionPool, 0, 0);
     vkCmdDraw(pc.cmd, 3, 1, 0, 0);
+    if (r.skyQueryActive) vkCmdEndQuery(pc.cmd, r.occlusionPool, 0);
   });
 }
 

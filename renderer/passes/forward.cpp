@@ -1,0 +1,47 @@
+// Forward shading (method forward): the scene's instances drawn once with a fragment shader
+// that evaluates the material, the sun and every visible point light, writing hdr directly.
+// No G-buffer: albedo_specular, normal_shadow, depth (and position, primitive_id) are not
+// produced, and captures and views list them as unavailable (targetUnavailable).
+#include "renderer/passes/passes.h"
+
+namespace gb {
+
+void addForwardPass(FrameGraph& g, Renderer& r) {
+  Use depth{Target::DepthStencil, Access::DepthStencilWrite, true};
+  depth.clearValue.depthStencil = {farDepth(r), 0};
+  // Declared even when coverage is off (then a 1x1 image nobody writes): the shader binds it.
+  std::vector<Use> uses = {hdrUse(Access::ColorWrite, true), depth, {Target::ShadowMap, Access::SampledFragment},
+                           {Target::CoverageMasked, Access::StorageFragment}};
+  g.addPass("forward", uses, [&r](PassContext& pc) {
+    auto describe = [&](bool alpha, bool normalMap) {
+      return [&r, alpha, normalMap](GraphicsPipelineDesc& d) {
+        d.vertexShader = "gbuffer.vert";
+        d.fragmentShader = alpha ? "forward.alpha.frag" : "forward.frag";  // early depth tests when opaque
+        d.vertexInput = VertexInput::SceneVertex;
+        d.depthTest = d.depthWrite = true;
+        d.depthCompare = r.options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
+        d.stencilTest = true;  // stencil 128 where geometry is, as the G-buffer pass writes it
+        d.stencil = stencil(VK_COMPARE_OP_ALWAYS, 0xFF, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_REPLACE);
+        d.spec.push_back({gpu::kSpecAlphaTest, alpha ? 1u : 0u});
+        d.spec.push_back({gpu::kSpecNormalMap, normalMap ? 1u : 0u});
+      };
+    };
+    const GraphTarget& shadow = r.targets[size_t(Target::ShadowMap)];
+    const GraphTarget& coverage = r.targets[size_t(Target::CoverageMasked)];
+    bindDescriptors(r, pc.cmd, r.pipelineLayout,
+                    {{gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, shadow.image.depthView,
+                      pc.layouts[size_t(Target::ShadowMap)], r.samplerShadow},
+                     {gpu::kBindingCoverage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, coverage.image.view, VK_IMAGE_LAYOUT_GENERAL}});
+    // The G-buffer's draw order: opaque before alpha-tested, by material within a variant.
+    for (uint32_t v = 0; v < 4; ++v) {  // drawVariant(): bit 1 alpha-tested, bit 0 normal texture
+      if (r.drawVariants[v] == r.drawVariants[v + 1]) continue;
+      bool alpha = v & 2, normalMap = v & 1;
+      std::string id = std::string("forward") + (alpha ? ".alpha" : ".opaque") + (normalMap ? ".normal_map" : "");
+      bindPipeline(pc, graphicsPipeline(r, pc, id, describe(alpha, normalMap)));
+      vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);
+      drawInstances(r, pc.cmd, r.drawVariants[v], r.drawVariants[v + 1], false);
+    }
+  });
+}
+
+}  // namespace gb
