@@ -63,15 +63,7 @@ std::vector<RegionImage> readbackRegions(Renderer& r, const std::vector<RegionRe
             vkCmdCopyImageToBuffer(pc.cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.buffer, n, regions);
           }
           // The host reads the buffer after the wait: make the copies visible to it.
-          VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-          mb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-          mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-          mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-          mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-          VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-          dep.memoryBarrierCount = 1;
-          dep.pMemoryBarriers = &mb;
-          vkCmdPipelineBarrier2(pc.cmd, &dep);
+          hostReadBarrier(pc.cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
         });
       },
       handOff);

@@ -281,15 +281,7 @@ void recordReadback(Renderer& r, VkCommandBuffer cmd, Target t) {
     copies[n++].imageExtent = {d.width, d.height, 1};
   }
   vkCmdCopyImageToBuffer(cmd, gt.image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buf.buffer, n, copies);
-  VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  mb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-  mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-  mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-  mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dep.memoryBarrierCount = 1;
-  dep.pMemoryBarriers = &mb;
-  vkCmdPipelineBarrier2(cmd, &dep);
+  hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
 }
 
 CpuImage unpackTexels(Target t, const RenderOptions& options, VkFormat format, const uint8_t* src, uint32_t width,

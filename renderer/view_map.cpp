@@ -132,15 +132,7 @@ std::vector<RangeStats> computeRanges(ViewMapper& m, Renderer& r, const std::vec
             const ImageDesc& d = r.targets[size_t(q.source.target)].image.desc;
             vkCmdDispatch(pc.cmd, (d.width + 15) / 16, (d.height + 15) / 16, 1);
           }
-          VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-          mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-          mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-          mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-          mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-          VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-          dep.memoryBarrierCount = 1;
-          dep.pMemoryBarriers = &mb;
-          vkCmdPipelineBarrier2(pc.cmd, &dep);
+          hostReadBarrier(pc.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         });
       },
       handOff);

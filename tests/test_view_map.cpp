@@ -95,15 +95,7 @@ struct Canvas {
       copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
       copy.imageExtent = {w, h, 1};
       vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.buffer, 1, &copy);
-      VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-      mb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-      mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-      mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-      mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-      VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-      dep.memoryBarrierCount = 1;
-      dep.pMemoryBarriers = &mb;
-      vkCmdPipelineBarrier2(cmd, &dep);
+      hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     });
     const uint8_t* p = static_cast<const uint8_t*>(readback.mapped);
     return std::vector<uint8_t>(p, p + size_t(w) * h * 4);

@@ -198,6 +198,18 @@ void submitOnce(GpuContext& ctx, const std::function<void(VkCommandBuffer)>& rec
   vkFreeCommandBuffers(ctx.device, ctx.commandPool, 1, &cmd);
 }
 
+void hostReadBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess) {
+  VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  mb.srcStageMask = srcStage;
+  mb.srcAccessMask = srcAccess;
+  mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+  mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.memoryBarrierCount = 1;
+  dep.pMemoryBarriers = &mb;
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
 void uploadBuffer(GpuContext& ctx, Buffer& dst, const void* data, VkDeviceSize size) {
   if (size == 0) return;
   Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);

@@ -56,6 +56,10 @@ uint32_t bytesPerPixel(VkFormat format);  // of the aspect copied to a buffer (d
 // Records into a fresh command buffer, submits, waits. For uploads and read-backs outside a frame.
 void submitOnce(GpuContext& ctx, const std::function<void(VkCommandBuffer)>& record);
 
+// Makes device writes (by srcStage/srcAccess) visible to the host once the submission's fence
+// has signalled: every read-back ends with it.
+void hostReadBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess);
+
 // Copies bytes into a device-local buffer through a staging buffer.
 void uploadBuffer(GpuContext& ctx, Buffer& dst, const void* data, VkDeviceSize size);
 
