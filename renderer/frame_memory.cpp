@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include <unistd.h>
+
 #include "renderer/renderer.h"
 #include "renderer/targets.h"
 #include "renderer/vk/resources.h"
@@ -45,10 +47,14 @@ std::string frameTooLarge(const GpuContext& ctx, const Scene& scene, const Rende
   const VkPhysicalDeviceMemoryProperties& mp = ctx.memory;
   uint64_t heap = 0;
   for (uint32_t i = 0; i < mp.memoryHeapCount; ++i) heap = std::max<uint64_t>(heap, mp.memoryHeaps[i].size);
+  // A CPU device allocates from system memory: lavapipe reports a 2 GiB heap yet renders
+  // 8192x8192 (2.6 GiB of targets). What bounds it is the machine's physical memory.
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+  if (ctx.isCpu && pages > 0 && pageSize > 0) heap = std::max<uint64_t>(heap, uint64_t(pages) * uint64_t(pageSize));
   uint64_t need = frameMemory(ctx, scene, o).targets + readback;
   if (heap && need > heap / 10 * 9)
     return size + ": the frame needs " + gib(need) + " of targets" + (readback ? " and read-back buffers" : "") +
-           "; " + ctx.deviceName + "'s largest memory heap is " + gib(heap) + " (use a smaller --size)";
+           "; " + ctx.deviceName + "'s largest memory heap (system memory for a CPU device) is " + gib(heap) + " (use a smaller --size)";
   return "";
 }
 

@@ -17,7 +17,7 @@ struct FrameMemory {
 FrameMemory frameMemory(const GpuContext& ctx, const Scene& scene, const RenderOptions& options);
 
 // "" when the frame fits the device (its dimension limit, and its targets plus `readback` bytes
-// in 90% of the largest memory heap); else one line naming --size, what it needs and what there is.
+// in 90% of the largest memory heap, or of system memory on a CPU device); else one line naming --size, what it needs and what there is.
 std::string frameTooLarge(const GpuContext& ctx, const Scene& scene, const RenderOptions& options,
                           uint64_t readback = 0);
 
