@@ -45,8 +45,9 @@ VC_SCENE := $(firstword $(wildcard ../shared/assets/VC/glTF/VC.gltf /work/shared
 bench: build
 	$(GBLENS) bench builtin:temple $(VC_SCENE) --out out/bench
 
+# The numerical stability suite in full (docs/stability.md holds the table of the last run).
 stress: build
-	$(GBLENS) stress
+	mkdir -p out && $(GBLENS) stress --json out/stress.json
 
 # The glTF loader under libFuzzer + ASan + UBSan (clang-14, libclang-rt-14-dev), seeded with the
 # test corpus; new inputs go to build-fuzz/corpus, crashes to build-fuzz/crashes. Not run in CI.

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "app/cli.h"
+#include "renderer/frame_memory.h"
 #include "views/capture.h"
 #include "views/report.h"
 
@@ -79,6 +80,12 @@ Command addCaptureCommand(CLI::App& root) {
             co.validation = o->validate;
             co.device = o->device;
             GpuContext ctx = createContext(co);
+            // An output the device cannot hold is refused here, before any target is allocated.
+            if (std::string why = frameTooLarge(ctx, scene, ro); !why.empty()) {
+              std::fprintf(stderr, "gblens capture: %s\n", why.c_str());
+              destroyContext(ctx);
+              return 2;
+            }
             int status = 0;
             {
               Renderer r;

@@ -8,6 +8,7 @@
 
 #include "views/accuracy.h"
 #include "app/cli.h"
+#include "renderer/frame_memory.h"
 #include "views/report.h"
 
 namespace gb {
@@ -100,6 +101,12 @@ Command addErrorCommand(CLI::App& root) {
             co.device = o->device;
             co.quiet = *json;
             GpuContext ctx = createContext(co);
+            // An output the device cannot hold is refused here, before any target is allocated.
+            if (std::string why = frameTooLarge(ctx, scene, o->render); !why.empty()) {
+              std::fprintf(stderr, "gblens error: %s\n", why.c_str());
+              destroyContext(ctx);
+              return 2;
+            }
             int status = 0;
             {
               Renderer r;

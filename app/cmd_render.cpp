@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "app/cli.h"
+#include "renderer/frame_memory.h"
 #include "views/report.h"
 #include "views/visualize.h"
 
@@ -48,6 +49,12 @@ Command addRenderCommand(CLI::App& root) {
             co.validation = o->validate;
             co.device = o->device;
             GpuContext ctx = createContext(co);
+            // An output the device cannot hold is refused here, before any target is allocated.
+            if (std::string why = frameTooLarge(ctx, scene, ro); !why.empty()) {
+              std::fprintf(stderr, "gblens render: %s\n", why.c_str());
+              destroyContext(ctx);
+              return 2;
+            }
             int status = 0;
             {
               Renderer r;

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
       gb::addInfoCommand(app),
       gb::addErrorCommand(app),
       gb::addBenchCommand(app),
+      gb::addStressCommand(app),
   };
   for (int i = 0; i < argc; ++i) gb::commandLine() += (i ? " " : "") + std::string(i ? argv[i] : "gblens");
   // An unknown first word is a mistyped command: name it and the commands there are.

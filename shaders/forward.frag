@@ -30,7 +30,7 @@ void main() {
   Material m = materials[inMaterial];
   vec4 base = baseColor(m, inUv);
   if (ALPHA_TEST != 0 && base.a < m.params.y) discard;
-  vec3 N = surfaceNormal(m, inNormal, inTangent, inUv, gl_FrontFacing);
+  vec3 N = surfaceNormal(m, inNormal, inTangent, inUv, gl_FrontFacing, inEye);
   vec3 albedo = clamp(base.rgb, 0.0, 1.0);  // what an 8-bit albedo target would hold (unrounded)
   float specular = clamp(m.params.x, 0.0, 1.0);
   float shadow = 1.0;

@@ -34,7 +34,7 @@ void main() {
   Material m = materials[inMaterial];
   vec4 base = baseColor(m, inUv);
   if (ALPHA_TEST != 0 && base.a < m.params.y) discard;
-  vec3 N = surfaceNormal(m, inNormal, inTangent, inUv, gl_FrontFacing);
+  vec3 N = surfaceNormal(m, inNormal, inTangent, inUv, gl_FrontFacing, inEye);
   float shadow = 1.0;
   if (frame.sunEyeDirection.w > 0.0) {
     vec3 lc = inLightClip.xyz / inLightClip.w;

@@ -9,10 +9,19 @@ vec4 baseColor(Material m, vec4 uvs) {
 }
 
 // Unit eye-space normal: interpolated, flipped for back faces of double-sided materials,
-// perturbed by the normal texture in the NORMAL_MAP pipeline variant.
-vec3 surfaceNormal(Material m, vec3 normal, vec4 tangent, vec4 uvs, bool frontFacing) {
-  vec3 N = normalize(normal);
-  if (!frontFacing) N = -N;
+// perturbed by the normal texture in the NORMAL_MAP pipeline variant. A normal without a
+// direction (zero-length vertex normals, or opposite ones cancelling where they are
+// interpolated) is replaced by the face's normal toward the camera: normalize(0) is NaN, and
+// it would reach every lighting pass (found by gblens stress, degenerate-geometry).
+vec3 surfaceNormal(Material m, vec3 normal, vec4 tangent, vec4 uvs, bool frontFacing, vec3 eyePosition) {
+  vec3 g = cross(dFdx(eyePosition), dFdy(eyePosition));  // outside the branch: derivatives need the whole quad
+  vec3 N;
+  if (dot(normal, normal) > 1e-24) {
+    N = normalize(normal);
+    if (!frontFacing) N = -N;
+  } else {
+    N = dot(g, g) > 0.0 ? normalize(dot(g, eyePosition) < 0.0 ? g : -g) : vec3(0.0, 0.0, 1.0);
+  }
   if (NORMAL_MAP != 0) {
     vec3 t = tangent.xyz - N * dot(N, tangent.xyz);
     if (dot(t, t) > 1e-20) {

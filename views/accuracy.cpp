@@ -1,6 +1,7 @@
 // ReferenceCache and measureFrame (see accuracy.h).
 #include "views/accuracy.h"
 
+#include <algorithm>
 #include <chrono>
 #include <sstream>
 
@@ -40,7 +41,8 @@ ReferenceView ReferenceCache::get(const View& view, double time, double bandTexe
   return {&e.frame, &shaded->second, &band->second, bandTexels, radius};
 }
 
-FrameError measureFrame(Renderer& r, const RenderOptions& options, ReferenceCache& cache, double bandTexels) {
+FrameError measureFrame(Renderer& r, const RenderOptions& options, ReferenceCache& cache, double bandTexels,
+                        const MeasureExtras& extras) {
   RenderOptions o = options;
   o.primitiveId = true;  // silhouettes: where the rasterizer and the ray caster see different triangles
   o.fairies = false;     // sprites over the surfaces are not part of the reference
@@ -49,6 +51,9 @@ FrameError measureFrame(Renderer& r, const RenderOptions& options, ReferenceCach
   if (o.position != PositionSource::Depth) request.readback.push_back(Target::Position);
   const bool ids = primitiveIdOn(*r.ctx, o);
   if (ids) request.readback.push_back(Target::PrimitiveId);
+  for (Target t : extras.readback)
+    if (std::find(request.readback.begin(), request.readback.end(), t) == request.readback.end())
+      request.readback.push_back(t);
   // Forward has no G-buffer: the surface figures come from the deferred frame of the same
   // options (the same rasterized surfaces), the colour from the forward frame itself.
   CpuImage forwardHdr;
@@ -76,7 +81,7 @@ FrameError measureFrame(Renderer& r, const RenderOptions& options, ReferenceCach
   g.frame = r.frameData;
   g.lights = r.lights.eye;
   g.srgbDecode = &probeSrgbDecode(r);
-  ReferenceView ref = cache.get(r.view, o.time, bandTexels, o.shadowMapSize);
+  ReferenceView ref = cache.get(extras.referenceView ? *extras.referenceView : r.view, o.time, bandTexels, o.shadowMapSize);
   return measureError(g, ref);
 }
 

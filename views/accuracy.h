@@ -35,9 +35,18 @@ class ReferenceCache {
 // The penumbra band used for shadow comparisons, in shadow-map texels (half-width).
 constexpr double kShadowBandTexels = 2.0;
 
+// What a caller may add to a measurement: more targets read back in the same frame (gblens
+// stress scans every target), and the view to take the reference from when the frame's own is
+// not the one (a scene moved far from the origin is measured against the same view at the
+// origin: everything the reference computes is relative to the camera).
+struct MeasureExtras {
+  std::vector<Target> readback;
+  const View* referenceView = nullptr;
+};
+
 // Renders `options` once more with the measure's read-backs and returns its error.
 // Method forward: surface figures from the deferred frame of the same options, hdr from forward.
 FrameError measureFrame(Renderer& r, const RenderOptions& options, ReferenceCache& cache,
-                        double bandTexels = kShadowBandTexels);
+                        double bandTexels = kShadowBandTexels, const MeasureExtras& extras = {});
 
 }  // namespace gb

@@ -130,8 +130,10 @@ Surface evaluate(const Context& c, RayScene::Hit h, uint32_t x, uint32_t y, bool
 
   // Shading normal (shaders/material.glsl: surfaceNormal).
   glm::dvec3 n = b0 * glm::dvec3(k.v[0]->normal) + b1 * glm::dvec3(k.v[1]->normal) + b2 * glm::dvec3(k.v[2]->normal);
-  glm::dvec3 N = glm::normalize(xf.normalEyeFromObject * n);
-  if (!frontFacing) N = -N;
+  // A normal without a direction: the face's normal toward the camera (as surfaceNormal).
+  glm::dvec3 nEye = xf.normalEyeFromObject * n;
+  glm::dvec3 N = s.geometricNormal;
+  if (glm::dot(nEye, nEye) > 1e-24) N = glm::normalize(nEye) * (frontFacing ? 1.0 : -1.0);
   const Mesh& mesh = c.scene.meshes[c.scene.instances[h.instance].mesh];
   static const MaterialDesc kDefault;
   const MaterialDesc& m = mesh.material >= 0 && size_t(mesh.material) < c.scene.materials.size()

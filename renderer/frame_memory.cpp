@@ -1,0 +1,61 @@
+// Frame memory estimate and the device-fit check (see frame_memory.h).
+#include "renderer/frame_memory.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <unistd.h>
+
+#include "renderer/renderer.h"
+#include "renderer/targets.h"
+#include "renderer/vk/resources.h"
+
+namespace gb {
+
+FrameMemory frameMemory(const GpuContext& ctx, const Scene& scene, const RenderOptions& o) {
+  FrameMemory m;
+  for (size_t i = 0; i < kTargetCount; ++i) {
+    Target t = Target(i);
+    uint64_t w = o.width, h = o.height;
+    // The same sizes as the renderer's target descriptions: placeholders of 1x1 where unused.
+    if (t == Target::ShadowMap) w = h = scene.sun.enabled ? o.shadowMapSize : 1;
+    if ((t == Target::CoverageMasked || t == Target::CoverageFull) && !o.coverage) w = h = 1;
+    if (t == Target::PrimitiveId && !primitiveIdOn(ctx, o)) w = h = 1;
+    if (t == Target::Position && o.position == PositionSource::Depth) w = h = 1;
+    VkFormat f = targetFormat(t, o);
+    uint64_t bytes = w * h * bytesPerPixel(f);
+    if (t == Target::DepthStencil) bytes += w * h;  // the stencil aspect
+    const bool transient = transientGBuffer(o) && (t == Target::AlbedoSpecular || t == Target::NormalShadow ||
+                                                   t == Target::Depth || t == Target::Position);
+    if (!transient) m.targets += bytes;
+    if (targetUnavailable(t, o).empty()) m.readback += bytes;
+  }
+  return m;
+}
+
+static std::string gib(uint64_t bytes) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f GiB", double(bytes) / double(1ull << 30));
+  return buf;
+}
+
+std::string frameTooLarge(const GpuContext& ctx, const Scene& scene, const RenderOptions& o, uint64_t readback) {
+  const uint32_t maxDim = ctx.properties.limits.maxImageDimension2D;
+  const std::string size = "--size " + std::to_string(o.width) + "x" + std::to_string(o.height);
+  if (o.width > maxDim || o.height > maxDim)
+    return size + ": " + ctx.deviceName + " allows at most " + std::to_string(maxDim) + " pixels per side";
+  const VkPhysicalDeviceMemoryProperties& mp = ctx.memory;
+  uint64_t heap = 0;
+  for (uint32_t i = 0; i < mp.memoryHeapCount; ++i) heap = std::max<uint64_t>(heap, mp.memoryHeaps[i].size);
+  // A CPU device allocates from system memory: lavapipe reports a 2 GiB heap yet renders
+  // 8192x8192 (2.6 GiB of targets). What bounds it is the machine's physical memory.
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+  if (ctx.isCpu && pages > 0 && pageSize > 0) heap = std::max<uint64_t>(heap, uint64_t(pages) * uint64_t(pageSize));
+  uint64_t need = frameMemory(ctx, scene, o).targets + readback;
+  if (heap && need > heap / 10 * 9)
+    return size + ": the frame needs " + gib(need) + " of targets" + (readback ? " and read-back buffers" : "") +
+           "; " + ctx.deviceName + "'s largest memory heap (system memory for a CPU device) is " + gib(heap) + " (use a smaller --size)";
+  return "";
+}
+
+}  // namespace gb
