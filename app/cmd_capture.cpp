@@ -57,6 +57,8 @@ Command addCaptureCommand(CLI::App& root) {
             }
             RenderOptions ro = o->render;
             ro.coverage = *coverage == "on";
+            Scene scene;
+            if (!loadSceneOrReport(*o, scene)) return 2;
             std::vector<Target> wanted;
             if (!targets->empty()) {
               if (!parseTargetList(*targets, wanted, error)) {
@@ -64,17 +66,15 @@ Command addCaptureCommand(CLI::App& root) {
                 return 2;
               }
               for (Target t : wanted) {
-                std::string why = targetUnavailable(t, ro);
+                std::string why = targetUnavailable(t, ro, &scene);
                 if (!why.empty()) {
                   std::fprintf(stderr, "gblens capture: --targets %s: %s\n", targetName(t), why.c_str());
                   return 2;
                 }
               }
             } else {
-              wanted = availableTargets(ro);
+              wanted = availableTargets(ro, &scene);
             }
-            Scene scene;
-            if (!loadSceneOrReport(*o, scene)) return 2;
 
             ContextOptions co;
             co.validation = o->validate;

@@ -38,7 +38,7 @@ Command addRenderCommand(CLI::App& root) {
             for (const std::string& name : viewTargets(view)) {
               Target t;
               parseTarget(name, t);
-              if (std::string why = targetUnavailable(t, ro); !why.empty()) {
+              if (std::string why = targetUnavailable(t, ro, &scene); !why.empty()) {
                 std::fprintf(stderr, "gblens render: --target %s needs %s, which is %s\n", target->c_str(), name.c_str(),
                              why.c_str());
                 return 2;

@@ -1,6 +1,8 @@
 // Target names, channel names and formats.
 #include "renderer/targets.h"
 
+#include "renderer/scene.h"
+
 #include "renderer/vk/check.h"
 
 namespace gb {
@@ -91,7 +93,7 @@ void describeReadback(Target t, const RenderOptions& o, CpuImage& img) {
   }
 }
 
-std::string targetUnavailable(Target t, const RenderOptions& o) {
+std::string targetUnavailable(Target t, const RenderOptions& o, const Scene* scene) {
   const bool forward = o.method == Method::Forward;
   switch (t) {
     case Target::AlbedoSpecular:
@@ -114,6 +116,9 @@ std::string targetUnavailable(Target t, const RenderOptions& o) {
       if (forward) return "not produced: forward shading has no G-buffer (method forward)";
       if (transientGBuffer(o))
         return "transient: the single-pass G-buffer stays in tile memory (keep_gbuffer off)";
+      break;
+    case Target::ShadowMap:
+      if (scene && !scene->sun.enabled) return "not computed: the scene has no sun (shadow term 1)";
       break;
     default: break;
   }

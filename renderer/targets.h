@@ -12,6 +12,8 @@
 
 namespace gb {
 
+struct Scene;
+
 enum class Target : uint8_t {
   AlbedoSpecular,   // "albedo_specular": Albedo.R/G/B (sRGB), Specular
   NormalShadow,     // "normal_shadow": N.X/N.Y/N.Z, Shadow
@@ -39,7 +41,8 @@ void describeReadback(Target t, const RenderOptions& options, CpuImage& image);
 
 // Why a target cannot be read back under these options ("" when it can): transient targets
 // (single-pass G-buffer kept in tile memory) and targets that are not computed (coverage off).
-// Captures and the viewer list the reason instead of the target.
-std::string targetUnavailable(Target t, const RenderOptions& options);
+// Captures and the viewer list the reason instead of the target. With the scene: a scene without
+// a sun has no shadow map (a 1x1 placeholder no pass writes).
+std::string targetUnavailable(Target t, const RenderOptions& options, const Scene* scene = nullptr);
 
 }  // namespace gb

@@ -32,7 +32,7 @@ static CaptureMeta testMeta(const GpuContext& ctx, const Scene& scene, const Fra
 
 // Renders `o`, captures every available target to `dir`, and returns the live snapshot.
 static FrameSnapshot renderAndCapture(GpuTest& t, const Scene& scene, const RenderOptions& o, const std::string& dir) {
-  std::vector<Target> all = availableTargets(o);
+  std::vector<Target> all = availableTargets(o, &scene);
   const FrameStats& st = t.render(scene, o, captureRequest(all, o));
   FrameSnapshot live = snapshotFromRenderer(t.renderer(scene), all);
   std::string error;
@@ -253,6 +253,23 @@ TEST_F(GpuTest, TransientAndUncomputedTargetsAreSkippedWithTheReason) {
   ASSERT_TRUE(loadCapture(dir, c, error)) << error;
   EXPECT_EQ(c.frame.absent[size_t(Target::Depth)], skipped["depth"]);
   EXPECT_FALSE(m["stats"]["culling"]["valid"].get<bool>());
+}
+
+// A scene without a sun has no shadow map: the capture says so instead of storing the 1x1
+// placeholder no pass writes (it read back as uninitialized memory).
+TEST_F(GpuTest, ASceneWithoutSunCapturesNoShadowMap) {
+  RenderOptions o = smallCaptureOptions();
+  Scene scene = builtinTemple(o.lights);
+  scene.sun.enabled = false;
+  std::string dir = freshDir("sunless");
+  renderAndCapture(*this, scene, o, dir);
+  nlohmann::json m = nlohmann::json::parse(readText(dir + "/manifest.json"));
+  bool listed = false;
+  for (auto& s : m["skipped"])
+    if (s["name"] == "shadow_map") listed = s["reason"].get<std::string>().find("no sun") != std::string::npos;
+  EXPECT_TRUE(listed) << m["skipped"].dump();
+  for (auto& t : m["targets"]) EXPECT_NE(t["name"], "shadow_map");
+  EXPECT_FALSE(fs::exists(dir + "/shadow_map.exr"));
 }
 
 }  // namespace gb

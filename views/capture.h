@@ -25,7 +25,7 @@ struct CaptureMeta {
 };
 
 // Every target that can be read back under these options (targetUnavailable() is empty).
-std::vector<Target> availableTargets(const RenderOptions& options);
+std::vector<Target> availableTargets(const RenderOptions& options, const Scene* scene = nullptr);
 
 // The frame request of a capture of `targets`: those are read back and nothing else; culling
 // statistics only when they need no extra read-back (coverage on, coverage_masked and depth asked).

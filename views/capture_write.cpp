@@ -18,10 +18,10 @@ namespace gb {
 
 namespace fs = std::filesystem;
 
-std::vector<Target> availableTargets(const RenderOptions& o) {
+std::vector<Target> availableTargets(const RenderOptions& o, const Scene* scene) {
   std::vector<Target> out;
   for (size_t i = 0; i < kTargetCount; ++i)
-    if (targetUnavailable(Target(i), o).empty()) out.push_back(Target(i));
+    if (targetUnavailable(Target(i), o, scene).empty()) out.push_back(Target(i));
   return out;
 }
 

@@ -38,7 +38,7 @@ FrameSnapshot snapshotFromRenderer(const Renderer& r, const std::vector<Target>&
   s.stencilCount = r.lights.stencilCount;
   for (size_t i = 0; i < kTargetCount; ++i) {
     Target t = Target(i);
-    std::string why = targetUnavailable(t, r.options);
+    std::string why = targetUnavailable(t, r.options, r.scene);
     if (!why.empty()) {
       s.absent[i] = why;
     } else if (std::find(fresh.begin(), fresh.end(), t) == fresh.end() || r.readback[i].empty()) {

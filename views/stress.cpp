@@ -68,10 +68,8 @@ std::vector<Target> readableTargets(const Renderer& r, const RenderOptions& o) {
   std::vector<Target> out;
   for (size_t i = 0; i < kTargetCount; ++i) {
     Target t = Target(i);
-    if (!targetUnavailable(t, o).empty()) continue;
+    if (!targetUnavailable(t, o, r.scene).empty()) continue;
     if (t == Target::PrimitiveId && !primitiveIdOn(*r.ctx, o)) continue;
-    // Without a sun the shadow map is a 1x1 placeholder that no pass writes (never initialized).
-    if (t == Target::ShadowMap && !r.scene->sun.enabled) continue;
     if (o.method == Method::Forward &&
         (t == Target::AlbedoSpecular || t == Target::NormalShadow || t == Target::Depth || t == Target::Position))
       continue;
