@@ -117,6 +117,8 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
 // depth aspect, then one stencil byte per texel) into a CpuImage of the target's description.
 CpuImage unpackTexels(Target t, const RenderOptions& options, VkFormat format, const uint8_t* src, uint32_t width,
                       uint32_t height);
+// The read-back buffer of `t` after the frame, unpacked.
+CpuImage unpackReadback(Renderer& r, Target t);
 
 // Runs a small graph over this frame's targets after renderFrame (the viewer's region read-back
 // and view ranges): `build` adds passes, then the `handOff` targets are left readable by fragment
