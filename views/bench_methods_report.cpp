@@ -3,6 +3,7 @@
 // issue they measure (speed-ups of the stencil-culled defaults, culling efficiency, frame rate).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 #include <sstream>
 
@@ -34,6 +35,12 @@ static std::string num(double v, int digits = 3) {
   s.precision(digits);
   s << v;
   return s.str();
+}
+
+static std::string msText(double v) {  // 1234.5, 87.33, 1.261: no exponents in a time column
+  char buf[32];
+  std::snprintf(buf, sizeof buf, v >= 100.0 ? "%.1f" : v >= 1.0 ? "%.2f" : "%.3f", v);
+  return buf;
 }
 
 static std::string sizeOf(const MethodRow& m) { return std::to_string(m.options.width) + "x" + std::to_string(m.options.height); }
@@ -169,8 +176,8 @@ std::string methodsMarkdown(const BenchReport& r) {
               md << "not measured | | | | | " << m.note << " |\n";
               continue;
             }
-            md << num(m.frameMs.median, 4) << " [" << num(m.frameMs.min, 4) << "-" << num(m.frameMs.max, 4) << "] | "
-               << m.frames << " | " << num(m.overDefault) << "x | " << num(lightingMs(m), 4) << " | " << (m.cullingValid ? num(m.workOverIdeal) : "-") << " | "
+            md << msText(m.frameMs.median) << " [" << msText(m.frameMs.min) << "-" << msText(m.frameMs.max) << "] | "
+               << m.frames << " | " << num(m.overDefault) << "x | " << msText(lightingMs(m)) << " | " << (m.cullingValid ? num(m.workOverIdeal) : "-") << " | "
                << m.note << " |\n";
           }
       md << "\n";
@@ -200,8 +207,8 @@ std::string methodsMarkdown(const BenchReport& r) {
        << ")\n\n| pass | skipped when | measured as | saved frame ms (median of pairs) | pass ms when run | pairs |\n"
           "| --- | --- | --- | --- | --- | --- |\n";
     for (const SkipRow& s : r.skips)
-      md << "| " << s.pass << " | " << s.skippedWhen << " | " << s.measuredAs << " | " << num(s.savedMs, 4) << " | "
-         << num(s.passMs, 4) << " | " << s.pairs << " |\n";
+      md << "| " << s.pass << " | " << s.skippedWhen << " | " << s.measuredAs << " | " << msText(s.savedMs) << " | "
+         << msText(s.passMs) << " | " << s.pairs << " |\n";
     md << "\n";
   }
   return md.str();

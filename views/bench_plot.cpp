@@ -279,6 +279,7 @@ static bool plotMethods(const BenchReport& r, const std::string& dir, std::strin
     gp << (k ? plot : "plot [1:10] [1:10] 1/0 notitle") << "\n";
   };
   panel("frame time vs point lights (log-log; median of interleaved rounds)", "frame ms (median)", "time", time, "");
+  gp << "set key top right\n";  // forward's line runs along the top left
   panel("culling efficiency: fragment invocations / ideal pixel-light pairs", "work / ideal (1 = no wasted work)",
         "work", work, "1 with lines dt 2 lc rgb '#666666' title 'ideal', 1.5 with lines dt 3 lc rgb '#999999' title 'target 1.5'");
   gp << "unset multiplot\n";
