@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench_methods.h"
 #include "renderer/renderer.h"
 #include "views/bench_report.h"
 
@@ -23,6 +24,11 @@ struct BenchSettings {  // gblens bench's own flags
   // Off: every frame renders the shadow map, as when the sun or the geometry moves, so shadow
   // map sizes and formats pay for themselves. On: a static scene's reuse applies.
   std::string shadowReuse = "off";
+  // The method comparison (and the skip savings) on builtin:temple; runs unless --only leaves
+  // out "methods".
+  MethodSettings methods;
+  std::string methodsLights = "16,64,256,1024,4096";
+  std::string methodsSizes = "1280x720";
 };
 
 // Warm-up frames, then up to `frames` timed frames within `cap` seconds (at least minFrames):

@@ -1,7 +1,8 @@
-// gblens bench: the sweep of app/bench_variants.cpp on each scene: per variant, warm-up frames,
+// gblens bench: first the method comparison and skip savings on builtin:temple
+// (app/bench_methods.cpp); then the sweep of app/bench_variants.cpp on each scene: per variant, warm-up frames,
 // then the median (min, max) of timed frames (whole-frame wall ms, GPU ms, per pass), then one
 // frame measured against the reference; then the depth-range study (builtin:depth-range). Writes
-// bench.json, bench.csv, bench.md and the plots to --out. A whole-run time budget shortens the
+// bench.json, bench.csv, bench.md, methods.csv and the plots to --out. A whole-run time budget shortens the
 // timed runs of slow variants rather than overrunning (each row says how many frames it got).
 #include <chrono>
 #include <cmath>
@@ -93,9 +94,31 @@ Command addBenchCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--lights-sweep", s->lightsSweep, "light counts of the lights sweep")->capture_default_str();
   cmd->add_option("--sizes", s->sizes, "output sizes of the size sweep")->capture_default_str();
-  cmd->add_option("--only", s->only, "measure only these variants or groups (comma-separated names, e.g. default,normal)");
+  cmd->add_option("--only", s->only,
+                  "measure only these variants or groups (comma-separated names, e.g. default,normal; \"methods\": the "
+                  "method comparison and skip savings)");
   cmd->add_option("--depth-range", s->depthRange, "the depth-precision study on builtin:depth-range")
       ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--methods-lights", s->methodsLights, "light counts of the method comparison")->capture_default_str();
+  cmd->add_option("--methods-sizes", s->methodsSizes, "output sizes of the method comparison")->capture_default_str();
+  cmd->add_option("--methods-forward-max", s->methods.forwardMaxLights,
+                  "largest light count at which forward is measured (it shades every light at every fragment)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--methods-seconds", s->methods.seconds,
+                  "time for the method comparison (rounds per cell shrink to fit, down to --methods-min-rounds)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--methods-culling-max", s->methods.cullingMaxPixelLights,
+                  "largest pixels x lights at which the culling efficiency is measured (ideal pairs are counted on the CPU)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--methods-rounds", s->methods.rounds, "timed rounds per cell of the method comparison, at most")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--methods-min-rounds", s->methods.minRounds, "timed rounds per cell, at least")
+      ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   cmd->add_option("--shadow-reuse", s->shadowReuse,
                   "off: timed frames render the shadow map every frame (a moving sun); on: a static scene reuses it")
@@ -124,15 +147,35 @@ Command addBenchCommand(CLI::App& root) {
                 return 2;
               }
             }
+            s->methods.lights.clear();
+            for (const std::string& v : split(s->methodsLights)) {
+              RenderOptions probe;
+              if (!setOption(probe, "lights", v, error)) {
+                std::fprintf(stderr, "gblens bench: --methods-lights: %s\n", error.c_str());
+                return 2;
+              }
+              s->methods.lights.push_back(probe.lights);
+            }
+            s->methods.sizes = split(s->methodsSizes);
+            for (const std::string& v : s->methods.sizes) {
+              RenderOptions probe;
+              if (!setOption(probe, "size", v, error)) {
+                std::fprintf(stderr, "gblens bench: --methods-sizes: %s\n", error.c_str());
+                return 2;
+              }
+            }
+            s->methods.minRounds = std::min(s->methods.minRounds, s->methods.rounds);
             std::vector<BenchVariant> variants = defaultSweep(o->render, lightCounts, sizes);
+            bool runMethods = true;
             if (!s->only.empty()) {
               std::vector<std::string> only = split(s->only);
+              runMethods = std::find(only.begin(), only.end(), "methods") != only.end();
               std::vector<BenchVariant> kept;
               for (const BenchVariant& v : variants)
                 if (std::find(only.begin(), only.end(), v.name()) != only.end() ||
                     std::find(only.begin(), only.end(), v.group) != only.end())
                   kept.push_back(v);
-              if (kept.empty()) {
+              if (kept.empty() && !runMethods) {
                 std::fprintf(stderr, "gblens bench: --only %s: no variant or group of that name\n", s->only.c_str());
                 return 2;
               }
@@ -173,10 +216,26 @@ Command addBenchCommand(CLI::App& root) {
                                                "). " + (s->shadowReuse == "on" ? "Shadow map reused in steady state. "
                                                                                 : "Every timed frame renders the shadow map (as with a moving sun). ") +
                                                "Error figures: one more frame with primitive_id on and fairies off."}};
+            // The method comparison first, on builtin:temple: its time comes out of the budget, and
+            // the sweep's rows below shorten to what is left.
+            if (runMethods) {
+              report.meta["methods_settings"] = {{"scene", "builtin:temple"},
+                                                 {"lights", s->methods.lights},
+                                                 {"sizes", s->methods.sizes},
+                                                 {"forward_max_lights", s->methods.forwardMaxLights},
+                                                 {"rounds", s->methods.rounds},
+                                                 {"min_rounds", s->methods.minRounds},
+                                                 {"seconds", s->methods.seconds},
+                                                 {"shadow_map", "reused (a static scene)"}};
+              Scene temple = loadScene("builtin:temple", o->render.lights);
+              report.methods = methodStudy(ctx, temple, o->render, s->methods);
+              report.skips = skipSavings(ctx, temple, o->render, 6);
+              std::fprintf(stderr, "gblens bench: method comparison done [%s]\n", minutes(since(start)).c_str());
+            }
             // Every scene first: one that does not load is skipped before the budget is shared out.
             std::vector<std::string> skippedScenes;
             std::vector<std::unique_ptr<Scene>> scenes;
-            for (const std::string& spec : s->scenes) {
+            for (const std::string& spec : variants.empty() ? std::vector<std::string>{} : s->scenes) {
               try {
                 scenes.push_back(std::make_unique<Scene>(loadScene(spec, o->render.lights)));
               } catch (const SceneError& e) {
@@ -297,9 +356,9 @@ Command addBenchCommand(CLI::App& root) {
               std::fprintf(stderr, "gblens bench: %s done (reference: %.1f s of CPU time)\n", scene.source.c_str(),
                            cache.seconds);
             }
-            if (s->depthRange == "on" && since(start) < 0.95 * s->budget)
+            if (s->depthRange == "on" && !variants.empty() && since(start) < 0.95 * s->budget)
               report.depthRange = depthRangeStudy(ctx, o->render);
-            else if (s->depthRange == "on")
+            else if (s->depthRange == "on" && !variants.empty())
               std::fprintf(stderr, "gblens bench: no time left for the depth-range study (--budget)\n");
             report.meta["skipped_scenes"] = skippedScenes;
             report.meta["seconds"] = since(start);
@@ -311,6 +370,7 @@ Command addBenchCommand(CLI::App& root) {
             if (!writeFile((dir / "bench.json").string(), benchJson(report).dump(2) + "\n", error) ||
                 !writeFile((dir / "bench.csv").string(), benchCsv(report), error) ||
                 !writeFile((dir / "bench.md").string(), benchMarkdown(report), error) ||
+                (!report.methods.empty() && !writeFile((dir / "methods.csv").string(), methodsCsv(report), error)) ||
                 !writeBenchPlots(report, s->out, error)) {
               std::fprintf(stderr, "gblens bench: %s\n", error.c_str());
               status = 2;
@@ -322,10 +382,12 @@ Command addBenchCommand(CLI::App& root) {
                              for (const std::string& n : c.dominatedBy) d += n + " ";
                              return d;
                            }()).c_str());
-            std::fprintf(stderr, "gblens bench: wrote %s/{bench.json,bench.csv,bench.md,time_vs_error.png,time_vs_lights.png%s} in %s\n",
-                         s->out.c_str(), report.depthRange.empty() ? "" : ",depth_range.png", minutes(since(start)).c_str());
+            std::fprintf(stderr, "gblens bench: wrote %s/{bench.json,bench.csv,bench.md,time_vs_error.png,time_vs_lights.png%s%s} in %s\n",
+                         s->out.c_str(), report.depthRange.empty() ? "" : ",depth_range.png",
+                         report.methods.empty() ? "" : ",methods.csv,methods_vs_lights.png", minutes(since(start)).c_str());
             bool anyMeasured = false;
             for (const BenchRow& row : report.rows) anyMeasured |= row.measured;
+            for (const MethodRow& row : report.methods) anyMeasured |= row.measured;
             if (!anyMeasured && status == 0) {
               std::fprintf(stderr, "gblens bench: no scene could be measured\n");
               status = 2;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -107,6 +108,68 @@ TEST(CliAccuracy, BenchWritesJsonCsvAndPlotsWithOneRowPerVariant) {
   }
   std::filesystem::remove_all(dir);
   EXPECT_EQ(run("bench --only nosuch --out " + dir).status, 2);
+}
+
+// The method comparison: the four methods at every light count, in bench.json, methods.csv and
+// bench.md, with their ratios to the defaults taken in the same rounds (the defaults' own is 1),
+// culling work from the coverage counts (forward's: every visible light at every fragment it
+// shaded, far above the ideal pairs), and forward left out above --methods-forward-max.
+TEST(CliAccuracy, BenchComparesTheFourMethodsSideBySide) {
+  std::string dir = tempDir("bench_methods");
+  CliRun r = run("bench --only methods --methods-sizes 96x54 --methods-lights 0,24 --methods-forward-max 8 "
+                 "--methods-rounds 2 --methods-min-rounds 2 --size 96x54 --lights 8 --out " + dir);
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream jf(std::filesystem::path(dir) / "bench.json");
+  nlohmann::json j = nlohmann::json::parse(jf);
+  EXPECT_EQ(j["rows"].size(), 0u);  // no sweep variant asked for
+  ASSERT_EQ(j["methods"].size(), 8u);  // 4 methods x 2 light counts
+  std::map<std::string, int> seen;
+  for (const auto& m : j["methods"]) {
+    const std::string method = m["method"];
+    ++seen[method];
+    const int lights = m["lights"];
+    EXPECT_EQ(m["size"], "96x54");
+    if (method == "forward" && lights == 24) {
+      EXPECT_FALSE(m["measured"].get<bool>());  // above --methods-forward-max
+      continue;
+    }
+    ASSERT_TRUE(m["measured"].get<bool>()) << method << " " << lights;
+    EXPECT_EQ(m["frames"].get<int>(), 2);
+    EXPECT_GT(m["frame_ms"]["median"].get<double>(), 0.0);
+    if (method == "deferred") {
+      EXPECT_EQ(m["time_over_default"].get<double>(), 1.0);
+    }
+    EXPECT_GT(m["time_over_default"].get<double>(), 0.0);
+    ASSERT_TRUE(m.contains("culling")) << method;
+    if (lights == 0) {
+      EXPECT_EQ(m["culling"]["ideal_pairs"].get<uint64_t>(), 0u);
+      continue;
+    }
+    const double work = m["culling"]["work_over_ideal"];
+    EXPECT_GE(work, 1.0) << method;  // every method evaluates at least the pairs that light a pixel
+    if (method == "deferred_unculled") {
+      for (const auto& d : j["methods"])
+        if (d["method"] == "deferred" && d["lights"] == lights) {
+          EXPECT_GT(work, d["culling"]["work_over_ideal"].get<double>());  // culling removes work
+        }
+    }
+  }
+  for (const char* method : {"deferred", "deferred_unculled", "forward", "tiled"}) EXPECT_EQ(seen[method], 2) << method;
+  ASSERT_EQ(j["skips"].size(), 3u);
+  EXPECT_EQ(j["skips"][0]["pass"], "shadow_map");
+  int lines = 0;
+  std::ifstream cf(std::filesystem::path(dir) / "methods.csv");
+  for (std::string line; std::getline(cf, line);) ++lines;
+  EXPECT_EQ(lines, 9);
+  std::ifstream md(std::filesystem::path(dir) / "bench.md");
+  std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("## Lighting methods"), std::string::npos);
+  EXPECT_NE(text.find("Culling efficiency vs lights"), std::string::npos);
+  std::ifstream img(std::filesystem::path(dir) / "methods_vs_lights.png", std::ios::binary);
+  std::string head(4, '\0');
+  img.read(head.data(), 4);
+  EXPECT_EQ(head.substr(1, 3), "PNG");
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace gb

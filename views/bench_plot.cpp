@@ -1,7 +1,8 @@
 // Bench plots through gnuplot (pngcairo): time_vs_error.png (a panel per quality group and
 // scene: one point per variant with min-max bars, the Pareto frontier as a line, the defaults
 // circled), time_vs_lights.png (log-log time vs lights and vs pixels, a line per scene and
-// method) and depth_range.png (position error vs far/near per depth source). The data and the
+// method), depth_range.png (position error vs far/near per depth source) and methods_vs_lights.png
+// (the method comparison: log-log time vs lights and culling efficiency per method). The data and the
 // script are kept in plot/ next to the images so a plot can be restyled by hand.
 #include <algorithm>
 #include <cmath>
@@ -221,6 +222,72 @@ static bool plotDepthRange(const BenchReport& r, const std::string& dir, std::st
   return runGnuplot(script, tmp, (fs::path(dir) / "depth_range.png").string(), error);
 }
 
+// methods_vs_lights.png: the method comparison, log-log frame time vs point lights, a line per
+// method and size; beside it the culling efficiency (work / ideal pairs) vs lights.
+static bool plotMethods(const BenchReport& r, const std::string& dir, std::string& error) {
+  namespace fs = std::filesystem;
+  if (r.methods.empty()) return true;
+  const std::string plotDir = (fs::path(dir) / "plot").string();
+  std::map<std::string, std::vector<std::pair<double, double>>> time, work;
+  std::vector<std::string> order;  // series in table order
+  for (const auto& [method, flags] : benchMethods())
+    for (const MethodRow& m : r.methods) {
+      if (m.method != method || !m.measured) continue;
+      std::string series = method + " " + std::to_string(m.options.width) + "x" + std::to_string(m.options.height);
+      if (std::find(order.begin(), order.end(), series) == order.end()) order.push_back(series);
+      double x = std::max(m.options.lights, 1);
+      time[series].push_back({x, m.frameMs.median});
+      if (m.cullingValid && m.workOverIdeal > 0) work[series].push_back({x, m.workOverIdeal});
+    }
+  // A colour per method, a dash pattern per size: the same in both panels.
+  std::vector<std::string> sizes;
+  for (const std::string& series : order) {
+    std::string size = series.substr(series.find(' ') + 1);
+    if (std::find(sizes.begin(), sizes.end(), size) == sizes.end()) sizes.push_back(size);
+  }
+  auto style = [&](const std::string& series) {
+    static const char* colours[] = {"#4477aa", "#ee6677", "#228833", "#ccbb44", "#66ccee", "#aa3377"};
+    std::string method = series.substr(0, series.find(' '));
+    size_t c = 0;
+    for (; c < benchMethods().size() && benchMethods()[c].first != method; ++c) {}
+    size_t d = std::find(sizes.begin(), sizes.end(), series.substr(series.find(' ') + 1)) - sizes.begin();
+    return std::string("lc rgb '") + colours[c % 6] + "' dt " + std::to_string(d + 1);
+  };
+  const std::string tmp = (fs::path(dir) / ".methods_vs_lights.tmp.png").string();
+  std::ostringstream gp;
+  gp << header(1400, 560, tmp);
+  gp << "set multiplot layout 1,2 title " << gpQuote("gblens bench: lighting methods on " + r.methods.front().scene +
+                                                       " (" + r.meta.value("device", std::string("?")) + ")")
+     << " font ',12'\n";
+  gp << "set logscale xy\nset key top left\nset xlabel 'point lights (log; 0 drawn at 1)'\n";
+  auto panel = [&](const char* title, const char* ylabel, const std::string& tag,
+                   std::map<std::string, std::vector<std::pair<double, double>>>& data, const std::string& extra) {
+    gp << "set title " << gpQuote(title) << "\nset ylabel " << gpQuote(ylabel) << "\n";
+    std::string plot = "plot " + extra;
+    int k = extra.empty() ? 0 : 1;
+    for (const std::string& series : order) {
+      auto it = data.find(series);
+      if (it == data.end() || it->second.empty()) continue;
+      std::sort(it->second.begin(), it->second.end());
+      std::ostringstream d;
+      for (auto& [x, y] : it->second) d << x << " " << y << "\n";
+      std::string file = plotDir + "/methods_" + tag + "_" + fileSafe(series) + ".dat";
+      writeText(file, d.str());
+      plot += std::string(k++ ? ", " : "") + gpQuote(file) + " using 1:2 with linespoints lw 2 pt 7 " + style(series) +
+              " title " + gpQuote(series);
+    }
+    gp << (k ? plot : "plot [1:10] [1:10] 1/0 notitle") << "\n";
+  };
+  panel("frame time vs point lights (log-log; median of interleaved rounds)", "frame ms (median)", "time", time, "");
+  gp << "set key top right\n";  // forward's line runs along the top left
+  panel("culling efficiency: fragment invocations / ideal pixel-light pairs", "work / ideal (1 = no wasted work)",
+        "work", work, "1 with lines dt 2 lc rgb '#666666' title 'ideal', 1.5 with lines dt 3 lc rgb '#999999' title 'target 1.5'");
+  gp << "unset multiplot\n";
+  std::string script = plotDir + "/methods_vs_lights.gp";
+  writeText(script, gp.str());
+  return runGnuplot(script, tmp, (fs::path(dir) / "methods_vs_lights.png").string(), error);
+}
+
 bool writeBenchPlots(const BenchReport& r, const std::string& dir, std::string& error) {
   std::error_code ec;
   std::filesystem::create_directories(std::filesystem::path(dir) / "plot", ec);
@@ -228,7 +295,8 @@ bool writeBenchPlots(const BenchReport& r, const std::string& dir, std::string& 
     error = dir + "/plot: " + ec.message();
     return false;
   }
-  return plotTimeVsError(r, dir, error) && plotWorkloads(r, dir, error) && plotDepthRange(r, dir, error);
+  return plotTimeVsError(r, dir, error) && plotWorkloads(r, dir, error) && plotDepthRange(r, dir, error) &&
+         plotMethods(r, dir, error);
 }
 
 }  // namespace gb

@@ -215,6 +215,7 @@ static nlohmann::json targetsJson(const BenchReport& r) {
                    {"scene", scene}, {"measured", l}, {"bound", 1e-5}, {"met", l <= 1e-5}});
     }
   }
+  for (const auto& m : methodTargets(r)) t.push_back(m);
   return t;
 }
 
@@ -262,6 +263,12 @@ nlohmann::json benchJson(const BenchReport& r) {
     dr.push_back({{"far_over_near", d.ratio}, {"znear", d.znear}, {"zfar", d.zfar}, {"source", d.source},
                   {"relative_max", d.relMax}, {"relative_mean", d.relMean}});
   j["depth_range"] = dr;
+  j["methods"] = methodsJson(r);
+  nlohmann::json skips = nlohmann::json::array();
+  for (const SkipRow& s : r.skips)
+    skips.push_back({{"pass", s.pass}, {"skipped_when", s.skippedWhen}, {"measured_as", s.measuredAs},
+                     {"saved_frame_ms", s.savedMs}, {"pass_ms", s.passMs}, {"pairs", s.pairs}});
+  j["skips"] = skips;
   nlohmann::json defaults = nlohmann::json::array();
   for (const DefaultsCheck& c : r.defaults)
     defaults.push_back({{"scene", c.scene}, {"on_frontier", c.onFrontier}, {"dominated_by", c.dominatedBy}});
@@ -358,6 +365,7 @@ std::string benchMarkdown(const BenchReport& r) {
            << "%).\n\n";
       }
   }
+  md << methodsMarkdown(r);
   if (!r.depthRange.empty()) {
     md << "## Depth range (builtin:depth-range): max |P - P_ref| / depth\n\n| far/near |";
     std::vector<std::string> sources;

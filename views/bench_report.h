@@ -1,6 +1,7 @@
 // Bench results: one row per (scene, variant) with timings and error figures; the Pareto
 // frontier of time vs error per quality group; whether the defaults are dominated; and the
-// files: bench.json, bench.csv, bench.md, time_vs_error.png, time_vs_lights.png, depth_range.png.
+// files: bench.json, bench.csv, bench.md, time_vs_error.png, time_vs_lights.png, depth_range.png;
+// with the method comparison also methods.csv and methods_vs_lights.png.
 #pragma once
 #include <nlohmann/json.hpp>
 
@@ -87,9 +88,47 @@ std::vector<std::string> errorNoWorseThanDefaults(const std::vector<BenchRow>& r
                                                   const BenchTolerances& tol);
 std::vector<DefaultsCheck> checkDefaults(const std::vector<BenchRow>& rows, const BenchTolerances& tol);
 
+// One cell of the method comparison (app/bench_methods.cpp): a lighting method at one size and
+// light count, timed in rounds interleaved with the other methods (the same drift and load hit
+// all), and its culling efficiency from one more frame with coverage on.
+struct MethodRow {
+  std::string scene;
+  std::string method;  // "deferred" (stencil-culled, the defaults), "deferred_unculled", "forward", "tiled"
+  std::string flags;   // the gblens flags that select it
+  RenderOptions options;
+  bool measured = false;
+  std::string note;  // why not measured, or what was cut
+  int frames = 0;
+  Timing frameMs, gpuMs;
+  std::vector<PassTiming> passes;
+  // Median over the rounds of this method's frame time / the stencil-culled deferred frame's in
+  // the same round (above 1: slower than the defaults).
+  double overDefault = 0.0;
+  // Culling efficiency: fragment invocations of the lighting work (coverage_masked summed: what
+  // each method evaluated) / ideal (pixel, light) pairs (surface point inside the radius).
+  bool cullingValid = false;
+  uint64_t invocations = 0, idealPairs = 0;
+  double workOverIdeal = 0.0;
+};
+// The methods' names in table order, and their flags.
+const std::vector<std::pair<std::string, std::string>>& benchMethods();
+// Lighting work of a method's frame: the sum of its lighting passes' ms (directional_light,
+// light_mask, point_lights, tiled_lighting, forward).
+double lightingMs(const MethodRow& row);
+
+// What a skip saves: frames with the pass run and frames with it skipped, alternating on one
+// renderer; the median per-pair difference of the whole frame time, and the pass's own ms.
+struct SkipRow {
+  std::string pass, skippedWhen, measuredAs;
+  double savedMs = 0.0, passMs = 0.0;
+  int pairs = 0;
+};
+
 struct BenchReport {
   nlohmann::json meta;  // device, driver, git, settings
   std::vector<BenchRow> rows;
+  std::vector<MethodRow> methods;
+  std::vector<SkipRow> skips;
   std::vector<DepthRangeRow> depthRange;
   std::vector<DefaultsCheck> defaults;
   BenchTolerances tolerances;
@@ -98,6 +137,12 @@ struct BenchReport {
 nlohmann::json benchJson(const BenchReport& r);
 std::string benchCsv(const BenchReport& r);
 std::string benchMarkdown(const BenchReport& r);
+// The method comparison and the skip savings (bench_methods_report.cpp): JSON, methods.csv, the
+// bench.md section, and the targets they measure (appended to the report's targets).
+nlohmann::json methodsJson(const BenchReport& r);
+std::string methodsCsv(const BenchReport& r);
+std::string methodsMarkdown(const BenchReport& r);
+nlohmann::json methodTargets(const BenchReport& r);
 // Writes the plots with gnuplot (data and scripts next to them). False with a message on failure.
 bool writeBenchPlots(const BenchReport& r, const std::string& dir, std::string& error);
 
