@@ -264,6 +264,32 @@ TEST_F(Accuracy, AnOpenSingleSidedCardCastsTheExactShadow) {
   EXPECT_LT(e.shadow.fraction, 0.005) << e.shadow.mismatched << " of " << e.shadow.compared;
 }
 
+// The same card turned away from the sun: the shadow pass culls it (single-sided), and the
+// reference's shadow rays skip single-sided faces turned away from the sun too, so neither
+// shadows the floor (a sky dome seen from inside: VC's sun was blocked in the reference only).
+TEST_F(Accuracy, ASingleSidedCardTurnedAwayFromTheSunCastsNoShadowInEither) {
+  Scene scene = floorScene(10.0);
+  MeshBuilder b{scene};
+  b.begin("card", 0);
+  b.quad({-1.0f, 2.0f, -1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 2.0f});  // y = 2, facing -Y
+  b.end();
+  scene.instances.push_back({b.meshIndex, glm::dmat4(1.0), true});
+  computeBounds(scene);
+  ASSERT_FALSE(scene.materials[0].doubleSided);
+  scene.sun.enabled = true;
+  scene.sun.toSun = glm::normalize(glm::dvec3(0.2, 1.0, 0.1));
+  scene.sky.ambient = glm::vec3(0.2f);
+  setCamera(scene, {0.0, 6.0, 7.0}, {0.0, 0.0, 0.0});
+  ReferenceCache cache(scene);
+  RenderOptions o = accuracyOptions();
+  o.lights = 0;
+  FrameError e = measureFrame(renderer(scene), o, cache);
+  EXPECT_GT(e.shadow.compared, 3000u);
+  // The card's shadow would be ~2% of the compared pixels if either side cast it.
+  EXPECT_LT(e.shadow.fraction, 0.005) << e.shadow.falseLight << " false light, " << e.shadow.falseShadow
+                                      << " false shadow of " << e.shadow.compared;
+}
+
 // The normal-map path (material.glsl: tangent frame, normal scale): a constant tilted normal
 // texture on a floor, so texture filtering cannot differ; the GPU's normal must match the
 // reference's to the normal format's bound plus float arithmetic.

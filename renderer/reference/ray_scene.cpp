@@ -1,7 +1,7 @@
 // The scene as Embree geometry: one triangle geometry per instance (geomID = instance index),
 // world-space float vertices for the search only. A context filter applies what the rasterizer
-// applies: single-sided back faces and alpha-cut texels are skipped; shadow rays see only
-// shadow casters and never the triangle they start on.
+// applies: single-sided back faces (seen from the camera, or from the sun for shadow rays) and
+// alpha-cut texels are skipped; shadow rays see only shadow casters, never the triangle they start on.
 #include <embree3/rtcore.h>
 
 #include <cmath>
@@ -64,14 +64,20 @@ bool accept(const RayContext& rc, uint32_t instance, uint32_t triangle, double u
   if (rc.shadow) {
     if (!info.castsShadow) return false;
     if (instance == rc.ignoreInstance && triangle == rc.ignoreTriangle) return false;
-  } else if (!m.doubleSided) {
+  }
+  if (!m.doubleSided) {
+    // Culled by the rasterizer: a back face seen from the camera, or, for a shadow ray (dir
+    // toward the sun), a face turned away from the sun, which the shadow pass culls too. A
+    // closed caster still blocks through its sun-facing side; an open single-sided sheet facing
+    // away from the sun (a sky dome seen from inside) lets the sun through, as on the GPU.
     const float* p = info.vertices;
     const uint32_t* i = info.indices + 3 * triangle;
     glm::dvec3 a(p[3 * i[0]], p[3 * i[0] + 1], p[3 * i[0] + 2]);
     glm::dvec3 b(p[3 * i[1]], p[3 * i[1] + 1], p[3 * i[1] + 2]);
     glm::dvec3 c(p[3 * i[2]], p[3 * i[2] + 1], p[3 * i[2] + 2]);
-    bool front = (glm::dot(glm::cross(b - a, c - a), dir) < 0.0) != info.mirrored;
-    if (!front) return false;  // culled by the rasterizer
+    const glm::dvec3 view = rc.shadow ? -dir : dir;  // the rasterizer's viewing direction
+    bool front = (glm::dot(glm::cross(b - a, c - a), view) < 0.0) != info.mirrored;
+    if (!front) return false;
   }
   if (m.alphaMode != AlphaMode::Opaque && alphaAt(impl, instance, triangle, u, v) < m.alphaCutoff) return false;
   return true;
