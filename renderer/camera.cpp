@@ -33,6 +33,18 @@ glm::dmat4 lookAt(const glm::dvec3& eye, const glm::dvec3& target, const glm::dv
   return m;  // worldFromEye
 }
 
+CameraDesc lookAtCamera(std::string name, const glm::dvec3& eye, const glm::dvec3& target, double yfov,
+                        double znear, double zfar) {
+  CameraDesc c;
+  c.name = std::move(name);
+  const bool vertical = std::abs(glm::normalize(target - eye).y) > 0.999;
+  c.worldFromEye = lookAt(eye, target, vertical ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0));
+  c.yfov = yfov;
+  c.znear = znear;
+  c.zfar = zfar;
+  return c;
+}
+
 View makeView(const CameraDesc& camera, uint32_t width, uint32_t height, bool reversedZ) {
   View v;
   v.width = width;

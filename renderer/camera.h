@@ -39,4 +39,8 @@ double hardwareDepth(const View& view, const glm::dvec3& eye);
 // A camera looking from `eye` at `target` (+Y up).
 glm::dmat4 lookAt(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up = {0, 1, 0});
 
+// A camera description looking from `eye` at `target`; looking straight up or down, -Z is up.
+CameraDesc lookAtCamera(std::string name, const glm::dvec3& eye, const glm::dvec3& target, double yfov,
+                        double znear, double zfar);
+
 }  // namespace gb

@@ -79,14 +79,7 @@ void addBox(Scene& s, glm::vec3 lo, glm::vec3 hi, int material) {
 }
 
 void setCamera(Scene& s, glm::dvec3 eye, glm::dvec3 target, double yfov, double znear, double zfar) {
-  CameraDesc c;
-  c.name = "test";
-  glm::dvec3 up = std::abs(glm::normalize(target - eye).y) > 0.999 ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0);
-  c.worldFromEye = lookAt(eye, target, up);
-  c.yfov = yfov;
-  c.znear = znear;
-  c.zfar = zfar;
-  s.cameras = {c};
+  s.cameras = {lookAtCamera("test", eye, target, yfov, znear, zfar)};
 }
 
 }  // namespace gb

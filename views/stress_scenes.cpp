@@ -44,14 +44,7 @@ Scene groundScene(double halfSize, bool sun) {
 }
 
 void placeCamera(Scene& s, glm::dvec3 eye, glm::dvec3 target, double yfov, double znear, double zfar) {
-  CameraDesc c;
-  c.name = "stress";
-  glm::dvec3 up = std::abs(glm::normalize(target - eye).y) > 0.999 ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0);
-  c.worldFromEye = lookAt(eye, target, up);
-  c.yfov = yfov;
-  c.znear = znear;
-  c.zfar = zfar;
-  s.cameras = {c};
+  s.cameras = {lookAtCamera("stress", eye, target, yfov, znear, zfar)};
 }
 
 void translateScene(Scene& s, const glm::dvec3& offset) {
