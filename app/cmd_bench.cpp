@@ -12,6 +12,7 @@
 #include <memory>
 #include <sstream>
 
+#include "renderer/version.h"
 #include "app/bench_run.h"
 #include "app/bench_variants.h"
 #include "app/cli.h"
@@ -196,7 +197,7 @@ Command addBenchCommand(CLI::App& root) {
             BenchReport report;
             report.meta = {{"device", ctx.deviceName},
                            {"driver", ctx.driverName},
-                           {"git", GBLENS_GIT_HASH},
+                           {"git", gitHash()},
                            {"version", GBLENS_VERSION},
                            {"settings",
                             {{"frames", o->frames},

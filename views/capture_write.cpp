@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "renderer/version.h"
 #include "views/capture.h"
 #include "views/exr.h"
 #include "views/image_io.h"
@@ -174,7 +175,7 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
   nlohmann::json m = {
       {"format", "gblens-capture"},
       {"format_version", kCaptureFormatVersion},
-      {"gblens", {{"version", GBLENS_VERSION}, {"git", GBLENS_GIT_HASH}}},
+      {"gblens", {{"version", GBLENS_VERSION}, {"git", gitHash()}}},
       {"created_utc", utcNow()},
       {"command", meta.commandLine},
       {"device", meta.device},
