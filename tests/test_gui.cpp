@@ -117,7 +117,9 @@ TEST_F(GuiTest, KeysShowEveryViewAndAClickProbesThePixelAsAHeadlessRenderDoes) {
     previousLayout_ = layout["views"][0];
     std::vector<float> thumb = viewThumb(shoot("key_" + key + "_" + view), layout["views"][0]);
     EXPECT_GT(gui::standardDeviation(thumb), 0.01) << view << " looks blank";
-    if (!previous.empty()) EXPECT_GT(gui::meanAbsDifference(thumb, previous), 0.015) << view << " looks like the view before";
+    if (!previous.empty()) {
+      EXPECT_GT(gui::meanAbsDifference(thumb, previous), 0.015) << view << " looks like the view before";
+    }
     previous = thumb;
   }
 
@@ -161,7 +163,9 @@ TEST_F(GuiTest, KeysShowEveryViewAndAClickProbesThePixelAsAHeadlessRenderDoes) {
     Target target;
     ASSERT_TRUE(parseTarget(t["target"], target));
     if (std::find(screen.begin(), screen.end(), target) == screen.end()) {
-      if (target != Target::ShadowMap) EXPECT_TRUE(t.contains("absent")) << t["target"];  // primitive_id, position: off
+      if (target != Target::ShadowMap) {
+        EXPECT_TRUE(t.contains("absent")) << t["target"];  // primitive_id, position: off
+      }
       continue;
     }
     ASSERT_TRUE(t.contains("channels")) << t["target"] << ": " << t.value("absent", "");

@@ -176,7 +176,9 @@ TEST_F(GpuTest, CoverageCountsWhatEachMethodEvaluatedAndNeverLessThanTheLightsTh
         const uint32_t count = coverage.raw(x, y, 0);
         const double d = eye.value(x, y, 0);
         if (d <= 0.0) {
-          if (method != Method::Deferred) ASSERT_EQ(count, 0u) << name(method) << " sky " << x << "," << y;
+          if (method != Method::Deferred) {
+            ASSERT_EQ(count, 0u) << name(method) << " sky " << x << "," << y;
+          }
           continue;
         }
         ++surface;
@@ -196,7 +198,9 @@ TEST_F(GpuTest, CoverageCountsWhatEachMethodEvaluatedAndNeverLessThanTheLightsTh
           uint32_t tx = x - x % gpu::kTileSize, ty = y - y % gpu::kTileSize;
           for (uint32_t yy = ty; yy < std::min(ty + gpu::kTileSize, o.height); ++yy)
             for (uint32_t xx = tx; xx < std::min(tx + gpu::kTileSize, o.width); ++xx)
-              if (eye.value(xx, yy, 0) > 0.0) ASSERT_EQ(coverage.raw(xx, yy, 0), count) << xx << "," << yy;
+              if (eye.value(xx, yy, 0) > 0.0) {
+                ASSERT_EQ(coverage.raw(xx, yy, 0), count) << xx << "," << yy;
+              }
         }
       }
     EXPECT_GT(surface, int(o.width * o.height / 2));

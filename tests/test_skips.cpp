@@ -52,7 +52,9 @@ TEST_F(GpuTest, NoSunSkipsTheShadowMapAndNoLightsSkipEveryLightPass) {
       EXPECT_TRUE(pass(st, p) && pass(st, p)->skipped) << name(m) << " " << p << ": " << state(st, p);
     for (const char* p : {"fairy_lights", "light_coverage"})
       EXPECT_TRUE(skippedFor(st, p, "no visible point lights")) << name(m) << " " << p << ": " << state(st, p);
-    if (m == Method::Deferred) EXPECT_TRUE(skippedFor(st, "point_lights", "no visible point lights"));
+    if (m == Method::Deferred) {
+      EXPECT_TRUE(skippedFor(st, "point_lights", "no visible point lights"));
+    }
   }
 }
 
