@@ -18,6 +18,15 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+
+double passMs(const FrameStats& st, const std::string& name) {
+  for (const PassStat& p : st.passes)
+    if (p.name == name && !p.skipped) return p.ms;
+  return 0.0;
+}
+
+}  // namespace
+
 // Per-pass medians over frames, in the last frame's pass order (a pass counts where it ran).
 std::vector<PassTiming> passTimings(const std::vector<FrameStats>& frames) {
   std::vector<PassTiming> out;
@@ -36,14 +45,6 @@ std::vector<PassTiming> passTimings(const std::vector<FrameStats>& frames) {
   }
   return out;
 }
-
-double passMs(const FrameStats& st, const std::string& name) {
-  for (const PassStat& p : st.passes)
-    if (p.name == name && !p.skipped) return p.ms;
-  return 0.0;
-}
-
-}  // namespace
 
 std::vector<MethodRow> methodStudy(GpuContext& ctx, Scene& scene, const RenderOptions& base, const MethodSettings& s) {
   const auto start = Clock::now();

@@ -27,6 +27,9 @@ struct MethodSettings {
 // Every method at every (size, lights) of `s` on `scene` (generated lights), from `base`.
 std::vector<MethodRow> methodStudy(GpuContext& ctx, Scene& scene, const RenderOptions& base, const MethodSettings& s);
 
+// Per-pass medians over frames, in the last frame's pass order (a pass counts where it ran).
+std::vector<PassTiming> passTimings(const std::vector<FrameStats>& frames);
+
 // The defaults' frame with each skippable pass run and skipped, alternating on one renderer.
 std::vector<SkipRow> skipSavings(GpuContext& ctx, Scene& scene, const RenderOptions& base, int pairs);
 

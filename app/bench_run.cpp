@@ -42,18 +42,7 @@ void timeVariant(Renderer& r, const RenderOptions& o, const BenchSettings& s, in
   row.frames = n;
   row.frameMs = timingOf(frameMs);
   row.gpuMs = timingOf(gpuMs);
-  const FrameStats& lastFrame = stats.back();
-  for (size_t i = 0; i < lastFrame.passes.size(); ++i) {
-    PassTiming p;
-    p.name = lastFrame.passes[i].name;
-    p.skipped = lastFrame.passes[i].skipped;
-    p.reason = lastFrame.passes[i].reason;
-    std::vector<double> ms;
-    for (const FrameStats& f : stats)
-      if (i < f.passes.size() && f.passes[i].name == p.name && !f.passes[i].skipped) ms.push_back(f.passes[i].ms);
-    p.ms = timingOf(ms);
-    row.passes.push_back(p);
-  }
+  row.passes = passTimings(stats);
 }
 
 // Interleaved A/B: frames of the defaults (renderer a) and of a variant (renderer b, its own

@@ -23,17 +23,8 @@ void recordReadback(Renderer& r, VkCommandBuffer cmd, Target t) {
     destroyBuffer(*r.ctx, buf);
     buf = createBuffer(*r.ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
   }
-  const ImageDesc& d = gt.image.desc;
-  VkBufferImageCopy copies[2]{};
-  uint32_t n = 0;
-  VkImageAspectFlags aspect = isDepthFormat(d.format) ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
-  copies[n].imageSubresource = {aspect, 0, 0, 1};
-  copies[n++].imageExtent = {d.width, d.height, 1};
-  if (hasStencil(d.format)) {
-    copies[n].bufferOffset = VkDeviceSize(d.width) * d.height * bytesPerPixel(d.format);
-    copies[n].imageSubresource = {VK_IMAGE_ASPECT_STENCIL_BIT, 0, 0, 1};
-    copies[n++].imageExtent = {d.width, d.height, 1};
-  }
+  VkBufferImageCopy copies[2];
+  const uint32_t n = wholeImageCopies(gt.image.desc, copies);
   vkCmdCopyImageToBuffer(cmd, gt.image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buf.buffer, n, copies);
   hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
 }

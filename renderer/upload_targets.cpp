@@ -67,42 +67,19 @@ void uploadTargets(Renderer& r, const RenderOptions& options, const std::array<c
     std::vector<uint8_t> bytes = packTexels(*img, d.format);
     Buffer staging = createBuffer(ctx, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
     std::memcpy(staging.mapped, bytes.data(), bytes.size());
-    const bool depth = isDepthFormat(d.format), stencil = hasStencil(d.format);
     const VkImageLayout readLayout =
-        depth && stencil ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+        isDepthFormat(d.format) && hasStencil(d.format) ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     submitOnce(ctx, [&](VkCommandBuffer cmd) {
-      auto barrier = [&](VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                         VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
-        VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-        b.srcStageMask = srcStage;
-        b.srcAccessMask = srcAccess;
-        b.dstStageMask = dstStage;
-        b.dstAccessMask = dstAccess;
-        b.oldLayout = from;
-        b.newLayout = to;
-        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = gt.image.image;
-        b.subresourceRange = {aspectsOf(d.format), 0, 1, 0, 1};
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.imageMemoryBarrierCount = 1;
-        dep.pImageMemoryBarriers = &b;
-        vkCmdPipelineBarrier2(cmd, &dep);
-      };
-      barrier(VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, 0,
-              VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-      VkBufferImageCopy copies[2]{};
-      uint32_t n = 0;
-      copies[n].imageSubresource = {depth ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT) : VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-      copies[n++].imageExtent = {d.width, d.height, 1};
-      if (stencil) {
-        copies[n].bufferOffset = VkDeviceSize(d.width) * d.height * 4;
-        copies[n].imageSubresource = {VK_IMAGE_ASPECT_STENCIL_BIT, 0, 0, 1};
-        copies[n++].imageExtent = {d.width, d.height, 1};
-      }
+      const VkImageSubresourceRange all = {aspectsOf(d.format), 0, 1, 0, 1};
+      imageBarrier(cmd, gt.image.image, all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+      VkBufferImageCopy copies[2];
+      const uint32_t n = wholeImageCopies(d, copies);
       vkCmdCopyBufferToImage(cmd, staging.buffer, gt.image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, n, copies);
-      barrier(VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, readLayout, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-              VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-              VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+      imageBarrier(cmd, gt.image.image, all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, readLayout,
+                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     });
     destroyBuffer(ctx, staging);
     gt.layout = readLayout;

@@ -234,11 +234,15 @@ TEST_F(Accuracy, PrimitiveIdIsOffByDefaultAndNamesTheReferenceTriangle) {
 // An open, single-sided card facing the sun must cast its shadow (the shadow pass culls faces
 // turned away from the sun, so the winding of the light's projection must match the camera's),
 // and the shadow term must agree with the exact ray-traced one outside the penumbra band.
-TEST_F(Accuracy, AnOpenSingleSidedCardCastsTheExactShadow) {
+// A floor under a 2x2 single-sided card at y = 2 (material 0), facing up or down, lit by a high sun.
+static Scene cardOverFloor(bool facingUp) {
   Scene scene = floorScene(10.0);
   MeshBuilder b{scene};
   b.begin("card", 0);
-  b.quad({-1.0f, 2.0f, 1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -2.0f});  // y = 2, facing +Y
+  if (facingUp)
+    b.quad({-1.0f, 2.0f, 1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -2.0f});
+  else
+    b.quad({-1.0f, 2.0f, -1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 2.0f});
   b.end();
   scene.instances.push_back({b.meshIndex, glm::dmat4(1.0), true});
   computeBounds(scene);
@@ -246,6 +250,11 @@ TEST_F(Accuracy, AnOpenSingleSidedCardCastsTheExactShadow) {
   scene.sun.toSun = glm::normalize(glm::dvec3(0.2, 1.0, 0.1));
   scene.sky.ambient = glm::vec3(0.2f);
   setCamera(scene, {0.0, 6.0, 7.0}, {0.0, 0.0, 0.0});
+  return scene;
+}
+
+TEST_F(Accuracy, AnOpenSingleSidedCardCastsTheExactShadow) {
+  Scene scene = cardOverFloor(true);
   ReferenceCache cache(scene);
   RenderOptions o = accuracyOptions();
   o.lights = 0;
@@ -268,18 +277,8 @@ TEST_F(Accuracy, AnOpenSingleSidedCardCastsTheExactShadow) {
 // reference's shadow rays skip single-sided faces turned away from the sun too, so neither
 // shadows the floor (a sky dome seen from inside: VC's sun was blocked in the reference only).
 TEST_F(Accuracy, ASingleSidedCardTurnedAwayFromTheSunCastsNoShadowInEither) {
-  Scene scene = floorScene(10.0);
-  MeshBuilder b{scene};
-  b.begin("card", 0);
-  b.quad({-1.0f, 2.0f, -1.0f}, {2.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 2.0f});  // y = 2, facing -Y
-  b.end();
-  scene.instances.push_back({b.meshIndex, glm::dmat4(1.0), true});
-  computeBounds(scene);
+  Scene scene = cardOverFloor(false);
   ASSERT_FALSE(scene.materials[0].doubleSided);
-  scene.sun.enabled = true;
-  scene.sun.toSun = glm::normalize(glm::dvec3(0.2, 1.0, 0.1));
-  scene.sky.ambient = glm::vec3(0.2f);
-  setCamera(scene, {0.0, 6.0, 7.0}, {0.0, 0.0, 0.0});
   ReferenceCache cache(scene);
   RenderOptions o = accuracyOptions();
   o.lights = 0;

@@ -210,6 +210,21 @@ void hostReadBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAcce
   vkCmdPipelineBarrier2(cmd, &dep);
 }
 
+uint32_t wholeImageCopies(const ImageDesc& d, VkBufferImageCopy (&copies)[2]) {
+  copies[0] = copies[1] = VkBufferImageCopy{};
+  uint32_t n = 0;
+  copies[n].imageSubresource = {isDepthFormat(d.format) ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT)
+                                                        : VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT),
+                                0, 0, 1};
+  copies[n++].imageExtent = {d.width, d.height, 1};
+  if (hasStencil(d.format)) {
+    copies[n].bufferOffset = VkDeviceSize(d.width) * d.height * bytesPerPixel(d.format);
+    copies[n].imageSubresource = {VK_IMAGE_ASPECT_STENCIL_BIT, 0, 0, 1};
+    copies[n++].imageExtent = {d.width, d.height, 1};
+  }
+  return n;
+}
+
 void uploadBuffer(GpuContext& ctx, Buffer& dst, const void* data, VkDeviceSize size) {
   if (size == 0) return;
   Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
@@ -221,9 +236,9 @@ void uploadBuffer(GpuContext& ctx, Buffer& dst, const void* data, VkDeviceSize s
   destroyBuffer(ctx, staging);
 }
 
-static void imageBarrier(VkCommandBuffer cmd, VkImage image, uint32_t mip, uint32_t mipCount, VkImageLayout from,
-                         VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                         VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range, VkImageLayout from,
+                  VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
   VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
   b.srcStageMask = srcStage;
   b.srcAccessMask = srcAccess;
@@ -233,7 +248,7 @@ static void imageBarrier(VkCommandBuffer cmd, VkImage image, uint32_t mip, uint3
   b.newLayout = to;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image;
-  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, mip, mipCount, 0, 1};
+  b.subresourceRange = range;
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dep.imageMemoryBarrierCount = 1;
   dep.pImageMemoryBarriers = &b;
@@ -246,7 +261,7 @@ void uploadTexture(GpuContext& ctx, Image& img, std::span<const uint8_t> rgba8) 
   Buffer staging = createBuffer(ctx, rgba8.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
   std::memcpy(staging.mapped, rgba8.data(), rgba8.size());
   submitOnce(ctx, [&](VkCommandBuffer cmd) {
-    imageBarrier(cmd, img.image, 0, d.mipLevels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+    imageBarrier(cmd, img.image, {VK_IMAGE_ASPECT_COLOR_BIT, 0, d.mipLevels, 0, 1}, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                  VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     VkBufferImageCopy copy{};
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -254,7 +269,7 @@ void uploadTexture(GpuContext& ctx, Image& img, std::span<const uint8_t> rgba8) 
     vkCmdCopyBufferToImage(cmd, staging.buffer, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
     int32_t w = int32_t(d.width), h = int32_t(d.height);
     for (uint32_t mip = 1; mip < d.mipLevels; ++mip) {
-      imageBarrier(cmd, img.image, mip - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+      imageBarrier(cmd, img.image, {VK_IMAGE_ASPECT_COLOR_BIT, mip - 1, 1, 0, 1}, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                    VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
       VkImageBlit blit{};
@@ -266,11 +281,11 @@ void uploadTexture(GpuContext& ctx, Image& img, std::span<const uint8_t> rgba8) 
       blit.dstOffsets[1] = {w, h, 1};
       vkCmdBlitImage(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img.image,
                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
-      imageBarrier(cmd, img.image, mip - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+      imageBarrier(cmd, img.image, {VK_IMAGE_ASPECT_COLOR_BIT, mip - 1, 1, 0, 1}, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0,
                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }
-    imageBarrier(cmd, img.image, d.mipLevels - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+    imageBarrier(cmd, img.image, {VK_IMAGE_ASPECT_COLOR_BIT, d.mipLevels - 1, 1, 0, 1}, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
                  VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);

@@ -60,6 +60,16 @@ void submitOnce(GpuContext& ctx, const std::function<void(VkCommandBuffer)>& rec
 // has signalled: every read-back ends with it.
 void hostReadBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess);
 
+// One image layout transition / dependency, recorded now (uploads and one-off copies; frames get
+// theirs from the frame graph).
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range, VkImageLayout from,
+                  VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
+// The buffer <-> image copy regions of a whole single-mip image, tightly packed: colour or depth
+// aspect, then for depth/stencil formats one stencil byte per texel after the depth. Returns the count.
+uint32_t wholeImageCopies(const ImageDesc& desc, VkBufferImageCopy (&copies)[2]);
+
 // Copies bytes into a device-local buffer through a staging buffer.
 void uploadBuffer(GpuContext& ctx, Buffer& dst, const void* data, VkDeviceSize size);
 
