@@ -1,9 +1,12 @@
 // Point lights: each light volume shades the pixels it may light, adding into hdr.
 //  - per-light mask (default): for batches of 7 lights, Z-fail marks each light's own stencil
-//    bit (INVERT where a face lies behind the geometry: odd = the surface is inside the volume;
-//    depth clamp keeps back faces beyond the far plane, and a near-clipped front face only makes
-//    the mark conservative), then the light's back faces shade where its bit is set and clear
-//    it. Exact per light, and the camera may be inside the volume.
+//    bit, then the light shades where its bit says the surface is inside the volume and clears
+//    it. A light in front of the near plane marks with its back faces (set where the back face
+//    lies behind the geometry) and shades with its front faces in front of the geometry: two
+//    rasterizations of the volume. A light touching the near plane (its front faces may be
+//    clipped, the camera may be inside) marks with both faces (INVERT: odd = inside; a clipped
+//    front face only makes the mark conservative) and shades with its back faces. Exact per
+//    light; depth clamp keeps back faces beyond the far plane.
 //  - shared mask (the sample): front faces in front of the geometry where the shared light_mask
 //    marked the pixel (stencil > 128). Lights touching the near plane are drawn as back faces
 //    behind or at the geometry, depth test reversed, no mask; depth clamp keeps the far plane.
@@ -26,7 +29,8 @@ static void describeShading(Renderer& r, GraphicsPipelineDesc& d) {
   d.rasterOrderColor = singlePass(r);
 }
 
-// Per-light stencil bits: mask 7 lights, then shade them, batch after batch.
+// Per-light stencil bits: mask 7 lights, then shade them, batch after batch. Lights
+// [0, stencilCount) are in front of the near plane, the rest touch it (light_culling.cpp).
 static void drawPerLight(Renderer& r, PassContext& pc) {
   VkPipeline mask = graphicsPipeline(r, pc, "point_light.mask_bits", [&r](GraphicsPipelineDesc& d) {
     d.vertexShader = "light_volume.vert";
@@ -40,7 +44,16 @@ static void drawPerLight(Renderer& r, PassContext& pc) {
     d.dynamicStencilMasks = true;
     for (BlendState& b : d.colorBlend) b.writeMask = 0;
   });
-  VkPipeline shade = graphicsPipeline(r, pc, "point_light.per_light", [&r](GraphicsPipelineDesc& d) {
+  // Front faces in front of the geometry, where the back faces marked: the surface is inside.
+  // The bit is cleared whether or not the front face passes the depth test.
+  VkPipeline shadeFront = graphicsPipeline(r, pc, "point_light.per_light_front", [&r](GraphicsPipelineDesc& d) {
+    describeShading(r, d);
+    d.depthTest = true;
+    d.depthCompare = closerOrEqual(r);
+    d.stencil = stencil(VK_COMPARE_OP_EQUAL, 0, VK_STENCIL_OP_ZERO, VK_STENCIL_OP_ZERO);
+    d.dynamicStencilMasks = true;
+  });
+  VkPipeline shadeBack = graphicsPipeline(r, pc, "point_light.per_light", [&r](GraphicsPipelineDesc& d) {
     describeShading(r, d);
     d.stencil = stencil(VK_COMPARE_OP_EQUAL, 0, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_ZERO);  // shade, clear the bit
     d.dynamicStencilMasks = true;
@@ -49,15 +62,22 @@ static void drawPerLight(Renderer& r, PassContext& pc) {
   for (uint32_t first = 0; first < n; first += kBatch) {
     uint32_t count = std::min(kBatch, n - first);
     bindPipeline(pc, mask);
-    vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_NONE);
     vkCmdSetStencilCompareMask(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);  // ALWAYS: unused, but dynamic
     for (uint32_t k = 0; k < count; ++k) {
+      bool inFront = first + k < r.lights.stencilCount;
+      vkCmdSetCullMode(pc.cmd, inFront ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_NONE);
       vkCmdSetStencilWriteMask(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1u << k);
       drawLightVolumes(r, pc.cmd, first + k, 1);
     }
-    bindPipeline(pc, shade);
-    vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_FRONT_BIT);  // back faces: never clipped by the near plane
+    VkPipeline bound = VK_NULL_HANDLE;
     for (uint32_t k = 0; k < count; ++k) {
+      bool inFront = first + k < r.lights.stencilCount;
+      if (VkPipeline p = inFront ? shadeFront : shadeBack; p != bound) {
+        bindPipeline(pc, p);
+        bound = p;
+      }
+      // Front faces, or back faces: those are never clipped by the near plane.
+      vkCmdSetCullMode(pc.cmd, inFront ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_FRONT_BIT);
       vkCmdSetStencilCompareMask(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1u << k);
       vkCmdSetStencilWriteMask(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1u << k);
       vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1u << k);
