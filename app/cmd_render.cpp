@@ -34,7 +34,7 @@ Command addRenderCommand(CLI::App& root) {
             ViewKind view = ViewKind::Final;
             parseView(*target, view);
             RenderOptions ro = o->render;
-            ro.coverage = o->stats || view == ViewKind::CoverageMasked || view == ViewKind::CoverageFull;
+            ro.coverage = view == ViewKind::CoverageMasked || view == ViewKind::CoverageFull;
             for (const std::string& name : viewTargets(view)) {
               Target t;
               parseTarget(name, t);
@@ -69,10 +69,19 @@ Command addRenderCommand(CLI::App& root) {
               ro.keepGBuffer = false;
               for (Target t : request.readback)
                 ro.keepGBuffer |= t == Target::AlbedoSpecular || t == Target::NormalShadow || t == Target::Depth;
-              if (o->stats) ro.keepGBuffer = true;  // culling statistics read the eye depth
-              request.cullingStats = o->stats;
               std::vector<FrameStats> frames;
               for (int i = 0; i < o->frames; ++i) frames.push_back(renderFrame(r, ro, request));
+              // Culling counts come from one more frame, not timed: the coverage counters (atomics
+              // in the lighting shaders) and the kept G-buffer would slow the frames being timed.
+              FrameStats counted;
+              if (o->stats) {
+                RenderOptions counting = ro;
+                counting.coverage = true;
+                counting.keepGBuffer = true;  // culling statistics read the eye depth
+                FrameRequest countingRequest = request;
+                countingRequest.cullingStats = true;
+                counted = renderFrame(r, counting, countingRequest);
+              }
               FrameImages images;
               images.normalFormat = ro.normalFormat;
               images.final = &r.readback[size_t(Target::Final)];
@@ -92,7 +101,7 @@ Command addRenderCommand(CLI::App& root) {
                 std::fprintf(stderr, "gblens: wrote %s (%s, %ux%u)\n", o->output.c_str(), viewName(view), ro.width,
                              ro.height);
               }
-              if (o->stats) std::printf("%s\n", statsJson(frames, ctx, ro, scene).dump(2).c_str());
+              if (o->stats) std::printf("%s\n", statsJson(frames, ctx, ro, scene, &counted).dump(2).c_str());
               destroyRenderer(r);
             }
             if (reportValidation(ctx) && status == 0) status = 1;

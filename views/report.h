@@ -13,7 +13,9 @@ nlohmann::json optionsJson(const RenderOptions& o);
 // The inverse of optionsJson (capture manifests). Members left out keep their defaults; a
 // malformed member gives false and a message naming it.
 bool optionsFromJson(const nlohmann::json& j, RenderOptions& o, std::string& error);
+// Times, passes and lights of `frames`; the culling counts of `counted` when given (a frame
+// rendered with coverage on after the timed ones), else of the last frame.
 nlohmann::json statsJson(const std::vector<FrameStats>& frames, const GpuContext& ctx, const RenderOptions& o,
-                         const Scene& scene);
+                         const Scene& scene, const FrameStats* counted = nullptr);
 
 }  // namespace gb
