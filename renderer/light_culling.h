@@ -7,8 +7,10 @@
 
 namespace gb {
 
-// Fills lights.eye (all lights at `time`, eye space) and lights.visible / stencilCount.
-void classifyLights(const Scene& scene, const View& view, double time, FrameLights& lights);
+// Fills lights.eye (all lights at `time`, eye space) and lights.visible / stencilCount; with
+// `layers`, orders the stencil class in screen-disjoint layers (lights.layerStarts) for the
+// per-light mask, which draws a layer at once.
+void classifyLights(const Scene& scene, const View& view, double time, bool layers, FrameLights& lights);
 
 // True when the light's icosahedron may reach the near plane (or contain the camera): its front
 // faces would be clipped, so the stencil mask cannot be used for it.

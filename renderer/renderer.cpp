@@ -222,7 +222,8 @@ static void prepareFrame(Renderer& r) {
     draws[i] = d;
   }
 
-  classifyLights(s, r.view, o.time, r.lights);
+  const bool perLightMask = o.method == Method::Deferred && o.stencilCulling && o.stencilMask == StencilMask::PerLight;
+  classifyLights(s, r.view, o.time, perLightMask, r.lights);
   GB_ASSERT(r.lights.eye.size() <= r.lightBuffer.size / sizeof(gpu::PointLight));
   // (memcpy from an empty vector's null data() is undefined even for 0 bytes: UBSan reports it)
   if (!r.lights.eye.empty())
@@ -339,6 +340,7 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
   st.lights = uint32_t(r.scene->lights.size());
   st.lightsVisible = uint32_t(r.lights.visible.size());
   st.lightsInside = uint32_t(r.lights.visible.size()) - r.lights.stencilCount;
+  st.stencilLayers = r.lights.layerStarts.empty() ? 0u : uint32_t(r.lights.layerStarts.size() - 1);
   st.lightsCulled = r.lights.culledFrustum + r.lights.culledEmpty + r.lights.culledSubpixel;
   st.lightsCulledFrustum = r.lights.culledFrustum;
   st.lightsCulledEmpty = r.lights.culledEmpty;

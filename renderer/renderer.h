@@ -26,10 +26,13 @@ struct FrameRequest {
 // Lights of this frame after CPU culling. Drawn instanced from `visible`:
 // [0, stencilCount) use the stencil mask; [stencilCount, visible.size()) contain or touch the
 // near plane and are drawn as back faces with the depth test reversed (no stencil).
+// The stencil class is ordered in layers: [layerStarts[k], layerStarts[k + 1]) are lights whose
+// volumes cover disjoint pixels, so the per-light mask marks and shades a layer in one draw each.
 struct FrameLights {
   std::vector<gpu::PointLight> eye;  // every light, eye space (index = Scene::lights index)
   std::vector<uint32_t> visible;
   uint32_t stencilCount = 0;
+  std::vector<uint32_t> layerStarts;  // size layers + 1; the last is stencilCount
   uint32_t culledFrustum = 0;  // outside the view frustum
   uint32_t culledEmpty = 0;    // zero radius, intensity or colour: nothing to add
   uint32_t culledSubpixel = 0; // its screen rectangle holds no pixel centre (see light_culling.h)
@@ -49,6 +52,7 @@ struct FrameStats {
   std::vector<PassStat> passes;
   CullingStats culling;
   uint32_t lights = 0, lightsVisible = 0, lightsInside = 0, lightsCulled = 0;
+  uint32_t stencilLayers = 0;  // screen-disjoint layers of the stencil class (FrameLights::layerStarts)
   uint32_t lightsCulledFrustum = 0, lightsCulledEmpty = 0, lightsCulledSubpixel = 0;  // lightsCulled split
   int64_t skyPixels = -1;  // sky pixels the skybox drew (occlusion query; -1: skybox not drawn)
 };

@@ -123,6 +123,7 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const GpuContext
   j["lights"] = {{"total", last.lights},
                  {"visible", last.lightsVisible},
                  {"near_plane", last.lightsInside},
+                 {"stencil_layers", last.stencilLayers},
                  {"culled", last.lightsCulled},
                  {"culled_frustum", last.lightsCulledFrustum},
                  {"culled_empty", last.lightsCulledEmpty},

@@ -1,12 +1,13 @@
 // Point lights: each light volume shades the pixels it may light, adding into hdr.
-//  - per-light mask (default): for batches of 7 lights, Z-fail marks each light's own stencil
-//    bit, then the light shades where its bit says the surface is inside the volume and clears
-//    it. A light in front of the near plane marks with its back faces (set where the back face
-//    lies behind the geometry) and shades with its front faces in front of the geometry: two
-//    rasterizations of the volume. A light touching the near plane (its front faces may be
-//    clipped, the camera may be inside) marks with both faces (INVERT: odd = inside; a clipped
-//    front face only makes the mark conservative) and shades with its back faces. Exact per
-//    light; depth clamp keeps back faces beyond the far plane.
+//  - per-light mask (default): Z-fail marks a stencil bit per light, then the light shades where
+//    its bit says the surface is inside the volume and clears it. Lights in front of the near
+//    plane come in layers whose volumes cover disjoint pixels (light_culling.cpp), so a layer
+//    shares one bit and is drawn instanced: back faces mark where they lie behind the geometry,
+//    front faces in front of the geometry shade where marked (two rasterizations, two draws per
+//    layer). A light touching the near plane (front faces may be clipped, the camera may be
+//    inside) has a bit of its own: both faces mark (INVERT: odd = inside; a clipped front face
+//    only makes the mark conservative) and its back faces shade. Up to 7 layers or lights share
+//    a batch (bits 0..6); exact per light; depth clamp keeps back faces beyond the far plane.
 //  - shared mask (the sample): front faces in front of the geometry where the shared light_mask
 //    marked the pixel (stencil > 128). Lights touching the near plane are drawn as back faces
 //    behind or at the geometry, depth test reversed, no mask; depth clamp keeps the far plane.
@@ -15,7 +16,7 @@
 
 namespace gb {
 
-static constexpr uint32_t kBatch = 7;  // stencil bits 0..6; bit 7 marks geometry
+static constexpr size_t kBatch = 7;  // stencil bits 0..6; bit 7 marks geometry
 
 
 static void describeShading(Renderer& r, GraphicsPipelineDesc& d) {
@@ -29,8 +30,7 @@ static void describeShading(Renderer& r, GraphicsPipelineDesc& d) {
   d.rasterOrderColor = singlePass(r);
 }
 
-// Per-light stencil bits: mask 7 lights, then shade them, batch after batch. Lights
-// [0, stencilCount) are in front of the near plane, the rest touch it (light_culling.cpp).
+// Per-light stencil bits: mask 7 groups, then shade them, batch after batch.
 static void drawPerLight(Renderer& r, PassContext& pc) {
   VkPipeline mask = graphicsPipeline(r, pc, "point_light.mask_bits", [&r](GraphicsPipelineDesc& d) {
     d.vertexShader = "light_volume.vert";
@@ -58,30 +58,38 @@ static void drawPerLight(Renderer& r, PassContext& pc) {
     d.stencil = stencil(VK_COMPARE_OP_EQUAL, 0, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_ZERO);  // shade, clear the bit
     d.dynamicStencilMasks = true;
   });
-  const uint32_t n = uint32_t(r.lights.visible.size());
-  for (uint32_t first = 0; first < n; first += kBatch) {
-    uint32_t count = std::min(kBatch, n - first);
+  // A group shares a stencil bit: a layer of the stencil class, or one near-plane light.
+  struct Group {
+    uint32_t first, count;
+    bool inFront;
+  };
+  std::vector<Group> groups;
+  const std::vector<uint32_t>& starts = r.lights.layerStarts;
+  for (size_t k = 0; k + 1 < starts.size(); ++k) groups.push_back({starts[k], starts[k + 1] - starts[k], true});
+  for (uint32_t i = r.lights.stencilCount; i < r.lights.visible.size(); ++i) groups.push_back({i, 1, false});
+  for (size_t first = 0; first < groups.size(); first += kBatch) {
+    const size_t count = std::min<size_t>(kBatch, groups.size() - first);
     bindPipeline(pc, mask);
     vkCmdSetStencilCompareMask(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);  // ALWAYS: unused, but dynamic
-    for (uint32_t k = 0; k < count; ++k) {
-      bool inFront = first + k < r.lights.stencilCount;
-      vkCmdSetCullMode(pc.cmd, inFront ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_NONE);
+    for (size_t k = 0; k < count; ++k) {
+      const Group& g = groups[first + k];
+      vkCmdSetCullMode(pc.cmd, g.inFront ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_NONE);
       vkCmdSetStencilWriteMask(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1u << k);
-      drawLightVolumes(r, pc.cmd, first + k, 1);
+      drawLightVolumes(r, pc.cmd, g.first, g.count);
     }
     VkPipeline bound = VK_NULL_HANDLE;
-    for (uint32_t k = 0; k < count; ++k) {
-      bool inFront = first + k < r.lights.stencilCount;
-      if (VkPipeline p = inFront ? shadeFront : shadeBack; p != bound) {
+    for (size_t k = 0; k < count; ++k) {
+      const Group& g = groups[first + k];
+      if (VkPipeline p = g.inFront ? shadeFront : shadeBack; p != bound) {
         bindPipeline(pc, p);
         bound = p;
       }
       // Front faces, or back faces: those are never clipped by the near plane.
-      vkCmdSetCullMode(pc.cmd, inFront ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_FRONT_BIT);
+      vkCmdSetCullMode(pc.cmd, g.inFront ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_FRONT_BIT);
       vkCmdSetStencilCompareMask(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1u << k);
       vkCmdSetStencilWriteMask(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1u << k);
       vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1u << k);
-      drawLightVolumes(r, pc.cmd, first + k, 1);
+      drawLightVolumes(r, pc.cmd, g.first, g.count);
     }
   }
 }
