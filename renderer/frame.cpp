@@ -95,7 +95,7 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   else if (!o.stencilCulling)
     g.skipPass("light_mask", "stencil culling off");
   else if (o.stencilMask == StencilMask::PerLight)
-    g.skipPass("light_mask", "per-light masks are drawn inside point_lights (7 lights per stencil batch)");
+    g.skipPass("light_mask", "per-light masks are drawn inside point_lights (7 stencil bits per batch)");
   else if (r.lights.stencilCount == 0)
     g.skipPass("light_mask", "every visible light touches the near plane");
   else

@@ -24,6 +24,8 @@ static const Names<AccumFormat, 3> kAccum = {
     {{AccumFormat::Rgba16f, "rgba16f"}, {AccumFormat::Rgba32f, "rgba32f"}, {AccumFormat::Rgba8, "rgba8"}}};
 static const Names<ShadowFormat, 2> kShadow = {{{ShadowFormat::D32f, "d32f"}, {ShadowFormat::D16, "d16"}}};
 static const Names<StencilMask, 2> kMask = {{{StencilMask::PerLight, "per-light"}, {StencilMask::Shared, "shared"}}};
+static const Names<StencilLayers, 3> kLayers = {
+    {{StencilLayers::Auto, "auto"}, {StencilLayers::On, "on"}, {StencilLayers::Off, "off"}}};
 static const Names<PositionSource, 3> kPosition = {
     {{PositionSource::Depth, "depth"}, {PositionSource::Rgba16f, "rgba16f"}, {PositionSource::Rgba32f, "rgba32f"}}};
 static const Names<PositionSpace, 2> kPositionSpace = {{{PositionSpace::World, "world"}, {PositionSpace::Camera, "camera"}}};
@@ -51,6 +53,7 @@ const char* name(DepthFormat v) { return lookup(kDepth, v); }
 const char* name(AccumFormat v) { return lookup(kAccum, v); }
 const char* name(ShadowFormat v) { return lookup(kShadow, v); }
 const char* name(StencilMask v) { return lookup(kMask, v); }
+const char* name(StencilLayers v) { return lookup(kLayers, v); }
 const char* name(PositionSource v) { return lookup(kPosition, v); }
 const char* name(PositionSpace v) { return lookup(kPositionSpace, v); }
 bool parse(const std::string& t, Path& o) { return find(kPath, t, o); }
@@ -60,6 +63,7 @@ bool parse(const std::string& t, DepthFormat& o) { return find(kDepth, t, o); }
 bool parse(const std::string& t, AccumFormat& o) { return find(kAccum, t, o); }
 bool parse(const std::string& t, ShadowFormat& o) { return find(kShadow, t, o); }
 bool parse(const std::string& t, StencilMask& o) { return find(kMask, t, o); }
+bool parse(const std::string& t, StencilLayers& o) { return find(kLayers, t, o); }
 bool parse(const std::string& t, PositionSource& o) { return find(kPosition, t, o); }
 bool parse(const std::string& t, PositionSpace& o) { return find(kPositionSpace, t, o); }
 
@@ -165,8 +169,11 @@ const std::vector<Entry>& entries() {
       onOff("eye_depth", "USE_EYE_DEPTH: positions from the R32F eye-depth target (off: from hardware depth)",
             &RenderOptions::eyeDepth),
       onOff("stencil_culling", "LIGHT_STENCIL_CULLING", &RenderOptions::stencilCulling),
-      choice("stencil_mask", "per-light (exact, 7 lights per stencil batch) | shared (the sample's one mask)", kMask,
+      choice("stencil_mask", "per-light (exact, 7 bits per stencil batch) | shared (the sample's one mask)", kMask,
              &RenderOptions::stencilMask),
+      choice("stencil_layers",
+             "per-light mask: lights covering disjoint pixels share a bit, one draw per layer (auto: on a CPU device)",
+             kLayers, &RenderOptions::stencilLayers),
       onOff("reversed_z", "hardware depth 1 at the near plane, 0 at the far plane", &RenderOptions::reversedZ),
       choice("normal_format", "normal_shadow storage", kNormal, &RenderOptions::normalFormat),
       choice("depth_format", "hardware depth/stencil format", kDepth, &RenderOptions::depthFormat),

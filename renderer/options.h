@@ -23,6 +23,11 @@ enum class PositionSpace { World, Camera };
 // cheap to draw, but one light's mark lets another light shade), or an exact mask per light
 // (Z-fail toggles one stencil bit per light, 7 lights per batch).
 enum class StencilMask { PerLight, Shared };
+// Per-light mask: lights whose volumes cover disjoint pixels share a stencil bit and are drawn
+// instanced, a layer at a time. It saves draws, which cost a CPU device (lavapipe) about as much
+// rasterizer time as the fragments they shade; on a GPU draws are cheap and grouping only adds
+// CPU time. Auto: on for a CPU device.
+enum class StencilLayers { Auto, On, Off };
 
 struct RenderOptions {
   uint32_t width = 1280, height = 720;
@@ -34,6 +39,7 @@ struct RenderOptions {
   bool eyeDepth = true;        // USE_EYE_DEPTH: reconstruct positions from the eye-depth target
   bool stencilCulling = true;  // LIGHT_STENCIL_CULLING
   StencilMask stencilMask = StencilMask::PerLight;
+  StencilLayers stencilLayers = StencilLayers::Auto;
   bool reversedZ = false;
   // Octahedral 16+16-bit normals and fp32 accumulation: `gblens bench` found each dominating the
   // former defaults (rgba16f normals; fp16 accumulation) on lavapipe: same or lower frame time,
@@ -91,6 +97,7 @@ const char* name(DepthFormat f);
 const char* name(AccumFormat f);
 const char* name(ShadowFormat f);
 const char* name(StencilMask m);
+const char* name(StencilLayers l);
 const char* name(PositionSource p);
 const char* name(PositionSpace p);
 
@@ -102,6 +109,7 @@ bool parse(const std::string& text, DepthFormat& out);
 bool parse(const std::string& text, AccumFormat& out);
 bool parse(const std::string& text, ShadowFormat& out);
 bool parse(const std::string& text, StencilMask& out);
+bool parse(const std::string& text, StencilLayers& out);
 bool parse(const std::string& text, PositionSource& out);
 bool parse(const std::string& text, PositionSpace& out);
 

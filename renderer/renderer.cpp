@@ -223,7 +223,8 @@ static void prepareFrame(Renderer& r) {
   }
 
   const bool perLightMask = o.method == Method::Deferred && o.stencilCulling && o.stencilMask == StencilMask::PerLight;
-  classifyLights(s, r.view, o.time, perLightMask, r.lights);
+  const bool layers = o.stencilLayers == StencilLayers::On || (o.stencilLayers == StencilLayers::Auto && r.ctx->isCpu);
+  classifyLights(s, r.view, o.time, perLightMask && layers, r.lights);
   GB_ASSERT(r.lights.eye.size() <= r.lightBuffer.size / sizeof(gpu::PointLight));
   // (memcpy from an empty vector's null data() is undefined even for 0 bytes: UBSan reports it)
   if (!r.lights.eye.empty())

@@ -48,11 +48,14 @@ TEST_F(GpuTest, StencilCulledAndUnculledImagesAgree) {
     CpuImage unculled = renderer(scene).readback[size_t(Target::Hdr)];
     CpuImage coverage = renderer(scene).readback[size_t(Target::CoverageMasked)];
     o.stencilCulling = true;
-    for (StencilMask mask : {StencilMask::PerLight, StencilMask::Shared}) {
+    for (auto [mask, layers] : {std::pair{StencilMask::PerLight, StencilLayers::On},
+                                std::pair{StencilMask::PerLight, StencilLayers::Off},
+                                std::pair{StencilMask::Shared, StencilLayers::Auto}}) {
       o.stencilMask = mask;
+      o.stencilLayers = layers;
       render(scene, o, {{Target::Hdr}});
       EXPECT_EQ(countOutOfBound(renderer(scene).readback[size_t(Target::Hdr)], unculled, coverage), 0)
-          << lights << " lights, " << name(mask) << " mask";
+          << lights << " lights, " << name(mask) << " mask, stencil layers " << name(layers);
     }
   }
 }
@@ -185,31 +188,35 @@ TEST_F(GpuTest, OneLightOverTheFloorLightsExactlyTheAnalyticDisc) {
 }
 
 TEST_P(PointLightMasks, EveryIdealPairIsShadedAndTheCountMatchesBruteForce) {
-  Scene scene = builtinTemple(96);
-  RenderOptions o = lightOptions(80, 45);
-  o.stencilMask = GetParam();
-  o.lights = 96;
-  const FrameStats& st = render(scene, o, {{Target::Depth, Target::CoverageMasked}, {}, true});
-  Renderer& r = renderer(scene);
-  const CpuImage& depth = r.readback[size_t(Target::Depth)];
-  const CpuImage& coverage = r.readback[size_t(Target::CoverageMasked)];
-  uint64_t brute = idealPairsBruteForce(r.view, depth, r.lights.eye);
-  EXPECT_EQ(st.culling.idealPairs, brute);
-  EXPECT_GT(brute, 1000u);
-  // Stencil culling must never skip a light that reaches the pixel's surface point.
-  for (uint32_t y = 0; y < o.height; ++y)
-    for (uint32_t x = 0; x < o.width; ++x) {
-      double d = depth.value(x, y, 0);
-      if (d <= 0.0) continue;
-      glm::dvec3 p = eyeFromEyeDepth(r.view, x, y, d);
-      uint32_t reaching = 0;
-      for (const gpu::PointLight& l : r.lights.eye) {
-        glm::dvec3 v = p - glm::dvec3(l.eyePositionRadius);
-        reaching += glm::dot(v, v) < double(l.eyePositionRadius.w) * l.eyePositionRadius.w;
+  for (StencilLayers layers : {StencilLayers::On, StencilLayers::Off}) {
+    SCOPED_TRACE(std::string("stencil layers ") + name(layers));
+    Scene scene = builtinTemple(96);
+    RenderOptions o = lightOptions(80, 45);
+    o.stencilMask = GetParam();
+    o.stencilLayers = layers;
+    o.lights = 96;
+    const FrameStats& st = render(scene, o, {{Target::Depth, Target::CoverageMasked}, {}, true});
+    Renderer& r = renderer(scene);
+    const CpuImage& depth = r.readback[size_t(Target::Depth)];
+    const CpuImage& coverage = r.readback[size_t(Target::CoverageMasked)];
+    uint64_t brute = idealPairsBruteForce(r.view, depth, r.lights.eye);
+    EXPECT_EQ(st.culling.idealPairs, brute);
+    EXPECT_GT(brute, 1000u);
+    // Stencil culling must never skip a light that reaches the pixel's surface point.
+    for (uint32_t y = 0; y < o.height; ++y)
+      for (uint32_t x = 0; x < o.width; ++x) {
+        double d = depth.value(x, y, 0);
+        if (d <= 0.0) continue;
+        glm::dvec3 p = eyeFromEyeDepth(r.view, x, y, d);
+        uint32_t reaching = 0;
+        for (const gpu::PointLight& l : r.lights.eye) {
+          glm::dvec3 v = p - glm::dvec3(l.eyePositionRadius);
+          reaching += glm::dot(v, v) < double(l.eyePositionRadius.w) * l.eyePositionRadius.w;
+        }
+        ASSERT_GE(coverage.raw(x, y, 0), reaching) << "pixel " << x << "," << y;
       }
-      ASSERT_GE(coverage.raw(x, y, 0), reaching) << "pixel " << x << "," << y;
-    }
-  EXPECT_GE(st.culling.invocations, st.culling.idealPairs);
+    EXPECT_GE(st.culling.invocations, st.culling.idealPairs);
+  }
 }
 
 // The single-pass path with a transient G-buffer (nothing stored between subpasses; lazily

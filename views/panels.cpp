@@ -181,6 +181,18 @@ static void frameOptions(ViewerModel& m) {
     ImGui::SameLine();
     ImGui::RadioButton("shared", &mask, int(StencilMask::Shared));
     o.stencilMask = StencilMask(mask);
+    if (o.stencilMask == StencilMask::PerLight) {
+      int layers = int(o.stencilLayers);
+      ImGui::TextDisabled("  stencil layers");
+      ImGui::SameLine();
+      ImGui::RadioButton("auto##layers", &layers, int(StencilLayers::Auto));
+      ImGui::SameLine();
+      ImGui::RadioButton("on##layers", &layers, int(StencilLayers::On));
+      ImGui::SameLine();
+      ImGui::RadioButton("off##layers", &layers, int(StencilLayers::Off));
+      tooltip("lights whose volumes cover disjoint pixels share a stencil bit, one draw per layer (auto: on a CPU device)");
+      o.stencilLayers = StencilLayers(layers);
+    }
   }
   ImGui::Checkbox("fairy lights", &o.fairies);
   ImGui::SameLine();

@@ -8,6 +8,7 @@
 //    inside) has a bit of its own: both faces mark (INVERT: odd = inside; a clipped front face
 //    only makes the mark conservative) and its back faces shade. Up to 7 layers or lights share
 //    a batch (bits 0..6); exact per light; depth clamp keeps back faces beyond the far plane.
+//    Without layers (--stencil-layers off; the default on a GPU) each light is its own group.
 //  - shared mask (the sample): front faces in front of the geometry where the shared light_mask
 //    marked the pixel (stencil > 128). Lights touching the near plane are drawn as back faces
 //    behind or at the geometry, depth test reversed, no mask; depth clamp keeps the far plane.
@@ -58,7 +59,8 @@ static void drawPerLight(Renderer& r, PassContext& pc) {
     d.stencil = stencil(VK_COMPARE_OP_EQUAL, 0, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_ZERO);  // shade, clear the bit
     d.dynamicStencilMasks = true;
   });
-  // A group shares a stencil bit: a layer of the stencil class, or one near-plane light.
+  // A group shares a stencil bit: a layer of the stencil class (one light each without layers,
+  // --stencil-layers off), or one near-plane light.
   struct Group {
     uint32_t first, count;
     bool inFront;
@@ -66,6 +68,8 @@ static void drawPerLight(Renderer& r, PassContext& pc) {
   std::vector<Group> groups;
   const std::vector<uint32_t>& starts = r.lights.layerStarts;
   for (size_t k = 0; k + 1 < starts.size(); ++k) groups.push_back({starts[k], starts[k + 1] - starts[k], true});
+  if (starts.empty())
+    for (uint32_t i = 0; i < r.lights.stencilCount; ++i) groups.push_back({i, 1, true});
   for (uint32_t i = r.lights.stencilCount; i < r.lights.visible.size(); ++i) groups.push_back({i, 1, false});
   for (size_t first = 0; first < groups.size(); first += kBatch) {
     const size_t count = std::min<size_t>(kBatch, groups.size() - first);
