@@ -1,4 +1,4 @@
-// CPU light classification and the ideal pair count.
+// CPU light classification, the screen-disjoint layers of the per-light mask, and the ideal pair count.
 #include "renderer/light_culling.h"
 
 #include <algorithm>

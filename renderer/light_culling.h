@@ -1,5 +1,6 @@
 // Point lights on the CPU: eye-space positions, frustum culling, the near-plane class that the
-// stencil scheme cannot handle, and the ideal (pixel, light) pair count that culling is measured by.
+// stencil scheme cannot handle, the screen-disjoint layers the per-light mask draws at once, and
+// the ideal (pixel, light) pair count that culling is measured by.
 #pragma once
 #include "renderer/camera.h"
 #include "renderer/image.h"
