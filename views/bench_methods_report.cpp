@@ -7,7 +7,7 @@
 #include <set>
 #include <sstream>
 
-#include "views/bench_report.h"
+#include "views/bench_format.h"
 
 namespace gb {
 
@@ -28,13 +28,6 @@ double lightingMs(const MethodRow& row) {
                        p.name == "tiled_lighting" || p.name == "forward"))
       ms += p.ms.median;
   return ms;
-}
-
-static std::string num(double v, int digits = 3) {
-  std::ostringstream s;
-  s.precision(digits);
-  s << v;
-  return s.str();
 }
 
 static std::string msText(double v) {  // 1234.5, 87.33, 1.261: no exponents in a time column
@@ -59,20 +52,11 @@ nlohmann::json methodsJson(const BenchReport& r) {
     if (!m.note.empty()) o["note"] = m.note;
     if (m.measured) {
       o["frames"] = m.frames;
-      o["frame_ms"] = {{"median", m.frameMs.median}, {"min", m.frameMs.min}, {"max", m.frameMs.max}};
-      o["gpu_ms"] = {{"median", m.gpuMs.median}, {"min", m.gpuMs.min}, {"max", m.gpuMs.max}};
+      o["frame_ms"] = timingJson(m.frameMs);
+      o["gpu_ms"] = timingJson(m.gpuMs);
       o["time_over_default"] = m.overDefault;
       o["lighting_ms"] = lightingMs(m);
-      nlohmann::json passes = nlohmann::json::array();
-      for (const PassTiming& p : m.passes) {
-        nlohmann::json pj = {{"name", p.name}, {"skipped", p.skipped}};
-        if (p.skipped)
-          pj["reason"] = p.reason;
-        else
-          pj["ms"] = {{"median", p.ms.median}, {"min", p.ms.min}, {"max", p.ms.max}};
-        passes.push_back(pj);
-      }
-      o["passes"] = passes;
+      o["passes"] = passesJson(m.passes);
     }
     if (m.cullingValid)
       o["culling"] = {{"invocations", m.invocations}, {"ideal_pairs", m.idealPairs}, {"work_over_ideal", m.workOverIdeal}};
@@ -83,9 +67,7 @@ nlohmann::json methodsJson(const BenchReport& r) {
 
 std::string methodsCsv(const BenchReport& r) {
   std::vector<std::string> passNames;
-  for (const MethodRow& m : r.methods)
-    for (const PassTiming& p : m.passes)
-      if (std::find(passNames.begin(), passNames.end(), p.name) == passNames.end()) passNames.push_back(p.name);
+  for (const MethodRow& m : r.methods) collectPassNames(m.passes, passNames);
   std::ostringstream out;
   out.precision(9);
   out << "scene,method,size,lights,measured,frames,frame_ms,frame_ms_min,frame_ms_max,gpu_ms,time_over_default,"
@@ -98,11 +80,7 @@ std::string methodsCsv(const BenchReport& r) {
         << "," << m.overDefault << "," << lightingMs(m) << ",";
     if (m.cullingValid) out << m.invocations << "," << m.idealPairs << "," << m.workOverIdeal;
     else out << ",,";
-    for (const std::string& name : passNames) {
-      out << ",";
-      for (const PassTiming& p : m.passes)
-        if (p.name == name && !p.skipped) out << p.ms.median;
-    }
+    writePassCells(out, m.passes, passNames);
     std::string note = m.note;
     std::replace(note.begin(), note.end(), ',', ';');
     out << "," << note << "\n";

@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "views/bench_format.h"
 #include "views/report.h"
 
 namespace gb {
@@ -221,7 +222,33 @@ static nlohmann::json targetsJson(const BenchReport& r) {
 
 // ---- files ------------------------------------------------------------------------------------
 
-static nlohmann::json timingJson(const Timing& t) { return {{"median", t.median}, {"min", t.min}, {"max", t.max}}; }
+nlohmann::json timingJson(const Timing& t) { return {{"median", t.median}, {"min", t.min}, {"max", t.max}}; }
+
+nlohmann::json passesJson(const std::vector<PassTiming>& passes) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const PassTiming& p : passes) {
+    nlohmann::json pj = {{"name", p.name}, {"skipped", p.skipped}};
+    if (p.skipped)
+      pj["reason"] = p.reason;
+    else
+      pj["ms"] = timingJson(p.ms);
+    out.push_back(pj);
+  }
+  return out;
+}
+
+void collectPassNames(const std::vector<PassTiming>& passes, std::vector<std::string>& names) {
+  for (const PassTiming& p : passes)
+    if (std::find(names.begin(), names.end(), p.name) == names.end()) names.push_back(p.name);
+}
+
+void writePassCells(std::ostream& out, const std::vector<PassTiming>& passes, const std::vector<std::string>& names) {
+  for (const std::string& name : names) {
+    out << ",";
+    for (const PassTiming& p : passes)
+      if (p.name == name && !p.skipped) out << p.ms.median;
+  }
+}
 
 nlohmann::json benchJson(const BenchReport& r) {
   nlohmann::json j = r.meta;
@@ -234,16 +261,7 @@ nlohmann::json benchJson(const BenchReport& r) {
       o["frames"] = row.frames;
       o["frame_ms"] = timingJson(row.frameMs);
       o["gpu_ms"] = timingJson(row.gpuMs);
-      nlohmann::json passes = nlohmann::json::array();
-      for (const PassTiming& p : row.passes) {
-        nlohmann::json pj = {{"name", p.name}, {"skipped", p.skipped}};
-        if (p.skipped)
-          pj["reason"] = p.reason;
-        else
-          pj["ms"] = timingJson(p.ms);
-        passes.push_back(pj);
-      }
-      o["passes"] = passes;
+      o["passes"] = passesJson(row.passes);
       o["error"] = row.error;
       o["error_detail"] = row.errorDetail;
       o["frontier"] = row.frontier;
@@ -280,7 +298,7 @@ nlohmann::json benchJson(const BenchReport& r) {
   return j;
 }
 
-static std::string csvField(const std::string& s) {
+std::string csvField(const std::string& s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
   std::string q = "\"";
   for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
@@ -289,9 +307,7 @@ static std::string csvField(const std::string& s) {
 
 std::string benchCsv(const BenchReport& r) {
   std::vector<std::string> passNames;
-  for (const BenchRow& row : r.rows)
-    for (const PassTiming& p : row.passes)
-      if (std::find(passNames.begin(), passNames.end(), p.name) == passNames.end()) passNames.push_back(p.name);
+  for (const BenchRow& row : r.rows) collectPassNames(row.passes, passNames);
   std::ostringstream out;
   out.precision(9);
   out << "scene,group,variant,measured,size,lights,frames,frame_ms,frame_ms_min,frame_ms_max,gpu_ms,gpu_ms_min,gpu_ms_max";
@@ -303,11 +319,7 @@ std::string benchCsv(const BenchReport& r) {
         << getOption(row.options, "size") << "," << row.options.lights << "," << row.frames << "," << row.frameMs.median
         << "," << row.frameMs.min << "," << row.frameMs.max << "," << row.gpuMs.median << "," << row.gpuMs.min << ","
         << row.gpuMs.max;
-    for (const std::string& name : passNames) {
-      out << ",";
-      for (const PassTiming& p : row.passes)
-        if (p.name == name && !p.skipped) out << p.ms.median;
-    }
+    writePassCells(out, row.passes, passNames);
     for (auto& [k, what] : errorSummaryKeys()) {
       out << ",";
       auto it = row.error.find(k);
@@ -318,7 +330,7 @@ std::string benchCsv(const BenchReport& r) {
   return out.str();
 }
 
-static std::string num(double v, int digits = 3) {
+std::string num(double v, int digits) {
   std::ostringstream s;
   s.precision(digits);
   s << v;
