@@ -131,40 +131,30 @@ Command addBenchCommand(CLI::App& root) {
               std::fprintf(stderr, "gblens bench: %s\n", error.c_str());
               return 2;
             }
+            // Each comma-separated value checked as the option it sets; one message naming the flag.
+            auto values = [&error](const char* flag, const char* option, const std::string& list,
+                                   std::vector<RenderOptions>& out) {
+              for (const std::string& v : split(list)) {
+                out.emplace_back();
+                if (!setOption(out.back(), option, v, error)) {
+                  std::fprintf(stderr, "gblens bench: %s: %s\n", flag, error.c_str());
+                  return false;
+                }
+              }
+              return true;
+            };
+            std::vector<RenderOptions> sweepLights, sweepSizes, methodLights, methodSizes;
+            if (!values("--lights-sweep", "lights", s->lightsSweep, sweepLights) ||
+                !values("--sizes", "size", s->sizes, sweepSizes) ||
+                !values("--methods-lights", "lights", s->methodsLights, methodLights) ||
+                !values("--methods-sizes", "size", s->methodsSizes, methodSizes))
+              return 2;
             std::vector<int> lightCounts;
-            for (const std::string& v : split(s->lightsSweep)) {
-              RenderOptions probe;
-              if (!setOption(probe, "lights", v, error)) {
-                std::fprintf(stderr, "gblens bench: --lights-sweep: %s\n", error.c_str());
-                return 2;
-              }
-              lightCounts.push_back(probe.lights);
-            }
+            for (const RenderOptions& v : sweepLights) lightCounts.push_back(v.lights);
             std::vector<std::string> sizes = split(s->sizes);
-            for (const std::string& v : sizes) {
-              RenderOptions probe;
-              if (!setOption(probe, "size", v, error)) {
-                std::fprintf(stderr, "gblens bench: --sizes: %s\n", error.c_str());
-                return 2;
-              }
-            }
             s->methods.lights.clear();
-            for (const std::string& v : split(s->methodsLights)) {
-              RenderOptions probe;
-              if (!setOption(probe, "lights", v, error)) {
-                std::fprintf(stderr, "gblens bench: --methods-lights: %s\n", error.c_str());
-                return 2;
-              }
-              s->methods.lights.push_back(probe.lights);
-            }
+            for (const RenderOptions& v : methodLights) s->methods.lights.push_back(v.lights);
             s->methods.sizes = split(s->methodsSizes);
-            for (const std::string& v : s->methods.sizes) {
-              RenderOptions probe;
-              if (!setOption(probe, "size", v, error)) {
-                std::fprintf(stderr, "gblens bench: --methods-sizes: %s\n", error.c_str());
-                return 2;
-              }
-            }
             s->methods.minRounds = std::min(s->methods.minRounds, s->methods.rounds);
             std::vector<BenchVariant> variants = defaultSweep(o->render, lightCounts, sizes);
             bool runMethods = true;
