@@ -72,17 +72,10 @@ VkAccessFlags legacyAccess(VkAccessFlags2 a) {
 
 void imageBarrier(std::vector<VkImageMemoryBarrier2>& out, const GraphTarget& t, VkImageLayout from,
                   const AccessInfo& to) {
-  VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-  b.srcStageMask = t.stage == VK_PIPELINE_STAGE_2_NONE ? VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT : t.stage;
-  b.srcAccessMask = t.access;
-  b.dstStageMask = to.stage;
-  b.dstAccessMask = to.access;
-  b.oldLayout = from;
-  b.newLayout = to.layout;
-  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = t.image.image;
-  b.subresourceRange = {aspectsOf(t.image.desc.format), 0, VK_REMAINING_MIP_LEVELS, 0, 1};
-  out.push_back(b);
+  out.push_back(imageMemoryBarrier(t.image.image, {aspectsOf(t.image.desc.format), 0, VK_REMAINING_MIP_LEVELS, 0, 1},
+                                   from, to.layout,
+                                   t.stage == VK_PIPELINE_STAGE_2_NONE ? VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT : t.stage,
+                                   t.access, to.stage, to.access));
 }
 
 void flushBarriers(VkCommandBuffer cmd, std::vector<VkImageMemoryBarrier2>& barriers) {

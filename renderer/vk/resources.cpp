@@ -236,9 +236,9 @@ void uploadBuffer(GpuContext& ctx, Buffer& dst, const void* data, VkDeviceSize s
   destroyBuffer(ctx, staging);
 }
 
-void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range, VkImageLayout from,
-                  VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+VkImageMemoryBarrier2 imageMemoryBarrier(VkImage image, VkImageSubresourceRange range, VkImageLayout from,
+                                         VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                                         VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
   VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
   b.srcStageMask = srcStage;
   b.srcAccessMask = srcAccess;
@@ -249,6 +249,13 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange ra
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image;
   b.subresourceRange = range;
+  return b;
+}
+
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range, VkImageLayout from,
+                  VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+  const VkImageMemoryBarrier2 b = imageMemoryBarrier(image, range, from, to, srcStage, srcAccess, dstStage, dstAccess);
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dep.imageMemoryBarrierCount = 1;
   dep.pImageMemoryBarriers = &b;

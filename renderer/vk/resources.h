@@ -60,8 +60,11 @@ void submitOnce(GpuContext& ctx, const std::function<void(VkCommandBuffer)>& rec
 // has signalled: every read-back ends with it.
 void hostReadBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess);
 
-// One image layout transition / dependency, recorded now (uploads and one-off copies; frames get
-// theirs from the frame graph).
+// One image layout transition / dependency: the barrier (the frame graph batches these), or
+// recorded now (uploads and one-off copies).
+VkImageMemoryBarrier2 imageMemoryBarrier(VkImage image, VkImageSubresourceRange range, VkImageLayout from,
+                                         VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                                         VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range, VkImageLayout from,
                   VkImageLayout to, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
