@@ -64,6 +64,12 @@ bool parse(const std::string& t, AccumFormat& o) { return find(kAccum, t, o); }
 bool parse(const std::string& t, ShadowFormat& o) { return find(kShadow, t, o); }
 bool parse(const std::string& t, StencilMask& o) { return find(kMask, t, o); }
 bool parse(const std::string& t, StencilLayers& o) { return find(kLayers, t, o); }
+bool perLightMask(const RenderOptions& o) {
+  return o.method == Method::Deferred && o.stencilCulling && o.stencilMask == StencilMask::PerLight;
+}
+bool stencilLayersOn(const RenderOptions& o, bool cpuDevice) {
+  return perLightMask(o) && (o.stencilLayers == StencilLayers::On || (o.stencilLayers == StencilLayers::Auto && cpuDevice));
+}
 bool parse(const std::string& t, PositionSource& o) { return find(kPosition, t, o); }
 bool parse(const std::string& t, PositionSpace& o) { return find(kPositionSpace, t, o); }
 

@@ -110,6 +110,10 @@ bool parse(const std::string& text, AccumFormat& out);
 bool parse(const std::string& text, ShadowFormat& out);
 bool parse(const std::string& text, StencilMask& out);
 bool parse(const std::string& text, StencilLayers& out);
+// The point lights are drawn with the per-light stencil mask (deferred, culling on, per-light);
+// with `cpuDevice`, whether they come in screen-disjoint layers (StencilLayers; auto: on a CPU).
+bool perLightMask(const RenderOptions& o);
+bool stencilLayersOn(const RenderOptions& o, bool cpuDevice);
 bool parse(const std::string& text, PositionSource& out);
 bool parse(const std::string& text, PositionSpace& out);
 

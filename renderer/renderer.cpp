@@ -222,9 +222,7 @@ static void prepareFrame(Renderer& r) {
     draws[i] = d;
   }
 
-  const bool perLightMask = o.method == Method::Deferred && o.stencilCulling && o.stencilMask == StencilMask::PerLight;
-  const bool layers = o.stencilLayers == StencilLayers::On || (o.stencilLayers == StencilLayers::Auto && r.ctx->isCpu);
-  classifyLights(s, r.view, o.time, perLightMask && layers, r.lights);
+  classifyLights(s, r.view, o.time, stencilLayersOn(o, r.ctx->isCpu), r.lights);
   GB_ASSERT(r.lights.eye.size() <= r.lightBuffer.size / sizeof(gpu::PointLight));
   // (memcpy from an empty vector's null data() is undefined even for 0 bytes: UBSan reports it)
   if (!r.lights.eye.empty())
