@@ -144,12 +144,7 @@ std::vector<MethodRow> methodStudy(GpuContext& ctx, Scene& scene, const RenderOp
           row.note += "culling not measured (pixels x lights above --methods-culling-max); ";
           continue;
         }
-        RenderOptions o = opts[i];
-        o.coverage = true;
-        o.keepGBuffer = true;
-        FrameRequest request;
-        request.cullingStats = true;
-        const FrameStats& st = renderFrame(*rs[i], o, request);
+        const FrameStats& st = renderCountingFrame(*rs[i], opts[i]);
         row.cullingValid = st.culling.valid;
         row.invocations = st.culling.invocations;
         row.idealPairs = st.culling.idealPairs;

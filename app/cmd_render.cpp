@@ -71,17 +71,8 @@ Command addRenderCommand(CLI::App& root) {
                 ro.keepGBuffer |= t == Target::AlbedoSpecular || t == Target::NormalShadow || t == Target::Depth;
               std::vector<FrameStats> frames;
               for (int i = 0; i < o->frames; ++i) frames.push_back(renderFrame(r, ro, request));
-              // Culling counts come from one more frame, not timed: the coverage counters (atomics
-              // in the lighting shaders) and the kept G-buffer would slow the frames being timed.
-              FrameStats counted;
-              if (o->stats) {
-                RenderOptions counting = ro;
-                counting.coverage = true;
-                counting.keepGBuffer = true;  // culling statistics read the eye depth
-                FrameRequest countingRequest = request;
-                countingRequest.cullingStats = true;
-                counted = renderFrame(r, counting, countingRequest);
-              }
+              FrameStats counted;  // culling counts from one more frame, not timed
+              if (o->stats) counted = renderCountingFrame(r, ro, request);
               FrameImages images;
               images.normalFormat = ro.normalFormat;
               images.final = &r.readback[size_t(Target::Final)];

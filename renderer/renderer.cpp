@@ -262,6 +262,14 @@ void runAfterFrame(Renderer& r, const std::function<void(FrameGraph&)>& build, c
 
 // ---- the frame ----------------------------------------------------------------------------------
 
+const FrameStats& renderCountingFrame(Renderer& r, const RenderOptions& options, FrameRequest request) {
+  RenderOptions counting = options;
+  counting.coverage = true;
+  counting.keepGBuffer = true;  // the ideal pairs are counted on the eye depth
+  request.cullingStats = true;
+  return renderFrame(r, counting, request);
+}
+
 const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const FrameRequest& userRequest) {
   auto start = std::chrono::steady_clock::now();
   GpuContext& ctx = *r.ctx;

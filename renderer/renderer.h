@@ -116,6 +116,9 @@ void destroyRenderer(Renderer& r);
 // Renders one frame with these options and waits for it. Targets are re-created when the size
 // or a format changes.
 const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const FrameRequest& request = {});
+// One more frame with the coverage counters on and the eye depth kept, for its culling counts
+// (FrameStats::culling): the counters' atomics would slow frames that are being timed.
+const FrameStats& renderCountingFrame(Renderer& r, const RenderOptions& options, FrameRequest request = {});
 
 // Decodes tightly packed texels as vkCmdCopyImageToBuffer wrote them (for depth/stencil: the
 // depth aspect, then one stencil byte per texel) into a CpuImage of the target's description.
