@@ -1,6 +1,6 @@
 // The frame: every pass in order, with every skip decided in one place (frame.cpp).
 #pragma once
-#include "renderer/graph.h"
+#include "renderer/graph/graph.h"
 #include "renderer/renderer.h"
 
 namespace gb {

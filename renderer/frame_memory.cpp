@@ -7,7 +7,7 @@
 #include <unistd.h>
 
 #include "renderer/renderer.h"
-#include "renderer/targets.h"
+#include "renderer/core/targets.h"
 #include "renderer/vk/resources.h"
 
 namespace gb {
@@ -16,19 +16,13 @@ FrameMemory frameMemory(const GpuContext& ctx, const Scene& scene, const RenderO
   FrameMemory m;
   for (size_t i = 0; i < kTargetCount; ++i) {
     Target t = Target(i);
-    uint64_t w = o.width, h = o.height;
-    // The same sizes as the renderer's target descriptions: placeholders of 1x1 where unused.
-    if (t == Target::ShadowMap) w = h = scene.sun.enabled ? o.shadowMapSize : 1;
-    if ((t == Target::CoverageMasked || t == Target::CoverageFull) && !o.coverage) w = h = 1;
-    if (t == Target::PrimitiveId && !primitiveIdOn(ctx, o)) w = h = 1;
-    if (t == Target::Position && o.position == PositionSource::Depth) w = h = 1;
+    VkExtent2D e = targetExtent(ctx, t, scene, o);
+    uint64_t w = e.width, h = e.height;
     VkFormat f = targetFormat(t, o);
     uint64_t bytes = w * h * bytesPerPixel(f);
     if (t == Target::DepthStencil) bytes += w * h;  // the stencil aspect
-    const bool transient = transientGBuffer(o) && (t == Target::AlbedoSpecular || t == Target::NormalShadow ||
-                                                   t == Target::Depth || t == Target::Position);
-    if (!transient) m.targets += bytes;
-    if (targetUnavailable(t, o).empty()) m.readback += bytes;
+    if (!targetTransient(t, o)) m.targets += bytes;
+    if (targetAbsence(t, o) == Absent::No) m.readback += bytes;
   }
   return m;
 }

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string>
 
-#include "renderer/options.h"
-#include "renderer/scene.h"
+#include "renderer/core/options.h"
+#include "renderer/scene/scene.h"
 #include "renderer/vk/context.h"
 
 namespace gb {

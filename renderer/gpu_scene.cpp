@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "renderer/geometry.h"
+#include "renderer/scene/mesh_builder.h"
 #include "renderer/renderer.h"
 #include "renderer/vk/check.h"
 

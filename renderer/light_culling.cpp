@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "renderer/geometry.h"
+#include "renderer/scene/mesh_builder.h"
 
 namespace gb {
 

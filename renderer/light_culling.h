@@ -2,8 +2,8 @@
 // stencil scheme cannot handle, the screen-disjoint layers the per-light mask draws at once, and
 // the ideal (pixel, light) pair count that culling is measured by.
 #pragma once
-#include "renderer/camera.h"
-#include "renderer/image.h"
+#include "renderer/core/camera.h"
+#include "renderer/core/image.h"
 #include "renderer/renderer.h"
 
 namespace gb {

@@ -19,6 +19,24 @@ namespace gb {
 
 bool primitiveIdOn(const GpuContext& ctx, const RenderOptions& o) { return o.primitiveId && ctx.features.primitiveId; }
 
+std::vector<Target> readableTargets(const Renderer& r, const RenderOptions& o) {
+  std::vector<Target> out;
+  for (const TargetInfo& info : targetTable()) {
+    if (targetAbsence(info.target, o, r.scene->sun.enabled) != Absent::No) continue;
+    if (info.target == Target::PrimitiveId && !primitiveIdOn(*r.ctx, o)) continue;
+    out.push_back(info.target);
+  }
+  return out;
+}
+
+FrameRequest captureRequest(const std::vector<Target>& targets, const RenderOptions& o) {
+  FrameRequest r;
+  r.readback = targets;
+  auto has = [&](Target t) { return std::find(targets.begin(), targets.end(), t) != targets.end(); };
+  r.cullingStats = o.coverage && has(Target::CoverageMasked) && has(Target::Depth);
+  return r;
+}
+
 static std::string targetsKey(const GpuContext& ctx, const Scene& s, const RenderOptions& o) {
   std::ostringstream k;
   k << o.width << 'x' << o.height << ' ' << name(o.normalFormat) << ' ' << name(o.depthFormat) << ' '
@@ -28,52 +46,62 @@ static std::string targetsKey(const GpuContext& ctx, const Scene& s, const Rende
   return k.str();
 }
 
+VkExtent2D targetExtent(const GpuContext& ctx, Target t, const Scene& s, const RenderOptions& o) {
+  // Targets this frame does not compute keep a valid, tiny 1x1 image.
+  bool unused = false;
+  switch (t) {
+    case Target::CoverageMasked:
+    case Target::CoverageFull: unused = !o.coverage; break;
+    case Target::PrimitiveId: unused = !primitiveIdOn(ctx, o); break;
+    case Target::Position: unused = o.position == PositionSource::Depth; break;
+    case Target::ShadowMap: unused = !s.sun.enabled; break;
+    default: break;
+  }
+  if (unused) return {1, 1};
+  if (targetInfo(t).size == SizeRule::ShadowMap) return {o.shadowMapSize, o.shadowMapSize};
+  return {o.width, o.height};
+}
+
+bool targetTransient(Target t, const RenderOptions& o) {
+  const bool placeholder = t == Target::Position && o.position == PositionSource::Depth;
+  return targetInfo(t).role == TargetRole::GBuffer && transientGBuffer(o) && !placeholder;
+}
+
+// Usage flags from the target's role (renderer/core/targets.h).
+static VkImageUsageFlags targetUsage(TargetRole role, bool transient) {
+  const VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                  VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  switch (role) {
+    case TargetRole::GBuffer:
+      return transient ? (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT) : color;
+    case TargetRole::DepthStencil:
+      return VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+             VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    case TargetRole::ShadowMap:
+      return VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    case TargetRole::Light: return color | VK_IMAGE_USAGE_STORAGE_BIT;
+    case TargetRole::Display: return color;
+    case TargetRole::Counter:
+      return VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+             VK_IMAGE_USAGE_SAMPLED_BIT;
+    case TargetRole::Id:
+      return VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  }
+  GB_ASSERT(!"target role");
+  return 0;
+}
+
 static ImageDesc targetDesc(const GpuContext& ctx, Target t, const Scene& s, const RenderOptions& o) {
   ImageDesc d;
   d.format = targetFormat(t, o);
-  d.width = o.width;
-  d.height = o.height;
+  VkExtent2D e = targetExtent(ctx, t, s, o);
+  d.width = e.width;
+  d.height = e.height;
   d.name = targetName(t);
-  const VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                  VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  switch (t) {
-    case Target::AlbedoSpecular:
-    case Target::NormalShadow:
-    case Target::Depth:
-      d.transient = transientGBuffer(o);
-      d.usage = d.transient ? (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT) : color;
-      break;
-    case Target::DepthStencil:
-      d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-      break;
-    case Target::ShadowMap:
-      d.width = d.height = s.sun.enabled ? o.shadowMapSize : 1;
-      d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-      break;
-    case Target::Hdr: d.usage = color | VK_IMAGE_USAGE_STORAGE_BIT; break;
-    case Target::Final: d.usage = color; break;
-    case Target::CoverageMasked:
-    case Target::CoverageFull:
-      if (!o.coverage) d.width = d.height = 1;  // not computed: keep a valid, tiny image
-      d.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                VK_IMAGE_USAGE_SAMPLED_BIT;
-      break;
-    case Target::PrimitiveId:
-      if (!primitiveIdOn(ctx, o)) d.width = d.height = 1;  // not requested: a valid, tiny image
-      d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-      break;
-    case Target::Position:
-      if (o.position == PositionSource::Depth) {
-        d.width = d.height = 1;
-        d.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
-      } else {
-        d.transient = transientGBuffer(o);
-        d.usage = d.transient ? (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT) : color;
-      }
-      break;
-    case Target::Count: break;
-  }
+  d.transient = targetTransient(t, o);
+  // An unused stored position is a 1x1 placeholder only ever bound for sampling.
+  d.usage = t == Target::Position && o.position == PositionSource::Depth ? VkImageUsageFlags(VK_IMAGE_USAGE_SAMPLED_BIT)
+                                                                          : targetUsage(targetInfo(t).role, d.transient);
   return d;
 }
 
@@ -178,25 +206,6 @@ VkCompareOp fartherOrEqual(const Renderer& r) {
 float farDepth(const Renderer& r) { return r.options.reversedZ ? 0.0f : 1.0f; }
 
 // ---- per-frame CPU work -----------------------------------------------------------------------
-
-// The sun's orthographic view, fitted to the scene's bounding sphere (stable as the camera moves).
-glm::dmat4 shadowClipFromWorld(const Scene& s) {
-  glm::dvec3 centre = s.bounds.center();
-  double radius = std::max(s.bounds.radius(), 1e-6);
-  glm::dvec3 up = std::abs(s.sun.toSun.y) > 0.99 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-  glm::dmat4 lightFromWorld = glm::inverse(lookAt(centre + s.sun.toSun * (2.0 * radius), centre, up));
-  double n = 0.5 * radius, f = 3.5 * radius;
-  glm::dmat4 clipFromLight(1.0);
-  clipFromLight[0][0] = 1.0 / radius;
-  // Clip y points down, as in the camera's projection: the same counter-clockwise front faces
-  // then face the sun, so back-face culling keeps the sun-facing casters. (With y up the winding
-  // was mirrored: only faces turned away from the sun were stored, open single-sided casters
-  // cast no shadow and closed ones leaked light at contacts.)
-  clipFromLight[1][1] = -1.0 / radius;
-  clipFromLight[2][2] = -1.0 / (f - n);
-  clipFromLight[3][2] = -n / (f - n);
-  return clipFromLight * lightFromWorld;
-}
 
 static void prepareFrame(Renderer& r) {
   const Scene& s = *r.scene;

@@ -6,22 +6,22 @@
 #include <string>
 #include <vector>
 
-#include "renderer/camera.h"
-#include "renderer/graph.h"
-#include "renderer/image.h"
-#include "renderer/options.h"
-#include "renderer/scene.h"
+#include "renderer/core/camera.h"
+#include "renderer/core/frame_stats.h"
+#include "renderer/graph/graph.h"
+#include "renderer/core/image.h"
+#include "renderer/core/options.h"
+#include "renderer/scene/scene.h"
+#include "renderer/vk/formats.h"
 #include "renderer/vk/pipeline.h"
 #include "renderer/vk/resources.h"
 #include "shaders/shared.h"
 
 namespace gb {
 
-struct FrameRequest {
-  std::vector<Target> readback;     // copied to the CPU after the frame (Renderer::readback)
-  std::vector<Target> sampleAfter;  // left readable by fragment shaders (the viewer samples them)
-  bool cullingStats = false;        // ideal pairs + pipeline statistics (needs options.coverage)
-};
+// The request of a capture of `targets`: those are read back and nothing else; culling statistics
+// only when they need no extra read-back (coverage on, coverage_masked and depth asked).
+FrameRequest captureRequest(const std::vector<Target>& targets, const RenderOptions& options);
 
 // Lights of this frame after CPU culling. Drawn instanced from `visible`:
 // [0, stencilCount) use the stencil mask; [stencilCount, visible.size()) contain or touch the
@@ -38,24 +38,7 @@ struct FrameLights {
   uint32_t culledSubpixel = 0; // its screen rectangle holds no pixel centre (see light_culling.h)
 };
 
-struct CullingStats {
-  bool valid = false;
-  uint64_t invocations = 0;          // sum of coverage_masked: point-light fragment shader runs
-  uint64_t idealPairs = 0;           // (pixel, light) pairs whose surface point is inside the radius
-  uint64_t pipelineInvocations = 0;  // pipeline-statistics count for the point-light pass
-  double workOverIdeal = 0.0;        // invocations / idealPairs
-};
 
-struct FrameStats {
-  double frameMs = 0.0;  // CPU wall time of the frame: record + submit + wait
-  double gpuMs = 0.0;    // first to last GPU timestamp
-  std::vector<PassStat> passes;
-  CullingStats culling;
-  uint32_t lights = 0, lightsVisible = 0, lightsInside = 0, lightsCulled = 0;
-  uint32_t stencilLayers = 0;  // screen-disjoint layers of the stencil class (FrameLights::layerStarts)
-  uint32_t lightsCulledFrustum = 0, lightsCulledEmpty = 0, lightsCulledSubpixel = 0;  // lightsCulled split
-  int64_t skyPixels = -1;  // sky pixels the skybox drew (occlusion query; -1: skybox not drawn)
-};
 
 struct Renderer {
   GpuContext* ctx = nullptr;
@@ -153,11 +136,17 @@ VkCompareOp closerOrEqual(const Renderer& r);   // LESS_OR_EQUAL, or GREATER_OR_
 VkCompareOp fartherOrEqual(const Renderer& r);  // the opposite
 float farDepth(const Renderer& r);
 
-// The sun's orthographic shadow-map clip space, fitted to the scene's bounding sphere.
-glm::dmat4 shadowClipFromWorld(const Scene& scene);
-
 // What this device's sampler returns for each 8-bit sRGB value (index = byte), measured once.
 const std::vector<float>& probeSrgbDecode(Renderer& r);
+
+// A target's size under these options (1x1 for a target the frame does not compute), and whether
+// it lives only in tile memory (single-pass G-buffer nobody reads).
+VkExtent2D targetExtent(const GpuContext& ctx, Target t, const Scene& scene, const RenderOptions& o);
+bool targetTransient(Target t, const RenderOptions& o);
+
+// The targets a frame of these options can read back on this renderer's device (targetAbsence()
+// is Absent::No; primitive_id also needs gl_PrimitiveID).
+std::vector<Target> readableTargets(const Renderer& r, const RenderOptions& o);
 
 // The primitive_id target is written this frame (requested, and the device has gl_PrimitiveID).
 bool primitiveIdOn(const GpuContext& ctx, const RenderOptions& o);

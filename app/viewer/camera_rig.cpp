@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "app/viewer/viewer.h"
-#include "renderer/camera.h"
+#include "renderer/core/camera.h"
 
 namespace gb {
 

@@ -8,16 +8,17 @@
 #include <sstream>
 
 #include "app/viewer/viewer.h"
+#include "renderer/session.h"
 #include "renderer/upload_targets.h"
-#include "views/capture.h"
-#include "views/compare.h"
-#include "views/probe.h"
+#include "views/capture/capture.h"
+#include "views/analysis/compare.h"
+#include "views/analysis/probe.h"
 
 namespace gb {
 
 bool captureLiveFrame(Viewer& v, std::string& written, std::string& error) {
   Renderer& r = v.renderer;
-  std::vector<Target> targets = readableTargets(r);
+  std::vector<Target> targets = readableTargets(r, r.options);
   FrameRequest request;
   request.readback = targets;
   request.sampleAfter = targets;
@@ -31,11 +32,10 @@ bool captureLiveFrame(Viewer& v, std::string& written, std::string& error) {
   CaptureMeta meta;
   meta.device = v.ctx.deviceName;
   meta.driver = v.ctx.driverName;
-  meta.scene = v.args.common.scene;
+  meta.scene = v.args.scene;
   meta.sceneSha256 = sceneContentSha256(v.scene);
-  meta.sceneData = &v.scene;
   meta.stats = stats;
-  meta.commandLine = commandLine() + " (capture button)";
+  meta.commandLine = v.args.commandLine + " (capture button)";
   return writeCapture(written, snapshot, meta, error);
 }
 
@@ -129,9 +129,9 @@ bool openCaptures(Viewer& v) {
   for (int k = 0; k < kViewKindCount; ++k) {
     Target t = viewDef(ViewKind(k)).source.target;
     m.unavailable[k].clear();
-    if (!f.target(t).present()) m.unavailable[k] = std::string(targetName(t)) + ": " + f.absent[size_t(t)];
+    if (!f.target(t).present()) m.unavailable[k] = std::string(targetName(t)) + ": " + absentText(f.absent[size_t(t)]);
     else if (v.hasB && !v.captureB.frame.target(t).present())
-      m.unavailable[k] = std::string(targetName(t)) + " is not in B: " + v.captureB.frame.absent[size_t(t)];
+      m.unavailable[k] = std::string(targetName(t)) + " is not in B: " + absentText(v.captureB.frame.absent[size_t(t)]);
   }
   m.captureAvailable = false;
   m.captureHint = "This is a capture already";

@@ -45,7 +45,7 @@ bool updateCamera(Viewer& v, double dt) {
   ViewerModel& m = v.model;
   bool changed = false;
   if (m.resetCamera || m.gltfCamera >= 0) {
-    int index = m.gltfCamera >= 0 ? m.gltfCamera : v.args.common.render.camera;
+    int index = m.gltfCamera >= 0 ? m.gltfCamera : v.args.render.camera;
     resetRig(v.rig, v.scene.cameras[size_t(index)], v.scene.bounds);
     m.resetCamera = false;
     m.gltfCamera = -1;

@@ -7,7 +7,8 @@
 
 #include "app/viewer/viewer.h"
 #include "renderer/region_readback.h"
-#include "views/probe.h"
+#include "renderer/session.h"
+#include "views/analysis/probe.h"
 
 namespace gb {
 
@@ -15,18 +16,6 @@ void logLine(std::ofstream& f, const nlohmann::json& j) {
   if (!f.is_open()) return;
   f << j.dump() << '\n';
   f.flush();
-}
-
-std::vector<Target> readableTargets(const Renderer& r) {
-  std::vector<Target> out;
-  for (size_t i = 0; i < kTargetCount; ++i) {
-    Target t = Target(i);
-    const GraphTarget& g = r.targets[i];
-    if (!g.image.image || g.image.desc.transient) continue;
-    if ((t == Target::CoverageMasked || t == Target::CoverageFull) && !r.options.coverage) continue;
-    out.push_back(t);
-  }
-  return out;
 }
 
 static std::string valuesText(const CpuImage& img) {
@@ -50,7 +39,7 @@ static void addRegions(FrameSnapshot& s, const std::vector<RegionImage>& regions
     ti.y0 = ri.y0;
     ti.targetWidth = ri.targetWidth;
     ti.targetHeight = ri.targetHeight;
-    s.absent[size_t(ri.target)].clear();
+    s.absent[size_t(ri.target)] = Absent::No;
   }
 }
 
@@ -64,7 +53,7 @@ void probeViewerPixel(Viewer& v, glm::ivec2 p, bool logged) {
   ViewerModel& m = v.model;
   p = glm::clamp(p, glm::ivec2(0), glm::ivec2(int(r.options.width) - 1, int(r.options.height) - 1));
   const uint32_t x = uint32_t(p.x), y = uint32_t(p.y);
-  std::vector<Target> readable = readableTargets(r);
+  std::vector<Target> readable = readableTargets(r, r.options);
   // 1. The pixel in every screen-space target (1x1 windows).
   std::vector<RegionRequest> requests;
   for (Target t : readable)
@@ -104,7 +93,7 @@ void readHover(Viewer& v) {
   if (!texel || !view || !v.frameValid || !m.unavailable[int(*view)].empty()) return;
   const ViewDef& d = viewDef(*view);
   std::vector<RegionImage> regions =
-      readbackRegions(v.renderer, {{d.source.target, texel->x, texel->y, 1, 1}}, readableTargets(v.renderer));
+      readbackRegions(v.renderer, {{d.source.target, texel->x, texel->y, 1, 1}}, readableTargets(v.renderer, v.renderer.options));
   if (regions[0].image.empty()) return;
   char head[96];
   std::snprintf(head, sizeof head, "%s (%d, %d): ", targetName(d.source.target), texel->x, texel->y);

@@ -13,6 +13,7 @@
 #include <cstdio>
 
 #include "app/viewer/viewer.h"
+#include "renderer/core/statistics.h"
 #include "renderer/vk/check.h"
 
 namespace gb {
@@ -132,7 +133,7 @@ static void updateRanges(Viewer& v) {
   if (!v.rangesStale && key == v.rangesKey) return;
   v.rangesStale = false;
   v.rangesKey = key;
-  std::vector<RangeStats> stats = computeRanges(v.mapper, v.renderer, all, readableTargets(v.renderer));
+  std::vector<RangeStats> stats = computeRanges(v.mapper, v.renderer, all, readableTargets(v.renderer, v.renderer.options));
   size_t at = 0;
   for (auto& [k, n] : owners) {
     m.ranges[int(k)].assign(stats.begin() + long(at), stats.begin() + long(at + n));
@@ -164,8 +165,6 @@ static void logLayout(Viewer& v, int windowW, int windowH) {
   logLine(v.eventLog, j);
 }
 
-static double medianOf(std::vector<double> x) { return median(std::move(x)); }
-
 static void answerProbe(Viewer& v) {
   ViewerModel& m = v.model;
   if (m.source == FrameSource::Live)
@@ -183,9 +182,10 @@ static void buildInterface(Viewer& v) {
   drawViewerUi(v.model, viewDrawCallback(), v.draws);
 }
 
-int runViewer(const ViewerArgs& args) {
+int runViewer(const ViewerArgs& args, Scene scene) {
   Viewer v;
   v.args = args;
+  v.scene = std::move(scene);
   ViewerModel& m = v.model;
   unsigned ww = 0, wh = 0;
   char sep = 0;
@@ -198,7 +198,6 @@ int runViewer(const ViewerArgs& args) {
     std::fprintf(stderr, "gblens view: --compare B needs --capture A\n");
     return 2;
   }
-  if (live && !loadSceneOrReport(args.common, v.scene)) return 2;
   if (!args.probeLog.empty()) {
     v.probeLog.open(args.probeLog, std::ios::app);
     if (!v.probeLog) {
@@ -216,8 +215,8 @@ int runViewer(const ViewerArgs& args) {
   if (!openWindow(v, ww, wh)) return 2;
 
   ContextOptions co;
-  co.validation = args.common.validate;
-  co.device = args.common.device;
+  co.validation = args.validate;
+  co.device = args.device;
   co.swapchain = true;
   uint32_t n = 0;
   const char** exts = glfwGetRequiredInstanceExtensions(&n);
@@ -230,7 +229,7 @@ int runViewer(const ViewerArgs& args) {
 
   if (live) {
     // The scene camera the viewer starts from, copied to a camera of its own (the last one).
-    resetRig(v.rig, v.scene.cameras[size_t(args.common.render.camera)], v.scene.bounds);
+    resetRig(v.rig, v.scene.cameras[size_t(args.render.camera)], v.scene.bounds);
     v.scene.cameras.push_back(v.rig.desc);
     initRenderer(v.renderer, v.ctx, v.scene);
   } else if (!openCaptures(v)) {
@@ -244,14 +243,14 @@ int runViewer(const ViewerArgs& args) {
   initViewMapper(v.mapper, v.renderer);
 
   for (int k = 0; k < kViewKindCount; ++k) m.settings[k] = defaultSettings(ViewKind(k));
-  m.wanted = args.common.render;
+  m.wanted = args.render;
   m.fixedSize = args.sizeGiven;
-  m.lightCount = int(v.scene.generatedLights ? args.common.render.lights : int(v.scene.lights.size()));
+  m.lightCount = int(v.scene.generatedLights ? args.render.lights : int(v.scene.lights.size()));
   m.playing = !args.paused;
   parseView(args.initialView, m.primary);
   m.edited = m.primary;
   m.deviceName = v.ctx.deviceName;
-  m.sceneName = live ? args.common.scene : args.capture + (args.compare.empty() ? "" : " vs " + args.compare);
+  m.sceneName = live ? args.scene : args.capture + (args.compare.empty() ? "" : " vs " + args.compare);
   if (live) {
     for (size_t i = 0; i + 1 < v.scene.cameras.size(); ++i)
       m.cameraNames.push_back(v.scene.cameras[i].name.empty() ? "camera " + std::to_string(i) : v.scene.cameras[i].name);
@@ -358,16 +357,16 @@ int runViewer(const ViewerArgs& args) {
   nlohmann::json summary = {{"event", "exit"},
                             {"frames_rendered", m.framesRendered},
                             {"frames_presented", m.framesPresented},
-                            {"render_ms_median", medianOf(v.renderMs)},
-                            {"present_ms_median", medianOf(v.presentMs)},
-                            {"rendered_iteration_ms_median", medianOf(v.renderedLoopMs)},
+                            {"render_ms_median", median(v.renderMs)},
+                            {"present_ms_median", median(v.presentMs)},
+                            {"rendered_iteration_ms_median", median(v.renderedLoopMs)},
                             {"size", {m.rendered.width, m.rendered.height}}};
   logLine(v.eventLog, summary);
   std::fprintf(stderr,
                "gblens view: %llu frames rendered (median %.2f ms), %llu presented (median %.2f ms); "
                "render + present %.2f ms\n",
-               (unsigned long long)m.framesRendered, medianOf(v.renderMs), (unsigned long long)m.framesPresented,
-               medianOf(v.presentMs), medianOf(v.renderedLoopMs));
+               (unsigned long long)m.framesRendered, median(v.renderMs), (unsigned long long)m.framesPresented,
+               median(v.presentMs), median(v.renderedLoopMs));
   vkDeviceWaitIdle(v.ctx.device);
   shutdownImGui(v);
   destroyViewMapper(v.mapper, v.renderer);

@@ -8,18 +8,23 @@
 #include <string>
 #include <vector>
 
-#include "app/cli.h"
-#include "renderer/view_map.h"
+#include "renderer/core/options.h"
+#include "renderer/scene/scene.h"
+#include "views/ui/view_map.h"
 #include "renderer/vk/swapchain.h"
-#include "views/capture.h"
-#include "views/viewer_model.h"
+#include "views/capture/capture.h"
+#include "views/ui/viewer_model.h"
 
 struct GLFWwindow;
 
 namespace gb {
 
 struct ViewerArgs {
-  CommonOptions common;
+  std::string scene = "builtin:temple";  // SCENE as given (titles, manifests)
+  RenderOptions render;            // the common options as parsed
+  std::string device;              // --device
+  bool validate = false;           // --validate
+  std::string commandLine;         // as typed (capture manifests)
   bool sizeGiven = false;          // --size: render at that size, else at the view area's size
   std::string window = "1280x800";  // initial window size
   bool windowGiven = false;        // --window given (else sized to the monitor)
@@ -88,7 +93,7 @@ struct Viewer {
   std::vector<int> pressedKeys;    // key presses since the last loop iteration
 };
 
-int runViewer(const ViewerArgs& args);
+int runViewer(const ViewerArgs& args, Scene scene);
 
 // controls.cpp
 void handleKeys(Viewer& v);
@@ -109,7 +114,6 @@ bool presentFrame(Viewer& v);
 // shared dossier (views/probe.h). `logged`: a user's probe (written to --probe-log).
 void probeViewerPixel(Viewer& v, glm::ivec2 pixel, bool logged);
 void readHover(Viewer& v);
-std::vector<Target> readableTargets(const Renderer& r);
 
 // captures.cpp
 bool captureLiveFrame(Viewer& v, std::string& written, std::string& error);

@@ -41,7 +41,7 @@ bool openWindow(Viewer& v, uint32_t width, uint32_t height) {
         height = uint32_t(std::min(1080.0, std::max(480.0, mode->height * 0.85)));
       }
   }
-  std::string title = "gblens - " + v.args.common.scene;
+  std::string title = "gblens - " + v.args.scene;
   v.window = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
   if (!v.window) {
     std::fprintf(stderr, "gblens view: cannot create a %ux%u window\n", width, height);

@@ -1,7 +1,7 @@
 // One function per pass: each declares what it reads and writes (its Uses) and records its
 // commands. The frame function (renderer/frame.cpp) decides which run and in what order.
 #pragma once
-#include "renderer/graph.h"
+#include "renderer/graph/graph.h"
 #include "renderer/renderer.h"
 
 namespace gb {

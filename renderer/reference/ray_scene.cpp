@@ -11,7 +11,7 @@
 
 #include "renderer/reference/reference.h"
 #include "renderer/reference/sampler.h"
-#include "renderer/vk/check.h"
+#include "renderer/core/assert.h"
 
 namespace gb::reference {
 

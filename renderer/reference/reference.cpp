@@ -8,7 +8,6 @@
 
 #include "renderer/reference/reference.h"
 #include "renderer/reference/sampler.h"
-#include "renderer/renderer.h"
 
 namespace gb::reference {
 

@@ -10,8 +10,8 @@
 
 #include <glm/glm.hpp>
 
-#include "renderer/camera.h"
-#include "renderer/scene.h"
+#include "renderer/core/camera.h"
+#include "renderer/scene/scene.h"
 
 namespace gb::reference {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "renderer/image.h"
+#include "renderer/core/image.h"
 
 namespace gb::reference {
 

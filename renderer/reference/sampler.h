@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "renderer/scene.h"
+#include "renderer/scene/scene.h"
 
 namespace gb::reference {
 

@@ -1,9 +1,11 @@
-// VK_CHECK and GB_ASSERT: a failed Vulkan call or a broken invariant stops the program with file:line.
+// VK_CHECK: a failed Vulkan call stops the program with file:line (GB_ASSERT: renderer/core/assert.h).
 #pragma once
 #include <vulkan/vulkan.h>
 
 #include <cstdio>
 #include <cstdlib>
+
+#include "renderer/core/assert.h"
 
 namespace gb {
 const char* vkResultName(VkResult r);
@@ -16,11 +18,3 @@ const char* vkResultName(VkResult r);
     if (gb_r_ != VK_SUCCESS) ::gb::vkFail(gb_r_, #call, __FILE__, __LINE__); \
   } while (0)
 
-// Always on (release builds too): a bug must stop the program, not produce wrong pixels.
-#define GB_ASSERT(cond)                                                                  \
-  do {                                                                                   \
-    if (!(cond)) {                                                                       \
-      std::fprintf(stderr, "gblens: assertion failed: %s (%s:%d)\n", #cond, __FILE__, __LINE__); \
-      std::abort();                                                                      \
-    }                                                                                    \
-  } while (0)

@@ -346,4 +346,12 @@ void destroyContext(GpuContext& ctx) {
   ctx = GpuContext{};
 }
 
+int reportValidation(const GpuContext& ctx) {
+  if (!ctx.validation) return 0;
+  ValidationLog& log = validationLog();
+  int n = log.errors + log.warnings;
+  if (n) std::fprintf(stderr, "gblens: %d validation message(s) (%d errors)\n", n, int(log.errors));
+  return n;
+}
+
 }  // namespace gb

@@ -63,6 +63,9 @@ std::vector<std::string> listDevices(VkInstance instance);
 GpuContext createContext(const ContextOptions& options);
 void destroyContext(GpuContext& ctx);
 
+// Prints the validation summary line when messages were counted; returns their number.
+int reportValidation(const GpuContext& ctx);
+
 // True when GBLENS_VALIDATE is set to a non-zero value.
 bool validationRequestedByEnvironment();
 

@@ -3,7 +3,7 @@
 
 #include <map>
 
-#include "renderer/scene.h"
+#include "renderer/core/vertex.h"
 #include "renderer/vk/check.h"
 
 namespace gb {

@@ -4,8 +4,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "renderer/builtin.h"
-#include "renderer/gltf.h"
+#include "renderer/scene/builtin.h"
+#include "renderer/scene/gltf.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

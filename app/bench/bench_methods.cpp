@@ -1,0 +1,221 @@
+// The method comparison and the skip savings of gblens bench (see bench_methods.h). Methods are
+// timed in rounds, one frame of each per round in rotated order, on a renderer each (their own
+// targets and pipelines), so drift and other processes' load hit every method alike and the
+// ratios to the defaults come from frames taken side by side.
+#include "app/bench/bench_methods.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "renderer/vk/check.h"
+
+namespace gb {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+
+double passMs(const FrameStats& st, const std::string& name) {
+  for (const PassStat& p : st.passes)
+    if (p.name == name && !p.skipped) return p.ms;
+  return 0.0;
+}
+
+}  // namespace
+
+// Per-pass medians over frames, in the last frame's pass order (a pass counts where it ran).
+std::vector<PassTiming> passTimings(const std::vector<FrameStats>& frames) {
+  std::vector<PassTiming> out;
+  if (frames.empty()) return out;
+  const FrameStats& last = frames.back();
+  for (size_t i = 0; i < last.passes.size(); ++i) {
+    PassTiming p;
+    p.name = last.passes[i].name;
+    p.skipped = last.passes[i].skipped;
+    p.reason = last.passes[i].reason;
+    std::vector<double> ms;
+    for (const FrameStats& f : frames)
+      if (i < f.passes.size() && f.passes[i].name == p.name && !f.passes[i].skipped) ms.push_back(f.passes[i].ms);
+    p.ms = timingOf(ms);
+    out.push_back(p);
+  }
+  return out;
+}
+
+std::vector<MethodRow> methodStudy(GpuContext& ctx, Scene& scene, const RenderOptions& base, const MethodSettings& s) {
+  const auto start = Clock::now();
+  const auto& methods = benchMethods();
+  const size_t n = methods.size();
+  std::vector<MethodRow> out;
+  const size_t cellsTotal = s.sizes.size() * s.lights.size();
+  size_t cellsDone = 0;
+  for (const std::string& size : s.sizes) {
+    std::vector<std::unique_ptr<Renderer>> rs;
+    for (size_t i = 0; i < n; ++i) {
+      rs.push_back(std::make_unique<Renderer>());
+      initRenderer(*rs.back(), ctx, scene);
+    }
+    std::vector<double> lastMs(n, 0.0);  // each method's last frame at this size
+    int lastLights = 0;
+    for (int lights : s.lights) {
+      ++cellsDone;
+      if (scene.generatedLights) generateLights(scene, lights);
+      std::vector<RenderOptions> opts(n, base);
+      std::vector<bool> active(n, true);
+      std::vector<MethodRow> rows(n);
+      for (size_t i = 0; i < n; ++i) {
+        std::string error;
+        const bool sizeOk = setOption(opts[i], "size", size, error);  // checked by gblens bench
+        GB_ASSERT(sizeOk);
+        opts[i].lights = lights;
+        opts[i].coverage = false;
+        const std::string& m = methods[i].first;
+        opts[i].method = m == "forward" ? Method::Forward : m == "tiled" ? Method::Tiled : Method::Deferred;
+        opts[i].stencilCulling = m != "deferred_unculled";
+        rows[i].scene = scene.source;
+        rows[i].method = m;
+        rows[i].flags = methods[i].second;
+        rows[i].options = opts[i];
+        if (m == "forward" && lights > s.forwardMaxLights) {
+          active[i] = false;
+          rows[i].note = "not measured above " + std::to_string(s.forwardMaxLights) + " lights (--methods-forward-max)";
+        }
+      }
+      // Warm-up: a frame of each (pipelines, targets, light buffers), except for a method that
+      // already ran at this size and takes over a second a frame: its estimate is scaled.
+      double roundMs = 0.0;
+      for (size_t i = 0; i < n; ++i) {
+        if (!active[i]) continue;
+        if (lastMs[i] == 0.0 || lastMs[i] < 1000.0) {
+          lastMs[i] = renderFrame(*rs[i], opts[i]).frameMs;
+          if (lastMs[i] > 1000.0)  // slow cells say where the time goes
+            std::fprintf(stderr, "[methods] %s %d lights %s: warm-up frame %.1f s\n", size.c_str(), lights,
+                         methods[i].first.c_str(), lastMs[i] / 1000.0);
+        }
+        else if (lastLights > 0)
+          lastMs[i] *= double(std::max(lights, 1)) / std::max(lastLights, 1);
+        roundMs += lastMs[i];
+      }
+      lastLights = lights;
+      // This cell's share of what is left of the comparison's time.
+      const double share = (s.seconds - since(start)) / double(cellsTotal - cellsDone + 1);
+      const int rounds = std::clamp(int(share * 1000.0 / std::max(roundMs, 1e-3)), s.minRounds, s.rounds);
+      std::vector<std::vector<FrameStats>> stats(n);
+      std::vector<std::vector<double>> ratios(n);
+      for (int k = 0; k < rounds; ++k) {
+        std::vector<double> t(n, 0.0);
+        for (size_t j = 0; j < n; ++j) {
+          const size_t i = (j + size_t(k)) % n;  // rotated: no method always runs first
+          if (!active[i]) continue;
+          stats[i].push_back(renderFrame(*rs[i], opts[i]));
+          t[i] = stats[i].back().frameMs;
+        }
+        for (size_t i = 0; i < n; ++i)
+          if (active[i]) ratios[i].push_back(t[i] / t[0]);
+      }
+      for (size_t i = 0; i < n; ++i) {
+        if (!active[i]) continue;
+        MethodRow& row = rows[i];
+        std::vector<double> frameMs, gpuMs;
+        for (const FrameStats& f : stats[i]) {
+          frameMs.push_back(f.frameMs);
+          gpuMs.push_back(f.gpuMs);
+        }
+        row.measured = true;
+        row.frames = int(stats[i].size());
+        row.frameMs = timingOf(frameMs);
+        row.gpuMs = timingOf(gpuMs);
+        row.passes = passTimings(stats[i]);
+        row.overDefault = timingOf(ratios[i]).median;
+        lastMs[i] = row.frameMs.median;
+        // Culling efficiency: one more frame with coverage on (not timed). Forward's count is
+        // its visible lights times its shaded fragments; a frame over 3 s is not spent on it.
+        if (lastMs[i] > 3000.0) {
+          row.note += "culling not measured (a frame takes " + std::to_string(int(lastMs[i] / 1000.0)) + " s); ";
+          continue;
+        }
+        // The ideal pairs are counted on the CPU, light by light over its screen rectangle: at
+        // 4K with 65536 lights that is about a minute per frame.
+        if (double(opts[i].width) * opts[i].height * lights > s.cullingMaxPixelLights) {
+          row.note += "culling not measured (pixels x lights above --methods-culling-max); ";
+          continue;
+        }
+        const FrameStats& st = renderCountingFrame(*rs[i], opts[i]);
+        row.cullingValid = st.culling.valid;
+        row.invocations = st.culling.invocations;
+        row.idealPairs = st.culling.idealPairs;
+        row.workOverIdeal = st.culling.workOverIdeal;
+      }
+      for (MethodRow& row : rows) {
+        std::fprintf(stderr, "[methods] %-10s %5d lights %-18s ", size.c_str(), lights, row.method.c_str());
+        if (row.measured)
+          std::fprintf(stderr, "%2d fr %9.1f ms  x%.2f defaults  work/ideal %s\n", row.frames, row.frameMs.median,
+                       row.overDefault, row.cullingValid ? std::to_string(row.workOverIdeal).c_str() : "-");
+        else
+          std::fprintf(stderr, "%s\n", row.note.c_str());
+        out.push_back(row);
+      }
+    }
+    for (auto& r : rs) destroyRenderer(*r);
+  }
+  if (scene.generatedLights) generateLights(scene, base.lights);
+  return out;
+}
+
+std::vector<SkipRow> skipSavings(GpuContext& ctx, Scene& scene, const RenderOptions& base, int pairs) {
+  if (scene.generatedLights) generateLights(scene, base.lights);
+  Renderer r;
+  initRenderer(r, ctx, scene);
+  std::vector<SkipRow> out;
+  // Pairs of frames, one running the pass and one skipping it, the order swapped every pair.
+  auto measure = [&](SkipRow row, auto&& runFrame, auto&& skipFrame) {
+    runFrame();
+    skipFrame();  // warm-up of both shapes
+    std::vector<double> saved, ms;
+    for (int k = 0; k < pairs; ++k) {
+      double tRun, tSkip;
+      if (k % 2) {
+        tSkip = skipFrame().frameMs;
+        const FrameStats& st = runFrame();
+        tRun = st.frameMs;
+        ms.push_back(passMs(st, row.pass));
+      } else {
+        const FrameStats& st = runFrame();
+        tRun = st.frameMs;
+        ms.push_back(passMs(st, row.pass));
+        tSkip = skipFrame().frameMs;
+      }
+      saved.push_back(tRun - tSkip);
+    }
+    row.savedMs = timingOf(saved).median;
+    row.passMs = timingOf(ms).median;
+    row.pairs = pairs;
+    std::fprintf(stderr, "[skips] %-14s saves %.2f ms a frame (the pass: %.2f ms)\n", row.pass.c_str(), row.savedMs,
+                 row.passMs);
+    out.push_back(row);
+  };
+  RenderOptions o = base;
+  o.coverage = false;
+  measure({"shadow_map", "sun and geometry unchanged since the last frame (reused)", "frames re-rendering the map vs reusing it"},
+          [&]() -> const FrameStats& { r.shadowKey.clear(); return renderFrame(r, o); },
+          [&]() -> const FrameStats& { return renderFrame(r, o); });
+  RenderOptions noSky = o;
+  noSky.sky = false;
+  measure({"skybox", "no sky pixel in the last frame with this camera and geometry",
+           "sky on vs off (the temple's view shows sky; off stands in for a covered view)"},
+          [&]() -> const FrameStats& { return renderFrame(r, o); },
+          [&]() -> const FrameStats& { return renderFrame(r, noSky); });
+  RenderOptions noFairies = o;
+  noFairies.fairies = false;
+  measure({"fairy_lights", "fairies disabled, or no visible point light", "fairies on vs off"},
+          [&]() -> const FrameStats& { return renderFrame(r, o); },
+          [&]() -> const FrameStats& { return renderFrame(r, noFairies); });
+  destroyRenderer(r);
+  return out;
+}
+
+}  // namespace gb

@@ -1,0 +1,36 @@
+// The method comparison of gblens bench (deferred stencil-culled, deferred unculled, forward,
+// tiled at each size and light count, interleaved rounds, culling efficiency) and what the
+// frame function's skips save (shadow map reuse, skybox, fairy lights).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "renderer/renderer.h"
+#include "app/bench/bench_report.h"
+
+namespace gb {
+
+struct MethodSettings {
+  std::vector<int> lights = {16, 64, 256, 1024, 4096};
+  std::vector<std::string> sizes = {"1280x720"};
+  // Forward shades every visible light at every fragment: on lavapipe about 11 s a frame at
+  // 1024 lights, 45 s at 4096. Above this count it is listed as not measured.
+  int forwardMaxLights = 1024;
+  int rounds = 5;          // timed rounds per cell at most (one frame of each method per round)
+  int minRounds = 3;       // ... and at least
+  double seconds = 150.0;  // the whole comparison's share of the bench budget
+  // Culling efficiency needs the ideal pairs, counted on the CPU: cells with more pixels x
+  // lights than this (1080p at 65536 lights) skip it.
+  double cullingMaxPixelLights = 1920.0 * 1080.0 * 65536.0;
+};
+
+// Every method at every (size, lights) of `s` on `scene` (generated lights), from `base`.
+std::vector<MethodRow> methodStudy(GpuContext& ctx, Scene& scene, const RenderOptions& base, const MethodSettings& s);
+
+// Per-pass medians over frames, in the last frame's pass order (a pass counts where it ran).
+std::vector<PassTiming> passTimings(const std::vector<FrameStats>& frames);
+
+// The defaults' frame with each skippable pass run and skipped, alternating on one renderer.
+std::vector<SkipRow> skipSavings(GpuContext& ctx, Scene& scene, const RenderOptions& base, int pairs);
+
+}  // namespace gb

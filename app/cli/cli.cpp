@@ -1,0 +1,69 @@
+// Shared option parsing for every subcommand.
+#include "app/cli/cli.h"
+
+#include "views/analysis/view_table.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+
+#include "renderer/scene/builtin.h"
+
+namespace gb {
+
+void addCommonOptions(CLI::App* cmd, CommonOptions& o, const std::vector<std::string>& except) {
+  // A later flag overrides an earlier one, so scripts can append overrides to a base command.
+  cmd->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  if (std::find(except.begin(), except.end(), "scene") == except.end())
+    cmd->add_option("SCENE", o.scene, "builtin:temple, builtin:depth-range, or a .gltf/.glb file")->capture_default_str();
+  // One flag per option-table entry: the flag, the JSON key and the bench name are one name.
+  for (const OptionInfo& info : optionTable()) {
+    if (std::find(except.begin(), except.end(), info.name) != except.end()) continue;
+    std::string& value = o.values[info.name];
+    value = getOption(o.render, info.name);
+    CLI::Option* opt = cmd->add_option(flagName(info.name), value, info.help)->capture_default_str();
+    if (info.kind == OptionKind::Choice) opt->check(CLI::IsMember(info.choices));
+  }
+  cmd->add_option("--frames", o.frames, "render N frames, report the median")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_flag("--stats", o.stats, "print frame statistics as JSON on stdout");
+  cmd->add_option("--device", o.device, "Vulkan device by name or index (default: first GPU, else CPU)");
+  cmd->add_flag("--validate", o.validate, "enable Vulkan validation layers; non-zero exit on any message");
+}
+
+bool finishCommonOptions(CommonOptions& o, std::string& error) {
+  for (const auto& [name, value] : o.values)
+    if (!setOption(o.render, name, value, error)) return false;
+  return true;
+}
+
+bool loadSceneOrReport(const CommonOptions& o, Scene& scene) {
+  try {
+    scene = loadScene(o.scene, o.render.lights);
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "gblens: %s\n", e.message.c_str());
+    return false;
+  }
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "gblens: warning: %s\n", w.c_str());
+  if (size_t(o.render.camera) >= scene.cameras.size()) {
+    std::fprintf(stderr, "gblens: --camera %d: %s has %zu camera(s)\n", o.render.camera, o.scene.c_str(),
+                 scene.cameras.size());
+    return false;
+  }
+  return true;
+}
+
+std::string& commandLine() {
+  static std::string line;
+  return line;
+}
+
+void addViewOption(CLI::App* cmd, const std::string& flag, std::string& value, const std::string& help) {
+  std::vector<std::string> names = viewNames();
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "" : " | ") + n;
+  cmd->add_option(flag, value, help + ": " + list)->check(CLI::IsMember(names))->capture_default_str();
+}
+
+}  // namespace gb

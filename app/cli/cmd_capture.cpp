@@ -1,0 +1,124 @@
+// gblens capture [SCENE] -o DIR [--targets a,b,c] [--coverage on|off]: renders one frame and
+// writes a capture (views/capture.h). Only the targets asked for are read back.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include "app/cli/cli.h"
+#include "renderer/session.h"
+#include "views/capture/capture.h"
+#include "views/capture/report.h"
+
+namespace gb {
+
+static bool parseTargetList(const std::string& text, std::vector<Target>& out, std::string& error) {
+  std::stringstream s(text);
+  std::string item;
+  while (std::getline(s, item, ',')) {
+    Target t;
+    if (!parseTarget(item, t)) {
+      error = "--targets: unknown target \"" + item + "\" (targets:";
+      for (size_t i = 0; i < kTargetCount; ++i) error += std::string(" ") + targetName(Target(i));
+      error += ")";
+      return false;
+    }
+    if (std::find(out.begin(), out.end(), t) == out.end()) out.push_back(t);
+  }
+  if (out.empty()) error = "--targets: empty list";
+  return !out.empty();
+}
+
+static uint64_t directoryBytes(const std::string& dir) {
+  uint64_t n = 0;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+    if (e.is_regular_file(ec)) n += e.file_size(ec);
+  return n;
+}
+
+// Which targets to capture: --targets (each must be computed) or every available one.
+static bool chooseTargets(const std::string& list, const RenderOptions& ro, const Scene& scene,
+                          std::vector<Target>& wanted) {
+  if (list.empty()) {
+    wanted = availableTargets(ro, scene.sun.enabled);
+    return true;
+  }
+  std::string error;
+  if (!parseTargetList(list, wanted, error)) {
+    std::fprintf(stderr, "gblens capture: %s\n", error.c_str());
+    return false;
+  }
+  for (Target t : wanted)
+    if (Absent why = targetAbsence(t, ro, scene.sun.enabled); why != Absent::No) {
+      std::fprintf(stderr, "gblens capture: --targets %s: %s\n", targetName(t), absentText(why));
+      return false;
+    }
+  return true;
+}
+
+static int capture(const CommonOptions& o, const std::string& targets, bool coverage) {
+  RenderOptions ro = o.render;
+  ro.coverage = coverage;
+  Scene scene;
+  if (!loadSceneOrReport(o, scene)) return 2;
+  std::vector<Target> wanted;
+  if (!chooseTargets(targets, ro, scene, wanted)) return 2;
+  HeadlessSession session(scene, {o.device, o.validate});
+  // An output the device cannot hold is refused here, before any target is allocated.
+  if (std::string why = session.tooLarge(ro); !why.empty()) {
+    std::fprintf(stderr, "gblens capture: %s\n", why.c_str());
+    return 2;
+  }
+  FrameRequest request = captureRequest(wanted, ro);
+  std::vector<FrameStats> frames;
+  for (int i = 0; i < o.frames; ++i) frames.push_back(session.render(ro, request));
+  auto start = std::chrono::steady_clock::now();
+  FrameSnapshot snap = session.snapshot(wanted);
+  for (Absent& a : snap.absent)
+    if (a == Absent::NotReadBack) a = Absent::NotRequested;
+  CaptureMeta meta;
+  meta.device = session.deviceName();
+  meta.driver = session.driverName();
+  meta.scene = o.scene;
+  meta.sceneSha256 = sceneContentSha256(scene);
+  meta.stats = frames.back();
+  meta.commandLine = commandLine();
+  int status = 0;
+  std::string error;
+  if (!writeCapture(o.output, snap, meta, error)) {
+    std::fprintf(stderr, "gblens capture: %s\n", error.c_str());
+    status = 2;
+  } else {
+    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "gblens: wrote %s (%zu targets, %.2f MB, frame %.1f ms, write %.1f ms)\n", o.output.c_str(),
+                 wanted.size(), double(directoryBytes(o.output)) / 1e6, frames.back().frameMs, ms);
+  }
+  if (o.stats) std::printf("%s\n", statsJson(frames, {meta.device, meta.driver, scene.source}, ro).dump(2).c_str());
+  if (session.reportValidation() && status == 0) status = 1;
+  return status;
+}
+
+Command addCaptureCommand(CLI::App& root) {
+  auto o = std::make_shared<CommonOptions>();
+  auto targets = std::make_shared<std::string>();
+  auto coverage = std::make_shared<std::string>("on");
+  CLI::App* cmd = root.add_subcommand("capture", "render one frame and write a capture: EXR per target + manifest");
+  addCommonOptions(cmd, *o);
+  cmd->add_option("-o,--output", o->output, "capture directory to write (replaced if it holds a capture)")->required();
+  cmd->add_option("--targets", *targets, "comma-separated targets to capture (default: every available one)");
+  cmd->add_option("--coverage", *coverage, "compute the coverage_masked/coverage_full targets: on | off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  return {cmd, [o, targets, coverage]() -> int {
+            std::string error;
+            if (!finishCommonOptions(*o, error)) {
+              std::fprintf(stderr, "gblens capture: %s\n", error.c_str());
+              return 2;
+            }
+            return capture(*o, *targets, *coverage == "on");
+          }};
+}
+
+}  // namespace gb

@@ -1,0 +1,83 @@
+// gblens compare A B [-o DIFFDIR] [--json REPORT] [--fail ...]: compares two captures target by
+// target (views/compare.h) with idiff's thresholds and exit codes.
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+#include "app/cli/cli.h"
+#include "views/analysis/compare.h"
+
+namespace gb {
+
+namespace {
+struct CompareArgs {
+  std::string a, b, diffDir, json;
+  std::vector<std::string> fail, failPercent, hardFail, warn, warnPercent;
+  bool quiet = false;
+};
+}  // namespace
+
+Command addCompareCommand(CLI::App& root) {
+  auto o = std::make_shared<CompareArgs>();
+  CLI::App* cmd = root.add_subcommand(
+      "compare",
+      "compare two captures; exit 0 pass, 1 warn, 2 fail, 3 size/target mismatch, 4 file or usage error (as idiff)");
+  cmd->add_option("A", o->a, "capture directory (reference)")->required();
+  cmd->add_option("B", o->b, "capture directory (test)")->required();
+  cmd->add_option("-o,--output", o->diffDir, "directory for difference heat maps (one PNG per differing group)");
+  cmd->add_option("--json", o->json, "write the report as JSON to this file ('-' for stdout)");
+  const char* keyHelp = " (VALUE for every target, or TARGET=VALUE / TARGET.GROUP=VALUE; repeatable)";
+  cmd->add_option("--fail", o->fail, std::string("failure threshold, default 1e-6") + keyHelp);
+  cmd->add_option("--failpercent", o->failPercent, std::string("allow this % of pixels over --fail, default 0") + keyHelp);
+  cmd->add_option("--hardfail", o->hardFail, std::string("fail if any pixel is over this, default inf") + keyHelp);
+  cmd->add_option("--warn", o->warn, std::string("warning threshold, default 1e-6") + keyHelp);
+  cmd->add_option("--warnpercent", o->warnPercent, std::string("allow this % of pixels over --warn, default 0") + keyHelp);
+  cmd->add_flag("-q,--quiet", o->quiet, "print only the verdict line");
+  Command c{cmd, [o]() -> int {
+              std::string error;
+              ThresholdSettings settings;
+              for (auto& [param, values] : {std::pair{"fail", &o->fail}, {"failpercent", &o->failPercent},
+                                            {"hardfail", &o->hardFail}, {"warn", &o->warn},
+                                            {"warnpercent", &o->warnPercent}})
+                for (const std::string& v : *values)
+                  if (!settings.add(param, v, error)) {
+                    std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
+                    return kCompareFileError;
+                  }
+              Capture a, b;
+              for (auto [cap, dir] : {std::pair{&a, &o->a}, {&b, &o->b}}) {
+                CaptureProblem problem;
+                if (!loadCapture(*dir, *cap, error, &problem)) {
+                  std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
+                  return kCompareFileError;
+                }
+              }
+              CompareReport report;
+              if (!compareCaptures(a, b, settings, report, error)) {
+                std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
+                return kCompareFileError;
+              }
+              if (!o->diffDir.empty() && !writeHeatmaps(report, o->diffDir, error)) {
+                std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
+                return kCompareFileError;
+              }
+              std::string text = report.text();
+              if (o->quiet) text = text.substr(text.rfind('\n', text.size() - 2) + 1);
+              std::fputs(text.c_str(), o->json == "-" ? stderr : stdout);
+              if (o->json == "-") {
+                std::printf("%s\n", report.json().dump(2).c_str());
+              } else if (!o->json.empty()) {
+                std::ofstream out(o->json);
+                out << report.json().dump(2) << "\n";
+                if (!out) {
+                  std::fprintf(stderr, "gblens compare: %s: cannot write\n", o->json.c_str());
+                  return kCompareFileError;
+                }
+              }
+              return report.exitCode;
+            }};
+  c.usageExit = kCompareFileError;
+  return c;
+}
+
+}  // namespace gb

@@ -1,0 +1,80 @@
+// gblens render: one headless frame of a scene, written as a PNG of the final image or of one
+// examination view (--target, a name of the view table).
+#include <cstdio>
+#include <memory>
+
+#include "app/cli/cli.h"
+#include "renderer/session.h"
+#include "views/analysis/visualize.h"
+#include "views/capture/report.h"
+
+namespace gb {
+
+// The view's target must be computed under these options: a one-line refusal otherwise.
+static bool viewAvailable(ViewKind view, const RenderOptions& ro, const Scene& scene) {
+  Target t = viewDef(view).source.target;
+  Absent why = targetAbsence(t, ro, scene.sun.enabled);
+  if (why == Absent::No) return true;
+  std::fprintf(stderr, "gblens render: --target %s needs %s, which is %s\n", viewName(view), targetName(t),
+               absentText(why));
+  return false;
+}
+
+static int render(const CommonOptions& o, ViewKind view) {
+  Scene scene;
+  if (!loadSceneOrReport(o, scene)) return 2;
+  RenderOptions ro = o.render;
+  const Target target = viewDef(view).source.target;
+  ro.coverage = target == Target::CoverageMasked || target == Target::CoverageFull;
+  // Single pass: the G-buffer stays in tile memory (transient) unless this view reads it.
+  ro.keepGBuffer = targetInfo(target).role == TargetRole::GBuffer;
+  if (!viewAvailable(view, ro, scene)) return 2;
+  HeadlessSession session(scene, {o.device, o.validate});
+  // An output the device cannot hold is refused here, before any target is allocated.
+  if (std::string why = session.tooLarge(ro); !why.empty()) {
+    std::fprintf(stderr, "gblens render: %s\n", why.c_str());
+    return 2;
+  }
+  FrameRequest request;
+  request.readback = {target};
+  std::vector<FrameStats> frames;
+  for (int i = 0; i < o.frames; ++i) frames.push_back(session.render(ro, request));
+  FrameSnapshot frame = session.snapshot(request.readback);
+  FrameStats counted;  // culling counts from one more frame, not timed
+  if (o.stats) counted = session.renderCounting(ro, request);
+  int status = 0;
+  std::string error;
+  if (!writePng(o.output, visualize(view, frame), error)) {
+    std::fprintf(stderr, "gblens render: %s\n", error.c_str());
+    status = 2;
+  } else {
+    std::fprintf(stderr, "gblens: wrote %s (%s, %ux%u)\n", o.output.c_str(), viewName(view), ro.width, ro.height);
+  }
+  if (o.stats)
+    std::printf("%s\n",
+                statsJson(frames, {session.deviceName(), session.driverName(), scene.source}, ro, &counted).dump(2).c_str());
+  if (session.reportValidation() && status == 0) status = 1;
+  return status;
+}
+
+Command addRenderCommand(CLI::App& root) {
+  auto o = std::make_shared<CommonOptions>();
+  auto target = std::make_shared<std::string>("final");
+  o->output = "frame.png";
+  CLI::App* cmd = root.add_subcommand("render", "render one frame headless and write a PNG");
+  addCommonOptions(cmd, *o);
+  cmd->add_option("-o,--output", o->output, "PNG to write")->capture_default_str();
+  addViewOption(cmd, "--target", *target, "the view to write");
+  return {cmd, [o, target]() -> int {
+            std::string error;
+            if (!finishCommonOptions(*o, error)) {
+              std::fprintf(stderr, "gblens render: %s\n", error.c_str());
+              return 2;
+            }
+            ViewKind view = ViewKind::Final;
+            parseView(*target, view);
+            return render(*o, view);
+          }};
+}
+
+}  // namespace gb

@@ -1,0 +1,42 @@
+// gblens view: the interactive viewer (app/viewer/*). Options beyond the common ones control
+// the window and make runs reproducible for tests (--paused, --size, --probe-log, --event-log).
+#include <cstdio>
+#include <memory>
+
+#include "app/cli/cli.h"
+#include "app/viewer/viewer.h"
+
+namespace gb {
+
+Command addViewCommand(CLI::App& root) {
+  auto a = std::make_shared<ViewerArgs>();
+  auto common = std::make_shared<CommonOptions>();
+  CLI::App* cmd = root.add_subcommand("view", "open the interactive viewer (needs a display)");
+  addCommonOptions(cmd, *common);
+  cmd->add_option("--window", a->window, "initial window size WxH (default: 85% of the monitor, at most 1920x1080)");
+  cmd->add_flag("--paused", a->paused, "start with the animation paused (at --time)");
+  addViewOption(cmd, "--view", a->initialView, "initial view");
+  cmd->add_option("--probe-log", a->probeLog, "append each pixel dossier as one JSON line to FILE");
+  cmd->add_option("--event-log", a->eventLog, "append viewer events (layout, probe latency, exit) as JSON lines to FILE");
+  cmd->add_option("--capture", a->capture, "open a capture directory instead of rendering (gblens capture -o DIR)");
+  cmd->add_option("--compare", a->compare, "with --capture A: compare with capture B (A, B, |A-B|, split, both dossiers)");
+  return {cmd, [a, common, cmd]() -> int {
+            std::string error;
+            if (!finishCommonOptions(*common, error)) {
+              std::fprintf(stderr, "gblens view: %s\n", error.c_str());
+              return 2;
+            }
+            a->scene = common->scene;
+            a->render = common->render;
+            a->device = common->device;
+            a->validate = common->validate;
+            a->commandLine = commandLine();
+            a->sizeGiven = cmd->get_option("--size")->count() > 0;
+            a->windowGiven = cmd->get_option("--window")->count() > 0;
+            Scene scene;
+            if (a->capture.empty() && !loadSceneOrReport(*common, scene)) return 2;
+            return runViewer(*a, std::move(scene));
+          }};
+}
+
+}  // namespace gb

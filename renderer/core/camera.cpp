@@ -1,0 +1,86 @@
+// Projection and reconstruction math shared by the renderer, the probe and the tests.
+#include "renderer/core/camera.h"
+
+#include <cmath>
+
+namespace gb {
+
+glm::dmat4 perspective(double yfov, double aspect, double n, double f, bool reversedZ) {
+  double t = 1.0 / std::tan(yfov * 0.5);
+  glm::dmat4 p(0.0);
+  p[0][0] = t / aspect;
+  p[1][1] = -t;  // Vulkan: clip y points down, so eye +Y appears at the top of the image
+  if (!reversedZ) {
+    p[2][2] = f / (n - f);
+    p[3][2] = n * f / (n - f);
+  } else {
+    p[2][2] = n / (f - n);
+    p[3][2] = n * f / (f - n);
+  }
+  p[2][3] = -1.0;
+  return p;
+}
+
+glm::dmat4 lookAt(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up) {
+  glm::dvec3 back = glm::normalize(eye - target);
+  glm::dvec3 right = glm::normalize(glm::cross(up, back));
+  glm::dvec3 realUp = glm::cross(back, right);
+  glm::dmat4 m(1.0);
+  m[0] = glm::dvec4(right, 0.0);
+  m[1] = glm::dvec4(realUp, 0.0);
+  m[2] = glm::dvec4(back, 0.0);
+  m[3] = glm::dvec4(eye, 1.0);
+  return m;  // worldFromEye
+}
+
+CameraDesc lookAtCamera(std::string name, const glm::dvec3& eye, const glm::dvec3& target, double yfov,
+                        double znear, double zfar) {
+  CameraDesc c;
+  c.name = std::move(name);
+  const bool vertical = std::abs(glm::normalize(target - eye).y) > 0.999;
+  c.worldFromEye = lookAt(eye, target, vertical ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0));
+  c.yfov = yfov;
+  c.znear = znear;
+  c.zfar = zfar;
+  return c;
+}
+
+View makeView(const CameraDesc& camera, uint32_t width, uint32_t height, bool reversedZ) {
+  View v;
+  v.width = width;
+  v.height = height;
+  v.yfov = camera.yfov;
+  v.aspect = camera.aspect > 0.0 ? camera.aspect : double(width) / double(height);
+  v.znear = camera.znear;
+  v.zfar = camera.zfar;
+  v.reversedZ = reversedZ;
+  v.worldFromEye = camera.worldFromEye;
+  v.eyeFromWorld = glm::inverse(camera.worldFromEye);
+  v.clipFromEye = perspective(v.yfov, v.aspect, v.znear, v.zfar, reversedZ);
+  v.eyeFromClip = glm::inverse(v.clipFromEye);
+  v.clipFromWorld = v.clipFromEye * v.eyeFromWorld;
+  return v;
+}
+
+glm::dvec2 pixelNdc(const View& v, double px, double py) {
+  return {(px + 0.5) / v.width * 2.0 - 1.0, (py + 0.5) / v.height * 2.0 - 1.0};
+}
+
+glm::dvec3 eyeFromEyeDepth(const View& v, double px, double py, double d) {
+  glm::dvec2 ndc = pixelNdc(v, px, py);
+  const glm::dmat4& p = v.clipFromEye;
+  return {d * (ndc.x + p[2][0]) / p[0][0], d * (ndc.y + p[2][1]) / p[1][1], -d};
+}
+
+glm::dvec3 eyeFromHardwareDepth(const View& v, double px, double py, double depth) {
+  glm::dvec2 ndc = pixelNdc(v, px, py);
+  glm::dvec4 e = v.eyeFromClip * glm::dvec4(ndc, depth, 1.0);
+  return glm::dvec3(e) / e.w;
+}
+
+double hardwareDepth(const View& v, const glm::dvec3& eye) {
+  glm::dvec4 c = v.clipFromEye * glm::dvec4(eye, 1.0);
+  return c.z / c.w;
+}
+
+}  // namespace gb

@@ -1,0 +1,45 @@
+// What a caller asks of one frame (read-backs, hand-offs) and what the frame cost and did: per-pass
+// GPU time or the reason a pass was skipped, light counts and culling statistics (--stats, bench
+// rows, capture manifests).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "renderer/core/targets.h"
+
+namespace gb {
+
+struct FrameRequest {
+  std::vector<Target> readback;     // copied to the CPU after the frame (Renderer::readback)
+  std::vector<Target> sampleAfter;  // left readable by fragment shaders (the viewer samples them)
+  bool cullingStats = false;        // ideal pairs + pipeline statistics (needs options.coverage)
+};
+
+struct PassStat {
+  std::string name;
+  bool skipped = false;
+  std::string reason;
+  double ms = 0.0;
+};
+
+struct CullingStats {
+  bool valid = false;
+  uint64_t invocations = 0;          // sum of coverage_masked: point-light fragment shader runs
+  uint64_t idealPairs = 0;           // (pixel, light) pairs whose surface point is inside the radius
+  uint64_t pipelineInvocations = 0;  // pipeline-statistics count for the point-light pass
+  double workOverIdeal = 0.0;        // invocations / idealPairs
+};
+
+struct FrameStats {
+  double frameMs = 0.0;  // CPU wall time of the frame: record + submit + wait
+  double gpuMs = 0.0;    // first to last GPU timestamp
+  std::vector<PassStat> passes;
+  CullingStats culling;
+  uint32_t lights = 0, lightsVisible = 0, lightsInside = 0, lightsCulled = 0;
+  uint32_t stencilLayers = 0;  // screen-disjoint layers of the stencil class (FrameLights::layerStarts)
+  uint32_t lightsCulledFrustum = 0, lightsCulledEmpty = 0, lightsCulledSubpixel = 0;  // lightsCulled split
+  int64_t skyPixels = -1;  // sky pixels the skybox drew (occlusion query; -1: skybox not drawn)
+};
+
+}  // namespace gb

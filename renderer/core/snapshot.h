@@ -1,0 +1,67 @@
+// A frame snapshot: everything the probe, captures, compare and error analysis need to know about
+// one frame, on the CPU, with no Vulkan in sight. Filled from a live Renderer (HeadlessSession,
+// renderer/session.h) or from a capture directory (views/capture/capture.h); analysis reads only this.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "renderer/core/camera.h"
+#include "renderer/core/image.h"
+#include "renderer/core/lights.h"
+#include "renderer/core/options.h"
+#include "renderer/core/targets.h"
+#include "shaders/shared.h"
+
+namespace gb {
+
+// A target on the CPU, whole or a region of it. Region read-back: the viewer reads back only
+// the texels a probe needs; `image` then holds a w x h window whose texel (0, 0) is target
+// texel (x0, y0). Every accessor takes TARGET coordinates, so a probe works the same on a
+// 1x1 region around the clicked pixel as on the whole frame.
+struct TargetImage {
+  CpuImage image;                         // empty: not read back (see FrameSnapshot::absent)
+  uint32_t x0 = 0, y0 = 0;                // target coordinates of image texel (0, 0)
+  uint32_t targetWidth = 0, targetHeight = 0;  // size of the whole target
+
+  bool present() const { return !image.empty(); }
+  bool whole() const { return x0 == 0 && y0 == 0 && image.width == targetWidth && image.height == targetHeight; }
+  bool contains(uint32_t x, uint32_t y) const {
+    return present() && x >= x0 && y >= y0 && x - x0 < image.width && y - y0 < image.height;
+  }
+  // Stored bits / decoded value at target texel (x, y); the texel must be contained.
+  uint32_t raw(uint32_t x, uint32_t y, uint32_t c) const;
+  double value(uint32_t x, uint32_t y, uint32_t c) const;
+};
+
+struct FrameSnapshot {
+  RenderOptions options;                  // what the frame was rendered with
+  View view;                              // camera matrices (double), size, near/far, reversed Z
+  glm::dmat4 lightClipFromWorld{1.0};     // the sun's shadow-map clip space
+  Sun sun;                                // world space
+  Sky sky;                                // ambient term of the directional pass
+  // Point lights as uploaded for this frame (eye space, float; index = scene light index),
+  // the lights drawn (`visible`), of which [0, stencilCount) use the stencil mask and the
+  // rest (volume touches the near plane) are drawn as back faces without it.
+  std::vector<gpu::PointLight> eyeLights;
+  std::vector<uint32_t> visibleLights;
+  uint32_t stencilCount = 0;
+  std::array<TargetImage, kTargetCount> targets;
+  std::array<Absent, kTargetCount> absent{};  // why a target is not here (Absent::No when present)
+  // The point lights' descriptions (world space, animation) when the frame came from a scene.
+  std::vector<PointLightDesc> lightDescs;
+  // The lighting passes' uniform data as uploaded (live frames; captures rebuild what they need).
+  gpu::FrameData frameData{};
+  // What the device's sampler returns for each 8-bit sRGB value (empty: not probed; exact curve).
+  std::vector<float> srgbDecode;
+
+  const TargetImage& target(Target t) const { return targets[size_t(t)]; }
+  TargetImage& target(Target t) { return targets[size_t(t)]; }
+  // Eye-space direction toward the sun, as the renderer uploads it (float).
+  glm::dvec3 sunEyeDirection() const;
+};
+
+// A target is screen-space when it has the output's size (every target but the shadow map).
+bool screenSpaceTarget(Target t);
+
+}  // namespace gb

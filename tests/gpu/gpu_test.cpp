@@ -1,0 +1,58 @@
+// GpuTest: the shared Vulkan context with validation, one renderer per scene of a test.
+#include "tests/gpu/gpu_test.h"
+
+
+namespace gb {
+
+GpuContext& GpuTest::ctx() {
+  static GpuContext* context = [] {
+    ContextOptions o;
+    o.validation = true;  // every test runs with validation layers, whatever the environment
+    o.quiet = true;
+    auto* c = new GpuContext(createContext(o));
+    std::atexit([] {});  // the context lives for the process; the driver cleans up at exit
+    return c;
+  }();
+  return *context;
+}
+
+void GpuTest::SetUp() {
+  ctx();
+  errorsBefore_ = validationLog().errors;
+  warningsBefore_ = validationLog().warnings;
+}
+
+void GpuTest::TearDown() {
+  for (auto& [scene, r] : renderers_) destroyRenderer(*r);
+  renderers_.clear();
+  ValidationLog& log = validationLog();
+  int errors = log.errors - errorsBefore_, warnings = log.warnings - warningsBefore_;
+  if (errors || warnings) {
+    std::string all;
+    for (auto& m : log.messages) all += m + "\n";
+    ADD_FAILURE() << errors << " validation error(s), " << warnings << " warning(s):\n" << all;
+  }
+}
+
+Renderer& GpuTest::renderer(const Scene& scene) {
+  for (auto& [s, r] : renderers_)
+    if (s == &scene) return *r;
+  renderers_.emplace_back(&scene, std::make_unique<Renderer>());
+  initRenderer(*renderers_.back().second, ctx(), scene);
+  return *renderers_.back().second;
+}
+
+const FrameStats& GpuTest::render(const Scene& scene, const RenderOptions& options, const FrameRequest& request) {
+  return renderFrame(renderer(scene), options, request);
+}
+
+FrameSnapshot GpuTest::snapshot(const Scene& scene, const RenderOptions& o, const std::vector<Target>& targets) {
+  return renderSnapshot(renderer(scene), o, targets);
+}
+
+std::function<FrameSnapshot(const RenderOptions&, const std::vector<Target>&)> GpuTest::source(const Scene& scene) {
+  Renderer* r = &renderer(scene);
+  return [r](const RenderOptions& o, const std::vector<Target>& t) { return renderSnapshot(*r, o, t); };
+}
+
+}  // namespace gb

@@ -1,0 +1,227 @@
+// The four lighting methods (deferred with per-light or shared stencil masks or without culling,
+// tiled deferred, forward) give the same image within the accumulation bound, and their
+// coverage_masked counts say what each evaluated: every light that reaches a pixel at least.
+//
+// The bound. A conversion to fp16 may land on either neighbour (Vulkan; llvmpipe truncates),
+// an error below one ulp, at most 2^-10 of the value. Deferred stores hdr after the directional
+// pass and after every light that adds something (m lights); tiled and forward sum in fp32
+// registers and store once. With non-negative contributions every partial sum is at most the
+// total E, so each result is within (m + 1) 2^-10 E of E and two of them within (m + 2) 2^-10 E.
+// m is at most n = coverage_masked of the unculled deferred frame (fragments that ran there);
+// fp32 summation (n 2^-24) and fp32 differences between shaders are inside the 1e-6 floor.
+#include <cmath>
+
+#include "renderer/scene/builtin.h"
+#include "renderer/core/camera.h"
+#include "renderer/core/codec.h"
+#include "renderer/light_culling.h"
+#include "tests/gpu/gpu_test.h"
+
+namespace gb {
+
+namespace {
+
+struct Method3 {
+  const char* label;
+  Method method;
+  bool stencilCulling;
+  StencilMask mask;
+};
+const Method3 kMethods[] = {{"deferred per-light", Method::Deferred, true, StencilMask::PerLight},
+                            {"deferred shared", Method::Deferred, true, StencilMask::Shared},
+                            {"tiled", Method::Tiled, true, StencilMask::PerLight},
+                            {"forward", Method::Forward, true, StencilMask::PerLight}};
+
+RenderOptions methodOptions(uint32_t w, uint32_t h, int lights) {
+  RenderOptions o;
+  o.width = w;
+  o.height = h;
+  o.lights = lights;
+  o.fairies = false;  // sprites are the same in every method; they would only hide pixels
+  o.coverage = true;
+  return o;
+}
+
+// Pixels (per channel) outside (n + 2) 2^-10 max(|a|, |b|) + 1e-6, n from `coverage`.
+int outOfBound(const CpuImage& a, const CpuImage& b, const CpuImage& coverage, double* worst = nullptr) {
+  int bad = 0;
+  for (uint32_t y = 0; y < a.height; ++y)
+    for (uint32_t x = 0; x < a.width; ++x) {
+      double n = coverage.value(x, y, 0);
+      for (int c = 0; c < 3; ++c) {
+        double va = a.value(x, y, c), vb = b.value(x, y, c);
+        double bound = (n + 2.0) * std::ldexp(1.0, -10) * std::max(std::abs(va), std::abs(vb)) + 1e-6;
+        if (worst && bound > 0) *worst = std::max(*worst, std::abs(va - vb) / bound);
+        if (!(std::abs(va - vb) <= bound)) ++bad;
+      }
+    }
+  return bad;
+}
+
+// Renders every method and compares each hdr with the unculled deferred frame's. Forward only
+// where the G-buffer stores exact values: elsewhere deferred shades values rounded to 8-bit
+// albedo and fp16 normals, which forward does not (that difference is the G-buffer's storage
+// error, measured against the reference by gblens error, not an accumulation difference).
+void expectMethodsAgree(GpuTest& t, const Scene& scene, RenderOptions o, const std::string& what, bool forward) {
+  o.method = Method::Deferred;
+  o.stencilCulling = false;
+  t.render(scene, o, {{Target::Hdr, Target::CoverageMasked}});
+  CpuImage reference = t.renderer(scene).readback[size_t(Target::Hdr)];
+  CpuImage coverage = t.renderer(scene).readback[size_t(Target::CoverageMasked)];
+  double sum = 0.0;
+  for (uint32_t y = 0; y < reference.height; ++y)
+    for (uint32_t x = 0; x < reference.width; ++x) sum += reference.value(x, y, 0);
+  EXPECT_GT(sum, 0.0) << what << ": a black frame compares equal to anything";
+  for (const Method3& m : kMethods) {
+    if (m.method == Method::Forward && !forward) continue;
+    o.method = m.method;
+    o.stencilCulling = m.stencilCulling;
+    o.stencilMask = m.mask;
+    t.render(scene, o, {{Target::Hdr}});
+    double worst = 0.0;
+    EXPECT_EQ(outOfBound(t.renderer(scene).readback[size_t(Target::Hdr)], reference, coverage, &worst), 0)
+        << what << ": " << m.label << " (worst |difference| / bound " << worst << ")";
+  }
+}
+
+// A floor and two boxes seen straight down, lit by point lights and ambient light: every value
+// a G-buffer stores is exact here (normals along the eye-space axes, albedo on the device's own
+// sRGB decode table, specular k/255, no sun), so forward, which shades unrounded values, must
+// agree with deferred to the accumulation bound too.
+Scene exactStorageScene(const std::vector<float>& srgbDecode, int lights) {
+  Scene s = floorScene(30.0, 0.0f);
+  s.materials[0].baseColor = glm::vec4(srgbDecode[200], srgbDecode[150], srgbDecode[90], 1.0f);
+  s.materials[0].specular = 64.0f / 255.0f;
+  MaterialDesc box = s.materials[0];
+  box.baseColor = glm::vec4(srgbDecode[120], srgbDecode[220], srgbDecode[180], 1.0f);
+  box.specular = 200.0f / 255.0f;
+  s.materials.push_back(box);
+  addBox(s, {-4, 0, -3}, {-1, 1.5f, 2}, 1);
+  addBox(s, {2, 0, 1}, {5, 0.7f, 4}, 1);
+  s.sky.ambient = glm::vec3(0.2f, 0.15f, 0.1f);
+  generateLights(s, lights);
+  setCamera(s, {0.0, 14.0, 0.0}, {0.0, 0.0, 0.0}, 1.2, 0.5, 40.0);
+  return s;
+}
+
+}  // namespace
+
+TEST_F(GpuTest, DeferredAndTiledGiveTheSameImageWithinTheAccumulationBound) {
+  for (int lights : {0, 16, 256}) {
+    Scene scene = builtinTemple(lights);
+    expectMethodsAgree(*this, scene, methodOptions(128, 72, lights), std::to_string(lights) + " lights", false);
+  }
+  // Positions from hardware depth, and a stored position target, in the tiled compute pass too.
+  Scene scene = builtinTemple(64);
+  RenderOptions o = methodOptions(96, 54, 64);
+  o.eyeDepth = false;
+  expectMethodsAgree(*this, scene, o, "hardware depth", false);
+  o.eyeDepth = true;
+  o.position = PositionSource::Rgba32f;
+  expectMethodsAgree(*this, scene, o, "stored position", false);
+}
+
+TEST_F(GpuTest, ForwardAgreesWithDeferredWhereTheGBufferStoresExactValues) {
+  Scene probe = floorScene();
+  const std::vector<float> decode = probeSrgbDecode(renderer(probe));
+  Scene scene = exactStorageScene(decode, 96);
+  RenderOptions o = methodOptions(120, 80, 96);
+  // The premise: the G-buffer holds exactly what forward shades with.
+  render(scene, o, {{Target::AlbedoSpecular, Target::NormalShadow, Target::Depth}});
+  const Renderer& r = renderer(scene);
+  int geometry = 0;
+  for (uint32_t y = 0; y < o.height; ++y)
+    for (uint32_t x = 0; x < o.width; ++x) {
+      if (r.readback[size_t(Target::Depth)].value(x, y, 0) <= 0.0) continue;
+      ++geometry;
+      const CpuImage& n = r.readback[size_t(Target::NormalShadow)];
+      double axis = 0.0;  // an eye-space axis: components -1, 0, 1 (box sides face +-x, +-y)
+      const glm::dvec3 stored = decodeNormalTexel(n, x, y, o.normalFormat).stored;  // oct-rg16 decodes axes exactly
+      for (int c = 0; c < 3; ++c) {
+        double v = stored[c];
+        ASSERT_TRUE(v == 0.0 || v == 1.0 || v == -1.0) << x << "," << y << ": N." << c << " = " << v;
+        axis += v * v;
+      }
+      ASSERT_EQ(axis, 1.0);
+      const CpuImage& a = r.readback[size_t(Target::AlbedoSpecular)];
+      for (int c = 0; c < 3; ++c) {
+        uint32_t byte = a.raw(x, y, uint32_t(c));
+        ASSERT_TRUE(byte == 200 || byte == 150 || byte == 90 || byte == 120 || byte == 220 || byte == 180) << byte;
+      }
+    }
+  ASSERT_EQ(geometry, int(o.width * o.height));  // the floor fills the view
+  expectMethodsAgree(*this, scene, o, "exact storage", true);
+}
+
+// What coverage_masked counts per method, checked against the lights that reach each pixel's
+// surface point (brute force in double): deferred counts point-light fragment shader runs,
+// tiled the lights in the pixel's tile list (the same for every geometry pixel of a tile),
+// forward the lights each fragment looped over (all visible lights, for every fragment shaded
+// there, hidden ones included). None may count fewer than the lights that reach the pixel.
+TEST_F(GpuTest, CoverageCountsWhatEachMethodEvaluatedAndNeverLessThanTheLightsThatReach) {
+  Scene scene = builtinTemple(128);
+  RenderOptions o = methodOptions(96, 54, 128);
+  for (Method method : {Method::Deferred, Method::Tiled, Method::Forward}) {
+    o.method = method;
+    const FrameStats& st = render(scene, o, {{Target::CoverageMasked, Target::DepthStencil}, {}, true});
+    const Renderer& r = renderer(scene);
+    const CpuImage& coverage = r.readback[size_t(Target::CoverageMasked)];
+    const CpuImage eye = eyeDepthFromHardware(r.view, r.readback[size_t(Target::DepthStencil)]);
+    const uint32_t visible = uint32_t(r.lights.visible.size());
+    ASSERT_GT(visible, 16u);
+    EXPECT_GE(st.culling.invocations, st.culling.idealPairs) << name(method);
+    int surface = 0;
+    for (uint32_t y = 0; y < o.height; ++y)
+      for (uint32_t x = 0; x < o.width; ++x) {
+        const uint32_t count = coverage.raw(x, y, 0);
+        const double d = eye.value(x, y, 0);
+        if (d <= 0.0) {
+          if (method != Method::Deferred) {
+            ASSERT_EQ(count, 0u) << name(method) << " sky " << x << "," << y;
+          }
+          continue;
+        }
+        ++surface;
+        const glm::dvec3 p = eyeFromHardwareDepth(r.view, x, y, r.readback[size_t(Target::DepthStencil)].value(x, y, 0));
+        uint32_t reaching = 0;
+        for (uint32_t i : r.lights.visible) {
+          glm::dvec3 v = p - glm::dvec3(r.lights.eye[i].eyePositionRadius);
+          double radius = r.lights.eye[i].eyePositionRadius.w;
+          reaching += glm::dot(v, v) < radius * radius * (1.0 - 1e-5);  // clear of rounding at the edge
+        }
+        ASSERT_GE(count, reaching) << name(method) << " pixel " << x << "," << y;
+        if (method == Method::Forward) {
+          ASSERT_GE(count, visible) << x << "," << y;
+          ASSERT_EQ(count % visible, 0u) << x << "," << y;
+        }
+        if (method == Method::Tiled) {  // one list per tile
+          uint32_t tx = x - x % gpu::kTileSize, ty = y - y % gpu::kTileSize;
+          for (uint32_t yy = ty; yy < std::min(ty + gpu::kTileSize, o.height); ++yy)
+            for (uint32_t xx = tx; xx < std::min(tx + gpu::kTileSize, o.width); ++xx)
+              if (eye.value(xx, yy, 0) > 0.0) {
+                ASSERT_EQ(coverage.raw(xx, yy, 0), count) << xx << "," << yy;
+              }
+        }
+      }
+    EXPECT_GT(surface, int(o.width * o.height / 2));
+  }
+}
+
+// Forward has no G-buffer: its targets are unavailable by name, and the frame says why.
+TEST_F(GpuTest, ForwardMarksTheGBufferTargetsUnavailable) {
+  RenderOptions o = methodOptions(32, 18, 4);
+  o.method = Method::Forward;
+  for (Target t : {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth})
+    EXPECT_EQ(targetAbsence(t, o), Absent::ForwardNoGBuffer) << targetName(t);
+  for (Target t : {Target::DepthStencil, Target::ShadowMap, Target::Hdr, Target::Final, Target::CoverageMasked})
+    EXPECT_EQ(targetAbsence(t, o), Absent::No) << targetName(t);
+  Scene scene = builtinTemple(4);
+  const FrameStats& st = render(scene, o, {{Target::Final}});
+  for (const PassStat& p : st.passes)
+    if (p.name == "gbuffer" || p.name == "directional_light" || p.name == "point_lights") {
+      EXPECT_TRUE(p.skipped) << p.name;
+      EXPECT_NE(p.reason.find("forward"), std::string::npos) << p.name;
+    }
+}
+
+}  // namespace gb

@@ -1,0 +1,197 @@
+// The pixel probe: a capture's dossier equals the live frame's, a region read-back gives the
+// same dossier as whole targets, light contributions match an independent CPU evaluation and the
+// GPU's hdr, the stencil prediction matches the coverage counters, the shadow-map footprint
+// reproduces the stored shadow term.
+#include <cmath>
+
+#include "renderer/scene/builtin.h"
+#include "renderer/core/camera.h"
+#include "tests/support/capture_util.h"
+#include "tests/gpu/gpu_test.h"
+#include "views/capture/capture.h"
+#include "views/analysis/probe.h"
+
+namespace gb {
+
+static RenderOptions probeOptions() {
+  RenderOptions o = smallCaptureOptions();
+  o.fairies = false;  // sprites add light the dossier does not attribute
+  return o;
+}
+
+static FrameSnapshot renderSnapshot(GpuTest& t, const Scene& scene, const RenderOptions& o) {
+  std::vector<Target> all = availableTargets(o);
+  t.render(scene, o, captureRequest(all, o));
+  return snapshotFromRenderer(t.renderer(scene), all);
+}
+
+// A copy of w x h texels of `full` starting at (x0, y0), clipped to the target.
+static TargetImage crop(const TargetImage& full, int32_t x0, int32_t y0, uint32_t w, uint32_t h) {
+  TargetImage r;
+  uint32_t cx0 = uint32_t(std::max(x0, 0)), cy0 = uint32_t(std::max(y0, 0));
+  uint32_t cx1 = std::min<uint32_t>(full.targetWidth, uint32_t(std::max(x0 + int32_t(w), 0)));
+  uint32_t cy1 = std::min<uint32_t>(full.targetHeight, uint32_t(std::max(y0 + int32_t(h), 0)));
+  r.targetWidth = full.targetWidth;
+  r.targetHeight = full.targetHeight;
+  r.x0 = cx0;
+  r.y0 = cy0;
+  r.image = full.image;
+  r.image.width = cx1 - cx0;
+  r.image.height = cy1 - cy0;
+  r.image.data.clear();
+  size_t tb = full.image.texelBytes();
+  for (uint32_t y = cy0; y < cy1; ++y) {
+    const uint8_t* row = full.image.data.data() + (size_t(y) * full.image.width + cx0) * tb;
+    r.image.data.insert(r.image.data.end(), row, row + (cx1 - cx0) * tb);
+  }
+  return r;
+}
+
+TEST_F(GpuTest, ProbeOfACaptureEqualsProbeOfTheLiveFrame) {
+  RenderOptions o = probeOptions();
+  Scene scene = builtinTemple(o.lights);
+  std::vector<Target> all = availableTargets(o);
+  const FrameStats& st = render(scene, o, captureRequest(all, o));
+  const Renderer& r = renderer(scene);
+  FrameSnapshot live = snapshotFromRenderer(r, all);
+  std::string dir = freshDir("probe_capture"), error;
+  CaptureMeta meta;
+  meta.stats = st;
+  ASSERT_TRUE(writeCapture(dir, live, meta, error)) << error;
+  Capture c;
+  ASSERT_TRUE(loadCapture(dir, c, error)) << error;
+  int withLights = 0;
+  for (uint32_t y = 1; y < o.height; y += 5)
+    for (uint32_t x = 2; x < o.width; x += 7) {
+      PixelDossier d = probePixel(live, x, y);
+      nlohmann::json fromLive = dossierJson(d), fromCapture = dossierJson(probePixel(c.frame, x, y));
+      ASSERT_EQ(fromLive, fromCapture) << "pixel " << x << "," << y;
+      ASSERT_TRUE(d.missing.empty());
+      // The raw values are the renderer's read-back bits (not something the probe derived).
+      for (const ProbeTarget& t : d.targets) {
+        Target target;
+        ASSERT_TRUE(parseTarget(t.target, target));
+        if (!(targetAbsence(target, o) == Absent::No)) {  // not computed under these options
+          ASSERT_FALSE(t.present) << t.target;
+          continue;
+        }
+        ASSERT_TRUE(t.present) << t.target;
+        for (size_t ch = 0; ch < t.channels.size(); ++ch)
+          ASSERT_EQ(t.channels[ch].bits, r.readback[size_t(target)].raw(x, y, uint32_t(ch))) << t.target;
+      }
+      if (d.geometry) {
+        EXPECT_EQ(d.eyeDepth, r.readback[size_t(Target::Depth)].value(x, y, 0));
+      }
+      withLights += !d.lights.empty();
+    }
+  EXPECT_GT(withLights, 5) << "the probed pixels should include some under light volumes";
+  // gblens probe prints the same dossier.
+  RunResult run = runGblens("probe " + dir + " 37 29 --json");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_EQ(nlohmann::json::parse(run.output), dossierJson(probePixel(live, 37, 29)));
+  EXPECT_EQ(runGblens("probe " + dir + " 96 0").exitCode, 2);  // outside the frame
+}
+
+TEST_F(GpuTest, ProbeOfARegionReadBackEqualsProbeOfWholeTargets) {
+  RenderOptions o = probeOptions();
+  Scene scene = builtinTemple(o.lights);
+  FrameSnapshot full = renderSnapshot(*this, scene, o);
+  int checked = 0;
+  for (auto [x, y] : {std::pair{0u, 0u}, {95u, 53u}, {48u, 30u}, {20u, 40u}, {70u, 35u}, {10u, 5u}}) {
+    FrameSnapshot region = full;
+    for (size_t i = 0; i < kTargetCount; ++i)
+      if (screenSpaceTarget(Target(i))) region.targets[i] = crop(full.targets[i], int32_t(x), int32_t(y), 1, 1);
+    int32_t sx = 0, sy = 0;
+    bool shadow = shadowMapFootprint(full, x, y, sx, sy);
+    region.target(Target::ShadowMap) = crop(full.target(Target::ShadowMap), sx, sy, shadow ? 2 : 0, shadow ? 2 : 0);
+    EXPECT_EQ(region.target(Target::Hdr).image.data.size(), region.target(Target::Hdr).image.texelBytes());
+    EXPECT_EQ(dossierJson(probePixel(region, x, y)), dossierJson(probePixel(full, x, y))) << x << "," << y;
+    checked += shadow;
+  }
+  EXPECT_GT(checked, 2);
+}
+
+// The eye-space point where the ray through a pixel centre meets the plane y = 0 (analytic).
+static glm::dvec3 floorHit(const View& v, double px, double py) {
+  glm::dvec3 o = glm::dvec3(v.worldFromEye[3]);
+  glm::dvec3 d = glm::dmat3(v.worldFromEye) * eyeFromEyeDepth(v, px, py, 1.0);
+  return glm::dvec3(v.eyeFromWorld * glm::dvec4(o - d * (o.y / d.y), 1.0));
+}
+
+TEST_F(GpuTest, LightContributionsMatchAnIndependentEvaluationAndTheGpu) {
+  Scene s = floorScene(200.0, 0.6f);
+  s.materials[0].baseColor = glm::vec4(0.8f, 0.6f, 0.4f, 1.0f);
+  PointLightDesc l;
+  l.center = {0.3, 1.0, -0.2};
+  l.radius = 3.0;
+  l.color = glm::vec3(1.0f, 0.9f, 0.7f);
+  l.intensity = 2.0;
+  s.lights = {l};
+  setCamera(s, {0.0, 6.0, 2.0}, {0.0, 0.0, 0.0}, 0.9, 0.1, 100.0);
+  RenderOptions o = probeOptions();
+  o.lights = 1;
+  o.sky = false;
+  FrameSnapshot f = renderSnapshot(*this, s, o);
+  const glm::dvec3 N = glm::dmat3(f.view.eyeFromWorld) * glm::dvec3(0, 1, 0);
+  const glm::dvec3 light = glm::dvec3(f.view.eyeFromWorld * glm::dvec4(l.center, 1.0));
+  const glm::dvec3 color = glm::dvec3(l.color) * l.intensity;
+  int lit = 0;
+  for (uint32_t y = 0; y < o.height; ++y)
+    for (uint32_t x = 0; x < o.width; ++x) {
+      PixelDossier d = probePixel(f, x, y);
+      ASSERT_TRUE(d.geometry);
+      // Independent: analytic surface point and normal, the attenuation and Blinn-Phong written out.
+      glm::dvec3 P = floorHit(f.view, x, y), toLight = light - P;
+      double d2 = glm::dot(toLight, toLight), w = std::max(0.0, 1.0 - d2 / (l.radius * l.radius));
+      glm::dvec3 L = glm::normalize(toLight), V = glm::normalize(-P), H = glm::normalize(L + V);
+      glm::dvec3 expected(0.0);
+      if (glm::dot(N, L) > 0.0)
+        expected = color * (w * w) * (d.albedo * glm::dot(N, L) + glm::dvec3(d.specular * std::pow(std::max(glm::dot(N, H), 0.0), 32.0)));
+      glm::dvec3 probe = d.lights.empty() ? glm::dvec3(0.0) : d.lights[0].contribution;
+      ASSERT_LE(d.lights.size(), 1u);
+      for (int c = 0; c < 3; ++c) {
+        // Tolerance: the stored half normal (2^-11, amplified by the specular exponent) and the
+        // float eye depth; measured worst 3e-4 relative.
+        ASSERT_NEAR(probe[c], expected[c], 1e-3 * expected[c] + 1e-4) << x << "," << y << " channel " << c;
+        // The GPU's sum equals the dossier's point-light total: fp16 storage (2^-11) plus the
+        // GPU's sRGB decode of the stored albedo, which may differ from the exact one by half an
+        // 8-bit step (0.5% of the diffuse term at albedo 0.8; see test_frame's shadow test).
+        ASSERT_NEAR(d.hdr[c], d.pointLightTotal[c] + d.directional[c], 6e-3 * d.hdr[c] + 2e-4) << x << "," << y;
+      }
+      lit += expected.x > 1e-3;
+    }
+  EXPECT_GT(lit, 300);
+}
+
+TEST_F(GpuTest, StencilPredictionAndShadowFootprintAgreeWithTheGpu) {
+  for (StencilMask mask : {StencilMask::PerLight, StencilMask::Shared}) {
+    RenderOptions o = probeOptions();
+    o.lights = 64;
+    o.shadowMapSize = 512;
+    o.stencilMask = mask;
+    Scene scene = builtinTemple(o.lights);
+    FrameSnapshot f = renderSnapshot(*this, scene, o);
+    int pixels = 0, maskedWrong = 0, fullWrong = 0, geometry = 0, shadowWrong = 0, hdrWrong = 0;
+    for (uint32_t y = 0; y < o.height; ++y)
+      for (uint32_t x = 0; x < o.width; ++x) {
+        PixelDossier d = probePixel(f, x, y);
+        ++pixels;
+        maskedWrong += int64_t(d.shadedLights) != d.coverageMasked;
+        fullWrong += int64_t(d.lights.size()) != d.coverageFull;
+        if (!d.geometry) continue;
+        ++geometry;
+        ASSERT_TRUE(d.shadowMap.valid);
+        shadowWrong += std::abs(d.shadowMap.filtered - d.shadow) > 0.05;
+        for (int c = 0; c < 3; ++c)
+          hdrWrong += std::abs(d.hdr[c] - d.hdrExpected[c]) > 5e-3 * d.hdr[c] + 2e-3;
+      }
+    // Rasterization samples pixel centres like the probe's ray; allow a few pixels on volume
+    // edges and shadow-map texel edges where float rounding decides (measured: none).
+    EXPECT_LE(maskedWrong, pixels / 500) << name(mask);
+    EXPECT_LE(fullWrong, pixels / 500) << name(mask);
+    EXPECT_LE(shadowWrong, geometry / 500) << name(mask);
+    EXPECT_LE(hdrWrong, geometry / 500) << name(mask);
+  }
+}
+
+}  // namespace gb

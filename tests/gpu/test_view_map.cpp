@@ -1,0 +1,402 @@
+// The viewer's GPU view mapping against the CPU mapping of `render --target` (views/visualize.cpp,
+// an independent implementation): every view of a real frame, texel for texel within one 8-bit
+// step; the NaN/Inf/negative highlights; automatic ranges against a CPU min/max; region
+// read-back against whole-target read-back.
+#include <cmath>
+#include <cstring>
+
+#include "renderer/scene/builtin.h"
+#include "renderer/region_readback.h"
+#include "renderer/upload_targets.h"
+#include "renderer/vk/check.h"
+#include "tests/gpu/gpu_test.h"
+#include "views/analysis/visualize.h"
+#include "views/ui/view_params.h"
+
+namespace gb {
+
+namespace {
+
+// An offscreen RGBA8 attachment the views are drawn into, 1:1, then read back.
+struct Canvas {
+  Image image;
+  VkRenderPass pass = VK_NULL_HANDLE;
+  VkFramebuffer framebuffer = VK_NULL_HANDLE;
+  Buffer readback;
+
+  Canvas(GpuContext& ctx, uint32_t w, uint32_t h) {
+    ImageDesc d;
+    d.format = VK_FORMAT_R8G8B8A8_UNORM;
+    d.width = w;
+    d.height = h;
+    d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    image = createImage(ctx, d);
+    VkAttachmentDescription a{};
+    a.format = d.format;
+    a.samples = VK_SAMPLE_COUNT_1_BIT;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    a.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription sub{};
+    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    sub.colorAttachmentCount = 1;
+    sub.pColorAttachments = &ref;
+    VkSubpassDependency dep{};  // the copy after the pass waits for the colour writes
+    dep.srcSubpass = 0;
+    dep.dstSubpass = VK_SUBPASS_EXTERNAL;
+    dep.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    dep.dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    dep.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    VkRenderPassCreateInfo ci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    ci.attachmentCount = 1;
+    ci.pAttachments = &a;
+    ci.subpassCount = 1;
+    ci.pSubpasses = &sub;
+    ci.dependencyCount = 1;
+    ci.pDependencies = &dep;
+    VK_CHECK(vkCreateRenderPass(ctx.device, &ci, nullptr, &pass));
+    VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fi.renderPass = pass;
+    fi.attachmentCount = 1;
+    fi.pAttachments = &image.view;
+    fi.width = w;
+    fi.height = h;
+    fi.layers = 1;
+    VK_CHECK(vkCreateFramebuffer(ctx.device, &fi, nullptr, &framebuffer));
+    readback = createBuffer(ctx, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
+  }
+  void destroy(GpuContext& ctx) {
+    vkDestroyFramebuffer(ctx.device, framebuffer, nullptr);
+    vkDestroyRenderPass(ctx.device, pass, nullptr);
+    destroyImage(ctx, image);
+    destroyBuffer(ctx, readback);
+  }
+
+  // Draws one view at 1:1 (texel (x, y) -> canvas pixel (x, y)) and returns the canvas bytes.
+  std::vector<uint8_t> draw(ViewMapper& m, Renderer& r, const ViewSource& source, const gpu::ViewParams& params) {
+    GpuContext& ctx = *r.ctx;
+    const uint32_t w = image.desc.width, h = image.desc.height;
+    submitOnce(ctx, [&](VkCommandBuffer cmd) {
+      VkClearValue clear{};
+      VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+      bi.renderPass = pass;
+      bi.framebuffer = framebuffer;
+      bi.renderArea = {{0, 0}, {w, h}};
+      bi.clearValueCount = 1;
+      bi.pClearValues = &clear;
+      vkCmdBeginRenderPass(cmd, &bi, VK_SUBPASS_CONTENTS_INLINE);
+      drawView(m, r, cmd, pass, image.desc.format, source, params, {{0, 0}, {w, h}}, {{0, 0}, {w, h}});
+      vkCmdEndRenderPass(cmd);
+      VkBufferImageCopy copy{};
+      copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      copy.imageExtent = {w, h, 1};
+      vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.buffer, 1, &copy);
+      hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    });
+    const uint8_t* p = static_cast<const uint8_t*>(readback.mapped);
+    return std::vector<uint8_t>(p, p + size_t(w) * h * 4);
+  }
+};
+
+const std::vector<Target> kAll = {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth, Target::DepthStencil,
+                                  Target::ShadowMap,      Target::Hdr,          Target::Final, Target::CoverageMasked,
+                                  Target::CoverageFull};
+
+RenderOptions smallFrame() {
+  RenderOptions o;
+  o.width = 96;
+  o.height = 54;
+  o.shadowMapSize = 128;
+  o.coverage = true;
+  o.time = 0.75;
+  return o;
+}
+
+}  // namespace
+
+TEST_F(GpuTest, EveryViewOnTheGpuMatchesTheCpuMapping) {
+  Scene scene = builtinTemple(48);
+  RenderOptions o = smallFrame();
+  FrameRequest request;
+  request.readback = kAll;
+  request.sampleAfter = kAll;
+  render(scene, o, request);
+  Renderer& r = renderer(scene);
+  ViewMapper mapper;
+  initViewMapper(mapper, r);
+  FrameSnapshot frame = snapshotFromRenderer(r, kAll);
+  Canvas screen(ctx(), o.width, o.height), shadow(ctx(), o.shadowMapSize, o.shadowMapSize);
+  for (int k = 0; k < kViewKindCount; ++k) {
+    ViewKind kind = ViewKind(k);
+    const ViewDef& def = viewDef(kind);
+    ViewSettings s = defaultSettings(kind);
+    std::vector<RangeStats> stats = computeRanges(mapper, r, rangeRequests(def, s), kAll);
+    ResolvedRange range = resolveRange(def, s, &stats);
+    gpu::ViewParams params = viewParams(def, s, range, Placement{0, 0, 1}, false, std::nullopt, {1, 1});
+    Canvas& canvas = def.source.target == Target::ShadowMap ? shadow : screen;
+    std::vector<uint8_t> gpu = canvas.draw(mapper, r, def.source, params);
+    Rgba8Image cpu = visualize(kind, frame);
+    ASSERT_EQ(cpu.width, canvas.image.desc.width) << viewName(kind);
+    int worst = 0, differing = 0;
+    for (size_t i = 0; i < gpu.size(); ++i) {
+      if (i % 4 == 3) continue;
+      int d = std::abs(int(gpu[i]) - int(cpu.pixels[i]));
+      worst = std::max(worst, d);
+      differing += d > 0;
+    }
+    EXPECT_LE(worst, 1) << viewName(kind) << ": " << differing << " channel values differ";
+  }
+  screen.destroy(ctx());
+  shadow.destroy(ctx());
+  destroyViewMapper(mapper, r);
+}
+
+TEST_F(GpuTest, AutomaticRangesEqualTheCpuMinMaxOverValidTexels) {
+  Scene scene = builtinTemple(48);
+  RenderOptions o = smallFrame();
+  FrameRequest request;
+  request.readback = kAll;
+  request.sampleAfter = kAll;
+  render(scene, o, request);
+  Renderer& r = renderer(scene);
+  ViewMapper mapper;
+  initViewMapper(mapper, r);
+  struct Case {
+    Target t;
+    uint32_t channel, predicate;
+  };
+  for (Case c : {Case{Target::Depth, 0, gpu::kRangePositive}, Case{Target::ShadowMap, 0, gpu::kRangeBelowOne},
+                 Case{Target::DepthStencil, 0, gpu::kRangeNotFar}, Case{Target::CoverageFull, 0, gpu::kRangeAll},
+                 Case{Target::NormalShadow, 1, gpu::kRangeAll}, Case{Target::Hdr, 2, gpu::kRangeAll}}) {
+    const CpuImage& img = r.readback[size_t(c.t)];
+    double lo = 1e300, hi = -1e300;
+    uint64_t count = 0, negative = 0;
+    for (uint32_t y = 0; y < img.height; ++y)
+      for (uint32_t x = 0; x < img.width; ++x) {
+        double v = img.value(x, y, c.channel);
+        bool valid = c.predicate == gpu::kRangePositive ? v > 0.0
+                     : c.predicate == gpu::kRangeBelowOne ? v < 1.0
+                     : c.predicate == gpu::kRangeNotFar  ? v != 1.0
+                                                         : true;
+        if (!valid || !std::isfinite(v)) continue;
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+        ++count;
+        negative += v < 0.0;
+      }
+    RangeStats s = computeRanges(mapper, r, {{{c.t}, c.channel, c.predicate}}, kAll)[0];
+    EXPECT_EQ(s.count, count) << targetName(c.t);
+    // Float equality within 4 ulps: the GPU converts SNORM16 (oct-rg16 normals) to float with its own
+    // rounding of c / 32767, the CPU in double.
+    EXPECT_FLOAT_EQ(s.lo, lo) << targetName(c.t);
+    EXPECT_FLOAT_EQ(s.hi, hi) << targetName(c.t);
+    EXPECT_EQ(s.negative, negative) << targetName(c.t);
+    EXPECT_EQ(s.nan + s.inf, 0u) << targetName(c.t);
+  }
+  destroyViewMapper(mapper, r);
+}
+
+// Lights with a NaN, an infinite and a negative colour put NaN, +Inf and negative values into
+// hdr (as a broken light setup would): the range pass counts exactly the texels the CPU finds,
+// and the HDR view paints each in its highlight colour (stripes of full and 35% intensity).
+TEST_F(GpuTest, NanInfAndNegativeValuesAreHighlightedAndCounted) {
+  Scene scene = floorScene(10.0);
+  setCamera(scene, {0, 6, 6}, {0, 0, 0});
+  auto light = [&](double x, glm::vec3 colour) {
+    PointLightDesc l;
+    l.center = {x, 0.4, 0.0};
+    l.radius = 1.5;
+    l.color = colour;
+    scene.lights.push_back(l);
+  };
+  light(-3.5, glm::vec3(NAN));
+  light(0.0, glm::vec3(INFINITY));
+  light(3.5, glm::vec3(-4.0f));
+  RenderOptions o = smallFrame();
+  o.fairies = false;  // their sprites would carry the same colours
+  render(scene, o, {{Target::Hdr}, kAll});
+  Renderer& r = renderer(scene);
+  const CpuImage& hdr = r.readback[size_t(Target::Hdr)];
+  uint64_t nan = 0, inf = 0, negative = 0;
+  for (uint32_t y = 0; y < hdr.height; ++y)
+    for (uint32_t x = 0; x < hdr.width; ++x) {
+      double v = hdr.value(x, y, 0);
+      nan += std::isnan(v);
+      inf += std::isinf(v);
+      negative += v < 0.0;
+    }
+  ASSERT_GT(nan, 0u);
+  ASSERT_GT(inf, 0u);
+  ASSERT_GT(negative, 0u);
+
+  ViewMapper mapper;
+  initViewMapper(mapper, r);
+  RangeStats s = computeRanges(mapper, r, {{{Target::Hdr}, 0, gpu::kRangeAll}}, kAll)[0];
+  EXPECT_EQ(s.nan, nan);
+  EXPECT_EQ(s.inf, inf);
+  EXPECT_EQ(s.negative, negative);
+
+  const ViewDef& def = viewDef(ViewKind::Hdr);
+  ViewSettings settings = defaultSettings(ViewKind::Hdr);
+  Canvas canvas(ctx(), o.width, o.height);
+  auto drawHdr = [&] {
+    return canvas.draw(mapper, r, def.source,
+                       viewParams(def, settings, resolveRange(def, settings, nullptr), Placement{0, 0, 1}, false,
+                                  std::nullopt, {1, 1}));
+  };
+  std::vector<uint8_t> out = drawHdr();
+  auto painted = [&](uint32_t x, uint32_t y, const uint8_t (&colour)[3]) {
+    const uint8_t* p = &out[(size_t(y) * o.width + x) * 4];
+    bool full = true, dim = true;
+    for (int c = 0; c < 3; ++c) {
+      full &= p[c] == colour[c];
+      dim &= std::abs(int(p[c]) - int(std::lround(colour[c] * 0.35))) <= 1;
+    }
+    return full || dim;
+  };
+  const uint8_t nanColour[3] = {255, 0, 255}, infColour[3] = {0, 255, 255}, negColour[3] = {255, 89, 0};
+  int checked[3] = {};
+  for (uint32_t y = 0; y < hdr.height; ++y)
+    for (uint32_t x = 0; x < hdr.width; ++x) {
+      bool n = false, i = false, g = false;
+      for (uint32_t c = 0; c < 3; ++c) {
+        double v = hdr.value(x, y, c);
+        n |= std::isnan(v);
+        i |= std::isinf(v);
+        g |= v < 0.0;
+      }
+      if (n) {
+        EXPECT_TRUE(painted(x, y, nanColour)) << "NaN at " << x << "," << y;
+        ++checked[0];
+      } else if (i) {
+        EXPECT_TRUE(painted(x, y, infColour)) << "Inf at " << x << "," << y;
+        ++checked[1];
+      } else if (g) {
+        EXPECT_TRUE(painted(x, y, negColour)) << "negative at " << x << "," << y;
+        ++checked[2];
+      }
+    }
+  EXPECT_GT(checked[0] * checked[1] * checked[2], 0);
+  // Highlights off: negative values clamp to black like any value below the black point.
+  settings.specials = settings.negative = false;
+  out = drawHdr();
+  for (uint32_t y = 0; y < hdr.height; ++y)
+    for (uint32_t x = 0; x < hdr.width; ++x)
+      if (hdr.value(x, y, 0) < 0 && hdr.value(x, y, 1) < 0 && hdr.value(x, y, 2) < 0) {
+        const uint8_t* p = &out[(size_t(y) * o.width + x) * 4];
+        EXPECT_EQ(int(p[0]) + int(p[1]) + int(p[2]), 0) << x << "," << y;
+      }
+  canvas.destroy(ctx());
+  destroyViewMapper(mapper, r);
+}
+
+TEST_F(GpuTest, RegionReadBackEqualsTheWholeTargetsTexels) {
+  Scene scene = builtinTemple(48);
+  RenderOptions o = smallFrame();
+  o.depthFormat = DepthFormat::D24S8;  // the packed depth/stencil path too
+  FrameRequest request;
+  request.readback = kAll;
+  request.sampleAfter = kAll;
+  render(scene, o, request);
+  Renderer& r = renderer(scene);
+  std::vector<RegionRequest> windows;
+  for (Target t : kAll) {
+    windows.push_back({t, 5, 7, 3, 2});
+    windows.push_back({t, -2, -1, 4, 4});  // clamped at the top-left corner
+    windows.push_back({t, int32_t(r.targets[size_t(t)].image.desc.width) - 2, 0, 5, 1});  // clamped right
+  }
+  std::vector<RegionImage> regions = readbackRegions(r, windows, kAll);
+  ASSERT_EQ(regions.size(), windows.size());
+  for (const RegionImage& ri : regions) {
+    const CpuImage& whole = r.readback[size_t(ri.target)];
+    ASSERT_FALSE(ri.image.empty()) << targetName(ri.target);
+    EXPECT_EQ(ri.targetWidth, whole.width);
+    for (uint32_t y = 0; y < ri.image.height; ++y)
+      for (uint32_t x = 0; x < ri.image.width; ++x)
+        for (uint32_t c = 0; c < whole.channelCount(); ++c)
+          ASSERT_EQ(ri.image.raw(x, y, c), whole.raw(ri.x0 + x, ri.y0 + y, c))
+              << targetName(ri.target) << " texel " << ri.x0 + x << "," << ri.y0 + y << " channel " << c;
+  }
+  EXPECT_EQ(regions[1].x0, 0u);
+  EXPECT_EQ(regions[1].image.width, 2u);  // x in [-2, 2) clamped to [0, 2)
+  EXPECT_EQ(regions[2].image.width, 2u);
+}
+
+}  // namespace gb
+
+namespace gb {
+
+// A capture opened in the viewer is uploaded back into targets: pack -> upload -> read back must
+// return every stored bit, for every target and the formats whose packing is not a plain copy.
+TEST_F(GpuTest, UploadedTargetsReadBackBitForBit) {
+  Scene scene = builtinTemple(32);
+  for (auto [normal, depth] : {std::pair{NormalFormat::Rgb10a2, DepthFormat::D24S8},
+                               std::pair{NormalFormat::Rgba16f, DepthFormat::D32S8}}) {
+    RenderOptions o = smallFrame();
+    o.normalFormat = normal;
+    o.depthFormat = depth;
+    render(scene, o, {kAll, kAll});
+    Renderer& live = renderer(scene);
+    std::array<const CpuImage*, kTargetCount> images{};
+    for (Target t : kAll) images[size_t(t)] = &live.readback[size_t(t)];
+    Scene empty = floorScene();
+    Renderer& uploaded = renderer(empty);
+    uploadTargets(uploaded, o, images);
+    std::vector<RegionRequest> whole;
+    for (Target t : kAll) whole.push_back({t, 0, 0, images[size_t(t)]->width, images[size_t(t)]->height});
+    std::vector<RegionImage> back = readbackRegions(uploaded, whole, kAll);
+    for (const RegionImage& ri : back) {
+      const CpuImage& original = *images[size_t(ri.target)];
+      ASSERT_EQ(ri.image.data.size(), original.data.size()) << targetName(ri.target);
+      EXPECT_EQ(ri.image.data, original.data) << targetName(ri.target) << " with " << name(normal) << ", " << name(depth);
+    }
+  }
+}
+
+}  // namespace gb
+
+#include "views/analysis/probe.h"
+
+namespace gb {
+
+// Clicking a shadow-map texel marks the screen pixels whose shadow lookup reads it: mark the
+// texel the dossier says a pixel read (the 2x2 footprint's top-left) and that pixel is marked,
+// while pixels far from it are drawn as without the mark.
+TEST_F(GpuTest, ShadowTexelMarksThePixelsThatSampleIt) {
+  Scene scene = builtinTemple(8);
+  RenderOptions o = smallFrame();
+  render(scene, o, {kAll, kAll});
+  Renderer& r = renderer(scene);
+  FrameSnapshot snap = snapshotFromRenderer(r, kAll);
+  const uint32_t px = 48, py = 44;
+  PixelDossier d = probePixel(snap, px, py);
+  ASSERT_TRUE(d.shadowMap.valid) << d.shadowMap.note;
+  ViewMapper mapper;
+  initViewMapper(mapper, r);
+  const ViewDef& def = viewDef(ViewKind::Normal);
+  ViewSettings s = defaultSettings(ViewKind::Normal);
+  Canvas canvas(ctx(), o.width, o.height);
+  auto draw = [&](std::optional<glm::ivec2> mark) {
+    return canvas.draw(mapper, r, def.source,
+                       viewParams(def, s, resolveRange(def, s, nullptr), Placement{0, 0, 1}, false, mark,
+                                  {o.shadowMapSize, o.shadowMapSize}));
+  };
+  std::vector<uint8_t> plain = draw(std::nullopt), marked = draw(glm::ivec2(d.shadowMap.x0, d.shadowMap.y0));
+  auto at = [&](const std::vector<uint8_t>& img, uint32_t x, uint32_t y) { return &img[(size_t(y) * o.width + x) * 4]; };
+  const uint8_t *p = at(plain, px, py), *q = at(marked, px, py);
+  EXPECT_TRUE(p[0] != q[0] || p[1] != q[1] || p[2] != q[2]) << "the pixel that reads the texel is not marked";
+  EXPECT_GT(int(q[0]) + int(q[2]) - 2 * int(q[1]), int(p[0]) + int(p[2]) - 2 * int(p[1])) << "the mark is magenta";
+  int markedPixels = 0;
+  for (uint32_t y = 0; y < o.height; ++y)
+    for (uint32_t x = 0; x < o.width; ++x) markedPixels += std::memcmp(at(plain, x, y), at(marked, x, y), 3) != 0;
+  EXPECT_LT(markedPixels, int(o.width * o.height / 4)) << "one texel is read by a few pixels, not most";
+  canvas.destroy(ctx());
+  destroyViewMapper(mapper, r);
+}
+
+}  // namespace gb

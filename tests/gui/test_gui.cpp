@@ -1,0 +1,200 @@
+// The viewer as a person uses it: a real window under an Xvfb of the test's own, keys 1-9 / 0 /
+// Return and a click from xdotool, screenshots checked by pixel statistics (the grid shows nine
+// different views; each key shows its view), the clicked pixel's dossier (--probe-log) checked
+// against a headless render of the same frame, and zero validation messages (--validate: the
+// viewer exits non-zero on any). Screenshots stay in the build tree (gui_test/) to look at.
+#include <algorithm>
+#include <filesystem>
+
+#include "renderer/scene/builtin.h"
+#include "tests/gpu/gpu_test.h"
+#include "tests/gui/gui_util.h"
+
+namespace gb {
+
+namespace fs = std::filesystem;
+
+class GuiTest : public GpuTest {
+ protected:
+  void SetUp() override {
+    if (!gui::haveTool("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb): no display to test the viewer on";
+    for (const char* tool : {"xdotool", "xwd", "convert"})
+      ASSERT_TRUE(gui::haveTool(tool)) << tool << " is missing (debian-packages.txt lists it; run make deps)";
+    GpuTest::SetUp();
+    dir_ = fs::path(GBLENS_BUILD_DIR) / "gui_test";
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    std::string error;
+    ASSERT_TRUE(xvfb_.start(kScreenW, kScreenH, error)) << error;
+  }
+  void TearDown() override {
+    gui::terminate(viewer_);
+    xvfb_.stop();
+    if (!IsSkipped()) GpuTest::TearDown();
+  }
+
+  std::string xdotool(const std::string& args) {
+    return gui::run("DISPLAY=" + xvfb_.display + " xdotool " + args + " 2>&1");
+  }
+  nlohmann::json waitEvent(const std::function<bool(const nlohmann::json&)>& pred, double seconds = 30.0) {
+    return gui::waitForLine(eventLog(), seconds, pred, eventCursor_);
+  }
+  std::string eventLog() const { return (dir_ / "events.jsonl").string(); }
+  std::string probeLog() const { return (dir_ / "probe.jsonl").string(); }
+  // Waits for the layout showing `view` alone (or the grid when view is empty).
+  nlohmann::json waitLayout(const std::string& view) {
+    return waitEvent([&](const nlohmann::json& j) {
+      if (j["event"] != "layout") return false;
+      if (view.empty()) return j["views"].size() == 9;
+      return j["views"].size() == 1 && j["views"][0]["view"] == view;
+    });
+  }
+  gui::Screenshot shoot(const std::string& name) {
+    gui::Screenshot s;
+    std::string error;
+    EXPECT_TRUE(gui::screenshot(xvfb_.display, (dir_ / (name + ".png")).string(), s, error)) << error;
+    return s;
+  }
+  // The image part of a view, in screen pixels (the window sits at the screen's origin).
+  std::vector<float> viewThumb(const gui::Screenshot& s, const nlohmann::json& v) {
+    double ox = v["origin"][0], oy = v["origin"][1], sc = v["scale"];
+    double iw = double(v["image"][0]) * sc, ih = double(v["image"][1]) * sc;
+    double rx = v["rect"][0], ry = v["rect"][1], rw = v["rect"][2], rh = v["rect"][3];
+    int x0 = int(std::max(ox, rx)) + 2, y0 = int(std::max(oy, ry + 34)) + 2;  // below the label
+    int x1 = int(std::min(ox + iw, rx + rw)) - 2, y1 = int(std::min(oy + ih, ry + rh)) - 2;
+    return gui::thumbnail(s, x0 + windowX_, y0 + windowY_, x1 + windowX_, y1 + windowY_, 8);
+  }
+
+  static constexpr int kScreenW = 1280, kScreenH = 720;
+  static constexpr uint32_t kW = 192, kH = 108;
+  static constexpr double kTime = 1.5;
+  fs::path dir_;
+  gui::Xvfb xvfb_;
+  pid_t viewer_ = -1;
+  int windowX_ = 0, windowY_ = 0;
+  size_t eventCursor_ = 0;  // events before this line were consumed
+  nlohmann::json previousLayout_;
+};
+
+TEST_F(GuiTest, KeysShowEveryViewAndAClickProbesThePixelAsAHeadlessRenderDoes) {
+  const std::string size = std::to_string(kW) + "x" + std::to_string(kH);
+  viewer_ = gui::spawn({GBLENS_BINARY, "view", "builtin:temple", "--validate", "--size", size, "--time", "1.5", "--paused",
+                        "--window", "1280x720", "--event-log", eventLog(), "--probe-log", probeLog()},
+                       {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
+  ASSERT_FALSE(waitEvent([](const nlohmann::json& j) { return j["event"] == "ready"; }, 60.0).is_null())
+      << "the viewer did not present a frame; see " << (dir_ / "viewer.log");
+  std::string wid = xdotool("search --onlyvisible --name '^gblens'");
+  wid = wid.substr(0, wid.find('\n'));
+  ASSERT_FALSE(wid.empty());
+  std::string geometry = xdotool("getwindowgeometry " + wid);
+  std::sscanf(geometry.c_str() + geometry.find("Position:"), "Position: %d,%d", &windowX_, &windowY_);
+  xdotool("mousemove --window " + wid + " 640 715");  // keep the pointer off the views (status bar)
+
+  // 1: the grid. Nine views, each non-uniform, no two alike.
+  xdotool("key --window " + wid + " 1");
+  nlohmann::json grid = waitLayout("");
+  ASSERT_FALSE(grid.is_null()) << "key 1 did not show the grid";
+  gui::Screenshot gridShot = shoot("grid");
+  std::vector<std::vector<float>> tiles;
+  for (const auto& v : grid["views"]) {
+    tiles.push_back(viewThumb(gridShot, v));
+    EXPECT_GT(gui::standardDeviation(tiles.back()), 0.01) << v["view"] << " looks blank";
+  }
+  for (size_t a = 0; a < tiles.size(); ++a)
+    for (size_t b = a + 1; b < tiles.size(); ++b)
+      EXPECT_GT(gui::meanAbsDifference(tiles[a], tiles[b]), 0.015)
+          << grid["views"][a]["view"] << " and " << grid["views"][b]["view"] << " look the same";
+
+  // 2..9, then 0 and Return: each key shows its view alone, and each looks different from the last.
+  const std::vector<std::pair<std::string, std::string>> keys = {
+      {"2", "albedo"}, {"3", "normal"}, {"4", "depth"}, {"5", "specular"}, {"6", "shadow"}, {"7", "shadowmap"},
+      {"8", "coverage_masked"}, {"9", "coverage_full"}, {"0", "final"}, {"5", "specular"}, {"Return", "final"}};
+  std::vector<float> previous;
+  for (const auto& [key, view] : keys) {
+    xdotool("key --window " + wid + " " + key);
+    nlohmann::json layout = waitLayout(view);
+    ASSERT_FALSE(layout.is_null()) << "key " << key << " did not show " << view;
+    previousLayout_ = layout["views"][0];
+    std::vector<float> thumb = viewThumb(shoot("key_" + key + "_" + view), layout["views"][0]);
+    EXPECT_GT(gui::standardDeviation(thumb), 0.01) << view << " looks blank";
+    if (!previous.empty()) {
+      EXPECT_GT(gui::meanAbsDifference(thumb, previous), 0.015) << view << " looks like the view before";
+    }
+    previous = thumb;
+  }
+
+  // A click on a known pixel of the final view: the dossier of exactly that pixel.
+  nlohmann::json final = previousLayout_;
+  const int px = 104, py = 80;  // the floor in front of the temple, under several lights
+  double sx = double(final["origin"][0]) + (px + 0.5) * double(final["scale"]);
+  double sy = double(final["origin"][1]) + (py + 0.5) * double(final["scale"]);
+  xdotool("mousemove --window " + wid + " " + std::to_string(int(sx)) + " " + std::to_string(int(sy)) + " click 1");
+  nlohmann::json probe = waitEvent([](const nlohmann::json& j) { return j["event"] == "probe"; });
+  ASSERT_FALSE(probe.is_null()) << "the click produced no dossier";
+  EXPECT_EQ(probe["pixel"], nlohmann::json({px, py}));
+  nlohmann::json shown = waitEvent([](const nlohmann::json& j) { return j["event"] == "probe_shown"; });
+  ASSERT_FALSE(shown.is_null()) << "the dossier was never presented";
+  shoot("probe");
+  size_t probeCursor = 0;
+  nlohmann::json dossier = gui::waitForLine(probeLog(), 5.0, [](const nlohmann::json&) { return true; }, probeCursor);
+  ASSERT_FALSE(dossier.is_null());
+  EXPECT_EQ(dossier["pixel"], nlohmann::json({px, py}));
+  EXPECT_TRUE(dossier["decoded"]["geometry"].get<bool>());
+
+  // Quit (ctrl+Q): the exit status says whether any validation message appeared.
+  xdotool("key --window " + wid + " ctrl+q");
+  int status = -1;
+  ASSERT_TRUE(gui::waitExit(viewer_, 30.0, status)) << "the viewer did not quit";
+  viewer_ = -1;
+  EXPECT_EQ(status, 0) << "validation messages or a failure; see " << (dir_ / "viewer.log");
+
+  // Headless, in this process: the same frame's stored values at that pixel, bit for bit.
+  Scene scene = builtinTemple(256);
+  RenderOptions o;
+  o.width = kW;
+  o.height = kH;
+  o.time = kTime;
+  o.coverage = true;
+  std::vector<Target> screen = {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth, Target::DepthStencil,
+                                Target::Hdr, Target::Final, Target::CoverageMasked, Target::CoverageFull};
+  render(scene, o, {screen});
+  int checked = 0;
+  for (const auto& t : dossier["targets"]) {
+    Target target;
+    ASSERT_TRUE(parseTarget(t["target"], target));
+    if (std::find(screen.begin(), screen.end(), target) == screen.end()) {
+      if (target != Target::ShadowMap) {
+        EXPECT_TRUE(t.contains("absent")) << t["target"];  // primitive_id, position: off
+      }
+      continue;
+    }
+    ASSERT_TRUE(t.contains("channels")) << t["target"] << ": " << t.value("absent", "");
+    const CpuImage& img = renderer(scene).readback[size_t(target)];
+    for (size_t c = 0; c < t["channels"].size(); ++c) {
+      const auto& ch = t["channels"][c];
+      EXPECT_EQ(ch["name"], img.channels[c]);
+      EXPECT_EQ(std::stoul(ch["bits"].get<std::string>(), nullptr, 16), img.raw(px, py, uint32_t(c)))
+          << t["target"] << " " << ch["name"];
+      EXPECT_EQ(ch["value"].get<double>(), img.value(px, py, uint32_t(c))) << t["target"] << " " << ch["name"];
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 4 + 4 + 1 + 2 + 4 + 4 + 1 + 1);
+
+  // Headless through the command line: a capture of the same frame probed by `gblens probe`
+  // gives the same dossier (positions, shadow-map texels, lights, colours), number for number.
+  std::string capture = (dir_ / "capture").string();
+  int st = -1;
+  gui::run(std::string(GBLENS_BINARY) + " capture builtin:temple --size " + size +
+               " --time 1.5 --coverage on -o " + capture + " 2>&1", &st);
+  ASSERT_EQ(st, 0);
+  std::string text = gui::run(std::string(GBLENS_BINARY) + " probe " + capture + " " + std::to_string(px) + " " +
+                                  std::to_string(py) + " --json",
+                              &st);
+  ASSERT_EQ(st, 0);
+  nlohmann::json headless = nlohmann::json::parse(text);
+  for (const char* key : {"targets", "decoded", "position", "shadow_map", "lighting", "hdr", "final"})
+    EXPECT_EQ(dossier[key], headless[key]) << key << "\nviewer:   " << dossier[key].dump() << "\nheadless: " << headless[key].dump();
+}
+
+}  // namespace gb

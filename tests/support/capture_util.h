@@ -1,0 +1,36 @@
+// Helpers for capture/compare/probe tests: fresh temporary directories, running the gblens
+// binary (exit status + output), and small renders of the built-in scene to capture.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "renderer/core/options.h"
+#include "renderer/core/snapshot.h"
+
+namespace gb {
+
+// A fresh, empty directory for one test (removed first if a previous run left it).
+std::string freshDir(const std::string& name);
+
+struct RunResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr
+};
+// Runs `gblens ARGS` (the binary this build made) through the shell.
+RunResult runGblens(const std::string& args);
+// Runs any shell command.
+RunResult runShell(const std::string& command);
+
+// Small options for captures in tests: 96x54, a few lights, a small shadow map, coverage on.
+RenderOptions smallCaptureOptions();
+
+// A frame made up on the CPU (no GPU): albedo_specular, normal_shadow, depth, depth_stencil,
+// hdr, final and coverage_masked, w x h, with smooth made-up contents; the rest absent.
+FrameSnapshot syntheticFrame(uint32_t width, uint32_t height);
+// Stores `value` at a texel in the image's own format (F16/F32 as floats, U8/U32 as integers).
+void setTexel(CpuImage& image, uint32_t x, uint32_t y, uint32_t c, double value);
+
+// Reads a whole file (empty when missing).
+std::string readText(const std::string& path);
+
+}  // namespace gb

@@ -1,0 +1,73 @@
+// ReferenceCache and measureFrame (see accuracy.h).
+#include "views/analysis/accuracy.h"
+
+#include <algorithm>
+#include <chrono>
+#include <sstream>
+
+namespace gb {
+
+ReferenceCache::ReferenceCache(const Scene& scene, unsigned threads)
+    : scene_(scene), threads_(threads), rays_(std::make_unique<reference::RayScene>(scene, threads)) {}
+
+ReferenceView ReferenceCache::get(const View& view, double time, double bandTexels, uint32_t shadowMapSize) {
+  auto start = std::chrono::steady_clock::now();
+  std::ostringstream key;
+  key.precision(17);
+  key << view.width << 'x' << view.height;
+  for (int c = 0; c < 4; ++c)
+    for (int k = 0; k < 4; ++k) key << ' ' << view.worldFromEye[c][k];
+  key << ' ' << view.yfov << ' ' << view.aspect;
+  Entry& e = entries_[key.str()];
+  if (e.frame.pixels.empty()) e.frame = reference::renderFrame(*rays_, view, threads_);
+  double radius = bandTexels * reference::shadowTexelSize(scene_, shadowMapSize);
+  auto band = e.bands.find(radius);
+  if (band == e.bands.end()) band = e.bands.emplace(radius, reference::shadowBand(*rays_, e.frame, radius, threads_)).first;
+  std::ostringstream lightKey;
+  lightKey.precision(17);
+  lightKey << scene_.lights.size() << '@' << time;
+  if (!scene_.lights.empty()) lightKey << ' ' << scene_.lights.back().radius << ' ' << scene_.lights.front().center.x;
+  auto shaded = e.shaded.find(lightKey.str());
+  if (shaded == e.shaded.end()) {
+    std::vector<reference::ShadingInput> in;
+    in.reserve(e.frame.pixels.size());
+    for (const reference::Surface& s : e.frame.pixels) in.push_back(reference::shadingInput(s));
+    shaded = e.shaded
+                 .emplace(lightKey.str(), reference::shade(in, view, reference::eyeLights(scene_, view, time),
+                                                           reference::sunOf(scene_, view), threads_))
+                 .first;
+  }
+  seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return {&e.frame, &shaded->second, &band->second, bandTexels, radius};
+}
+
+MeasuredFrame measureFrame(const FrameSource& render, const RenderOptions& options, ReferenceCache& cache,
+                           double bandTexels, const MeasureExtras& extras) {
+  RenderOptions o = options;
+  o.primitiveId = true;  // silhouettes: where the rasterizer and the ray caster see different triangles
+  o.fairies = false;     // sprites over the surfaces are not part of the reference
+  std::vector<Target> targets = measuredTargets(o);
+  for (Target t : extras.readback)
+    if (std::find(targets.begin(), targets.end(), t) == targets.end()) targets.push_back(t);
+  // Forward has no G-buffer: the surface figures come from the deferred frame of the same
+  // options (the same rasterized surfaces), the colour from the forward frame itself.
+  MeasuredFrame m;
+  if (o.method == Method::Forward) {
+    RenderOptions forward = o;
+    forward.primitiveId = false;
+    TargetImage forwardHdr = render(forward, {Target::Hdr}).target(Target::Hdr);
+    RenderOptions deferred = o;
+    deferred.method = Method::Deferred;
+    m.frame = render(deferred, targets);
+    m.frame.target(Target::Hdr) = std::move(forwardHdr);
+    m.frame.options.method = Method::Forward;
+  } else {
+    m.frame = render(o, targets);
+  }
+  ReferenceView ref = cache.get(extras.referenceView ? *extras.referenceView : m.frame.view, o.time, bandTexels,
+                                o.shadowMapSize);
+  m.error = measureError(m.frame, ref);
+  return m;
+}
+
+}  // namespace gb

@@ -1,0 +1,92 @@
+// Comparing two captures target by target with metrics that fit each kind of data, and
+// pass/warn/fail decisions with OpenImageIO idiff's semantics and exit codes
+// (docs/capture-format.md, "Compare").
+#pragma once
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "views/capture/capture.h"
+
+namespace gb {
+
+// How a group of channels is compared, and what its per-pixel error (the number thresholds
+// apply to) means:
+//   Colour   max over channels of |a - b| in decoded units (albedo, specular, shadow, hdr, final)
+//   Normal   angle between the decoded unit normals, degrees
+//   Depth    relative error |a - b| / max(|a|, |b|) (eye depth, hardware depth, shadow map)
+//   Position Euclidean length of the difference, scene units
+//   Exact    max over channels of |a - b| (integers: stencil, coverage, ids)
+enum class MetricKind { Colour, Normal, Depth, Position, Exact };
+const char* name(MetricKind k);
+
+// A group of channels of one target compared together. Its key is the target's name when the
+// target has one group, else "<target>.<group>" (e.g. "normal_shadow.N", "normal_shadow.Shadow").
+struct ChannelGroup {
+  std::string key, group;
+  MetricKind kind = MetricKind::Colour;
+  std::vector<uint32_t> channels;
+};
+std::vector<ChannelGroup> channelGroups(Target t, const CpuImage& image);
+
+// idiff's thresholds; each may be set globally (key "") or per target / group key. The most
+// specific setting wins: "<target>.<group>", then "<target>", then global, then idiff's default.
+struct Thresholds {
+  double fail = 1e-6, failPercent = 0.0, hardFail = std::numeric_limits<double>::infinity();
+  double warn = 1e-6, warnPercent = 0.0;
+};
+struct ThresholdSettings {
+  std::map<std::string, std::map<std::string, double>> byKey;  // key -> {"fail": 0.01, ...}
+  // Parses "VALUE" or "KEY=VALUE" for parameter `param` ("fail", "failpercent", "hardfail",
+  // "warn", "warnpercent"). False with a message on a malformed value.
+  bool add(const std::string& param, const std::string& text, std::string& error);
+  Thresholds resolve(const std::string& target, const std::string& key) const;
+};
+
+enum class Verdict { Pass = 0, Warn = 1, Fail = 2 };
+
+struct GroupResult {
+  ChannelGroup group;
+  std::string target;
+  uint64_t pixels = 0, overWarn = 0, overFail = 0;
+  double maxError = 0.0, meanError = 0.0;
+  Thresholds thresholds;
+  Verdict verdict = Verdict::Pass;
+  nlohmann::json metrics;         // the kind's metrics (see name(MetricKind))
+  std::vector<float> errors;      // per-pixel error (the heat map), row major
+  uint32_t width = 0, height = 0;
+  std::string heatmap;            // file written, if any
+};
+
+// idiff's exit codes.
+enum CompareExit { kComparePass = 0, kCompareWarn = 1, kCompareFail = 2, kCompareMismatch = 3, kCompareFileError = 4 };
+
+struct CompareReport {
+  std::string a, b;
+  int exitCode = kComparePass;
+  std::vector<GroupResult> groups;
+  std::vector<std::pair<std::string, std::string>> mismatches;  // target, reason
+  std::vector<std::pair<std::string, std::string>> skipped;     // target, reason (absent in both)
+  nlohmann::json differences = nlohmann::json::array();         // manifest fields that differ
+  nlohmann::json json() const;
+  std::string text() const;  // the console summary
+};
+
+// Compares two loaded captures. Threshold keys that name no compared target or group are an
+// error (returned in `error`, exit 4: a usage error, like idiff's).
+bool compareCaptures(const Capture& a, const Capture& b, const ThresholdSettings& thresholds, CompareReport& report,
+                     std::string& error);
+
+// The same decision for one group of errors (exposed for tests): idiff's rule.
+Verdict decide(const Thresholds& t, uint64_t pixels, uint64_t overWarn, uint64_t overFail, double maxError);
+
+// Writes a heat map PNG per group that differs into `dir` (created); records the file names.
+bool writeHeatmaps(CompareReport& report, const std::string& dir, std::string& error);
+
+// Angle in degrees between two vectors (0 when both are zero, 180 when only one is).
+double angleDegrees(const glm::dvec3& a, const glm::dvec3& b);
+
+}  // namespace gb

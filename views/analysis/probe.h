@@ -1,0 +1,121 @@
+// The pixel probe: everything about one pixel of a frame, computed from a FrameSnapshot alone
+// (a live frame in the viewer, a capture in `gblens probe`): raw stored values of every
+// target, decoded G-buffer quantities, the eye/world position reconstructed both ways, the
+// shadow-map texels the pixel sampled, every point light whose volume covers the pixel with its
+// contribution, and the final colour.
+//
+// Region read-back (the viewer): the probe reads only
+//   - the texel (x, y) of every screen-space target (a 1x1 TargetImage at x0 = x, y0 = y is
+//     enough), and
+//   - the 2x2 shadow-map block returned by shadowMapFootprint() (a 2x2 TargetImage there).
+// Anything not in the snapshot is reported as missing, never guessed.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "renderer/core/snapshot.h"
+
+namespace gb {
+
+struct ProbeChannel {
+  std::string name;       // e.g. "N.X"
+  uint32_t bits = 0;      // the stored bits (8/16-bit integer, half bits, float bits, uint)
+  double value = 0.0;     // decoded (CpuImage::value)
+};
+struct ProbeTarget {
+  std::string target, type, encoding;  // "normal_shadow", "f16", "float"
+  bool present = false;
+  std::string absent;                  // why not (not computed, not read back, ...)
+  std::vector<ProbeChannel> channels;
+};
+
+struct ProbePosition {
+  bool valid = false;
+  glm::dvec3 eye{0.0}, world{0.0};
+};
+
+struct ProbeShadow {
+  bool valid = false;
+  std::string note;               // why not valid, or a remark
+  glm::dvec3 lightClip{0.0};      // receiver in the sun's clip space (from the reconstructed position)
+  double receiverDepth = 0.0;     // lightClip.z: what the compare uses
+  glm::dvec2 texel{0.0};          // continuous texel coordinates of the sample (u * size - 0.5)
+  int32_t x0 = 0, y0 = 0;         // top-left texel of the 2x2 bilinear footprint
+  double stored[4] = {};          // stored depths (x0,y0), (x0+1,y0), (x0,y0+1), (x0+1,y0+1); border = 1
+  double weight[4] = {};          // bilinear weights
+  bool lit[4] = {};               // receiver <= stored (VK_COMPARE_OP_LESS_OR_EQUAL)
+  bool outside[4] = {};           // beyond the map: the border colour (lit)
+  double filtered = 0.0;          // sum of weight * lit: the expected shadow term
+  double storedShadow = 0.0;      // what the G-buffer stored (normal_shadow.Shadow)
+  double nearestMargin = 0.0;     // stored - receiver at the nearest texel (> 0: lit)
+  float biasConstant = 0, biasSlope = 0, biasClamp = 0;  // applied when the map was rendered
+};
+
+struct ProbeLight {
+  uint32_t index = 0;
+  std::string lightClass;            // "stencil" or "near_plane" (the light is drawn)
+  glm::dvec3 eyePosition{0.0}, color{0.0};
+  double radius = 0.0;
+  double enter = 0.0, exit = 0.0;    // eye depth where the pixel's ray enters / leaves the volume
+  double distance = 0.0;             // surface point to light centre
+  double attenuation = 0.0;
+  glm::dvec3 contribution{0.0};      // to hdr (shading.h, double, from the stored G-buffer)
+  bool stencilPass = false;          // the stencil/depth tests let the light's shader run here
+};
+
+struct PixelDossier {
+  uint32_t x = 0, y = 0, width = 0, height = 0;
+  std::string error;  // non-empty: the pixel could not be probed (outside the frame)
+  std::vector<std::string> missing;  // data the probe needed but the snapshot lacks
+  std::vector<ProbeTarget> targets;  // raw values, every target (shadow map: see `shadow`)
+
+  // Decoded G-buffer (each valid only with its target: has* say which were available).
+  bool hasAlbedo = false, hasNormal = false, hasEyeDepth = false, hasHardwareDepth = false;
+  bool geometry = false;
+  glm::dvec3 albedo{0.0};
+  double specular = 0.0;
+  glm::dvec3 normal{0.0}, normalStored{0.0};
+  double normalLengthError = 0.0;  // | |stored| - 1 |
+  double shadow = 0.0;
+  double eyeDepth = 0.0;           // depth.Z
+  double hardwareDepth = 0.0;      // depth_stencil.Depth
+  uint32_t stencil = 0;
+
+  // Positions, both ways, and how far apart.
+  ProbePosition fromEyeDepth, fromHardwareDepth;
+  std::string positionSource;      // which one the lighting passes used ("eye_depth" / "hardware_depth")
+  double positionDifference = 0.0; // scene units
+  double eyeDepthUlps = 0.0;       // |z difference| in float ulps of the eye depth
+  double hardwareDepthUlps = 0.0;  // |stored depth - depth of the eye-depth position| in float ulps
+
+  ProbeShadow shadowMap;
+
+  // Lighting.
+  glm::dvec3 viewDirection{0.0};   // V (unit, toward the eye)
+  glm::dvec3 directional{0.0};     // sun + ambient (shading.h)
+  std::vector<ProbeLight> lights;  // every drawn light whose volume the pixel's ray meets
+  glm::dvec3 pointLightTotal{0.0}; // sum of the contributions of lights that passed the stencil
+  uint32_t shadedLights = 0;       // lights predicted to run their shader here
+  int64_t coverageMasked = -1, coverageFull = -1;  // the targets' counts (-1: not available)
+  bool hasHdr = false, hasFinal = false;
+  glm::dvec4 hdr{0.0};             // stored
+  glm::dvec3 hdrExpected{0.0};     // directional + point-light total (fairy sprites not included)
+  glm::dvec4 finalColor{0.0};      // stored, decoded to linear
+  glm::dvec3 finalExpected{0.0};   // toneMap(stored hdr, exposure), linear
+  glm::uvec3 finalExpectedSrgb8{0}; // the same, encoded as the final target stores it
+};
+
+// The 2x2 shadow-map block the probe of (x, y) reads (for region read-back): false when the
+// pixel has no geometry or the snapshot lacks the depth targets it needs to place it.
+bool shadowMapFootprint(const FrameSnapshot& frame, uint32_t x, uint32_t y, int32_t& x0, int32_t& y0);
+
+// The dossier of pixel (x, y) (target coordinates, top-left origin).
+PixelDossier probePixel(const FrameSnapshot& frame, uint32_t x, uint32_t y);
+
+// The dossier as JSON (`gblens probe --json`, the viewer's "copy as JSON", --probe-log) and as
+// the text `gblens probe` prints.
+nlohmann::json dossierJson(const PixelDossier& d);
+std::string dossierText(const PixelDossier& d);
+
+}  // namespace gb

@@ -1,0 +1,206 @@
+// The pixel dossier as JSON (exact: doubles round-trip) and as text for `gblens probe`.
+#include <cmath>
+#include <cstdio>
+
+#include "views/analysis/probe.h"
+
+namespace gb {
+
+static nlohmann::json v3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+static nlohmann::json v4(const glm::dvec4& v) { return {v.x, v.y, v.z, v.w}; }
+
+static std::string hex(uint32_t bits, const std::string& type) {
+  int digits = type == "u8" || type == "i8" ? 2 : type == "u16" || type == "i16" || type == "f16" ? 4 : 8;
+  char buf[16];
+  std::snprintf(buf, sizeof(buf), "0x%0*x", digits, bits);
+  return buf;
+}
+
+static nlohmann::json position(const ProbePosition& p) {
+  if (!p.valid) return nullptr;
+  return {{"eye", v3(p.eye)}, {"world", v3(p.world)}};
+}
+
+nlohmann::json dossierJson(const PixelDossier& d) {
+  nlohmann::json j = {{"pixel", {d.x, d.y}}, {"size", {d.width, d.height}}};
+  if (!d.error.empty()) {
+    j["error"] = d.error;
+    return j;
+  }
+  j["missing"] = d.missing;
+  nlohmann::json targets = nlohmann::json::array();
+  for (const ProbeTarget& t : d.targets) {
+    nlohmann::json e = {{"target", t.target}};
+    if (!t.present) {
+      e["absent"] = t.absent;
+    } else {
+      e["type"] = t.type;
+      e["encoding"] = t.encoding;
+      nlohmann::json ch = nlohmann::json::array();
+      for (const ProbeChannel& c : t.channels) ch.push_back({{"name", c.name}, {"bits", hex(c.bits, t.type)}, {"value", c.value}});
+      e["channels"] = ch;
+    }
+    targets.push_back(e);
+  }
+  j["targets"] = targets;
+  auto opt = [](bool has, nlohmann::json v) { return has ? v : nlohmann::json(nullptr); };
+  j["decoded"] = {{"geometry", d.geometry},
+                  {"albedo", opt(d.hasAlbedo, v3(d.albedo))},
+                  {"specular", opt(d.hasAlbedo, d.specular)},
+                  {"normal", opt(d.hasNormal, v3(d.normal))},
+                  {"normal_stored", opt(d.hasNormal, v3(d.normalStored))},
+                  {"normal_length_error", opt(d.hasNormal, d.normalLengthError)},
+                  {"shadow", opt(d.hasNormal, d.shadow)},
+                  {"eye_depth", opt(d.hasEyeDepth, d.eyeDepth)},
+                  {"hardware_depth", opt(d.hasHardwareDepth, d.hardwareDepth)},
+                  {"stencil", opt(d.hasHardwareDepth, d.stencil)}};
+  j["position"] = {{"source", d.positionSource},
+                   {"from_eye_depth", position(d.fromEyeDepth)},
+                   {"from_hardware_depth", position(d.fromHardwareDepth)},
+                   {"difference", d.positionDifference},
+                   {"eye_depth_ulps", d.eyeDepthUlps},
+                   {"hardware_depth_ulps", d.hardwareDepthUlps}};
+  const ProbeShadow& s = d.shadowMap;
+  nlohmann::json sm = {{"valid", s.valid}, {"note", s.note}, {"bias", {{"constant", s.biasConstant}, {"slope", s.biasSlope}, {"clamp", s.biasClamp}}}};
+  if (s.valid) {
+    nlohmann::json texels = nlohmann::json::array();
+    for (int k = 0; k < 4; ++k)
+      texels.push_back({{"texel", {s.x0 + (k & 1), s.y0 + (k >> 1)}}, {"stored_depth", s.stored[k]},
+                        {"weight", s.weight[k]}, {"lit", s.lit[k]}, {"outside", s.outside[k]}});
+    sm["light_clip"] = v3(s.lightClip);
+    sm["receiver_depth"] = s.receiverDepth;
+    sm["texel_coordinates"] = {s.texel.x, s.texel.y};
+    sm["texels"] = texels;
+    sm["nearest_margin"] = s.nearestMargin;
+    sm["filtered"] = s.filtered;
+    sm["stored_shadow"] = s.storedShadow;
+  }
+  j["shadow_map"] = sm;
+  nlohmann::json lights = nlohmann::json::array();
+  for (const ProbeLight& l : d.lights)
+    lights.push_back({{"index", l.index},
+                      {"class", l.lightClass},
+                      {"eye_position", v3(l.eyePosition)},
+                      {"radius", l.radius},
+                      {"color", v3(l.color)},
+                      {"volume_enter", l.enter},
+                      {"volume_exit", l.exit},
+                      {"distance", l.distance},
+                      {"distance_over_radius", l.distance / l.radius},
+                      {"attenuation", l.attenuation},
+                      {"stencil_pass", l.stencilPass},
+                      {"contribution", v3(l.contribution)}});
+  j["lighting"] = {{"view_direction", v3(d.viewDirection)},
+                   {"directional", v3(d.directional)},
+                   {"point_lights", lights},
+                   {"covering_lights", d.lights.size()},
+                   {"shaded_lights", d.shadedLights},
+                   {"coverage_full", d.coverageFull < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.coverageFull)},
+                   {"coverage_masked", d.coverageMasked < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.coverageMasked)},
+                   {"point_light_total", v3(d.pointLightTotal)}};
+  // Without geometry the skybox wrote hdr: there is no lighting to expect.
+  j["hdr"] = {{"stored", opt(d.hasHdr, v4(d.hdr))},
+              {"expected", opt(d.geometry, v3(d.hdrExpected))},
+              {"residual", opt(d.hasHdr && d.geometry, v3(glm::dvec3(d.hdr) - d.hdrExpected))}};
+  j["final"] = {{"stored", opt(d.hasFinal, v4(d.finalColor))},
+                {"expected", opt(d.hasHdr, v3(d.finalExpected))},
+                {"expected_srgb8", opt(d.hasHdr, {d.finalExpectedSrgb8.x, d.finalExpectedSrgb8.y, d.finalExpectedSrgb8.z})}};
+  return j;
+}
+
+// ---- text ----------------------------------------------------------------------------------------
+
+static std::string f9(double v) {
+  char b[40];
+  std::snprintf(b, sizeof(b), "%.9g", v);
+  return b;
+}
+static std::string t3(const glm::dvec3& v) {
+  char b[128];
+  std::snprintf(b, sizeof(b), "(%.9g, %.9g, %.9g)", v.x, v.y, v.z);
+  return b;
+}
+
+std::string dossierText(const PixelDossier& d) {
+  std::string o;
+  char line[512];
+  std::snprintf(line, sizeof(line), "pixel %u,%u of %ux%u\n", d.x, d.y, d.width, d.height);
+  o += line;
+  if (!d.error.empty()) return o + "error: " + d.error + "\n";
+  if (!d.missing.empty()) {
+    o += "missing:";
+    for (const std::string& m : d.missing) o += " " + m;
+    o += "\n";
+  }
+  o += "\nraw stored values\n";
+  for (const ProbeTarget& t : d.targets) {
+    if (!t.present) {
+      o += "  " + t.target + ": " + t.absent + "\n";
+      continue;
+    }
+    o += "  " + t.target + " (" + t.type + " " + t.encoding + ")\n";
+    for (const ProbeChannel& c : t.channels) {
+      std::snprintf(line, sizeof(line), "    %-10s %-10s = %s\n", c.name.c_str(), hex(c.bits, t.type).c_str(), f9(c.value).c_str());
+      o += line;
+    }
+  }
+  o += "\ndecoded\n";
+  o += "  geometry        " + std::string(d.geometry ? "yes" : "no (sky)") + "\n";
+  o += "  albedo          " + (d.hasAlbedo ? t3(d.albedo) + "   specular " + f9(d.specular) : "-") + "\n";
+  o += "  normal          " + (d.hasNormal ? t3(d.normal) + "   stored length error " + f9(d.normalLengthError) : "-") + "\n";
+  o += "  shadow          " + (d.hasNormal ? f9(d.shadow) : "-") + "\n";
+  o += "  eye depth       " + (d.hasEyeDepth ? f9(d.eyeDepth) : "-") + "\n";
+  o += "  hardware depth  " + (d.hasHardwareDepth ? f9(d.hardwareDepth) : "-") + "\n";
+  if (d.hasHardwareDepth)
+    o += "  stencil         " + std::to_string(d.stencil) + " (bit 7 geometry: " + ((d.stencil & 0x80) ? "set" : "clear") +
+         ", low bits " + std::to_string(d.stencil & 0x7F) + ")\n";
+  o += "\npositions (eye space | world space); the lighting used " + d.positionSource + "\n";
+  for (auto [label, p] : {std::pair{"from eye depth     ", &d.fromEyeDepth}, {"from hardware depth", &d.fromHardwareDepth}})
+    o += std::string("  ") + label + " " + (p->valid ? t3(p->eye) + " | " + t3(p->world) : std::string("-")) + "\n";
+  o += "  difference          " + f9(d.positionDifference) + " scene units; eye depth " + f9(d.eyeDepthUlps) +
+       " ulps, hardware depth " + f9(d.hardwareDepthUlps) + " ulps\n";
+  const ProbeShadow& s = d.shadowMap;
+  o += "\nshadow map: " + s.note + "\n";
+  if (s.valid) {
+    o += "  receiver depth " + f9(s.receiverDepth) + " at texel " + f9(s.texel.x) + ", " + f9(s.texel.y) + "; bias constant " +
+         f9(s.biasConstant) + " slope " + f9(s.biasSlope) + " clamp " + f9(s.biasClamp) + "\n";
+    for (int k = 0; k < 4; ++k) {
+      std::snprintf(line, sizeof(line), "  texel %5d,%-5d stored %-12s weight %-10s %s%s\n", s.x0 + (k & 1), s.y0 + (k >> 1),
+                    f9(s.stored[k]).c_str(), f9(s.weight[k]).c_str(), s.lit[k] ? "lit" : "shadowed",
+                    s.outside[k] ? " (border)" : "");
+      o += line;
+    }
+    o += "  filtered " + f9(s.filtered) + " (stored shadow " + f9(s.storedShadow) + "), nearest texel margin " +
+         f9(s.nearestMargin) + "\n";
+  }
+  auto count = [](int64_t v) { return v < 0 ? std::string("n/a") : std::to_string(v); };
+  o += "\npoint lights whose volume the pixel's ray meets: " + std::to_string(d.lights.size()) + " (coverage_full " +
+       count(d.coverageFull) + "); shaded " + std::to_string(d.shadedLights) + " (coverage_masked " +
+       count(d.coverageMasked) + ")\n";
+  for (const ProbeLight& l : d.lights) {
+    std::snprintf(line, sizeof(line), "  light %-5u %-10s d/r %-10s atten %-10s %-7s %s\n", l.index, l.lightClass.c_str(),
+                  f9(l.distance / l.radius).c_str(), f9(l.attenuation).c_str(), l.stencilPass ? "shaded" : "culled",
+                  t3(l.contribution).c_str());
+    o += line;
+  }
+  o += "  point-light total   " + t3(d.pointLightTotal) + "\n";
+  o += "  directional+ambient " + t3(d.directional) + "\n";
+  if (d.hasHdr) {
+    o += "\nhdr stored          " + t3(glm::dvec3(d.hdr)) + " a " + f9(d.hdr.w) + (d.geometry ? "" : " (the skybox)") + "\n";
+    if (d.geometry) {
+      o += "  expected          " + t3(d.hdrExpected) + " (directional + point lights; fairy sprites not included)\n";
+      o += "  residual          " + t3(glm::dvec3(d.hdr) - d.hdrExpected) + "\n";
+    }
+  }
+  if (d.hasFinal) {
+    o += "final (linear)      " + t3(glm::dvec3(d.finalColor)) + " a " + f9(d.finalColor.w) + "\n";
+    if (d.hasHdr) {
+      std::snprintf(line, sizeof(line), "  toneMap(hdr)      %s = sRGB 0x%02x 0x%02x 0x%02x\n", t3(d.finalExpected).c_str(),
+                    d.finalExpectedSrgb8.x, d.finalExpectedSrgb8.y, d.finalExpectedSrgb8.z);
+      o += line;
+    }
+  }
+  return o;
+}
+
+}  // namespace gb

@@ -1,0 +1,212 @@
+// Writing captures: EXRs, final.png, lights.json, then manifest.json with every file's size and
+// SHA-256, all in a temporary directory that is renamed into place only when complete.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+
+#include "renderer/core/version.h"
+#include "views/capture/capture.h"
+#include "views/capture/exr.h"
+#include "views/capture/image_io.h"
+#include "views/capture/report.h"
+#include "renderer/core/sha256.h"
+
+namespace gb {
+
+namespace fs = std::filesystem;
+
+std::vector<Target> availableTargets(const RenderOptions& o, bool sceneHasSun) {
+  std::vector<Target> out;
+  for (size_t i = 0; i < kTargetCount; ++i)
+    if (targetAbsence(Target(i), o, sceneHasSun) == Absent::No) out.push_back(Target(i));
+  return out;
+}
+
+static nlohmann::json vec3Json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+static nlohmann::json statsJson(const FrameStats& st) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const PassStat& p : st.passes) {
+    nlohmann::json j = {{"name", p.name}, {"ms", p.ms}, {"skipped", p.skipped}};
+    if (p.skipped) j["reason"] = p.reason;
+    passes.push_back(j);
+  }
+  nlohmann::json j = {{"frame_ms", st.frameMs}, {"gpu_ms", st.gpuMs}, {"passes", passes},
+                      {"lights", {{"total", st.lights}, {"visible", st.lightsVisible},
+                                  {"near_plane", st.lightsInside}, {"culled", st.lightsCulled}}}};
+  if (st.culling.valid)
+    j["culling"] = {{"valid", true},
+                    {"invocations", st.culling.invocations},
+                    {"ideal_pairs", st.culling.idealPairs},
+                    {"work_over_ideal", st.culling.workOverIdeal},
+                    {"pipeline_invocations", st.culling.pipelineInvocations}};
+  else
+    j["culling"] = {{"valid", false}, {"reason", "needs coverage on and the coverage_masked and depth targets"}};
+  return j;
+}
+
+// Lights exactly as uploaded (float values print and parse back bit-exactly through double).
+static nlohmann::json lightsJson(const FrameSnapshot& f) {
+  nlohmann::json lights = nlohmann::json::array();
+  std::vector<std::string> cls(f.eyeLights.size(), "culled");
+  for (size_t k = 0; k < f.visibleLights.size(); ++k) cls[f.visibleLights[k]] = k < f.stencilCount ? "stencil" : "near_plane";
+  for (size_t i = 0; i < f.eyeLights.size(); ++i) {
+    const gpu::PointLight& l = f.eyeLights[i];
+    glm::dvec3 eye(l.eyePositionRadius);
+    nlohmann::json j = {{"index", i},
+                        {"class", cls[i]},
+                        {"eye_position", vec3Json(eye)},
+                        {"radius", double(l.eyePositionRadius.w)},
+                        {"color", vec3Json(glm::dvec3(l.color))},
+                        {"world_position", vec3Json(glm::dvec3(f.view.worldFromEye * glm::dvec4(eye, 1.0)))}};
+    if (i < f.lightDescs.size()) {
+      const PointLightDesc& d = f.lightDescs[i];
+      j["desc"] = {{"center", vec3Json(d.center)}, {"orbit_radius", d.orbitRadius}, {"orbit_speed", d.orbitSpeed},
+                   {"phase", d.phase},  {"bob", d.bob}, {"radius", d.radius},
+                   {"color", vec3Json(glm::dvec3(d.color))}, {"intensity", d.intensity}};
+    }
+    lights.push_back(j);
+  }
+  return {{"format", "gblens-lights"}, {"time", f.options.time}, {"visible", f.visibleLights},
+          {"stencil_count", f.stencilCount}, {"lights", lights}};
+}
+
+static std::string utcNow() {
+  std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof(buf), "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+static bool writeText(const fs::path& path, const std::string& text, std::string& error) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) error = path.string() + ": cannot write";
+  return bool(out);
+}
+
+// Adds `file` (in `tmp`) to the manifest's file list with its size and digest.
+static bool record(const fs::path& tmp, const std::string& file, nlohmann::json& files, std::string& error) {
+  std::string hex;
+  if (!sha256File((tmp / file).string(), hex, error)) return false;
+  files[file] = {{"bytes", fs::file_size(tmp / file)}, {"sha256", hex}};
+  return true;
+}
+
+static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const CaptureMeta& meta, std::string& error) {
+  nlohmann::json files = nlohmann::json::object(), targets = nlohmann::json::array();
+  nlohmann::json skipped = nlohmann::json::array();
+  for (size_t i = 0; i < kTargetCount; ++i) {
+    Target t = Target(i);
+    const TargetImage& ti = f.targets[i];
+    if (!ti.present()) {
+      skipped.push_back({{"name", targetName(t)},
+                         {"reason", absentText(f.absent[i] == Absent::No ? Absent::NotCaptured : f.absent[i])}});
+      continue;
+    }
+    if (!ti.whole()) {
+      error = std::string(targetName(t)) + ": a region read-back cannot be captured (whole targets only)";
+      return false;
+    }
+    std::string file = std::string(targetName(t)) + ".exr";
+    if (!writeExr((tmp / file).string(), ti.image, error) || !record(tmp, file, files, error)) return false;
+    nlohmann::json exr = nlohmann::json::array();
+    for (const ExrChannel& c : exrChannels(ti.image)) exr.push_back({{"name", c.name}, {"type", c.type}});
+    targets.push_back({{"name", targetName(t)}, {"file", file}, {"width", ti.image.width},
+                       {"height", ti.image.height}, {"type", name(ti.image.type)},
+                       {"encoding", name(ti.image.encoding)}, {"channels", ti.image.channels},
+                       {"exr_channels", exr}});
+    if (t == Target::Final) {  // the tone-mapped sRGB bytes, exactly
+      Rgba8Image png{ti.image.width, ti.image.height, ti.image.data};
+      if (ti.image.type != PixelType::U8 || ti.image.channelCount() != 4) {
+        error = "final: expected 8-bit RGBA";
+        return false;
+      }
+      if (!writePng((tmp / "final.png").string(), png, error) || !record(tmp, "final.png", files, error)) return false;
+    }
+  }
+  if (!writeText(tmp / "lights.json", lightsJson(f).dump(1) + "\n", error) ||
+      !record(tmp, "lights.json", files, error))
+    return false;
+
+  uint32_t culled = uint32_t(f.eyeLights.size() - f.visibleLights.size());
+  nlohmann::json m = {
+      {"format", "gblens-capture"},
+      {"format_version", kCaptureFormatVersion},
+      {"gblens", {{"version", GBLENS_VERSION}, {"git", gitHash()}}},
+      {"created_utc", utcNow()},
+      {"command", meta.commandLine},
+      {"device", meta.device},
+      {"driver", meta.driver},
+      {"scene", {{"source", meta.scene}, {"content_sha256", meta.sceneSha256}}},
+      {"size", {f.view.width, f.view.height}},
+      {"time", f.options.time},
+      {"options", optionsJson(f.options)},
+      {"view", viewJson(f.view)},
+      {"lightClipFromWorld", matrixJson(f.lightClipFromWorld)},
+      {"sun", {{"enabled", f.sun.enabled}, {"to_sun", vec3Json(f.sun.toSun)},
+               {"color", vec3Json(glm::dvec3(f.sun.color))}, {"eye_direction", vec3Json(f.sunEyeDirection())}}},
+      {"sky", {{"zenith", vec3Json(glm::dvec3(f.sky.zenith))}, {"horizon", vec3Json(glm::dvec3(f.sky.horizon))},
+               {"ground", vec3Json(glm::dvec3(f.sky.ground))}, {"ambient", vec3Json(glm::dvec3(f.sky.ambient))}}},
+      {"lights", {{"file", "lights.json"}, {"sha256", files["lights.json"]["sha256"]},
+                  {"count", f.eyeLights.size()}, {"visible", f.visibleLights.size()},
+                  {"stencil_class", f.stencilCount}, {"culled", culled}}},
+      {"stats", statsJson(meta.stats)},
+      {"targets", targets},
+      {"skipped", skipped},
+      {"files", files}};
+  // Written last: a directory without it is never a capture.
+  return writeText(tmp / "manifest.json", m.dump(2) + "\n", error);
+}
+
+bool writeCapture(const std::string& dirText, const FrameSnapshot& f, const CaptureMeta& meta, std::string& error) {
+  fs::path dir = fs::absolute(fs::path(dirText)).lexically_normal();
+  if (dir.filename().empty()) dir = dir.parent_path();
+  std::error_code ec;
+  if (fs::exists(dir, ec)) {
+    if (!fs::is_directory(dir, ec)) {
+      error = dirText + ": exists and is not a directory";
+      return false;
+    }
+    if (!fs::is_empty(dir, ec) && !fs::exists(dir / "manifest.json", ec)) {
+      error = dirText + ": exists, is not empty and holds no capture (manifest.json); not overwritten";
+      return false;
+    }
+  }
+  fs::path parent = dir.parent_path();
+  fs::create_directories(parent, ec);
+  std::string stamp = std::to_string(getpid()) + "-" +
+                      std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
+  fs::path tmp = parent / ("." + dir.filename().string() + ".partial-" + stamp);
+  if (!fs::create_directory(tmp, ec)) {
+    error = tmp.string() + ": cannot create (" + ec.message() + ")";
+    return false;
+  }
+  if (!writeContents(tmp, f, meta, error)) {
+    fs::remove_all(tmp, ec);
+    return false;
+  }
+  // Swap into place: an old capture moves aside first and is deleted only after the rename.
+  fs::path old = parent / ("." + dir.filename().string() + ".old-" + stamp);
+  bool hadOld = fs::exists(dir, ec);
+  if (hadOld) fs::rename(dir, old, ec);
+  if (!ec) fs::rename(tmp, dir, ec);
+  if (ec) {
+    error = dirText + ": cannot move the capture into place (" + ec.message() + ")";
+    std::error_code ignore;
+    if (hadOld && !fs::exists(dir, ignore)) fs::rename(old, dir, ignore);
+    fs::remove_all(tmp, ignore);
+    return false;
+  }
+  if (hadOld) fs::remove_all(old, ec);
+  return true;
+}
+
+}  // namespace gb

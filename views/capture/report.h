@@ -1,0 +1,26 @@
+// Frame statistics as JSON (the --stats output, bench rows, capture manifests): pass names,
+// per-pass ms (median over frames), skips with reasons, culling statistics.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "renderer/core/frame_stats.h"
+#include "renderer/core/options.h"
+
+namespace gb {
+
+nlohmann::json optionsJson(const RenderOptions& o);
+// The inverse of optionsJson (capture manifests). Members left out keep their defaults; a
+// malformed member gives false and a message naming it.
+bool optionsFromJson(const nlohmann::json& j, RenderOptions& o, std::string& error);
+// Times, passes and lights of `frames`; the culling counts of `counted` when given (a frame
+// rendered with coverage on after the timed ones), else of the last frame.
+// Where the frames were rendered: the device, its driver and SCENE as given.
+struct StatsSource {
+  std::string device, driver, scene;
+};
+nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSource& source, const RenderOptions& o,
+                         const FrameStats* counted = nullptr);
+
+}  // namespace gb

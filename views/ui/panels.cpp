@@ -1,0 +1,347 @@
+// The viewer's panels (ImGui only): menu bar, controls (views, frame options, lights,
+// animation, camera, statistics, capture), the pixel panel with the probe's dossier, status bar.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "views/ui/viewer_model.h"
+
+namespace gb {
+
+void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, std::vector<ViewDraw>& draws);
+void drawDossier(ViewerModel& m);  // probe_panel.cpp
+
+static constexpr double kMenuHeight = 20.0, kStatusHeight = 22.0, kControlsWidth = 310.0, kPixelWidth = 450.0;
+
+// Panels keep their width until the window gets narrow; then they give way to the views.
+static double controlsWidth(const ViewerModel& m, double w) { return m.showControls ? std::min(kControlsWidth, 0.25 * w) : 0.0; }
+static double pixelWidth(const ViewerModel& m, double w) {
+  if (!m.showPixel) return 0.0;
+  return std::min(m.source == FrameSource::Compare ? 1.5 * kPixelWidth : kPixelWidth, 0.35 * w);
+}
+
+Rect viewArea(const ViewerModel& m, double w, double h) {
+  double left = controlsWidth(m, w), right = pixelWidth(m, w);
+  return {left, kMenuHeight, std::max(1.0, w - left - right), std::max(1.0, h - kMenuHeight - kStatusHeight)};
+}
+
+static void tooltip(const char* text) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+static bool viewCombo(const char* label, ViewKind& v) {
+  bool changed = false;
+  if (ImGui::BeginCombo(label, viewDef(v).label)) {
+    for (int k = 0; k < kViewKindCount; ++k) {
+      const ViewDef& d = viewDef(ViewKind(k));
+      char item[64];
+      std::snprintf(item, sizeof item, "%s%s%s", d.label, d.key[0] ? "  " : "", d.key);
+      if (ImGui::Selectable(item, v == ViewKind(k))) {
+        v = ViewKind(k);
+        changed = true;
+      }
+    }
+    ImGui::EndCombo();
+  }
+  return changed;
+}
+
+static void menuBar(ViewerModel& m) {
+  if (!ImGui::BeginMainMenuBar()) return;
+  if (ImGui::BeginMenu("View")) {
+    if (ImGui::MenuItem("All views (grid)", "1", m.layout == LayoutMode::Grid)) m.layout = LayoutMode::Grid;
+    for (int k = 0; k < kViewKindCount; ++k) {
+      const ViewDef& d = viewDef(ViewKind(k));
+      if (ImGui::MenuItem(d.label, d.key, m.layout != LayoutMode::Grid && m.primary == ViewKind(k))) {
+        m.primary = m.edited = ViewKind(k);
+        if (m.layout == LayoutMode::Grid) m.layout = LayoutMode::Single;
+      }
+    }
+    ImGui::Separator();
+    if (ImGui::BeginMenu("Side by side with")) {
+      for (int k = 0; k < kViewKindCount; ++k)
+        if (ImGui::MenuItem(viewDef(ViewKind(k)).label, nullptr, m.layout == LayoutMode::SideBySide && m.secondary == ViewKind(k))) {
+          m.secondary = ViewKind(k);
+          m.layout = LayoutMode::SideBySide;
+        }
+      ImGui::EndMenu();
+    }
+    if (ImGui::MenuItem("Single view", nullptr, m.layout == LayoutMode::Single)) m.layout = LayoutMode::Single;
+    ImGui::Separator();
+    ImGui::MenuItem("Texel grid when zoomed in", "G", &m.grid);
+    if (ImGui::MenuItem("Fit", "Z")) m.transform = ViewTransform{};
+    ImGui::MenuItem("Controls panel", nullptr, &m.showControls);
+    ImGui::MenuItem("Pixel panel", nullptr, &m.showPixel);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Camera")) {
+    if (ImGui::MenuItem("Reset", "Home")) m.resetCamera = true;
+    for (size_t i = 0; i < m.cameraNames.size(); ++i)
+      if (ImGui::MenuItem(m.cameraNames[i].c_str())) m.gltfCamera = int(i);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Help")) {
+    ImGui::TextUnformatted(
+        "1 grid of all views, 2 albedo, 3 normal, 4 depth, 5 specular, 6 shadow,\n"
+        "7 shadow map, 8 masked coverage, 9 full coverage, 0 / Return final\n"
+        "Left click: probe a pixel (dossier on the right); arrows move it\n"
+        "Click the shadow map: mark the pixels that sample that texel\n"
+        "Wheel: zoom (all views); middle drag or shift+drag: pan; Z: fit\n"
+        "Right drag: orbit (fly mode: look); WASD/QE: move; ctrl+wheel: dolly\n"
+        "Space: play/pause; , and .: step; Home: reset camera; G: grid");
+    ImGui::EndMenu();
+  }
+  ImGui::EndMainMenuBar();
+}
+
+static void viewSettings(ViewerModel& m) {
+  ImGui::TextUnformatted("Layout");
+  ImGui::SameLine();
+  int layout = int(m.layout);
+  ImGui::RadioButton("one", &layout, int(LayoutMode::Single));
+  ImGui::SameLine();
+  ImGui::RadioButton("two", &layout, int(LayoutMode::SideBySide));
+  ImGui::SameLine();
+  ImGui::RadioButton("grid", &layout, int(LayoutMode::Grid));
+  m.layout = LayoutMode(layout);
+  if (viewCombo("view", m.primary)) m.edited = m.primary;
+  if (m.layout == LayoutMode::SideBySide && viewCombo("beside", m.secondary)) m.edited = m.secondary;
+  ImGui::Separator();
+  viewCombo("settings of", m.edited);
+  const ViewDef& d = viewDef(m.edited);
+  ViewSettings& s = m.settings[int(m.edited)];
+  for (int c = 0; c < 4; ++c) {
+    if (!(d.available & (1u << c))) continue;
+    bool on = s.channels & (1u << c);
+    const char* rgba[] = {"R", "G", "B", "A"};
+    if (c) ImGui::SameLine();
+    if (ImGui::Checkbox(rgba[c], &on)) s.channels = on ? s.channels | (1u << c) : s.channels & ~(1u << c);
+    tooltip(channelLabel(d, c).c_str());
+  }
+  ImGui::Checkbox("auto range", &s.autoRange);
+  tooltip("black and white point from the data: min/max over valid texels (depth: drawn geometry)");
+  if (s.autoRange) ImGui::BeginDisabled();
+  float range[2] = {s.black, s.white};
+  if (ImGui::DragFloat2("black/white", range, std::max(1e-4f, (s.white - s.black) * 0.005f), 0, 0, "%.5g")) {
+    s.black = range[0];
+    s.white = range[1];
+  }
+  if (s.autoRange) {
+    ImGui::EndDisabled();
+    const std::vector<RangeStats>& st = m.ranges[int(m.edited)];
+    ResolvedRange r = resolveRange(d, s, &st);
+    if (r.fromData) {
+      ImGui::Text("data: %.7g .. %.7g", r.stats.lo, r.stats.hi);
+      ImGui::SameLine();
+      if (ImGui::SmallButton("keep")) {  // start a manual range from the data's
+        s.autoRange = false;
+        s.black = r.black;
+        s.white = r.white;
+      }
+    }
+  }
+  if (ImGui::SmallButton("reset view settings")) s = defaultSettings(m.edited);
+  ImGui::Checkbox("NaN/Inf", &s.specials);
+  ImGui::SameLine();
+  ImGui::Checkbox("negative", &s.negative);
+  ImGui::ColorButton("NaN", ImVec4(1, 0, 1, 1), ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
+  ImGui::SameLine();
+  ImGui::TextUnformatted("NaN");
+  ImGui::SameLine();
+  ImGui::ColorButton("Inf", ImVec4(0, 1, 1, 1), ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
+  ImGui::SameLine();
+  ImGui::TextUnformatted("Inf");
+  ImGui::SameLine();
+  ImGui::ColorButton("neg", ImVec4(1, 0.35f, 0, 1), ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
+  ImGui::SameLine();
+  ImGui::TextUnformatted(d.negativeSuspicious ? "negative" : "negative (not flagged here)");
+  ImGui::Checkbox("texel grid", &m.grid);
+  ImGui::SameLine();
+  ImGui::Text("zoom %.2fx", m.transform.zoom);
+  ImGui::SameLine();
+  if (ImGui::SmallButton("fit")) m.transform = ViewTransform{};
+}
+
+static void frameOptions(ViewerModel& m) {
+  RenderOptions& o = m.wanted;
+  int path = int(o.path);
+  ImGui::RadioButton("two-pass", &path, int(Path::TwoPass));
+  ImGui::SameLine();
+  ImGui::RadioButton("single-pass", &path, int(Path::SinglePass));
+  o.path = Path(path);
+  ImGui::Checkbox("USE_EYE_DEPTH", &o.eyeDepth);
+  tooltip("positions from the eye-depth target (on) or hardware depth through eyeFromClip (off)");
+  ImGui::Checkbox("LIGHT_STENCIL_CULLING", &o.stencilCulling);
+  if (o.stencilCulling) {
+    int mask = int(o.stencilMask);
+    ImGui::TextDisabled("  stencil mask");
+    ImGui::SameLine();
+    ImGui::RadioButton("per-light", &mask, int(StencilMask::PerLight));
+    ImGui::SameLine();
+    ImGui::RadioButton("shared", &mask, int(StencilMask::Shared));
+    o.stencilMask = StencilMask(mask);
+    if (o.stencilMask == StencilMask::PerLight) {
+      int layers = int(o.stencilLayers);
+      ImGui::TextDisabled("  stencil layers");
+      ImGui::SameLine();
+      ImGui::RadioButton("auto##layers", &layers, int(StencilLayers::Auto));
+      ImGui::SameLine();
+      ImGui::RadioButton("on##layers", &layers, int(StencilLayers::On));
+      ImGui::SameLine();
+      ImGui::RadioButton("off##layers", &layers, int(StencilLayers::Off));
+      tooltip("lights whose volumes cover disjoint pixels share a stencil bit, one draw per layer (auto: on a CPU device)");
+      o.stencilLayers = StencilLayers(layers);
+    }
+  }
+  ImGui::Checkbox("fairy lights", &o.fairies);
+  ImGui::SameLine();
+  ImGui::Checkbox("sky", &o.sky);
+  ImGui::SliderFloat("exposure", &o.exposure, 0.05f, 8.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  ImGui::SliderInt("lights", &m.lightCount, 0, 4096, "%d", ImGuiSliderFlags_Logarithmic);
+  ImGui::SliderFloat("light radius", &m.lightRadiusScale, 0.1f, 4.0f, "x%.2f", ImGuiSliderFlags_Logarithmic);
+  ImGui::Text("render size %ux%u%s", m.rendered.width, m.rendered.height, m.fixedSize ? " (fixed, --size)" : "");
+  if (!m.fixedSize) {
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(90);
+    const char* scales[] = {"view area", "1/2 area", "1/3 area", "1/4 area"};
+    int scale = m.renderScale - 1;
+    if (ImGui::Combo("##scale", &scale, scales, 4)) m.renderScale = scale + 1;
+    tooltip("render at the view area's size, or a fraction of it (the views zoom it up, nearest texel)");
+  }
+}
+
+static void animation(ViewerModel& m) {
+  if (ImGui::Button(m.playing ? "pause" : "play")) m.playing = !m.playing;
+  ImGui::SameLine();
+  if (ImGui::Button("<")) m.stepBack = true;
+  tooltip("step back 1/30 s");
+  ImGui::SameLine();
+  if (ImGui::Button(">")) m.stepForward = true;
+  tooltip("step forward 1/30 s");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(80);
+  ImGui::SliderFloat("speed", &m.timeSpeed, 0.0f, 4.0f, "%.2fx");
+  float t = float(m.wanted.time);
+  if (ImGui::SliderFloat("time", &t, 0.0f, std::max(60.0f, t), "%.3f s")) {
+    m.wanted.time = t;
+    m.playing = false;
+  }
+}
+
+static void cameraControls(ViewerModel& m) {
+  int mode = int(m.cameraMode);
+  ImGui::RadioButton("orbit", &mode, int(CameraMode::Orbit));
+  ImGui::SameLine();
+  ImGui::RadioButton("fly", &mode, int(CameraMode::Fly));
+  m.cameraMode = CameraMode(mode);
+  ImGui::SameLine();
+  if (ImGui::Button("reset")) m.resetCamera = true;
+  ImGui::SliderFloat("move speed", &m.moveSpeed, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  for (size_t i = 0; i < m.cameraNames.size(); ++i) {
+    if (i) ImGui::SameLine();
+    if (ImGui::SmallButton(m.cameraNames[i].c_str())) m.gltfCamera = int(i);
+  }
+}
+
+static void statistics(ViewerModel& m) {
+  const FrameStats& s = m.stats;
+  ImGui::Text("frame %.2f ms, GPU %.2f ms", s.frameMs, s.gpuMs);
+  ImGui::Text("present %.2f ms (views + interface)", m.presentMs);
+  ImGui::Text("frames rendered %llu, presented %llu", (unsigned long long)m.framesRendered,
+              (unsigned long long)m.framesPresented);
+  ImGui::TextWrapped("lights %u: %u drawn (%u near plane), %u culled", s.lights, s.lightsVisible, s.lightsInside,
+                     s.lightsCulled);
+  if (ImGui::BeginTable("passes", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+    for (const PassStat& p : s.passes) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(p.name.c_str());
+      ImGui::TableNextColumn();
+      if (p.skipped) {
+        ImGui::TextDisabled("skipped");
+        tooltip(p.reason.c_str());
+      } else {
+        ImGui::Text("%.3f ms", p.ms);
+      }
+    }
+    ImGui::EndTable();
+  }
+  ImGui::Checkbox("measure culling efficiency", &m.cullingStats);
+  tooltip("counts point-light shader runs per pixel (coverage) against the ideal (pixel, light) pairs;\n"
+          "reads back coverage_masked and depth each frame");
+  if (s.culling.valid)
+    ImGui::TextWrapped("point-light shader runs %llu for %llu lit (pixel, light) pairs: %.3fx the ideal work",
+                       (unsigned long long)s.culling.invocations, (unsigned long long)s.culling.idealPairs,
+                       s.culling.workOverIdeal);
+}
+
+static void controlsPanel(ViewerModel& m, const Rect& at) {
+  ImGui::SetNextWindowPos(ImVec2(float(at.x), float(at.y)));
+  ImGui::SetNextWindowSize(ImVec2(float(at.w), float(at.h)));
+  ImGui::Begin("Controls", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                                        ImGuiWindowFlags_NoSavedSettings);
+  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) viewSettings(m);
+  if (m.source == FrameSource::Compare && ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Checkbox("split A | B", &m.split);
+    if (m.split) ImGui::SliderFloat("split at", &m.splitAt, 0.0f, 1.0f, "%.2f");
+    ImGui::TextDisabled("single view: A, B and |A - B|; keys pick the view");
+    ImGui::TextWrapped("%s", m.compareSummary.c_str());
+  }
+  if (m.source != FrameSource::Live) {
+    if (ImGui::CollapsingHeader(m.source == FrameSource::Compare ? "Captures" : "Capture", ImGuiTreeNodeFlags_DefaultOpen))
+      ImGui::TextWrapped("%s", m.captureInfo.c_str());
+  } else {
+    if (ImGui::CollapsingHeader("Frame", ImGuiTreeNodeFlags_DefaultOpen)) frameOptions(m);
+    if (ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) animation(m);
+    if (ImGui::CollapsingHeader("Camera")) cameraControls(m);
+    if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) statistics(m);
+  }
+  if (!m.captureAvailable) ImGui::BeginDisabled();
+  if (ImGui::Button("Capture frame")) m.captureRequested = true;
+  if (!m.captureAvailable) ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", m.captureHint.c_str());
+  if (!m.captureStatus.empty()) ImGui::TextWrapped("%s", m.captureStatus.c_str());
+  ImGui::End();
+}
+
+static void pixelPanel(ViewerModel& m, const Rect& at) {
+  ImGui::SetNextWindowPos(ImVec2(float(at.x), float(at.y)));
+  ImGui::SetNextWindowSize(ImVec2(float(at.w), float(at.h)));
+  ImGui::Begin("Pixel", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                                     ImGuiWindowFlags_NoSavedSettings);
+  drawDossier(m);
+  ImGui::End();
+}
+
+static void statusBar(ViewerModel& m, double w, double h) {
+  ImGui::SetNextWindowPos(ImVec2(0, float(h - kStatusHeight)));
+  ImGui::SetNextWindowSize(ImVec2(float(w), float(kStatusHeight)));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(6, 3));
+  ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                                         ImGuiWindowFlags_NoBringToFrontOnFocus);
+  ImGui::PopStyleVar();
+  if (m.source == FrameSource::Live)
+    ImGui::Text("%s | %s | %ux%u | %.1f ms", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height,
+                m.stats.frameMs);
+  else
+    ImGui::Text("%s | %s | %ux%u", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height);
+  if (!m.hoverText.empty()) {
+    ImGui::SameLine();
+    ImGui::TextUnformatted(("| " + m.hoverText).c_str());
+  }
+  ImGui::End();
+}
+
+void drawViewerUi(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDraw>& draws) {
+  ImGuiIO& io = ImGui::GetIO();
+  const double w = io.DisplaySize.x, h = io.DisplaySize.y;
+  menuBar(m);
+  Rect area = viewArea(m, w, h);
+  drawViewArea(m, area, callback, draws);  // first: the panels show this frame's hover
+  if (m.showControls) controlsPanel(m, {0, kMenuHeight, controlsWidth(m, w), area.h});
+  if (m.showPixel) pixelPanel(m, {w - pixelWidth(m, w), kMenuHeight, pixelWidth(m, w), area.h});
+  statusBar(m, w, h);
+}
+
+}  // namespace gb

@@ -1,0 +1,280 @@
+// The pixel panel: the value under the mouse and the probe's dossier (views/probe.h: the same
+// dossier `gblens probe` prints) laid out for reading: colour, G-buffer, positions both ways,
+// the shadow-map footprint, the point lights with their contributions, the raw stored values.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "views/ui/viewer_model.h"
+
+namespace gb {
+
+static const ImGuiTableFlags kTable = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit;
+
+static std::string f9(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.9g", v);
+  return b;
+}
+static std::string v3(const glm::dvec3& v) { return f9(v.x) + ", " + f9(v.y) + ", " + f9(v.z); }
+// Compact numbers for the lights table (the JSON and the stored-values table keep every digit).
+static std::string g5(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.5g", v);
+  return b;
+}
+static std::string c3(const glm::dvec3& v) { return g5(v.x) + ", " + g5(v.y) + ", " + g5(v.z); }
+
+static void row(const char* label, const std::string& value) {
+  ImGui::TableNextRow();
+  ImGui::TableNextColumn();
+  ImGui::TextDisabled("%s", label);
+  ImGui::TableNextColumn();
+  ImGui::TextUnformatted(value.c_str());
+}
+
+// A colour swatch of a linear colour (ImGui colours are sRGB-encoded bytes).
+static void swatch(const char* id, glm::dvec3 linear) {
+  auto enc = [](double v) {
+    v = std::clamp(v, 0.0, 1.0);
+    return float(v <= 0.0031308 ? v * 12.92 : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055);
+  };
+  ImGui::ColorButton(id, ImVec4(enc(linear.x), enc(linear.y), enc(linear.z), 1.0f), ImGuiColorEditFlags_NoTooltip,
+                     ImVec2(14, 14));
+  ImGui::SameLine();
+}
+
+static void colourSection(const PixelDossier& d) {
+  if (!ImGui::CollapsingHeader("Colour", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (d.hasFinal) {
+    swatch("final", glm::dvec3(d.finalColor));
+    ImGui::Text("final    %s", v3(glm::dvec3(d.finalColor)).c_str());
+    if (d.hasHdr) ImGui::TextDisabled("  toneMap(hdr) %s", v3(d.finalExpected).c_str());
+  }
+  if (d.hasHdr) {
+    ImGui::Text("hdr      %s", v3(glm::dvec3(d.hdr)).c_str());
+    ImGui::TextDisabled("  expected %s", v3(d.hdrExpected).c_str());
+    ImGui::TextDisabled("  residual %s", v3(glm::dvec3(d.hdr) - d.hdrExpected).c_str());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("stored hdr - (directional + point lights), in double from the stored G-buffer;\n"
+                        "fairy sprites are not included");
+  }
+}
+
+static void gbufferSection(const PixelDossier& d) {
+  if (!ImGui::CollapsingHeader("G-buffer", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (!d.geometry) ImGui::TextColored(ImVec4(0.6f, 0.8f, 1, 1), "no geometry here (sky)");
+  if (!ImGui::BeginTable("gbuffer", 2, kTable)) return;
+  row("albedo", v3(d.albedo));
+  ImGui::SameLine();
+  swatch("albedo", d.albedo);
+  row("specular", f9(d.specular));
+  row("normal", v3(d.normal));
+  row("|stored| - 1", f9(d.normalLengthError));
+  row("shadow", f9(d.shadow));
+  row("eye depth", f9(d.eyeDepth));
+  row("hardware depth", f9(d.hardwareDepth));
+  row("stencil", std::to_string(d.stencil) + ((d.stencil & 0x80) ? " (geometry bit set" : " (geometry bit clear") +
+                     ", low bits " + std::to_string(d.stencil & 0x7F) + ")");
+  ImGui::EndTable();
+}
+
+static void positionSection(const PixelDossier& d) {
+  if (!ImGui::CollapsingHeader("Position", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::TextDisabled("the lighting used %s", d.positionSource.c_str());
+  if (ImGui::BeginTable("position", 3, kTable)) {
+    ImGui::TableSetupColumn("");
+    ImGui::TableSetupColumn("from eye depth");
+    ImGui::TableSetupColumn("from hardware depth");
+    ImGui::TableHeadersRow();
+    for (int world = 0; world < 2; ++world) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextDisabled(world ? "world" : "eye");
+      for (const ProbePosition* p : {&d.fromEyeDepth, &d.fromHardwareDepth}) {
+        ImGui::TableNextColumn();
+        if (!p->valid) {
+          ImGui::TextDisabled("-");
+          continue;
+        }
+        glm::dvec3 v = world ? p->world : p->eye;
+        ImGui::Text("%s\n%s\n%s", f9(v.x).c_str(), f9(v.y).c_str(), f9(v.z).c_str());
+      }
+    }
+    ImGui::EndTable();
+  }
+  ImGui::Text("difference %s scene units", f9(d.positionDifference).c_str());
+  ImGui::Text("eye depth %s ulps, hardware depth %s ulps", f9(d.eyeDepthUlps).c_str(), f9(d.hardwareDepthUlps).c_str());
+}
+
+static void shadowSection(const PixelDossier& d) {
+  const ProbeShadow& s = d.shadowMap;
+  if (!ImGui::CollapsingHeader("Shadow map", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::TextWrapped("%s", s.note.c_str());
+  if (!s.valid) return;
+  ImGui::Text("receiver depth %s at texel (%s, %s)", f9(s.receiverDepth).c_str(), f9(s.texel.x).c_str(), f9(s.texel.y).c_str());
+  ImGui::TextDisabled("bias constant %g, slope %g, clamp %g", s.biasConstant, s.biasSlope, s.biasClamp);
+  if (ImGui::BeginTable("shadow", 4, kTable)) {
+    for (const char* h : {"texel", "stored depth", "weight", "compare"}) ImGui::TableSetupColumn(h);
+    ImGui::TableHeadersRow();
+    for (int k = 0; k < 4; ++k) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::Text("%d, %d", s.x0 + (k & 1), s.y0 + (k >> 1));
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(s.outside[k] ? "border (1)" : f9(s.stored[k]).c_str());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(f9(s.weight[k]).c_str());
+      ImGui::TableNextColumn();
+      if (s.lit[k])
+        ImGui::TextColored(ImVec4(1, 0.9f, 0.5f, 1), "lit");
+      else
+        ImGui::TextColored(ImVec4(0.5f, 0.6f, 1, 1), "shadowed");
+    }
+    ImGui::EndTable();
+  }
+  ImGui::Text("filtered %s, stored shadow %s", f9(s.filtered).c_str(), f9(s.storedShadow).c_str());
+  ImGui::TextDisabled("nearest texel margin %s (stored - receiver)", f9(s.nearestMargin).c_str());
+}
+
+static void lightsSection(const PixelDossier& d) {
+  char title[160];
+  auto count = [](int64_t v) { return v < 0 ? std::string("n/a") : std::to_string(v); };
+  std::snprintf(title, sizeof title, "Point lights: %zu reach the ray, %u shaded###lights", d.lights.size(), d.shadedLights);
+  if (!ImGui::CollapsingHeader(title, ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::TextDisabled("coverage_full %s, coverage_masked %s; * near-plane class", count(d.coverageFull).c_str(),
+                      count(d.coverageMasked).c_str());
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("the counts the coverage targets stored at this pixel: volumes covering it, and\n"
+                      "point-light shader runs; they should equal the lights listed and the lights shaded");
+  if (ImGui::BeginTable("lights", 5, kTable | ImGuiTableFlags_ScrollY, ImVec2(0, std::min(260.0f, 26.0f + 19.0f * (d.lights.size() + 2))))) {
+    ImGui::TableSetupScrollFreeze(0, 1);
+    for (const char* h : {"light", "d / r", "atten.", "stencil", "contribution"}) ImGui::TableSetupColumn(h);
+    ImGui::TableHeadersRow();
+    for (const ProbeLight& l : d.lights) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      const bool nearPlane = l.lightClass != "stencil";
+      ImGui::Text("%u%s", l.index, nearPlane ? "*" : "");
+      if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("light %u (%s class): eye position %s, radius %s\nthe ray meets its volume at eye depth %s .. %s",
+                          l.index, l.lightClass.c_str(), v3(l.eyePosition).c_str(), f9(l.radius).c_str(),
+                          f9(l.enter).c_str(), f9(l.exit).c_str());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(g5(l.distance / l.radius).c_str());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(g5(l.attenuation).c_str());
+      ImGui::TableNextColumn();
+      if (l.stencilPass)
+        ImGui::TextColored(ImVec4(0.4f, 1, 0.4f, 1), "shaded");
+      else
+        ImGui::TextDisabled("culled");
+      ImGui::TableNextColumn();
+      swatch(("c" + std::to_string(l.index)).c_str(), l.color);
+      ImGui::TextUnformatted(c3(l.contribution).c_str());
+    }
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted("total");
+    for (int c = 0; c < 3; ++c) ImGui::TableNextColumn();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(c3(d.pointLightTotal).c_str());
+    ImGui::EndTable();
+  }
+  ImGui::Text("directional + ambient %s", v3(d.directional).c_str());
+}
+
+static void storedSection(const PixelDossier& d) {
+  if (!ImGui::CollapsingHeader("Stored values")) return;
+  if (!ImGui::BeginTable("stored", 3, kTable)) return;
+  for (const char* h : {"channel", "value", "bits"}) ImGui::TableSetupColumn(h);
+  ImGui::TableHeadersRow();
+  for (const ProbeTarget& t : d.targets) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextColored(ImVec4(0.6f, 0.8f, 1, 1), "%s", t.target.c_str());
+    ImGui::TableNextColumn();
+    ImGui::TextDisabled("%s", t.present ? (t.type + " " + t.encoding).c_str() : t.absent.c_str());
+    ImGui::TableNextColumn();
+    for (const ProbeChannel& c : t.channels) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::Text("  %s", c.name.c_str());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(f9(c.value).c_str());
+      ImGui::TableNextColumn();
+      ImGui::Text("0x%08x", c.bits);
+    }
+  }
+  ImGui::EndTable();
+}
+
+static void dossierSections(const PixelDossier& d) {
+  if (!d.missing.empty()) {
+    std::string missing;
+    for (const std::string& s : d.missing) missing += (missing.empty() ? "" : ", ") + s;
+    ImGui::TextColored(ImVec4(1, 0.6f, 0.3f, 1), "missing: %s", missing.c_str());
+  }
+  colourSection(d);
+  gbufferSection(d);
+  positionSection(d);
+  shadowSection(d);
+  lightsSection(d);
+  storedSection(d);
+}
+
+void drawDossier(ViewerModel& m) {
+  if (m.hover)
+    ImGui::Text("mouse (%d, %d)", m.hover->x, m.hover->y);
+  else if (m.hoverShadowTexel)
+    ImGui::Text("shadow-map texel (%d, %d)", m.hoverShadowTexel->x, m.hoverShadowTexel->y);
+  else
+    ImGui::TextDisabled("mouse outside the image");
+  if (!m.hoverText.empty()) ImGui::TextWrapped("%s", m.hoverText.c_str());
+  if (m.shadowMark) {
+    ImGui::TextColored(ImVec4(1, 0, 1, 1), "marked: pixels sampling shadow texel (%d, %d)", m.shadowMark->x, m.shadowMark->y);
+    ImGui::SameLine();
+    if (ImGui::SmallButton("clear")) m.shadowMark.reset();
+  }
+  ImGui::Separator();
+  if (!m.probePixel || !m.dossier) {
+    ImGui::TextWrapped("Click a pixel (or use the arrow keys) for its dossier: stored values of every target, "
+                       "reconstructed positions, the shadow-map texels, the point lights that reach it.");
+    return;
+  }
+  const PixelDossier& d = *m.dossier;
+  ImGui::Text("pixel (%d, %d) of %ux%u", m.probePixel->x, m.probePixel->y, d.width, d.height);
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Copy as JSON")) m.copyJson = true;
+  ImGui::TextDisabled("dossier ready %.1f ms after the click", m.probeLatencyMs);
+  if (!m.probeError.empty()) {
+    ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", m.probeError.c_str());
+    return;
+  }
+  if (!m.dossierB) {
+    ImGui::BeginChild("dossier");
+    dossierSections(d);
+    ImGui::EndChild();
+    return;
+  }
+  // Compare: both dossiers side by side, section for section.
+  float half = ImGui::GetContentRegionAvail().x * 0.5f - 4.0f;
+  ImGui::BeginChild("dossierA", ImVec2(half, 0), true);
+  ImGui::TextColored(ImVec4(0.6f, 0.8f, 1, 1), "A  %s", m.captureA.c_str());
+  ImGui::PushID("A");
+  dossierSections(d);
+  ImGui::PopID();
+  ImGui::EndChild();
+  ImGui::SameLine();
+  ImGui::BeginChild("dossierB", ImVec2(half, 0), true);
+  ImGui::TextColored(ImVec4(1, 0.8f, 0.6f, 1), "B  %s", m.captureB.c_str());
+  ImGui::PushID("B");
+  dossierSections(*m.dossierB);
+  ImGui::PopID();
+  ImGui::EndChild();
+}
+
+}  // namespace gb

@@ -1,0 +1,211 @@
+// View mapping pipelines (view_map.frag variants) and the range reduction (view_range.comp).
+#include "views/ui/view_map.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "renderer/vk/check.h"
+
+namespace gb {
+
+static constexpr uint32_t kMaxRanges = 64;
+
+void initViewMapper(ViewMapper& m, Renderer& r) {
+  GpuContext& ctx = *r.ctx;
+  const VkShaderStageFlags stages = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
+  VkDescriptorSetLayoutBinding bindings[] = {
+      {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
+      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr},
+  };
+  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  lci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+  lci.bindingCount = 3;
+  lci.pBindings = bindings;
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &m.setLayout));
+  VkDescriptorSetLayout sets[] = {r.sceneSetLayout, m.setLayout};
+  VkPushConstantRange push{stages, 0, sizeof(gpu::ViewParams)};
+  VkPipelineLayoutCreateInfo pci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pci.setLayoutCount = 2;
+  pci.pSetLayouts = sets;
+  pci.pushConstantRangeCount = 1;
+  pci.pPushConstantRanges = &push;
+  VK_CHECK(vkCreatePipelineLayout(ctx.device, &pci, nullptr, &m.layout));
+  m.results = createBuffer(ctx, kMaxRanges * sizeof(gpu::RangeResult), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                           MemoryUse::Readback);
+}
+
+void destroyViewMapper(ViewMapper& m, Renderer& r) {
+  if (!r.ctx || !m.layout) return;
+  GpuContext& ctx = *r.ctx;
+  vkDeviceWaitIdle(ctx.device);
+  for (auto& [k, p] : m.pipelines) vkDestroyPipeline(ctx.device, p, nullptr);
+  vkDestroyPipelineLayout(ctx.device, m.layout, nullptr);
+  vkDestroyDescriptorSetLayout(ctx.device, m.setLayout, nullptr);
+  destroyBuffer(ctx, m.results);
+  m = ViewMapper{};
+}
+
+float floatFromOrdered(uint32_t o) {
+  uint32_t bits = (o & 0x80000000u) ? (o & 0x7FFFFFFFu) : ~o;
+  float f;
+  std::memcpy(&f, &bits, 4);
+  return f;
+}
+
+static bool isUintSource(const Renderer& r, const ViewSource& s) {
+  return s.stencil || r.targets[size_t(s.target)].image.desc.format == VK_FORMAT_R32_UINT;
+}
+
+static VkImageView sourceView(const Renderer& r, const ViewSource& s) {
+  const Image& img = r.targets[size_t(s.target)].image;
+  if (s.stencil) {
+    GB_ASSERT(img.stencilView);
+    return img.stencilView;
+  }
+  return isDepthFormat(img.desc.format) ? img.depthView : img.view;
+}
+
+static void pushImages(Renderer& r, VkCommandBuffer cmd, VkPipelineBindPoint bindPoint, VkPipelineLayout layout,
+                       std::initializer_list<std::pair<uint32_t, VkDescriptorImageInfo>> images, const Buffer* results) {
+  std::vector<VkDescriptorImageInfo> infos;
+  infos.reserve(images.size());
+  std::vector<VkWriteDescriptorSet> writes;
+  for (auto& [binding, info] : images) {
+    infos.push_back(info);
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstBinding = binding;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    w.pImageInfo = &infos.back();
+    writes.push_back(w);
+  }
+  VkDescriptorBufferInfo bufferInfo{results ? results->buffer : VK_NULL_HANDLE, 0, VK_WHOLE_SIZE};
+  if (results) {
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstBinding = 2;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &bufferInfo;
+    writes.push_back(w);
+  }
+  vkCmdBindDescriptorSets(cmd, bindPoint, layout, gpu::kSetScene, 1, &r.sceneSet, 0, nullptr);
+  r.ctx->cmdPushDescriptorSet(cmd, bindPoint, layout, gpu::kSetPass, uint32_t(writes.size()), writes.data());
+}
+
+std::vector<RangeStats> computeRanges(ViewMapper& m, Renderer& r, const std::vector<RangeRequest>& requests,
+                                      const std::vector<Target>& handOff) {
+  std::vector<RangeStats> out(requests.size());
+  if (requests.empty()) return out;
+  GB_ASSERT(requests.size() <= kMaxRanges);
+  auto* slots = static_cast<gpu::RangeResult*>(m.results.mapped);
+  for (size_t i = 0; i < requests.size(); ++i) {
+    slots[i].minMax = glm::uvec4(0xFFFFFFFFu, 0u, 0u, 0u);
+    slots[i].counts = glm::uvec4(0u);
+  }
+  std::vector<Use> uses;
+  for (const RangeRequest& q : requests)
+    if (std::none_of(uses.begin(), uses.end(), [&](const Use& u) { return u.target == q.source.target; }))
+      uses.push_back({q.source.target, Access::SampledCompute});
+  runAfterFrame(
+      r,
+      [&](FrameGraph& g) {
+        g.addPass("view_ranges", uses, [&](PassContext& pc) {
+          for (size_t i = 0; i < requests.size(); ++i) {
+            const RangeRequest& q = requests[i];
+            bool uintSource = isUintSource(r, q.source);
+            std::string name = uintSource ? "view_range.uint.comp" : "view_range.comp";
+            std::vector<SpecConstant> spec = commonSpec(r);
+            std::string key = name + "#" + std::to_string(r.options.reversedZ);
+            VkPipeline& p = m.pipelines[key];
+            if (!p) p = createComputePipeline(*r.ctx, name, spec, m.layout);
+            vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+            pushImages(r, pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m.layout,
+                       {{0u, {r.samplerPoint, sourceView(r, q.source), pc.layouts[size_t(q.source.target)]}}},
+                       &m.results);
+            gpu::ViewParams params{};  // RangeParams is the first 16 bytes of the push range
+            gpu::RangeParams rp{};
+            rp.select = glm::uvec4(q.channel, q.predicate, uint32_t(i), 0u);
+            std::memcpy(&params, &rp, sizeof(rp));
+            vkCmdPushConstants(pc.cmd, m.layout, VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                               sizeof(params), &params);
+            const ImageDesc& d = r.targets[size_t(q.source.target)].image.desc;
+            vkCmdDispatch(pc.cmd, (d.width + 15) / 16, (d.height + 15) / 16, 1);
+          }
+          hostReadBarrier(pc.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        });
+      },
+      handOff);
+  for (size_t i = 0; i < requests.size(); ++i) {
+    const gpu::RangeResult& s = slots[i];
+    RangeStats& o = out[i];
+    o.count = s.minMax.z;
+    o.nan = s.minMax.w;
+    o.inf = s.counts.x;
+    o.negative = s.counts.y;
+    if (o.count) {
+      o.lo = floatFromOrdered(s.minMax.x);
+      o.hi = floatFromOrdered(s.minMax.y);
+    }
+  }
+  return out;
+}
+
+void drawView(ViewMapper& m, Renderer& r, VkCommandBuffer cmd, VkRenderPass renderPass, VkFormat attachmentFormat,
+              const ViewSource& source, const gpu::ViewParams& params, VkRect2D viewport, VkRect2D scissor, Renderer* b) {
+  const bool uintSource = isUintSource(r, source);
+  const bool diff = params.mode.x == gpu::kViewMapDiff;
+  GB_ASSERT(!diff || (b && b->targets[size_t(source.target)].image.image));
+  const bool mark = (params.mode.z & gpu::kViewFlagMark) && !uintSource && !diff;
+  const bool srgbOut = attachmentFormat == VK_FORMAT_B8G8R8A8_SRGB || attachmentFormat == VK_FORMAT_R8G8B8A8_SRGB;
+  std::string shader = diff ? (uintSource ? "view_map.diff.uint.frag" : "view_map.diff.frag")
+                     : uintSource ? "view_map.uint.frag"
+                     : mark       ? "view_map.mark.frag"
+                                  : "view_map.frag";
+  std::vector<SpecConstant> spec = commonSpec(r);
+  spec.push_back({gpu::kSpecOutputSrgb, srgbOut ? 1u : 0u});
+  std::string key = shader + "@" + std::to_string(uint64_t(renderPass)) + "#";
+  for (const SpecConstant& c : spec) key += std::to_string(c.value) + ",";
+  VkPipeline& p = m.pipelines[key];
+  if (!p) {
+    GraphicsPipelineDesc d;
+    d.vertexShader = "view_map.vert";
+    d.fragmentShader = shader;
+    d.spec = spec;
+    d.colorBlend = {BlendState{}};
+    d.renderPass = renderPass;
+    d.layout = m.layout;
+    p = createGraphicsPipeline(*r.ctx, d);
+  }
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+  const VkImageLayout readLayout = r.targets[size_t(source.target)].layout;
+  if (diff) {
+    const GraphTarget& other = b->targets[size_t(source.target)];
+    pushImages(r, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.layout,
+               {{0u, {r.samplerPoint, sourceView(r, source), readLayout}},
+                {1u, {r.samplerPoint, sourceView(*b, source), other.layout}}},
+               nullptr);
+  } else if (mark) {
+    const GraphTarget& depth = r.targets[size_t(Target::Depth)];
+    pushImages(r, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.layout,
+               {{0u, {r.samplerPoint, sourceView(r, source), readLayout}},
+                {1u, {r.samplerPoint, depth.image.view, depth.layout}}},
+               nullptr);
+  } else {
+    pushImages(r, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.layout, {{0u, {r.samplerPoint, sourceView(r, source), readLayout}}},
+               nullptr);
+  }
+  gpu::ViewParams pushed = params;
+  if (source.stencil) pushed.mode.y = 1;  // the stencil view holds one channel
+  vkCmdPushConstants(cmd, m.layout, VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pushed), &pushed);
+  VkViewport vp{float(viewport.offset.x), float(viewport.offset.y), float(viewport.extent.width),
+                float(viewport.extent.height), 0.0f, 1.0f};
+  vkCmdSetViewport(cmd, 0, 1, &vp);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  vkCmdSetCullMode(cmd, VK_CULL_MODE_NONE);
+  vkCmdSetFrontFace(cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
+  vkCmdSetStencilReference(cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+}
+
+}  // namespace gb

@@ -1,0 +1,297 @@
+// The view area: every shown view drawn through the app's callback (GPU mapping), labels,
+// legends, the linked hover mark, and the mouse: click probes, wheel zooms, middle-drag pans,
+// right-drag turns the camera.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "views/ui/viewer_model.h"
+
+namespace gb {
+
+glm::uvec2 viewImageSize(const ViewerModel& m, ViewKind v) {
+  if (viewDef(v).source.target == Target::ShadowMap) return m.shadowMapSize;
+  return {m.rendered.width, m.rendered.height};
+}
+
+std::vector<ViewKind> visibleViews(const ViewerModel& m) {
+  switch (m.layout) {
+    case LayoutMode::Single: return {m.primary};
+    case LayoutMode::SideBySide: return {m.primary, m.secondary};
+    case LayoutMode::Grid: return gridViews();
+  }
+  return {};
+}
+
+std::vector<ViewSlot> viewSlots(const ViewerModel& m, const Rect& area) {
+  std::vector<ViewKind> views = visibleViews(m);
+  std::vector<ViewSlot> out;
+  if (m.source == FrameSource::Compare && m.layout == LayoutMode::Single) {
+    if (m.split) return {{views[0], FrameSide::A, area, true}};
+    // A, B and |A - B| in a row (a column when the area is taller than wide).
+    const double gap = 4.0;
+    const bool row = area.w >= area.h;
+    double len = std::floor(((row ? area.w : area.h) - 2 * gap) / 3);
+    for (int i = 0; i < 3; ++i)
+      out.push_back({views[0], FrameSide(i),
+                     row ? Rect{area.x + i * (len + gap), area.y, len, area.h} : Rect{area.x, area.y + i * (len + gap), area.w, len}});
+    return out;
+  }
+  std::vector<Rect> rects = layoutViews(area, m.layout);
+  for (size_t i = 0; i < views.size() && i < rects.size(); ++i) out.push_back({views[i], FrameSide::A, rects[i]});
+  return out;
+}
+
+bool applyViewKey(ViewerModel& m, int digit) {
+  if (digit == 1) {
+    m.layout = LayoutMode::Grid;
+    return true;
+  }
+  for (int k = 0; k < kViewKindCount; ++k) {
+    const ViewDef& d = viewDef(ViewKind(k));
+    if (d.key[0] && d.key[0] - '0' == digit) {
+      m.primary = ViewKind(k);
+      m.edited = ViewKind(k);
+      if (m.layout == LayoutMode::Grid) m.layout = LayoutMode::Single;
+      return true;
+    }
+  }
+  return false;
+}
+
+static ImU32 rgb(float r, float g, float b, float a = 1.0f) { return ImGui::ColorConvertFloat4ToU32(ImVec4(r, g, b, a)); }
+
+// The heat map's legend: the colour ramp of views/visualize.cpp from 0 to the white point.
+static void heatLegend(ImDrawList* dl, ImVec2 at, float width, float maxCount, const char* unit) {
+  const ImVec4 stops[5] = {{0, 0, 1, 1}, {0, 1, 1, 1}, {0, 1, 0, 1}, {1, 1, 0, 1}, {1, 0, 0, 1}};
+  const float h = 10.0f;
+  dl->AddRectFilled(ImVec2(at.x - 4, at.y - 4), ImVec2(at.x + width + 4, at.y + h + 18), rgb(0, 0, 0, 0.6f));
+  for (int i = 0; i < 4; ++i) {
+    float x0 = at.x + width * i / 4, x1 = at.x + width * (i + 1) / 4;
+    ImU32 a = ImGui::ColorConvertFloat4ToU32(stops[i]), b = ImGui::ColorConvertFloat4ToU32(stops[i + 1]);
+    dl->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + h), a, b, b, a);
+  }
+  char text[64];
+  for (int i = 0; i <= 4; ++i) {
+    std::snprintf(text, sizeof text, "%.3g", maxCount * i / 4.0);
+    float x = at.x + width * i / 4 - ImGui::CalcTextSize(text).x * (i == 0 ? 0.0f : i == 4 ? 1.0f : 0.5f);
+    dl->AddText(ImVec2(x, at.y + h + 2), rgb(1, 1, 1), text);
+  }
+  dl->AddText(ImVec2(at.x, at.y - 16), rgb(1, 1, 1), unit);  // black: none
+}
+
+// Outline of one texel (or a crosshair where a texel is smaller than a few pixels).
+static void markTexel(ImDrawList* dl, const Placement& pl, glm::ivec2 t, ImU32 colour, const Rect& clip) {
+  glm::dvec2 a = windowAt(pl, glm::dvec2(t)), b = windowAt(pl, glm::dvec2(t) + 1.0);
+  dl->PushClipRect(ImVec2(float(clip.x), float(clip.y)), ImVec2(float(clip.x + clip.w), float(clip.y + clip.h)), true);
+  if (pl.scale >= 4.0) {
+    dl->AddRect(ImVec2(float(a.x) - 1, float(a.y) - 1), ImVec2(float(b.x) + 1, float(b.y) + 1), rgb(0, 0, 0), 0, 0, 3.0f);
+    dl->AddRect(ImVec2(float(a.x) - 1, float(a.y) - 1), ImVec2(float(b.x) + 1, float(b.y) + 1), colour, 0, 0, 1.5f);
+  } else {
+    glm::dvec2 c = (a + b) * 0.5;
+    const float gap = 3.0f, len = 9.0f;
+    for (int s : {-1, 1}) {
+      ImVec2 h0(float(c.x) + s * gap, float(c.y)), h1(float(c.x) + s * (gap + len), float(c.y));
+      ImVec2 v0(float(c.x), float(c.y) + s * gap), v1(float(c.x), float(c.y) + s * (gap + len));
+      dl->AddLine(h0, h1, rgb(0, 0, 0), 3.0f);
+      dl->AddLine(v0, v1, rgb(0, 0, 0), 3.0f);
+      dl->AddLine(h0, h1, colour, 1.5f);
+      dl->AddLine(v0, v1, colour, 1.5f);
+    }
+  }
+  dl->PopClipRect();
+}
+
+// Marks use the hover of the previous interface frame (this frame's is found while the views are
+// laid out; a change asks for another frame).
+struct HoverMarks {
+  std::optional<glm::ivec2> texel, shadowTexel;
+};
+
+static void drawOneView(ViewerModel& m, ViewKind kind, const Rect& r, int index, ViewDrawCallback callback,
+                        std::vector<ViewDraw>& draws, bool showKey, const HoverMarks& hover, FrameSide side = FrameSide::A,
+                        bool split = false) {
+  const ViewDef& def = viewDef(kind);
+  const ViewSettings& s = m.settings[int(kind)];
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  ImGuiIO& io = ImGui::GetIO();
+  const glm::uvec2 size = viewImageSize(m, kind);
+  const bool shadowMap = def.source.target == Target::ShadowMap;
+
+  ImGui::SetCursorScreenPos(ImVec2(float(r.x), float(r.y)));
+  ImGui::PushID(index);
+  ImGui::InvisibleButton("view", ImVec2(float(std::max(r.w, 1.0)), float(std::max(r.h, 1.0))),
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                             ImGuiButtonFlags_MouseButtonMiddle);
+  const bool hovered = ImGui::IsItemHovered(), active = ImGui::IsItemActive();
+  ImGui::PopID();
+
+  Placement pl = placeImage(r, size.x, size.y, m.transform);
+  const std::string& why = m.unavailable[int(kind)];
+  if (!why.empty()) {
+    dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), rgb(0.12f, 0.12f, 0.12f));
+    dl->AddText(ImVec2(float(r.x) + 8, float(r.y + r.h * 0.5)), rgb(0.8f, 0.8f, 0.8f), why.c_str());
+  } else {
+    ResolvedRange range = resolveRange(def, s, &m.ranges[int(kind)]);
+    std::optional<glm::ivec2> mark = m.shadowMark;
+    ViewDraw vd;
+    vd.source = def.source;
+    vd.side = side;
+    Placement fb = pl;  // framebuffer pixels (the same as window pixels unless the display scales)
+    fb.originX *= io.DisplayFramebufferScale.x;
+    fb.originY *= io.DisplayFramebufferScale.y;
+    fb.scale *= io.DisplayFramebufferScale.x;
+    if (m.source != FrameSource::Live) mark.reset();  // marks need the live frame's matrices on the GPU
+    vd.params = viewParams(def, s, range, fb, m.grid, mark, m.shadowMapSize);
+    if (side == FrameSide::Difference) {
+      // |A - B| over the selected channels as a heat map from 0 to the largest difference.
+      vd.params.mode.x = gpu::kViewMapDiff;
+      vd.params.mode.z &= gpu::kViewFlagGrid;
+      vd.params.range = glm::vec4(0.0f, float(std::max(m.differenceMax[int(kind)], 1e-30)), vd.params.range.z, 0.0f);
+      if (def.mapping == gpu::kViewMapNormal || def.mapping == gpu::kViewMapColor) vd.params.mode.y &= 0x7u;
+    }
+    if (split) vd.splitX = (r.x + r.w * m.splitAt) * io.DisplayFramebufferScale.x;
+    vd.rect = {r.x * io.DisplayFramebufferScale.x, r.y * io.DisplayFramebufferScale.y, r.w * io.DisplayFramebufferScale.x,
+               r.h * io.DisplayFramebufferScale.y};
+    draws.push_back(vd);
+    dl->PushClipRect(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), true);
+    dl->AddCallback(callback, reinterpret_cast<void*>(intptr_t(draws.size() - 1)));
+    dl->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
+    dl->PopClipRect();
+
+    // Marks: the hovered pixel on every screen view; on the shadow map, the texel the hovered
+    // (or probed) pixel's lookup reads, and the clicked texel.
+    if (!shadowMap) {
+      if (hover.texel) markTexel(dl, pl, *hover.texel, rgb(1, 1, 1), r);
+      if (m.probePixel) markTexel(dl, pl, *m.probePixel, rgb(0.2f, 1.0f, 0.4f), r);
+    } else {
+      if (hover.shadowTexel) markTexel(dl, pl, *hover.shadowTexel, rgb(1, 1, 1), r);
+      if (m.shadowTexelOfProbe) markTexel(dl, pl, *m.shadowTexelOfProbe, rgb(0.2f, 1.0f, 0.4f), r);
+      if (m.shadowMark) markTexel(dl, pl, *m.shadowMark, rgb(1, 0, 1), r);
+    }
+
+    // Label and range.
+    char label[160];
+    const char* prefix = m.source != FrameSource::Compare ? ""
+                         : split                           ? "A | B  "
+                         : side == FrameSide::A            ? "A  "
+                         : side == FrameSide::B            ? "B  "
+                                                           : "|A-B|  ";
+    std::snprintf(label, sizeof label, "%s%s%s%s", prefix, showKey && def.key[0] ? def.key : "",
+                  showKey && def.key[0] ? "  " : "", def.label);
+    std::string line2;
+    if (side == FrameSide::Difference) {
+      char buf[96];
+      double worst = m.differenceMax[int(kind)];
+      if (worst > 0.0)
+        std::snprintf(buf, sizeof buf, "largest |A - B| %.6g", worst);
+      else
+        std::snprintf(buf, sizeof buf, "identical (every texel, selected channels)");
+      line2 = buf;
+    } else if (s.autoRange) {
+      char buf[128];
+      if (range.fromData)
+        std::snprintf(buf, sizeof buf, "auto %.6g .. %.6g", range.black, range.white);
+      else
+        std::snprintf(buf, sizeof buf, "auto: no valid texels");
+      line2 = buf;
+    }
+    if (range.stats.nan || range.stats.inf) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%s%llu NaN, %llu Inf", line2.empty() ? "" : "  ", (unsigned long long)range.stats.nan,
+                    (unsigned long long)range.stats.inf);
+      line2 += buf;
+    }
+    ImVec2 ls = ImGui::CalcTextSize(label);
+    float boxW = std::max(ls.x, ImGui::CalcTextSize(line2.c_str()).x) + 10;
+    float boxH = ls.y * (line2.empty() ? 1 : 2) + 6;
+    dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x) + boxW, float(r.y) + boxH), rgb(0, 0, 0, 0.6f));
+    dl->AddText(ImVec2(float(r.x) + 5, float(r.y) + 3), rgb(1, 1, 1), label);
+    if (!line2.empty())
+      dl->AddText(ImVec2(float(r.x) + 5, float(r.y) + 3 + ls.y),
+                  range.stats.nan || range.stats.inf ? rgb(1, 0.4f, 1) : rgb(0.8f, 0.8f, 0.8f), line2.c_str());
+    if (side == FrameSide::Difference && r.w > 120 && r.h > 80)
+      heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)),
+                 float(m.differenceMax[int(kind)]), "|A - B|, max over the selected channels");
+    else if (def.mapping == gpu::kViewMapHeat && r.w > 120 && r.h > 80)
+      heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), range.white,
+                 def.unit);
+    if (split) {  // the split line and its handle
+      float x = float(r.x + r.w * m.splitAt);
+      dl->AddLine(ImVec2(x, float(r.y)), ImVec2(x, float(r.y + r.h)), rgb(1, 1, 1), 2.0f);
+      dl->AddCircleFilled(ImVec2(x, float(r.y + r.h * 0.5)), 6.0f, rgb(1, 1, 1));
+    }
+  }
+
+  // The mouse.
+  if (hovered || active) {
+    glm::dvec2 mouse(io.MousePos.x, io.MousePos.y);
+    glm::dvec2 t = texelAt(pl, mouse);
+    bool inside = t.x >= 0 && t.y >= 0 && t.x < size.x && t.y < size.y;
+    glm::ivec2 texel(int(std::floor(t.x)), int(std::floor(t.y)));
+    if (hovered) {
+      m.hoverView = kind;
+      if (inside && !shadowMap) m.hover = texel;
+      if (inside && shadowMap) m.hoverShadowTexel = texel;
+      if (io.MouseWheel != 0.0f) {
+        if (io.KeyCtrl)
+          m.cameraDolly += io.MouseWheel;
+        else
+          zoomAbout(m.transform, r, size.x, size.y, mouse, std::pow(1.25, double(io.MouseWheel)));
+        m.uiChanged = true;
+      }
+    }
+    if (split && ImGui::IsItemClicked(ImGuiMouseButton_Left) && std::abs(mouse.x - (r.x + r.w * m.splitAt)) < 8.0)
+      m.draggingSplit = true;
+    if (m.draggingSplit) {
+      if (active && ImGui::IsMouseDown(ImGuiMouseButton_Left))
+        m.splitAt = float(std::clamp((mouse.x - r.x) / std::max(r.w, 1.0), 0.0, 1.0));
+      else
+        m.draggingSplit = false;
+      m.uiChanged = true;
+    } else if (ImGui::IsItemClicked(ImGuiMouseButton_Left) || (active && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f) &&
+                                                         io.MouseDelta.x + io.MouseDelta.y != 0.0f && !io.KeyShift)) {
+      m.edited = kind;
+      if (inside && shadowMap) {
+        if (ImGui::IsItemClicked(ImGuiMouseButton_Left))
+          m.shadowMark = m.shadowMark && *m.shadowMark == texel ? std::nullopt : std::optional<glm::ivec2>(texel);
+      } else if (inside && (!m.probePixel || *m.probePixel != texel)) {
+        m.probeRequest = texel;
+      }
+      m.uiChanged = true;
+    }
+    if (active && (ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0.0f) ||
+                   (io.KeyShift && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f)))) {
+      panBy(m.transform, r, size.x, size.y, glm::dvec2(io.MouseDelta.x, io.MouseDelta.y));
+      m.uiChanged = true;
+    }
+    if (active && ImGui::IsMouseDragging(ImGuiMouseButton_Right, 0.0f))
+      m.cameraDrag += glm::dvec2(io.MouseDelta.x, io.MouseDelta.y);
+  }
+}
+
+void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, std::vector<ViewDraw>& draws) {
+  ImGui::SetNextWindowPos(ImVec2(float(area.x), float(area.y)));
+  ImGui::SetNextWindowSize(ImVec2(float(area.w), float(area.h)));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0.0f);
+  ImGui::Begin("##views", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoBackground |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing);
+  ImGui::PopStyleVar(2);
+  std::optional<glm::ivec2> hoverBefore = m.hover, shadowBefore = m.hoverShadowTexel;
+  m.hover.reset();
+  m.hoverView.reset();
+  m.hoverShadowTexel.reset();
+  std::vector<ViewSlot> slots = viewSlots(m, area);
+  for (size_t i = 0; i < slots.size(); ++i)
+    drawOneView(m, slots[i].kind, slots[i].rect, int(i), callback, draws, m.layout == LayoutMode::Grid,
+                {hoverBefore, shadowBefore}, slots[i].side, slots[i].split);
+  if (m.hover != hoverBefore || m.hoverShadowTexel != shadowBefore) m.uiChanged = true;
+  ImGui::End();
+}
+
+}  // namespace gb

@@ -1,0 +1,137 @@
+// Everything the viewer's interface shows and edits, as plain data. The app (app/viewer) owns
+// it: it renders from it and fills in what the renderer produced; the panels (views/*_panel.cpp,
+// ImGui only) read and write it and never touch the renderer.
+#pragma once
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "renderer/renderer.h"
+#include "views/analysis/probe.h"
+#include "views/ui/view_layout.h"
+
+struct ImDrawList;
+struct ImDrawCmd;
+
+namespace gb {
+
+// Which frame a view shows: the live one (or capture A), capture B, or |A - B|.
+enum class FrameSide { A, B, Difference };
+
+// A view to draw inside the ImGui draw data: the app's callback records it (renderer/view_map).
+struct ViewDraw {
+  ViewSource source;
+  gpu::ViewParams params;
+  Rect rect;  // framebuffer pixels: the view's rectangle (the draw command's clip rect clips it)
+  FrameSide side = FrameSide::A;
+  double splitX = -1.0;  // framebuffer x: A left of it, B right of it (compare split); < 0: none
+};
+
+// Where the frame comes from: the live renderer, a capture (--capture), or two (--compare).
+enum class FrameSource { Live, Capture, Compare };
+using ViewDrawCallback = void (*)(const ImDrawList*, const ImDrawCmd*);
+
+enum class CameraMode { Orbit, Fly };
+
+struct ViewerModel {
+  FrameSource source = FrameSource::Live;
+  std::string captureA, captureB;    // directories (capture modes)
+  std::string captureInfo;           // what the capture(s) hold, for the panel
+  std::string compareSummary;        // `gblens compare`'s report of A vs B
+  bool split = false;                // compare: one view split A | B, else A, B, |A - B| in a row
+  float splitAt = 0.5f;              // split position, fraction of the view's width
+  bool draggingSplit = false;
+  std::array<double, kViewKindCount> differenceMax{};  // compare: largest |A - B| of each view (white point)
+
+  // ---- what is shown ----
+  LayoutMode layout = LayoutMode::Single;
+  ViewKind primary = ViewKind::Final, secondary = ViewKind::Normal;
+  std::array<ViewSettings, kViewKindCount> settings;
+  ViewKind edited = ViewKind::Final;  // the view whose settings the panel shows (last used)
+  ViewTransform transform;
+  bool grid = true;
+  bool showControls = true, showPixel = true;
+
+  // ---- the frame as rendered (the app fills these) ----
+  RenderOptions rendered;                       // options of the frame on screen
+  glm::uvec2 shadowMapSize{1, 1};
+  FrameStats stats;
+  double presentMs = 0.0;                       // views + interface, last presented frame
+  uint64_t framesRendered = 0, framesPresented = 0;
+  std::array<std::vector<RangeStats>, kViewKindCount> ranges;  // automatic ranges (rangeRequests order)
+  std::array<std::string, kViewKindCount> unavailable;          // why a view has nothing to show
+  std::string deviceName, sceneName;
+  std::vector<std::string> cameraNames;         // the scene's (glTF) cameras
+
+  // ---- what the user asks for (the app compares with `rendered`) ----
+  RenderOptions wanted;
+  bool fixedSize = false;          // render at wanted.width x height, else at the view area's size
+  int renderScale = 1;             // render at 1/renderScale of the view area (faster camera moves)
+  int lightCount = 256;
+  float lightRadiusScale = 1.0f;
+  bool cullingStats = true;        // culling efficiency: reads back coverage and depth each frame
+  bool playing = true;
+  float timeSpeed = 1.0f;
+  bool stepForward = false, stepBack = false;
+  CameraMode cameraMode = CameraMode::Orbit;
+  float moveSpeed = 1.0f;          // fly speed, scene units per second (scaled by the scene size)
+  bool resetCamera = false;
+  int gltfCamera = -1;             // a scene camera to jump to (-1: none)
+  glm::dvec2 cameraDrag{0.0};      // right-drag this frame (window pixels): orbit / look
+  double cameraDolly = 0.0;        // ctrl+wheel this frame (orbit distance)
+
+  // ---- hover and probe ----
+  std::optional<glm::ivec2> hover;          // screen texel under the mouse (every view marks it)
+  std::optional<ViewKind> hoverView;        // the view under the mouse
+  std::optional<glm::ivec2> hoverShadowTexel;
+  std::string hoverText;                    // values under the mouse (app fills)
+  std::optional<glm::ivec2> probeRequest;   // a click or an arrow key: the app probes it
+  std::optional<glm::ivec2> probePixel;     // the pixel of the dossier shown
+  std::optional<glm::ivec2> shadowMark;     // shadow-map texel clicked: the pixels sampling it are marked
+  std::optional<glm::ivec2> shadowTexelOfProbe;  // the texel the probed pixel's shadow lookup read
+  std::optional<PixelDossier> dossier;      // the shared dossier (views/probe.h) of probePixel
+  nlohmann::json dossierJson;               // the same as JSON (copy, --probe-log)
+  std::optional<PixelDossier> dossierB;     // compare: capture B's dossier of the same pixel
+  std::string probeError;
+  double probeLatencyMs = 0.0;
+  bool copyJson = false;
+
+  // ---- capture ----
+  bool captureAvailable = false;
+  std::string captureHint;                  // tooltip: what the button does, or why it is grey
+  bool captureRequested = false;
+  std::string captureStatus;
+
+  // Set by the panels when anything changed that needs another interface frame.
+  bool uiChanged = false;
+};
+
+// Image size a view shows (the shadow map has its own).
+glm::uvec2 viewImageSize(const ViewerModel& m, ViewKind v);
+
+// The whole interface for one ImGui frame: menu bar, panels, and the view area, whose views are
+// emitted as ImDrawList callbacks to `callback` with `draws[i]` as user data index i.
+void drawViewerUi(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDraw>& draws);
+
+// The view area's rectangle for the current window size and panels (the app renders at its size).
+Rect viewArea(const ViewerModel& m, double windowWidth, double windowHeight);
+
+// Which views are on screen now.
+std::vector<ViewKind> visibleViews(const ViewerModel& m);
+
+// Each view on screen with its rectangle and which frame it shows (compare: A, B, |A - B|).
+struct ViewSlot {
+  ViewKind kind;
+  FrameSide side = FrameSide::A;
+  Rect rect;
+  bool split = false;
+};
+std::vector<ViewSlot> viewSlots(const ViewerModel& m, const Rect& area);
+
+// Keyboard shortcuts of the seed: 1 grid, 2..9 views, 0 / Return final. Returns true if handled.
+bool applyViewKey(ViewerModel& m, int digit);
+
+}  // namespace gb
