@@ -30,7 +30,7 @@ std::string skyVisibilityKey(const Renderer& r) {
   k.precision(17);
   k << r.scene << ' ' << r.scene->instances.size() << ' ' << o.width << 'x' << o.height << ' ' << o.reversedZ << ' '
     << name(o.depthFormat);
-  const glm::dmat4& m = r.view.clipFromWorld;
+  const glm::dmat4& m = r.camera.clipFromWorld;
   for (int c = 0; c < 4; ++c)
     for (int i = 0; i < 4; ++i) k << ' ' << m[c][i];
   return k.str();

@@ -10,17 +10,17 @@
 
 namespace gb {
 
-bool touchesNearPlane(const View& view, const glm::dvec3& c, double radius) {
+bool touchesNearPlane(const Camera& camera, const glm::dvec3& c, double radius) {
   double circumradius = radius / kIcosahedronInradius;
   // Nearest point of the icosahedron's bounding sphere vs the near plane, with a margin for
   // the float rounding of the vertices on the GPU.
-  return -c.z - circumradius <= view.znear * 1.001 + 1e-6 * circumradius;
+  return -c.z - circumradius <= camera.znear * 1.001 + 1e-6 * circumradius;
 }
 
-// Sphere vs the view frustum in eye space (planes through the origin and the near/far planes).
-static bool sphereInFrustum(const View& view, const glm::dvec3& c, double r) {
-  if (-c.z + r < view.znear || -c.z - r > view.zfar) return false;
-  const glm::dmat4& p = view.clipFromEye;
+// Sphere vs the camera frustum in eye space (planes through the origin and the near/far planes).
+static bool sphereInFrustum(const Camera& camera, const glm::dvec3& c, double r) {
+  if (-c.z + r < camera.znear || -c.z - r > camera.zfar) return false;
+  const glm::dmat4& p = camera.clipFromEye;
   // Side planes -w <= x_clip <= w (and y) with x_clip = P00 x + P20 z, w = -z: inside when
   // dot(n, c) <= 0 for each outward normal n below.
   const glm::dvec3 planes[4] = {
@@ -46,23 +46,23 @@ static void centreRange(double depth, double r, double lateral, double scale, do
   k1 = int64_t(std::min(std::floor(hi - 0.5), double(size) - 1.0));
 }
 
-bool coversNoPixelCentre(const View& view, const glm::dvec3& c, double r) {
+bool coversNoPixelCentre(const Camera& camera, const glm::dvec3& c, double r) {
   const double depth = -c.z;
-  if (depth - r <= view.znear) return false;  // reaches the near plane: unbounded projection
-  const glm::dmat4& p = view.clipFromEye;
+  if (depth - r <= camera.znear) return false;  // reaches the near plane: unbounded projection
+  const glm::dmat4& p = camera.clipFromEye;
   int64_t x0, x1, y0, y1;
-  centreRange(depth, r, c.x, p[0][0], p[2][0], view.width, 1e-3, x0, x1);
-  centreRange(depth, r, c.y, p[1][1], p[2][1], view.height, 1e-3, y0, y1);
+  centreRange(depth, r, c.x, p[0][0], p[2][0], camera.width, 1e-3, x0, x1);
+  centreRange(depth, r, c.y, p[1][1], p[2][1], camera.height, 1e-3, y0, y1);
   return x0 > x1 || y0 > y1;
 }
 
 // Pixels the light's icosahedron can rasterize: the rectangle of its bounding sphere, widened
 // by a pixel so that rounding of the vertices on the GPU cannot reach outside it.
-static void icosahedronPixels(const View& view, const glm::dvec3& c, double radius, int64_t rect[4]) {
+static void icosahedronPixels(const Camera& camera, const glm::dvec3& c, double radius, int64_t rect[4]) {
   const double r = radius / kIcosahedronInradius;
-  const glm::dmat4& p = view.clipFromEye;
-  centreRange(-c.z, r, c.x, p[0][0], p[2][0], view.width, 1.0, rect[0], rect[2]);
-  centreRange(-c.z, r, c.y, p[1][1], p[2][1], view.height, 1.0, rect[1], rect[3]);
+  const glm::dmat4& p = camera.clipFromEye;
+  centreRange(-c.z, r, c.x, p[0][0], p[2][0], camera.width, 1.0, rect[0], rect[2]);
+  centreRange(-c.z, r, c.y, p[1][1], p[2][1], camera.height, 1.0, rect[1], rect[3]);
 }
 
 // Orders the stencil class [0, count) of `order` into layers of lights whose icosahedra cover
@@ -71,11 +71,11 @@ static void icosahedronPixels(const View& view, const glm::dvec3& c, double radi
 // a time (a bit per layer per cell), the lights left after 4 such passes stacked above them, each
 // one layer above the highest layer holding any of its cells. First fit to the end took 0.4 s a
 // frame at 65536 lights (thousands of layers); this stays linear in lights x cells.
-static std::vector<uint32_t> screenDisjointLayers(const View& view, const std::vector<gpu::PointLight>& eye,
+static std::vector<uint32_t> screenDisjointLayers(const Camera& camera, const std::vector<gpu::PointLight>& eye,
                                                   std::vector<uint32_t>& order, uint32_t count) {
   constexpr int64_t kCell = 16;
   constexpr int kFirstFitPasses = 4;
-  const int64_t gw = (int64_t(view.width) + kCell - 1) / kCell, gh = (int64_t(view.height) + kCell - 1) / kCell;
+  const int64_t gw = (int64_t(camera.width) + kCell - 1) / kCell, gh = (int64_t(camera.height) + kCell - 1) / kCell;
   struct Cells {
     int64_t x0, y0, x1, y1;
   };
@@ -83,9 +83,9 @@ static std::vector<uint32_t> screenDisjointLayers(const View& view, const std::v
   for (uint32_t i = 0; i < count; ++i) {
     const gpu::PointLight& l = eye[order[i]];
     int64_t rect[4];
-    icosahedronPixels(view, glm::dvec3(l.eyePositionRadius), l.eyePositionRadius.w, rect);
-    cells[i] = {std::clamp<int64_t>(rect[0], 0, view.width - 1) / kCell, std::clamp<int64_t>(rect[1], 0, view.height - 1) / kCell,
-                std::clamp<int64_t>(rect[2], 0, view.width - 1) / kCell, std::clamp<int64_t>(rect[3], 0, view.height - 1) / kCell};
+    icosahedronPixels(camera, glm::dvec3(l.eyePositionRadius), l.eyePositionRadius.w, rect);
+    cells[i] = {std::clamp<int64_t>(rect[0], 0, camera.width - 1) / kCell, std::clamp<int64_t>(rect[1], 0, camera.height - 1) / kCell,
+                std::clamp<int64_t>(rect[2], 0, camera.width - 1) / kCell, std::clamp<int64_t>(rect[3], 0, camera.height - 1) / kCell};
   }
   auto forCells = [&](uint32_t i, auto&& f) {
     for (int64_t y = cells[i].y0; y <= cells[i].y1; ++y)
@@ -139,31 +139,31 @@ static std::vector<uint32_t> screenDisjointLayers(const View& view, const std::v
   return starts;
 }
 
-CpuImage eyeDepthFromHardware(const View& view, const CpuImage& ds) {
+CpuImage eyeDepthFromHardware(const Camera& camera, const CpuImage& ds) {
   CpuImage out;
   out.name = "depth";
   out.channels = {"Z"};
   out.width = ds.width;
   out.height = ds.height;
   out.data.resize(size_t(ds.width) * ds.height * sizeof(float));
-  const double far = view.reversedZ ? 0.0 : 1.0;
+  const double far = camera.reversedZ ? 0.0 : 1.0;
   float* z = reinterpret_cast<float*>(out.data.data());
   for (uint32_t y = 0; y < ds.height; ++y)
     for (uint32_t x = 0; x < ds.width; ++x) {
       double d = ds.value(x, y, 0);
-      z[size_t(y) * ds.width + x] = d == far ? 0.0f : float(-eyeFromHardwareDepth(view, x, y, d).z);
+      z[size_t(y) * ds.width + x] = d == far ? 0.0f : float(-eyeFromHardwareDepth(camera, x, y, d).z);
     }
   return out;
 }
 
-void classifyLights(const Scene& scene, const View& view, double time, bool layers, FrameLights& out) {
+void classifyLights(const Scene& scene, const Camera& camera, double time, bool layers, FrameLights& out) {
   out.eye.resize(scene.lights.size());
   out.visible.clear();
   out.culledFrustum = out.culledEmpty = out.culledSubpixel = 0;
   std::vector<uint32_t> nearClass;
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const PointLightDesc& l = scene.lights[i];
-    glm::dvec3 c = glm::dvec3(view.eyeFromWorld * glm::dvec4(lightPosition(l, time), 1.0));
+    glm::dvec3 c = glm::dvec3(camera.eyeFromWorld * glm::dvec4(lightPosition(l, time), 1.0));
     glm::dvec3 color = glm::dvec3(l.color) * l.intensity;
     out.eye[i].eyePositionRadius = glm::vec4(glm::vec3(c), float(l.radius));
     out.eye[i].color = glm::vec4(glm::vec3(color), 0.0f);
@@ -171,22 +171,22 @@ void classifyLights(const Scene& scene, const View& view, double time, bool laye
       out.culledEmpty++;
       continue;
     }
-    if (!sphereInFrustum(view, c, l.radius)) {
+    if (!sphereInFrustum(camera, c, l.radius)) {
       out.culledFrustum++;
       continue;
     }
-    if (coversNoPixelCentre(view, c, l.radius)) {
+    if (coversNoPixelCentre(camera, c, l.radius)) {
       out.culledSubpixel++;
       continue;
     }
-    if (touchesNearPlane(view, c, l.radius))
+    if (touchesNearPlane(camera, c, l.radius))
       nearClass.push_back(uint32_t(i));
     else
       out.visible.push_back(uint32_t(i));
   }
   out.stencilCount = uint32_t(out.visible.size());
   out.layerStarts.clear();
-  if (layers) out.layerStarts = screenDisjointLayers(view, out.eye, out.visible, out.stencilCount);
+  if (layers) out.layerStarts = screenDisjointLayers(camera, out.eye, out.visible, out.stencilCount);
   out.visible.insert(out.visible.end(), nearClass.begin(), nearClass.end());
 }
 
@@ -196,20 +196,20 @@ static bool inside(const glm::dvec3& p, const gpu::PointLight& l) {
   return glm::dot(d, d) < r * r;
 }
 
-uint64_t idealPairsBruteForce(const View& view, const CpuImage& depth, const std::vector<gpu::PointLight>& lights) {
+uint64_t idealPairsBruteForce(const Camera& camera, const CpuImage& depth, const std::vector<gpu::PointLight>& lights) {
   uint64_t n = 0;
   for (uint32_t y = 0; y < depth.height; ++y)
     for (uint32_t x = 0; x < depth.width; ++x) {
       double d = depth.value(x, y, 0);
       if (!(d > 0.0)) continue;
-      glm::dvec3 p = eyeFromEyeDepth(view, x, y, float(d));
+      glm::dvec3 p = eyeFromEyeDepth(camera, x, y, float(d));
       for (const gpu::PointLight& l : lights)
         if (l.eyePositionRadius.w > 0.0f && inside(p, l)) ++n;
     }
   return n;
 }
 
-uint64_t idealPairs(const View& view, const CpuImage& depth, const std::vector<gpu::PointLight>& lights) {
+uint64_t idealPairs(const Camera& camera, const CpuImage& depth, const std::vector<gpu::PointLight>& lights) {
   // Eye positions once per pixel.
   std::vector<glm::dvec3> pos(size_t(depth.width) * depth.height);
   std::vector<uint8_t> valid(pos.size());
@@ -217,7 +217,7 @@ uint64_t idealPairs(const View& view, const CpuImage& depth, const std::vector<g
     for (uint32_t x = 0; x < depth.width; ++x) {
       double d = depth.value(x, y, 0);
       valid[size_t(y) * depth.width + x] = d > 0.0;
-      if (d > 0.0) pos[size_t(y) * depth.width + x] = eyeFromEyeDepth(view, x, y, float(d));
+      if (d > 0.0) pos[size_t(y) * depth.width + x] = eyeFromEyeDepth(camera, x, y, float(d));
     }
   uint64_t n = 0;
   for (const gpu::PointLight& l : lights) {
@@ -227,11 +227,11 @@ uint64_t idealPairs(const View& view, const CpuImage& depth, const std::vector<g
     // Screen rectangle of the sphere: project its eye-space AABB corners in front of the camera;
     // if any part is behind the near plane take the whole screen.
     int x0 = 0, y0 = 0, x1 = int(depth.width) - 1, y1 = int(depth.height) - 1;
-    if (-c.z - r > view.znear) {
+    if (-c.z - r > camera.znear) {
       double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
       for (int k = 0; k < 8; ++k) {
         glm::dvec3 q = c + glm::dvec3((k & 1) ? r : -r, (k & 2) ? r : -r, (k & 4) ? r : -r);
-        glm::dvec4 clip = view.clipFromEye * glm::dvec4(q, 1.0);
+        glm::dvec4 clip = camera.clipFromEye * glm::dvec4(q, 1.0);
         for (int a = 0; a < 2; ++a) {
           double ndc = clip[a] / clip.w;
           lo[a] = std::min(lo[a], ndc);

@@ -212,7 +212,7 @@ static void prepareFrame(Renderer& r) {
   const RenderOptions& o = r.options;
   GB_ASSERT(!s.cameras.empty());
   const CameraDesc& cam = s.cameras[size_t(o.camera) < s.cameras.size() ? size_t(o.camera) : 0];
-  r.view = makeView(cam, o.width, o.height, o.reversedZ);
+  r.camera = makeCamera(cam, o.width, o.height, o.reversedZ);
   r.lightClipFromWorld = shadowClipFromWorld(s);
 
   // Draws: camera-relative transforms formed in double.
@@ -220,7 +220,7 @@ static void prepareFrame(Renderer& r) {
   const std::vector<uint32_t> firstPrimitive = firstPrimitiveIds(s);
   for (size_t i = 0; i < s.instances.size(); ++i) {
     const Instance& inst = s.instances[i];
-    glm::dmat4 eyeFromObject = r.view.eyeFromWorld * inst.worldFromObject;
+    glm::dmat4 eyeFromObject = r.camera.eyeFromWorld * inst.worldFromObject;
     glm::dmat3 normal = glm::transpose(glm::inverse(glm::dmat3(eyeFromObject)));
     gpu::DrawData d{};
     d.eyeFromObject = glm::mat4(eyeFromObject);
@@ -231,7 +231,7 @@ static void prepareFrame(Renderer& r) {
     draws[i] = d;
   }
 
-  classifyLights(s, r.view, o.time, stencilLayersOn(o, r.ctx->isCpu), r.lights);
+  classifyLights(s, r.camera, o.time, stencilLayersOn(o, r.ctx->isCpu), r.lights);
   GB_ASSERT(r.lights.eye.size() <= r.lightBuffer.size / sizeof(gpu::PointLight));
   // (memcpy from an empty vector's null data() is undefined even for 0 bytes: UBSan reports it)
   if (!r.lights.eye.empty())
@@ -240,14 +240,14 @@ static void prepareFrame(Renderer& r) {
     std::memcpy(r.visibleBuffer.mapped, r.lights.visible.data(), r.lights.visible.size() * sizeof(uint32_t));
 
   gpu::FrameData f{};
-  f.clipFromEye = glm::mat4(r.view.clipFromEye);
-  f.eyeFromClip = glm::mat4(r.view.eyeFromClip);
-  f.worldFromEye = glm::mat4(r.view.worldFromEye);
-  f.lightClipFromEye = glm::mat4(r.lightClipFromWorld * r.view.worldFromEye);
+  f.clipFromEye = glm::mat4(r.camera.clipFromEye);
+  f.eyeFromClip = glm::mat4(r.camera.eyeFromClip);
+  f.worldFromEye = glm::mat4(r.camera.worldFromEye);
+  f.lightClipFromEye = glm::mat4(r.lightClipFromWorld * r.camera.worldFromEye);
   f.viewport = glm::vec4(o.width, o.height, 1.0 / o.width, 1.0 / o.height);
-  const glm::dmat4& p = r.view.clipFromEye;
+  const glm::dmat4& p = r.camera.clipFromEye;
   f.eyeRay = glm::vec4(1.0 / p[0][0], 1.0 / p[1][1], p[2][0], p[2][1]);
-  glm::dvec3 sunEye = glm::normalize(glm::dmat3(r.view.eyeFromWorld) * s.sun.toSun);
+  glm::dvec3 sunEye = glm::normalize(glm::dmat3(r.camera.eyeFromWorld) * s.sun.toSun);
   f.sunEyeDirection = glm::vec4(glm::vec3(sunEye), s.sun.enabled ? 1.0f : 0.0f);
   f.sunColor = glm::vec4(s.sun.color, 0.0f);
   f.ambientColor = glm::vec4(s.sky.ambient, 0.0f);
@@ -390,8 +390,8 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
     c.valid = true;
     const CpuImage& masked = r.readback[size_t(Target::CoverageMasked)];
     for (size_t i = 0; i < size_t(masked.width) * masked.height; ++i) c.invocations += masked.raw(uint32_t(i % masked.width), uint32_t(i / masked.width), 0);
-    c.idealPairs = idealPairs(r.view, depthSource == Target::Depth ? r.readback[size_t(Target::Depth)]
-                                                                  : eyeDepthFromHardware(r.view, r.readback[size_t(depthSource)]),
+    c.idealPairs = idealPairs(r.camera, depthSource == Target::Depth ? r.readback[size_t(Target::Depth)]
+                                                                  : eyeDepthFromHardware(r.camera, r.readback[size_t(depthSource)]),
                               r.lights.eye);
     c.workOverIdeal = c.idealPairs ? double(c.invocations) / double(c.idealPairs) : 0.0;
     bool pointLightsRan = false;

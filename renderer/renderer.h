@@ -79,7 +79,7 @@ struct Renderer {
   std::array<CpuImage, kTargetCount> readback;  // filled for the targets a request named
 
   // This frame, as the frame function and the passes see it.
-  View view;
+  Camera camera;
   FrameLights lights;
   glm::dmat4 lightClipFromWorld{1.0};
   gpu::FrameData frameData{};  // this frame's uniform data, as the shaders saw it

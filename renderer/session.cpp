@@ -91,7 +91,7 @@ FrameSnapshot snapshotFromRenderer(const Renderer& r, const std::vector<Target>&
   GB_ASSERT(r.scene);
   FrameSnapshot s;
   s.options = r.options;
-  s.view = r.view;
+  s.camera = r.camera;
   s.lightClipFromWorld = r.lightClipFromWorld;
   s.sun = r.scene->sun;
   s.sky = r.scene->sky;

@@ -107,11 +107,11 @@ void addScan(Context& c, const Scan& s, const std::string& label) {
 }
 
 FrameError measure(Context& c, const RenderOptions& options, ReferenceCache& cache, const std::string& label,
-                   const View* referenceView, FrameSnapshot* frame) {
+                   const Camera* referenceCamera, FrameSnapshot* frame) {
   RenderOptions o = options;
   o.coverage = true;  // the coverage targets are scanned as well
   MeasureExtras extras;
-  extras.referenceView = referenceView;
+  extras.referenceCamera = referenceCamera;
   RenderOptions measured = o;
   measured.primitiveId = true;
   measured.fairies = false;

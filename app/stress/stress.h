@@ -91,10 +91,10 @@ struct SessionScene {
   SessionScene& operator=(const SessionScene&) = delete;
 };
 // Measures `o` against the reference (coverage on), scans every target of that frame for
-// NaN/Inf (added to the case's total) and returns the error. `referenceView`: see MeasureExtras;
+// NaN/Inf (added to the case's total) and returns the error. `referenceCamera`: see MeasureExtras;
 // `frame`, when given, receives the frame measured.
 FrameError measure(Context& c, const RenderOptions& o, ReferenceCache& cache, const std::string& label,
-                   const View* referenceView = nullptr, FrameSnapshot* frame = nullptr);
+                   const Camera* referenceCamera = nullptr, FrameSnapshot* frame = nullptr);
 
 nlohmann::json tableJson(const std::vector<Row>& rows);
 void printTable(const std::vector<Row>& rows);

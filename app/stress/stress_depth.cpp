@@ -91,8 +91,8 @@ void farFromOriginCase(Context& c) {
       o.height = h;
       o.position = v.source;
       o.positionSpace = v.space;
-      View refView = makeView(base.cameras[0], w, h, o.reversedZ);
-      FrameError e = measure(c, o, cache, label + " " + v.name, &refView);
+      Camera refCamera = makeCamera(base.cameras[0], w, h, o.reversedZ);
+      FrameError e = measure(c, o, cache, label + " " + v.name, &refCamera);
       const PositionError& p = e.used;
       if (v.source == PositionSource::Rgba32f && v.space == PositionSpace::World) {
         double far = d + base.bounds.radius() * 2.0 + 10.0;

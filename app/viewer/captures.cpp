@@ -51,24 +51,24 @@ static std::string describe(const Capture& c) {
   return o.str();
 }
 
-static Scene emptyScene(const View& view) {
+static Scene emptyScene(const Camera& camera) {
   Scene s;
   s.source = "capture";
   s.materials.push_back(MaterialDesc{});
   CameraDesc cam;
-  cam.worldFromEye = view.worldFromEye;
+  cam.worldFromEye = camera.worldFromEye;
   s.cameras.push_back(cam);
   return s;
 }
 
 static void upload(Renderer& r, GpuContext& ctx, Scene& scene, const Capture& c) {
-  scene = emptyScene(c.frame.view);
+  scene = emptyScene(c.frame.camera);
   initRenderer(r, ctx, scene);
   std::array<const CpuImage*, kTargetCount> images{};
   for (size_t i = 0; i < kTargetCount; ++i)
     if (c.frame.targets[i].present()) images[i] = &c.frame.targets[i].image;
   uploadTargets(r, c.frame.options, images);
-  r.view = c.frame.view;
+  r.camera = c.frame.camera;
 }
 
 bool openCaptures(Viewer& v) {

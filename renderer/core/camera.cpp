@@ -45,8 +45,8 @@ CameraDesc lookAtCamera(std::string name, const glm::dvec3& eye, const glm::dvec
   return c;
 }
 
-View makeView(const CameraDesc& camera, uint32_t width, uint32_t height, bool reversedZ) {
-  View v;
+Camera makeCamera(const CameraDesc& camera, uint32_t width, uint32_t height, bool reversedZ) {
+  Camera v;
   v.width = width;
   v.height = height;
   v.yfov = camera.yfov;
@@ -62,23 +62,23 @@ View makeView(const CameraDesc& camera, uint32_t width, uint32_t height, bool re
   return v;
 }
 
-glm::dvec2 pixelNdc(const View& v, double px, double py) {
+glm::dvec2 pixelNdc(const Camera& v, double px, double py) {
   return {(px + 0.5) / v.width * 2.0 - 1.0, (py + 0.5) / v.height * 2.0 - 1.0};
 }
 
-glm::dvec3 eyeFromEyeDepth(const View& v, double px, double py, double d) {
+glm::dvec3 eyeFromEyeDepth(const Camera& v, double px, double py, double d) {
   glm::dvec2 ndc = pixelNdc(v, px, py);
   const glm::dmat4& p = v.clipFromEye;
   return {d * (ndc.x + p[2][0]) / p[0][0], d * (ndc.y + p[2][1]) / p[1][1], -d};
 }
 
-glm::dvec3 eyeFromHardwareDepth(const View& v, double px, double py, double depth) {
+glm::dvec3 eyeFromHardwareDepth(const Camera& v, double px, double py, double depth) {
   glm::dvec2 ndc = pixelNdc(v, px, py);
   glm::dvec4 e = v.eyeFromClip * glm::dvec4(ndc, depth, 1.0);
   return glm::dvec3(e) / e.w;
 }
 
-double hardwareDepth(const View& v, const glm::dvec3& eye) {
+double hardwareDepth(const Camera& v, const glm::dvec3& eye) {
   glm::dvec4 c = v.clipFromEye * glm::dvec4(eye, 1.0);
   return c.z / c.w;
 }

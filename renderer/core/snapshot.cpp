@@ -17,7 +17,7 @@ double TargetImage::value(uint32_t x, uint32_t y, uint32_t c) const {
 
 glm::dvec3 FrameSnapshot::sunEyeDirection() const {
   // The same expression as the renderer's frame data (double, then rounded to float).
-  return glm::dvec3(glm::vec3(glm::normalize(glm::dmat3(view.eyeFromWorld) * sun.toSun)));
+  return glm::dvec3(glm::vec3(glm::normalize(glm::dmat3(camera.eyeFromWorld) * sun.toSun)));
 }
 
 bool screenSpaceTarget(Target t) { return t != Target::ShadowMap; }

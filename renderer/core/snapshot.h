@@ -36,7 +36,7 @@ struct TargetImage {
 
 struct FrameSnapshot {
   RenderOptions options;                  // what the frame was rendered with
-  View view;                              // camera matrices (double), size, near/far, reversed Z
+  Camera camera;                              // camera matrices (double), size, near/far, reversed Z
   glm::dmat4 lightClipFromWorld{1.0};     // the sun's shadow-map clip space
   Sun sun;                                // world space
   Sky sky;                                // ambient term of the directional pass

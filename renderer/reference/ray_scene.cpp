@@ -75,8 +75,8 @@ bool accept(const RayContext& rc, uint32_t instance, uint32_t triangle, double u
     glm::dvec3 a(p[3 * i[0]], p[3 * i[0] + 1], p[3 * i[0] + 2]);
     glm::dvec3 b(p[3 * i[1]], p[3 * i[1] + 1], p[3 * i[1] + 2]);
     glm::dvec3 c(p[3 * i[2]], p[3 * i[2] + 1], p[3 * i[2] + 2]);
-    const glm::dvec3 view = rc.shadow ? -dir : dir;  // the rasterizer's viewing direction
-    bool front = (glm::dot(glm::cross(b - a, c - a), view) < 0.0) != info.mirrored;
+    const glm::dvec3 camera = rc.shadow ? -dir : dir;  // the rasterizer's viewing direction
+    bool front = (glm::dot(glm::cross(b - a, c - a), camera) < 0.0) != info.mirrored;
     if (!front) return false;
   }
   if (m.alphaMode != AlphaMode::Opaque && alphaAt(impl, instance, triangle, u, v) < m.alphaCutoff) return false;

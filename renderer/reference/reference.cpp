@@ -49,7 +49,7 @@ struct InstanceTransform {
 struct Context {
   const RayScene& rays;
   const Scene& scene;
-  const View& view;
+  const Camera& camera;
   std::vector<InstanceTransform> transforms;
   std::vector<uint32_t> firstPrimitive;
   glm::dvec3 cameraWorld{0.0};
@@ -93,7 +93,7 @@ UvSample uvSample(const Context& c, const Corner& k, uint32_t x, uint32_t y, dou
   uint32_t qx = x & ~1u, qy = y & ~1u;
   auto at = [&](uint32_t px, uint32_t py) {
     double t, u, v;
-    if (!intersectPlane(eyeFromEyeDepth(c.view, px, py, 1.0), k.eye[0], k.eye[1], k.eye[2], t, u, v))
+    if (!intersectPlane(eyeFromEyeDepth(c.camera, px, py, 1.0), k.eye[0], k.eye[1], k.eye[2], t, u, v))
       return s.uv;
     return uvAt(k, u, v, set, transform);
   };
@@ -107,8 +107,8 @@ UvSample uvSample(const Context& c, const Corner& k, uint32_t x, uint32_t y, dou
 // triangle when Embree found it there; extrapolated otherwise).
 Surface evaluate(const Context& c, RayScene::Hit h, uint32_t x, uint32_t y, bool sunRay) {
   Surface s;
-  const View& view = c.view;
-  glm::dvec3 d = eyeFromEyeDepth(view, x, y, 1.0);  // the pixel-centre ray, eye depth 1
+  const Camera& camera = c.camera;
+  glm::dvec3 d = eyeFromEyeDepth(camera, x, y, 1.0);  // the pixel-centre ray, eye depth 1
   const Corner k = corners(c, h.instance, h.triangle);
   double t, b1, b2;
   if (!intersectPlane(d, k.eye[0], k.eye[1], k.eye[2], t, b1, b2) || !(t > 0.0)) return s;
@@ -119,8 +119,8 @@ Surface evaluate(const Context& c, RayScene::Hit h, uint32_t x, uint32_t y, bool
   s.primitiveId = c.firstPrimitive[h.instance] + h.triangle;
   s.eye = t * d;
   s.eyeDepth = t;  // d.z = -1
-  s.world = glm::dvec3(view.worldFromEye * glm::dvec4(s.eye, 1.0));
-  s.pixelFootprint = t * 2.0 * std::tan(view.yfov * 0.5) / view.height;
+  s.world = glm::dvec3(camera.worldFromEye * glm::dvec4(s.eye, 1.0));
+  s.pixelFootprint = t * 2.0 * std::tan(camera.yfov * 0.5) / camera.height;
 
   const InstanceTransform& xf = c.transforms[h.instance];
   glm::dvec3 g = glm::cross(k.eye[1] - k.eye[0], k.eye[2] - k.eye[0]);
@@ -174,15 +174,15 @@ Surface evaluate(const Context& c, RayScene::Hit h, uint32_t x, uint32_t y, bool
 }
 
 Surface surfaceAt(const Context& c, uint32_t x, uint32_t y) {
-  glm::dvec3 d = eyeFromEyeDepth(c.view, x, y, 1.0);
-  RayScene::Hit h = c.rays.firstHit(c.cameraWorld, glm::dmat3(c.view.worldFromEye) * d);
+  glm::dvec3 d = eyeFromEyeDepth(c.camera, x, y, 1.0);
+  RayScene::Hit h = c.rays.firstHit(c.cameraWorld, glm::dmat3(c.camera.worldFromEye) * d);
   return h.hit ? evaluate(c, h, x, y, true) : Surface{};
 }
 
 // Everything a pixel needs; transforms of every instance, or only of `onlyInstance`.
-Context makeContext(const RayScene& rays, const View& view, int64_t onlyInstance = -1) {
+Context makeContext(const RayScene& rays, const Camera& camera, int64_t onlyInstance = -1) {
   const Scene& scene = rays.scene();
-  Context c{rays, scene, view, {}, firstPrimitiveIds(scene), glm::dvec3(view.worldFromEye[3]), sunOf(scene, view), {}, 0.0};
+  Context c{rays, scene, camera, {}, firstPrimitiveIds(scene), glm::dvec3(camera.worldFromEye[3]), sunOf(scene, camera), {}, 0.0};
   c.toSunWorld = glm::normalize(scene.sun.toSun);
   c.shadowTnear = 1e-6 * std::max(scene.bounds.radius(), 1e-3);
   c.transforms.resize(scene.instances.size());
@@ -190,7 +190,7 @@ Context makeContext(const RayScene& rays, const View& view, int64_t onlyInstance
     if (onlyInstance >= 0 && int64_t(i) != onlyInstance) continue;
     const Instance& inst = scene.instances[i];
     InstanceTransform& xf = c.transforms[i];
-    xf.eyeFromObject = view.eyeFromWorld * inst.worldFromObject;  // camera-relative, as the renderer forms it
+    xf.eyeFromObject = camera.eyeFromWorld * inst.worldFromObject;  // camera-relative, as the renderer forms it
     xf.normalEyeFromObject = glm::transpose(glm::inverse(glm::dmat3(xf.eyeFromObject)));
     xf.mirrored = glm::determinant(glm::dmat3(inst.worldFromObject)) < 0.0;
   }
@@ -199,19 +199,19 @@ Context makeContext(const RayScene& rays, const View& view, int64_t onlyInstance
 
 }  // namespace
 
-Surface surfaceOnTriangle(const RayScene& rays, const View& view, uint32_t instance, uint32_t triangle, uint32_t x,
+Surface surfaceOnTriangle(const RayScene& rays, const Camera& camera, uint32_t instance, uint32_t triangle, uint32_t x,
                           uint32_t y) {
-  Context c = makeContext(rays, view, instance);
+  Context c = makeContext(rays, camera, instance);
   return evaluate(c, {true, instance, triangle}, x, y, false);
 }
 
-Frame renderFrame(const RayScene& rays, const View& view, unsigned threads) {
-  Context c = makeContext(rays, view);
+Frame renderFrame(const RayScene& rays, const Camera& camera, unsigned threads) {
+  Context c = makeContext(rays, camera);
   Frame f;
-  f.view = view;
-  f.pixels.resize(size_t(view.width) * view.height);
-  parallelRows(view.height, threads, [&](uint32_t y) {
-    for (uint32_t x = 0; x < view.width; ++x) f.pixels[size_t(y) * view.width + x] = surfaceAt(c, x, y);
+  f.camera = camera;
+  f.pixels.resize(size_t(camera.width) * camera.height);
+  parallelRows(camera.height, threads, [&](uint32_t y) {
+    for (uint32_t x = 0; x < camera.width; ++x) f.pixels[size_t(y) * camera.width + x] = surfaceAt(c, x, y);
   });
   return f;
 }
@@ -231,13 +231,13 @@ std::vector<uint8_t> shadowBand(const RayScene& rays, const Frame& f, double rad
   const glm::dvec3 e2 = glm::cross(toSun, e1);
   const double tnear = 1e-5 * std::max(scene.bounds.radius(), 1e-3);
   const int kSamples = 8;
-  parallelRows(f.view.height, threads, [&](uint32_t y) {
-    for (uint32_t x = 0; x < f.view.width; ++x) {
+  parallelRows(f.camera.height, threads, [&](uint32_t y) {
+    for (uint32_t x = 0; x < f.camera.width; ++x) {
       const Surface& s = f.at(x, y);
       if (s.sunVisible < 0) continue;
-      glm::dvec3 ng = glm::dmat3(f.view.worldFromEye) * s.geometricNormal;
+      glm::dvec3 ng = glm::dmat3(f.camera.worldFromEye) * s.geometricNormal;
       double facing = glm::dot(toSun, ng);
-      for (int k = 0; k < kSamples && !band[size_t(y) * f.view.width + x]; ++k) {
+      for (int k = 0; k < kSamples && !band[size_t(y) * f.camera.width + x]; ++k) {
         double a = 2.0 * M_PI * k / kSamples;
         glm::dvec3 o = radius * (std::cos(a) * e1 + std::sin(a) * e2);
         // The point of the receiver's plane whose sun ray passes `o` away from this one's:
@@ -248,7 +248,7 @@ std::vector<uint8_t> shadowBand(const RayScene& rays, const Frame& f, double rad
           glm::dvec3 p = s.world + o - toSun * along;
           differs = rays.reachesSun(p, toSun, s.instance, s.triangle, tnear + 1e-6 * glm::length(p)) != (s.sunVisible == 1);
         }
-        if (differs) band[size_t(y) * f.view.width + x] = 1;
+        if (differs) band[size_t(y) * f.camera.width + x] = 1;
       }
     }
   });

@@ -37,9 +37,9 @@ struct Surface {
 };
 
 struct Frame {
-  View view;
+  Camera camera;
   std::vector<Surface> pixels;  // width * height, rows top to bottom
-  const Surface& at(uint32_t x, uint32_t y) const { return pixels[size_t(y) * view.width + x]; }
+  const Surface& at(uint32_t x, uint32_t y) const { return pixels[size_t(y) * camera.width + x]; }
 };
 
 // The scene as Embree geometry (world space), built once and shared by every frame of it.
@@ -70,12 +70,12 @@ class RayScene {
   std::unique_ptr<Impl> impl_;
 };
 
-// Renders the reference for `view` (positions, normals, materials, sun visibility).
-Frame renderFrame(const RayScene& rays, const View& view, unsigned threads = 2);
+// Renders the reference for `camera` (positions, normals, materials, sun visibility).
+Frame renderFrame(const RayScene& rays, const Camera& camera, unsigned threads = 2);
 
 // The surface of one given triangle where the ray through pixel (x, y) meets its plane, even
 // outside the triangle (attribute changes per pixel, for tolerances); sunVisible stays -1.
-Surface surfaceOnTriangle(const RayScene& rays, const View& view, uint32_t instance, uint32_t triangle, uint32_t x,
+Surface surfaceOnTriangle(const RayScene& rays, const Camera& camera, uint32_t instance, uint32_t triangle, uint32_t x,
                           uint32_t y);
 
 // World size of one shadow-map texel for a map of `size` texels (the renderer's sun fit).
@@ -111,10 +111,10 @@ struct Shaded {
 };
 
 // The scene's lights at `time` in eye space, in double.
-std::vector<Light> eyeLights(const Scene& scene, const View& view, double time);
-Sun sunOf(const Scene& scene, const View& view);
+std::vector<Light> eyeLights(const Scene& scene, const Camera& camera, double time);
+Sun sunOf(const Scene& scene, const Camera& camera);
 ShadingInput shadingInput(const Surface& s);
-Shaded shade(const std::vector<ShadingInput>& pixels, const View& view, const std::vector<Light>& lights,
+Shaded shade(const std::vector<ShadingInput>& pixels, const Camera& camera, const std::vector<Light>& lights,
              const Sun& sun, unsigned threads = 2);
 
 // Runs f(y) for every row on `threads` threads (rows handed out one at a time).

@@ -10,11 +10,11 @@
 
 namespace gb::reference {
 
-std::vector<Light> eyeLights(const Scene& scene, const View& view, double time) {
+std::vector<Light> eyeLights(const Scene& scene, const Camera& camera, double time) {
   std::vector<Light> out;
   for (const PointLightDesc& l : scene.lights) {
     Light e;
-    e.eyePosition = glm::dvec3(view.eyeFromWorld * glm::dvec4(lightPosition(l, time), 1.0));
+    e.eyePosition = glm::dvec3(camera.eyeFromWorld * glm::dvec4(lightPosition(l, time), 1.0));
     e.radius = l.radius;
     e.color = glm::dvec3(l.color) * l.intensity;
     if (!(e.radius > 0.0) || !std::isfinite(e.radius) || glm::dot(e.color, e.color) <= 0.0) continue;
@@ -23,10 +23,10 @@ std::vector<Light> eyeLights(const Scene& scene, const View& view, double time) 
   return out;
 }
 
-Sun sunOf(const Scene& scene, const View& view) {
+Sun sunOf(const Scene& scene, const Camera& camera) {
   Sun s;
   s.enabled = scene.sun.enabled;
-  s.toSunEye = glm::normalize(glm::dmat3(view.eyeFromWorld) * scene.sun.toSun);
+  s.toSunEye = glm::normalize(glm::dmat3(camera.eyeFromWorld) * scene.sun.toSun);
   s.color = glm::dvec3(scene.sun.color);
   s.ambient = glm::dvec3(scene.sky.ambient);
   return s;
@@ -44,16 +44,16 @@ ShadingInput shadingInput(const Surface& s) {
 }
 
 // Pixel rectangle [x0, x1] x [y0, y1] a light's sphere may cover; false when it covers none.
-static bool screenRect(const View& view, const Light& l, int& x0, int& y0, int& x1, int& y1) {
+static bool screenRect(const Camera& camera, const Light& l, int& x0, int& y0, int& x1, int& y1) {
   const glm::dvec3 c = l.eyePosition;
   const double r = l.radius;
-  if (-c.z + r < view.znear * 0.5) return false;  // entirely behind the camera
-  x0 = 0, y0 = 0, x1 = int(view.width) - 1, y1 = int(view.height) - 1;
-  if (-c.z - r <= view.znear * 0.5) return true;  // reaches the camera plane: whole screen
+  if (-c.z + r < camera.znear * 0.5) return false;  // entirely behind the camera
+  x0 = 0, y0 = 0, x1 = int(camera.width) - 1, y1 = int(camera.height) - 1;
+  if (-c.z - r <= camera.znear * 0.5) return true;  // reaches the camera plane: whole screen
   double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
   for (int k = 0; k < 8; ++k) {
     glm::dvec3 q = c + glm::dvec3((k & 1) ? r : -r, (k & 2) ? r : -r, (k & 4) ? r : -r);
-    glm::dvec4 clip = view.clipFromEye * glm::dvec4(q, 1.0);
+    glm::dvec4 clip = camera.clipFromEye * glm::dvec4(q, 1.0);
     for (int a = 0; a < 2; ++a) {
       double ndc = clip[a] / clip.w;
       lo[a] = std::min(lo[a], ndc);
@@ -61,21 +61,21 @@ static bool screenRect(const View& view, const Light& l, int& x0, int& y0, int& 
     }
   }
   auto toPixel = [](double ndc, uint32_t size) { return (ndc + 1.0) * 0.5 * size - 0.5; };
-  x0 = std::max(x0, int(std::floor(toPixel(lo[0], view.width))) - 1);
-  x1 = std::min(x1, int(std::ceil(toPixel(hi[0], view.width))) + 1);
-  y0 = std::max(y0, int(std::floor(toPixel(lo[1], view.height))) - 1);
-  y1 = std::min(y1, int(std::ceil(toPixel(hi[1], view.height))) + 1);
+  x0 = std::max(x0, int(std::floor(toPixel(lo[0], camera.width))) - 1);
+  x1 = std::min(x1, int(std::ceil(toPixel(hi[0], camera.width))) + 1);
+  y0 = std::max(y0, int(std::floor(toPixel(lo[1], camera.height))) - 1);
+  y1 = std::min(y1, int(std::ceil(toPixel(hi[1], camera.height))) + 1);
   return x0 <= x1 && y0 <= y1;
 }
 
-Shaded shade(const std::vector<ShadingInput>& px, const View& view, const std::vector<Light>& lights, const Sun& sun,
+Shaded shade(const std::vector<ShadingInput>& px, const Camera& camera, const std::vector<Light>& lights, const Sun& sun,
              unsigned threads) {
-  const uint32_t w = view.width, h = view.height, tile = 16;
+  const uint32_t w = camera.width, h = camera.height, tile = 16;
   const uint32_t tilesX = (w + tile - 1) / tile, tilesY = (h + tile - 1) / tile;
   std::vector<std::vector<uint32_t>> bins(size_t(tilesX) * tilesY);
   for (uint32_t i = 0; i < lights.size(); ++i) {
     int x0, y0, x1, y1;
-    if (!screenRect(view, lights[i], x0, y0, x1, y1)) continue;
+    if (!screenRect(camera, lights[i], x0, y0, x1, y1)) continue;
     for (uint32_t ty = uint32_t(y0) / tile; ty <= uint32_t(y1) / tile; ++ty)
       for (uint32_t tx = uint32_t(x0) / tile; tx <= uint32_t(x1) / tile; ++tx) bins[size_t(ty) * tilesX + tx].push_back(i);
   }

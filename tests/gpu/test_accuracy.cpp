@@ -36,7 +36,7 @@ double changePerPixel(const ReferenceCache& cache, const reference::Frame& f, ui
     int nx = int(x) + dx[k], ny = int(y) + dy[k];
     if (nx < 0 || ny < 0) continue;
     reference::Surface n =
-        reference::surfaceOnTriangle(cache.rays(), f.view, s.instance, s.triangle, uint32_t(nx), uint32_t(ny));
+        reference::surfaceOnTriangle(cache.rays(), f.camera, s.instance, s.triangle, uint32_t(nx), uint32_t(ny));
     if (n.hit) g = std::max(g, value(n, s));
   }
   return g;
@@ -74,7 +74,7 @@ TEST_F(Accuracy, GBufferMatchesTheReferenceWithinEachNormalFormat) {
     o.normalFormat = format;
     FrameError e = measureFrame(source(scene), o, cache).error;
     Renderer& r = renderer(scene);
-    ReferenceView ref = cache.get(r.view, o.time, kShadowBandTexels, o.shadowMapSize);
+    ReferenceView ref = cache.get(r.camera, o.time, kShadowBandTexels, o.shadowMapSize);
     const reference::Frame& f = *ref.frame;
     const CpuImage& ns = r.readback[size_t(Target::NormalShadow)];
     int checked = 0;
@@ -102,7 +102,7 @@ TEST_F(Accuracy, AlbedoSpecularAndEyeDepthMatchTheReferenceToTheirStorage) {
   RenderOptions o = accuracyOptions();
   measureFrame(source(scene), o, cache).error;
   Renderer& r = renderer(scene);
-  const reference::Frame& f = *cache.get(r.view, o.time, kShadowBandTexels, o.shadowMapSize).frame;
+  const reference::Frame& f = *cache.get(r.camera, o.time, kShadowBandTexels, o.shadowMapSize).frame;
   const CpuImage& albedo = r.readback[size_t(Target::AlbedoSpecular)];
   const CpuImage& depth = r.readback[size_t(Target::Depth)];
   int untextured = 0;
@@ -159,7 +159,7 @@ TEST_F(Accuracy, PositionsFromEveryDepthFormatAndStoredPositionsMatchTheReferenc
     o.positionSpace = c.space;
     FrameError e = measureFrame(source(scene), o, cache).error;
     Renderer& r = renderer(scene);
-    const reference::Frame& f = *cache.get(r.view, o.time, kShadowBandTexels, o.shadowMapSize).frame;
+    const reference::Frame& f = *cache.get(r.camera, o.time, kShadowBandTexels, o.shadowMapSize).frame;
     const CpuImage& hw = r.readback[size_t(Target::DepthStencil)];
     const CpuImage* stored = c.position != PositionSource::Depth ? &r.readback[size_t(Target::Position)] : nullptr;
     int checked = 0;
@@ -172,7 +172,7 @@ TEST_F(Accuracy, PositionsFromEveryDepthFormatAndStoredPositionsMatchTheReferenc
         if (stored) {
           // Each component rounded to the format (an ulp), formed in float from the camera-relative
           // eye position (|P| * 2^-22).
-          glm::dvec3 ref = c.space == PositionSpace::World ? s.world : s.world - glm::dvec3(r.view.worldFromEye[3]);
+          glm::dvec3 ref = c.space == PositionSpace::World ? s.world : s.world - glm::dvec3(r.camera.worldFromEye[3]);
           for (int k = 0; k < 3; ++k) {
             double v = std::abs(ref[k]);
             double step = c.position == PositionSource::Rgba16f ? std::ldexp(1.0, std::ilogb(std::max(v, 6.2e-5)) - 10)
@@ -182,8 +182,8 @@ TEST_F(Accuracy, PositionsFromEveryDepthFormatAndStoredPositionsMatchTheReferenc
           }
         } else {
           double z = s.eyeDepth, eps = 1e-6 * z;
-          double slope = std::abs(hardwareDepth(r.view, {0, 0, -(z + eps)}) - hardwareDepth(r.view, {0, 0, -z})) / eps;
-          double d = hardwareDepth(r.view, s.eye);
+          double slope = std::abs(hardwareDepth(r.camera, {0, 0, -(z + eps)}) - hardwareDepth(r.camera, {0, 0, -z})) / eps;
+          double d = hardwareDepth(r.camera, s.eye);
           double step = c.format == DepthFormat::D24S8 ? std::ldexp(1.0, -24) : 4.0 * ulp(d);
           double tol = step / slope * glm::length(s.eye) / z + 1e-6 * glm::length(s.eye) + moved;
           glm::dvec3 p = shaderEyeFromHardwareDepth(r.frameData, x, y, float(hw.value(x, y, 0)));
@@ -263,7 +263,7 @@ TEST_F(Accuracy, AnOpenSingleSidedCardCastsTheExactShadow) {
   // The floor point under the card's centre, along the sun: shadowed; a point 4 units aside: lit.
   glm::dvec3 under = glm::dvec3(0.0, 2.0, 0.0) - scene.sun.toSun * (2.0 / scene.sun.toSun.y);
   auto shadowAt = [&](glm::dvec3 world) {
-    glm::dvec4 c = r.view.clipFromWorld * glm::dvec4(world, 1.0);
+    glm::dvec4 c = r.camera.clipFromWorld * glm::dvec4(world, 1.0);
     uint32_t x = uint32_t((c.x / c.w + 1.0) * 0.5 * o.width), y = uint32_t((c.y / c.w + 1.0) * 0.5 * o.height);
     return r.readback[size_t(Target::NormalShadow)].value(x, y, 3);
   };
@@ -308,9 +308,9 @@ TEST_F(Accuracy, NormalMappedSurfaceMatchesTheReference) {
   o.lights = 0;
   measureFrame(source(scene), o, cache).error;
   Renderer& r = renderer(scene);
-  const reference::Frame& f = *cache.get(r.view, o.time, kShadowBandTexels, o.shadowMapSize).frame;
+  const reference::Frame& f = *cache.get(r.camera, o.time, kShadowBandTexels, o.shadowMapSize).frame;
   const CpuImage& ns = r.readback[size_t(Target::NormalShadow)];
-  const glm::dvec3 up = glm::dmat3(r.view.eyeFromWorld) * glm::dvec3(0, 1, 0);
+  const glm::dvec3 up = glm::dmat3(r.camera.eyeFromWorld) * glm::dvec3(0, 1, 0);
   int checked = 0;
   for (uint32_t y = 0; y < o.height; ++y)
     for (uint32_t x = 0; x < o.width; ++x) {

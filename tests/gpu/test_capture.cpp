@@ -82,15 +82,15 @@ TEST_F(GpuTest, CaptureRoundTripIsBitExactInEveryStorageFormat) {
     }
     // Everything else the probe uses comes back exactly too.
     EXPECT_EQ(optionsJson(c.frame.options), optionsJson(o));
-    for (auto [x, y] : {std::pair{&live.view.clipFromEye, &c.frame.view.clipFromEye},
-                        {&live.view.eyeFromClip, &c.frame.view.eyeFromClip},
-                        {&live.view.eyeFromWorld, &c.frame.view.eyeFromWorld},
-                        {&live.view.worldFromEye, &c.frame.view.worldFromEye},
-                        {&live.view.clipFromWorld, &c.frame.view.clipFromWorld},
+    for (auto [x, y] : {std::pair{&live.camera.clipFromEye, &c.frame.camera.clipFromEye},
+                        {&live.camera.eyeFromClip, &c.frame.camera.eyeFromClip},
+                        {&live.camera.eyeFromWorld, &c.frame.camera.eyeFromWorld},
+                        {&live.camera.worldFromEye, &c.frame.camera.worldFromEye},
+                        {&live.camera.clipFromWorld, &c.frame.camera.clipFromWorld},
                         {&live.lightClipFromWorld, &c.frame.lightClipFromWorld}})
       EXPECT_TRUE(*x == *y);
-    EXPECT_EQ(live.view.znear, c.frame.view.znear);
-    EXPECT_EQ(live.view.reversedZ, c.frame.view.reversedZ);
+    EXPECT_EQ(live.camera.znear, c.frame.camera.znear);
+    EXPECT_EQ(live.camera.reversedZ, c.frame.camera.reversedZ);
     ASSERT_EQ(live.eyeLights.size(), c.frame.eyeLights.size());
     EXPECT_EQ(0, std::memcmp(live.eyeLights.data(), c.frame.eyeLights.data(), live.eyeLights.size() * sizeof(gpu::PointLight)));
     EXPECT_EQ(live.visibleLights, c.frame.visibleLights);

@@ -18,7 +18,7 @@ static RenderOptions smallOptions(uint32_t w, uint32_t h) {
 }
 
 // Analytic: the eye-space point where the ray through a pixel centre meets the plane y = 0.
-static glm::dvec3 floorHit(const View& v, double px, double py) {
+static glm::dvec3 floorHit(const Camera& v, double px, double py) {
   glm::dvec3 dirEye = eyeFromEyeDepth(v, px, py, 1.0);  // a point at eye depth 1 on the ray
   glm::dvec3 o = glm::dvec3(v.worldFromEye[3]);
   glm::dvec3 d = glm::dmat3(v.worldFromEye) * dirEye;
@@ -46,12 +46,12 @@ TEST_F(GpuTest, ReconstructedPositionsMatchAnalyticFloorBothWays) {
     for (uint32_t y = 0; y < o.height; ++y)
       for (uint32_t x = 0; x < o.width; ++x) {
         if (eye.value(x, y, 0) <= 0.0 || y + 1 >= o.height || x + 1 >= o.width) continue;
-        glm::dvec3 expected = floorHit(r.view, x, y);
+        glm::dvec3 expected = floorHit(r.camera, x, y);
         double dist = glm::length(expected);
-        double gradient = std::max(glm::length(floorHit(r.view, x + 1, y) - expected),
-                                   glm::length(floorHit(r.view, x, y + 1) - expected));
-        glm::dvec3 fromEye = eyeFromEyeDepth(r.view, x, y, eye.value(x, y, 0));
-        glm::dvec3 fromHw = eyeFromHardwareDepth(r.view, x, y, hw.value(x, y, 0));
+        double gradient = std::max(glm::length(floorHit(r.camera, x + 1, y) - expected),
+                                   glm::length(floorHit(r.camera, x, y + 1) - expected));
+        glm::dvec3 fromEye = eyeFromEyeDepth(r.camera, x, y, eye.value(x, y, 0));
+        glm::dvec3 fromHw = eyeFromHardwareDepth(r.camera, x, y, hw.value(x, y, 0));
         ASSERT_LT(glm::length(fromEye - expected), eyeTol * dist + snap * gradient) << x << "," << y;
         ASSERT_LT(glm::length(fromHw - expected), hwTol * dist + snap * gradient) << x << "," << y;
         ++checked;
@@ -105,7 +105,7 @@ TEST_F(GpuTest, ShadowOfABoxDarkensTheFloorByTheAmbientRatio) {
   const CpuImage& ns = r.readback[size_t(Target::NormalShadow)];
   const CpuImage& albedo = r.readback[size_t(Target::AlbedoSpecular)];
   auto pixelOf = [&](glm::dvec3 world) {
-    glm::dvec4 c = r.view.clipFromWorld * glm::dvec4(world, 1.0);
+    glm::dvec4 c = r.camera.clipFromWorld * glm::dvec4(world, 1.0);
     return glm::ivec2(int((c.x / c.w + 1) * 0.5 * o.width), int((c.y / c.w + 1) * 0.5 * o.height));
   };
   // (-2, 0, 0) lies in the box's shadow (the top edge at x = -0.5, y = 3 projects to x = -3.5);

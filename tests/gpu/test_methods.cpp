@@ -166,7 +166,7 @@ TEST_F(GpuTest, CoverageCountsWhatEachMethodEvaluatedAndNeverLessThanTheLightsTh
     const FrameStats& st = render(scene, o, {{Target::CoverageMasked, Target::DepthStencil}, {}, true});
     const Renderer& r = renderer(scene);
     const CpuImage& coverage = r.readback[size_t(Target::CoverageMasked)];
-    const CpuImage eye = eyeDepthFromHardware(r.view, r.readback[size_t(Target::DepthStencil)]);
+    const CpuImage eye = eyeDepthFromHardware(r.camera, r.readback[size_t(Target::DepthStencil)]);
     const uint32_t visible = uint32_t(r.lights.visible.size());
     ASSERT_GT(visible, 16u);
     EXPECT_GE(st.culling.invocations, st.culling.idealPairs) << name(method);
@@ -182,7 +182,7 @@ TEST_F(GpuTest, CoverageCountsWhatEachMethodEvaluatedAndNeverLessThanTheLightsTh
           continue;
         }
         ++surface;
-        const glm::dvec3 p = eyeFromHardwareDepth(r.view, x, y, r.readback[size_t(Target::DepthStencil)].value(x, y, 0));
+        const glm::dvec3 p = eyeFromHardwareDepth(r.camera, x, y, r.readback[size_t(Target::DepthStencil)].value(x, y, 0));
         uint32_t reaching = 0;
         for (uint32_t i : r.lights.visible) {
           glm::dvec3 v = p - glm::dvec3(r.lights.eye[i].eyePositionRadius);

@@ -95,8 +95,8 @@ static void expectLightMatchesCpu(GpuTest& t, const Scene& scene, const RenderOp
     for (uint32_t x = 0; x < o.width; ++x) {
       double d = depth.value(x, y, 0);
       if (d <= 0.0) continue;
-      glm::dvec3 p = eyeFromEyeDepth(r.view, x, y, d);
-      glm::dvec3 n = glm::normalize(glm::dmat3(r.view.eyeFromWorld) * glm::dvec3(0, 1, 0));
+      glm::dvec3 p = eyeFromEyeDepth(r.camera, x, y, d);
+      glm::dvec3 n = glm::normalize(glm::dmat3(r.camera.eyeFromWorld) * glm::dvec3(0, 1, 0));
       glm::dvec3 a(albedo.value(x, y, 0), albedo.value(x, y, 1), albedo.value(x, y, 2));
       glm::dvec3 e = shading::shadePoint(a, albedo.value(x, y, 3), n, p, glm::dvec3(l.eyePositionRadius),
                                          l.eyePositionRadius.w, glm::dvec3(l.color));
@@ -172,8 +172,8 @@ TEST_F(GpuTest, OneLightOverTheFloorLightsExactlyTheAnalyticDisc) {
   int expected = 0, gpu = 0, offEdge = 0;
   for (uint32_t y = 0; y < o.height; ++y)
     for (uint32_t x = 0; x < o.width; ++x) {
-      glm::dvec3 dirEye = eyeFromEyeDepth(r.view, x, y, 1.0);
-      glm::dvec3 d = glm::dmat3(r.view.worldFromEye) * dirEye;
+      glm::dvec3 dirEye = eyeFromEyeDepth(r.camera, x, y, 1.0);
+      glm::dvec3 d = glm::dmat3(r.camera.worldFromEye) * dirEye;
       glm::dvec3 hit = glm::dvec3(0, 10, 0) + d * (10.0 / -d.y);
       double dist = glm::length(glm::dvec2(hit.x - 0.3, hit.z + 0.2));
       bool inDisc = dist < rho;
@@ -199,7 +199,7 @@ TEST_P(PointLightMasks, EveryIdealPairIsShadedAndTheCountMatchesBruteForce) {
     Renderer& r = renderer(scene);
     const CpuImage& depth = r.readback[size_t(Target::Depth)];
     const CpuImage& coverage = r.readback[size_t(Target::CoverageMasked)];
-    uint64_t brute = idealPairsBruteForce(r.view, depth, r.lights.eye);
+    uint64_t brute = idealPairsBruteForce(r.camera, depth, r.lights.eye);
     EXPECT_EQ(st.culling.idealPairs, brute);
     EXPECT_GT(brute, 1000u);
     // Stencil culling must never skip a light that reaches the pixel's surface point.
@@ -207,7 +207,7 @@ TEST_P(PointLightMasks, EveryIdealPairIsShadedAndTheCountMatchesBruteForce) {
       for (uint32_t x = 0; x < o.width; ++x) {
         double d = depth.value(x, y, 0);
         if (d <= 0.0) continue;
-        glm::dvec3 p = eyeFromEyeDepth(r.view, x, y, d);
+        glm::dvec3 p = eyeFromEyeDepth(r.camera, x, y, d);
         uint32_t reaching = 0;
         for (const gpu::PointLight& l : r.lights.eye) {
           glm::dvec3 v = p - glm::dvec3(l.eyePositionRadius);

@@ -112,7 +112,7 @@ TEST_F(GpuTest, ProbeOfARegionReadBackEqualsProbeOfWholeTargets) {
 }
 
 // The eye-space point where the ray through a pixel centre meets the plane y = 0 (analytic).
-static glm::dvec3 floorHit(const View& v, double px, double py) {
+static glm::dvec3 floorHit(const Camera& v, double px, double py) {
   glm::dvec3 o = glm::dvec3(v.worldFromEye[3]);
   glm::dvec3 d = glm::dmat3(v.worldFromEye) * eyeFromEyeDepth(v, px, py, 1.0);
   return glm::dvec3(v.eyeFromWorld * glm::dvec4(o - d * (o.y / d.y), 1.0));
@@ -132,8 +132,8 @@ TEST_F(GpuTest, LightContributionsMatchAnIndependentEvaluationAndTheGpu) {
   o.lights = 1;
   o.sky = false;
   FrameSnapshot f = renderSnapshot(*this, s, o);
-  const glm::dvec3 N = glm::dmat3(f.view.eyeFromWorld) * glm::dvec3(0, 1, 0);
-  const glm::dvec3 light = glm::dvec3(f.view.eyeFromWorld * glm::dvec4(l.center, 1.0));
+  const glm::dvec3 N = glm::dmat3(f.camera.eyeFromWorld) * glm::dvec3(0, 1, 0);
+  const glm::dvec3 light = glm::dvec3(f.camera.eyeFromWorld * glm::dvec4(l.center, 1.0));
   const glm::dvec3 color = glm::dvec3(l.color) * l.intensity;
   int lit = 0;
   for (uint32_t y = 0; y < o.height; ++y)
@@ -141,7 +141,7 @@ TEST_F(GpuTest, LightContributionsMatchAnIndependentEvaluationAndTheGpu) {
       PixelDossier d = probePixel(f, x, y);
       ASSERT_TRUE(d.geometry);
       // Independent: analytic surface point and normal, the attenuation and Blinn-Phong written out.
-      glm::dvec3 P = floorHit(f.view, x, y), toLight = light - P;
+      glm::dvec3 P = floorHit(f.camera, x, y), toLight = light - P;
       double d2 = glm::dot(toLight, toLight), w = std::max(0.0, 1.0 - d2 / (l.radius * l.radius));
       glm::dvec3 L = glm::normalize(toLight), V = glm::normalize(-P), H = glm::normalize(L + V);
       glm::dvec3 expected(0.0);

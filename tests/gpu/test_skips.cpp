@@ -115,7 +115,7 @@ TEST_F(GpuTest, LightsThatCoverNoPixelCentreAreSkippedAndChangeNoPixel) {
   RenderOptions o = skipOptions();
   o.lights = 2;
   render(scene, o);
-  const View& v = renderer(scene).view;
+  const Camera& v = renderer(scene).camera;
   // Two tiny lights 200 units away (a pixel there is ~4 units across): one between pixel
   // centres, one on a pixel-centre ray.
   const double depth = 200.0, pixel = 2.0 * depth * std::tan(0.4) / o.height;

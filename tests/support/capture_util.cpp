@@ -83,7 +83,7 @@ FrameSnapshot syntheticFrame(uint32_t w, uint32_t h) {
   f.options.accumFormat = AccumFormat::Rgba16f;
   CameraDesc cam;
   cam.worldFromEye = lookAt({0, 2, 5}, {0, 0, 0});
-  f.view = makeView(cam, w, h, false);
+  f.camera = makeCamera(cam, w, h, false);
   for (size_t i = 0; i < kTargetCount; ++i) f.absent[i] = Absent::NotCaptured;
   for (Target t : {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth, Target::DepthStencil, Target::Hdr,
                    Target::Final, Target::CoverageMasked}) {

@@ -12,7 +12,7 @@ TEST(Camera, ReconstructionFromEyeDepthAndHardwareDepthAgree) {
   c.znear = 0.1;
   c.zfar = 100.0;
   for (bool reversed : {false, true}) {
-    View v = makeView(c, 64, 48, reversed);
+    Camera v = makeCamera(c, 64, 48, reversed);
     for (double px : {0.0, 13.0, 63.0})
       for (double d : {0.2, 3.0, 77.0}) {
         glm::dvec3 e = eyeFromEyeDepth(v, px, 20.0, d);

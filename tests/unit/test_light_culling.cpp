@@ -16,7 +16,7 @@ namespace gb {
 TEST(LightCulling, ALightSkippedAsSubpixelMissesEveryPixelCentreRay) {
   Scene s = floorScene();
   setCamera(s, {0.0, 2.0, 6.0}, {0.3, 0.5, 0.0}, 0.8, 0.1, 500.0);
-  View v = makeView(s.cameras[0], 48, 32, false);
+  Camera v = makeCamera(s.cameras[0], 48, 32, false);
   int skipped = 0, kept = 0, subpixelKept = 0;
   for (int i = 0; i < 4000; ++i) {
     // Deterministic spread: depths 5..400, radii from 0.05 to 3 pixels' footprint.

@@ -28,7 +28,7 @@ TEST(LightLayers, LightsOfALayerRasterizeDisjointPixels) {
     l.radius = 0.1 + 3.9 * frac(i * 0.3141592653) * frac(i * 0.2718281828);
     s.lights.push_back(l);
   }
-  const View v = makeView(s.cameras[0], 320, 180, false);
+  const Camera v = makeCamera(s.cameras[0], 320, 180, false);
   FrameLights fl;
   classifyLights(s, v, 0.0, true, fl);
 

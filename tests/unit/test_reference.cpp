@@ -13,12 +13,12 @@
 
 namespace gb {
 
-static View testView(const Scene& s, uint32_t w, uint32_t h) { return makeView(s.cameras[0], w, h, false); }
+static Camera testCamera(const Scene& s, uint32_t w, uint32_t h) { return makeCamera(s.cameras[0], w, h, false); }
 
 TEST(Reference, PlanePositionsAndNormalsAreExact) {
   Scene scene = floorScene(50.0);
   setCamera(scene, {0.3, 3.0, 6.0}, {0.0, 0.0, -4.0}, 0.9, 0.1, 200.0);
-  View v = testView(scene, 64, 48);
+  Camera v = testCamera(scene, 64, 48);
   reference::RayScene rays(scene);
   reference::Frame f = reference::renderFrame(rays, v);
   const glm::dvec3 o(v.worldFromEye[3]);
@@ -59,7 +59,7 @@ TEST(Reference, SpherePositionsLieOnTheHitTriangleAndNormalsInterpolate) {
   scene.instances.push_back({b.meshIndex, m, true});
   computeBounds(scene);
   setCamera(scene, {1.0, 2.5, 4.0}, centre, 0.8, 0.1, 100.0);
-  View v = testView(scene, 64, 64);
+  Camera v = testCamera(scene, 64, 64);
   reference::RayScene rays(scene);
   reference::Frame f = reference::renderFrame(rays, v);
   // Every point of the tessellation lies between the inscribed sphere of its faces and R.
@@ -114,7 +114,7 @@ TEST(Reference, ExactShadowOfABoxFollowsTheSunDirection) {
   scene.sun.enabled = true;
   scene.sun.toSun = glm::normalize(glm::dvec3(1.0, 1.0, 0.0));  // 45 degrees: the shadow spans x in [-3.5, -0.5]
   setCamera(scene, {0, 12, 8}, {-1.5, 0, 0});
-  View v = testView(scene, 96, 72);
+  Camera v = testCamera(scene, 96, 72);
   reference::RayScene rays(scene);
   reference::Frame f = reference::renderFrame(rays, v);
   int lit = 0, shadowed = 0;

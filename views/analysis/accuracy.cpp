@@ -10,16 +10,16 @@ namespace gb {
 ReferenceCache::ReferenceCache(const Scene& scene, unsigned threads)
     : scene_(scene), threads_(threads), rays_(std::make_unique<reference::RayScene>(scene, threads)) {}
 
-ReferenceView ReferenceCache::get(const View& view, double time, double bandTexels, uint32_t shadowMapSize) {
+ReferenceView ReferenceCache::get(const Camera& camera, double time, double bandTexels, uint32_t shadowMapSize) {
   auto start = std::chrono::steady_clock::now();
   std::ostringstream key;
   key.precision(17);
-  key << view.width << 'x' << view.height;
+  key << camera.width << 'x' << camera.height;
   for (int c = 0; c < 4; ++c)
-    for (int k = 0; k < 4; ++k) key << ' ' << view.worldFromEye[c][k];
-  key << ' ' << view.yfov << ' ' << view.aspect;
+    for (int k = 0; k < 4; ++k) key << ' ' << camera.worldFromEye[c][k];
+  key << ' ' << camera.yfov << ' ' << camera.aspect;
   Entry& e = entries_[key.str()];
-  if (e.frame.pixels.empty()) e.frame = reference::renderFrame(*rays_, view, threads_);
+  if (e.frame.pixels.empty()) e.frame = reference::renderFrame(*rays_, camera, threads_);
   double radius = bandTexels * reference::shadowTexelSize(scene_, shadowMapSize);
   auto band = e.bands.find(radius);
   if (band == e.bands.end()) band = e.bands.emplace(radius, reference::shadowBand(*rays_, e.frame, radius, threads_)).first;
@@ -33,8 +33,8 @@ ReferenceView ReferenceCache::get(const View& view, double time, double bandTexe
     in.reserve(e.frame.pixels.size());
     for (const reference::Surface& s : e.frame.pixels) in.push_back(reference::shadingInput(s));
     shaded = e.shaded
-                 .emplace(lightKey.str(), reference::shade(in, view, reference::eyeLights(scene_, view, time),
-                                                           reference::sunOf(scene_, view), threads_))
+                 .emplace(lightKey.str(), reference::shade(in, camera, reference::eyeLights(scene_, camera, time),
+                                                           reference::sunOf(scene_, camera), threads_))
                  .first;
   }
   seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -64,7 +64,7 @@ MeasuredFrame measureFrame(const FrameSource& render, const RenderOptions& optio
   } else {
     m.frame = render(o, targets);
   }
-  ReferenceView ref = cache.get(extras.referenceView ? *extras.referenceView : m.frame.view, o.time, bandTexels,
+  ReferenceView ref = cache.get(extras.referenceCamera ? *extras.referenceCamera : m.frame.camera, o.time, bandTexels,
                                 o.shadowMapSize);
   m.error = measureError(m.frame, ref);
   return m;

@@ -17,7 +17,7 @@ class ReferenceCache {
  public:
   explicit ReferenceCache(const Scene& scene, unsigned threads = 2);
   // The reference for this view and time: surfaces, penumbra band, shading of the scene's lights.
-  ReferenceView get(const View& view, double time, double bandTexels, uint32_t shadowMapSize);
+  ReferenceView get(const Camera& camera, double time, double bandTexels, uint32_t shadowMapSize);
   const reference::RayScene& rays() const { return *rays_; }
   double seconds = 0.0;  // CPU time spent building references (reported by bench)
 
@@ -42,7 +42,7 @@ constexpr double kShadowBandTexels = 2.0;
 // origin: everything the reference computes is relative to the camera).
 struct MeasureExtras {
   std::vector<Target> readback;
-  const View* referenceView = nullptr;
+  const Camera* referenceCamera = nullptr;
 };
 
 // A frame of these options with these targets read back (whole), as a snapshot.

@@ -206,7 +206,7 @@ void measureLightingPasses(FrameError& e, const FrameSnapshot& g, const referenc
   sun.toSunEye = glm::dvec3(g.frameData.sunEyeDirection);
   sun.color = glm::dvec3(g.frameData.sunColor);
   sun.ambient = glm::dvec3(g.frameData.ambientColor);
-  reference::Shaded s = reference::shade(gpuInputs, rf.view, lights, sun, threads);
+  reference::Shaded s = reference::shade(gpuInputs, rf.camera, lights, sun, threads);
   const CpuImage& hdr = g.target(Target::Hdr).image;
   std::vector<double> lRel, lPer;
   for (uint32_t y = 0; y < e.height; ++y)
@@ -242,7 +242,7 @@ std::vector<Target> measuredTargets(const RenderOptions& o) {
 
 FrameError measureError(const FrameSnapshot& g, const ReferenceView& ref, unsigned threads) {
   const reference::Frame& rf = *ref.frame;
-  const uint32_t w = rf.view.width, h = rf.view.height;
+  const uint32_t w = rf.camera.width, h = rf.camera.height;
   for (Target t : {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth, Target::DepthStencil, Target::Hdr})
     GB_ASSERT(g.target(t).present() && g.target(t).whole());
   FrameError e;

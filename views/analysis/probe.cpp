@@ -37,7 +37,7 @@ static ProbeTarget rawTarget(const FrameSnapshot& f, Target t, uint32_t x, uint3
 
 // Where the pixel's receiver point falls in the shadow map (continuous texel coordinates).
 static bool shadowTexel(const FrameSnapshot& f, const glm::dvec3& eye, glm::dvec3& lightClip, glm::dvec2& texel) {
-  glm::dvec4 world = f.view.worldFromEye * glm::dvec4(eye, 1.0);
+  glm::dvec4 world = f.camera.worldFromEye * glm::dvec4(eye, 1.0);
   glm::dvec4 lc = f.lightClipFromWorld * world;
   lightClip = glm::dvec3(lc) / lc.w;
   const TargetImage& sm = f.target(Target::ShadowMap);
@@ -53,12 +53,12 @@ static bool usedPosition(const FrameSnapshot& f, uint32_t x, uint32_t y, glm::dv
   const TargetImage& ds = f.target(Target::DepthStencil);
   if (f.options.eyeDepth) {
     if (!depth.contains(x, y) || !(depth.value(x, y, 0) > 0.0)) return false;
-    eye = eyeFromEyeDepth(f.view, x, y, depth.value(x, y, 0));
+    eye = eyeFromEyeDepth(f.camera, x, y, depth.value(x, y, 0));
     return true;
   }
   double far = f.options.reversedZ ? 0.0 : 1.0;
   if (!ds.contains(x, y) || ds.value(x, y, 0) == far) return false;
-  eye = eyeFromHardwareDepth(f.view, x, y, ds.value(x, y, 0));
+  eye = eyeFromHardwareDepth(f.camera, x, y, ds.value(x, y, 0));
   return true;
 }
 
@@ -120,7 +120,7 @@ static void probeShadow(const FrameSnapshot& f, const glm::dvec3& eye, PixelDoss
 static bool rayVolume(const FrameSnapshot& f, uint32_t x, uint32_t y, const gpu::PointLight& l, double& enter,
                       double& exit) {
   const Icosahedron& ico = icosahedron();
-  glm::dvec3 dir = eyeFromEyeDepth(f.view, x, y, 1.0);
+  glm::dvec3 dir = eyeFromEyeDepth(f.camera, x, y, 1.0);
   glm::vec3 v[12];
   float scale = l.eyePositionRadius.w / float(kIcosahedronInradius);
   for (int i = 0; i < 12; ++i) v[i] = glm::vec3(l.eyePositionRadius) + ico.vertices[i] * scale;
@@ -179,11 +179,11 @@ PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
   PixelDossier d;
   d.x = x;
   d.y = y;
-  d.width = f.view.width;
-  d.height = f.view.height;
-  if (x >= f.view.width || y >= f.view.height) {
+  d.width = f.camera.width;
+  d.height = f.camera.height;
+  if (x >= f.camera.width || y >= f.camera.height) {
     d.error = "pixel " + std::to_string(x) + "," + std::to_string(y) + " is outside the " +
-              std::to_string(f.view.width) + "x" + std::to_string(f.view.height) + " frame";
+              std::to_string(f.camera.width) + "x" + std::to_string(f.camera.height) + " frame";
     return d;
   }
   for (size_t i = 0; i < kTargetCount; ++i)
@@ -219,17 +219,17 @@ PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
   d.positionSource = f.options.eyeDepth ? "eye_depth" : "hardware_depth";
   double far = f.options.reversedZ ? 0.0 : 1.0;
   if (hasEye && d.eyeDepth > 0.0) {
-    d.fromEyeDepth = {true, eyeFromEyeDepth(f.view, x, y, d.eyeDepth), {}};
-    d.fromEyeDepth.world = glm::dvec3(f.view.worldFromEye * glm::dvec4(d.fromEyeDepth.eye, 1.0));
+    d.fromEyeDepth = {true, eyeFromEyeDepth(f.camera, x, y, d.eyeDepth), {}};
+    d.fromEyeDepth.world = glm::dvec3(f.camera.worldFromEye * glm::dvec4(d.fromEyeDepth.eye, 1.0));
   }
   if (hasHw && d.hardwareDepth != far) {
-    d.fromHardwareDepth = {true, eyeFromHardwareDepth(f.view, x, y, d.hardwareDepth), {}};
-    d.fromHardwareDepth.world = glm::dvec3(f.view.worldFromEye * glm::dvec4(d.fromHardwareDepth.eye, 1.0));
+    d.fromHardwareDepth = {true, eyeFromHardwareDepth(f.camera, x, y, d.hardwareDepth), {}};
+    d.fromHardwareDepth.world = glm::dvec3(f.camera.worldFromEye * glm::dvec4(d.fromHardwareDepth.eye, 1.0));
   }
   if (d.fromEyeDepth.valid && d.fromHardwareDepth.valid) {
     d.positionDifference = glm::length(d.fromEyeDepth.eye - d.fromHardwareDepth.eye);
     d.eyeDepthUlps = std::abs(d.fromEyeDepth.eye.z - d.fromHardwareDepth.eye.z) / floatUlp(d.eyeDepth);
-    d.hardwareDepthUlps = std::abs(hardwareDepth(f.view, d.fromEyeDepth.eye) - d.hardwareDepth) / floatUlp(d.hardwareDepth);
+    d.hardwareDepthUlps = std::abs(hardwareDepth(f.camera, d.fromEyeDepth.eye) - d.hardwareDepth) / floatUlp(d.hardwareDepth);
   }
 
   if (d.geometry) {

@@ -47,7 +47,7 @@ bool loadCapture(const std::string& dir, Capture& out, std::string& error, Captu
 // JSON forms used by the manifest (also by tests and the viewer's "copy as JSON").
 nlohmann::json matrixJson(const glm::dmat4& m);  // 16 numbers, column-major (glm order)
 bool matrixFromJson(const nlohmann::json& j, glm::dmat4& m);
-nlohmann::json viewJson(const View& v);
-bool viewFromJson(const nlohmann::json& j, View& v, std::string& error);
+nlohmann::json cameraJson(const Camera& v);
+bool cameraFromJson(const nlohmann::json& j, Camera& v, std::string& error);
 
 }  // namespace gb

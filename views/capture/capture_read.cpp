@@ -1,5 +1,5 @@
 // Loading captures: every file checked (present, size, SHA-256) before it is parsed; the
-// manifest rebuilds the options, the view, the sun and the lights; the EXRs the images.
+// manifest rebuilds the options, the camera, the sun and the lights; the EXRs the images.
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -29,7 +29,7 @@ bool matrixFromJson(const nlohmann::json& j, glm::dmat4& m) {
   return true;
 }
 
-nlohmann::json viewJson(const View& v) {
+nlohmann::json cameraJson(const Camera& v) {
   return {{"width", v.width},   {"height", v.height}, {"yfov", v.yfov},
           {"aspect", v.aspect}, {"znear", v.znear},   {"zfar", v.zfar},
           {"reversed_z", v.reversedZ},
@@ -38,7 +38,7 @@ nlohmann::json viewJson(const View& v) {
           {"clipFromWorld", matrixJson(v.clipFromWorld)}};
 }
 
-bool viewFromJson(const nlohmann::json& j, View& v, std::string& error) {
+bool cameraFromJson(const nlohmann::json& j, Camera& v, std::string& error) {
   try {
     v.width = j.at("width").get<uint32_t>();
     v.height = j.at("height").get<uint32_t>();
@@ -51,11 +51,11 @@ bool viewFromJson(const nlohmann::json& j, View& v, std::string& error) {
                           {"eyeFromWorld", &v.eyeFromWorld}, {"worldFromEye", &v.worldFromEye},
                           {"clipFromWorld", &v.clipFromWorld}})
       if (!matrixFromJson(j.at(key), *m)) {
-        error = std::string("view.") + key + ": expected 16 numbers";
+        error = std::string("camera.") + key + ": expected 16 numbers";
         return false;
       }
   } catch (const nlohmann::json::exception& e) {
-    error = std::string("view: ") + e.what();
+    error = std::string("camera: ") + e.what();
     return false;
   }
   return true;
@@ -225,7 +225,9 @@ bool loadCapture(const std::string& dirText, Capture& out, std::string& error, C
   try {
     if (!m.at("files").contains("lights.json"))
       return fail(CaptureProblem::Corrupt, dirText + ": manifest.json: lights.json has no checksum in the file list");
-    if (!optionsFromJson(m.at("options"), f.options, error) || !viewFromJson(m.at("view"), f.view, error) ||
+    // "camera" (earlier manifests: "view").
+    const nlohmann::json& camera = m.contains("camera") ? m.at("camera") : m.at("view");
+    if (!optionsFromJson(m.at("options"), f.options, error) || !cameraFromJson(camera, f.camera, error) ||
         !loadLights(dir, f, error))
       return fail(CaptureProblem::Corrupt, dirText + ": " + error);
     if (!matrixFromJson(m.at("lightClipFromWorld"), f.lightClipFromWorld))

@@ -62,7 +62,7 @@ static nlohmann::json lightsJson(const FrameSnapshot& f) {
                         {"eye_position", vec3Json(eye)},
                         {"radius", double(l.eyePositionRadius.w)},
                         {"color", vec3Json(glm::dvec3(l.color))},
-                        {"world_position", vec3Json(glm::dvec3(f.view.worldFromEye * glm::dvec4(eye, 1.0)))}};
+                        {"world_position", vec3Json(glm::dvec3(f.camera.worldFromEye * glm::dvec4(eye, 1.0)))}};
     if (i < f.lightDescs.size()) {
       const PointLightDesc& d = f.lightDescs[i];
       j["desc"] = {{"center", vec3Json(d.center)}, {"orbit_radius", d.orbitRadius}, {"orbit_speed", d.orbitSpeed},
@@ -146,10 +146,10 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
       {"device", meta.device},
       {"driver", meta.driver},
       {"scene", {{"source", meta.scene}, {"content_sha256", meta.sceneSha256}}},
-      {"size", {f.view.width, f.view.height}},
+      {"size", {f.camera.width, f.camera.height}},
       {"time", f.options.time},
       {"options", optionsJson(f.options)},
-      {"view", viewJson(f.view)},
+      {"camera", cameraJson(f.camera)},
       {"lightClipFromWorld", matrixJson(f.lightClipFromWorld)},
       {"sun", {{"enabled", f.sun.enabled}, {"to_sun", vec3Json(f.sun.toSun)},
                {"color", vec3Json(glm::dvec3(f.sun.color))}, {"eye_direction", vec3Json(f.sunEyeDirection())}}},

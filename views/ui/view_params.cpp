@@ -1,4 +1,4 @@
-// View definitions (one table) and the mapping from settings to GPU parameters.
+// View settings and the mapping from settings to GPU parameters.
 #include "views/ui/view_params.h"
 
 #include <algorithm>
