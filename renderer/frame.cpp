@@ -6,34 +6,22 @@
 #include "renderer/frame.h"
 
 #include <algorithm>
-#include <sstream>
 
 #include "renderer/passes/passes.h"
 
 namespace gb {
 
-// What the shadow map depends on: when unchanged since the last frame, it is reused.
-static std::string shadowMapKey(const Renderer& r) {
-  const Scene& s = *r.scene;
+// What the shadow map depends on: when unchanged since the last frame, it is reused. (The
+// renderer draws one scene for its whole life: the instances and the sun are what can change.)
+static ShadowMapKey shadowMapKey(const Renderer& r) {
   const RenderOptions& o = r.options;
-  std::ostringstream k;
-  k.precision(17);
-  k << &s << ' ' << s.instances.size() << ' ' << s.sun.toSun.x << ' ' << s.sun.toSun.y << ' ' << s.sun.toSun.z << ' '
-    << o.shadowMapSize << ' ' << name(o.shadowFormat) << ' ' << o.shadowBiasConstant << ' ' << o.shadowBiasSlope << ' '
-    << o.shadowBiasClamp;
-  return k.str();
+  return {r.scene->instances.size(), r.scene->sun.toSun, o.shadowMapSize, o.shadowFormat,
+          o.shadowBiasConstant, o.shadowBiasSlope, o.shadowBiasClamp};
 }
 
-std::string skyVisibilityKey(const Renderer& r) {
+SkyKey skyVisibilityKey(const Renderer& r) {
   const RenderOptions& o = r.options;
-  std::ostringstream k;
-  k.precision(17);
-  k << r.scene << ' ' << r.scene->instances.size() << ' ' << o.width << 'x' << o.height << ' ' << o.reversedZ << ' '
-    << name(o.depthFormat);
-  const glm::dmat4& m = r.camera.clipFromWorld;
-  for (int c = 0; c < 4; ++c)
-    for (int i = 0; i < 4; ++i) k << ' ' << m[c][i];
-  return k.str();
+  return {r.scene->instances.size(), o.width, o.height, o.reversedZ, o.depthFormat, r.camera.clipFromWorld};
 }
 
 void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
@@ -51,7 +39,7 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
     g.skipPass("clear_coverage", "coverage not requested");
 
   // ── 1. Shadow map ───────────────────────────────────────────────────────────────────────────
-  const std::string shadowKey = shadowMapKey(r);
+  const ShadowMapKey shadowKey = shadowMapKey(r);
   if (!scene.sun.enabled) {
     g.skipPass("shadow_map", "no sun (shadow term 1)");
   } else if (r.drawOrder.empty()) {
@@ -121,7 +109,7 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   // Sky pixels are where the depth buffer kept the far plane, so they depend only on the
   // camera, the size and the geometry: the last frame with the same ones counted them
   // (occlusion query around the skybox draw). Zero then means zero now.
-  const std::string skyKey = skyVisibilityKey(r);
+  const SkyKey skyKey = skyVisibilityKey(r);
   if (!o.sky)
     g.skipPass("skybox", "sky disabled");
   else if (skyKey == r.skyKey && r.skyPixels == 0)

@@ -9,9 +9,6 @@ void buildFrame(FrameGraph& graph, Renderer& r, const FrameRequest& request);
 
 // What decides which pixels show sky (camera, size, geometry, depth convention): a frame with
 // the same key has the same sky pixels, so a count of zero lets the next frame skip the skybox.
-std::string skyVisibilityKey(const Renderer& r);
-
-// Copies a target into its read-back buffer (after the graph has put it in TRANSFER_SRC).
-void recordReadback(Renderer& r, VkCommandBuffer cmd, Target t);
+SkyKey skyVisibilityKey(const Renderer& r);
 
 }  // namespace gb

@@ -6,7 +6,7 @@
 
 #include <unistd.h>
 
-#include "renderer/renderer.h"
+#include "renderer/render_targets.h"
 #include "renderer/core/targets.h"
 #include "renderer/vk/resources.h"
 

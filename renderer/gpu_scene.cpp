@@ -4,8 +4,9 @@
 #include <cmath>
 #include <cstring>
 
+#include "renderer/gpu_scene.h"
+
 #include "renderer/scene/mesh_builder.h"
-#include "renderer/renderer.h"
 #include "renderer/vk/check.h"
 
 namespace gb {
@@ -51,9 +52,9 @@ uint32_t drawVariant(const Scene& scene, uint32_t instance) {
   return (m.alphaMode != AlphaMode::Opaque ? 2u : 0u) + (m.normalTexture >= 0 ? 1u : 0u);
 }
 
-void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
-  r.ctx = &ctx;
-  r.scene = &scene;
+void uploadScene(Renderer& r) {
+  GpuContext& ctx = *r.ctx;
+  const Scene& scene = *r.scene;
   const VkBufferUsageFlags dst = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
   // Geometry. Empty scenes still get valid (tiny) buffers.
@@ -79,16 +80,6 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | dst, MemoryUse::Device);
   uploadBuffer(ctx, r.materialBuffer, materials.data(), materials.size() * sizeof(gpu::Material));
 
-  // Per-frame data: host-visible, rewritten every frame (one frame in flight).
-  r.frameBuffer = createBuffer(ctx, sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::Upload);
-  r.drawBuffer = createBuffer(ctx, std::max<size_t>(scene.instances.size(), 1) * sizeof(gpu::DrawData),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload);
-  const size_t maxLights = 65536;  // --lights range; the buffers never need to grow
-  r.lightBuffer = createBuffer(ctx, std::max<size_t>(scene.lights.size(), maxLights) * sizeof(gpu::PointLight),
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload);
-  r.visibleBuffer = createBuffer(ctx, std::max<size_t>(scene.lights.size(), maxLights) * sizeof(uint32_t),
-                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload);
-
   // Textures (RGBA8, full mip chain), then the stand-ins for materials without textures:
   // white base colour and a flat normal.
   std::vector<Texture> textures = scene.textures;
@@ -106,7 +97,24 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
     uploadTexture(ctx, img, t.rgba8);
     r.textures.push_back(img);
   }
+}
 
+void createFrameBuffers(Renderer& r) {
+  GpuContext& ctx = *r.ctx;
+  const Scene& scene = *r.scene;
+  // Per-frame data: host-visible, rewritten every frame (one frame in flight).
+  r.frameBuffer = createBuffer(ctx, sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::Upload);
+  r.drawBuffer = createBuffer(ctx, std::max<size_t>(scene.instances.size(), 1) * sizeof(gpu::DrawData),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload);
+  const size_t maxLights = 65536;  // --lights range; the buffers never need to grow
+  r.lightBuffer = createBuffer(ctx, std::max<size_t>(scene.lights.size(), maxLights) * sizeof(gpu::PointLight),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload);
+  r.visibleBuffer = createBuffer(ctx, std::max<size_t>(scene.lights.size(), maxLights) * sizeof(uint32_t),
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload);
+}
+
+void createDescriptors(Renderer& r) {
+  GpuContext& ctx = *r.ctx;
   r.samplerRepeat = makeSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT, false, VK_LOD_CLAMP_NONE);
   r.samplerClamp = makeSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false, VK_LOD_CLAMP_NONE);
   r.samplerShadow = makeSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER, true, 0.0f);
@@ -158,7 +166,10 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &pci, nullptr, &r.pipelineLayout));
   layouts[1] = r.passSetLayoutInput;
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &pci, nullptr, &r.pipelineLayoutInput));
+}
 
+void writeSceneSet(Renderer& r) {
+  GpuContext& ctx = *r.ctx;
   VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}};
   VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -188,7 +199,10 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
     writes.push_back(w);
   }
   vkUpdateDescriptorSets(ctx.device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
 
+void sortDraws(Renderer& r) {
+  const Scene& scene = *r.scene;
   // Draw order by pipeline variant: opaque before alpha-tested (early depth before discard),
   // without before with a normal texture; by material within a variant (fewer texture pushes).
   for (uint32_t variant = 0; variant < 4; ++variant) {
@@ -201,14 +215,6 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
     });
   }
   r.drawVariants[4] = uint32_t(r.drawOrder.size());
-
-  VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  cai.commandPool = ctx.commandPool;
-  cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  cai.commandBufferCount = 1;
-  VK_CHECK(vkAllocateCommandBuffers(ctx.device, &cai, &r.cmd));
-  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &r.fence));
 }
 
 }  // namespace gb

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "renderer/vk/check.h"
+#include "renderer/target_readback.h"
 
 namespace gb {
 

@@ -9,201 +9,14 @@
 #include <sstream>
 
 #include "renderer/frame.h"
+#include "renderer/gpu_scene.h"
+#include "renderer/render_targets.h"
+#include "renderer/target_readback.h"
 #include "renderer/light_culling.h"
 #include "renderer/passes/passes.h"
 #include "renderer/vk/check.h"
 
 namespace gb {
-
-// ---- targets -------------------------------------------------------------------------------
-
-bool primitiveIdOn(const GpuContext& ctx, const RenderOptions& o) { return o.primitiveId && ctx.features.primitiveId; }
-
-std::vector<Target> readableTargets(const Renderer& r, const RenderOptions& o) {
-  std::vector<Target> out;
-  for (const TargetInfo& info : targetTable()) {
-    if (targetAbsence(info.target, o, r.scene->sun.enabled) != Absent::No) continue;
-    if (info.target == Target::PrimitiveId && !primitiveIdOn(*r.ctx, o)) continue;
-    out.push_back(info.target);
-  }
-  return out;
-}
-
-FrameRequest captureRequest(const std::vector<Target>& targets, const RenderOptions& o) {
-  FrameRequest r;
-  r.readback = targets;
-  auto has = [&](Target t) { return std::find(targets.begin(), targets.end(), t) != targets.end(); };
-  r.cullingStats = o.coverage && has(Target::CoverageMasked) && has(Target::Depth);
-  return r;
-}
-
-static std::string targetsKey(const GpuContext& ctx, const Scene& s, const RenderOptions& o) {
-  std::ostringstream k;
-  k << o.width << 'x' << o.height << ' ' << name(o.normalFormat) << ' ' << name(o.depthFormat) << ' '
-    << name(o.accumFormat) << ' ' << name(o.shadowFormat) << ' ' << (s.sun.enabled ? o.shadowMapSize : 1) << ' '
-    << o.coverage << ' ' << transientGBuffer(o) << ' ' << primitiveIdOn(ctx, o) << ' '
-    << name(o.position) << ' ' << ctx.deviceName;
-  return k.str();
-}
-
-VkExtent2D targetExtent(const GpuContext& ctx, Target t, const Scene& s, const RenderOptions& o) {
-  // Targets this frame does not compute keep a valid, tiny 1x1 image.
-  bool unused = false;
-  switch (t) {
-    case Target::CoverageMasked:
-    case Target::CoverageFull: unused = !o.coverage; break;
-    case Target::PrimitiveId: unused = !primitiveIdOn(ctx, o); break;
-    case Target::Position: unused = o.position == PositionSource::Depth; break;
-    case Target::ShadowMap: unused = !s.sun.enabled; break;
-    default: break;
-  }
-  if (unused) return {1, 1};
-  if (targetInfo(t).size == SizeRule::ShadowMap) return {o.shadowMapSize, o.shadowMapSize};
-  return {o.width, o.height};
-}
-
-bool targetTransient(Target t, const RenderOptions& o) {
-  const bool placeholder = t == Target::Position && o.position == PositionSource::Depth;
-  return targetInfo(t).role == TargetRole::GBuffer && transientGBuffer(o) && !placeholder;
-}
-
-// Usage flags from the target's role (renderer/core/targets.h).
-static VkImageUsageFlags targetUsage(TargetRole role, bool transient) {
-  const VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                  VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  switch (role) {
-    case TargetRole::GBuffer:
-      return transient ? (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT) : color;
-    case TargetRole::DepthStencil:
-      return VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-             VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    case TargetRole::ShadowMap:
-      return VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    case TargetRole::Light: return color | VK_IMAGE_USAGE_STORAGE_BIT;
-    case TargetRole::Display: return color;
-    case TargetRole::Counter:
-      return VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-             VK_IMAGE_USAGE_SAMPLED_BIT;
-    case TargetRole::Id:
-      return VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-  }
-  GB_ASSERT(!"target role");
-  return 0;
-}
-
-static ImageDesc targetDesc(const GpuContext& ctx, Target t, const Scene& s, const RenderOptions& o) {
-  ImageDesc d;
-  d.format = targetFormat(t, o);
-  VkExtent2D e = targetExtent(ctx, t, s, o);
-  d.width = e.width;
-  d.height = e.height;
-  d.name = targetName(t);
-  d.transient = targetTransient(t, o);
-  // An unused stored position is a 1x1 placeholder only ever bound for sampling.
-  d.usage = t == Target::Position && o.position == PositionSource::Depth ? VkImageUsageFlags(VK_IMAGE_USAGE_SAMPLED_BIT)
-                                                                          : targetUsage(targetInfo(t).role, d.transient);
-  return d;
-}
-
-static void destroyTargets(Renderer& r) {
-  GpuContext& ctx = *r.ctx;
-  for (GraphTarget& t : r.targets) {
-    destroyImage(ctx, t.image);
-    t = GraphTarget{};
-  }
-  for (Buffer& b : r.readbackBuffers) destroyBuffer(ctx, b);
-  clearFramebuffers(ctx, r.graphCache);
-  r.shadowKey.clear();
-  r.skyKey.clear();
-  r.targetsValid = false;
-}
-
-static void ensureTargets(Renderer& r, const RenderOptions& o) {
-  std::string key = targetsKey(*r.ctx, *r.scene, o);
-  if (r.targetsValid && key == r.targetsKey) return;
-  vkDeviceWaitIdle(r.ctx->device);
-  destroyTargets(r);
-  for (size_t i = 0; i < kTargetCount; ++i)
-    r.targets[i].image = createImage(*r.ctx, targetDesc(*r.ctx, Target(i), *r.scene, o));
-  r.targets[size_t(Target::ShadowMap)].keep = true;  // reused while the sun and geometry stay
-  r.targetsValid = true;
-  r.targetsKey = key;
-}
-
-// ---- pipelines and descriptors ---------------------------------------------------------------
-
-VkPipeline graphicsPipeline(Renderer& r, const PassContext& pc, const std::string& id,
-                            const std::function<void(GraphicsPipelineDesc&)>& fill) {
-  std::string key = id + "@" + pc.compatKey + "#";
-  for (const SpecConstant& c : commonSpec(r)) key += std::to_string(c.value) + ",";
-  VkPipeline& p = r.pipelines[key];
-  if (!p) {
-    GraphicsPipelineDesc d;
-    d.renderPass = pc.renderPass;
-    d.subpass = pc.subpass;
-    d.layout = r.pipelineLayout;
-    d.spec = commonSpec(r);
-    d.colorBlend.assign(pc.colorAttachments, BlendState{});
-    fill(d);
-    GB_ASSERT(d.colorBlend.size() == pc.colorAttachments);
-    p = createGraphicsPipeline(*r.ctx, d);
-  }
-  return p;
-}
-
-VkPipeline computePipeline(Renderer& r, const std::string& shader) {
-  std::string key = shader + "@compute#";
-  std::vector<SpecConstant> spec = commonSpec(r);
-  for (const SpecConstant& c : spec) key += std::to_string(c.value) + ",";
-  VkPipeline& p = r.pipelines[key];
-  if (!p) p = createComputePipeline(*r.ctx, shader, spec, r.pipelineLayout);
-  return p;
-}
-
-std::vector<SpecConstant> commonSpec(const Renderer& r) {
-  uint32_t normal = 0;
-  switch (r.options.normalFormat) {
-    case NormalFormat::Rgba16f: normal = gpu::kNormalRgba16f; break;
-    case NormalFormat::Rgba8Snorm: normal = gpu::kNormalRgba8Snorm; break;
-    case NormalFormat::OctRg16: normal = gpu::kNormalOctRg16; break;
-    case NormalFormat::Rgb10a2: normal = gpu::kNormalRgb10a2; break;
-  }
-  uint32_t position = gpu::kPositionDepth;
-  if (r.options.position != PositionSource::Depth)
-    position = r.options.positionSpace == PositionSpace::World ? gpu::kPositionWorld : gpu::kPositionCamera;
-  return {{gpu::kSpecEyeDepth, r.options.eyeDepth ? 1u : 0u},
-          {gpu::kSpecPosition, position},
-          {gpu::kSpecReversedZ, r.options.reversedZ ? 1u : 0u},
-          {gpu::kSpecNormalEncoding, normal},
-          {gpu::kSpecCoverage, r.options.coverage ? 1u : 0u}};
-}
-
-void bindDescriptors(Renderer& r, VkCommandBuffer cmd, VkPipelineLayout layout, std::initializer_list<PassImage> images,
-                     VkPipelineBindPoint bindPoint) {
-  vkCmdBindDescriptorSets(cmd, bindPoint, layout, gpu::kSetScene, 1, &r.sceneSet, 0, nullptr);
-  if (images.size() == 0) return;
-  std::vector<VkDescriptorImageInfo> infos;
-  infos.reserve(images.size());
-  std::vector<VkWriteDescriptorSet> writes;
-  for (const PassImage& img : images) {
-    infos.push_back({img.sampler, img.view, img.layout});
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstBinding = img.binding;
-    w.descriptorCount = 1;
-    w.descriptorType = img.type;
-    w.pImageInfo = &infos.back();
-    writes.push_back(w);
-  }
-  r.ctx->cmdPushDescriptorSet(cmd, bindPoint, layout, gpu::kSetPass, uint32_t(writes.size()), writes.data());
-}
-
-VkCompareOp closerOrEqual(const Renderer& r) {
-  return r.options.reversedZ ? VK_COMPARE_OP_GREATER_OR_EQUAL : VK_COMPARE_OP_LESS_OR_EQUAL;
-}
-VkCompareOp fartherOrEqual(const Renderer& r) {
-  return r.options.reversedZ ? VK_COMPARE_OP_LESS_OR_EQUAL : VK_COMPARE_OP_GREATER_OR_EQUAL;
-}
-float farDepth(const Renderer& r) { return r.options.reversedZ ? 0.0f : 1.0f; }
 
 // ---- per-frame CPU work -----------------------------------------------------------------------
 
@@ -279,62 +92,58 @@ const FrameStats& renderCountingFrame(Renderer& r, const RenderOptions& options,
   return renderFrame(r, counting, request);
 }
 
-const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const FrameRequest& userRequest) {
-  auto start = std::chrono::steady_clock::now();
-  GpuContext& ctx = *r.ctx;
-  // Culling statistics count from coverage_masked and the eye depth (forward has no eye-depth
-  // target: its surface points come from the hardware depth).
-  FrameRequest request = userRequest;
-  const Target depthSource = options.method == Method::Forward ? Target::DepthStencil : Target::Depth;
-  if (request.cullingStats && options.coverage)
-    for (Target t : {Target::CoverageMasked, depthSource})
+// Culling statistics count from coverage_masked and the eye depth (forward has no eye-depth
+// target: its surface points come from the hardware depth).
+static Target cullingDepthSource(const RenderOptions& o) {
+  return o.method == Method::Forward ? Target::DepthStencil : Target::Depth;
+}
+
+static FrameRequest completeRequest(const FrameRequest& user, const RenderOptions& o) {
+  FrameRequest request = user;
+  if (request.cullingStats && o.coverage)
+    for (Target t : {Target::CoverageMasked, cullingDepthSource(o)})
       if (std::find(request.readback.begin(), request.readback.end(), t) == request.readback.end())
         request.readback.push_back(t);
-  ensureTargets(r, options);
-  // Transient images have no memory to copy from, and forward frames never write the G-buffer.
-  for (Target t : request.readback) {
-    GB_ASSERT(!r.targets[size_t(t)].image.desc.transient);
-    GB_ASSERT(options.method != Method::Forward || (t != Target::AlbedoSpecular && t != Target::NormalShadow &&
-                                                    t != Target::Depth && t != Target::Position));
-  }
-  r.options = options;
-  prepareFrame(r);
+  return request;
+}
 
-  FrameGraph graph;
-  r.skyQueryActive = false;
-  buildFrame(graph, r, request);
+static VkQueryPool createQueryPool(GpuContext& ctx, VkQueryType type, uint32_t count,
+                                   VkQueryPipelineStatisticFlags statistics = 0) {
+  VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  qci.queryType = type;
+  qci.queryCount = count;
+  qci.pipelineStatistics = statistics;
+  VkQueryPool pool;
+  VK_CHECK(vkCreateQueryPool(ctx.device, &qci, nullptr, &pool));
+  return pool;
+}
+
+// Timestamps for every pass of `graph`, the skybox's occlusion query and the point-light
+// pass's pipeline statistics when this frame uses them: created on first use, reset each frame.
+static void resetQueries(Renderer& r, const FrameGraph& graph, const FrameRequest& request) {
+  GpuContext& ctx = *r.ctx;
   if (r.skyQueryActive) {
-    if (!r.occlusionPool) {
-      VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-      qci.queryType = VK_QUERY_TYPE_OCCLUSION;
-      qci.queryCount = 1;
-      VK_CHECK(vkCreateQueryPool(ctx.device, &qci, nullptr, &r.occlusionPool));
-    }
+    if (!r.occlusionPool) r.occlusionPool = createQueryPool(ctx, VK_QUERY_TYPE_OCCLUSION, 1);
     vkResetQueryPool(ctx.device, r.occlusionPool, 0, 1);
   }
-
   uint32_t queries = std::max(graph.timestampCount(), 2u);
-  uint32_t& capacity = r.timestampCapacity;
-  if (!r.timestampPool || capacity < queries) {
+  if (!r.timestampPool || r.timestampCapacity < queries) {
     if (r.timestampPool) vkDestroyQueryPool(ctx.device, r.timestampPool, nullptr);
-    VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-    qci.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    qci.queryCount = capacity = std::max(queries, 64u);
-    VK_CHECK(vkCreateQueryPool(ctx.device, &qci, nullptr, &r.timestampPool));
+    r.timestampCapacity = std::max(queries, 64u);
+    r.timestampPool = createQueryPool(ctx, VK_QUERY_TYPE_TIMESTAMP, r.timestampCapacity);
   }
-  vkResetQueryPool(ctx.device, r.timestampPool, 0, capacity);
+  vkResetQueryPool(ctx.device, r.timestampPool, 0, r.timestampCapacity);
   r.statisticsActive = request.cullingStats && ctx.features.pipelineStatistics;
   if (r.statisticsActive) {
-    if (!r.statisticsPool) {
-      VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-      qci.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
-      qci.queryCount = 1;
-      qci.pipelineStatistics = VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT;
-      VK_CHECK(vkCreateQueryPool(ctx.device, &qci, nullptr, &r.statisticsPool));
-    }
+    if (!r.statisticsPool)
+      r.statisticsPool = createQueryPool(ctx, VK_QUERY_TYPE_PIPELINE_STATISTICS, 1,
+                                         VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT);
     vkResetQueryPool(ctx.device, r.statisticsPool, 0, 1);
   }
+}
 
+static void recordAndSubmit(Renderer& r, FrameGraph& graph) {
+  GpuContext& ctx = *r.ctx;
   VK_CHECK(vkResetCommandBuffer(r.cmd, 0));
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -345,65 +154,114 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
   si.commandBufferCount = 1;
   si.pCommandBuffers = &r.cmd;
   VK_CHECK(vkResetFences(ctx.device, 1, &r.fence));
+  r.submitted = std::chrono::steady_clock::now();
   VK_CHECK(vkQueueSubmit(ctx.queue, 1, &si, r.fence));
   VK_CHECK(vkWaitForFences(ctx.device, 1, &r.fence, VK_TRUE, UINT64_MAX));
-  auto end = std::chrono::steady_clock::now();
+}
+
+static uint64_t queryResult(GpuContext& ctx, VkQueryPool pool, uint32_t query) {
+  uint64_t v = 0;
+  VK_CHECK(vkGetQueryPoolResults(ctx.device, pool, query, 1, sizeof(v), &v, sizeof(v),
+                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  return v;
+}
+
+// Light counts, the sky count and per-pass GPU times of the frame just submitted.
+static void collectStats(Renderer& r, FrameStats& st) {
+  GpuContext& ctx = *r.ctx;
+  const FrameLights& l = r.lights;
+  st.lights = uint32_t(r.scene->lights.size());
+  st.lightsVisible = uint32_t(l.visible.size());
+  st.lightsInside = uint32_t(l.visible.size()) - l.stencilCount;
+  st.stencilLayers = l.layerStarts.empty() ? 0u : uint32_t(l.layerStarts.size() - 1);
+  st.lightsCulled = l.culledFrustum + l.culledEmpty + l.culledSubpixel;
+  st.lightsCulledFrustum = l.culledFrustum;
+  st.lightsCulledEmpty = l.culledEmpty;
+  st.lightsCulledSubpixel = l.culledSubpixel;
+  if (r.skyQueryActive) {
+    // Non-zero exactly when some sample passed (a non-precise query may overcount).
+    r.skyPixels = queryResult(ctx, r.occlusionPool, 0);
+    r.skyKey = skyVisibilityKey(r);
+    st.skyPixels = int64_t(r.skyPixels);
+  }
+  if (!ctx.features.timestamps) return;
+  const double period = ctx.properties.limits.timestampPeriod * 1e-6;
+  double first = 1e300, last = -1e300;
+  for (size_t i = 0; i < st.passes.size(); ++i) {
+    if (st.passes[i].skipped) continue;
+    double t0 = double(queryResult(ctx, r.timestampPool, uint32_t(2 * i))) * period;
+    double t1 = double(queryResult(ctx, r.timestampPool, uint32_t(2 * i + 1))) * period;
+    st.passes[i].ms = t1 - t0;
+    first = std::min(first, t0);
+    last = std::max(last, t1);
+  }
+  if (last > first) st.gpuMs = last - first;
+}
+
+// Point-light shader runs (coverage_masked) against the ideal pixel-light pairs.
+static CullingStats cullingStats(Renderer& r, const FrameStats& st) {
+  CullingStats c;
+  c.valid = true;
+  const CpuImage& masked = r.readback[size_t(Target::CoverageMasked)];
+  for (uint32_t y = 0; y < masked.height; ++y)
+    for (uint32_t x = 0; x < masked.width; ++x) c.invocations += masked.raw(x, y, 0);
+  const Target depth = cullingDepthSource(r.options);
+  c.idealPairs = idealPairs(r.camera, depth == Target::Depth ? r.readback[size_t(Target::Depth)]
+                                                             : eyeDepthFromHardware(r.camera, r.readback[size_t(depth)]),
+                            r.lights.eye);
+  c.workOverIdeal = c.idealPairs ? double(c.invocations) / double(c.idealPairs) : 0.0;
+  bool pointLightsRan = false;
+  for (const PassStat& p : st.passes) pointLightsRan |= p.name == "point_lights" && !p.skipped;
+  if (r.statisticsActive && pointLightsRan) c.pipelineInvocations = queryResult(*r.ctx, r.statisticsPool, 0);
+  return c;
+}
+
+const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const FrameRequest& userRequest) {
+  auto start = std::chrono::steady_clock::now();
+  const FrameRequest request = completeRequest(userRequest, options);
+  ensureTargets(r, options);
+  // Transient images have no memory to copy from, and forward frames never write the G-buffer.
+  for (Target t : request.readback) {
+    GB_ASSERT(!r.targets[size_t(t)].image.desc.transient);
+    GB_ASSERT(options.method != Method::Forward || targetInfo(t).role != TargetRole::GBuffer);
+  }
+  r.options = options;
+  prepareFrame(r);
+
+  FrameGraph graph;
+  r.skyQueryActive = false;
+  buildFrame(graph, r, request);
+  resetQueries(r, graph, request);
+  const auto recordStart = std::chrono::steady_clock::now();
+  recordAndSubmit(r, graph);
 
   FrameStats& st = r.stats;
   st = FrameStats{};
-  st.frameMs = std::chrono::duration<double, std::milli>(end - start).count();
+  st.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  st.cpuMs = std::chrono::duration<double, std::milli>(r.submitted - start).count();
+  st.recordMs = std::chrono::duration<double, std::milli>(r.submitted - recordStart).count();
   st.passes = graph.stats();
-  st.lights = uint32_t(r.scene->lights.size());
-  st.lightsVisible = uint32_t(r.lights.visible.size());
-  st.lightsInside = uint32_t(r.lights.visible.size()) - r.lights.stencilCount;
-  st.stencilLayers = r.lights.layerStarts.empty() ? 0u : uint32_t(r.lights.layerStarts.size() - 1);
-  st.lightsCulled = r.lights.culledFrustum + r.lights.culledEmpty + r.lights.culledSubpixel;
-  st.lightsCulledFrustum = r.lights.culledFrustum;
-  st.lightsCulledEmpty = r.lights.culledEmpty;
-  st.lightsCulledSubpixel = r.lights.culledSubpixel;
-  if (r.skyQueryActive) {
-    uint64_t v = 0;  // non-zero exactly when some sample passed (a non-precise query may overcount)
-    VK_CHECK(vkGetQueryPoolResults(ctx.device, r.occlusionPool, 0, 1, sizeof(v), &v, sizeof(v),
-                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    r.skyPixels = v;
-    r.skyKey = skyVisibilityKey(r);
-    st.skyPixels = int64_t(v);
-  }
-  if (ctx.features.timestamps) {
-    double first = 1e300, last = -1e300;
-    for (size_t i = 0; i < st.passes.size(); ++i) {
-      if (st.passes[i].skipped) continue;
-      uint64_t ts[2];
-      VK_CHECK(vkGetQueryPoolResults(ctx.device, r.timestampPool, uint32_t(2 * i), 2, sizeof(ts), ts, sizeof(uint64_t),
-                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-      double period = ctx.properties.limits.timestampPeriod * 1e-6;
-      st.passes[i].ms = double(ts[1] - ts[0]) * period;
-      first = std::min(first, double(ts[0]) * period);
-      last = std::max(last, double(ts[1]) * period);
-    }
-    if (last > first) st.gpuMs = last - first;
-  }
+  collectStats(r, st);
   for (Target t : request.readback) r.readback[size_t(t)] = unpackReadback(r, t);
-
-  if (request.cullingStats && options.coverage) {
-    CullingStats& c = st.culling;
-    c.valid = true;
-    const CpuImage& masked = r.readback[size_t(Target::CoverageMasked)];
-    for (size_t i = 0; i < size_t(masked.width) * masked.height; ++i) c.invocations += masked.raw(uint32_t(i % masked.width), uint32_t(i / masked.width), 0);
-    c.idealPairs = idealPairs(r.camera, depthSource == Target::Depth ? r.readback[size_t(Target::Depth)]
-                                                                  : eyeDepthFromHardware(r.camera, r.readback[size_t(depthSource)]),
-                              r.lights.eye);
-    c.workOverIdeal = c.idealPairs ? double(c.invocations) / double(c.idealPairs) : 0.0;
-    bool pointLightsRan = false;
-    for (const PassStat& p : st.passes) pointLightsRan |= p.name == "point_lights" && !p.skipped;
-    if (r.statisticsActive && pointLightsRan) {
-      uint64_t v = 0;
-      VK_CHECK(vkGetQueryPoolResults(ctx.device, r.statisticsPool, 0, 1, sizeof(v), &v, sizeof(v),
-                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-      c.pipelineInvocations = v;
-    }
-  }
+  if (request.cullingStats && options.coverage) st.culling = cullingStats(r, st);
   return st;
+}
+
+void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
+  r.ctx = &ctx;
+  r.scene = &scene;
+  uploadScene(r);
+  createFrameBuffers(r);
+  createDescriptors(r);
+  writeSceneSet(r);
+  sortDraws(r);
+  VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  cai.commandPool = ctx.commandPool;
+  cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  cai.commandBufferCount = 1;
+  VK_CHECK(vkAllocateCommandBuffers(ctx.device, &cai, &r.cmd));
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &r.fence));
 }
 
 void destroyRenderer(Renderer& r) {

@@ -2,7 +2,9 @@
 // frame graph (frame.cpp), records it, submits, waits, and reads back what was asked for.
 #pragma once
 #include <array>
+#include <chrono>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,10 +20,6 @@
 #include "shaders/shared.h"
 
 namespace gb {
-
-// The request of a capture of `targets`: those are read back and nothing else; culling statistics
-// only when they need no extra read-back (coverage on, coverage_masked and depth asked).
-FrameRequest captureRequest(const std::vector<Target>& targets, const RenderOptions& options);
 
 // Lights of this frame after CPU culling. Drawn instanced from `visible`:
 // [0, stencilCount) use the stencil mask; [stencilCount, visible.size()) contain or touch the
@@ -39,6 +37,35 @@ struct FrameLights {
 };
 
 
+
+// What cached GPU state was made for: when the key of a new frame equals the stored one, the
+// state is reused (targets kept, shadow map not re-rendered, skybox skipped when it drew nothing).
+struct TargetsKey {
+  uint32_t width = 0, height = 0, shadowMapSize = 0;
+  NormalFormat normalFormat{};
+  DepthFormat depthFormat{};
+  AccumFormat accumFormat{};
+  ShadowFormat shadowFormat{};
+  PositionSource position{};
+  bool coverage = false, transientGBuffer = false, primitiveId = false;
+  bool operator==(const TargetsKey&) const = default;
+};
+struct ShadowMapKey {
+  size_t instances = 0;
+  glm::dvec3 toSun{0.0};
+  uint32_t size = 0;
+  ShadowFormat format{};
+  float biasConstant = 0.0f, biasSlope = 0.0f, biasClamp = 0.0f;
+  bool operator==(const ShadowMapKey&) const = default;
+};
+struct SkyKey {
+  size_t instances = 0;
+  uint32_t width = 0, height = 0;
+  bool reversedZ = false;
+  DepthFormat depthFormat{};
+  glm::dmat4 clipFromWorld{1.0};
+  bool operator==(const SkyKey&) const = default;
+};
 
 struct Renderer {
   GpuContext* ctx = nullptr;
@@ -62,7 +89,7 @@ struct Renderer {
   // Frame resources.
   RenderOptions options;  // the options the targets were created for
   bool targetsValid = false;
-  std::string targetsKey;  // size, formats and usage the targets were created for
+  std::optional<TargetsKey> targetsKey;  // what the targets were created for (none: uploaded ones)
   uint32_t timestampCapacity = 0;
   GraphTargets targets;
   GraphCache graphCache;
@@ -71,7 +98,7 @@ struct Renderer {
   bool statisticsActive = false;  // this frame counts fragment invocations of the point-light pass
   VkQueryPool occlusionPool = VK_NULL_HANDLE;  // sky pixels drawn by the skybox
   bool skyQueryActive = false;                 // this frame's skybox counts them
-  std::string skyKey;                          // skyVisibilityKey() of the last count
+  std::optional<SkyKey> skyKey;                // skyVisibilityKey() of the last count
   uint64_t skyPixels = UINT64_MAX;             // the last count (UINT64_MAX: none yet)
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
@@ -84,12 +111,10 @@ struct Renderer {
   glm::dmat4 lightClipFromWorld{1.0};
   gpu::FrameData frameData{};  // this frame's uniform data, as the shaders saw it
   std::vector<float> srgbDecode;  // probeSrgbDecode's table (empty until probed)
-  std::string shadowKey;  // what the shadow map was rendered for (reuse when unchanged)
+  std::optional<ShadowMapKey> shadowKey;  // what the shadow map was rendered for (reuse when unchanged)
   FrameStats stats;
+  std::chrono::steady_clock::time_point submitted;  // when this frame was submitted (FrameStats::cpuMs)
 };
-
-// G-buffer pipeline variant of an instance: bit 1 alpha-tested, bit 0 has a normal texture.
-uint32_t drawVariant(const Scene& scene, uint32_t instance);
 
 // Uploads the scene; the Renderer keeps a pointer to it (the scene must outlive the renderer;
 // lights may change between frames).
@@ -103,55 +128,9 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
 // (FrameStats::culling): the counters' atomics would slow frames that are being timed.
 const FrameStats& renderCountingFrame(Renderer& r, const RenderOptions& options, FrameRequest request = {});
 
-// Decodes tightly packed texels as vkCmdCopyImageToBuffer wrote them (for depth/stencil: the
-// depth aspect, then one stencil byte per texel) into a CpuImage of the target's description.
-CpuImage unpackTexels(Target t, const RenderOptions& options, VkFormat format, const uint8_t* src, uint32_t width,
-                      uint32_t height);
-// The read-back buffer of `t` after the frame, unpacked.
-CpuImage unpackReadback(Renderer& r, Target t);
-
 // Runs a small graph over this frame's targets after renderFrame (the viewer's region read-back
 // and view ranges): `build` adds passes, then the `handOff` targets are left readable by fragment
 // shaders again. Barriers come from the passes' declarations, as in the frame. Submits and waits.
 void runAfterFrame(Renderer& r, const std::function<void(FrameGraph&)>& build, const std::vector<Target>& handOff);
-
-// ---- used by the frame function and the passes ----
-// Cached graphics pipeline for the current render pass / subpass; `fill` describes it once.
-VkPipeline graphicsPipeline(Renderer& r, const PassContext& pc, const std::string& id,
-                            const std::function<void(GraphicsPipelineDesc&)>& fill);
-// Cached compute pipeline of r.pipelineLayout with the common specialization constants.
-VkPipeline computePipeline(Renderer& r, const std::string& shader);
-struct PassImage {
-  uint32_t binding;
-  VkDescriptorType type;
-  VkImageView view;
-  VkImageLayout layout;
-  VkSampler sampler = VK_NULL_HANDLE;
-};
-// Binds set 0 (scene) and pushes set 1 (this pass's images) for a pipeline of `layout`.
-void bindDescriptors(Renderer& r, VkCommandBuffer cmd, VkPipelineLayout layout, std::initializer_list<PassImage> images,
-                     VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS);
-// Depth-test helpers that follow options.reversedZ.
-VkCompareOp closerOrEqual(const Renderer& r);   // LESS_OR_EQUAL, or GREATER_OR_EQUAL reversed
-VkCompareOp fartherOrEqual(const Renderer& r);  // the opposite
-float farDepth(const Renderer& r);
-
-// What this device's sampler returns for each 8-bit sRGB value (index = byte), measured once.
-const std::vector<float>& probeSrgbDecode(Renderer& r);
-
-// A target's size under these options (1x1 for a target the frame does not compute), and whether
-// it lives only in tile memory (single-pass G-buffer nobody reads).
-VkExtent2D targetExtent(const GpuContext& ctx, Target t, const Scene& scene, const RenderOptions& o);
-bool targetTransient(Target t, const RenderOptions& o);
-
-// The targets a frame of these options can read back on this renderer's device (targetAbsence()
-// is Absent::No; primitive_id also needs gl_PrimitiveID).
-std::vector<Target> readableTargets(const Renderer& r, const RenderOptions& o);
-
-// The primitive_id target is written this frame (requested, and the device has gl_PrimitiveID).
-bool primitiveIdOn(const GpuContext& ctx, const RenderOptions& o);
-
-// Specialization constants every pipeline gets (eye depth, reversed Z, normal encoding, ...).
-std::vector<SpecConstant> commonSpec(const Renderer& r);
 
 }  // namespace gb

@@ -6,6 +6,8 @@
 #include "renderer/frame_memory.h"
 #include "renderer/renderer.h"
 #include "renderer/vk/check.h"
+#include "renderer/srgb_probe.h"
+#include "renderer/render_targets.h"
 
 namespace gb {
 

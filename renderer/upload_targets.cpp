@@ -48,7 +48,7 @@ void uploadTargets(Renderer& r, const RenderOptions& options, const std::array<c
   }
   clearFramebuffers(ctx, r.graphCache);
   r.options = options;
-  r.targetsKey = "uploaded";
+  r.targetsKey.reset();  // uploaded: the next rendered frame creates its own targets
   r.targetsValid = true;
   for (size_t i = 0; i < kTargetCount; ++i) {
     const CpuImage* img = images[i];

@@ -201,7 +201,7 @@ std::vector<SkipRow> skipSavings(GpuContext& ctx, Scene& scene, const RenderOpti
   RenderOptions o = base;
   o.coverage = false;
   measure({"shadow_map", "sun and geometry unchanged since the last frame (reused)", "frames re-rendering the map vs reusing it"},
-          [&]() -> const FrameStats& { r.shadowKey.clear(); return renderFrame(r, o); },
+          [&]() -> const FrameStats& { r.shadowKey.reset(); return renderFrame(r, o); },
           [&]() -> const FrameStats& { return renderFrame(r, o); });
   RenderOptions noSky = o;
   noSky.sky = false;

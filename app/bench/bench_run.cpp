@@ -19,7 +19,7 @@ void timeVariant(Renderer& r, const RenderOptions& o, const BenchSettings& s, in
   // The first frame builds pipelines and targets; slow variants stop warming after a third of
   // their time cap.
   for (int i = 0; i < s.warmup && (i < 2 || warm < cap / 3.0); ++i) {
-    if (!reuse) r.shadowKey.clear();
+    if (!reuse) r.shadowKey.reset();
     const FrameStats& st = renderFrame(r, o);
     last = st.frameMs / 1000.0;
     warm += last;
@@ -34,7 +34,7 @@ void timeVariant(Renderer& r, const RenderOptions& o, const BenchSettings& s, in
   }
   std::vector<FrameStats> stats;
   for (int i = 0; i < n; ++i) {
-    if (!reuse) r.shadowKey.clear();
+    if (!reuse) r.shadowKey.reset();
     stats.push_back(renderFrame(r, o));
   }
   std::vector<double> frameMs, gpuMs;
@@ -54,7 +54,7 @@ void timeVariant(Renderer& r, const RenderOptions& o, const BenchSettings& s, in
 AbResult interleavedRatio(Renderer& a, const RenderOptions& oa, Renderer& b, const RenderOptions& ob, int pairs,
                           bool reuse) {
   auto frame = [reuse](Renderer& r, const RenderOptions& o) {
-    if (!reuse) r.shadowKey.clear();
+    if (!reuse) r.shadowKey.reset();
     return renderFrame(r, o).frameMs;
   };
   for (int i = 0; i < 2; ++i) {

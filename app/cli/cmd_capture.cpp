@@ -10,6 +10,7 @@
 #include "renderer/session.h"
 #include "views/capture/capture.h"
 #include "views/capture/report.h"
+#include "renderer/render_targets.h"
 
 namespace gb {
 

@@ -13,6 +13,7 @@
 #include "views/capture/capture.h"
 #include "views/analysis/compare.h"
 #include "views/analysis/probe.h"
+#include "renderer/render_targets.h"
 
 namespace gb {
 

@@ -9,6 +9,7 @@
 #include "renderer/region_readback.h"
 #include "renderer/session.h"
 #include "views/analysis/probe.h"
+#include "renderer/render_targets.h"
 
 namespace gb {
 

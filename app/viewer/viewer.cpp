@@ -15,6 +15,7 @@
 #include "app/viewer/viewer.h"
 #include "renderer/core/statistics.h"
 #include "renderer/vk/check.h"
+#include "renderer/render_targets.h"
 
 namespace gb {
 

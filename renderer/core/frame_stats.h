@@ -34,6 +34,10 @@ struct CullingStats {
 struct FrameStats {
   double frameMs = 0.0;  // CPU wall time of the frame: record + submit + wait
   double gpuMs = 0.0;    // first to last GPU timestamp
+  // CPU time of the frame before submission: per-frame work (camera, draws, light classification,
+  // frame data), building the frame graph and recording it.
+  double cpuMs = 0.0;
+  double recordMs = 0.0;  // of which recording the graph (render passes, barriers, commands)
   std::vector<PassStat> passes;
   CullingStats culling;
   uint32_t lights = 0, lightsVisible = 0, lightsInside = 0, lightsCulled = 0;

@@ -3,6 +3,7 @@
 // No G-buffer: albedo_specular, normal_shadow, depth (and position, primitive_id) are not
 // produced, and captures and views list them as unavailable (targetUnavailable).
 #include "renderer/passes/passes.h"
+#include "renderer/gpu_scene.h"
 
 namespace gb {
 

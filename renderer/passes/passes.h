@@ -2,7 +2,8 @@
 // commands. The frame function (renderer/frame.cpp) decides which run and in what order.
 #pragma once
 #include "renderer/graph/graph.h"
-#include "renderer/renderer.h"
+#include "renderer/pipelines.h"
+#include "renderer/render_targets.h"
 
 namespace gb {
 

@@ -1,6 +1,6 @@
 // Read-back: copy the requested targets to host memory (only those). Sample-after: leave
 // targets readable by the viewer's own fragment shaders.
-#include "renderer/frame.h"
+#include "renderer/target_readback.h"
 #include "renderer/passes/passes.h"
 
 namespace gb {

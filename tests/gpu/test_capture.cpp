@@ -13,6 +13,7 @@
 #include "views/capture/capture.h"
 #include "views/capture/exr.h"
 #include "views/capture/report.h"
+#include "renderer/render_targets.h"
 
 namespace gb {
 

@@ -16,6 +16,7 @@
 #include "renderer/core/codec.h"
 #include "renderer/light_culling.h"
 #include "tests/gpu/gpu_test.h"
+#include "renderer/srgb_probe.h"
 
 namespace gb {
 

@@ -10,6 +10,7 @@
 #include "tests/gpu/gpu_test.h"
 #include "views/capture/capture.h"
 #include "views/analysis/probe.h"
+#include "renderer/render_targets.h"
 
 namespace gb {
 

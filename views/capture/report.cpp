@@ -87,9 +87,11 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSourc
   nlohmann::json j;
   if (frames.empty()) return j;
   const FrameStats& last = frames.back();
-  std::vector<double> frameMs, gpuMs;
+  std::vector<double> frameMs, gpuMs, cpuMs, recordMs;
   for (const FrameStats& f : frames) {
     frameMs.push_back(f.frameMs);
+    cpuMs.push_back(f.cpuMs);
+    recordMs.push_back(f.recordMs);
     gpuMs.push_back(f.gpuMs);
   }
   j["device"] = source.device;
@@ -101,6 +103,8 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSourc
   j["frame_ms_min"] = *std::min_element(frameMs.begin(), frameMs.end());
   j["frame_ms_max"] = *std::max_element(frameMs.begin(), frameMs.end());
   j["gpu_ms"] = median(gpuMs);
+  j["cpu_ms"] = median(cpuMs);
+  j["record_ms"] = median(recordMs);
   nlohmann::json passes = nlohmann::json::array();
   for (size_t i = 0; i < last.passes.size(); ++i) {
     // A pass is reported as the last frame ran it: a skipped pass costs 0 ms there even if an

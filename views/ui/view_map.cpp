@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "renderer/vk/check.h"
+#include "renderer/pipelines.h"
 
 namespace gb {
 

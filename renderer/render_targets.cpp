@@ -1,0 +1,131 @@
+// The frame's targets on the GPU: sizes, usage from the target table's roles, (re)creation when
+// the size or a format changes, and which of them a frame can read back.
+#include "renderer/render_targets.h"
+
+#include <algorithm>
+
+#include "renderer/vk/check.h"
+
+namespace gb {
+
+bool primitiveIdOn(const GpuContext& ctx, const RenderOptions& o) { return o.primitiveId && ctx.features.primitiveId; }
+
+std::vector<Target> readableTargets(const Renderer& r, const RenderOptions& o) {
+  std::vector<Target> out;
+  for (const TargetInfo& info : targetTable()) {
+    if (targetAbsence(info.target, o, r.scene->sun.enabled) != Absent::No) continue;
+    if (info.target == Target::PrimitiveId && !primitiveIdOn(*r.ctx, o)) continue;
+    out.push_back(info.target);
+  }
+  return out;
+}
+
+FrameRequest captureRequest(const std::vector<Target>& targets, const RenderOptions& o) {
+  FrameRequest r;
+  r.readback = targets;
+  auto has = [&](Target t) { return std::find(targets.begin(), targets.end(), t) != targets.end(); };
+  r.cullingStats = o.coverage && has(Target::CoverageMasked) && has(Target::Depth);
+  return r;
+}
+
+static TargetsKey targetsKey(const GpuContext& ctx, const Scene& s, const RenderOptions& o) {
+  TargetsKey k;
+  k.width = o.width;
+  k.height = o.height;
+  k.shadowMapSize = s.sun.enabled ? o.shadowMapSize : 1;
+  k.normalFormat = o.normalFormat;
+  k.depthFormat = o.depthFormat;
+  k.accumFormat = o.accumFormat;
+  k.shadowFormat = o.shadowFormat;
+  k.position = o.position;
+  k.coverage = o.coverage;
+  k.transientGBuffer = transientGBuffer(o);
+  k.primitiveId = primitiveIdOn(ctx, o);
+  return k;
+}
+
+VkExtent2D targetExtent(const GpuContext& ctx, Target t, const Scene& s, const RenderOptions& o) {
+  // Targets this frame does not compute keep a valid, tiny 1x1 image.
+  bool unused = false;
+  switch (t) {
+    case Target::CoverageMasked:
+    case Target::CoverageFull: unused = !o.coverage; break;
+    case Target::PrimitiveId: unused = !primitiveIdOn(ctx, o); break;
+    case Target::Position: unused = o.position == PositionSource::Depth; break;
+    case Target::ShadowMap: unused = !s.sun.enabled; break;
+    default: break;
+  }
+  if (unused) return {1, 1};
+  if (targetInfo(t).size == SizeRule::ShadowMap) return {o.shadowMapSize, o.shadowMapSize};
+  return {o.width, o.height};
+}
+
+bool targetTransient(Target t, const RenderOptions& o) {
+  const bool placeholder = t == Target::Position && o.position == PositionSource::Depth;
+  return targetInfo(t).role == TargetRole::GBuffer && transientGBuffer(o) && !placeholder;
+}
+
+// Usage flags from the target's role (renderer/core/targets.h).
+static VkImageUsageFlags targetUsage(TargetRole role, bool transient) {
+  const VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                  VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  switch (role) {
+    case TargetRole::GBuffer:
+      return transient ? (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT) : color;
+    case TargetRole::DepthStencil:
+      return VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+             VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    case TargetRole::ShadowMap:
+      return VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    case TargetRole::Light: return color | VK_IMAGE_USAGE_STORAGE_BIT;
+    case TargetRole::Display: return color;
+    case TargetRole::Counter:
+      return VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+             VK_IMAGE_USAGE_SAMPLED_BIT;
+    case TargetRole::Id:
+      return VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  }
+  GB_ASSERT(!"target role");
+  return 0;
+}
+
+static ImageDesc targetDesc(const GpuContext& ctx, Target t, const Scene& s, const RenderOptions& o) {
+  ImageDesc d;
+  d.format = targetFormat(t, o);
+  VkExtent2D e = targetExtent(ctx, t, s, o);
+  d.width = e.width;
+  d.height = e.height;
+  d.name = targetName(t);
+  d.transient = targetTransient(t, o);
+  // An unused stored position is a 1x1 placeholder only ever bound for sampling.
+  d.usage = t == Target::Position && o.position == PositionSource::Depth ? VkImageUsageFlags(VK_IMAGE_USAGE_SAMPLED_BIT)
+                                                                          : targetUsage(targetInfo(t).role, d.transient);
+  return d;
+}
+
+void destroyTargets(Renderer& r) {
+  GpuContext& ctx = *r.ctx;
+  for (GraphTarget& t : r.targets) {
+    destroyImage(ctx, t.image);
+    t = GraphTarget{};
+  }
+  for (Buffer& b : r.readbackBuffers) destroyBuffer(ctx, b);
+  clearFramebuffers(ctx, r.graphCache);
+  r.shadowKey.reset();
+  r.skyKey.reset();
+  r.targetsValid = false;
+}
+
+void ensureTargets(Renderer& r, const RenderOptions& o) {
+  TargetsKey key = targetsKey(*r.ctx, *r.scene, o);
+  if (r.targetsValid && key == r.targetsKey) return;
+  vkDeviceWaitIdle(r.ctx->device);
+  destroyTargets(r);
+  for (size_t i = 0; i < kTargetCount; ++i)
+    r.targets[i].image = createImage(*r.ctx, targetDesc(*r.ctx, Target(i), *r.scene, o));
+  r.targets[size_t(Target::ShadowMap)].keep = true;  // reused while the sun and geometry stay
+  r.targetsValid = true;
+  r.targetsKey = key;
+}
+
+}  // namespace gb
