@@ -6,10 +6,15 @@
 
 namespace gb {
 
+static std::vector<uint32_t> specValues(const Renderer& r) {
+  std::vector<uint32_t> v;
+  for (const SpecConstant& c : commonSpec(r)) v.push_back(c.value);
+  return v;
+}
+
 VkPipeline graphicsPipeline(Renderer& r, const PassContext& pc, const std::string& id,
                             const std::function<void(GraphicsPipelineDesc&)>& fill) {
-  std::string key = id + "@" + pc.compatKey + "#";
-  for (const SpecConstant& c : commonSpec(r)) key += std::to_string(c.value) + ",";
+  PipelineKey key{id, false, pc.compatClass, pc.subpass, specValues(r)};
   VkPipeline& p = r.pipelines[key];
   if (!p) {
     GraphicsPipelineDesc d;
@@ -26,11 +31,9 @@ VkPipeline graphicsPipeline(Renderer& r, const PassContext& pc, const std::strin
 }
 
 VkPipeline computePipeline(Renderer& r, const std::string& shader) {
-  std::string key = shader + "@compute#";
-  std::vector<SpecConstant> spec = commonSpec(r);
-  for (const SpecConstant& c : spec) key += std::to_string(c.value) + ",";
+  PipelineKey key{shader, true, 0, 0, specValues(r)};
   VkPipeline& p = r.pipelines[key];
-  if (!p) p = createComputePipeline(*r.ctx, shader, spec, r.pipelineLayout);
+  if (!p) p = createComputePipeline(*r.ctx, shader, commonSpec(r), r.pipelineLayout);
   return p;
 }
 

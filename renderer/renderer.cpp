@@ -233,6 +233,7 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
   buildFrame(graph, r, request);
   resetQueries(r, graph, request);
   const auto recordStart = std::chrono::steady_clock::now();
+  const uint64_t compiled = r.graphCache.compilations, reused = r.graphCache.reuses;
   recordAndSubmit(r, graph);
 
   FrameStats& st = r.stats;
@@ -240,6 +241,8 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
   st.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   st.cpuMs = std::chrono::duration<double, std::milli>(r.submitted - start).count();
   st.recordMs = std::chrono::duration<double, std::milli>(r.submitted - recordStart).count();
+  st.groupsCompiled = uint32_t(r.graphCache.compilations - compiled);
+  st.groupsReused = uint32_t(r.graphCache.reuses - reused);
   st.passes = graph.stats();
   collectStats(r, st);
   for (Target t : request.readback) r.readback[size_t(t)] = unpackReadback(r, t);

@@ -67,6 +67,16 @@ struct SkyKey {
   bool operator==(const SkyKey&) const = default;
 };
 
+// A cached pipeline: its id (shader variant and state), the render-pass compatibility class and
+// subpass it is used in (graphics), and the values of the common specialization constants.
+struct PipelineKey {
+  std::string id;
+  bool compute = false;
+  uint32_t compatClass = 0, subpass = 0;
+  std::vector<uint32_t> spec;
+  auto operator<=>(const PipelineKey&) const = default;
+};
+
 struct Renderer {
   GpuContext* ctx = nullptr;
   const Scene* scene = nullptr;
@@ -93,7 +103,7 @@ struct Renderer {
   uint32_t timestampCapacity = 0;
   GraphTargets targets;
   GraphCache graphCache;
-  std::map<std::string, VkPipeline> pipelines;
+  std::map<PipelineKey, VkPipeline> pipelines;
   VkQueryPool timestampPool = VK_NULL_HANDLE, statisticsPool = VK_NULL_HANDLE;
   bool statisticsActive = false;  // this frame counts fragment invocations of the point-light pass
   VkQueryPool occlusionPool = VK_NULL_HANDLE;  // sky pixels drawn by the skybox

@@ -38,6 +38,8 @@ struct FrameStats {
   // frame data), building the frame graph and recording it.
   double cpuMs = 0.0;
   double recordMs = 0.0;  // of which recording the graph (render passes, barriers, commands)
+  // Render-pass groups compiled this frame (0 when every group kept last frame's shape) and reused.
+  uint32_t groupsCompiled = 0, groupsReused = 0;
   std::vector<PassStat> passes;
   CullingStats culling;
   uint32_t lights = 0, lightsVisible = 0, lightsInside = 0, lightsCulled = 0;

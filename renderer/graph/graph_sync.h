@@ -3,7 +3,7 @@
 #pragma once
 #include <vector>
 
-#include "renderer/graph/graph.h"
+#include "renderer/graph/graph_types.h"
 
 namespace gb::graph_sync {
 

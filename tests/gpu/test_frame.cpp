@@ -150,4 +150,33 @@ TEST_F(GpuTest, TheSameFrameTwiceGivesTheSamePixels) {
     EXPECT_EQ(renderer(a).readback[size_t(t)].data, renderer(b).readback[size_t(t)].data) << targetName(t);
 }
 
+// The frame graph compiles a render-pass group only when its shape (declarations and the state
+// its targets arrive in) changed: an unchanged frame records from the compiled groups and must give
+// the same pixels as a frame that compiled them; a changed option compiles again. (The second
+// frame still compiles: its targets arrive in the layouts the first frame left, not undefined,
+// and the shadow map is reused.)
+TEST_F(GpuTest, AnUnchangedFrameReusesItsCompiledGroupsAndGivesTheSamePixels) {
+  Scene scene = builtinTemple(32), fresh = builtinTemple(32);
+  RenderOptions o = smallOptions(96, 54);
+  o.lights = 32;
+  const std::vector<Target> read = {Target::Final, Target::Hdr, Target::NormalShadow};
+  const FrameStats first = render(scene, o, {read});
+  EXPECT_GT(first.groupsCompiled, 0u);
+  render(scene, o, {read});
+  const FrameStats third = render(scene, o, {read});
+  EXPECT_EQ(third.groupsCompiled, 0u);
+  EXPECT_GE(third.groupsReused, 3u);  // gbuffer, lighting, tonemap (the shadow map is reused, not drawn)
+  render(fresh, o, {read});
+  for (Target t : read)
+    EXPECT_EQ(renderer(scene).readback[size_t(t)].data, renderer(fresh).readback[size_t(t)].data) << targetName(t);
+  RenderOptions single = o;
+  single.path = Path::SinglePass;
+  EXPECT_GT(render(scene, single, {read}).groupsCompiled, 0u);
+  EXPECT_GT(render(scene, o, {read}).groupsCompiled, 0u);
+  render(scene, o, {read});
+  EXPECT_EQ(render(scene, o, {read}).groupsCompiled, 0u);
+  for (Target t : read)
+    EXPECT_EQ(renderer(scene).readback[size_t(t)].data, renderer(fresh).readback[size_t(t)].data) << targetName(t);
+}
+
 }  // namespace gb

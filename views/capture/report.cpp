@@ -105,6 +105,7 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSourc
   j["gpu_ms"] = median(gpuMs);
   j["cpu_ms"] = median(cpuMs);
   j["record_ms"] = median(recordMs);
+  j["render_pass_groups"] = {{"compiled", last.groupsCompiled}, {"reused", last.groupsReused}};
   nlohmann::json passes = nlohmann::json::array();
   for (size_t i = 0; i < last.passes.size(); ++i) {
     // A pass is reported as the last frame ran it: a skipped pass costs 0 ms there even if an
