@@ -23,17 +23,6 @@ ViewDrawCallback viewDrawCallback();  // window.cpp
 
 static std::atomic<bool> g_quit{false};
 
-static bool sameOptions(const RenderOptions& a, const RenderOptions& b) {
-  return a.width == b.width && a.height == b.height && a.time == b.time && a.lights == b.lights &&
-         a.camera == b.camera && a.path == b.path && a.method == b.method && a.eyeDepth == b.eyeDepth &&
-         a.stencilCulling == b.stencilCulling && a.stencilMask == b.stencilMask && a.reversedZ == b.reversedZ &&
-         a.normalFormat == b.normalFormat && a.depthFormat == b.depthFormat && a.accumFormat == b.accumFormat &&
-         a.shadowFormat == b.shadowFormat && a.shadowMapSize == b.shadowMapSize &&
-         a.shadowBiasConstant == b.shadowBiasConstant && a.shadowBiasSlope == b.shadowBiasSlope &&
-         a.shadowBiasClamp == b.shadowBiasClamp && a.fairies == b.fairies && a.sky == b.sky &&
-         a.exposure == b.exposure && a.coverage == b.coverage && a.keepGBuffer == b.keepGBuffer;
-}
-
 static Viewer& viewerOf(GLFWwindow* w) { return *static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }
 static void wake(GLFWwindow* w) { viewerOf(w).uiFramesLeft = std::max(viewerOf(w).uiFramesLeft, 3); }
 
@@ -85,7 +74,7 @@ static RenderOptions wantedOptions(Viewer& v, int fbWidth, int fbHeight) {
 
 static void renderIfNeeded(Viewer& v, const RenderOptions& o) {
   ViewerModel& m = v.model;
-  if (v.frameValid && sameOptions(o, v.renderer.options) && v.renderedCamera == v.cameraVersion &&
+  if (v.frameValid && !frameOutdated(v.renderer.options, o) && v.renderedCamera == v.cameraVersion &&
       v.renderedLights == v.lightsVersion)
     return;
   FrameRequest request;
@@ -351,7 +340,7 @@ int runViewer(const ViewerArgs& args, Scene scene) {
     // Changes made in this interface frame need another one (and maybe a render).
     bool pending = m.uiChanged || m.probeRequest || m.resetCamera || m.gltfCamera >= 0 || m.cameraDrag != glm::dvec2(0.0) ||
                    m.cameraDolly != 0.0 || m.stepForward || m.stepBack || m.captureRequested ||
-                   (live && !sameOptions(wantedOptions(v, fbw, fbh), v.renderer.options));
+                   (live && frameOutdated(v.renderer.options, wantedOptions(v, fbw, fbh)));
     v.uiFramesLeft = pending ? std::max(v.uiFramesLeft, 2) : v.uiFramesLeft - 1;
   }
 

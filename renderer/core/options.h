@@ -63,6 +63,9 @@ struct RenderOptions {
   bool coverage = false;      // masked/full coverage targets (views 8, 9, --stats, captures)
   bool keepGBuffer = true;    // single-pass: store the G-buffer (views, captures) instead of transient
   bool primitiveId = false;   // debug target primitive_id (instance + triangle), for the reference comparison
+
+  // Every member compares (a new option can never be forgotten by a hand-written comparison).
+  bool operator==(const RenderOptions&) const = default;
 };
 
 // The single-pass path (G-buffer and lighting as subpasses) applies to deferred lighting only:

@@ -109,6 +109,10 @@ struct ViewerModel {
   bool uiChanged = false;
 };
 
+// The frame on screen was rendered with `rendered`; the viewer renders again when the options it
+// wants now differ in anything (every member of RenderOptions).
+inline bool frameOutdated(const RenderOptions& rendered, const RenderOptions& wanted) { return !(rendered == wanted); }
+
 // Image size a view shows (the shadow map has its own).
 glm::uvec2 viewImageSize(const ViewerModel& m, ViewKind v);
 
