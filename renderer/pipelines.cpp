@@ -6,15 +6,9 @@
 
 namespace gb {
 
-static std::vector<uint32_t> specValues(const Renderer& r) {
-  std::vector<uint32_t> v;
-  for (const SpecConstant& c : commonSpec(r)) v.push_back(c.value);
-  return v;
-}
-
 VkPipeline graphicsPipeline(Renderer& r, const PassContext& pc, const std::string& id,
                             const std::function<void(GraphicsPipelineDesc&)>& fill) {
-  PipelineKey key{id, false, pc.compatClass, pc.subpass, specValues(r)};
+  PipelineKey key{id, false, pc.compatClass, pc.subpass, specValues(commonSpec(r))};
   VkPipeline& p = r.pipelines[key];
   if (!p) {
     GraphicsPipelineDesc d;
@@ -30,8 +24,8 @@ VkPipeline graphicsPipeline(Renderer& r, const PassContext& pc, const std::strin
   return p;
 }
 
-VkPipeline computePipeline(Renderer& r, const std::string& shader) {
-  PipelineKey key{shader, true, 0, 0, specValues(r)};
+VkPipeline computePipeline(Renderer& r, Shader shader) {
+  PipelineKey key{shaderName(shader), true, 0, 0, specValues(commonSpec(r))};
   VkPipeline& p = r.pipelines[key];
   if (!p) p = createComputePipeline(*r.ctx, shader, commonSpec(r), r.pipelineLayout);
   return p;

@@ -14,7 +14,7 @@ namespace gb {
 VkPipeline graphicsPipeline(Renderer& r, const PassContext& pc, const std::string& id,
                             const std::function<void(GraphicsPipelineDesc&)>& fill);
 // Cached compute pipeline of r.pipelineLayout with the common specialization constants.
-VkPipeline computePipeline(Renderer& r, const std::string& shader);
+VkPipeline computePipeline(Renderer& r, Shader shader);
 struct PassImage {
   uint32_t binding;
   VkDescriptorType type;

@@ -23,7 +23,7 @@ const std::vector<float>& probeSrgbDecode(Renderer& r) {
   Image img = createImage(ctx, d);
   uploadTexture(ctx, img, bytes);
   Buffer out = createBuffer(ctx, 256 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Readback);
-  VkPipeline pipeline = createComputePipeline(ctx, "srgb_probe.comp", {}, r.pipelineLayout);
+  VkPipeline pipeline = createComputePipeline(ctx, Shader::srgb_probe_comp, {}, r.pipelineLayout);
   submitOnce(ctx, [&](VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     VkDescriptorImageInfo image{r.samplerPoint, img.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};

@@ -10,8 +10,8 @@ void addDirectionalLightPass(FrameGraph& g, Renderer& r) {
   uses.push_back(depthStencilUse(Access::DepthStencilRead));
   g.addPass("directional_light", uses, [&r](PassContext& pc) {
     VkPipeline p = graphicsPipeline(r, pc, "directional", [&r](GraphicsPipelineDesc& d) {
-      d.vertexShader = "fullscreen.vert";
-      d.fragmentShader = lightingShader(r, "directional");
+      d.vertexShader = Shader::fullscreen_vert;
+      d.fragmentShader = lightingShader(r, Shader::directional_frag, Shader::directional_input_frag);
       d.layout = lightingLayout(r);
       d.stencilTest = true;  // only where geometry wrote 128: the sky is left alone
       d.stencil = stencil(VK_COMPARE_OP_EQUAL, 0xFF);

@@ -10,8 +10,8 @@ void addFairyPass(FrameGraph& g, Renderer& r) {
   uses.push_back(depthStencilUse(Access::DepthStencilRead));
   g.addPass("fairy_lights", uses, [&r](PassContext& pc) {
     VkPipeline p = graphicsPipeline(r, pc, "fairy", [&r](GraphicsPipelineDesc& d) {
-      d.vertexShader = "fairy.vert";
-      d.fragmentShader = "fairy.frag";
+      d.vertexShader = Shader::fairy_vert;
+      d.fragmentShader = Shader::fairy_frag;
       d.layout = lightingLayout(r);
       d.depthTest = true;
       d.depthCompare = closerOrEqual(r);

@@ -16,8 +16,8 @@ void addForwardPass(FrameGraph& g, Renderer& r) {
   g.addPass("forward", uses, [&r](PassContext& pc) {
     auto describe = [&](bool alpha, bool normalMap) {
       return [&r, alpha, normalMap](GraphicsPipelineDesc& d) {
-        d.vertexShader = "gbuffer.vert";
-        d.fragmentShader = alpha ? "forward.alpha.frag" : "forward.frag";  // early depth tests when opaque
+        d.vertexShader = Shader::gbuffer_vert;
+        d.fragmentShader = alpha ? Shader::forward_alpha_frag : Shader::forward_frag;  // early depth tests when opaque
         d.vertexInput = VertexInput::SceneVertex;
         d.depthTest = d.depthWrite = true;
         d.depthCompare = r.options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;

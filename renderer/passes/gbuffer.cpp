@@ -21,12 +21,14 @@ void addGBufferPass(FrameGraph& g, Renderer& r) {
   if (position) uses.push_back(clear(Target::Position));
   uses.push_back(depth);
   uses.push_back({Target::ShadowMap, Access::SampledFragment});
-  const std::string fragment =
-      std::string("gbuffer") + (primitiveId ? ".id" : "") + (position ? ".position" : "") + ".frag";
+  // [primitive_id][stored position]
+  static const Shader kFragment[2][2] = {{Shader::gbuffer_frag, Shader::gbuffer_position_frag},
+                                         {Shader::gbuffer_id_frag, Shader::gbuffer_id_position_frag}};
+  const Shader fragment = kFragment[primitiveId][position];
   g.addPass("gbuffer", uses, [&r, fragment](PassContext& pc) {
     auto describe = [&](bool alpha, bool normalMap) {
       return [&r, alpha, normalMap, fragment](GraphicsPipelineDesc& d) {
-        d.vertexShader = "gbuffer.vert";
+        d.vertexShader = Shader::gbuffer_vert;
         d.fragmentShader = fragment;
         d.vertexInput = VertexInput::SceneVertex;
         d.depthTest = d.depthWrite = true;
@@ -44,7 +46,7 @@ void addGBufferPass(FrameGraph& g, Renderer& r) {
     for (uint32_t v = 0; v < 4; ++v) {  // drawVariant(): bit 1 alpha-tested, bit 0 normal texture
       if (r.drawVariants[v] == r.drawVariants[v + 1]) continue;
       bool alpha = v & 2, normalMap = v & 1;
-      std::string id = fragment + (alpha ? ".alpha" : ".opaque") + (normalMap ? ".normal_map" : "");
+      std::string id = std::string(shaderName(fragment)) + (alpha ? ".alpha" : ".opaque") + (normalMap ? ".normal_map" : "");
       bindPipeline(pc, graphicsPipeline(r, pc, id, describe(alpha, normalMap)));
       vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);
       drawInstances(r, pc.cmd, r.drawVariants[v], r.drawVariants[v + 1], false);

@@ -11,8 +11,8 @@ void addLightCoveragePass(FrameGraph& g, Renderer& r) {
   uses.push_back({Target::CoverageFull, Access::StorageFragment});
   g.addPass("light_coverage", uses, [&r](PassContext& pc) {
     VkPipeline p = graphicsPipeline(r, pc, "light_coverage", [&r](GraphicsPipelineDesc& d) {
-      d.vertexShader = "light_volume.vert";
-      d.fragmentShader = "light_coverage.frag";
+      d.vertexShader = Shader::light_volume_vert;
+      d.fragmentShader = Shader::light_coverage_frag;
       d.vertexInput = VertexInput::Position;
       d.layout = lightingLayout(r);
       d.depthClamp = true;

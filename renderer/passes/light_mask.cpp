@@ -12,7 +12,7 @@ void addLightMaskPass(FrameGraph& g, Renderer& r) {
   uses.push_back(depthStencilUse(Access::DepthTestStencilWrite));
   g.addPass("light_mask", uses, [&r](PassContext& pc) {
     VkPipeline p = graphicsPipeline(r, pc, "light_mask", [&r](GraphicsPipelineDesc& d) {
-      d.vertexShader = "light_volume.vert";
+      d.vertexShader = Shader::light_volume_vert;
       d.vertexInput = VertexInput::Position;
       d.layout = lightingLayout(r);
       d.depthTest = true;

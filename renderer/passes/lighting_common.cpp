@@ -24,9 +24,7 @@ Use hdrUse(Access access, bool clear) {
 
 Use depthStencilUse(Access access) { return {Target::DepthStencil, access}; }
 
-std::string lightingShader(const Renderer& r, const char* base) {
-  return std::string(base) + (singlePass(r) ? ".input.frag" : ".frag");
-}
+Shader lightingShader(const Renderer& r, Shader sampled, Shader input) { return singlePass(r) ? input : sampled; }
 
 VkPipelineLayout lightingLayout(const Renderer& r) { return singlePass(r) ? r.pipelineLayoutInput : r.pipelineLayout; }
 

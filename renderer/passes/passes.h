@@ -30,8 +30,8 @@ std::vector<Use> gbufferReads(const Renderer& r);
 // The lighting subpass's attachments as a pass uses them: hdr and depth/stencil.
 Use hdrUse(Access access, bool clear = false);
 Use depthStencilUse(Access access);
-// Fragment shader variant for the path ("point_light" -> "point_light.frag" / ".input.frag").
-std::string lightingShader(const Renderer& r, const char* base);
+// Fragment shader variant for the path: sampled G-buffer (two-pass) or subpass inputs (single pass).
+Shader lightingShader(const Renderer& r, Shader sampled, Shader input);
 VkPipelineLayout lightingLayout(const Renderer& r);
 // Binds set 0 and pushes the G-buffer reads (+ extra images) for a lighting pass.
 void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassImage> extra = {},

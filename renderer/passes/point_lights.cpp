@@ -21,8 +21,8 @@ static constexpr size_t kBatch = 7;  // stencil bits 0..6; bit 7 marks geometry
 
 
 static void describeShading(Renderer& r, GraphicsPipelineDesc& d) {
-  d.vertexShader = "light_volume.vert";
-  d.fragmentShader = lightingShader(r, "point_light");
+  d.vertexShader = Shader::light_volume_vert;
+  d.fragmentShader = lightingShader(r, Shader::point_light_frag, Shader::point_light_input_frag);
   d.vertexInput = VertexInput::Position;
   d.layout = lightingLayout(r);
   d.depthClamp = true;
@@ -34,7 +34,7 @@ static void describeShading(Renderer& r, GraphicsPipelineDesc& d) {
 // Per-light stencil bits: mask 7 groups, then shade them, batch after batch.
 static void drawPerLight(Renderer& r, PassContext& pc) {
   VkPipeline mask = graphicsPipeline(r, pc, "point_light.mask_bits", [&r](GraphicsPipelineDesc& d) {
-    d.vertexShader = "light_volume.vert";
+    d.vertexShader = Shader::light_volume_vert;
     d.vertexInput = VertexInput::Position;
     d.layout = lightingLayout(r);
     d.depthTest = true;

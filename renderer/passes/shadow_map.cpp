@@ -11,8 +11,8 @@ void addShadowMapPass(FrameGraph& g, Renderer& r) {
   g.addPass("shadow_map", {depth}, [&r](PassContext& pc) {
     auto describe = [&](bool alpha) {
       return [&r, alpha](GraphicsPipelineDesc& d) {
-        d.vertexShader = "shadow.vert";
-        if (alpha) d.fragmentShader = "shadow.frag";
+        d.vertexShader = Shader::shadow_vert;
+        if (alpha) d.fragmentShader = Shader::shadow_frag;
         d.vertexInput = VertexInput::SceneVertex;
         d.vertexAttributes = 0b01101;  // position, uv0, uv1
         d.depthTest = d.depthWrite = true;

@@ -11,8 +11,8 @@ void addSkyboxPass(FrameGraph& g, Renderer& r) {
   r.skyQueryActive = true;
   g.addPass("skybox", uses, [&r](PassContext& pc) {
     VkPipeline p = graphicsPipeline(r, pc, "skybox", [&r](GraphicsPipelineDesc& d) {
-      d.vertexShader = "fullscreen.vert";
-      d.fragmentShader = "sky.frag";
+      d.vertexShader = Shader::fullscreen_vert;
+      d.fragmentShader = Shader::sky_frag;
       d.layout = lightingLayout(r);
       d.depthTest = true;
       d.depthCompare = closerOrEqual(r);  // passes only at the cleared far depth

@@ -12,10 +12,11 @@ void addTiledLightingPass(FrameGraph& g, Renderer& r) {
   uses.push_back({Target::Hdr, Access::StorageCompute});
   uses.push_back({Target::CoverageMasked, Access::StorageCompute});  // the shader binds it even when off (1x1)
   g.addPass("tiled_lighting", uses, [&r](PassContext& pc) {
-    const char* format = r.options.accumFormat == AccumFormat::Rgba32f ? "rgba32f"
-                         : r.options.accumFormat == AccumFormat::Rgba8 ? "rgba8"
-                                                                        : "rgba16f";
-    VkPipeline p = computePipeline(r, std::string("tiled_lighting.") + format + ".comp");
+    // The storage image's format is part of the shader (GLSL layout qualifier).
+    const Shader shader = r.options.accumFormat == AccumFormat::Rgba32f ? Shader::tiled_lighting_rgba32f_comp
+                          : r.options.accumFormat == AccumFormat::Rgba8 ? Shader::tiled_lighting_rgba8_comp
+                                                                         : Shader::tiled_lighting_rgba16f_comp;
+    VkPipeline p = computePipeline(r, shader);
     const GraphTarget& hdr = r.targets[size_t(Target::Hdr)];
     const GraphTarget& coverage = r.targets[size_t(Target::CoverageMasked)];
     bindGBuffer(r, pc,

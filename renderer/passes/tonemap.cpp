@@ -8,8 +8,8 @@ void addToneMapPass(FrameGraph& g, Renderer& r) {
   Use final{Target::Final, Access::ColorWrite, true};  // fully overwritten: never load the old one
   g.addPass("tonemap", {hdr, final}, [&r](PassContext& pc) {
     VkPipeline p = graphicsPipeline(r, pc, "tonemap", [&r](GraphicsPipelineDesc& d) {
-      d.vertexShader = "fullscreen.vert";
-      d.fragmentShader = lightingShader(r, "tonemap");
+      d.vertexShader = Shader::fullscreen_vert;
+      d.fragmentShader = lightingShader(r, Shader::tonemap_frag, Shader::tonemap_input_frag);
       d.layout = lightingLayout(r);
     });
     const bool input = singlePass(r);

@@ -1,33 +1,26 @@
 // Pipeline creation from GraphicsPipelineDesc; shader lookup in the embedded registry.
 #include "renderer/vk/pipeline.h"
 
-#include <map>
-
 #include "renderer/core/vertex.h"
 #include "renderer/vk/check.h"
 
 namespace gb {
 
-const std::map<std::string, std::span<const uint32_t>>& shaderRegistry();  // generated
-
-std::span<const uint32_t> shaderCode(const std::string& name) {
-  auto& reg = shaderRegistry();
-  auto it = reg.find(name);
-  if (it == reg.end()) {
-    std::fprintf(stderr, "gblens: shader '%s' is not embedded (add it to shaders/shaders.cmake)\n", name.c_str());
-    GB_ASSERT(it != reg.end());
-  }
-  return it->second;
-}
-
-VkShaderModule createShaderModule(GpuContext& ctx, const std::string& name) {
-  auto code = shaderCode(name);
+VkShaderModule createShaderModule(GpuContext& ctx, Shader shader) {
+  GB_ASSERT(shader != Shader::None);
+  auto code = shaderCode(shader);
   VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   ci.codeSize = code.size() * sizeof(uint32_t);
   ci.pCode = code.data();
   VkShaderModule m;
   VK_CHECK(vkCreateShaderModule(ctx.device, &ci, nullptr, &m));
   return m;
+}
+
+std::vector<uint32_t> specValues(std::span<const SpecConstant> spec) {
+  std::vector<uint32_t> v;
+  for (const SpecConstant& c : spec) v.push_back(c.value);
+  return v;
 }
 
 struct SpecData {
@@ -50,7 +43,7 @@ VkPipeline createGraphicsPipeline(GpuContext& ctx, const GraphicsPipelineDesc& d
   SpecData spec(d.spec);
   std::vector<VkPipelineShaderStageCreateInfo> stages;
   std::vector<VkShaderModule> modules;
-  auto addStage = [&](VkShaderStageFlagBits stage, const std::string& name) {
+  auto addStage = [&](VkShaderStageFlagBits stage, Shader name) {
     VkShaderModule m = createShaderModule(ctx, name);
     modules.push_back(m);
     VkPipelineShaderStageCreateInfo s{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -61,7 +54,7 @@ VkPipeline createGraphicsPipeline(GpuContext& ctx, const GraphicsPipelineDesc& d
     stages.push_back(s);
   };
   addStage(VK_SHADER_STAGE_VERTEX_BIT, d.vertexShader);
-  if (!d.fragmentShader.empty()) addStage(VK_SHADER_STAGE_FRAGMENT_BIT, d.fragmentShader);
+  if (d.fragmentShader != Shader::None) addStage(VK_SHADER_STAGE_FRAGMENT_BIT, d.fragmentShader);
 
   VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
   VkVertexInputAttributeDescription attrs[] = {
@@ -155,7 +148,7 @@ VkPipeline createGraphicsPipeline(GpuContext& ctx, const GraphicsPipelineDesc& d
   return pipeline;
 }
 
-VkPipeline createComputePipeline(GpuContext& ctx, const std::string& shader, std::span<const SpecConstant> specs,
+VkPipeline createComputePipeline(GpuContext& ctx, Shader shader, std::span<const SpecConstant> specs,
                                  VkPipelineLayout layout) {
   SpecData spec(specs);
   VkShaderModule m = createShaderModule(ctx, shader);

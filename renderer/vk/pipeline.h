@@ -1,4 +1,4 @@
-// Shader modules from the embedded registry and a plain-struct description of a graphics or
+// Shader modules from the embedded variants (shader_ids.h) and a plain-struct description of a graphics or
 // compute pipeline. Pipelines use dynamic viewport/scissor, cull mode and front face.
 #pragma once
 #include <vulkan/vulkan.h>
@@ -9,12 +9,11 @@
 #include <vector>
 
 #include "renderer/vk/context.h"
+#include "shader_ids.h"  // generated from shaders/shaders.cmake: enum class Shader
 
 namespace gb {
 
-// The SPIR-V of an embedded shader variant by name (e.g. "gbuffer.frag"); asserts if unknown.
-std::span<const uint32_t> shaderCode(const std::string& name);
-VkShaderModule createShaderModule(GpuContext& ctx, const std::string& name);
+VkShaderModule createShaderModule(GpuContext& ctx, Shader shader);
 
 struct SpecConstant {
   uint32_t id;
@@ -31,8 +30,8 @@ struct BlendState {
 };
 
 struct GraphicsPipelineDesc {
-  std::string vertexShader;
-  std::string fragmentShader;  // empty: no fragment stage (depth/stencil only)
+  Shader vertexShader = Shader::None;
+  Shader fragmentShader = Shader::None;  // None: no fragment stage (depth/stencil only)
   std::vector<SpecConstant> spec;
   VertexInput vertexInput = VertexInput::None;
   uint32_t vertexAttributes = 0x1F;  // SceneVertex: bit i = location i is read by the vertex shader
@@ -52,8 +51,11 @@ struct GraphicsPipelineDesc {
   VkPipelineLayout layout = VK_NULL_HANDLE;
 };
 
+// The values of specialization constants, in order (cache keys).
+std::vector<uint32_t> specValues(std::span<const SpecConstant> spec);
+
 VkPipeline createGraphicsPipeline(GpuContext& ctx, const GraphicsPipelineDesc& desc);
-VkPipeline createComputePipeline(GpuContext& ctx, const std::string& shader, std::span<const SpecConstant> spec,
+VkPipeline createComputePipeline(GpuContext& ctx, Shader shader, std::span<const SpecConstant> spec,
                                  VkPipelineLayout layout);
 
 }  // namespace gb

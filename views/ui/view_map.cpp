@@ -115,11 +115,10 @@ std::vector<RangeStats> computeRanges(ViewMapper& m, Renderer& r, const std::vec
           for (size_t i = 0; i < requests.size(); ++i) {
             const RangeRequest& q = requests[i];
             bool uintSource = isUintSource(r, q.source);
-            std::string name = uintSource ? "view_range.uint.comp" : "view_range.comp";
+            const Shader shader = uintSource ? Shader::view_range_uint_comp : Shader::view_range_comp;
             std::vector<SpecConstant> spec = commonSpec(r);
-            std::string key = name + "#" + std::to_string(r.options.reversedZ);
-            VkPipeline& p = m.pipelines[key];
-            if (!p) p = createComputePipeline(*r.ctx, name, spec, m.layout);
+            VkPipeline& p = m.pipelines[{shader, VK_NULL_HANDLE, specValues(spec)}];
+            if (!p) p = createComputePipeline(*r.ctx, shader, spec, m.layout);
             vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p);
             pushImages(r, pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m.layout,
                        {{0u, {r.samplerPoint, sourceView(r, q.source), pc.layouts[size_t(q.source.target)]}}},
@@ -159,18 +158,16 @@ void drawView(ViewMapper& m, Renderer& r, VkCommandBuffer cmd, VkRenderPass rend
   GB_ASSERT(!diff || (b && b->targets[size_t(source.target)].image.image));
   const bool mark = (params.mode.z & gpu::kViewFlagMark) && !uintSource && !diff;
   const bool srgbOut = attachmentFormat == VK_FORMAT_B8G8R8A8_SRGB || attachmentFormat == VK_FORMAT_R8G8B8A8_SRGB;
-  std::string shader = diff ? (uintSource ? "view_map.diff.uint.frag" : "view_map.diff.frag")
-                     : uintSource ? "view_map.uint.frag"
-                     : mark       ? "view_map.mark.frag"
-                                  : "view_map.frag";
+  const Shader shader = diff ? (uintSource ? Shader::view_map_diff_uint_frag : Shader::view_map_diff_frag)
+                        : uintSource ? Shader::view_map_uint_frag
+                        : mark       ? Shader::view_map_mark_frag
+                                     : Shader::view_map_frag;
   std::vector<SpecConstant> spec = commonSpec(r);
   spec.push_back({gpu::kSpecOutputSrgb, srgbOut ? 1u : 0u});
-  std::string key = shader + "@" + std::to_string(uint64_t(renderPass)) + "#";
-  for (const SpecConstant& c : spec) key += std::to_string(c.value) + ",";
-  VkPipeline& p = m.pipelines[key];
+  VkPipeline& p = m.pipelines[{shader, renderPass, specValues(spec)}];
   if (!p) {
     GraphicsPipelineDesc d;
-    d.vertexShader = "view_map.vert";
+    d.vertexShader = Shader::view_map_vert;
     d.fragmentShader = shader;
     d.spec = spec;
     d.colorBlend = {BlendState{}};

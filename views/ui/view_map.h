@@ -15,7 +15,15 @@ namespace gb {
 struct ViewMapper {
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;  // set 1, pushed: source, eye depth, results
   VkPipelineLayout layout = VK_NULL_HANDLE;          // set 0 = the renderer's scene set
-  std::map<std::string, VkPipeline> pipelines;
+  // A view pipeline: its shader variant, the render pass it draws in (none: compute) and the
+  // specialization constants' values.
+  struct PipelineKey {
+    Shader shader;
+    VkRenderPass renderPass;
+    std::vector<uint32_t> spec;
+    auto operator<=>(const PipelineKey&) const = default;
+  };
+  std::map<PipelineKey, VkPipeline> pipelines;
   Buffer results;  // RangeResult per request, host-visible
 };
 
