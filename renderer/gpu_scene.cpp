@@ -31,7 +31,7 @@ static gpu::Material toGpu(const MaterialDesc& m) {
   g.baseColor = m.baseColor;
   g.params = glm::vec4(m.specular, m.alphaMode == AlphaMode::Opaque ? -1.0f : m.alphaCutoff, m.normalScale, 0.0f);
   g.textures = glm::ivec4(m.baseColorTexture, m.normalTexture, m.baseColorUv, m.normalUv);
-  g.flags = glm::uvec4(uint32_t(m.alphaMode), m.doubleSided ? 1u : 0u, 0u, 0u);
+  g.flags = glm::uvec4(uint32_t(m.alphaMode), m.doubleSided ? 1u : 0u, m.unlit ? 1u : 0u, 0u);
   auto rows = [](const glm::mat3& t, glm::vec4& r0, glm::vec4& r1) {
     r0 = glm::vec4(t[0][0], t[1][0], t[2][0], 0.0f);
     r1 = glm::vec4(t[0][1], t[1][1], t[2][1], 0.0f);

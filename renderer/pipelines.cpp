@@ -46,6 +46,7 @@ std::vector<SpecConstant> commonSpec(const Renderer& r) {
           {gpu::kSpecPosition, position},
           {gpu::kSpecReversedZ, r.options.reversedZ ? 1u : 0u},
           {gpu::kSpecNormalEncoding, normal},
+          {gpu::kSpecOctPrecise, r.options.octEncoding == OctEncoding::Precise ? 1u : 0u},
           {gpu::kSpecCoverage, r.options.coverage ? 1u : 0u}};
 }
 

@@ -13,6 +13,7 @@ layout(constant_id = kSpecCoverage) const uint COVERAGE = 0;
 layout(constant_id = kSpecReversedZ) const uint REVERSED_Z = 0;
 layout(constant_id = kSpecNormalEncoding) const uint NORMAL_ENCODING = kNormalRgba16f;
 layout(constant_id = kSpecNormalMap) const uint NORMAL_MAP = 0;
+layout(constant_id = kSpecOctPrecise) const uint OCT_PRECISE = 0;
 layout(constant_id = kSpecPosition) const uint POSITION = kPositionDepth;
 
 // A material's texture coordinates: xy base colour, zw normal texture, each from its UV set with

@@ -9,6 +9,10 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
   Surface s = readSurface(gl_FragCoord.xy);
+  if (s.unlit) {
+    outColor = vec4(shadeUnlit(s.albedo), 1.0);
+    return;
+  }
   vec3 V = normalize(-s.P);
   vec3 c = shadeDirectional(s.albedo, s.specular, s.N, V, frame.sunEyeDirection.xyz, frame.sunColor.rgb,
                             frame.ambientColor.rgb, frame.sunEyeDirection.w > 0.0 ? s.shadow : 0.0);

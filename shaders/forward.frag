@@ -38,6 +38,10 @@ void main() {
     vec3 lc = inLightClip.xyz / inLightClip.w;
     shadow = texture(shadowMap, vec3(lc.xy * 0.5 + 0.5, lc.z));
   }
+  if (m.flags.z != 0u) {  // unlit: the base colour as is (no lights evaluated, none counted)
+    outColor = vec4(shadeUnlit(albedo), 1.0);
+    return;
+  }
   vec3 V = normalize(-inEye);
   vec3 c = shadeDirectional(albedo, specular, N, V, frame.sunEyeDirection.xyz, frame.sunColor.rgb, frame.ambientColor.rgb,
                             frame.sunEyeDirection.w > 0.0 ? shadow : 0.0);

@@ -41,7 +41,7 @@ void main() {
     shadow = texture(shadowMap, vec3(lc.xy * 0.5 + 0.5, lc.z));
   }
   outAlbedoSpecular = vec4(base.rgb, m.params.x);
-  outNormalShadow = encodeNormalShadow(N, shadow);
+  outNormalShadow = m.flags.z != 0u ? encodeUnlit() : encodeNormalShadow(N, shadow);
   outDepth = -inEye.z;
 #ifdef GB_PRIMITIVE_ID
   outPrimitiveId = inFirstPrimitive + uint(gl_PrimitiveID);

@@ -20,6 +20,7 @@ struct Surface {
   float specular;
   vec3 N;         // eye space, unit
   float shadow;   // 1 lit, 0 shadowed
+  bool unlit;     // KHR_materials_unlit: albedo is the colour, N is not stored
   vec3 P;         // eye-space position
 };
 
@@ -51,6 +52,7 @@ Surface readSurface(vec2 fragCoord) {
   s.albedo = a.rgb;
   s.specular = a.a;
   s.N = decodeNormal(n);
+  s.unlit = unlitTexel(n);
   s.shadow = n.w;
   s.P = POSITION != kPositionDepth ? eyeFromStoredPosition(position.xyz) : eyePosition(fragCoord, stored);
   return s;

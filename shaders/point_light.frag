@@ -18,6 +18,6 @@ void main() {
   Surface s = readSurface(gl_FragCoord.xy);
   vec3 c = vec3(0.0);
   PointLight l = lights[inLight];
-  if (s.geometry) c = shadePoint(s.albedo, s.specular, s.N, s.P, l.eyePositionRadius.xyz, l.eyePositionRadius.w, l.color.rgb);
+  if (s.geometry && !s.unlit) c = shadePoint(s.albedo, s.specular, s.N, s.P, l.eyePositionRadius.xyz, l.eyePositionRadius.w, l.color.rgb);
   outColor = vec4(c, 0.0);
 }

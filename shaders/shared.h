@@ -57,6 +57,7 @@ GB_CONST(uint, kSpecNormalEncoding, 4); // kNormal* below
 GB_CONST(uint, kSpecNormalMap, 5);      // 1: the material has a normal texture
 GB_CONST(uint, kSpecPosition, 6);       // kPosition* below: where lighting gets the surface position
 GB_CONST(uint, kSpecOutputSrgb, 7);     // 1: the view pipeline writes an sRGB attachment (hardware encodes)
+GB_CONST(uint, kSpecOctPrecise, 8);     // 1: octahedral normals keep the best of the 4 neighbouring codes
 
 // The lighting passes' position source.
 GB_CONST(uint, kPositionDepth, 0);      // reconstructed from eye depth or hardware depth (kSpecEyeDepth)
@@ -104,7 +105,7 @@ GB_STRUCT(Material) {
   vec4 baseColor;     // linear rgba factor
   vec4 params;        // x specular intensity, y alpha cut-off, z normal scale, w unused
   ivec4 textures;     // x base-colour texture (-1 none), y normal texture, z base UV set, w normal UV set
-  uvec4 flags;        // x alpha mode, y double sided
+  uvec4 flags;        // x alpha mode, y double sided, z unlit (KHR_materials_unlit)
   vec4 baseUv0;       // KHR_texture_transform as a 2x3 matrix: row 0
   vec4 baseUv1;       // row 1
   vec4 normalUv0;

@@ -39,6 +39,7 @@ void main() {
   const bool inside = p.x < int(frame.viewport.x) && p.y < int(frame.viewport.y);
   Surface s;
   s.geometry = false;
+  s.unlit = false;
   if (inside) s = readSurface(vec2(p) + 0.5);
   if (s.geometry)
     for (int a = 0; a < 3; ++a) {
@@ -51,7 +52,9 @@ void main() {
   const vec3 hi = vec3(unordered(sHi[0]), unordered(sHi[1]), unordered(sHi[2]));
 
   vec3 c = vec3(0.0);
-  if (s.geometry)
+  if (s.geometry && s.unlit)
+    c = shadeUnlit(s.albedo);
+  else if (s.geometry)
     c = shadeDirectional(s.albedo, s.specular, s.N, normalize(-s.P), frame.sunEyeDirection.xyz, frame.sunColor.rgb,
                          frame.ambientColor.rgb, frame.sunEyeDirection.w > 0.0 ? s.shadow : 0.0);
   uint evaluated = 0u;
@@ -76,7 +79,7 @@ void main() {
         uint k = uint(findLSB(bits));
         bits &= bits - 1u;
         PointLight l = lights[visibleLights[base + w * 32u + k]];
-        if (s.geometry)
+        if (s.geometry && !s.unlit)
           c += shadePoint(s.albedo, s.specular, s.N, s.P, l.eyePositionRadius.xyz, l.eyePositionRadius.w, l.color.rgb);
       }
     }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "app/bench/bench_format.h"
+#include "views/analysis/error.h"
 #include "views/capture/report.h"
 
 namespace gb {
@@ -59,109 +60,6 @@ const std::vector<std::pair<std::string, std::string>>& errorSummaryKeys() {
   return keys;
 }
 
-// ---- frontier and defaults ----------------------------------------------------------------------
-
-static const BenchRow* defaultRow(const std::vector<BenchRow>& rows, const std::string& scene) {
-  for (const BenchRow& r : rows)
-    if (r.scene == scene && r.group == "default" && r.measured) return &r;
-  return nullptr;
-}
-
-void markFrontiers(std::vector<BenchRow>& rows) {
-  std::set<std::string> scenes;
-  for (const BenchRow& r : rows) scenes.insert(r.scene);
-  for (BenchRow& r : rows) r.frontier = false;
-  for (const std::string& scene : scenes)
-    for (const BenchGroup& g : benchGroups()) {
-      if (g.metric.empty()) continue;
-      std::vector<BenchRow*> pts;
-      for (BenchRow& r : rows)
-        if (r.scene == scene && r.measured && (r.group == g.name || r.group == "default") && r.error.count(g.metric))
-          pts.push_back(&r);
-      for (BenchRow* a : pts) {
-        bool dominated = false;
-        for (BenchRow* b : pts) {
-          if (a == b) continue;
-          double ea = a->error[g.metric], eb = b->error[g.metric];
-          double ta = a->frameMs.median, tb = b->frameMs.median;
-          if (eb <= ea && tb <= ta && (eb < ea || tb < ta)) dominated = true;
-        }
-        if (!dominated) a->frontier = true;
-      }
-    }
-}
-
-const std::vector<std::pair<std::string, double>>& dominanceObjectives() {
-  static const std::vector<std::pair<std::string, double>> objectives = {
-      {"normal_deg_mean", 1e-4},    // a ten-thousandth of a degree
-      {"position_rel_mean", 1e-7},  // about one float32 ulp of relative precision
-      {"shadow_mismatch", 1e-4},    // a hundredth of a percent of the compared pixels
-      {"lighting_rel_mean", 1e-6},
-      {"hdr_rel_mean", 1e-4},
-  };
-  return objectives;
-}
-
-// Every compared error figure of v within tolerance of d's; `better`: one beyond it.
-static bool errorsNoWorse(const BenchRow& v, const BenchRow& d, const BenchTolerances& tol, bool& better) {
-  bool noWorse = true;
-  better = false;
-  for (const auto& [k, floor] : dominanceObjectives()) {
-    auto iv = v.error.find(k), id = d.error.find(k);
-    if (iv == v.error.end() || id == d.error.end()) continue;
-    noWorse &= iv->second <= id->second * (1.0 + tol.error) + floor;
-    better |= iv->second < id->second * (1.0 - tol.error) - floor;
-  }
-  return noWorse;
-}
-
-static bool qualityVariant(const BenchRow& v) {
-  const BenchGroup* g = findBenchGroup(v.group);
-  return v.measured && g && !g->metric.empty() && v.group != "default";
-}
-
-std::vector<std::string> errorNoWorseThanDefaults(const std::vector<BenchRow>& rows, const std::string& scene,
-                                                  const BenchTolerances& tol) {
-  std::vector<std::string> out;
-  const BenchRow* d = defaultRow(rows, scene);
-  if (!d) return out;
-  for (const BenchRow& v : rows) {
-    bool better;
-    if (v.scene == scene && qualityVariant(v) && errorsNoWorse(v, *d, tol, better)) out.push_back(v.name);
-  }
-  return out;
-}
-
-std::vector<DefaultsCheck> checkDefaults(const std::vector<BenchRow>& rows, const BenchTolerances& tol) {
-  std::vector<DefaultsCheck> out;
-  std::set<std::string> scenes;
-  for (const BenchRow& r : rows) scenes.insert(r.scene);
-  for (const std::string& scene : scenes) {
-    const BenchRow* first = defaultRow(rows, scene);
-    if (!first) continue;
-    BenchRow fastest = *first;  // the faster of the defaults' runs: drift must not favour a variant
-    for (const BenchRow& r : rows)
-      if (r.scene == scene && r.group == "repeat" && r.measured && r.frameMs.median < fastest.frameMs.median)
-        fastest.frameMs = r.frameMs;
-    const BenchRow* d = &fastest;
-    DefaultsCheck c;
-    c.scene = scene;
-    for (const BenchRow& v : rows) {
-      if (&v == first || v.scene != scene || !qualityVariant(v)) continue;
-      // No worse anywhere (within tolerance), better somewhere (beyond it).
-      const bool ab = v.abTimeRatio > 0.0;
-      double ratio = ab ? v.abTimeRatio : v.frameMs.median / d->frameMs.median;
-      bool errorBetter;
-      bool noWorse = errorsNoWorse(v, *d, tol, errorBetter) && ratio <= 1.0 + tol.time;
-      bool better = errorBetter || (ratio < 1.0 - tol.time && (!ab || v.abTimeRatioUpperQuartile < 1.0));
-      if (noWorse && better) c.dominatedBy.push_back(v.name);
-    }
-    c.onFrontier = c.dominatedBy.empty();
-    out.push_back(c);
-  }
-  return out;
-}
-
 // ---- targets ----------------------------------------------------------------------------------
 
 static nlohmann::json targetsJson(const BenchReport& r) {
@@ -194,6 +92,15 @@ static nlohmann::json targetsJson(const BenchReport& r) {
       return nullptr;
     };
     const BenchRow* d = find("default");
+    if (d && d->errorDetail.contains("position")) {
+      // What storage and reconstruction add to the eye depth, beyond where the GPU's float
+      // arithmetic places the surface (placementAllowance; the raw max in error_detail).
+      double b = d->errorDetail["position"]["eye_depth"].value("beyond_placement", nlohmann::json::object()).value("max", -1.0);
+      double raw = d->errorDetail["position"]["eye_depth"]["relative"].value("max", -1.0);
+      t.push_back({{"target", "position from eye depth: max |dP|/depth beyond the float placement of triangles <= 1e-6 "
+                              "(raw max " + num(raw) + ")"},
+                   {"scene", scene}, {"measured", b}, {"bound", 1e-6}, {"met", b >= 0.0 && b <= 1e-6}});
+    }
     if (d) {
       double n = d->error.at("normal_deg_mean");
       t.push_back({{"target", "normal mean angular error <= 0.03 deg with the default format (" +
@@ -205,15 +112,19 @@ static nlohmann::json targetsJson(const BenchReport& r) {
       if (d && d->options.accumFormat == f) return d;
       return find(std::string("accum_format=") + name(f));
     };
+    // One rounding of the sum in the format, plus the specular lobe's 32x of n.h's float rounding
+    // (lightingBoundPerContribution, views/analysis/error.h).
     if (const BenchRow* h = accum(AccumFormat::Rgba16f)) {
-      double l = h->error.at("lighting_per_contribution_max");
-      t.push_back({{"target", "HDR (lighting passes, silhouettes excluded) per light contribution <= 2^-10 with fp16"},
-                   {"scene", scene}, {"measured", l}, {"bound", std::ldexp(1.0, -10)}, {"met", l <= std::ldexp(1.0, -10)}});
+      double l = h->error.at("lighting_per_contribution_max"), b = lightingBoundPerContribution(AccumFormat::Rgba16f);
+      t.push_back({{"target", "HDR (lighting passes, silhouettes excluded) per light contribution <= 2^-10 + "
+                              "32 x 6 x 2^-24 with fp16"},
+                   {"scene", scene}, {"measured", l}, {"bound", b}, {"met", l <= b}});
     }
     if (const BenchRow* f = accum(AccumFormat::Rgba32f)) {
-      double l = f->error.at("lighting_per_contribution_max");
-      t.push_back({{"target", "HDR (lighting passes, silhouettes excluded) per light contribution <= 1e-5 with fp32"},
-                   {"scene", scene}, {"measured", l}, {"bound", 1e-5}, {"met", l <= 1e-5}});
+      double l = f->error.at("lighting_per_contribution_max"), b = lightingBoundPerContribution(AccumFormat::Rgba32f);
+      t.push_back({{"target", "HDR (lighting passes, silhouettes excluded) per light contribution <= 2^-23 + "
+                              "32 x 6 x 2^-24 with fp32"},
+                   {"scene", scene}, {"measured", l}, {"bound", b}, {"met", l <= b}});
     }
   }
   for (const auto& m : methodTargets(r)) t.push_back(m);
@@ -265,10 +176,15 @@ nlohmann::json benchJson(const BenchReport& r) {
       o["error"] = row.error;
       o["error_detail"] = row.errorDetail;
       o["frontier"] = row.frontier;
-      if (row.abPairs)
-        o["ab_vs_defaults"] = {{"time_ratio", row.abTimeRatio},
-                               {"time_ratio_upper_quartile", row.abTimeRatioUpperQuartile},
-                               {"pairs", row.abPairs}};
+      if (row.ab.pairs())
+        o["ab_vs_defaults"] = {{"time_ratio", row.ab.median},
+                               {"time_ratio_lower_quartile", row.ab.lowerQuartile},
+                               {"time_ratio_upper_quartile", row.ab.upperQuartile},
+                               {"time_ratio_ci", {row.ab.ciLow, row.ab.ciHigh}},
+                               {"ci_confidence", row.ab.confidence},
+                               {"ratios", row.ab.ratios},
+                               {"pairs", row.ab.pairs()},
+                               {"verdict", abVerdict(row.ab, r.tolerances.time)}};
     }
     rows.push_back(o);
   }
@@ -281,6 +197,11 @@ nlohmann::json benchJson(const BenchReport& r) {
     dr.push_back({{"far_over_near", d.ratio}, {"znear", d.znear}, {"zfar", d.zfar}, {"source", d.source},
                   {"relative_max", d.relMax}, {"relative_mean", d.relMean}});
   j["depth_range"] = dr;
+  nlohmann::json dt = nlohmann::json::array();
+  for (const DepthTestRow& d : r.depthTest)
+    dt.push_back({{"source", d.source}, {"gap", d.gap}, {"znear", d.znear}, {"zfar", d.zfar}, {"depth", d.depth},
+                  {"fighting", d.fighting}});
+  j["depth_test"] = dt;
   j["methods"] = methodsJson(r);
   nlohmann::json skips = nlohmann::json::array();
   for (const SkipRow& s : r.skips)
@@ -289,7 +210,8 @@ nlohmann::json benchJson(const BenchReport& r) {
   j["skips"] = skips;
   nlohmann::json defaults = nlohmann::json::array();
   for (const DefaultsCheck& c : r.defaults)
-    defaults.push_back({{"scene", c.scene}, {"on_frontier", c.onFrontier}, {"dominated_by", c.dominatedBy}});
+    defaults.push_back(
+        {{"scene", c.scene}, {"on_frontier", c.onFrontier}, {"dominated_by", c.dominatedBy}, {"undecided", c.undecided}});
   j["defaults"] = defaults;
   nlohmann::json floors;
   for (const auto& [k, f] : dominanceObjectives()) floors[k] = f;
@@ -337,6 +259,37 @@ std::string num(double v, int digits) {
   return s.str();
 }
 
+// Per gap and depth format: how many cards z-fight (the twin behind shows on more than 1% of the
+// card), and the nearest card that does.
+static std::string depthTestMarkdown(const BenchReport& r) {
+  if (r.depthTest.empty()) return "";
+  std::ostringstream md;
+  md << "## Depth test resolution (builtin:depth-range, far/near " << num(r.depthTest[0].zfar / r.depthTest[0].znear)
+     << ", a twin card behind each at depth x (1 + gap))\n\n"
+     << "Cards z-fighting (the twin shows on more than 1% of the card's pixels) / cards; the nearest such card's "
+        "depth in units of the near plane.\n\n| gap | source | cards z-fighting | nearest z-fighting depth / near |\n"
+        "| --- | --- | --- | --- |\n";
+  std::vector<std::pair<double, std::string>> keys;
+  for (const DepthTestRow& d : r.depthTest)
+    if (std::find(keys.begin(), keys.end(), std::pair{d.gap, d.source}) == keys.end()) keys.push_back({d.gap, d.source});
+  for (const auto& [gap, source] : keys) {
+    int fighting = 0, cards = 0;
+    double nearest = 0.0;
+    for (const DepthTestRow& d : r.depthTest) {
+      if (d.gap != gap || d.source != source) continue;
+      ++cards;
+      if (d.fighting > 0.01) {
+        ++fighting;
+        if (nearest == 0.0 || d.depth / d.znear < nearest) nearest = d.depth / d.znear;
+      }
+    }
+    md << "| " << num(gap) << " | " << source << " | " << fighting << " / " << cards << " | "
+       << (fighting ? num(nearest) : std::string("-")) << " |\n";
+  }
+  md << "\n";
+  return md.str();
+}
+
 std::string benchMarkdown(const BenchReport& r) {
   std::ostringstream md;
   md << "# gblens bench\n\n";
@@ -346,7 +299,7 @@ std::string benchMarkdown(const BenchReport& r) {
   for (const BenchRow& row : r.rows) scenes.insert(row.scene);
   for (const std::string& scene : scenes) {
     md << "## " << scene << "\n\n";
-    md << "| group | variant | frame ms (median [min-max]) | frames | error figure | value | frontier | A/B vs defaults |\n";
+    md << "| group | variant | frame ms (median [min-max]) | frames | error figure | value | frontier | A/B vs defaults: median [CI] |\n";
     md << "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
     for (const BenchRow& row : r.rows) {
       if (row.scene != scene) continue;
@@ -360,9 +313,9 @@ std::string benchMarkdown(const BenchReport& r) {
       md << num(row.frameMs.median, 4) << " [" << num(row.frameMs.min, 4) << "-" << num(row.frameMs.max, 4) << "] | "
          << row.frames << " | " << metric << " | " << (row.error.count(metric) ? num(row.error.at(metric)) : "") << " | "
          << (row.frontier ? "yes" : "") << " | "
-         << (row.abPairs ? num(row.abTimeRatio) + "x, q3 " + num(row.abTimeRatioUpperQuartile) + "x (" +
-                               std::to_string(row.abPairs) + " pairs)"
-                         : "")
+         << (row.ab.pairs() ? num(row.ab.median) + "x [" + num(row.ab.ciLow) + "-" + num(row.ab.ciHigh) + "] " +
+                                  abVerdict(row.ab, r.tolerances.time) + " (" + std::to_string(row.ab.pairs()) + " pairs)"
+                            : "")
          << " |\n";
     }
     for (const DefaultsCheck& c : r.defaults)
@@ -373,8 +326,14 @@ std::string benchMarkdown(const BenchReport& r) {
           for (const std::string& v : c.dominatedBy) md << " " << v;
           md << ")";
         }
-        md << " (time tolerance " << r.tolerances.time * 100 << "%, error tolerance " << r.tolerances.error * 100
-           << "%).\n\n";
+        if (!c.undecided.empty()) {
+          md << "; undecided (lower error, time not shown within " << r.tolerances.time * 100 << "%):";
+          for (const std::string& v : c.undecided) md << " " << v;
+        }
+        md << ". Time from the interleaved A/B only: the median ratio variant/defaults with its "
+              "distribution-free confidence interval (order statistics; about 96% for 12 pairs); "
+              "faster = the interval below 1, not slower = its top at most "
+           << 1.0 + r.tolerances.time << "; error tolerance " << r.tolerances.error * 100 << "% plus floors.\n\n";
       }
   }
   md << methodsMarkdown(r);
@@ -398,6 +357,7 @@ std::string benchMarkdown(const BenchReport& r) {
     }
     md << "\n";
   }
+  md << depthTestMarkdown(r);
   md << "## Targets\n\n| target | scene | measured | bound | met |\n| --- | --- | --- | --- | --- |\n";
   for (const auto& t : targetsJson(r))
     md << "| " << t.value("target", "") << " | " << t.value("scene", "") << " | " << num(t.value("measured", 0.0)) << " | "

@@ -36,6 +36,20 @@ struct PassTiming {
   Timing ms;
 };
 
+// An interleaved A/B (bench_run.cpp): frames of the defaults and of a variant alternating, the
+// per-pair frame-time ratios variant / defaults, and a distribution-free confidence interval of
+// their median (order statistics k and n+1-k of the sorted ratios: for 12 pairs r(3)..r(10), 96%).
+struct AbResult {
+  std::vector<double> ratios;  // sorted
+  double median = 0.0, lowerQuartile = 0.0, upperQuartile = 0.0;
+  double ciLow = 0.0, ciHigh = 0.0, confidence = 0.0;  // the interval of the median and its coverage
+  int pairs() const { return int(ratios.size()); }
+};
+AbResult abStatistics(std::vector<double> ratios);
+// Time, judged from an A/B at its confidence: "faster" (the interval below 1), "slower" (above 1),
+// "same within 5%" (inside [1 - tol, 1 + tol]), or "undecided" (the spread is wider than that).
+std::string abVerdict(const AbResult& ab, double tolerance);
+
 struct BenchRow {
   std::string scene, group, name, label;
   RenderOptions options;
@@ -47,11 +61,9 @@ struct BenchRow {
   std::map<std::string, double> error;  // the summary figures (keys: see errorSummaryKeys())
   nlohmann::json errorDetail;           // the full gblens error JSON
   bool frontier = false;                // on its group's time-vs-error Pareto frontier
-  // Interleaved A/B against the defaults (frames alternating, two renderers): median of the
-  // per-pair ratio variant / defaults. 0: not run. Measured for variants that seem to dominate.
-  double abTimeRatio = 0.0;
-  double abTimeRatioUpperQuartile = 0.0;  // faster in at least 3 of 4 pairs when below 1
-  int abPairs = 0;
+  // Interleaved A/B against the defaults (frames alternating, two fresh renderers), run for
+  // variants whose errors are no worse than the defaults' (only time can decide those). Empty: not run.
+  AbResult ab;
 };
 
 // Keys of BenchRow::error, in column order, with their meaning.
@@ -64,16 +76,20 @@ struct DepthRangeRow {
   double relMax = 0.0, relMean = 0.0;
 };
 
-// A quality group's frontier and the defaults check: a variant dominates the defaults when it
-// is no worse in frame time and in every error figure, and better in at least one, each beyond
-// a relative tolerance and the figure's significance floor (differences below it are not
-// meaningful: a fraction of a float ulp, a hundredth of a percent of pixels). Where an
-// interleaved A/B ran, its time ratios replace the sweep's medians, and being faster also needs
-// the upper quartile below 1 (faster in at least 3 of 4 pairs: noise alone rarely is).
+// A quality group's frontier and the defaults check. Error figures are deterministic (one frame
+// against the reference): a variant's is no worse within a relative tolerance and the figure's
+// significance floor (a fraction of a float ulp, a hundredth of a percent of pixels), better
+// beyond them. Time is noisy: it is judged only from the interleaved A/B's confidence interval of
+// the median ratio, never from the sweep's medians. A variant dominates the defaults when every
+// error is no worse, its time is not slower (the interval's top at most 1 + tolerance), and it is
+// better somewhere: an error figure, or time (the whole interval below 1).
 struct DefaultsCheck {
   std::string scene;
   bool onFrontier = true;
   std::vector<std::string> dominatedBy;
+  // Variants whose errors are no worse and better somewhere, but whose A/B could not show they are
+  // not slower (undecided): dominance not established either way.
+  std::vector<std::string> undecided;
 };
 struct BenchTolerances {
   double time = 0.05;   // 5%: timings on a shared machine are noisy
@@ -124,12 +140,23 @@ struct SkipRow {
   int pairs = 0;
 };
 
+// The depth test's resolution: builtin:depth-range with a twin card behind each card at depth
+// x (1 + gap), drawn after it; the share of the card's pixels where the twin wins the depth test
+// (z-fighting: the depth format cannot separate the two at that depth).
+struct DepthTestRow {
+  std::string source;  // "d32_standard", "d32_reversed", "d24_standard", "d24_reversed"
+  double gap = 0.0, znear = 0.0, zfar = 0.0;
+  double depth = 0.0;          // the front card's eye depth
+  double fighting = 0.0;       // fraction of its pixels showing the card behind
+};
+
 struct BenchReport {
   nlohmann::json meta;  // device, driver, git, settings
   std::vector<BenchRow> rows;
   std::vector<MethodRow> methods;
   std::vector<SkipRow> skips;
   std::vector<DepthRangeRow> depthRange;
+  std::vector<DepthTestRow> depthTest;
   std::vector<DefaultsCheck> defaults;
   BenchTolerances tolerances;
 };

@@ -50,7 +50,7 @@ void timeVariant(Renderer& r, const RenderOptions& o, const BenchSettings& s, in
 
 // Interleaved A/B: frames of the defaults (renderer a) and of a variant (renderer b, its own
 // targets) alternate, order swapped every pair, so drift and load from other processes hit both
-// alike. Returns the median of the per-pair ratios b / a.
+// alike. Returns the per-pair ratios b / a with their median and its confidence interval.
 AbResult interleavedRatio(Renderer& a, const RenderOptions& oa, Renderer& b, const RenderOptions& ob, int pairs,
                           bool reuse) {
   auto frame = [reuse](Renderer& r, const RenderOptions& o) {
@@ -73,8 +73,7 @@ AbResult interleavedRatio(Renderer& a, const RenderOptions& oa, Renderer& b, con
     }
     ratios.push_back(tb / ta);
   }
-  std::sort(ratios.begin(), ratios.end());
-  return {median(ratios), ratios[std::min(ratios.size() - 1, ratios.size() * 3 / 4)]};
+  return abStatistics(std::move(ratios));
 }
 
 // Position error of every depth source across far/near ratios (the depth-precision targets).
@@ -123,6 +122,62 @@ std::vector<DepthRangeRow> depthRangeStudy(GpuContext& ctx, const RenderOptions&
     }
     destroyRenderer(r);
     std::fprintf(stderr, "gblens bench: depth range far/near %.0e measured\n", ratio);
+  }
+  return out;
+}
+
+// Z-fighting per card depth: primitive_id says which of the two cards each pixel shows.
+std::vector<DepthTestRow> depthTestStudy(GpuContext& ctx, const RenderOptions& base, const std::vector<double>& gaps,
+                                         uint32_t width, uint32_t height) {
+  std::vector<DepthTestRow> out;
+  struct Config {
+    const char* source;
+    bool reversed;
+    DepthFormat format;
+  };
+  const Config configs[] = {{"d32_standard", false, DepthFormat::D32S8},
+                            {"d32_reversed", true, DepthFormat::D32S8},
+                            {"d24_standard", false, DepthFormat::D24S8},
+                            {"d24_reversed", true, DepthFormat::D24S8}};
+  const double znear = 0.1, zfar = 1e5;
+  for (double gap : gaps) {
+    Scene scene = depthRangeScene(znear, zfar, gap);
+    const Scene plain = depthRangeScene(znear, zfar);
+    const uint32_t cards = scene.meshes[0].indexCount / 12, first = firstPrimitiveIds(scene)[0];
+    Renderer r;
+    initRenderer(r, ctx, scene);
+    for (const Config& c : configs) {
+      RenderOptions o = base;
+      o.width = width;
+      o.height = height;
+      o.lights = 0;
+      o.camera = 0;
+      o.reversedZ = c.reversed;
+      o.depthFormat = c.format;
+      o.primitiveId = true;
+      o.fairies = false;
+      FrameSnapshot f = renderSnapshot(r, o, {Target::PrimitiveId});
+      const CpuImage& ids = f.target(Target::PrimitiveId).image;
+      std::vector<uint64_t> front(cards, 0), back(cards, 0);
+      for (uint32_t y = 0; y < ids.height; ++y)
+        for (uint32_t x = 0; x < ids.width; ++x) {
+          uint32_t id = ids.raw(x, y, 0);
+          if (id < first) continue;
+          uint32_t t = (id - first) / 2;  // a card: two triangles; the twins come first
+          if (t < cards)
+            back[t]++;
+          else if (t < 2 * cards)
+            front[t - cards]++;
+        }
+      for (uint32_t k = 0; k < cards; ++k) {
+        // The front card's depth, as built (the scene without twins has the same cards).
+        double depth = -double(plain.vertices[plain.meshes[0].firstVertex + 4 * k].position.z);  // its front card
+        uint64_t all = front[k] + back[k];
+        out.push_back({c.source, gap, znear, zfar, depth, all ? double(back[k]) / double(all) : 0.0});
+      }
+    }
+    destroyRenderer(r);
+    std::fprintf(stderr, "gblens bench: depth test, gap %.0e measured\n", gap);
   }
   return out;
 }

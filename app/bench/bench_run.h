@@ -17,6 +17,7 @@ struct BenchSettings {  // gblens bench's own flags
   double variantSeconds = 60.0;  // most time the timed frames of one variant may take
   double budget = 780.0;         // the whole run (all scenes, A/B checks, depth study), seconds: 13 min
   int minFrames = 5;
+  int abPairs = 20;              // interleaved A/B pairs per variant at most (20: a 96% interval r(6)..r(15))
   std::string lightsSweep = "0,16,256,1024,4096";
   std::string sizes = "640x360,1280x720,1920x1080";
   std::string only;              // comma-separated variant names or groups (empty: all)
@@ -37,15 +38,17 @@ void timeVariant(Renderer& r, const RenderOptions& o, const BenchSettings& s, in
 
 // Frames of the defaults (renderer a) and of a variant (renderer b) alternate, the order
 // swapped every pair, so drift and other processes' load hit both alike: the per-pair
-// frame-time ratios b / a (their median and upper quartile).
-struct AbResult {
-  double median = 0.0, upperQuartile = 0.0;
-};
+// frame-time ratios b / a and their statistics (bench_report.h).
 AbResult interleavedRatio(Renderer& a, const RenderOptions& oa, Renderer& b, const RenderOptions& ob, int pairs,
                           bool reuse);
 
 // builtin:depth-range at far/near 1e2..1e6: max/mean |P - P_ref| / depth of eye depth, D32F
 // standard and reversed, D24, and stored positions.
 std::vector<DepthRangeRow> depthRangeStudy(GpuContext& ctx, const RenderOptions& base);
+
+// builtin:depth-range (far/near 1e6) with twin cards `gap` behind: the share of z-fighting pixels
+// per card depth, for D32F and D24 with standard and reversed Z.
+std::vector<DepthTestRow> depthTestStudy(GpuContext& ctx, const RenderOptions& base, const std::vector<double>& gaps,
+                                         uint32_t width = 640, uint32_t height = 360);
 
 }  // namespace gb

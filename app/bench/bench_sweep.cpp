@@ -175,21 +175,20 @@ void abChecks(Run& run, Scene& scene) {
     for (BenchRow& row : report.rows)
       if (row.scene == scene.source && row.name == name) v = &row;
     if (!v || v->note.rfind("same options", 0) == 0) continue;
-    // Up to 12 pairs, within a quarter of the budget left.
+    // Up to --ab-pairs pairs, within a quarter of the budget left; at least 6 (a 97% interval of
+    // the median needs 6 ratios: the whole range).
     double left = p.settings.budget - since(run.start);
-    int pairs = std::clamp(int(left / 4.0 / std::max(v->frameMs.median * 2e-3, 1e-3)), 0, 12);
-    if (pairs < 4) continue;
+    int pairs = std::clamp(int(left / 4.0 / std::max(v->frameMs.median * 2e-3, 1e-3)), 0, p.settings.abPairs);
+    if (pairs < 6) continue;
     Renderer ra, rb;  // both fresh: neither side inherits the sweep's history
     initRenderer(ra, run.ctx, scene);
     initRenderer(rb, run.ctx, scene);
-    AbResult ab = interleavedRatio(ra, p.defaults, rb, v->options, pairs, p.settings.shadowReuse == "on");
-    v->abTimeRatio = ab.median;
-    v->abTimeRatioUpperQuartile = ab.upperQuartile;
-    v->abPairs = pairs;
+    v->ab = interleavedRatio(ra, p.defaults, rb, v->options, pairs, p.settings.shadowReuse == "on");
     destroyRenderer(rb);
     destroyRenderer(ra);
-    std::fprintf(stderr, "[a/b] %-16s %-44s %.3fx the defaults' frame time (upper quartile %.3fx, %d interleaved pairs)\n",
-                 scene.source.c_str(), name.c_str(), v->abTimeRatio, v->abTimeRatioUpperQuartile, pairs);
+    std::fprintf(stderr, "[a/b] %-16s %-44s %.3fx the defaults' frame time [%.3f-%.3f, %.0f%%] %s (%d pairs)\n",
+                 scene.source.c_str(), name.c_str(), v->ab.median, v->ab.ciLow, v->ab.ciHigh, 100.0 * v->ab.confidence,
+                 abVerdict(v->ab, run.report.tolerances.time).c_str(), pairs);
   }
 }
 
@@ -313,8 +312,10 @@ BenchReport runBench(GpuContext& ctx, const BenchPlan& p) {
   }
   run.rowsTotal = p.variants.size() * scenes.size();
   for (std::unique_ptr<Scene>& scene : scenes) sweepScene(run, *scene);
-  if (s.depthRange == "on" && !p.variants.empty() && since(run.start) < 0.95 * s.budget)
+  if (s.depthRange == "on" && !p.variants.empty() && since(run.start) < 0.95 * s.budget) {
     report.depthRange = depthRangeStudy(ctx, p.defaults);
+    report.depthTest = depthTestStudy(ctx, p.defaults, {1e-3, 1e-4, 1e-5});
+  }
   else if (s.depthRange == "on" && !p.variants.empty())
     std::fprintf(stderr, "gblens bench: no time left for the depth-range study (--budget)\n");
   report.meta["skipped_scenes"] = skippedScenes;

@@ -28,6 +28,7 @@ std::vector<BenchVariant> defaultSweep(const RenderOptions& base, const std::vec
       if (value != getOption(base, option)) v.push_back({group, {{option, value}}});
   };
   axis("normal", "normal_format");
+  axis("normal", "oct_encoding");  // precise octahedral encoding: same storage, a lower largest error
   // Where positions come from: hardware depth in each format, or a stored position.
   for (BenchVariant d : std::vector<BenchVariant>{
            {"depth", {{"eye_depth", "off"}}},

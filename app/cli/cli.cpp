@@ -15,7 +15,7 @@ void addCommonOptions(CLI::App* cmd, CommonOptions& o, const std::vector<std::st
   // A later flag overrides an earlier one, so scripts can append overrides to a base command.
   cmd->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   if (std::find(except.begin(), except.end(), "scene") == except.end())
-    cmd->add_option("SCENE", o.scene, "builtin:temple, builtin:depth-range, or a .gltf/.glb file")->capture_default_str();
+    cmd->add_option("SCENE", o.scene, "builtin:temple, builtin:depth-range, builtin:normal-sphere, or a .gltf/.glb file")->capture_default_str();
   // One flag per option-table entry: the flag, the JSON key and the bench name are one name.
   for (const OptionInfo& info : optionTable()) {
     if (std::find(except.begin(), except.end(), info.name) != except.end()) continue;

@@ -75,6 +75,10 @@ Command addBenchCommand(CLI::App& root) {
   cmd->add_option("--budget", s->budget, "seconds for the whole run: later variants get fewer frames to stay within it")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_option("--ab-pairs", s->abPairs,
+                  "interleaved A/B pairs per variant whose errors tie the defaults' (the time verdict's sample)")
+      ->check(CLI::Range(6, 1000))
+      ->capture_default_str();
   cmd->add_option("--lights-sweep", s->lightsSweep, "light counts of the lights sweep")->capture_default_str();
   cmd->add_option("--sizes", s->sizes, "output sizes of the size sweep")->capture_default_str();
   cmd->add_option("--only", s->only,

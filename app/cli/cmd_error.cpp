@@ -44,6 +44,7 @@ static void printReport(const FrameError& e, const RenderOptions& o, double band
     printStats("", "units", p.absolute);
   };
   pos("from eye depth (R32F)", e.fromEyeDepth);
+  printStats("  beyond the float placement", "", e.fromEyeDepthBeyondPlacement);
   std::string hw = std::string("from hardware depth (") + name(o.depthFormat) + (o.reversedZ ? ", reversed Z)" : ")");
   pos(hw.c_str(), e.fromHardwareDepth);
   if (e.storedPosition) {
@@ -72,7 +73,9 @@ static bool writeErrorImages(const std::string& dir, const FrameError& e) {
   std::pair<const char*, Rgba8Image> images[] = {{"shadow.png", shadowErrorImage(e)},
                                                  {"silhouettes.png", silhouetteImage(e)},
                                                  {"normal.png", normalErrorImage(e)},
-                                                 {"hdr.png", hdrErrorImage(e)}};
+                                                 {"hdr.png", hdrErrorImage(e)},
+                                                 {"position.png", positionErrorImage(e)},
+                                                 {"lighting.png", lightingErrorImage(e)}};
   bool ok = true;
   for (auto& [file, img] : images) {
     std::string error, path = (std::filesystem::path(dir) / file).string();
@@ -132,7 +135,7 @@ Command addErrorCommand(CLI::App& root) {
   CLI::App* cmd = root.add_subcommand("error", "one frame's error per quantity against the double-precision CPU reference");
   addCommonOptions(cmd, *o);
   cmd->add_flag("--json", *json, "print the figures as JSON on stdout");
-  cmd->add_option("-o,--output", o->output, "folder for error images (shadow, silhouettes, normal, hdr)");
+  cmd->add_option("-o,--output", o->output, "folder for error images (shadow, silhouettes, normal, hdr, position, lighting)");
   cmd->add_option("--band", *band, "penumbra band half-width in shadow-map texels, left out of the shadow comparison")
       ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();

@@ -19,6 +19,7 @@ static const Names<NormalFormat, 4> kNormal = {{{NormalFormat::Rgba16f, "rgba16f
                                                 {NormalFormat::Rgba8Snorm, "rgba8-snorm"},
                                                 {NormalFormat::OctRg16, "oct-rg16"},
                                                 {NormalFormat::Rgb10a2, "rgb10a2"}}};
+static const Names<OctEncoding, 2> kOct = {{{OctEncoding::Nearest, "nearest"}, {OctEncoding::Precise, "precise"}}};
 static const Names<DepthFormat, 2> kDepth = {{{DepthFormat::D32S8, "d32s8"}, {DepthFormat::D24S8, "d24s8"}}};
 static const Names<AccumFormat, 3> kAccum = {
     {{AccumFormat::Rgba16f, "rgba16f"}, {AccumFormat::Rgba32f, "rgba32f"}, {AccumFormat::Rgba8, "rgba8"}}};
@@ -49,6 +50,7 @@ static bool find(const Names<E, N>& names, const std::string& text, E& out) {
 const char* name(Path v) { return lookup(kPath, v); }
 const char* name(Method v) { return lookup(kMethod, v); }
 const char* name(NormalFormat v) { return lookup(kNormal, v); }
+const char* name(OctEncoding v) { return lookup(kOct, v); }
 const char* name(DepthFormat v) { return lookup(kDepth, v); }
 const char* name(AccumFormat v) { return lookup(kAccum, v); }
 const char* name(ShadowFormat v) { return lookup(kShadow, v); }
@@ -59,6 +61,7 @@ const char* name(PositionSpace v) { return lookup(kPositionSpace, v); }
 bool parse(const std::string& t, Path& o) { return find(kPath, t, o); }
 bool parse(const std::string& t, Method& o) { return find(kMethod, t, o); }
 bool parse(const std::string& t, NormalFormat& o) { return find(kNormal, t, o); }
+bool parse(const std::string& t, OctEncoding& o) { return find(kOct, t, o); }
 bool parse(const std::string& t, DepthFormat& o) { return find(kDepth, t, o); }
 bool parse(const std::string& t, AccumFormat& o) { return find(kAccum, t, o); }
 bool parse(const std::string& t, ShadowFormat& o) { return find(kShadow, t, o); }
@@ -182,6 +185,10 @@ const std::vector<Entry>& entries() {
              kLayers, &RenderOptions::stencilLayers),
       onOff("reversed_z", "hardware depth 1 at the near plane, 0 at the far plane", &RenderOptions::reversedZ),
       choice("normal_format", "normal_shadow storage", kNormal, &RenderOptions::normalFormat),
+      choice("oct_encoding",
+             "octahedral normals (oct-rg16): each coordinate rounded to the nearest code, or the best of the four "
+             "neighbouring codes (precise)",
+             kOct, &RenderOptions::octEncoding),
       choice("depth_format", "hardware depth/stencil format", kDepth, &RenderOptions::depthFormat),
       choice("position", "position source of the lighting passes: reconstructed from depth, or a stored target",
              kPosition, &RenderOptions::position),

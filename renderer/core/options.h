@@ -10,6 +10,9 @@ namespace gb {
 enum class Path { TwoPass, SinglePass };
 enum class Method { Deferred, Forward, Tiled };
 enum class NormalFormat { Rgba16f, Rgba8Snorm, OctRg16, Rgb10a2 };
+// How an octahedral normal is rounded to its code: each coordinate to the nearest, or the best
+// of the four neighbouring codes (smallest angle after decoding; Cigolle et al. 2014).
+enum class OctEncoding { Nearest, Precise };
 enum class DepthFormat { D32S8, D24S8 };        // the hardware depth/stencil target
 enum class AccumFormat { Rgba16f, Rgba32f, Rgba8 };  // the light accumulation (hdr) target
 enum class ShadowFormat { D32f, D16 };
@@ -45,6 +48,7 @@ struct RenderOptions {
   // former defaults (rgba16f normals; fp16 accumulation) on lavapipe: same or lower frame time,
   // lower error (normal 0.0029 -> 0.00045 deg mean; lighting 7e-4 -> 8e-8 relative).
   NormalFormat normalFormat = NormalFormat::OctRg16;
+  OctEncoding octEncoding = OctEncoding::Nearest;
   DepthFormat depthFormat = DepthFormat::D32S8;
   AccumFormat accumFormat = AccumFormat::Rgba32f;
   ShadowFormat shadowFormat = ShadowFormat::D32f;
@@ -96,6 +100,7 @@ bool setOption(RenderOptions& o, const std::string& name, const std::string& val
 const char* name(Path p);
 const char* name(Method m);
 const char* name(NormalFormat f);
+const char* name(OctEncoding e);
 const char* name(DepthFormat f);
 const char* name(AccumFormat f);
 const char* name(ShadowFormat f);
@@ -108,6 +113,7 @@ const char* name(PositionSpace p);
 bool parse(const std::string& text, Path& out);
 bool parse(const std::string& text, Method& out);
 bool parse(const std::string& text, NormalFormat& out);
+bool parse(const std::string& text, OctEncoding& out);
 bool parse(const std::string& text, DepthFormat& out);
 bool parse(const std::string& text, AccumFormat& out);
 bool parse(const std::string& text, ShadowFormat& out);

@@ -121,6 +121,35 @@ Surface evaluate(const Context& c, RayScene::Hit h, uint32_t x, uint32_t y, bool
   s.eyeDepth = t;  // d.z = -1
   s.world = glm::dvec3(camera.worldFromEye * glm::dvec4(s.eye, 1.0));
   s.pixelFootprint = t * 2.0 * std::tan(camera.yfov * 0.5) / camera.height;
+  // The framebuffer extent of the triangle, clipped to the near plane as the rasterizer clips it.
+  s.screenExtent = double(std::max(camera.width, camera.height));
+  for (int v = 0; v < 3; ++v) {
+    const glm::dvec3 &a = k.eye[v], &b = k.eye[(v + 1) % 3];
+    glm::dvec3 points[2] = {a, a};
+    int n = 0;
+    if (-a.z >= camera.znear) points[n++] = a;
+    if ((-a.z < camera.znear) != (-b.z < camera.znear)) points[n++] = a + (b - a) * ((-camera.znear - a.z) / (b.z - a.z));
+    for (int q = 0; q < n; ++q) {
+      glm::dvec4 clip = camera.clipFromEye * glm::dvec4(points[q], 1.0);
+      glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+      s.screenExtent = std::max({s.screenExtent, std::abs((ndc.x + 1.0) * 0.5 * camera.width),
+                                 std::abs((ndc.y + 1.0) * 0.5 * camera.height)});
+    }
+  }
+  const InstanceTransform& placed = c.transforms[h.instance];
+  for (int v = 0; v < 3; ++v) {
+    glm::dvec3 p(k.v[v]->position), terms(0.0);
+    for (int row = 0; row < 3; ++row)
+      terms[row] = std::abs(placed.eyeFromObject[0][row] * p.x) + std::abs(placed.eyeFromObject[1][row] * p.y) +
+                   std::abs(placed.eyeFromObject[2][row] * p.z) + std::abs(placed.eyeFromObject[3][row]);
+    s.vertexTerms = std::max(s.vertexTerms, glm::length(terms));
+  }
+  for (auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+    double tn, u, v;
+    glm::dvec3 dn = eyeFromEyeDepth(camera, double(x) + dx, double(y) + dy, 1.0);
+    bool meets = intersectPlane(dn, k.eye[0], k.eye[1], k.eye[2], tn, u, v) && tn > 0.0;
+    s.eyeDepthChange = std::max(s.eyeDepthChange, meets ? std::abs(tn - t) : t);
+  }
 
   const InstanceTransform& xf = c.transforms[h.instance];
   glm::dvec3 g = glm::cross(k.eye[1] - k.eye[0], k.eye[2] - k.eye[0]);
@@ -163,6 +192,8 @@ Surface evaluate(const Context& c, RayScene::Hit h, uint32_t x, uint32_t y, bool
   }
   s.albedo = glm::clamp(glm::dvec3(base), 0.0, 1.0);
   s.specular = std::clamp(double(m.specular), 0.0, 1.0);
+  s.unlit = m.unlit;
+  if (s.unlit) return s;  // no light reaches its colour: the sun's visibility cannot matter
 
   // The exact shadow, where it can matter: the face and the shading normal both turn toward the sun.
   if (sunRay && c.sun.enabled && glm::dot(N, c.sun.toSunEye) > 0.0 && glm::dot(s.geometricNormal, c.sun.toSunEye) > 0.0)

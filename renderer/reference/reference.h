@@ -30,10 +30,24 @@ struct Surface {
   glm::dvec3 albedo{0.0};               // linear, clamped to [0, 1] as the sRGB target stores it
   double specular = 0.0;
   bool textured = false;                // albedo came from a texture (filtered: see sampler.h)
+  bool unlit = false;                   // KHR_materials_unlit: the albedo is the colour (shadeUnlit)
   // Sun: 1 the ray toward the sun reaches it, 0 it is blocked, -1 not evaluated (no sun, or the
   // face turns away from the sun so the shadow term cannot matter).
   int8_t sunVisible = -1;
   double pixelFootprint = 0.0;          // world size of the pixel at the hit (for tolerances)
+  // Largest change of the eye depth to a 4-neighbour pixel centre on this triangle's plane (its
+  // whole depth when a neighbour's ray misses the plane): what a sub-pixel shift of the rasterized
+  // triangle does to an interpolated depth (see placementAllowance in views/analysis/error.h).
+  double eyeDepthChange = 0.0;
+  // The size of the terms the vertex stage sums in float for this triangle's vertices (|eyeFromObject|
+  // x |position| per row, the largest over the vertices): its rounding is ~2^-24 of this. Object
+  // coordinates far from the eye (a city modelled in thousands of units) make it large.
+  double vertexTerms = 0.0;
+  // The largest |framebuffer coordinate| (pixels from the corner) of the triangle's vertices after
+  // clipping to the near plane, at least the frame's size: the rasterizer's float coordinates, and
+  // so the sub-pixel precision of the triangle's placement, scale with it (off-screen vertices of a
+  // long triangle are thousands of pixels out).
+  double screenExtent = 0.0;
 };
 
 struct Frame {
@@ -93,6 +107,7 @@ struct ShadingInput {
   glm::dvec3 P{0.0}, N{0.0}, albedo{0.0};
   double specular = 0.0;
   double shadow = 1.0;  // 1 lit, 0 shadowed
+  bool unlit = false;   // shadeUnlit: the albedo, no lights
 };
 struct Light {
   glm::dvec3 eyePosition{0.0};

@@ -40,6 +40,7 @@ ShadingInput shadingInput(const Surface& s) {
   in.albedo = s.albedo;
   in.specular = s.specular;
   in.shadow = s.sunVisible == 0 ? 0.0 : 1.0;  // -1: the face turns away, the term does not matter
+  in.unlit = s.unlit;
   return in;
 }
 
@@ -88,6 +89,12 @@ Shaded shade(const std::vector<ShadingInput>& px, const Camera& camera, const st
       const size_t i = size_t(y) * w + x;
       const ShadingInput& s = px[i];
       if (!s.geometry) continue;
+      if (s.unlit) {  // the lighting passes write the albedo and add no light
+        out.hdr[i] = shading::shadeUnlit(s.albedo);
+        out.absSum[i] = glm::abs(out.hdr[i]);
+        out.count[i] = out.hdr[i] != glm::dvec3(0.0) ? 1 : 0;
+        continue;
+      }
       glm::dvec3 V = glm::normalize(-s.P);
       glm::dvec3 c = shading::shadeDirectional(s.albedo, s.specular, s.N, V, sun.toSunEye, sun.color, sun.ambient,
                                                sun.enabled ? s.shadow : 0.0);

@@ -10,7 +10,14 @@ namespace gb {
 Scene builtinTemple(int lightCount);
 // builtin:depth-range: camera-facing cards at depths spaced in log from 1.5 near to far / 1.5
 // (default 0.1 .. 1e5: a far/near ratio of 1e6), for depth-precision measurements.
-Scene depthRangeScene(double znear = 0.1, double zfar = 1e5);
+// With `gap` > 0 every card has a twin behind it at depth x (1 + gap), drawn before it (so a depth
+// test that cannot separate them keeps the twin: z-fighting, counted by its triangles).
+Scene depthRangeScene(double znear = 0.1, double zfar = 1e5, double gap = 0.0);
+// builtin:normal-sphere: a camera-filling card whose normals cover the sphere of directions
+// uniformly (normal-encoding measurements over uniformly distributed unit vectors).
+Scene normalSphereScene(int lightCount);
+// Its map from the card's (u, v) in [0,1]^2 (u right, v down the screen) to unit normals: equal-area.
+glm::dvec3 normalSphereDirection(double u, double v);
 
 // A user mistake while loading (bad file, bad element): the message names the file and element.
 struct SceneError {

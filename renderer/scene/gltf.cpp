@@ -89,6 +89,7 @@ static Scene loadSteps(gltf::Doc& doc, const uint8_t* data, size_t size, const s
   auto t = Clock::now();
   gltf::parseDocument(doc, data, size, baseDir);
   gltf::validateDocument(doc);
+  gltf::checkUnrenderedParts(doc);
   stats->parseMs += msSince(t);
 
   t = Clock::now();

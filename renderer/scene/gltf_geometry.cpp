@@ -100,8 +100,8 @@ void buildPrimitive(Doc& doc, const std::string& el, const tinygltf::Primitive& 
     return;
   }
   const size_t vertexCount = model.accessors[size_t(position)].count;
-  for (const auto& [name, accessor] : prim.attributes)
-    if (model.accessors[size_t(accessor)].count != vertexCount)
+  for (const auto& [name, accessor] : prim.attributes)  // the others: gltf_unrendered.cpp
+    if (drawnAttribute(name) && model.accessors[size_t(accessor)].count != vertexCount)
       fail(doc, el, "attribute " + name + " has " + std::to_string(model.accessors[size_t(accessor)].count) +
                         " elements, POSITION has " + std::to_string(vertexCount));
 

@@ -64,6 +64,17 @@ void parseDocument(Doc& doc, const uint8_t* data, size_t size, const std::string
 // ---- validate (gltf_validate.cpp): every index and byte range, node graph, sizes ----
 void validateDocument(const Doc& doc);
 
+// ---- parts gblens does not draw (gltf_unrendered.cpp): errors there are warnings ----
+// What the drawn parts read: accessors of mesh primitives' indices and drawn attributes, and the
+// buffer views of those accessors and of images (1 = read when drawing).
+struct DrawnData {
+  std::vector<char> accessors, bufferViews;
+};
+DrawnData drawnData(const Doc& doc);
+bool drawnAttribute(const std::string& name);  // POSITION, NORMAL, TANGENT, TEXCOORD_0, TEXCOORD_1
+// Animations, skins, morph targets and unread vertex attributes: a warning per error, naming it.
+void checkUnrenderedParts(const Doc& doc);
+
 // ---- accessors (gltf_accessor.cpp) ----
 int componentCount(int type);       // SCALAR 1 ... MAT4 16; 0 when unknown
 int componentBytes(int componentType);  // 0 when unknown

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "renderer/scene/gltf_internal.h"
@@ -78,6 +79,32 @@ int uvSet(const Doc& doc, const std::string& material, const char* slot, int tex
   warn(doc, material + ": " + slot + " texture uses TEXCOORD_" + std::to_string(texCoord) +
                 "; gblens keeps two UV sets and uses TEXCOORD_0");
   return 0;
+}
+
+// Emission is not drawn (the G-buffer has no emission target): listed as ignored, with its
+// strength (KHR_materials_emissive_strength multiplies emissiveFactor). A strength that is not a
+// number >= 0 is an error in a part gblens does not draw: a warning naming it, not a refusal.
+void emission(const Doc& doc, const std::string& el, const tinygltf::Material& m) {
+  double strength = 1.0;
+  if (const tinygltf::Value* ext = extension(m.extensions, "KHR_materials_emissive_strength")) {
+    const tinygltf::Value* s = member(*ext, "emissiveStrength");
+    double v = 0.0;
+    if (s && (!number(s, v) || v < 0.0))
+      warn(doc, el + ": KHR_materials_emissive_strength.emissiveStrength is not a number >= 0 (emission is not "
+                     "drawn: ignored)");
+    else if (s)
+      strength = v;
+  }
+  const bool factor = m.emissiveFactor.size() == 3 &&
+                      (m.emissiveFactor[0] > 0 || m.emissiveFactor[1] > 0 || m.emissiveFactor[2] > 0);
+  if (m.emissiveTexture.index < 0 && !factor) return;
+  ignored(doc, "emissive colour (the G-buffer has no emission target)");
+  if (strength != 1.0 && factor) {
+    char text[160];
+    std::snprintf(text, sizeof text, "emissive colour of %s: (%g, %g, %g) x emissiveStrength %g (not drawn)", el.c_str(),
+                  m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2], strength);
+    ignored(doc, text);
+  }
 }
 
 struct TextureKey {
@@ -203,10 +230,14 @@ void buildMaterials(Doc& doc, std::vector<DecodedImage>& images) {
     d.doubleSided = m.doubleSided;
 
     d.specular = specular[i];
+    // KHR_materials_unlit: the base colour (factor x texture, alpha as usual) is the colour; the
+    // extension's fallback PBR values (metallic 0, roughness 1...) are not drawn.
+    if (extension(m.extensions, "KHR_materials_unlit")) {
+      d.unlit = true;
+      d.specular = 0.0f;
+    }
 
-    if (m.emissiveTexture.index >= 0 ||
-        (m.emissiveFactor.size() == 3 && (m.emissiveFactor[0] > 0 || m.emissiveFactor[1] > 0 || m.emissiveFactor[2] > 0)))
-      ignored(doc, "emissive colour (the G-buffer has no emission target)");
+    emission(doc, el, m);
     if (m.occlusionTexture.index >= 0) ignored(doc, "occlusion textures");
     scene.materials.push_back(d);
   }

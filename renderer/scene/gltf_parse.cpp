@@ -110,7 +110,8 @@ void checkVersion(const Doc& doc, bool parsed, const std::string& error) {
 
 // Extensions gblens draws. A required extension not listed here (Draco, meshopt, KTX2...) makes
 // the file unreadable for us: say which one.
-const char* const kSupported[] = {"KHR_mesh_quantization", "KHR_texture_transform", "KHR_lights_punctual"};
+const char* const kSupported[] = {"KHR_mesh_quantization", "KHR_texture_transform", "KHR_lights_punctual",
+                                  "KHR_materials_unlit", "KHR_materials_emissive_strength"};
 
 bool supported(const std::string& name) {
   for (const char* s : kSupported)
@@ -119,10 +120,10 @@ bool supported(const std::string& name) {
 }
 
 void checkExtensions(const Doc& doc) {
+  std::string list;
+  for (const char* s : kSupported) list += (list.empty() ? "" : ", ") + std::string(s);
   for (const std::string& e : doc.model.extensionsRequired)
-    if (!supported(e))
-      fail(doc, "extensionsRequired", "\"" + e + "\" is not supported by gblens (supported: KHR_mesh_quantization, "
-                                      "KHR_texture_transform, KHR_lights_punctual)");
+    if (!supported(e)) fail(doc, "extensionsRequired", "\"" + e + "\" is not supported by gblens (supported: " + list + ")");
   for (const std::string& e : doc.model.extensionsUsed)
     if (!supported(e)) ignored(doc, "extension " + e);
 }

@@ -16,18 +16,35 @@ bool inRange(int index, size_t size) { return index >= 0 && size_t(index) < size
 // offset + length <= limit without overflow.
 bool fits(uint64_t offset, uint64_t length, uint64_t limit) { return offset <= limit && length <= limit - offset; }
 
-void checkBufferViews(const Doc& doc) {
+void checkBufferView(const Doc& doc, size_t i) {
   const Model& m = doc.model;
-  for (size_t i = 0; i < m.bufferViews.size(); ++i) {
-    const tinygltf::BufferView& v = m.bufferViews[i];
-    std::string el = named("bufferView", i, v.name);
-    if (!inRange(v.buffer, m.buffers.size())) fail(doc, el, "buffer " + std::to_string(v.buffer) + " does not exist");
-    uint64_t size = m.buffers[size_t(v.buffer)].data.size();
-    if (!fits(v.byteOffset, v.byteLength, size))
-      fail(doc, el, "byteOffset " + std::to_string(v.byteOffset) + " + byteLength " + std::to_string(v.byteLength) +
-                        " runs past the end of buffer " + std::to_string(v.buffer) + " (" + std::to_string(size) +
-                        " bytes)");
-    if (v.byteStride != 0 && v.byteStride < 4) fail(doc, el, "byteStride " + std::to_string(v.byteStride) + " < 4");
+  const tinygltf::BufferView& v = m.bufferViews[i];
+  std::string el = named("bufferView", i, v.name);
+  if (!inRange(v.buffer, m.buffers.size())) fail(doc, el, "buffer " + std::to_string(v.buffer) + " does not exist");
+  uint64_t size = m.buffers[size_t(v.buffer)].data.size();
+  if (!fits(v.byteOffset, v.byteLength, size))
+    fail(doc, el, "byteOffset " + std::to_string(v.byteOffset) + " + byteLength " + std::to_string(v.byteLength) +
+                      " runs past the end of buffer " + std::to_string(v.buffer) + " (" + std::to_string(size) +
+                      " bytes)");
+  if (v.byteStride != 0 && v.byteStride < 4) fail(doc, el, "byteStride " + std::to_string(v.byteStride) + " < 4");
+}
+
+// Runs a check of element i: an error in an element the drawn parts read is refused; in one only
+// the parts gblens does not draw read (animations, skins, morph targets...), it is a warning.
+template <class Check>
+void checkEach(const Doc& doc, size_t count, const std::vector<char>& drawn, Check check) {
+  for (size_t i = 0; i < count; ++i) {
+    if (drawn[i]) {
+      check(doc, i);
+      continue;
+    }
+    try {
+      check(doc, i);
+    } catch (const SceneError& e) {
+      const std::string prefix = doc.file + ": ";
+      std::string what = e.message.rfind(prefix, 0) == 0 ? e.message.substr(prefix.size()) : e.message;
+      warn(doc, what + " (not read by anything gblens draws: ignored)");
+    }
   }
 }
 
@@ -55,43 +72,41 @@ void checkRange(const Doc& doc, const std::string& el, int view, uint64_t offset
                       std::to_string(length) + " bytes)");
 }
 
-void checkAccessors(const Doc& doc) {
+void checkAccessor(const Doc& doc, size_t i) {
   const Model& m = doc.model;
-  for (size_t i = 0; i < m.accessors.size(); ++i) {
-    const tinygltf::Accessor& a = m.accessors[i];
-    std::string el = named("accessor", i, a.name);
-    if (!validComponentType(a.componentType))
-      fail(doc, el, "componentType " + std::to_string(a.componentType) + " is not a glTF 2.0 component type");
-    if (componentCount(a.type) == 0) fail(doc, el, "unknown type");
-    if (a.count == 0) fail(doc, el, "count is 0");
-    if (a.count > kMaxAccessorElements)
-      fail(doc, el, "count " + std::to_string(a.count) + " is absurd (more than " + std::to_string(kMaxAccessorElements) +
-                        " elements)");
-    uint64_t elementBytes = uint64_t(componentCount(a.type)) * uint64_t(componentBytes(a.componentType));
-    if (a.bufferView >= 0) {
-      if (!inRange(a.bufferView, m.bufferViews.size()))
-        fail(doc, el, "bufferView " + std::to_string(a.bufferView) + " does not exist");
-      size_t stride = m.bufferViews[size_t(a.bufferView)].byteStride;
-      if (stride != 0 && stride < elementBytes)
-        fail(doc, el, "byteStride " + std::to_string(stride) + " of bufferView " + std::to_string(a.bufferView) +
-                          " is smaller than an element (" + std::to_string(elementBytes) + " bytes)");
-      checkRange(doc, el, a.bufferView, a.byteOffset, a.count, stride ? stride : elementBytes, elementBytes);
-    } else if (a.bufferView != -1) {
+  const tinygltf::Accessor& a = m.accessors[i];
+  std::string el = named("accessor", i, a.name);
+  if (!validComponentType(a.componentType))
+    fail(doc, el, "componentType " + std::to_string(a.componentType) + " is not a glTF 2.0 component type");
+  if (componentCount(a.type) == 0) fail(doc, el, "unknown type");
+  if (a.count == 0) fail(doc, el, "count is 0");
+  if (a.count > kMaxAccessorElements)
+    fail(doc, el, "count " + std::to_string(a.count) + " is absurd (more than " + std::to_string(kMaxAccessorElements) +
+                      " elements)");
+  uint64_t elementBytes = uint64_t(componentCount(a.type)) * uint64_t(componentBytes(a.componentType));
+  if (a.bufferView >= 0) {
+    if (!inRange(a.bufferView, m.bufferViews.size()))
       fail(doc, el, "bufferView " + std::to_string(a.bufferView) + " does not exist");
-    }
-    if (!a.sparse.isSparse) continue;
-    const auto& s = a.sparse;
-    if (s.count < 1 || uint64_t(s.count) > a.count)
-      fail(doc, el, "sparse.count " + std::to_string(s.count) + " is not in 1.." + std::to_string(a.count));
-    if (!indexComponentType(s.indices.componentType))
-      fail(doc, el, "sparse.indices.componentType " + std::to_string(s.indices.componentType) + " is not unsigned");
-    if (s.indices.byteOffset < 0 || s.values.byteOffset < 0) fail(doc, el, "negative sparse byteOffset");
-    uint64_t indexBytes = uint64_t(componentBytes(s.indices.componentType));
-    checkRange(doc, el + " sparse.indices", s.indices.bufferView, uint64_t(s.indices.byteOffset), uint64_t(s.count),
-               indexBytes, indexBytes);
-    checkRange(doc, el + " sparse.values", s.values.bufferView, uint64_t(s.values.byteOffset), uint64_t(s.count),
-               elementBytes, elementBytes);
+    size_t stride = m.bufferViews[size_t(a.bufferView)].byteStride;
+    if (stride != 0 && stride < elementBytes)
+      fail(doc, el, "byteStride " + std::to_string(stride) + " of bufferView " + std::to_string(a.bufferView) +
+                        " is smaller than an element (" + std::to_string(elementBytes) + " bytes)");
+    checkRange(doc, el, a.bufferView, a.byteOffset, a.count, stride ? stride : elementBytes, elementBytes);
+  } else if (a.bufferView != -1) {
+    fail(doc, el, "bufferView " + std::to_string(a.bufferView) + " does not exist");
   }
+  if (!a.sparse.isSparse) return;
+  const auto& s = a.sparse;
+  if (s.count < 1 || uint64_t(s.count) > a.count)
+    fail(doc, el, "sparse.count " + std::to_string(s.count) + " is not in 1.." + std::to_string(a.count));
+  if (!indexComponentType(s.indices.componentType))
+    fail(doc, el, "sparse.indices.componentType " + std::to_string(s.indices.componentType) + " is not unsigned");
+  if (s.indices.byteOffset < 0 || s.values.byteOffset < 0) fail(doc, el, "negative sparse byteOffset");
+  uint64_t indexBytes = uint64_t(componentBytes(s.indices.componentType));
+  checkRange(doc, el + " sparse.indices", s.indices.bufferView, uint64_t(s.indices.byteOffset), uint64_t(s.count),
+             indexBytes, indexBytes);
+  checkRange(doc, el + " sparse.values", s.values.bufferView, uint64_t(s.values.byteOffset), uint64_t(s.count),
+             elementBytes, elementBytes);
 }
 
 void checkMeshes(const Doc& doc) {
@@ -101,13 +116,10 @@ void checkMeshes(const Doc& doc) {
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const tinygltf::Primitive& prim = mesh.primitives[p];
       std::string el = named("mesh", i, mesh.name) + " primitive " + std::to_string(p);
+      // Attributes gblens does not read and morph targets: gltf_unrendered.cpp (warnings).
       for (const auto& [name, accessor] : prim.attributes)
-        if (!inRange(accessor, m.accessors.size()))
+        if (drawnAttribute(name) && !inRange(accessor, m.accessors.size()))
           fail(doc, el, "attribute " + name + " uses accessor " + std::to_string(accessor) + ", which does not exist");
-      for (const auto& target : prim.targets)
-        for (const auto& [name, accessor] : target)
-          if (!inRange(accessor, m.accessors.size()))
-            fail(doc, el, "morph target " + name + " uses accessor " + std::to_string(accessor) + ", which does not exist");
       if (prim.indices != -1) {
         if (!inRange(prim.indices, m.accessors.size()))
           fail(doc, el, "indices accessor " + std::to_string(prim.indices) + " does not exist");
@@ -277,8 +289,9 @@ void checkNodes(const Doc& doc) {
 }  // namespace
 
 void validateDocument(const Doc& doc) {
-  checkBufferViews(doc);
-  checkAccessors(doc);
+  const DrawnData drawn = drawnData(doc);
+  checkEach(doc, doc.model.bufferViews.size(), drawn.bufferViews, checkBufferView);
+  checkEach(doc, doc.model.accessors.size(), drawn.accessors, checkAccessor);
   checkMeshes(doc);
   checkMaterials(doc);
   checkCamerasAndLights(doc);

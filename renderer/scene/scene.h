@@ -36,6 +36,9 @@ struct MaterialDesc {
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
   bool doubleSided = false;
+  // KHR_materials_unlit: the base colour is the surface's colour, no light or shadow changes it
+  // (the G-buffer stores no normal for it: see encodeUnlit in shaders/gbuffer_codec.glsl).
+  bool unlit = false;
   glm::mat3 baseUvTransform{1.0f};  // KHR_texture_transform (applied as uv' = M * (uv, 1))
   glm::mat3 normalUvTransform{1.0f};
 };

@@ -9,8 +9,10 @@ namespace gb {
 Scene loadScene(const std::string& spec, int lightCount, SceneLoadStats* stats) {
   if (spec == "builtin:temple") return builtinTemple(lightCount);
   if (spec == "builtin:depth-range") return depthRangeScene();
+  if (spec == "builtin:normal-sphere") return normalSphereScene(lightCount);
   if (spec.rfind("builtin:", 0) == 0)
-    throw SceneError{"unknown built-in scene '" + spec + "' (available: builtin:temple, builtin:depth-range)"};
+    throw SceneError{"unknown built-in scene '" + spec +
+                     "' (available: builtin:temple, builtin:depth-range, builtin:normal-sphere)"};
   std::filesystem::path path(spec);
   std::string ext = path.extension().string();
   for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));

@@ -63,7 +63,7 @@ TEST(CliAccuracy, ErrorWritesImagesAndRejectsBadFlags) {
   std::string dir = tempDir("error");
   CliRun r = run("error --size 64x36 --lights 0 -o " + dir);
   ASSERT_EQ(r.status, 0) << r.out;
-  for (const char* f : {"shadow.png", "silhouettes.png", "normal.png", "hdr.png"})
+  for (const char* f : {"shadow.png", "silhouettes.png", "normal.png", "hdr.png", "position.png", "lighting.png"})
     EXPECT_GT(std::filesystem::file_size(std::filesystem::path(dir) / f), 100u) << f;
   std::filesystem::remove_all(dir);
   CliRun bad = run("error --normal-format rgb9 --size 64x36");

@@ -10,6 +10,8 @@
 
 #include "renderer/scene/builtin.h"
 #include "tests/gpu/gpu_test.h"
+#include "views/analysis/accuracy.h"
+#include "views/analysis/probe.h"
 
 namespace gb {
 
@@ -82,6 +84,50 @@ TEST_F(GpuTest, GltfCorpusRendersWithoutValidationMessages) {
       o.fairies = true;
       render(s, o, {{Target::Final}});
     }
+  }
+}
+
+// KHR_materials_unlit: the left quad is unlit orange, the right one lit grey, with a sun and
+// point lights. In every method the unlit pixels' hdr is their albedo as the lighting reads it
+// (deferred, tiled: the 8-bit sRGB albedo target through the device's decode; forward: the base
+// colour itself), the lit ones are not; the reference agrees, and the probe says "unlit".
+TEST_F(GpuTest, GltfUnlitMaterialShowsItsBaseColour) {
+  Scene s = load("valid/unlit.gltf", 8);
+  ReferenceCache cache(s);
+  const double orange[3] = {1.0, 0.217637640824031, 0.0};
+  RenderOptions o = tiny(48);
+  o.lights = 8;
+  // The G-buffer and the probe (deferred); which pixels are the unlit quad's and the lit one's.
+  FrameSnapshot g = snapshot(s, o, {Target::Hdr, Target::AlbedoSpecular, Target::NormalShadow, Target::Depth,
+                                    Target::DepthStencil});
+  const CpuImage& albedo = g.target(Target::AlbedoSpecular).image;
+  std::vector<std::pair<uint32_t, uint32_t>> unlitPixels, litPixels;
+  for (uint32_t y = 4; y < o.height - 4; ++y)
+    for (uint32_t x = 4; x < o.width - 4; ++x) {
+      if (g.target(Target::Depth).image.value(x, y, 0) <= 0.0) continue;
+      if (x < o.width / 2 - 1) unlitPixels.push_back({x, y});
+      if (x > o.width / 2 + 1) litPixels.push_back({x, y});
+    }
+  ASSERT_GT(unlitPixels.size(), 300u);
+  ASSERT_GT(litPixels.size(), 300u);
+  for (auto [x, y] : unlitPixels) EXPECT_TRUE(probePixel(g, x, y).unlit) << x << "," << y;
+  for (auto [x, y] : litPixels) EXPECT_FALSE(probePixel(g, x, y).unlit) << x << "," << y;
+  for (Method method : {Method::Deferred, Method::Tiled, Method::Forward}) {
+    SCOPED_TRACE(name(method));
+    o.method = method;
+    MeasuredFrame m = measureFrame(source(s), o, cache);
+    EXPECT_GT(m.error.unlit, 300u);
+    EXPECT_EQ(m.error.unlitMismatched, 0u);
+    if (method != Method::Forward) EXPECT_LT(m.error.lighting.relative.max, 1e-5);  // the reference's rule too
+    const CpuImage hdr = snapshot(s, o, {Target::Hdr}).target(Target::Hdr).image;
+    for (auto [x, y] : unlitPixels)
+      for (int c = 0; c < 3; ++c) {
+        double expected = method == Method::Forward ? orange[c] : double(g.srgbDecode[albedo.raw(x, y, c)]);
+        EXPECT_NEAR(hdr.value(x, y, c), expected, 1e-6) << x << "," << y << " channel " << c;
+      }
+    int lit = 0;
+    for (auto [x, y] : litPixels) lit += std::abs(hdr.value(x, y, 0) - g.srgbDecode[albedo.raw(x, y, 0)]) > 1e-3;
+    EXPECT_GT(lit, 300);  // the grey quad is lit (ambient + sun), not shown as its albedo
   }
 }
 

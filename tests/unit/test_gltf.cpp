@@ -293,6 +293,51 @@ TEST(Gltf, SameBytesFromMemoryWithoutExternalFiles) {
   }
 }
 
+// KHR_materials_unlit (required by the file, as the Khronos UnlitTest sample does): accepted; the
+// material is unlit with no specular, the other stays lit.
+TEST(Gltf, UnlitMaterials) {
+  Scene s = load("valid/unlit.gltf");
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_TRUE(s.materials[0].unlit);
+  EXPECT_EQ(s.materials[0].specular, 0.0f);
+  EXPECT_NEAR(s.materials[0].baseColor.g, 0.217637640824031, 1e-7);
+  EXPECT_FALSE(s.materials[1].unlit);
+  EXPECT_TRUE(s.warnings.empty());
+}
+
+// KHR_materials_emissive_strength (required): accepted; emission is not drawn, and `gblens info`
+// lists it with the strength applied.
+TEST(Gltf, EmissiveStrengthAcceptedAndListed) {
+  SceneLoadStats stats;
+  Scene s = loadScene(corpus("valid/emissive_strength.gltf"), 0, &stats);
+  EXPECT_TRUE(s.warnings.empty());
+  bool listed = false;
+  for (const std::string& i : stats.ignored) listed |= i.find("(1, 0.5, 0) x emissiveStrength 4") != std::string::npos;
+  EXPECT_TRUE(listed);
+}
+
+// Errors in parts gblens does not draw: one warning each, naming the part and saying it is ignored;
+// the triangle is drawn. The same kind of error in a drawn part is refused (the invalid corpus).
+TEST(Gltf, ErrorsInPartsNotDrawnAreWarningsNamingThePart) {
+  Scene s = load("valid/ignored_parts.gltf");
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.meshes[0].vertexCount, 3u);
+  const std::vector<std::string> expected = {
+      "animation 0 ('spin') sampler 0: input accessor 99 does not exist (animations are not drawn: ignored)",
+      "animation 0 ('spin') channel 0: target node 7 does not exist (animations are not drawn: ignored)",
+      "accessor 4: byteOffset 0 + 100 elements (1200 bytes) runs past the end of bufferView 0 (36 bytes) (not read "
+      "by anything gblens draws: ignored)",
+      "skin 0: joint node 5 does not exist (skins are not drawn: ignored)",
+      "mesh 0 primitive 0: morph target 0 POSITION uses accessor 42, which does not exist (morph targets are not "
+      "drawn: ignored)",
+      "mesh 0 primitive 0: attribute JOINTS_0 has 2 elements, POSITION has 3 (skins are not drawn: ignored)",
+      "material 0: KHR_materials_emissive_strength.emissiveStrength is not a number >= 0 (emission is not drawn: "
+      "ignored)"};
+  for (const std::string& w : expected) EXPECT_TRUE(hasWarning(s, w)) << w;
+  EXPECT_EQ(s.warnings.size(), expected.size());
+  for (const std::string& w : s.warnings) EXPECT_EQ(w.rfind(corpus("valid/ignored_parts.gltf") + ": ", 0), 0u) << w;
+}
+
 // Every invalid file: rejected with a SceneError naming the file and these words (in order).
 TEST(Gltf, InvalidFilesRejectedWithClearMessages) {
   const std::vector<std::pair<const char*, std::vector<const char*>>> cases = {

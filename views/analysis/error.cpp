@@ -52,6 +52,7 @@ struct PositionSamples {
 
 // Per-pixel samples of every per-surface figure, summarised at the end.
 struct Samples {
+  std::vector<double> eyeBeyond;  // position from eye depth beyond the rasterization allowance
   std::vector<double> normal, albedoU, albedoT, spec, depthRel, depthUlps, hdrAbs, hdrRel, hdrAbsU, hdrRelU;
   PositionSamples fromEye, fromHw, fromPos, used;
 };
@@ -93,6 +94,7 @@ GpuPixel readGpuPixel(const FrameSnapshot& g, uint32_t x, uint32_t y, bool store
   }
   p.n = decodeNormalTexel(g.target(Target::NormalShadow).image, x, y, o.normalFormat);
   p.in.N = p.n.unit;
+  p.in.unlit = unlitTexel(g.target(Target::NormalShadow).image, x, y, o.normalFormat);
   for (int c = 0; c < 3; ++c)
     p.in.albedo[c] = g.srgbDecode.empty() ? as.value(x, y, c) : double(g.srgbDecode[as.raw(x, y, c)]);
   p.in.specular = as.value(x, y, 3);
@@ -140,9 +142,15 @@ void measureSurface(FrameError& e, Samples& s, const FrameSnapshot& g, const Ref
   const size_t i = size_t(y) * e.width + x;
   const reference::Surface& r = ref.frame->at(x, y);
   const CpuImage& as = g.target(Target::AlbedoSpecular).image;
-  double nd = angleDeg(p.n.unit, r.normal);
-  s.normal.push_back(nd);
-  e.normalErrorDeg[i] = float(nd);
+  if (r.unlit || p.in.unlit) {
+    // Unlit surfaces store no normal: counted, and where the two disagree, a mismatch.
+    e.unlit++;
+    e.unlitMismatched += r.unlit != p.in.unlit;
+  } else {
+    double nd = angleDeg(p.n.unit, r.normal);
+    s.normal.push_back(nd);
+    e.normalErrorDeg[i] = float(nd);
+  }
   double a = 0.0;
   for (int c = 0; c < 3; ++c) a = std::max(a, std::abs(double(as.raw(x, y, c)) - linearToSrgb(r.albedo[c]) * 255.0));
   (r.textured ? s.albedoT : s.albedoU).push_back(a);
@@ -150,6 +158,8 @@ void measureSurface(FrameError& e, Samples& s, const FrameSnapshot& g, const Ref
   s.depthRel.push_back(std::abs(p.eyeDepth - r.eyeDepth) / r.eyeDepth);
   s.depthUlps.push_back(std::abs(p.eyeDepth - r.eyeDepth) / ulpOf(float(r.eyeDepth)));
   s.fromEye.add(p.pEye, r.eye, r.eyeDepth);
+  e.eyeDepthPositionRelative[i] = float(s.fromEye.rel.back());
+  s.eyeBeyond.push_back(std::max(0.0, s.fromEye.rel.back() - placementAllowance(r, e.width, e.height)));
   s.fromHw.add(p.pHw, r.eye, r.eyeDepth);
   if (e.storedPosition) s.fromPos.add(p.pPos, r.eye, r.eyeDepth);
   s.used.add(p.in.P, r.eye, r.eyeDepth);
@@ -182,6 +192,7 @@ void summarise(FrameError& e, Samples& s) {
   e.eyeDepthRelative = errorStats(std::move(s.depthRel));
   e.eyeDepthUlps = errorStats(std::move(s.depthUlps));
   e.fromEyeDepth = s.fromEye.stats();
+  e.fromEyeDepthBeyondPlacement = errorStats(std::move(s.eyeBeyond));
   e.fromHardwareDepth = s.fromHw.stats();
   e.fromPosition = s.fromPos.stats();
   e.used = s.used.stats();
@@ -224,6 +235,7 @@ void measureLightingPasses(FrameError& e, const FrameSnapshot& g, const referenc
       }
       lRel.push_back(dMax / std::max(rMax, 1e-3));
       lPer.push_back(per);
+      e.lightingPerContribution[i] = float(per);
       e.lighting.maxContributions = std::max(e.lighting.maxContributions, s.count[i]);
     }
   e.lighting.relative = errorStats(std::move(lRel));
@@ -231,6 +243,21 @@ void measureLightingPasses(FrameError& e, const FrameSnapshot& g, const referenc
 }
 
 }  // namespace
+
+double lightingBoundPerContribution(AccumFormat f) {
+  const double lobe = 32.0 * 6.0 * std::ldexp(1.0, -24);
+  switch (f) {
+    case AccumFormat::Rgba16f: return std::ldexp(1.0, -10) + lobe;
+    case AccumFormat::Rgba32f: return std::ldexp(1.0, -23) + lobe;
+    case AccumFormat::Rgba8: return std::ldexp(1.0, -8) + lobe;
+  }
+  return lobe;
+}
+
+double placementAllowance(const reference::Surface& s, uint32_t width, uint32_t height) {
+  const double extent = std::max(s.screenExtent, double(std::max(width, height)));
+  return std::ldexp(1.0, -24) * (3.0 * s.vertexTerms + 2.0 * extent * s.eyeDepthChange) / s.eyeDepth;
+}
 
 std::vector<Target> measuredTargets(const RenderOptions& o) {
   std::vector<Target> t = {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth, Target::DepthStencil,
@@ -254,6 +281,8 @@ FrameError measureError(const FrameSnapshot& g, const ReferenceView& ref, unsign
   e.shadowClass.assign(size_t(w) * h, ShadowClass::None);
   e.normalErrorDeg.assign(size_t(w) * h, 0.0f);
   e.hdrRelative.assign(size_t(w) * h, 0.0f);
+  e.eyeDepthPositionRelative.assign(size_t(w) * h, 0.0f);
+  e.lightingPerContribution.assign(size_t(w) * h, 0.0f);
   Samples samples;
   std::vector<reference::ShadingInput> gpuInputs(size_t(w) * h);
   for (uint32_t y = 0; y < h; ++y)
@@ -303,12 +332,15 @@ nlohmann::json errorJson(const FrameError& e) {
                  {"silhouette_other_triangle", e.silhouette},
                  {"silhouette_only_gpu", e.coverageOnlyGpu},
                  {"silhouette_only_reference", e.coverageOnlyReference},
-                 {"silhouettes_from", e.primitiveIds ? "primitive_id" : "depth difference > 1e-3 (no primitive_id)"}};
+                 {"silhouettes_from", e.primitiveIds ? "primitive_id" : "depth difference > 1e-3 (no primitive_id)"},
+                 {"unlit", e.unlit},
+                 {"unlit_mismatched", e.unlitMismatched}};
   j["normal_deg"] = errorJson(e.normalDeg);
   j["albedo_steps"] = {{"untextured", errorJson(e.albedoUntextured)}, {"textured", errorJson(e.albedoTextured)}};
   j["specular_steps"] = errorJson(e.specular);
   j["eye_depth"] = {{"relative", errorJson(e.eyeDepthRelative)}, {"ulps", errorJson(e.eyeDepthUlps)}};
   nlohmann::json pos = {{"eye_depth", positionJson(e.fromEyeDepth)}, {"hardware_depth", positionJson(e.fromHardwareDepth)}};
+  pos["eye_depth"]["beyond_placement"] = errorJson(e.fromEyeDepthBeyondPlacement);
   if (e.storedPosition) pos["stored"] = positionJson(e.fromPosition);
   pos["used"] = positionJson(e.used);
   j["position"] = pos;
@@ -399,5 +431,7 @@ static Rgba8Image heatLog(const FrameError& e, const std::vector<float>& v, doub
 }
 Rgba8Image normalErrorImage(const FrameError& e) { return heatLog(e, e.normalErrorDeg, 1e-4, 1.0); }
 Rgba8Image hdrErrorImage(const FrameError& e) { return heatLog(e, e.hdrRelative, 1e-5, 1.0); }
+Rgba8Image positionErrorImage(const FrameError& e) { return heatLog(e, e.eyeDepthPositionRelative, 1e-8, 1e-4); }
+Rgba8Image lightingErrorImage(const FrameError& e) { return heatLog(e, e.lightingPerContribution, 1e-8, 1e-4); }
 
 }  // namespace gb

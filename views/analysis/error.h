@@ -40,14 +40,28 @@ struct PositionError {
   ErrorStats absolute;  // scene units
 };
 
+// Where the GPU puts a surface, relative to its eye depth: the vertex stage sums its terms in
+// float (3 roundings of vertexTerms), and the rasterizer forms framebuffer coordinates and the
+// attribute planes in float, so an interpolated attribute is exact for the triangle moved by about
+// 2^-24 x its framebuffer coordinates (screenExtent pixels: the frame, or farther for off-screen
+// vertices); the eye depth moves by that times its change per pixel.
+// 2^-24 (3 vertexTerms + 2 screenExtent eyeDepthChange) / eyeDepth; the factor 2 is over the
+// largest ratio measured on llvmpipe (docs/accuracy.md). Devices that interpolate from positions
+// snapped to their sub-pixel grid move the triangle further.
+double placementAllowance(const reference::Surface& s, uint32_t width, uint32_t height);
+
 struct FrameError {
   uint32_t width = 0, height = 0;
   bool primitiveIds = false;  // silhouettes from primitive_id (else from a depth-difference fallback)
   uint64_t surface = 0, sky = 0, silhouette = 0, coverageOnlyGpu = 0, coverageOnlyReference = 0;
+  uint64_t unlit = 0, unlitMismatched = 0;  // surface pixels unlit in either (KHR_materials_unlit), and in one only
   ErrorStats normalDeg;
   ErrorStats albedoUntextured, albedoTextured, specular;  // in steps of the 8-bit value (1/255)
   ErrorStats eyeDepthRelative, eyeDepthUlps;              // the eye-depth target
   PositionError fromEyeDepth, fromHardwareDepth, fromPosition, used;
+  // From eye depth, what the float placement of the surface does not explain: per pixel
+  // max(0, relative error - placementAllowance). Storage and reconstruction alone (<= 1e-6).
+  ErrorStats fromEyeDepthBeyondPlacement;
   bool storedPosition = false;
   struct Shadow {
     uint64_t compared = 0, band = 0, mismatched = 0, falseShadow = 0, falseLight = 0, notCompared = 0;
@@ -70,7 +84,17 @@ struct FrameError {
   std::vector<PixelClass> pixelClass;
   std::vector<ShadowClass> shadowClass;
   std::vector<float> normalErrorDeg, hdrRelative;
+  std::vector<float> eyeDepthPositionRelative;  // |P - P_ref| / depth of the eye-depth reconstruction
+  std::vector<float> lightingPerContribution;   // the lighting passes' error per light contribution
 };
+
+// The lighting passes' error per light contribution (FrameError::lighting.perContribution) that
+// float shading and the accumulation format allow: one rounding of the sum in the format (2^-10
+// fp16, 2^-23 fp32, 2^-8 rgba8), plus the Blinn-Phong lobe: x^32 turns a relative error of n.h
+// into 32 times that, and n.h carries up to six float roundings (the decoded normal, V, H, the
+// dot): 32 x 6 x 2^-24 = 1.14e-5 (docs/accuracy.md: what VC's near-black, specular-only pixels
+// reach).
+double lightingBoundPerContribution(AccumFormat format);
 
 // The targets measureError reads under these options (position when stored, primitive_id when on).
 std::vector<Target> measuredTargets(const RenderOptions& options);
@@ -85,5 +109,7 @@ Rgba8Image shadowErrorImage(const FrameError& e);
 Rgba8Image silhouetteImage(const FrameError& e);
 Rgba8Image normalErrorImage(const FrameError& e);
 Rgba8Image hdrErrorImage(const FrameError& e);
+Rgba8Image positionErrorImage(const FrameError& e);  // from eye depth, relative, 1e-8 .. 1e-4
+Rgba8Image lightingErrorImage(const FrameError& e);  // per light contribution, 1e-8 .. 1e-4
 
 }  // namespace gb

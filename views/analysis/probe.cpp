@@ -167,7 +167,8 @@ static void probeLights(const FrameSnapshot& f, uint32_t x, uint32_t y, const gl
     else
       pl.stencilPass = stencilClass ? pl.enter <= surface && sharedMarked : pl.exit >= surface;
     if (pl.stencilPass) {
-      pl.contribution = shading::shadePoint(d.albedo, d.specular, d.normal, P, pl.eyePosition, pl.radius, pl.color);
+      pl.contribution = d.unlit ? glm::dvec3(0.0)
+                                : shading::shadePoint(d.albedo, d.specular, d.normal, P, pl.eyePosition, pl.radius, pl.color);
       d.pointLightTotal += pl.contribution;
       d.shadedLights++;
     }
@@ -207,6 +208,7 @@ PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
     double length = glm::length(dn.stored);
     d.normalLengthError = length > 0.0 ? std::abs(length - 1.0) : 0.0;  // zero: no geometry
     d.shadow = dn.shadow;
+    d.unlit = unlitTexel(n.image, x - n.x0, y - n.y0, f.options.normalFormat);
   }
   bool hasEye = d.hasEyeDepth = need(Target::Depth), hasHw = d.hasHardwareDepth = need(Target::DepthStencil);
   if (hasEye) d.eyeDepth = f.target(Target::Depth).value(x, y, 0);
@@ -236,7 +238,7 @@ PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
     d.viewDirection = glm::normalize(-P);
     probeShadow(f, P, d);
     glm::dvec3 sun = f.sunEyeDirection();
-    d.directional = shading::shadeDirectional(d.albedo, d.specular, d.normal, d.viewDirection, sun,
+    d.directional = d.unlit ? shading::shadeUnlit(d.albedo) : shading::shadeDirectional(d.albedo, d.specular, d.normal, d.viewDirection, sun,
                                               glm::dvec3(f.sun.color), glm::dvec3(f.sky.ambient),
                                               f.sun.enabled ? d.shadow : 0.0);
   } else {

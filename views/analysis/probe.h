@@ -77,6 +77,7 @@ struct PixelDossier {
   double specular = 0.0;
   glm::dvec3 normal{0.0}, normalStored{0.0};
   double normalLengthError = 0.0;  // | |stored| - 1 |
+  bool unlit = false;              // the texel marks an unlit surface (KHR_materials_unlit): no normal
   double shadow = 0.0;
   double eyeDepth = 0.0;           // depth.Z
   double hardwareDepth = 0.0;      // depth_stencil.Depth

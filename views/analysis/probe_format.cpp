@@ -47,7 +47,8 @@ nlohmann::json dossierJson(const PixelDossier& d) {
   j["decoded"] = {{"geometry", d.geometry},
                   {"albedo", opt(d.hasAlbedo, v3(d.albedo))},
                   {"specular", opt(d.hasAlbedo, d.specular)},
-                  {"normal", opt(d.hasNormal, v3(d.normal))},
+                  {"unlit", opt(d.hasNormal, d.unlit)},
+                  {"normal", opt(d.hasNormal && !d.unlit, v3(d.normal))},
                   {"normal_stored", opt(d.hasNormal, v3(d.normalStored))},
                   {"normal_length_error", opt(d.hasNormal, d.normalLengthError)},
                   {"shadow", opt(d.hasNormal, d.shadow)},
@@ -147,7 +148,10 @@ std::string dossierText(const PixelDossier& d) {
   o += "\ndecoded\n";
   o += "  geometry        " + std::string(d.geometry ? "yes" : "no (sky)") + "\n";
   o += "  albedo          " + (d.hasAlbedo ? t3(d.albedo) + "   specular " + f9(d.specular) : "-") + "\n";
-  o += "  normal          " + (d.hasNormal ? t3(d.normal) + "   stored length error " + f9(d.normalLengthError) : "-") + "\n";
+  o += "  normal          " + (!d.hasNormal ? std::string("-")
+                             : d.unlit   ? std::string("none: unlit (KHR_materials_unlit), shown as its albedo")
+                                         : t3(d.normal) + "   stored length error " + f9(d.normalLengthError)) +
+       "\n";
   o += "  shadow          " + (d.hasNormal ? f9(d.shadow) : "-") + "\n";
   o += "  eye depth       " + (d.hasEyeDepth ? f9(d.eyeDepth) : "-") + "\n";
   o += "  hardware depth  " + (d.hasHardwareDepth ? f9(d.hardwareDepth) : "-") + "\n";
