@@ -118,7 +118,7 @@ uint32_t bytesPerPixel(VkFormat f) {
   }
 }
 
-static VkImageView makeCamera(GpuContext& ctx, VkImage image, VkFormat format, VkImageAspectFlags aspect,
+static VkImageView makeImageView(GpuContext& ctx, VkImage image, VkFormat format, VkImageAspectFlags aspect,
                             uint32_t mips) {
   VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vci.image = image;
@@ -161,11 +161,11 @@ Image createImage(GpuContext& ctx, const ImageDesc& desc) {
   VK_CHECK(vkAllocateMemory(ctx.device, &mai, nullptr, &img.memory));
   VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
 
-  img.view = makeCamera(ctx, img.image, desc.format, aspectsOf(desc.format), desc.mipLevels);
+  img.view = makeImageView(ctx, img.image, desc.format, aspectsOf(desc.format), desc.mipLevels);
   if (isDepthFormat(desc.format)) {
-    img.depthView = makeCamera(ctx, img.image, desc.format, VK_IMAGE_ASPECT_DEPTH_BIT, 1);
+    img.depthView = makeImageView(ctx, img.image, desc.format, VK_IMAGE_ASPECT_DEPTH_BIT, 1);
     if (hasStencil(desc.format))
-      img.stencilView = makeCamera(ctx, img.image, desc.format, VK_IMAGE_ASPECT_STENCIL_BIT, 1);
+      img.stencilView = makeImageView(ctx, img.image, desc.format, VK_IMAGE_ASPECT_STENCIL_BIT, 1);
   }
   return img;
 }
