@@ -77,7 +77,7 @@ static int capture(const CommonOptions& o, const std::string& targets, bool cove
   for (int i = 0; i < o.frames; ++i) frames.push_back(session.render(ro, request));
   auto start = std::chrono::steady_clock::now();
   FrameSnapshot snap = session.snapshot(wanted);
-  for (Absent& a : snap.absent)
+  for (Absent& a : snap.absences)
     if (a == Absent::NotReadBack) a = Absent::NotRequested;
   CaptureMeta meta;
   meta.device = session.deviceName();

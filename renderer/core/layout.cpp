@@ -78,6 +78,13 @@ const char* name(DepthEncoding e) {
   return n[size_t(e)];
 }
 
+void describeImage(const LayoutTarget& t, CpuImage& img) {
+  img.name = t.name;
+  img.channels = t.channels;
+  img.type = t.format.type;
+  img.encoding = t.format.encoding;
+}
+
 int Layout::findTarget(const std::string& targetName) const {
   for (size_t i = 0; i < targets.size(); ++i)
     if (targets[i].name == targetName) return int(i);

@@ -84,6 +84,8 @@ struct LayoutTarget {
   uint32_t width = 0, height = 0;    // 0: the layout's size (or the source's)
   TargetSource source;
 };
+// A CpuImage described as the target stores it (name, channel names, type, encoding; no texels).
+void describeImage(const LayoutTarget& t, CpuImage& image);
 
 // The camera as the layout gives it (before conversion to gblens's convention, import.h).
 struct LayoutCamera {
@@ -98,6 +100,8 @@ struct LayoutCamera {
   struct BufferMatrix {
     std::string buffer;
     uint64_t viewOffset = 0, clipOffset = 0;
+    bool worldFromView = false;  // the view matrix given is world_from_view (inverted when read)
+    bool rowMajor = false;
   };
   std::optional<BufferMatrix> renderdoc;  // the matrices come from a capture's uniform buffer
 };

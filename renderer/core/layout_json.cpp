@@ -357,7 +357,10 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
     LayoutCamera::BufferMatrix b;
     double view = -1.0, clip = -1.0;
     if (!it->is_object() || !r.string(*it, wr, "buffer", b.buffer, true)) return r.fail(wr, "buffer", "missing");
-    for (auto [key, out] : {std::pair{"view_from_world", &view}, {"clip_from_view", &clip}}) {
+    b.worldFromView = it->contains("world_from_view");
+    b.rowMajor = order == 1;
+    const char* viewKey = b.worldFromView ? "world_from_view" : "view_from_world";
+    for (auto [key, out] : {std::pair{viewKey, &view}, {"clip_from_view", &clip}}) {
       auto m = it->find(key);
       if (m == it->end() || !m->is_object() || !r.number(*m, wr.at(key), "offset", *out) || *out < 0.0)
         return r.fail(wr, key, "expected {\"offset\": BYTES}");
@@ -367,11 +370,19 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
     c.renderdoc = b;
   }
   const bool fromElsewhere = !c.sidecar.empty() || c.renderdoc;
-  if (!fromElsewhere && (!readMatrix(r, j, wc, "view_from_world", order == 1, c.viewFromWorld) ||
-                         !readMatrix(r, j, wc, "clip_from_view", order == 1, c.clipFromView)))
-    return false;
-  return r.unknownKeys(j, wc, {"view_from_world", "clip_from_view", "matrix_order", "convention", "view_handedness",
-                               "up", "image_origin", "sidecar", "renderdoc"});
+  if (!fromElsewhere) {
+    // The view matrix as view_from_world, or its inverse world_from_view (a camera's transform).
+    if (j.contains("world_from_view")) {
+      glm::dmat4 worldFromView;
+      if (!readMatrix(r, j, wc, "world_from_view", order == 1, worldFromView)) return false;
+      c.viewFromWorld = glm::inverse(worldFromView);
+    } else if (!readMatrix(r, j, wc, "view_from_world", order == 1, c.viewFromWorld)) {
+      return false;
+    }
+    if (!readMatrix(r, j, wc, "clip_from_view", order == 1, c.clipFromView)) return false;
+  }
+  return r.unknownKeys(j, wc, {"view_from_world", "world_from_view", "clip_from_view", "matrix_order", "convention",
+                               "view_handedness", "up", "image_origin", "sidecar", "renderdoc"});
 }
 
 bool readLights(Reader& r, const json& j, const Where& w, LayoutLights& l) {
@@ -479,6 +490,13 @@ bool parseLayout(const json& j, const std::string& file, Layout& out, std::strin
   if (auto it = j.find("camera"); it != j.end() && !readCamera(r, *it, w, out.camera)) return false;
   if (auto it = j.find("lights"); it != j.end() && !readLights(r, *it, w, out.lights)) return false;
   return true;
+}
+
+bool parseLayoutCamera(const json& j, const std::string& where, LayoutCamera& out, std::string& error) {
+  out = LayoutCamera{};
+  error.clear();
+  Reader r{error};
+  return readCamera(r, j, Where{where}, out);
 }
 
 bool loadLayoutFile(const std::string& path, const LayoutParameters& params, Layout& out, std::string& error) {

@@ -24,11 +24,15 @@ bool resolveLayoutParameters(nlohmann::json& j, const LayoutParameters& params, 
 // Validates and converts a (resolved) layout. `file` names it in messages and is kept in Layout::file.
 bool parseLayout(const nlohmann::json& j, const std::string& file, Layout& out, std::string& error);
 
+// A camera block on its own (a sidecar file), with the same checks; `where` names it in messages.
+bool parseLayoutCamera(const nlohmann::json& j, const std::string& where, LayoutCamera& out, std::string& error);
+
 // Reads, resolves and parses a layout file.
 bool loadLayoutFile(const std::string& path, const LayoutParameters& params, Layout& out, std::string& error);
 
 // The layout as JSON (resolved; what capture manifests embed). parseLayout(layoutJson(l)) == l.
 nlohmann::json layoutJson(const Layout& layout);
+nlohmann::json layoutCameraJson(const LayoutCamera& camera);
 
 // gblens's own frame under these options: assets/layouts/gblens.json resolved with them.
 const Layout& nativeLayout(const RenderOptions& options);

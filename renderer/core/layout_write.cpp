@@ -82,7 +82,7 @@ static json sourceJson(const TargetSource& s) {
   return j;
 }
 
-static json cameraJson(const LayoutCamera& c) {
+json layoutCameraJson(const LayoutCamera& c) {
   static const char* conventions[] = {"vulkan", "d3d", "gl"};
   json j = {{"matrix_order", "column_major"},
             {"convention", conventions[size_t(c.convention)]},
@@ -90,10 +90,12 @@ static json cameraJson(const LayoutCamera& c) {
             {"up", c.zUp ? "z" : "y"},
             {"image_origin", c.bottomOrigin ? "bottom" : "top"}};
   if (!c.sidecar.empty()) j["sidecar"] = c.sidecar;
-  if (c.renderdoc)
+  if (c.renderdoc) {
+    j["matrix_order"] = c.renderdoc->rowMajor ? "row_major" : "column_major";
     j["renderdoc"] = {{"buffer", c.renderdoc->buffer},
-                      {"view_from_world", {{"offset", c.renderdoc->viewOffset}}},
+                      {c.renderdoc->worldFromView ? "world_from_view" : "view_from_world", {{"offset", c.renderdoc->viewOffset}}},
                       {"clip_from_view", {{"offset", c.renderdoc->clipOffset}}}};
+  }
   if (c.sidecar.empty() && !c.renderdoc) {
     j["view_from_world"] = matrix(c.viewFromWorld);
     j["clip_from_view"] = matrix(c.clipFromView);
@@ -129,7 +131,7 @@ json layoutJson(const Layout& l) {
   }
   json j = {{"format", "gblens-layout"}, {"version", 1}, {"name", l.name}, {"targets", targets}};
   if (l.width) j["size"] = {l.width, l.height};
-  if (l.camera.present) j["camera"] = cameraJson(l.camera);
+  if (l.camera.present) j["camera"] = layoutCameraJson(l.camera);
   if (l.lights.present) j["lights"] = lightsJson(l.lights);
   return j;
 }

@@ -224,17 +224,17 @@ bool compareCaptures(const Capture& ca, const Capture& cb, const ThresholdSettin
   manifestDifferences(ca.manifest, cb.manifest, report.differences);
   std::vector<std::string> knownKeys = {""};
   Verdict worst = Verdict::Pass;
-  for (size_t i = 0; i < kTargetCount; ++i) {
-    Target t = Target(i);
-    const TargetImage &a = ca.frame.targets[i], &b = cb.frame.targets[i];
+  for (const TargetInfo& info : targetTable()) {
+    const Target t = info.target;
+    const TargetImage &a = ca.frame.target(t), &b = cb.frame.target(t);
     std::string tn = targetName(t);
     if (!a.present() && !b.present()) {
-      report.skipped.push_back({tn, std::string("absent in both (A: ") + absentText(ca.frame.absent[i]) +
-                                        "; B: " + absentText(cb.frame.absent[i]) + ")"});
+      report.skipped.push_back({tn, std::string("absent in both (A: ") + absentText(ca.frame.absence(t)) +
+                                        "; B: " + absentText(cb.frame.absence(t)) + ")"});
       continue;
     }
     if (a.present() != b.present()) {
-      const char* why = absentText(a.present() ? cb.frame.absent[i] : ca.frame.absent[i]);
+      const char* why = absentText(a.present() ? cb.frame.absence(t) : ca.frame.absence(t));
       report.mismatches.push_back({tn, std::string("only in ") + (a.present() ? "A" : "B") + " (" + why + ")"});
       continue;
     }

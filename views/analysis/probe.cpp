@@ -21,7 +21,7 @@ static ProbeTarget rawTarget(const FrameSnapshot& f, Target t, uint32_t x, uint3
   p.target = targetName(t);
   const TargetImage& ti = f.target(t);
   if (!ti.present()) {
-    p.absent = absentText(f.absent[size_t(t)] == Absent::No ? Absent::NotCaptured : f.absent[size_t(t)]);
+    p.absent = absentText(f.absence(t) == Absent::No ? Absent::NotCaptured : f.absence(t));
     return p;
   }
   p.type = name(ti.image.type);
@@ -86,7 +86,7 @@ static void probeShadow(const FrameSnapshot& f, const glm::dvec3& eye, PixelDoss
   s.y0 = int32_t(std::floor(s.texel.y));
   const TargetImage& sm = f.target(Target::ShadowMap);
   if (!sm.present()) {
-    const Absent why = f.absent[size_t(Target::ShadowMap)];
+    const Absent why = f.absence(Target::ShadowMap);
     s.note = std::string("shadow_map: ") + absentText(why == Absent::No ? Absent::NotCaptured : why);
     d.missing.push_back("shadow_map");
     return;

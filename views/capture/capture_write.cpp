@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "renderer/core/layout_json.h"
 #include "renderer/core/version.h"
 #include "views/capture/capture.h"
 #include "views/capture/exr.h"
@@ -103,27 +104,27 @@ static bool record(const fs::path& tmp, const std::string& file, nlohmann::json&
 static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const CaptureMeta& meta, std::string& error) {
   nlohmann::json files = nlohmann::json::object(), targets = nlohmann::json::array();
   nlohmann::json skipped = nlohmann::json::array();
-  for (size_t i = 0; i < kTargetCount; ++i) {
-    Target t = Target(i);
-    const TargetImage& ti = f.targets[i];
+  for (size_t i = 0; i < f.images.size(); ++i) {
+    const std::string& targetName = f.layout.targets[i].name;
+    const TargetImage& ti = f.images[i];
     if (!ti.present()) {
-      skipped.push_back({{"name", targetName(t)},
-                         {"reason", absentText(f.absent[i] == Absent::No ? Absent::NotCaptured : f.absent[i])}});
+      skipped.push_back({{"name", targetName},
+                         {"reason", absentText(f.absences[i] == Absent::No ? Absent::NotCaptured : f.absences[i])}});
       continue;
     }
     if (!ti.whole()) {
-      error = std::string(targetName(t)) + ": a region read-back cannot be captured (whole targets only)";
+      error = targetName + ": a region read-back cannot be captured (whole targets only)";
       return false;
     }
-    std::string file = std::string(targetName(t)) + ".exr";
+    std::string file = targetName + ".exr";
     if (!writeExr((tmp / file).string(), ti.image, error) || !record(tmp, file, files, error)) return false;
     nlohmann::json exr = nlohmann::json::array();
     for (const ExrChannel& c : exrChannels(ti.image)) exr.push_back({{"name", c.name}, {"type", c.type}});
-    targets.push_back({{"name", targetName(t)}, {"file", file}, {"width", ti.image.width},
+    targets.push_back({{"name", targetName}, {"file", file}, {"width", ti.image.width},
                        {"height", ti.image.height}, {"type", name(ti.image.type)},
                        {"encoding", name(ti.image.encoding)}, {"channels", ti.image.channels},
                        {"exr_channels", exr}});
-    if (t == Target::Final) {  // the tone-mapped sRGB bytes, exactly
+    if (int(i) == f.indexOf(Target::Final)) {  // the tone-mapped sRGB bytes, exactly
       Rgba8Image png{ti.image.width, ti.image.height, ti.image.data};
       if (ti.image.type != PixelType::U8 || ti.image.channelCount() != 4) {
         error = "final: expected 8-bit RGBA";
@@ -149,6 +150,7 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
       {"size", {f.camera.width, f.camera.height}},
       {"time", f.options.time},
       {"options", optionsJson(f.options)},
+      {"layout", layoutJson(f.layout)},
       {"camera", cameraJson(f.camera)},
       {"lightClipFromWorld", matrixJson(f.lightClipFromWorld)},
       {"sun", {{"enabled", f.sun.enabled}, {"to_sun", vec3Json(f.sun.toSun)},
