@@ -4,10 +4,10 @@
 #include <algorithm>
 
 #include "renderer/frame_memory.h"
-#include "renderer/renderer.h"
-#include "renderer/vk/check.h"
-#include "renderer/srgb_probe.h"
 #include "renderer/render_targets.h"
+#include "renderer/renderer.h"
+#include "renderer/srgb_probe.h"
+#include "renderer/vk/check.h"
 
 namespace gb {
 

@@ -1,6 +1,8 @@
 // The viewer's loop. Renders on demand: a frame is rendered only when something it depends on
 // changed (camera, options, lights, time), the interface is redrawn only for a few frames after
 // an event, and with nothing to do the loop sleeps in glfwWaitEventsTimeout.
+#include "app/viewer/viewer.h"
+
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -12,10 +14,9 @@
 #include <csignal>
 #include <cstdio>
 
-#include "app/viewer/viewer.h"
 #include "renderer/core/statistics.h"
-#include "renderer/vk/check.h"
 #include "renderer/render_targets.h"
+#include "renderer/vk/check.h"
 
 namespace gb {
 

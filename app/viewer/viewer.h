@@ -10,9 +10,9 @@
 
 #include "renderer/core/options.h"
 #include "renderer/scene/scene.h"
-#include "views/ui/view_map.h"
 #include "renderer/vk/swapchain.h"
 #include "views/capture/capture.h"
+#include "views/ui/view_map.h"
 #include "views/ui/viewer_model.h"
 
 struct GLFWwindow;

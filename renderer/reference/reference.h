@@ -3,12 +3,12 @@
 // intersected again exactly in double; normals, materials, sun visibility (a ray toward the sun)
 // and the shading (shaders/shading.h compiled as C++ double) follow from that hit.
 #pragma once
+#include <glm/glm.hpp>
+
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "renderer/core/camera.h"
 #include "renderer/scene/scene.h"

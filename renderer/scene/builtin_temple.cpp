@@ -3,8 +3,8 @@
 // Everything is generated from integer hashes, so the same command gives the same pixels.
 #include <cmath>
 
-#include "renderer/scene/builtin.h"
 #include "renderer/core/camera.h"
+#include "renderer/scene/builtin.h"
 #include "renderer/scene/mesh_builder.h"
 
 namespace gb {

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "renderer/scene/builtin.h"
 #include "renderer/core/camera.h"
 #include "renderer/light_culling.h"
+#include "renderer/scene/builtin.h"
 #include "tests/support/scenes.h"
 
 namespace gb {

@@ -1,14 +1,13 @@
 // Capture comparison: channel groups and their metrics, idiff's decision rule, the report.
 #include "views/analysis/compare.h"
 
-#include "renderer/core/statistics.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
 
 #include "renderer/core/codec.h"
+#include "renderer/core/statistics.h"
 
 namespace gb {
 

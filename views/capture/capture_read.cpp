@@ -4,10 +4,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "renderer/core/sha256.h"
 #include "views/capture/capture.h"
 #include "views/capture/exr.h"
 #include "views/capture/report.h"
-#include "renderer/core/sha256.h"
 
 namespace gb {
 

@@ -8,12 +8,12 @@
 #include <filesystem>
 #include <fstream>
 
+#include "renderer/core/sha256.h"
 #include "renderer/core/version.h"
 #include "views/capture/capture.h"
 #include "views/capture/exr.h"
 #include "views/capture/image_io.h"
 #include "views/capture/report.h"
-#include "renderer/core/sha256.h"
 
 namespace gb {
 

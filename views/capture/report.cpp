@@ -1,10 +1,10 @@
 // JSON reports of frames and options, with one name per thing (the CLI flag names).
 #include "views/capture/report.h"
 
-#include "renderer/core/statistics.h"
-
 #include <algorithm>
 #include <cstdio>
+
+#include "renderer/core/statistics.h"
 
 namespace gb {
 

@@ -2,6 +2,7 @@
 // per-pass ms (median over frames), skips with reasons, culling statistics.
 #pragma once
 #include <nlohmann/json.hpp>
+
 #include <string>
 #include <vector>
 
