@@ -1,10 +1,10 @@
 // The scene on the GPU: vertex/index buffers, textures, materials, samplers, and the descriptor
 // set 0 that every pipeline shares (set 1 is pushed per pass).
+#include "renderer/gpu_scene.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-
-#include "renderer/gpu_scene.h"
 
 #include "renderer/scene/mesh_builder.h"
 #include "renderer/vk/check.h"

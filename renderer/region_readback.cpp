@@ -3,8 +3,8 @@
 
 #include <algorithm>
 
-#include "renderer/vk/check.h"
 #include "renderer/target_readback.h"
+#include "renderer/vk/check.h"
 
 namespace gb {
 

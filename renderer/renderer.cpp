@@ -10,10 +10,10 @@
 
 #include "renderer/frame.h"
 #include "renderer/gpu_scene.h"
-#include "renderer/render_targets.h"
-#include "renderer/target_readback.h"
 #include "renderer/light_culling.h"
 #include "renderer/passes/passes.h"
+#include "renderer/render_targets.h"
+#include "renderer/target_readback.h"
 #include "renderer/vk/check.h"
 
 namespace gb {

@@ -5,10 +5,10 @@
 
 #include "renderer/core/layout_json.h"
 #include "renderer/frame_memory.h"
-#include "renderer/renderer.h"
-#include "renderer/vk/check.h"
-#include "renderer/srgb_probe.h"
 #include "renderer/render_targets.h"
+#include "renderer/renderer.h"
+#include "renderer/srgb_probe.h"
+#include "renderer/vk/check.h"
 
 namespace gb {
 

@@ -1,13 +1,12 @@
 // Shared option parsing for every subcommand.
 #include "app/cli/cli.h"
 
-#include "views/analysis/view_table.h"
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
 #include "renderer/scene/builtin.h"
+#include "views/analysis/view_table.h"
 
 namespace gb {
 

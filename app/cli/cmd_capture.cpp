@@ -7,10 +7,10 @@
 #include <sstream>
 
 #include "app/cli/cli.h"
+#include "renderer/render_targets.h"
 #include "renderer/session.h"
 #include "views/capture/capture.h"
 #include "views/capture/report.h"
-#include "renderer/render_targets.h"
 
 namespace gb {
 

@@ -8,12 +8,12 @@
 #include <sstream>
 
 #include "app/viewer/viewer.h"
+#include "renderer/render_targets.h"
 #include "renderer/session.h"
 #include "renderer/upload_targets.h"
-#include "views/capture/capture.h"
 #include "views/analysis/compare.h"
 #include "views/analysis/probe.h"
-#include "renderer/render_targets.h"
+#include "views/capture/capture.h"
 
 namespace gb {
 

@@ -7,9 +7,9 @@
 
 #include "app/viewer/viewer.h"
 #include "renderer/region_readback.h"
+#include "renderer/render_targets.h"
 #include "renderer/session.h"
 #include "views/analysis/probe.h"
-#include "renderer/render_targets.h"
 
 namespace gb {
 

@@ -7,13 +7,13 @@
 #include <map>
 #include <set>
 
+#include "renderer/render_targets.h"
 #include "renderer/scene/builtin.h"
-#include "tests/support/capture_util.h"
 #include "tests/gpu/gpu_test.h"
+#include "tests/support/capture_util.h"
 #include "views/capture/capture.h"
 #include "views/capture/exr.h"
 #include "views/capture/report.h"
-#include "renderer/render_targets.h"
 
 namespace gb {
 

@@ -4,13 +4,13 @@
 // reproduces the stored shadow term.
 #include <cmath>
 
-#include "renderer/scene/builtin.h"
 #include "renderer/core/camera.h"
-#include "tests/support/capture_util.h"
-#include "tests/gpu/gpu_test.h"
-#include "views/capture/capture.h"
-#include "views/analysis/probe.h"
 #include "renderer/render_targets.h"
+#include "renderer/scene/builtin.h"
+#include "tests/gpu/gpu_test.h"
+#include "tests/support/capture_util.h"
+#include "views/analysis/probe.h"
+#include "views/capture/capture.h"
 
 namespace gb {
 

@@ -1,20 +1,18 @@
 // Capture test helpers.
 #include "tests/support/capture_util.h"
 
-#include "renderer/core/layout_json.h"
-
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
-
-#include <cstring>
 
 #include "renderer/core/camera.h"
+#include "renderer/core/layout_json.h"
 
 namespace gb {
 

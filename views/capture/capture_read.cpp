@@ -4,12 +4,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "renderer/core/sha256.h"
 #include "views/capture/capture.h"
 
 #include "renderer/core/layout_json.h"
 #include "views/capture/exr.h"
 #include "views/capture/report.h"
-#include "renderer/core/sha256.h"
 
 namespace gb {
 

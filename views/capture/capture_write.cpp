@@ -9,12 +9,12 @@
 #include <fstream>
 
 #include "renderer/core/layout_json.h"
+#include "renderer/core/sha256.h"
 #include "renderer/core/version.h"
 #include "views/capture/capture.h"
 #include "views/capture/exr.h"
 #include "views/capture/image_io.h"
 #include "views/capture/report.h"
-#include "renderer/core/sha256.h"
 
 namespace gb {
 
@@ -28,27 +28,6 @@ std::vector<Target> availableTargets(const RenderOptions& o, bool sceneHasSun) {
 }
 
 static nlohmann::json vec3Json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
-
-static nlohmann::json statsJson(const FrameStats& st) {
-  nlohmann::json passes = nlohmann::json::array();
-  for (const PassStat& p : st.passes) {
-    nlohmann::json j = {{"name", p.name}, {"ms", p.ms}, {"skipped", p.skipped}};
-    if (p.skipped) j["reason"] = p.reason;
-    passes.push_back(j);
-  }
-  nlohmann::json j = {{"frame_ms", st.frameMs}, {"gpu_ms", st.gpuMs}, {"passes", passes},
-                      {"lights", {{"total", st.lights}, {"visible", st.lightsVisible},
-                                  {"near_plane", st.lightsInside}, {"culled", st.lightsCulled}}}};
-  if (st.culling.valid)
-    j["culling"] = {{"valid", true},
-                    {"invocations", st.culling.invocations},
-                    {"ideal_pairs", st.culling.idealPairs},
-                    {"work_over_ideal", st.culling.workOverIdeal},
-                    {"pipeline_invocations", st.culling.pipelineInvocations}};
-  else
-    j["culling"] = {{"valid", false}, {"reason", "needs coverage on and the coverage_masked and depth targets"}};
-  return j;
-}
 
 // Lights exactly as uploaded (float values print and parse back bit-exactly through double).
 static nlohmann::json lightsJson(const FrameSnapshot& f) {
@@ -160,7 +139,7 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
       {"lights", {{"file", "lights.json"}, {"sha256", files["lights.json"]["sha256"]},
                   {"count", f.eyeLights.size()}, {"visible", f.visibleLights.size()},
                   {"stencil_class", f.stencilCount}, {"culled", culled}}},
-      {"stats", statsJson(meta.stats)},
+      {"stats", frameStatsJson(meta.stats)},
       {"targets", targets},
       {"skipped", skipped},
       {"files", files}};
