@@ -41,7 +41,7 @@ std::vector<RegionImage> readbackRegions(Renderer& r, const std::vector<RegionRe
   }
   if (copies.empty()) return out;
 
-  Buffer buffer = createBuffer(*r.ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
+  Buffer buffer = createBuffer(*r.ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback, "probe_readback");
   runAfterFrame(
       r,
       [&](FrameGraph& g) {

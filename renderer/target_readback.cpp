@@ -2,6 +2,8 @@
 // into CpuImage (renderer/core/texels.h).
 #include "renderer/target_readback.h"
 
+#include <string>
+
 #include "renderer/core/texels.h"
 #include "renderer/vk/check.h"
 
@@ -20,7 +22,8 @@ void recordReadback(Renderer& r, VkCommandBuffer cmd, Target t) {
   VkDeviceSize bytes = readbackBytes(gt);
   if (buf.size < bytes) {
     destroyBuffer(*r.ctx, buf);
-    buf = createBuffer(*r.ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
+    buf = createBuffer(*r.ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback,
+                       (std::string("readback.") + targetName(t)).c_str());
   }
   VkBufferImageCopy copies[2];
   const uint32_t n = wholeImageCopies(gt.image.desc, copies);

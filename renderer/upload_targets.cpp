@@ -36,7 +36,7 @@ void uploadTargets(Renderer& r, const RenderOptions& options, const std::array<c
     GraphTarget& gt = r.targets[i];
     gt.image = createImage(ctx, d);
     std::vector<uint8_t> bytes = packTexels(*img, texelFormat(t, options));
-    Buffer staging = createBuffer(ctx, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
+    Buffer staging = createBuffer(ctx, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload, "staging");
     std::memcpy(staging.mapped, bytes.data(), bytes.size());
     const VkImageLayout readLayout =
         isDepthFormat(d.format) && hasStencil(d.format) ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;

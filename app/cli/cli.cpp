@@ -53,6 +53,16 @@ bool loadSceneOrReport(const CommonOptions& o, Scene& scene) {
   return true;
 }
 
+void reportRenderDocCapture(const char* command, RenderDocCapture& capture) {
+  if (!capture.active()) return;
+  std::string error;
+  std::string path = capture.end(&error);
+  if (path.empty())
+    std::fprintf(stderr, "%s: %s\n", command, error.c_str());
+  else
+    std::fprintf(stderr, "gblens: RenderDoc capture %s\n", path.c_str());
+}
+
 std::string& commandLine() {
   static std::string line;
   return line;

@@ -74,7 +74,11 @@ static int capture(const CommonOptions& o, const std::string& targets, bool cove
   }
   FrameRequest request = captureRequest(wanted, ro);
   std::vector<FrameStats> frames;
-  for (int i = 0; i < o.frames; ++i) frames.push_back(session.render(ro, request));
+  for (int i = 0; i < o.frames; ++i) {
+    RenderDocCapture rdc(session.context(), i + 1 == o.frames);  // under RenderDoc: the frame captured
+    frames.push_back(session.render(ro, request));
+    reportRenderDocCapture("gblens capture", rdc);
+  }
   auto start = std::chrono::steady_clock::now();
   FrameSnapshot snap = session.snapshot(wanted);
   for (Absent& a : snap.absences)

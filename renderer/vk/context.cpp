@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "renderer/vk/check.h"
+#include "renderer/vk/debug_utils.h"
 
 namespace gb {
 
@@ -180,7 +181,10 @@ static void createInstance(GpuContext& ctx, const ContextOptions& options) {
     }
     layers.push_back("VK_LAYER_KHRONOS_validation");
   }
-  extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  // Debug utils whenever the loader offers it (it is cheap): the validation messenger, and the object
+  // names and pass labels RenderDoc and Nsight show.
+  const bool debugUtils = debugUtilsAvailable();
+  if (debugUtils) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
 
   VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
   messengerInfo.messageSeverity =
@@ -203,7 +207,8 @@ static void createInstance(GpuContext& ctx, const ContextOptions& options) {
   ici.ppEnabledLayerNames = layers.data();
   ici.enabledExtensionCount = uint32_t(extensions.size());
   ici.ppEnabledExtensionNames = extensions.data();
-  ici.pNext = ctx.validation ? static_cast<void*>(&features) : static_cast<void*>(&messengerInfo);
+  if (!debugUtils) features.pNext = nullptr;
+  ici.pNext = ctx.validation ? static_cast<void*>(&features) : debugUtils ? static_cast<void*>(&messengerInfo) : nullptr;
   VK_CHECK(vkCreateInstance(&ici, nullptr, &ctx.instance));
 
   auto createMessenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
@@ -337,6 +342,7 @@ static void createDevice(GpuContext& ctx, const DeviceSupport& s) {
   ctx.cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
       vkGetDeviceProcAddr(ctx.device, "vkCmdPushDescriptorSetKHR"));
   GB_ASSERT(ctx.cmdPushDescriptorSet);
+  if (debugUtils) loadDebugUtils(ctx);
 
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;

@@ -3,6 +3,7 @@
 
 #include "renderer/core/vertex.h"
 #include "renderer/vk/check.h"
+#include "renderer/vk/debug_utils.h"
 
 namespace gb {
 
@@ -14,6 +15,7 @@ VkShaderModule createShaderModule(GpuContext& ctx, Shader shader) {
   ci.pCode = code.data();
   VkShaderModule m;
   VK_CHECK(vkCreateShaderModule(ctx.device, &ci, nullptr, &m));
+  setName(ctx, uint64_t(m), VK_OBJECT_TYPE_SHADER_MODULE, shaderName(shader));
   return m;
 }
 
@@ -191,6 +193,7 @@ VkPipeline createGraphicsPipeline(GpuContext& ctx, const GraphicsPipelineDesc& d
   ci.subpass = d.subpass;
   VkPipeline pipeline;
   VK_CHECK(vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline));
+  setName(ctx, uint64_t(pipeline), VK_OBJECT_TYPE_PIPELINE, d.name.empty() ? nullptr : d.name.c_str());
   for (auto m : stages.modules) vkDestroyShaderModule(ctx.device, m, nullptr);
   return pipeline;
 }
@@ -208,6 +211,7 @@ VkPipeline createComputePipeline(GpuContext& ctx, Shader shader, std::span<const
   ci.layout = layout;
   VkPipeline pipeline;
   VK_CHECK(vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline));
+  setName(ctx, uint64_t(pipeline), VK_OBJECT_TYPE_PIPELINE, shaderName(shader));
   vkDestroyShaderModule(ctx.device, m, nullptr);
   return pipeline;
 }
