@@ -1,12 +1,13 @@
 // The defaults check (see bench_report.h): interleaved A/B statistics (the median ratio's
 // distribution-free confidence interval), the time-vs-error frontier per quality group, and
 // whether a variant dominates the defaults (errors no worse, time not slower, better somewhere).
+#include "app/bench/bench_report.h"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
 
 #include "app/bench/bench_format.h"
-#include "app/bench/bench_report.h"
 #include "renderer/core/statistics.h"
 
 namespace gb {

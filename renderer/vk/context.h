@@ -38,6 +38,13 @@ struct DeviceFeatures {
   bool primitiveId = false;  // gl_PrimitiveID in fragment shaders (the geometryShader feature)
 };
 
+// VK_EXT_debug_utils entry points (renderer/vk/debug_utils.h); null when the instance lacks it.
+struct DebugUtilsFunctions {
+  PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
+  PFN_vkCmdBeginDebugUtilsLabelEXT cmdBeginLabel = nullptr;
+  PFN_vkCmdEndDebugUtilsLabelEXT cmdEndLabel = nullptr;
+};
+
 struct GpuContext {
   VkInstance instance = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
@@ -54,6 +61,7 @@ struct GpuContext {
   bool isCpu = false;
   bool validation = false;
   PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;  // VK_KHR_push_descriptor
+  DebugUtilsFunctions debugUtils;                                  // object names, label regions
 };
 
 // One line per physical device: "INDEX: NAME (type)". For --device help and errors.

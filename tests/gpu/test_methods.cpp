@@ -11,12 +11,12 @@
 // fp32 summation (n 2^-24) and fp32 differences between shaders are inside the 1e-6 floor.
 #include <cmath>
 
-#include "renderer/scene/builtin.h"
 #include "renderer/core/camera.h"
 #include "renderer/core/codec.h"
 #include "renderer/light_culling.h"
-#include "tests/gpu/gpu_test.h"
+#include "renderer/scene/builtin.h"
 #include "renderer/srgb_probe.h"
+#include "tests/gpu/gpu_test.h"
 
 namespace gb {
 

@@ -11,7 +11,6 @@
 #include "renderer/core/codec.h"
 #include "renderer/scene/builtin.h"
 #include "tests/gpu/gpu_test.h"
-#include "shaders/shading.h"
 #include "views/analysis/accuracy.h"
 
 namespace gb {
