@@ -11,6 +11,7 @@
 #include "app/viewer/viewer.h"
 #include "renderer/core/statistics.h"
 #include "renderer/vk/check.h"
+#include "renderer/vk/renderdoc_capture.h"
 
 namespace gb {
 
@@ -122,6 +123,7 @@ static void initModel(Viewer& v, bool live) {
     for (size_t i = 0; i + 1 < v.scene.cameras.size(); ++i)
       m.cameraNames.push_back(v.scene.cameras[i].name.empty() ? "camera " + std::to_string(i) : v.scene.cameras[i].name);
     m.captureAvailable = true;
+    m.renderDocAvailable = underRenderDoc();
     m.captureHint = "Writes this frame, every target at full precision, to ./gblens-capture-<date>-<time>/\n"
                     "(EXR per target + manifest.json; open it with gblens view --capture DIR)";
   }

@@ -87,6 +87,7 @@ static void updateRanges(Viewer& v) {
   std::vector<std::pair<ViewKind, size_t>> owners;  // view, count of its requests
   std::string key;
   for (ViewKind k : visibleViews(m)) {
+    if (!m.unavailable[int(k)].empty()) continue;  // no target to measure (e.g. not in an imported layout)
     std::vector<RangeRequest> q = rangeRequests(viewDef(k), m.settings[int(k)]);
     key += std::to_string(int(k)) + ":" + std::to_string(m.settings[int(k)].channels) + (q.empty() ? "m;" : "a;");
     if (std::any_of(owners.begin(), owners.end(), [&](auto& o) { return o.first == k; })) continue;
@@ -96,7 +97,11 @@ static void updateRanges(Viewer& v) {
   if (!v.rangesStale && key == v.rangesKey) return;
   v.rangesStale = false;
   v.rangesKey = key;
-  std::vector<RangeStats> stats = computeRanges(v.mapper, v.renderer, all, readableTargets(v.renderer, v.renderer.options));
+  // The targets that exist on the GPU (a capture uploads only those it holds).
+  std::vector<Target> targets;
+  for (Target t : readableTargets(v.renderer, v.renderer.options))
+    if (v.renderer.targets[size_t(t)].image.image != VK_NULL_HANDLE) targets.push_back(t);
+  std::vector<RangeStats> stats = computeRanges(v.mapper, v.renderer, all, targets);
   size_t at = 0;
   for (auto& [k, n] : owners) {
     m.ranges[int(k)].assign(stats.begin() + long(at), stats.begin() + long(at + n));
@@ -120,6 +125,8 @@ static void logLayout(Viewer& v, int windowW, int windowH) {
                     {"origin", {p.originX, p.originY}},
                     {"scale", p.scale},
                     {"image", {size.x, size.y}}});
+    // A view the frame cannot show (e.g. an imported layout without a shadow map) says why.
+    if (!m.unavailable[int(slot.kind)].empty()) list.back()["unavailable"] = m.unavailable[int(slot.kind)];
   }
   j["views"] = list;
   std::string key = j.dump();
@@ -208,11 +215,12 @@ static void updateFrame(Viewer& v, const LoopState& s, int fbw, int fbh, double 
                                           : m.hover;
     m.hoverText = texel && m.hoverView ? captureHoverText(v, *m.hoverView, *texel) : "";
   }
-  if (m.captureRequested) {
-    m.captureRequested = false;
-    std::string dir, error;
-    m.captureStatus = captureLiveFrame(v, dir, error) ? "wrote " + dir : "capture failed: " + error;
-    logLine(v.eventLog, {{"event", "capture"}, {"status", m.captureStatus}});
+  if (m.captureRequested || m.renderDocRequested) {
+    std::string dir, error, rdc;
+    const bool ok = captureLiveFrame(v, dir, error, m.renderDocRequested ? &rdc : nullptr);
+    m.captureStatus = ok ? "wrote " + dir + (rdc.empty() ? "" : " and " + rdc) : "capture failed: " + error;
+    logLine(v.eventLog, {{"event", "capture"}, {"status", m.captureStatus}, {"rdc", rdc}});
+    m.captureRequested = m.renderDocRequested = false;
     v.rangesStale = true;
   }
 }
@@ -263,7 +271,7 @@ static void iterate(Viewer& v, LoopState& s, int fbw, int fbh) {
   }
   // Changes made in this interface frame need another one (and maybe a render).
   bool pending = m.uiChanged || m.probeRequest || m.resetCamera || m.gltfCamera >= 0 || m.cameraDrag != glm::dvec2(0.0) ||
-                 m.cameraDolly != 0.0 || m.stepForward || m.stepBack || m.captureRequested ||
+                 m.cameraDolly != 0.0 || m.stepForward || m.stepBack || m.captureRequested || m.renderDocRequested ||
                  (s.live && frameOutdated(v.renderer.options, wantedOptions(v, fbw, fbh)));
   v.uiFramesLeft = pending ? std::max(v.uiFramesLeft, 2) : v.uiFramesLeft - 1;
 }

@@ -68,6 +68,9 @@ struct Viewer {
   ViewMapper mapper;
   // --capture A / --compare B: the captures, their targets uploaded (A into `renderer`).
   Capture captureA, captureB;
+  // What the views show of each: the capture's own targets, or an imported G-buffer's quantities
+  // decoded into gblens's targets (views/analysis/viewable.h). The probe reads the captures.
+  FrameSnapshot shownA, shownB;
   Renderer rendererB;
   Scene sceneB;
   bool hasB = false;
@@ -125,7 +128,9 @@ void probeViewerPixel(Viewer& v, glm::ivec2 pixel, bool logged);
 void readHover(Viewer& v);
 
 // captures.cpp
-bool captureLiveFrame(Viewer& v, std::string& written, std::string& error);
+// Captures the live frame (rendered again, whole) to ./gblens-capture-<date>-<time>/; with `rdc`,
+// under RenderDoc, the same frame is also a RenderDoc capture written beside it (*rdc: its path).
+bool captureLiveFrame(Viewer& v, std::string& written, std::string& error, std::string* rdc = nullptr);
 bool openCaptures(Viewer& v);  // false: a message was printed (exit 2)
 void probeCapturePixel(Viewer& v, glm::ivec2 pixel);
 std::string captureHoverText(const Viewer& v, ViewKind view, glm::ivec2 texel);

@@ -301,6 +301,15 @@ static void controlsPanel(ViewerModel& m, const Rect& at) {
   if (ImGui::Button("Capture frame")) m.captureRequested = true;
   if (!m.captureAvailable) ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", m.captureHint.c_str());
+  const bool renderDoc = m.captureAvailable && m.renderDocAvailable;
+  ImGui::SameLine();
+  if (!renderDoc) ImGui::BeginDisabled();
+  if (ImGui::Button("Capture in RenderDoc")) m.renderDocRequested = true;
+  if (!renderDoc) ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("%s", renderDoc ? "The same frame as a gblens capture and, beside it, a RenderDoc capture (.rdc)"
+                                      : "Start gblens under RenderDoc (renderdoccmd capture gblens view ..., or qrenderdoc's "
+                                        "Launch Application) to capture the frame in RenderDoc too");
   if (!m.captureStatus.empty()) ImGui::TextWrapped("%s", m.captureStatus.c_str());
   ImGui::End();
 }

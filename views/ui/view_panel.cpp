@@ -306,7 +306,9 @@ static void drawOneView(ViewerModel& m, const SlotDraw& v) {
   if (!why.empty()) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), rgb(0.12f, 0.12f, 0.12f));
-    dl->AddText(ImVec2(float(r.x) + 8, float(r.y + r.h * 0.5)), rgb(0.8f, 0.8f, 0.8f), why.c_str());
+    // Wrapped: the reason must be readable in a grid tile too.
+    dl->AddText(ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(float(r.x) + 8, float(r.y + r.h * 0.4)),
+                rgb(0.8f, 0.8f, 0.8f), why.c_str(), nullptr, float(r.w) - 16.0f);
   } else {
     ResolvedRange range = resolveRange(def, m.settings[int(v.kind)], &m.ranges[int(v.kind)]);
     queueViewDraw(m, v, pl, range);

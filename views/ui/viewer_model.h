@@ -103,6 +103,8 @@ struct ViewerModel {
   bool captureAvailable = false;
   std::string captureHint;                  // tooltip: what the button does, or why it is grey
   bool captureRequested = false;
+  bool renderDocRequested = false;          // "Capture in RenderDoc" (live frames under RenderDoc)
+  bool renderDocAvailable = false;          // gblens runs under RenderDoc
   std::string captureStatus;
 
   // Set by the panels when anything changed that needs another interface frame.
