@@ -342,7 +342,7 @@ static void createDevice(GpuContext& ctx, const DeviceSupport& s) {
   ctx.cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
       vkGetDeviceProcAddr(ctx.device, "vkCmdPushDescriptorSetKHR"));
   GB_ASSERT(ctx.cmdPushDescriptorSet);
-  if (debugUtilsAvailable()) loadDebugUtils(ctx);  // the instance enabled VK_EXT_debug_utils then (createInstance)
+  if (debugUtilsAvailable()) loadDebugUtils(ctx);  // the instance enabled it (createInstance)
 
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;

@@ -243,7 +243,7 @@ void expectRoundTrip(const std::string& name, const std::string& options, bool c
   std::vector<std::string> names;
   std::vector<Target> targets;
   for (size_t i = 0; i < kTargetCount; ++i)
-    if (cap.frame.target(Target(i)).present()) {
+    if (!cap.frame.target(Target(i)).image.empty()) {
       names.push_back(targetName(Target(i)));
       targets.push_back(Target(i));
     }
