@@ -14,6 +14,7 @@
 #include "renderer/core/assets.h"
 #include "renderer/core/decode.h"
 #include "renderer/core/layout_json.h"
+#include "tests/support/capture_util.h"
 #include "views/capture/capture.h"
 #include "views/capture/import.h"
 
@@ -229,7 +230,7 @@ TEST_F(BlenderImport, IndicesAreTheOnesTheScriptAssigned) {
 // position (from Depth and from the Position pass), normal and indices, bit for bit.
 TEST_F(BlenderImport, SurvivesACaptureRoundTrip) {
   const FrameSnapshot& f = frame();
-  const std::string dir = testing::TempDir() + "/blender_capture";
+  const std::string dir = freshDir("blender_capture") + "/capture";
   std::string error;
   ASSERT_TRUE(writeCapture(dir, f, CaptureMeta{}, error)) << error;
   Capture c;
@@ -256,7 +257,7 @@ TEST_F(BlenderImport, SurvivesACaptureRoundTrip) {
 TEST(BlenderImportErrors, ACameraForAnotherSizeIsRefused) {
   nlohmann::json side = nlohmann::json::parse(std::ifstream(kDir + "/camera.json"));
   side["size"] = {320, 180};
-  const std::string path = testing::TempDir() + "/blender_camera_320.json";
+  const std::string path = freshDir("blender_camera") + "/camera_320.json";
   std::ofstream(path) << side.dump();
   FrameSnapshot f;
   std::string error;
