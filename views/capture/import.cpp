@@ -230,13 +230,32 @@ glm::dmat4 matrixFromFloats(const std::vector<uint8_t>& bytes, uint64_t offset, 
   return m;
 }
 
-// The layout's camera with its matrices filled from the sidecar or the uniform buffer.
-bool resolveCamera(const ImportInput& in, LayoutCamera& c, std::string& error) {
-  const std::string where = (in.layout.file.empty() ? std::string("layout") : in.layout.file) + ": camera";
+// The camera's size, when it gives one, against the images' (the projection's aspect is for it).
+bool checkCameraSize(const LayoutCamera& c, const std::string& from, uint32_t w, uint32_t h, std::string& error) {
+  if (!c.width || (c.width == w && c.height == h)) return true;
+  error = from + ": camera: size: the matrices are for " + std::to_string(c.width) + "x" + std::to_string(c.height) +
+          ", the images are " + std::to_string(w) + "x" + std::to_string(h);
+  return false;
+}
+
+// The layout's camera with its matrices filled from the sidecar or the uniform buffer, for images
+// of w x h.
+bool resolveCamera(const ImportInput& in, LayoutCamera& c, uint32_t w, uint32_t h, std::string& error) {
+  const std::string file = in.layout.file.empty() ? std::string("layout") : in.layout.file;
+  const std::string where = file + ": camera";
   std::string sidecar = !in.cameraFile.empty() ? in.cameraFile : c.sidecar;
   if (!sidecar.empty()) {
-    if (in.cameraFile.empty() && fs::path(sidecar).is_relative() && !in.layoutDir.empty())
-      sidecar = (fs::path(in.layoutDir) / sidecar).string();
+    if (in.cameraFile.empty() && fs::path(sidecar).is_relative()) {
+      // Beside the imported files first (a renderer writes its camera beside its images; Blender's
+      // script does), then beside the layout.
+      std::string found;
+      std::error_code ec;
+      for (const std::string& input : in.files)
+        if (found.empty() && fs::exists(fs::path(input).parent_path() / sidecar, ec))
+          found = (fs::path(input).parent_path() / sidecar).string();
+      if (found.empty() && !in.layoutDir.empty()) found = (fs::path(in.layoutDir) / sidecar).string();
+      if (!found.empty()) sidecar = found;
+    }
     std::ifstream f(sidecar);
     // The layout's conventions, the sidecar's matrices (and whatever conventions it gives).
     nlohmann::json j = layoutCameraJson(c), side;
@@ -250,7 +269,7 @@ bool resolveCamera(const ImportInput& in, LayoutCamera& c, std::string& error) {
       return false;
     }
     for (auto& [k, v] : side.items()) j[k] = v;
-    return parseLayoutCamera(j, sidecar, c, error);
+    return parseLayoutCamera(j, sidecar, c, error) && checkCameraSize(c, sidecar, w, h, error);
   }
   if (c.renderdoc) {
     const LayoutCamera::BufferMatrix& b = *c.renderdoc;
@@ -274,7 +293,7 @@ bool resolveCamera(const ImportInput& in, LayoutCamera& c, std::string& error) {
       }
     c.viewFromWorld = b.worldFromView ? glm::inverse(view) : view;
   }
-  return true;
+  return checkCameraSize(c, file, w, h, error);
 }
 
 // The layout's lights in gblens's world (Y up) and as the probe reads them (eye space, uploaded form).
@@ -397,12 +416,11 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
     if (!w) w = tw, h = th;
     if (!readTarget(in, t, tw, th, images[t], error)) return false;
     images[t].name = l.targets[t].name;
-    if (l.camera.bottomOrigin) flipRows(images[t]);
   }
   LayoutCamera camera = l.camera;
   if (camera.present || !in.cameraFile.empty()) {
     camera.present = true;
-    if (!resolveCamera(in, camera, error)) return false;
+    if (!resolveCamera(in, camera, w, h, error)) return false;
     std::string why;
     if (!importCamera(camera, w, h, out.camera, why)) {
       error = (l.file.empty() ? std::string("layout") : l.file) + ": " + why;
@@ -426,6 +444,8 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
   camera.renderdoc.reset();
   camera.bottomOrigin = false;
   out.layout.camera = camera;
+  if (camera.bottomOrigin)  // after the camera is resolved: a sidecar may say so
+    for (CpuImage& image : images) flipRows(image);
   out.options.width = w;
   out.options.height = h;
   out.options.reversedZ = out.camera.reversedZ;
