@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "renderer/frame_memory.h"
+#include "renderer/gpu_lights.h"
 #include "renderer/renderer.h"
 #include "renderer/vk/check.h"
 #include "renderer/srgb_probe.h"
@@ -97,9 +98,10 @@ FrameSnapshot snapshotFromRenderer(const Renderer& r, const std::vector<Target>&
   s.lightClipFromWorld = r.lightClipFromWorld;
   s.sun = r.scene->sun;
   s.sky = r.scene->sky;
-  s.eyeLights = r.lights.eye;
-  s.visibleLights = r.lights.visible;
-  s.stencilCount = r.lights.stencilCount;
+  const FrameLights lights = frameLights(r);  // read from the GPU when it set them up
+  s.eyeLights = lights.eye;
+  s.visibleLights = lights.visible;
+  s.stencilCount = lights.stencilCount;
   s.lightDescs = r.scene->lights;
   s.frameData = r.frameData;
   s.srgbDecode = r.srgbDecode;

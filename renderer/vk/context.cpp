@@ -244,6 +244,7 @@ GpuContext createContext(const ContextOptions& options) {
   ctx.features.depthClamp = supported.depthClamp;
   ctx.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
   ctx.features.primitiveId = supported.geometryShader;
+  ctx.features.float64 = supported.shaderFloat64;
   for (uint32_t i = 0; i < ctx.memory.memoryTypeCount; ++i)
     if (ctx.memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_LAZILY_ALLOCATED_BIT)
       ctx.features.lazilyAllocatedMemory = true;
@@ -286,6 +287,7 @@ GpuContext createContext(const ContextOptions& options) {
   enabled.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
   enabled.features.independentBlend = supported.independentBlend;
   enabled.features.geometryShader = supported.geometryShader;  // gl_PrimitiveID in the primitive_id target
+  enabled.features.shaderFloat64 = supported.shaderFloat64;    // light setup on the GPU
   VkPhysicalDeviceVulkan13Features e13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
   e13.synchronization2 = VK_TRUE;
   e13.maintenance4 = v13.maintenance4;  // relaxed interface matching (unused vertex outputs)

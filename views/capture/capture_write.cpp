@@ -36,6 +36,7 @@ static nlohmann::json statsJson(const FrameStats& st) {
     passes.push_back(j);
   }
   nlohmann::json j = {{"frame_ms", st.frameMs}, {"gpu_ms", st.gpuMs}, {"passes", passes},
+                      {"method", {{"ran", st.method}, {"why", st.methodReason}}},
                       {"lights", {{"total", st.lights}, {"visible", st.lightsVisible},
                                   {"near_plane", st.lightsInside}, {"culled", st.lightsCulled}}}};
   if (st.culling.valid)

@@ -105,6 +105,8 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSourc
   j["gpu_ms"] = median(gpuMs);
   j["cpu_ms"] = median(cpuMs);
   j["record_ms"] = median(recordMs);
+  j["method"] = {{"ran", last.method}, {"why", last.methodReason}};
+  j["light_setup"] = {{"ran", last.lightSetup}, {"why", last.lightSetupReason}};
   j["render_pass_groups"] = {{"compiled", last.groupsCompiled}, {"reused", last.groupsReused}};
   nlohmann::json passes = nlohmann::json::array();
   for (size_t i = 0; i < last.passes.size(); ++i) {
@@ -132,6 +134,11 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSourc
                   "skipped when the sphere's exact screen rectangle (+1/1000 px) holds no pixel centre: no shaded "
                   "point can be inside it"}};
   if (last.skyPixels >= 0) j["sky_pixels"] = last.skyPixels;
+  if (last.clusters.valid)
+    j["clusters"] = {{"occupied", last.clusters.clusters},
+                     {"list_entries", last.clusters.listEntries},
+                     {"lists_overflowed", last.clusters.listOverflows},
+                     {"tiles_without_room", last.clusters.tilesWithoutRoom}};
   const CullingStats& culling = counted ? counted->culling : last.culling;
   if (culling.valid) {
     j["culling"] = {{"invocations", culling.invocations},

@@ -322,8 +322,8 @@ static void statusBar(ViewerModel& m, double w, double h) {
                                          ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImGui::PopStyleVar();
   if (m.source == FrameSource::Live)
-    ImGui::Text("%s | %s | %ux%u | %.1f ms", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height,
-                m.stats.frameMs);
+    ImGui::Text("%s | %s | %ux%u | %s | %.1f ms", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width,
+                m.rendered.height, m.stats.methodReason.c_str(), m.stats.frameMs);
   else
     ImGui::Text("%s | %s | %ux%u", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height);
   if (!m.hoverText.empty()) {

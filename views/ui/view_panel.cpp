@@ -217,7 +217,7 @@ static void drawOneView(ViewerModel& m, ViewKind kind, const Rect& r, int index,
                  float(m.differenceMax[int(kind)]), "|A - B|, max over the selected channels");
     else if (def.mapping == gpu::kViewMapHeat && r.w > 120 && r.h > 80)
       heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), range.white,
-                 def.unit);
+                 viewUnit(def, m.stats.method));
     if (split) {  // the split line and its handle
       float x = float(r.x + r.w * m.splitAt);
       dl->AddLine(ImVec2(x, float(r.y)), ImVec2(x, float(r.y + r.h)), rgb(1, 1, 1), 2.0f);
