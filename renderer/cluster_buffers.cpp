@@ -22,13 +22,15 @@ void clusterFrameData(const Camera& camera, uint32_t visibleMax, gpu::FrameData&
   f.clusterSlices = glm::vec4(float(scale), float(-std::log2(camera.znear) * scale), 0.0f, 0.0f);
 }
 
-static void replace(Renderer& r, Buffer& b, VkDeviceSize bytes, VkBufferUsageFlags usage, MemoryUse use) {
+// `name` as the shaders call the buffer (RenderDoc's resource list).
+static void replace(Renderer& r, Buffer& b, VkDeviceSize bytes, VkBufferUsageFlags usage, MemoryUse use,
+                    const char* name) {
   if (b.buffer && b.size >= bytes) return;
   if (b.buffer) {
     vkDeviceWaitIdle(r.ctx->device);
     destroyBuffer(*r.ctx, b);
   }
-  b = createBuffer(*r.ctx, std::max<VkDeviceSize>(bytes, 16), usage, use);
+  b = createBuffer(*r.ctx, std::max<VkDeviceSize>(bytes, 16), usage, use, name);
 }
 
 void ensureClusterBuffers(Renderer& r, uint32_t visibleMax) {
@@ -42,13 +44,14 @@ void ensureClusterBuffers(Renderer& r, uint32_t visibleMax) {
   c.listCapacity = std::max(c.listCapacity, std::max(c.clusterCapacity * 16, 1u << 20));
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   replace(r, c.header, sizeof(gpu::ClusterHeader), storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                                                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Device);
-  replace(r, c.headerReadback, sizeof(gpu::ClusterHeader), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
-  replace(r, c.clusters, VkDeviceSize(c.clusterCapacity) * sizeof(gpu::Cluster), storage, MemoryUse::Device);
-  replace(r, c.pixelClusters, VkDeviceSize(w) * h * 4, storage, MemoryUse::Device);
-  replace(r, c.lists, VkDeviceSize(c.listCapacity) * 4, storage, MemoryUse::Device);
-  replace(r, c.binBits, VkDeviceSize(bins) * words * 4, storage, MemoryUse::Device);
-  replace(r, c.binBoxes, VkDeviceSize(bins) * 32, storage, MemoryUse::Device);
+                                                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Device, "cluster_header");
+  replace(r, c.headerReadback, sizeof(gpu::ClusterHeader), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback,
+          "cluster_header.readback");
+  replace(r, c.clusters, VkDeviceSize(c.clusterCapacity) * sizeof(gpu::Cluster), storage, MemoryUse::Device, "clusters");
+  replace(r, c.pixelClusters, VkDeviceSize(w) * h * 4, storage, MemoryUse::Device, "pixel_clusters");
+  replace(r, c.lists, VkDeviceSize(c.listCapacity) * 4, storage, MemoryUse::Device, "light_lists");
+  replace(r, c.binBits, VkDeviceSize(bins) * words * 4, storage, MemoryUse::Device, "bin_bits");
+  replace(r, c.binBoxes, VkDeviceSize(bins) * 32, storage, MemoryUse::Device, "bin_boxes");
   c.binBitsBytes = VkDeviceSize(bins) * words * 4;
   c.binBoxBytes = VkDeviceSize(bins) * 32;
 }
@@ -74,7 +77,7 @@ void ensureFairyBits(Renderer& r, uint32_t visibleMax) {
   const uint32_t bins = divUp(r.options.width, gpu::kBinTile) * divUp(r.options.height, gpu::kBinTile);
   r.fairyBitsBytes = VkDeviceSize(bins) * std::max(divUp(visibleMax, 32), 1u) * 4;
   replace(r, r.fairyBits, r.fairyBitsBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-          MemoryUse::Device);
+          MemoryUse::Device, "fairy_bits");
 }
 
 ClusterStats collectClusterStats(Renderer& r) {

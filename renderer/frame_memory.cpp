@@ -1,13 +1,13 @@
 // Frame memory estimate and the device-fit check (see frame_memory.h).
 #include "renderer/frame_memory.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 
-#include <unistd.h>
-
-#include "renderer/render_targets.h"
 #include "renderer/core/targets.h"
+#include "renderer/render_targets.h"
 #include "renderer/vk/resources.h"
 
 namespace gb {

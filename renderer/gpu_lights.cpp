@@ -66,9 +66,10 @@ void prepareGpuLights(Renderer& r, gpu::FrameData& f) {
         destroyBuffer(*r.ctx, g.scratch);
       }
       g.descs = createBuffer(*r.ctx, n * sizeof(gpu::LightDesc),
-                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device);
+                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device,
+                             "light_descs");
       g.scratch = createBuffer(*r.ctx, (n + groups * 4) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                               MemoryUse::Device);
+                               MemoryUse::Device, "light_scratch");
     }
     std::vector<gpu::LightDesc> descs(lights.size());
     for (size_t i = 0; i < lights.size(); ++i) descs[i] = toGpu(lights[i]);

@@ -1,10 +1,10 @@
 // The scene on the GPU: vertex/index buffers, textures, materials, samplers, and the descriptor
 // set 0 that every pipeline shares (set 1 is pushed per pass).
+#include "renderer/gpu_scene.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-
-#include "renderer/gpu_scene.h"
 
 #include "renderer/scene/mesh_builder.h"
 #include "renderer/vk/check.h"
@@ -12,7 +12,7 @@
 namespace gb {
 
 static VkSampler makeSampler(GpuContext& ctx, VkFilter filter, VkSamplerAddressMode mode, bool compare,
-                             float maxLod) {
+                             float maxLod, const char* name) {
   VkSamplerCreateInfo ci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   ci.magFilter = ci.minFilter = filter;
   ci.mipmapMode = filter == VK_FILTER_LINEAR ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
@@ -23,6 +23,7 @@ static VkSampler makeSampler(GpuContext& ctx, VkFilter filter, VkSamplerAddressM
   ci.maxLod = maxLod;
   VkSampler s;
   VK_CHECK(vkCreateSampler(ctx.device, &ci, nullptr, &s));
+  setName(ctx, uint64_t(s), VK_OBJECT_TYPE_SAMPLER, name);
   return s;
 }
 
@@ -60,8 +61,8 @@ void uploadScene(Renderer& r) {
   // Geometry. Empty scenes still get valid (tiny) buffers.
   VkDeviceSize vbytes = std::max<VkDeviceSize>(scene.vertices.size() * sizeof(Vertex), 64);
   VkDeviceSize ibytes = std::max<VkDeviceSize>(scene.indices.size() * sizeof(uint32_t), 64);
-  r.vertexBuffer = createBuffer(ctx, vbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | dst, MemoryUse::Device);
-  r.indexBuffer = createBuffer(ctx, ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | dst, MemoryUse::Device);
+  r.vertexBuffer = createBuffer(ctx, vbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | dst, MemoryUse::Device, "vertices");
+  r.indexBuffer = createBuffer(ctx, ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | dst, MemoryUse::Device, "indices");
   uploadBuffer(ctx, r.vertexBuffer, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex));
   uploadBuffer(ctx, r.indexBuffer, scene.indices.data(), scene.indices.size() * sizeof(uint32_t));
 
@@ -69,15 +70,15 @@ void uploadScene(Renderer& r) {
   const Icosahedron& ico = icosahedron();
   std::vector<glm::vec3> icoVerts;
   for (uint16_t i : ico.indices) icoVerts.push_back(ico.vertices[i]);
-  r.icosahedronBuffer =
-      createBuffer(ctx, icoVerts.size() * sizeof(glm::vec3), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | dst, MemoryUse::Device);
+  r.icosahedronBuffer = createBuffer(ctx, icoVerts.size() * sizeof(glm::vec3), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | dst,
+                                     MemoryUse::Device, "light_volume");
   uploadBuffer(ctx, r.icosahedronBuffer, icoVerts.data(), icoVerts.size() * sizeof(glm::vec3));
 
   std::vector<gpu::Material> materials;
   for (const MaterialDesc& m : scene.materials) materials.push_back(toGpu(m));
   if (materials.empty()) materials.push_back(toGpu(MaterialDesc{}));
   r.materialBuffer = createBuffer(ctx, materials.size() * sizeof(gpu::Material),
-                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | dst, MemoryUse::Device);
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | dst, MemoryUse::Device, "materials");
   uploadBuffer(ctx, r.materialBuffer, materials.data(), materials.size() * sizeof(gpu::Material));
 
   // Textures (RGBA8, full mip chain), then the stand-ins for materials without textures:
@@ -103,25 +104,29 @@ void createFrameBuffers(Renderer& r) {
   GpuContext& ctx = *r.ctx;
   const Scene& scene = *r.scene;
   // Per-frame data: host-visible, rewritten every frame (one frame in flight).
-  r.frameBuffer = createBuffer(ctx, sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::Upload);
+  // Named as in shaders/common.glsl: "frame" is the uniform buffer with the camera matrices.
+  r.frameBuffer =
+      createBuffer(ctx, sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::Upload, "frame");
   r.drawBuffer = createBuffer(ctx, std::max<size_t>(scene.instances.size(), 1) * sizeof(gpu::DrawData),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload);
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload, "draws");
   const size_t maxLights = 65536;  // --lights range; the buffers never need to grow
   r.lightBuffer = createBuffer(ctx, std::max<size_t>(scene.lights.size(), maxLights) * sizeof(gpu::PointLight),
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload);
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload, "lights");
   r.visibleBuffer = createBuffer(ctx, std::max<size_t>(scene.lights.size(), maxLights) * sizeof(uint32_t),
-                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload);
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload, "visible_lights");
   r.lightCountBuffer = createBuffer(ctx, sizeof(gpu::LightCounts),
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
-                                    MemoryUse::Upload);
+                                    MemoryUse::Upload, "light_counts");
 }
 
 void createDescriptors(Renderer& r) {
   GpuContext& ctx = *r.ctx;
-  r.samplerRepeat = makeSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT, false, VK_LOD_CLAMP_NONE);
-  r.samplerClamp = makeSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false, VK_LOD_CLAMP_NONE);
-  r.samplerShadow = makeSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER, true, 0.0f);
-  r.samplerPoint = makeSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false, 0.0f);
+  r.samplerRepeat =
+      makeSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT, false, VK_LOD_CLAMP_NONE, "sampler.repeat");
+  r.samplerClamp =
+      makeSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false, VK_LOD_CLAMP_NONE, "sampler.clamp");
+  r.samplerShadow = makeSampler(ctx, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER, true, 0.0f, "sampler.shadow");
+  r.samplerPoint = makeSampler(ctx, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false, 0.0f, "sampler.point");
 
   // Set 0: scene + frame.
   const VkShaderStageFlags all = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
@@ -137,6 +142,7 @@ void createDescriptors(Renderer& r) {
   lci.bindingCount = 6;
   lci.pBindings = sceneBindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &r.sceneSetLayout));
+  setName(ctx, uint64_t(r.sceneSetLayout), VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, "set0.scene");
 
   // Set 1: pushed per pass.
   VkDescriptorSetLayoutBinding passBindings[] = {
@@ -165,20 +171,24 @@ void createDescriptors(Renderer& r) {
   lci.bindingCount = gpu::kPassBindingCount;
   lci.pBindings = passBindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &r.passSetLayout));
+  setName(ctx, uint64_t(r.passSetLayout), VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, "set1.pass");
   // The single-pass path reads the G-buffer and hdr as subpass inputs at the same bindings.
   for (uint32_t b : {gpu::kBindingAlbedo, gpu::kBindingNormal, gpu::kBindingDepth, gpu::kBindingHdr}) {
     passBindings[b].descriptorType = VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT;
     passBindings[b].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
   }
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &r.passSetLayoutInput));
+  setName(ctx, uint64_t(r.passSetLayoutInput), VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, "set1.pass_input");
 
   VkDescriptorSetLayout layouts[] = {r.sceneSetLayout, r.passSetLayout};
   VkPipelineLayoutCreateInfo pci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   pci.setLayoutCount = 2;
   pci.pSetLayouts = layouts;
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &pci, nullptr, &r.pipelineLayout));
+  setName(ctx, uint64_t(r.pipelineLayout), VK_OBJECT_TYPE_PIPELINE_LAYOUT, "pipeline_layout");
   layouts[1] = r.passSetLayoutInput;
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &pci, nullptr, &r.pipelineLayoutInput));
+  setName(ctx, uint64_t(r.pipelineLayoutInput), VK_OBJECT_TYPE_PIPELINE_LAYOUT, "pipeline_layout.input");
 }
 
 void writeSceneSet(Renderer& r) {
@@ -195,6 +205,7 @@ void writeSceneSet(Renderer& r) {
   ai.descriptorSetCount = 1;
   ai.pSetLayouts = &r.sceneSetLayout;
   VK_CHECK(vkAllocateDescriptorSets(ctx.device, &ai, &r.sceneSet));
+  setName(ctx, uint64_t(r.sceneSet), VK_OBJECT_TYPE_DESCRIPTOR_SET, "set0.scene");
 
   VkDescriptorBufferInfo bufs[] = {{r.frameBuffer.buffer, 0, VK_WHOLE_SIZE},
                                    {r.drawBuffer.buffer, 0, VK_WHOLE_SIZE},

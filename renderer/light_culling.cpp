@@ -7,6 +7,7 @@
 #include <thread>
 #include <vector>
 
+#include "renderer/core/light_rect.h"
 #include "renderer/scene/mesh_builder.h"
 
 namespace gb {
@@ -32,38 +33,15 @@ static bool sphereInFrustum(const Camera& camera, const glm::dvec3& c, double r)
   return true;
 }
 
-// The pixel centres k + 0.5 (k in [0, size)) that the projection of a sphere in front of the
-// near plane can cover along one screen axis, as [k0, k1] (empty when k0 > k1). The lines
-// through the eye tangent to the sphere's outline have slopes t = lateral / depth solving
-// (lateral - t depth)^2 = r^2 (1 + t^2); ndc = scale t - offset. `margin` widens it, in pixels.
-static void centreRange(double depth, double r, double lateral, double scale, double offset, uint32_t size,
-                        double margin, int64_t& k0, int64_t& k1) {
-  double d2 = depth * depth - r * r;
-  double root = r * std::sqrt(lateral * lateral + d2);
-  double t0 = (lateral * depth - root) / d2, t1 = (lateral * depth + root) / d2;
-  double a = (scale * t0 - offset + 1.0) * 0.5 * size, b = (scale * t1 - offset + 1.0) * 0.5 * size;
-  double lo = std::min(a, b) - margin, hi = std::max(a, b) + margin;
-  k0 = int64_t(std::max(std::ceil(lo - 0.5), 0.0));
-  k1 = int64_t(std::min(std::floor(hi - 0.5), double(size) - 1.0));
-}
-
 bool coversNoPixelCentre(const Camera& camera, const glm::dvec3& c, double r) {
-  const double depth = -c.z;
-  if (depth - r <= camera.znear) return false;  // reaches the near plane: unbounded projection
-  const glm::dmat4& p = camera.clipFromEye;
-  int64_t x0, x1, y0, y1;
-  centreRange(depth, r, c.x, p[0][0], p[2][0], camera.width, 1e-3, x0, x1);
-  centreRange(depth, r, c.y, p[1][1], p[2][1], camera.height, 1e-3, y0, y1);
-  return x0 > x1 || y0 > y1;
+  if (-c.z - r <= camera.znear) return false;  // reaches the near plane: unbounded projection
+  return sphereScreenRect(camera, c, r, 1e-3).empty();
 }
 
 // Pixels the light's icosahedron can rasterize: the rectangle of its bounding sphere, widened
 // by a pixel so that rounding of the vertices on the GPU cannot reach outside it.
-static void icosahedronPixels(const Camera& camera, const glm::dvec3& c, double radius, int64_t rect[4]) {
-  const double r = radius / kIcosahedronInradius;
-  const glm::dmat4& p = camera.clipFromEye;
-  centreRange(-c.z, r, c.x, p[0][0], p[2][0], camera.width, 1.0, rect[0], rect[2]);
-  centreRange(-c.z, r, c.y, p[1][1], p[2][1], camera.height, 1.0, rect[1], rect[3]);
+static PixelRect icosahedronPixels(const Camera& camera, const glm::dvec3& c, double radius) {
+  return sphereScreenRect(camera, c, radius / kIcosahedronInradius, 1.0);
 }
 
 // Orders the stencil class [0, count) of `order` into layers of lights whose icosahedra cover
@@ -83,10 +61,9 @@ static std::vector<uint32_t> screenDisjointLayers(const Camera& camera, const st
   std::vector<Cells> cells(count);
   for (uint32_t i = 0; i < count; ++i) {
     const gpu::PointLight& l = eye[order[i]];
-    int64_t rect[4];
-    icosahedronPixels(camera, glm::dvec3(l.eyePositionRadius), l.eyePositionRadius.w, rect);
-    cells[i] = {std::clamp<int64_t>(rect[0], 0, camera.width - 1) / kCell, std::clamp<int64_t>(rect[1], 0, camera.height - 1) / kCell,
-                std::clamp<int64_t>(rect[2], 0, camera.width - 1) / kCell, std::clamp<int64_t>(rect[3], 0, camera.height - 1) / kCell};
+    PixelRect rect = icosahedronPixels(camera, glm::dvec3(l.eyePositionRadius), l.eyePositionRadius.w);
+    cells[i] = {std::clamp<int64_t>(rect.x0, 0, camera.width - 1) / kCell, std::clamp<int64_t>(rect.y0, 0, camera.height - 1) / kCell,
+                std::clamp<int64_t>(rect.x1, 0, camera.width - 1) / kCell, std::clamp<int64_t>(rect.y1, 0, camera.height - 1) / kCell};
   }
   auto forCells = [&](uint32_t i, auto&& f) {
     for (int64_t y = cells[i].y0; y <= cells[i].y1; ++y)
@@ -226,29 +203,14 @@ uint64_t idealPairs(const Camera& camera, const CpuImage& depth, const std::vect
     glm::dvec3 c(l.eyePositionRadius);
     double r = l.eyePositionRadius.w;
     if (!(r > 0.0)) return 0;
-    // Screen rectangle of the sphere: project its eye-space AABB corners in front of the camera;
-    // if any part is behind the near plane take the whole screen.
-    int x0 = 0, y0 = 0, x1 = int(depth.width) - 1, y1 = int(depth.height) - 1;
-    if (-c.z - r > camera.znear) {
-      double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
-      for (int k = 0; k < 8; ++k) {
-        glm::dvec3 q = c + glm::dvec3((k & 1) ? r : -r, (k & 2) ? r : -r, (k & 4) ? r : -r);
-        glm::dvec4 clip = camera.clipFromEye * glm::dvec4(q, 1.0);
-        for (int a = 0; a < 2; ++a) {
-          double ndc = clip[a] / clip.w;
-          lo[a] = std::min(lo[a], ndc);
-          hi[a] = std::max(hi[a], ndc);
-        }
-      }
-      auto toPixel = [](double ndc, uint32_t size) { return (ndc + 1.0) * 0.5 * size - 0.5; };
-      x0 = std::max(x0, int(std::floor(toPixel(lo[0], depth.width))));
-      x1 = std::min(x1, int(std::ceil(toPixel(hi[0], depth.width))));
-      y0 = std::max(y0, int(std::floor(toPixel(lo[1], depth.height))));
-      y1 = std::min(y1, int(std::ceil(toPixel(hi[1], depth.height))));
-    }
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) {
-        size_t i = size_t(y) * depth.width + x;
+    // Only the pixels whose centre ray can meet the sphere: every position lies on its pixel's
+    // centre ray (a pixel of margin for rounding).
+    PixelRect rect = sphereScreenRect(camera, c, r, 1.0);
+    const int64_t x1 = std::min<int64_t>(rect.x1, int64_t(depth.width) - 1);
+    const int64_t y1 = std::min<int64_t>(rect.y1, int64_t(depth.height) - 1);
+    for (int64_t y = rect.y0; y <= y1; ++y)
+      for (int64_t x = rect.x0; x <= x1; ++x) {
+        size_t i = size_t(y) * depth.width + size_t(x);
         if (valid[i] && inside(pos[i], l)) ++n;
       }
     return n;

@@ -15,6 +15,7 @@ VkPipeline graphicsPipeline(Renderer& r, const PassContext& pc, const std::strin
     d.renderPass = pc.renderPass;
     d.subpass = pc.subpass;
     d.layout = r.pipelineLayout;
+    d.name = id;
     d.spec = commonSpec(r);
     d.colorBlend.assign(pc.colorAttachments, BlendState{});
     fill(d);

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 
-#include "renderer/vk/check.h"
 #include "renderer/target_readback.h"
+#include "renderer/vk/check.h"
 
 namespace gb {
 
@@ -41,7 +41,7 @@ std::vector<RegionImage> readbackRegions(Renderer& r, const std::vector<RegionRe
   }
   if (copies.empty()) return out;
 
-  Buffer buffer = createBuffer(*r.ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
+  Buffer buffer = createBuffer(*r.ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback, "probe_readback");
   runAfterFrame(
       r,
       [&](FrameGraph& g) {
@@ -74,7 +74,7 @@ std::vector<RegionImage> readbackRegions(Renderer& r, const std::vector<RegionRe
     const Image& img = r.targets[size_t(o.target)].image;
     o.x0 = c.x;
     o.y0 = c.y;
-    o.image = unpackTexels(o.target, r.options, img.desc.format, static_cast<const uint8_t*>(buffer.mapped) + c.offset,
+    o.image = unpackTarget(o.target, r.options, static_cast<const uint8_t*>(buffer.mapped) + c.offset,
                            c.w, c.h);
   }
   destroyBuffer(*r.ctx, buffer);

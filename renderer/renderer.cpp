@@ -13,10 +13,10 @@
 #include "renderer/frame.h"
 #include "renderer/gpu_lights.h"
 #include "renderer/gpu_scene.h"
-#include "renderer/render_targets.h"
-#include "renderer/target_readback.h"
 #include "renderer/light_culling.h"
 #include "renderer/passes/passes.h"
+#include "renderer/render_targets.h"
+#include "renderer/target_readback.h"
 #include "renderer/vk/check.h"
 
 namespace gb {
@@ -300,6 +300,7 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
   cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   cai.commandBufferCount = 1;
   VK_CHECK(vkAllocateCommandBuffers(ctx.device, &cai, &r.cmd));
+  setName(ctx, uint64_t(r.cmd), VK_OBJECT_TYPE_COMMAND_BUFFER, "frame");
   VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &r.fence));
 }

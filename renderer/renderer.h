@@ -10,9 +10,9 @@
 
 #include "renderer/core/camera.h"
 #include "renderer/core/frame_stats.h"
-#include "renderer/graph/graph.h"
 #include "renderer/core/image.h"
 #include "renderer/core/options.h"
+#include "renderer/graph/graph.h"
 #include "renderer/scene/scene.h"
 #include "renderer/vk/formats.h"
 #include "renderer/vk/pipeline.h"

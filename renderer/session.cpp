@@ -3,12 +3,13 @@
 
 #include <algorithm>
 
+#include "renderer/core/layout_json.h"
 #include "renderer/frame_memory.h"
 #include "renderer/gpu_lights.h"
-#include "renderer/renderer.h"
-#include "renderer/vk/check.h"
-#include "renderer/srgb_probe.h"
 #include "renderer/render_targets.h"
+#include "renderer/renderer.h"
+#include "renderer/srgb_probe.h"
+#include "renderer/vk/check.h"
 
 namespace gb {
 
@@ -94,6 +95,7 @@ FrameSnapshot snapshotFromRenderer(const Renderer& r, const std::vector<Target>&
   GB_ASSERT(r.scene);
   FrameSnapshot s;
   s.options = r.options;
+  s.setLayout(nativeLayout(r.options));
   s.camera = r.camera;
   s.lightClipFromWorld = r.lightClipFromWorld;
   s.sun = r.scene->sun;
@@ -105,19 +107,17 @@ FrameSnapshot snapshotFromRenderer(const Renderer& r, const std::vector<Target>&
   s.lightDescs = r.scene->lights;
   s.frameData = r.frameData;
   s.srgbDecode = r.srgbDecode;
-  for (size_t i = 0; i < kTargetCount; ++i) {
-    Target t = Target(i);
+  for (const TargetInfo& info : targetTable()) {
+    const Target t = info.target;
     Absent why = targetAbsence(t, r.options, r.scene->sun.enabled);
-    if (why != Absent::No) {
-      s.absent[i] = why;
-    } else if (std::find(fresh.begin(), fresh.end(), t) == fresh.end() || r.readback[i].empty()) {
-      s.absent[i] = Absent::NotReadBack;
-    } else {
-      TargetImage& ti = s.targets[i];
-      ti.image = r.readback[i];
-      ti.targetWidth = ti.image.width;
-      ti.targetHeight = ti.image.height;
-    }
+    if (why == Absent::No && (std::find(fresh.begin(), fresh.end(), t) == fresh.end() || r.readback[size_t(t)].empty()))
+      why = Absent::NotReadBack;
+    s.setAbsence(t, why);
+    if (why != Absent::No) continue;
+    TargetImage& ti = s.target(t);
+    ti.image = r.readback[size_t(t)];
+    ti.targetWidth = ti.image.width;
+    ti.targetHeight = ti.image.height;
   }
   return s;
 }

@@ -22,7 +22,7 @@ const std::vector<float>& probeSrgbDecode(Renderer& r) {
   d.name = "srgb_probe";
   Image img = createImage(ctx, d);
   uploadTexture(ctx, img, bytes);
-  Buffer out = createBuffer(ctx, 256 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Readback);
+  Buffer out = createBuffer(ctx, 256 * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Readback, "srgb_probe");
   VkPipeline pipeline = createComputePipeline(ctx, Shader::srgb_probe_comp, {}, r.pipelineLayout);
   submitOnce(ctx, [&](VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);

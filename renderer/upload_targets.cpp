@@ -5,39 +5,10 @@
 #include <cmath>
 #include <cstring>
 
+#include "renderer/core/texels.h"
 #include "renderer/vk/check.h"
 
 namespace gb {
-
-std::vector<uint8_t> packTexels(const CpuImage& img, VkFormat format) {
-  const size_t texels = size_t(img.width) * img.height;
-  std::vector<uint8_t> out;
-  if (isDepthFormat(format) && hasStencil(format)) {  // F32 Depth, F32 Stencil
-    out.resize(texels * 5);
-    for (size_t i = 0; i < texels; ++i) {
-      float depth = float(img.value(uint32_t(i % img.width), uint32_t(i / img.width), 0));
-      uint32_t bits;
-      if (format == VK_FORMAT_D24_UNORM_S8_UINT)
-        bits = uint32_t(std::lround(double(depth) * 16777215.0)) & 0xFFFFFF;
-      else
-        std::memcpy(&bits, &depth, 4);
-      std::memcpy(&out[i * 4], &bits, 4);
-      out[texels * 4 + i] = uint8_t(img.value(uint32_t(i % img.width), uint32_t(i / img.width), 1));
-    }
-  } else if (format == VK_FORMAT_A2B10G10R10_UNORM_PACK32) {
-    out.resize(texels * 4);
-    for (size_t i = 0; i < texels; ++i) {
-      uint32_t x = uint32_t(i % img.width), y = uint32_t(i / img.width);
-      uint32_t v = (img.raw(x, y, 0) & 0x3FF) | ((img.raw(x, y, 1) & 0x3FF) << 10) | ((img.raw(x, y, 2) & 0x3FF) << 20) |
-                   (img.raw(x, y, 3) << 30);
-      std::memcpy(&out[i * 4], &v, 4);
-    }
-  } else {
-    GB_ASSERT(img.data.size() == texels * bytesPerPixel(format));
-    out = img.data;
-  }
-  return out;
-}
 
 void uploadTargets(Renderer& r, const RenderOptions& options, const std::array<const CpuImage*, kTargetCount>& images) {
   GpuContext& ctx = *r.ctx;
@@ -64,8 +35,8 @@ void uploadTargets(Renderer& r, const RenderOptions& options, const std::array<c
     d.name = targetName(t);
     GraphTarget& gt = r.targets[i];
     gt.image = createImage(ctx, d);
-    std::vector<uint8_t> bytes = packTexels(*img, d.format);
-    Buffer staging = createBuffer(ctx, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
+    std::vector<uint8_t> bytes = packTexels(*img, texelFormat(t, options));
+    Buffer staging = createBuffer(ctx, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload, "staging");
     std::memcpy(staging.mapped, bytes.data(), bytes.size());
     const VkImageLayout readLayout =
         isDepthFormat(d.format) && hasStencil(d.format) ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;

@@ -12,8 +12,4 @@ namespace gb {
 // (formats, size). The renderer renders nothing afterwards: it only holds the frame.
 void uploadTargets(Renderer& r, const RenderOptions& options, const std::array<const CpuImage*, kTargetCount>& images);
 
-// Packs a CpuImage back into the bytes vkCmdCopyBufferToImage expects for `format` (the inverse
-// of unpackTexels; depth/stencil: the depth aspect, then one stencil byte per texel).
-std::vector<uint8_t> packTexels(const CpuImage& image, VkFormat format);
-
 }  // namespace gb

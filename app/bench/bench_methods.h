@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "renderer/renderer.h"
 #include "app/bench/bench_report.h"
+#include "renderer/renderer.h"
 
 namespace gb {
 

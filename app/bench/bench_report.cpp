@@ -1,14 +1,13 @@
 // Bench rows -> frontier, defaults check, bench.json, bench.csv, bench.md (plots: bench_plot.cpp).
 #include "app/bench/bench_report.h"
 
-#include "renderer/core/statistics.h"
-
 #include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
 
 #include "app/bench/bench_format.h"
+#include "renderer/core/statistics.h"
 #include "views/capture/report.h"
 
 namespace gb {

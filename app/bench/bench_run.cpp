@@ -1,13 +1,12 @@
 // Timing one variant, the interleaved A/B, and the depth-range study (see bench_run.h).
 #include "app/bench/bench_run.h"
 
-#include "renderer/core/statistics.h"
-#include "renderer/session.h"
-
 #include <algorithm>
 #include <cstdio>
 
+#include "renderer/core/statistics.h"
 #include "renderer/scene/builtin.h"
+#include "renderer/session.h"
 #include "views/analysis/accuracy.h"
 
 namespace gb {

@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "renderer/core/options.h"
 #include "app/bench/bench_report.h"
+#include "renderer/core/options.h"
 
 namespace gb {
 

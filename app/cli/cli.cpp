@@ -1,13 +1,12 @@
 // Shared option parsing for every subcommand.
 #include "app/cli/cli.h"
 
-#include "views/analysis/view_table.h"
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
 #include "renderer/scene/builtin.h"
+#include "views/analysis/view_table.h"
 
 namespace gb {
 
@@ -52,6 +51,16 @@ bool loadSceneOrReport(const CommonOptions& o, Scene& scene) {
     return false;
   }
   return true;
+}
+
+void reportRenderDocCapture(const char* command, RenderDocCapture& capture) {
+  if (!capture.active()) return;
+  std::string error;
+  std::string path = capture.end(&error);
+  if (path.empty())
+    std::fprintf(stderr, "%s: %s\n", command, error.c_str());
+  else
+    std::fprintf(stderr, "gblens: RenderDoc capture %s\n", path.c_str());
 }
 
 std::string& commandLine() {

@@ -11,6 +11,7 @@
 #include "renderer/core/options.h"
 #include "renderer/renderer.h"
 #include "renderer/scene/scene.h"
+#include "renderer/vk/renderdoc_capture.h"
 
 namespace gb {
 
@@ -58,8 +59,13 @@ std::string& commandLine();
 Command addErrorCommand(CLI::App& root);
 Command addBenchCommand(CLI::App& root);
 Command addStressCommand(CLI::App& root);
+Command addImportCommand(CLI::App& root);
 
 // Loads SCENE; on a user mistake prints one line and returns false (caller exits 2).
 bool loadSceneOrReport(const CommonOptions& o, Scene& scene);
+
+// Ends a RenderDoc capture of a command's frame and prints where the .rdc went, or why none was
+// written (nothing when the command does not run under RenderDoc).
+void reportRenderDocCapture(const char* command, RenderDocCapture& capture);
 
 }  // namespace gb

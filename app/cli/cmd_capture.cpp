@@ -7,10 +7,10 @@
 #include <sstream>
 
 #include "app/cli/cli.h"
+#include "renderer/render_targets.h"
 #include "renderer/session.h"
 #include "views/capture/capture.h"
 #include "views/capture/report.h"
-#include "renderer/render_targets.h"
 
 namespace gb {
 
@@ -74,10 +74,14 @@ static int capture(const CommonOptions& o, const std::string& targets, bool cove
   }
   FrameRequest request = captureRequest(wanted, ro);
   std::vector<FrameStats> frames;
-  for (int i = 0; i < o.frames; ++i) frames.push_back(session.render(ro, request));
+  for (int i = 0; i < o.frames; ++i) {
+    RenderDocCapture rdc(session.context(), i + 1 == o.frames);  // under RenderDoc: the frame captured
+    frames.push_back(session.render(ro, request));
+    reportRenderDocCapture("gblens capture", rdc);
+  }
   auto start = std::chrono::steady_clock::now();
   FrameSnapshot snap = session.snapshot(wanted);
-  for (Absent& a : snap.absent)
+  for (Absent& a : snap.absences)
     if (a == Absent::NotReadBack) a = Absent::NotRequested;
   CaptureMeta meta;
   meta.device = session.deviceName();

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <memory>
 
-#include "views/analysis/accuracy.h"
 #include "app/cli/cli.h"
 #include "renderer/session.h"
+#include "views/analysis/accuracy.h"
 #include "views/capture/report.h"
 
 namespace gb {

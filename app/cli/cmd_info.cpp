@@ -8,6 +8,7 @@
 
 #include "app/cli/cli.h"
 #include "renderer/scene/builtin.h"
+#include "renderer/session.h"
 
 namespace gb {
 
@@ -105,31 +106,27 @@ Command addInfoCommand(CLI::App& root) {
             printScene(scene, stats, file);
             if (!o->timing) return 0;
 
-            ContextOptions co;
-            co.validation = o->validate;
-            co.device = o->device;
-            co.quiet = true;
+            // The device, the upload and the first frame timed apart (only the upload is the scene's).
             auto t1 = Clock::now();
-            GpuContext ctx = createContext(co);
+            HeadlessSession session({o->device, o->validate, true});
             double contextMs = msSince(t1);
             auto t2 = Clock::now();
-            Renderer r;
-            initRenderer(r, ctx, scene);
+            session.useScene(scene);
             double uploadMs = msSince(t2);
             RenderOptions ro;
             ro.lights = o->lights;
             auto t3 = Clock::now();
-            renderFrame(r, ro);
+            session.render(ro);
             double firstFrameMs = msSince(t3);
-            destroyRenderer(r);
-            int status = reportValidation(ctx) ? 1 : 0;
+            session.releaseScene();  // validation messages of the teardown count too
+            int status = session.reportValidation() ? 1 : 0;
             std::printf("timing      load %.1f ms (parse %.1f, decode %.1f, build %.1f)\n", loadMs, stats.parseMs,
                         stats.decodeMs, stats.buildMs);
             std::printf("            upload %.1f ms (initRenderer: buffers, textures with mips)\n", uploadMs);
-            std::printf("            ready in %.1f ms (load + upload) on %s\n", loadMs + uploadMs, ctx.deviceName.c_str());
+            std::printf("            ready in %.1f ms (load + upload) on %s\n", loadMs + uploadMs,
+                        session.deviceName().c_str());
             std::printf("            not counted: Vulkan context %.1f ms, first %ux%u frame %.1f ms (pipelines created)\n",
                         contextMs, ro.width, ro.height, firstFrameMs);
-            destroyContext(ctx);
             return status;
           }};
 }

@@ -3,8 +3,8 @@
 #include <memory>
 
 #include "app/cli/cli.h"
-#include "views/capture/capture.h"
 #include "views/analysis/probe.h"
+#include "views/capture/capture.h"
 
 namespace gb {
 

@@ -38,7 +38,11 @@ static int render(const CommonOptions& o, ViewKind view) {
   FrameRequest request;
   request.readback = {target};
   std::vector<FrameStats> frames;
-  for (int i = 0; i < o.frames; ++i) frames.push_back(session.render(ro, request));
+  for (int i = 0; i < o.frames; ++i) {
+    RenderDocCapture rdc(session.context(), i + 1 == o.frames);  // under RenderDoc: the frame written
+    frames.push_back(session.render(ro, request));
+    reportRenderDocCapture("gblens render", rdc);
+  }
   FrameSnapshot frame = session.snapshot(request.readback);
   FrameStats counted;  // culling counts from one more frame, not timed
   if (o.stats) counted = session.renderCounting(ro, request);

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
       gb::addErrorCommand(app),
       gb::addBenchCommand(app),
       gb::addStressCommand(app),
+      gb::addImportCommand(app),
   };
   for (int i = 0; i < argc; ++i) gb::commandLine() += (i ? " " : "") + std::string(i ? argv[i] : "gblens");
   // An unknown first word is a mistyped command: name it and the commands there are.

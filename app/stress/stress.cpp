@@ -1,11 +1,12 @@
 // The stress suite's frame: bounds stated and checked, NaN/Inf scans of every target, the case
 // list, and the table (text and JSON).
 #include "app/stress/stress.h"
-#include "renderer/render_targets.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "renderer/render_targets.h"
 
 namespace gb::stress {
 

@@ -2,15 +2,15 @@
 // points), a sliver 1e-6 wide, duplicate vertices, zero-length normals and opposite normals on one
 // triangle (their interpolation passes through zero), drawn in code and loaded from a glTF file
 // written here, under every lighting variant and normal format: no NaN/Inf in any target.
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
-#include <unistd.h>
-
+#include "app/stress/stress.h"
 #include "renderer/scene/builtin.h"
 #include "renderer/scene/mesh_builder.h"
-#include "app/stress/stress.h"
 
 namespace gb::stress {
 

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "renderer/scene/builtin.h"
 #include "app/stress/stress.h"
+#include "renderer/scene/builtin.h"
 
 namespace gb::stress {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "renderer/core/camera.h"
 #include "app/stress/stress.h"
+#include "renderer/core/camera.h"
 
 namespace gb::stress {
 

@@ -2,9 +2,9 @@
 // whole scene (camera included) away from the origin.
 #include <cmath>
 
+#include "app/stress/stress.h"
 #include "renderer/core/camera.h"
 #include "renderer/scene/mesh_builder.h"
-#include "app/stress/stress.h"
 
 namespace gb::stress {
 

@@ -8,12 +8,12 @@
 #include <sstream>
 
 #include "app/viewer/viewer.h"
+#include "renderer/render_targets.h"
 #include "renderer/session.h"
 #include "renderer/upload_targets.h"
-#include "views/capture/capture.h"
 #include "views/analysis/compare.h"
 #include "views/analysis/probe.h"
-#include "renderer/render_targets.h"
+#include "views/capture/capture.h"
 
 namespace gb {
 
@@ -47,8 +47,8 @@ static std::string describe(const Capture& c) {
   o << c.dir << "\n  " << m.value("scene", nlohmann::json("?")).dump() << ", " << opt.width << "x" << opt.height << ", time "
     << opt.time << "\n  " << name(opt.path) << ", eye depth " << (opt.eyeDepth ? "on" : "off") << ", stencil culling "
     << (opt.stencilCulling ? "on" : "off") << "\n  device " << m.value("device", nlohmann::json("?")).dump() << "\n  targets:";
-  for (size_t i = 0; i < kTargetCount; ++i)
-    if (c.frame.targets[i].present()) o << " " << targetName(Target(i));
+  for (size_t i = 0; i < c.frame.images.size(); ++i)
+    if (c.frame.images[i].present()) o << " " << c.frame.layout.targets[i].name;
   return o.str();
 }
 
@@ -66,8 +66,8 @@ static void upload(Renderer& r, GpuContext& ctx, Scene& scene, const Capture& c)
   scene = emptyScene(c.frame.camera);
   initRenderer(r, ctx, scene);
   std::array<const CpuImage*, kTargetCount> images{};
-  for (size_t i = 0; i < kTargetCount; ++i)
-    if (c.frame.targets[i].present()) images[i] = &c.frame.targets[i].image;
+  for (const TargetInfo& t : targetTable())
+    if (c.frame.target(t.target).present()) images[size_t(t.target)] = &c.frame.target(t.target).image;
   uploadTargets(r, c.frame.options, images);
   r.camera = c.frame.camera;
 }
@@ -130,9 +130,9 @@ bool openCaptures(Viewer& v) {
   for (int k = 0; k < kViewKindCount; ++k) {
     Target t = viewDef(ViewKind(k)).source.target;
     m.unavailable[k].clear();
-    if (!f.target(t).present()) m.unavailable[k] = std::string(targetName(t)) + ": " + absentText(f.absent[size_t(t)]);
+    if (!f.target(t).present()) m.unavailable[k] = std::string(targetName(t)) + ": " + absentText(f.absence(t));
     else if (v.hasB && !v.captureB.frame.target(t).present())
-      m.unavailable[k] = std::string(targetName(t)) + " is not in B: " + absentText(v.captureB.frame.absent[size_t(t)]);
+      m.unavailable[k] = std::string(targetName(t)) + " is not in B: " + absentText(v.captureB.frame.absence(t));
   }
   m.captureAvailable = false;
   m.captureHint = "This is a capture already";

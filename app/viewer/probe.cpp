@@ -7,9 +7,9 @@
 
 #include "app/viewer/viewer.h"
 #include "renderer/region_readback.h"
+#include "renderer/render_targets.h"
 #include "renderer/session.h"
 #include "views/analysis/probe.h"
-#include "renderer/render_targets.h"
 
 namespace gb {
 
@@ -40,7 +40,7 @@ static void addRegions(FrameSnapshot& s, const std::vector<RegionImage>& regions
     ti.y0 = ri.y0;
     ti.targetWidth = ri.targetWidth;
     ti.targetHeight = ri.targetHeight;
-    s.absent[size_t(ri.target)] = Absent::No;
+    s.setAbsence(ri.target, Absent::No);
   }
 }
 

@@ -1,6 +1,8 @@
 // The viewer's loop. Renders on demand: a frame is rendered only when something it depends on
 // changed (camera, options, lights, time), the interface is redrawn only for a few frames after
 // an event, and with nothing to do the loop sleeps in glfwWaitEventsTimeout.
+#include "app/viewer/viewer.h"
+
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -10,11 +12,7 @@
 #include <algorithm>
 #include <atomic>
 #include <csignal>
-#include <cstdio>
 
-#include "app/viewer/viewer.h"
-#include "renderer/core/statistics.h"
-#include "renderer/vk/check.h"
 #include "renderer/render_targets.h"
 
 namespace gb {
@@ -22,31 +20,6 @@ namespace gb {
 ViewDrawCallback viewDrawCallback();  // window.cpp
 
 static std::atomic<bool> g_quit{false};
-
-static Viewer& viewerOf(GLFWwindow* w) { return *static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }
-static void wake(GLFWwindow* w) { viewerOf(w).uiFramesLeft = std::max(viewerOf(w).uiFramesLeft, 3); }
-
-static void installCallbacks(Viewer& v) {
-  glfwSetWindowUserPointer(v.window, &v);
-  glfwSetKeyCallback(v.window, [](GLFWwindow* w, int key, int, int action, int mods) {
-    if (action != GLFW_RELEASE) viewerOf(w).pressedKeys.push_back(key | (mods & GLFW_MOD_CONTROL ? 0x10000 : 0));
-    wake(w);
-  });
-  glfwSetMouseButtonCallback(v.window, [](GLFWwindow* w, int button, int action, int) {
-    if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_PRESS) {
-      viewerOf(w).clickTime = std::chrono::steady_clock::now();  // click-to-dossier latency starts here
-      viewerOf(w).clickPending = true;
-    }
-    wake(w);
-  });
-  glfwSetCursorPosCallback(v.window, [](GLFWwindow* w, double, double) { wake(w); });
-  glfwSetScrollCallback(v.window, [](GLFWwindow* w, double, double) { wake(w); });
-  glfwSetCharCallback(v.window, [](GLFWwindow* w, unsigned) { wake(w); });
-  glfwSetWindowRefreshCallback(v.window, [](GLFWwindow* w) { wake(w); });
-  glfwSetFramebufferSizeCallback(v.window, [](GLFWwindow* w, int, int) { wake(w); });
-  glfwSetWindowFocusCallback(v.window, [](GLFWwindow* w, int) { wake(w); });
-  glfwSetCursorEnterCallback(v.window, [](GLFWwindow* w, int) { wake(w); });
-}
 
 // The options the next frame needs: what the user chose, at the view area's size (or --size),
 // with coverage only when a coverage view is shown or culling is measured.
@@ -172,200 +145,144 @@ static void buildInterface(Viewer& v) {
   drawViewerUi(v.model, viewDrawCallback(), v.draws);
 }
 
+// What the loop carries from one iteration to the next.
+namespace {
+struct LoopState {
+  bool live = true;        // a live renderer (else --capture / --compare: nothing moves)
+  bool animating = false;  // time runs this iteration
+  bool keysHeld = false;   // WASD/QE move the camera this iteration
+  bool minimised = false;
+  bool ready = false;      // the first frame was shown (logged once)
+};
+}  // namespace
+
+// Sleeps until there is something to do: polls while time runs, keys move the camera or the
+// interface is settling after an event, else waits (waking twice a second to notice SIGTERM).
+// False when this iteration draws nothing (minimised, idle, no swapchain yet).
+static bool awaitWork(Viewer& v, LoopState& s, int& fbw, int& fbh) {
+  const ViewerModel& m = v.model;
+  s.animating = s.live && m.playing && m.timeSpeed != 0.0f;  // a capture does not move
+  s.keysHeld = false;
+  for (int key : {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E})
+    s.keysHeld |= glfwGetKey(v.window, key) == GLFW_PRESS && glfwGetKey(v.window, GLFW_KEY_LEFT_CONTROL) != GLFW_PRESS;
+  if (!s.minimised && (s.animating || s.keysHeld || v.uiFramesLeft > 0))
+    glfwPollEvents();
+  else
+    glfwWaitEventsTimeout(0.5);  // idle: sleep until an event (wake twice a second to notice SIGTERM)
+  glfwGetFramebufferSize(v.window, &fbw, &fbh);
+  s.minimised = fbw == 0 || fbh == 0 || glfwGetWindowAttrib(v.window, GLFW_ICONIFIED);
+  if (s.minimised) {
+    v.pressedKeys.clear();
+    v.lastTick = std::chrono::steady_clock::now();
+    return false;
+  }
+  if (!s.animating && !s.keysHeld && v.uiFramesLeft <= 0) return false;
+  if (!v.swapchainValid || v.swapchain.extent.width != uint32_t(fbw) || v.swapchain.extent.height != uint32_t(fbh))
+    if (!recreateSwapchain(v)) return false;
+  return true;
+}
+
+// Keys, time, camera and lights applied and the frame rendered if outdated (live); automatic
+// ranges, a pending probe, the hover read-out and a requested capture brought up to date.
+static void updateFrame(Viewer& v, const LoopState& s, int fbw, int fbh, double dt) {
+  ViewerModel& m = v.model;
+  handleKeys(v);
+  if (s.live) {
+    if (s.animating) m.wanted.time += dt * m.timeSpeed;
+    if (m.stepForward || m.stepBack) {
+      m.wanted.time = std::max(0.0, m.wanted.time + (m.stepForward ? 1.0 : -1.0) / 30.0);
+      m.playing = false;
+    }
+    updateCamera(v, dt);
+    updateLights(v);
+    renderIfNeeded(v, wantedOptions(v, fbw, fbh));
+  }
+  m.stepForward = m.stepBack = false;
+  updateRanges(v);
+  if (m.probeRequest) answerProbe(v);
+  if (s.live) {
+    readHover(v);
+  } else {
+    std::optional<glm::ivec2> texel = m.hoverView && viewDef(*m.hoverView).source.target == Target::ShadowMap
+                                          ? m.hoverShadowTexel
+                                          : m.hover;
+    m.hoverText = texel && m.hoverView ? captureHoverText(v, *m.hoverView, *texel) : "";
+  }
+  if (m.captureRequested) {
+    m.captureRequested = false;
+    std::string dir, error;
+    m.captureStatus = captureLiveFrame(v, dir, error) ? "wrote " + dir : "capture failed: " + error;
+    logLine(v.eventLog, {{"event", "capture"}, {"status", m.captureStatus}});
+    v.rangesStale = true;
+  }
+}
+
+// The interface built and presented; a click in it is answered in the same interface frame, and
+// the frame that first shows its dossier is logged with the click's latency.
+static void presentInterface(Viewer& v) {
+  ViewerModel& m = v.model;
+  m.uiChanged = false;
+  buildInterface(v);
+  if (m.probeRequest) {
+    // A click in this interface frame: answer it now and show the dossier in the same frame.
+    ImGui::EndFrame();
+    answerProbe(v);
+    v.probeShownPending = true;
+    buildInterface(v);
+  }
+  if (m.copyJson) {
+    glfwSetClipboardString(v.window, m.dossierJson.dump(2).c_str());
+    m.copyJson = false;
+  }
+  ImGui::Render();
+  if (!presentFrame(v)) recreateSwapchain(v);
+  if (v.probeShownPending) {  // the frame that shows a clicked pixel's dossier is on screen
+    v.probeShownPending = false;
+    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - v.probeStart).count();
+    logLine(v.eventLog, {{"event", "probe_shown"}, {"pixel", {m.probePixel->x, m.probePixel->y}}, {"latency_ms", ms}});
+  }
+}
+
+// One iteration that draws: update, present, log, and how many more interface frames to draw.
+static void iterate(Viewer& v, LoopState& s, int fbw, int fbh) {
+  ViewerModel& m = v.model;
+  auto now = std::chrono::steady_clock::now();
+  const uint64_t renderedBefore = m.framesRendered;
+  double dt = std::min(0.1, std::chrono::duration<double>(now - v.lastTick).count());
+  v.lastTick = now;
+  updateFrame(v, s, fbw, fbh, dt);
+  presentInterface(v);
+  if (m.framesRendered != renderedBefore)
+    v.renderedLoopMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - now).count());
+  int winW = 0, winH = 0;
+  glfwGetWindowSize(v.window, &winW, &winH);
+  logLayout(v, winW, winH);
+  if (!s.ready) {
+    s.ready = true;
+    logLine(v.eventLog, {{"event", "ready"}, {"size", {m.rendered.width, m.rendered.height}}});
+  }
+  // Changes made in this interface frame need another one (and maybe a render).
+  bool pending = m.uiChanged || m.probeRequest || m.resetCamera || m.gltfCamera >= 0 || m.cameraDrag != glm::dvec2(0.0) ||
+                 m.cameraDolly != 0.0 || m.stepForward || m.stepBack || m.captureRequested ||
+                 (s.live && frameOutdated(v.renderer.options, wantedOptions(v, fbw, fbh)));
+  v.uiFramesLeft = pending ? std::max(v.uiFramesLeft, 2) : v.uiFramesLeft - 1;
+}
+
 int runViewer(const ViewerArgs& args, Scene scene) {
   Viewer v;
   v.args = args;
   v.scene = std::move(scene);
-  ViewerModel& m = v.model;
-  unsigned ww = 0, wh = 0;
-  char sep = 0;
-  if (std::sscanf(args.window.c_str(), "%u%c%u", &ww, &sep, &wh) != 3 || ww < 64 || wh < 64) {
-    std::fprintf(stderr, "gblens view: --window %s: expected WxH, at least 64x64\n", args.window.c_str());
-    return 2;
-  }
-  const bool live = args.capture.empty();
-  if (!args.compare.empty() && live) {
-    std::fprintf(stderr, "gblens view: --compare B needs --capture A\n");
-    return 2;
-  }
-  if (!args.probeLog.empty()) {
-    v.probeLog.open(args.probeLog, std::ios::app);
-    if (!v.probeLog) {
-      std::fprintf(stderr, "gblens view: --probe-log %s: cannot open for writing\n", args.probeLog.c_str());
-      return 2;
-    }
-  }
-  if (!args.eventLog.empty()) {
-    v.eventLog.open(args.eventLog, std::ios::app);
-    if (!v.eventLog) {
-      std::fprintf(stderr, "gblens view: --event-log %s: cannot open for writing\n", args.eventLog.c_str());
-      return 2;
-    }
-  }
-  if (!openWindow(v, ww, wh)) return 2;
-
-  ContextOptions co;
-  co.validation = args.validate;
-  co.device = args.device;
-  co.swapchain = true;
-  uint32_t n = 0;
-  const char** exts = glfwGetRequiredInstanceExtensions(&n);
-  for (uint32_t i = 0; i < n; ++i) co.instanceExtensions.push_back(exts[i]);
-  v.ctx = createContext(co);
-  VK_CHECK(glfwCreateWindowSurface(v.ctx.instance, v.window, nullptr, &v.swapchain.surface));
-  installCallbacks(v);
-  while (!recreateSwapchain(v)) glfwWaitEvents();  // a window may open minimised
-  initImGui(v);
-
-  if (live) {
-    // The scene camera the viewer starts from, copied to a camera of its own (the last one).
-    resetRig(v.rig, v.scene.cameras[size_t(args.render.camera)], v.scene.bounds);
-    v.scene.cameras.push_back(v.rig.desc);
-    initRenderer(v.renderer, v.ctx, v.scene);
-  } else if (!openCaptures(v)) {
-    shutdownImGui(v);
-    destroyRenderer(v.renderer);
-    destroyRenderer(v.rendererB);
-    closeWindow(v);
-    destroyContext(v.ctx);
-    return 2;
-  }
-  initViewMapper(v.mapper, v.renderer);
-
-  for (int k = 0; k < kViewKindCount; ++k) m.settings[k] = defaultSettings(ViewKind(k));
-  m.wanted = args.render;
-  m.fixedSize = args.sizeGiven;
-  m.lightCount = int(v.scene.generatedLights ? args.render.lights : int(v.scene.lights.size()));
-  m.playing = !args.paused;
-  parseView(args.initialView, m.primary);
-  m.edited = m.primary;
-  m.deviceName = v.ctx.deviceName;
-  m.sceneName = live ? args.scene : args.capture + (args.compare.empty() ? "" : " vs " + args.compare);
-  if (live) {
-    for (size_t i = 0; i + 1 < v.scene.cameras.size(); ++i)
-      m.cameraNames.push_back(v.scene.cameras[i].name.empty() ? "camera " + std::to_string(i) : v.scene.cameras[i].name);
-    m.captureAvailable = true;
-    m.captureHint = "Writes this frame, every target at full precision, to ./gblens-capture-<date>-<time>/\n"
-                    "(EXR per target + manifest.json; open it with gblens view --capture DIR)";
-  }
-
+  if (!startViewer(v)) return 2;
   std::signal(SIGINT, [](int) { g_quit = true; });
   std::signal(SIGTERM, [](int) { g_quit = true; });
   v.lastTick = std::chrono::steady_clock::now();
-  bool ready = false, minimised = false;
+  LoopState s;
+  s.live = args.capture.empty();
   while (!glfwWindowShouldClose(v.window) && !g_quit) {
-    bool animating = live && m.playing && m.timeSpeed != 0.0f;  // a capture does not move
-    bool keysHeld = false;
-    for (int key : {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E})
-      keysHeld |= glfwGetKey(v.window, key) == GLFW_PRESS && glfwGetKey(v.window, GLFW_KEY_LEFT_CONTROL) != GLFW_PRESS;
-    if (!minimised && (animating || keysHeld || v.uiFramesLeft > 0))
-      glfwPollEvents();
-    else
-      glfwWaitEventsTimeout(0.5);  // idle: sleep until an event (wake twice a second to notice SIGTERM)
     int fbw = 0, fbh = 0;
-    glfwGetFramebufferSize(v.window, &fbw, &fbh);
-    minimised = fbw == 0 || fbh == 0 || glfwGetWindowAttrib(v.window, GLFW_ICONIFIED);
-    if (minimised) {
-      v.pressedKeys.clear();
-      v.lastTick = std::chrono::steady_clock::now();
-      continue;
-    }
-    if (!animating && !keysHeld && v.uiFramesLeft <= 0) continue;
-    if (!v.swapchainValid || v.swapchain.extent.width != uint32_t(fbw) || v.swapchain.extent.height != uint32_t(fbh))
-      if (!recreateSwapchain(v)) continue;
-
-    auto now = std::chrono::steady_clock::now();
-    const uint64_t renderedBefore = m.framesRendered;
-    double dt = std::min(0.1, std::chrono::duration<double>(now - v.lastTick).count());
-    v.lastTick = now;
-    handleKeys(v);
-    if (live) {
-      if (animating) m.wanted.time += dt * m.timeSpeed;
-      if (m.stepForward || m.stepBack) {
-        m.wanted.time = std::max(0.0, m.wanted.time + (m.stepForward ? 1.0 : -1.0) / 30.0);
-        m.playing = false;
-      }
-      updateCamera(v, dt);
-      updateLights(v);
-      renderIfNeeded(v, wantedOptions(v, fbw, fbh));
-    }
-    m.stepForward = m.stepBack = false;
-    updateRanges(v);
-    if (m.probeRequest) answerProbe(v);
-    if (live) {
-      readHover(v);
-    } else {
-      std::optional<glm::ivec2> texel = m.hoverView && viewDef(*m.hoverView).source.target == Target::ShadowMap
-                                            ? m.hoverShadowTexel
-                                            : m.hover;
-      m.hoverText = texel && m.hoverView ? captureHoverText(v, *m.hoverView, *texel) : "";
-    }
-    if (m.captureRequested) {
-      m.captureRequested = false;
-      std::string dir, error;
-      m.captureStatus = captureLiveFrame(v, dir, error) ? "wrote " + dir : "capture failed: " + error;
-      logLine(v.eventLog, {{"event", "capture"}, {"status", m.captureStatus}});
-      v.rangesStale = true;
-    }
-
-    m.uiChanged = false;
-    buildInterface(v);
-    if (m.probeRequest) {
-      // A click in this interface frame: answer it now and show the dossier in the same frame.
-      ImGui::EndFrame();
-      answerProbe(v);
-      v.probeShownPending = true;
-      buildInterface(v);
-    }
-    if (m.copyJson) {
-      glfwSetClipboardString(v.window, m.dossierJson.dump(2).c_str());
-      m.copyJson = false;
-    }
-    ImGui::Render();
-    if (!presentFrame(v)) recreateSwapchain(v);
-    if (v.probeShownPending) {  // the frame that shows a clicked pixel's dossier is on screen
-      v.probeShownPending = false;
-      double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - v.probeStart).count();
-      logLine(v.eventLog, {{"event", "probe_shown"}, {"pixel", {m.probePixel->x, m.probePixel->y}}, {"latency_ms", ms}});
-    }
-    if (m.framesRendered != renderedBefore)
-      v.renderedLoopMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - now).count());
-    int winW = 0, winH = 0;
-    glfwGetWindowSize(v.window, &winW, &winH);
-    logLayout(v, winW, winH);
-    if (!ready) {
-      ready = true;
-      logLine(v.eventLog, {{"event", "ready"}, {"size", {m.rendered.width, m.rendered.height}}});
-    }
-    // Changes made in this interface frame need another one (and maybe a render).
-    bool pending = m.uiChanged || m.probeRequest || m.resetCamera || m.gltfCamera >= 0 || m.cameraDrag != glm::dvec2(0.0) ||
-                   m.cameraDolly != 0.0 || m.stepForward || m.stepBack || m.captureRequested ||
-                   (live && frameOutdated(v.renderer.options, wantedOptions(v, fbw, fbh)));
-    v.uiFramesLeft = pending ? std::max(v.uiFramesLeft, 2) : v.uiFramesLeft - 1;
+    if (awaitWork(v, s, fbw, fbh)) iterate(v, s, fbw, fbh);
   }
-
-  nlohmann::json summary = {{"event", "exit"},
-                            {"frames_rendered", m.framesRendered},
-                            {"frames_presented", m.framesPresented},
-                            {"render_ms_median", median(v.renderMs)},
-                            {"present_ms_median", median(v.presentMs)},
-                            {"rendered_iteration_ms_median", median(v.renderedLoopMs)},
-                            {"size", {m.rendered.width, m.rendered.height}}};
-  logLine(v.eventLog, summary);
-  std::fprintf(stderr,
-               "gblens view: %llu frames rendered (median %.2f ms), %llu presented (median %.2f ms); "
-               "render + present %.2f ms\n",
-               (unsigned long long)m.framesRendered, median(v.renderMs), (unsigned long long)m.framesPresented,
-               median(v.presentMs), median(v.renderedLoopMs));
-  vkDeviceWaitIdle(v.ctx.device);
-  shutdownImGui(v);
-  destroyViewMapper(v.mapper, v.renderer);
-  destroyRenderer(v.renderer);
-  destroyRenderer(v.rendererB);
-  closeWindow(v);
-  int messages = reportValidation(v.ctx);
-  destroyContext(v.ctx);
-  return messages ? 1 : 0;
+  return finishViewer(v);
 }
 
 }  // namespace gb

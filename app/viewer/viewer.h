@@ -1,5 +1,6 @@
 // gblens view: the window, the live renderer, the interface. Split over app/viewer/*.cpp:
-// window.cpp (GLFW, swapchain, Dear ImGui's backends), viewer.cpp (the loop: render on demand),
+// window.cpp (GLFW, swapchain, Dear ImGui's backends), startup.cpp (arguments, context, frame
+// source; exit summary, teardown), viewer.cpp (the loop: render on demand),
 // controls.cpp (keys, camera, lights), camera_rig.cpp (orbit/fly), probe.cpp (region read-back ->
 // the shared dossier), captures.cpp (capture button, --capture / --compare).
 #pragma once
@@ -10,9 +11,9 @@
 
 #include "renderer/core/options.h"
 #include "renderer/scene/scene.h"
-#include "views/ui/view_map.h"
 #include "renderer/vk/swapchain.h"
 #include "views/capture/capture.h"
+#include "views/ui/view_map.h"
 #include "views/ui/viewer_model.h"
 
 struct GLFWwindow;
@@ -94,6 +95,14 @@ struct Viewer {
 };
 
 int runViewer(const ViewerArgs& args, Scene scene);
+
+// startup.cpp
+// Checks the arguments, opens the logs, the window, its context and the frame source, and sets
+// the model's first state; false (exit 2) after a message, with nothing left open.
+bool startViewer(Viewer& v);
+// Logs and prints the exit summary and tears everything down; the exit status (1: validation
+// messages).
+int finishViewer(Viewer& v);
 
 // controls.cpp
 void handleKeys(Viewer& v);

@@ -1,10 +1,10 @@
 // The camera of one frame: every matrix the renderer and the probe need, in double, named
 // destination-from-source (pbrt-v4). Vulkan conventions: clip y points down, depth in [0, 1].
 #pragma once
+#include <glm/glm.hpp>
+
 #include <cstdint>
 #include <string>
-
-#include <glm/glm.hpp>
 
 namespace gb {
 

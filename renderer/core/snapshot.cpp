@@ -20,6 +20,36 @@ glm::dvec3 FrameSnapshot::sunEyeDirection() const {
   return glm::dvec3(glm::vec3(glm::normalize(glm::dmat3(camera.eyeFromWorld) * sun.toSun)));
 }
 
-bool screenSpaceTarget(Target t) { return t != Target::ShadowMap; }
+bool screenSpaceTarget(Target t) { return targetInfo(t).size == SizeRule::Output; }
+
+void FrameSnapshot::setLayout(Layout l) {
+  layout = std::move(l);
+  images.assign(layout.targets.size(), TargetImage{});
+  absences.assign(layout.targets.size(), Absent::NotCaptured);
+  for (const TargetInfo& t : targetTable()) native_[size_t(t.target)] = layout.findTarget(t.name);
+}
+
+const TargetImage& FrameSnapshot::target(Target t) const {
+  static const TargetImage none;
+  const int i = native_[size_t(t)];
+  return i < 0 ? none : images[size_t(i)];
+}
+
+TargetImage& FrameSnapshot::target(Target t) {
+  const int i = native_[size_t(t)];
+  GB_ASSERT(i >= 0);
+  return images[size_t(i)];
+}
+
+Absent FrameSnapshot::absence(Target t) const {
+  const int i = native_[size_t(t)];
+  return i < 0 ? Absent::NotCaptured : absences[size_t(i)];
+}
+
+void FrameSnapshot::setAbsence(Target t, Absent why) {
+  const int i = native_[size_t(t)];
+  GB_ASSERT(i >= 0);
+  absences[size_t(i)] = why;
+}
 
 }  // namespace gb

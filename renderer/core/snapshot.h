@@ -8,6 +8,7 @@
 
 #include "renderer/core/camera.h"
 #include "renderer/core/image.h"
+#include "renderer/core/layout.h"
 #include "renderer/core/lights.h"
 #include "renderer/core/options.h"
 #include "renderer/core/targets.h"
@@ -35,8 +36,9 @@ struct TargetImage {
 };
 
 struct FrameSnapshot {
-  RenderOptions options;                  // what the frame was rendered with
-  Camera camera;                              // camera matrices (double), size, near/far, reversed Z
+  RenderOptions options;                  // what the frame was rendered with (imports: the defaults, size)
+  Layout layout;                          // what its targets hold (nativeLayout(options) for gblens's frames)
+  Camera camera;                          // camera matrices (double), size, near/far, reversed Z
   glm::dmat4 lightClipFromWorld{1.0};     // the sun's shadow-map clip space
   Sun sun;                                // world space
   Sky sky;                                // ambient term of the directional pass
@@ -46,8 +48,9 @@ struct FrameSnapshot {
   std::vector<gpu::PointLight> eyeLights;
   std::vector<uint32_t> visibleLights;
   uint32_t stencilCount = 0;
-  std::array<TargetImage, kTargetCount> targets;
-  std::array<Absent, kTargetCount> absent{};  // why a target is not here (Absent::No when present)
+  // One image and one reason per layout target, in layout order.
+  std::vector<TargetImage> images;
+  std::vector<Absent> absences;  // why a target is not here (Absent::No when present)
   // The point lights' descriptions (world space, animation) when the frame came from a scene.
   std::vector<PointLightDesc> lightDescs;
   // The lighting passes' uniform data as uploaded (live frames; captures rebuild what they need).
@@ -55,10 +58,26 @@ struct FrameSnapshot {
   // What the device's sampler returns for each 8-bit sRGB value (empty: not probed; exact curve).
   std::vector<float> srgbDecode;
 
-  const TargetImage& target(Target t) const { return targets[size_t(t)]; }
-  TargetImage& target(Target t) { return targets[size_t(t)]; }
+  // Sets the layout: one empty image per target, each absent as "not captured".
+  void setLayout(Layout l);
+  // The layout target holding gblens's Target t (the one of its name), or -1.
+  int indexOf(Target t) const { return native_[size_t(t)]; }
+  int indexOf(const std::string& targetName) const { return layout.findTarget(targetName); }
+  // gblens's own targets by Target: an empty image when the layout has no target of that name.
+  const TargetImage& target(Target t) const;
+  TargetImage& target(Target t);  // the layout must have it
+  Absent absence(Target t) const;
+  void setAbsence(Target t, Absent why);
   // Eye-space direction toward the sun, as the renderer uploads it (float).
   glm::dvec3 sunEyeDirection() const;
+
+ private:
+  std::array<int, kTargetCount> native_ = filled(-1);
+  static std::array<int, kTargetCount> filled(int v) {
+    std::array<int, kTargetCount> a;
+    a.fill(v);
+    return a;
+  }
 };
 
 // A target is screen-space when it has the output's size (every target but the shadow map).

@@ -84,7 +84,7 @@ void FrameGraph::record(GpuContext& ctx, VkCommandBuffer cmd, GraphTargets& targ
   std::vector<bool> groupDone(groups_.size(), false);
   for (GraphPass& p : passes_) {
     if (p.renderPass < 0) {
-      recordCompute(cmd, p, targets, timestamps);
+      recordCompute(ctx, cmd, p, targets, timestamps);
     } else if (!groupDone[p.renderPass]) {
       recordGroup(ctx, cmd, p.renderPass, targets, cache, timestamps);
       groupDone[p.renderPass] = true;
@@ -115,7 +115,9 @@ void FrameGraph::bufferBarriers(const GraphPass& p, Barriers& out) {
   for (const auto& [buffer, to] : combined) bufferUse(out, buffer, buffers_[buffer], to);
 }
 
-void FrameGraph::recordCompute(VkCommandBuffer cmd, GraphPass& p, GraphTargets& targets, VkQueryPool timestamps) {
+void FrameGraph::recordCompute(GpuContext& ctx, VkCommandBuffer cmd, GraphPass& p, GraphTargets& targets,
+                               VkQueryPool timestamps) {
+  LabelScope label(ctx, cmd, p.name.c_str());
   Barriers barriers;
   for (const Use& u : p.uses) {
     GraphTarget& t = targets[size_t(u.target)];
@@ -150,12 +152,13 @@ void FrameGraph::recordGroup(GpuContext& ctx, VkCommandBuffer cmd, int g, GraphT
   } else {
     cache.reuses++;
   }
-  executeGroup(cmd, group, it->second, targets, timestamps);
+  executeGroup(ctx, cmd, group, it->second, targets, timestamps);
 }
 
 // Barriers into the render pass, the targets' new state, and every pass of every subpass.
-void FrameGraph::executeGroup(VkCommandBuffer cmd, const GraphGroup& group, const CompiledGroup& c,
+void FrameGraph::executeGroup(GpuContext& ctx, VkCommandBuffer cmd, const GraphGroup& group, const CompiledGroup& c,
                               GraphTargets& targets, VkQueryPool timestamps) {
+  LabelScope groupLabel(ctx, cmd, group.name.c_str());
   Barriers barriers;
   for (const CompiledGroup::TargetStep& s : c.steps) {
     GraphTarget& t = targets[size_t(s.target)];
@@ -179,6 +182,7 @@ void FrameGraph::executeGroup(VkCommandBuffer cmd, const GraphGroup& group, cons
     for (int pi : group.passes) {
       GraphPass& p = passes_[pi];
       if (p.subpass != si) continue;
+      LabelScope label(ctx, cmd, p.name.c_str());
       timestamp(cmd, timestamps, 2 * p.stat, false);
       PassContext pc;
       pc.cmd = cmd;

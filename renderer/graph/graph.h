@@ -29,7 +29,9 @@ class FrameGraph {
   void addPass(std::string name, std::vector<Use> uses, PassFn execute, std::vector<BufferUse> buffers = {});
   void skipPass(std::string name, std::string reason);
 
-  // Builds render passes and barriers and records every pass. Timestamps (if a pool is given)
+  // Builds render passes and barriers and records every pass, each in a debug label region named as in
+  // stats() (RenderDoc's event browser), render-pass groups in one more region named as the group.
+  // Timestamps (if a pool is given)
   // are written around each pass: query 2*i and 2*i+1 for the i-th pass in stats() order.
   void record(GpuContext& ctx, VkCommandBuffer cmd, GraphTargets& targets, GraphCache& cache,
               VkQueryPool timestamps);
@@ -45,11 +47,12 @@ class FrameGraph {
   std::map<VkBuffer, GraphBufferState> buffers_;  // buffer state while recording
 
   void bufferBarriers(const GraphPass& p, graph_sync::Barriers& out);
-  void recordCompute(VkCommandBuffer cmd, GraphPass& p, GraphTargets& targets, VkQueryPool timestamps);
+  void recordCompute(GpuContext& ctx, VkCommandBuffer cmd, GraphPass& p, GraphTargets& targets,
+                     VkQueryPool timestamps);
   void recordGroup(GpuContext& ctx, VkCommandBuffer cmd, int group, GraphTargets& targets, GraphCache& cache,
                    VkQueryPool timestamps);
-  void executeGroup(VkCommandBuffer cmd, const GraphGroup& group, const CompiledGroup& c, GraphTargets& targets,
-                    VkQueryPool timestamps);
+  void executeGroup(GpuContext& ctx, VkCommandBuffer cmd, const GraphGroup& group, const CompiledGroup& c,
+                    GraphTargets& targets, VkQueryPool timestamps);
   bool usedAfter(Target t, size_t passIndex) const;
 };
 

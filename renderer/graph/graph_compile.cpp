@@ -317,6 +317,7 @@ void renderPassAndFramebuffer(GpuContext& ctx, const RenderPassKey& key, const s
     fci.height = c.extent.height;
     fci.layers = 1;
     VK_CHECK(vkCreateFramebuffer(ctx.device, &fci, nullptr, &fb));
+    setName(ctx, uint64_t(fb), VK_OBJECT_TYPE_FRAMEBUFFER, name.c_str());
   }
   c.framebuffer = fb;
 }

@@ -2,8 +2,8 @@
 // that evaluates the material, the sun and every visible point light, writing hdr directly.
 // No G-buffer: albedo_specular, normal_shadow, depth (and position, primitive_id) are not
 // produced, and captures and views list them as unavailable (targetUnavailable).
-#include "renderer/passes/passes.h"
 #include "renderer/gpu_scene.h"
+#include "renderer/passes/passes.h"
 
 namespace gb {
 

@@ -1,7 +1,7 @@
 // G-buffer: albedo_specular, normal_shadow (with the shadow-map compare), eye depth, and the
 // depth/stencil target where geometry writes stencil 128.
-#include "renderer/passes/passes.h"
 #include "renderer/gpu_scene.h"
+#include "renderer/passes/passes.h"
 
 namespace gb {
 

@@ -9,9 +9,9 @@
 #include <limits>
 #include <string>
 
+#include "renderer/core/assert.h"
 #include "renderer/reference/reference.h"
 #include "renderer/reference/sampler.h"
-#include "renderer/core/assert.h"
 
 namespace gb::reference {
 

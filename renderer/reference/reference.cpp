@@ -1,12 +1,13 @@
 // The reference frame: per pixel centre, Embree's hit triangle intersected again in double
 // (eye space, the ray through the pixel centre as the GPU reconstructs it), then normal,
 // material and sun visibility at that point; and the penumbra band for shadow comparisons.
+#include "renderer/reference/reference.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <thread>
 
-#include "renderer/reference/reference.h"
 #include "renderer/reference/sampler.h"
 
 namespace gb::reference {

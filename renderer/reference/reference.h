@@ -3,12 +3,12 @@
 // intersected again exactly in double; normals, materials, sun visibility (a ray toward the sun)
 // and the shading (shaders/shading.h compiled as C++ double) follow from that hit.
 #pragma once
+#include <glm/glm.hpp>
+
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "renderer/core/camera.h"
 #include "renderer/scene/scene.h"
@@ -114,6 +114,8 @@ struct Shaded {
 std::vector<Light> eyeLights(const Scene& scene, const Camera& camera, double time);
 Sun sunOf(const Scene& scene, const Camera& camera);
 ShadingInput shadingInput(const Surface& s);
+// Shades every pixel (width x height of `camera`); each pixel's position P must lie on (within a
+// pixel of) the ray through its centre, as the reference's and the G-buffer's positions do.
 Shaded shade(const std::vector<ShadingInput>& pixels, const Camera& camera, const std::vector<Light>& lights,
              const Sun& sun, unsigned threads = 2);
 

@@ -6,10 +6,10 @@
 // llvmpipe does). The GPU's own LOD arithmetic is approximate, so textured albedo is compared
 // with a looser, reported tolerance; untextured albedo is exact.
 #pragma once
+#include <glm/glm.hpp>
+
 #include <cstdint>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "renderer/scene/scene.h"
 

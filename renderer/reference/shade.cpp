@@ -1,10 +1,12 @@
 // Reference shading: ambient + sun + every point light at each pixel with shaders/shading.h in
-// double. Lights are binned into 16x16-pixel tiles by their screen rectangles so thousands of
-// lights stay cheap; a light outside a tile's list cannot reach its pixels (the window falloff
-// is exactly zero beyond the radius).
+// double. Lights are binned into 16x16-pixel tiles by their spheres' screen rectangles
+// (renderer/core/light_rect.h) so thousands of lights stay cheap; a pixel's position lies on its
+// centre ray, so a light outside its tile's list cannot reach it (the window falloff is exactly
+// zero beyond the radius).
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/core/light_rect.h"
 #include "renderer/reference/reference.h"
 #include "shaders/shading.h"
 
@@ -43,41 +45,17 @@ ShadingInput shadingInput(const Surface& s) {
   return in;
 }
 
-// Pixel rectangle [x0, x1] x [y0, y1] a light's sphere may cover; false when it covers none.
-static bool screenRect(const Camera& camera, const Light& l, int& x0, int& y0, int& x1, int& y1) {
-  const glm::dvec3 c = l.eyePosition;
-  const double r = l.radius;
-  if (-c.z + r < camera.znear * 0.5) return false;  // entirely behind the camera
-  x0 = 0, y0 = 0, x1 = int(camera.width) - 1, y1 = int(camera.height) - 1;
-  if (-c.z - r <= camera.znear * 0.5) return true;  // reaches the camera plane: whole screen
-  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
-  for (int k = 0; k < 8; ++k) {
-    glm::dvec3 q = c + glm::dvec3((k & 1) ? r : -r, (k & 2) ? r : -r, (k & 4) ? r : -r);
-    glm::dvec4 clip = camera.clipFromEye * glm::dvec4(q, 1.0);
-    for (int a = 0; a < 2; ++a) {
-      double ndc = clip[a] / clip.w;
-      lo[a] = std::min(lo[a], ndc);
-      hi[a] = std::max(hi[a], ndc);
-    }
-  }
-  auto toPixel = [](double ndc, uint32_t size) { return (ndc + 1.0) * 0.5 * size - 0.5; };
-  x0 = std::max(x0, int(std::floor(toPixel(lo[0], camera.width))) - 1);
-  x1 = std::min(x1, int(std::ceil(toPixel(hi[0], camera.width))) + 1);
-  y0 = std::max(y0, int(std::floor(toPixel(lo[1], camera.height))) - 1);
-  y1 = std::min(y1, int(std::ceil(toPixel(hi[1], camera.height))) + 1);
-  return x0 <= x1 && y0 <= y1;
-}
-
 Shaded shade(const std::vector<ShadingInput>& px, const Camera& camera, const std::vector<Light>& lights, const Sun& sun,
              unsigned threads) {
   const uint32_t w = camera.width, h = camera.height, tile = 16;
   const uint32_t tilesX = (w + tile - 1) / tile, tilesY = (h + tile - 1) / tile;
   std::vector<std::vector<uint32_t>> bins(size_t(tilesX) * tilesY);
   for (uint32_t i = 0; i < lights.size(); ++i) {
-    int x0, y0, x1, y1;
-    if (!screenRect(camera, lights[i], x0, y0, x1, y1)) continue;
-    for (uint32_t ty = uint32_t(y0) / tile; ty <= uint32_t(y1) / tile; ++ty)
-      for (uint32_t tx = uint32_t(x0) / tile; tx <= uint32_t(x1) / tile; ++tx) bins[size_t(ty) * tilesX + tx].push_back(i);
+    // A pixel of margin for rounding (and positions read back from a G-buffer).
+    const PixelRect r = sphereScreenRect(camera, lights[i].eyePosition, lights[i].radius, 1.0);
+    if (r.empty()) continue;
+    for (uint32_t ty = uint32_t(r.y0) / tile; ty <= uint32_t(r.y1) / tile; ++ty)
+      for (uint32_t tx = uint32_t(r.x0) / tile; tx <= uint32_t(r.x1) / tile; ++tx) bins[size_t(ty) * tilesX + tx].push_back(i);
   }
   Shaded out;
   out.hdr.assign(px.size(), glm::dvec3(0.0));

@@ -3,8 +3,8 @@
 // Everything is generated from integer hashes, so the same command gives the same pixels.
 #include <cmath>
 
-#include "renderer/scene/builtin.h"
 #include "renderer/core/camera.h"
+#include "renderer/scene/builtin.h"
 #include "renderer/scene/mesh_builder.h"
 
 namespace gb {
@@ -99,59 +99,74 @@ static void place(Scene& s, uint32_t mesh, const glm::dmat4& worldFromObject = g
   s.instances.push_back(i);
 }
 
-Scene builtinTemple(int lightCount) {
-  Scene s;
-  s.source = "builtin:temple";
+// The temple's materials, by role.
+namespace {
+struct TempleMaterials {
+  int floor, stone, marble, bronze, terracotta, leaves;
+};
+}  // namespace
+
+// Stone, marble, bronze and terracotta, the tiled floor, and alpha-tested double-sided leaves
+// (textures 0 and 1).
+static TempleMaterials addMaterials(Scene& s) {
   s.textures.push_back(floorTexture());
   s.textures.push_back(leafTexture());
-  int floorMat = addMaterial(s, "floor", {1.0f, 1.0f, 1.0f}, 0.25f, 0);
-  int stone = addMaterial(s, "stone", {0.80f, 0.76f, 0.68f}, 0.15f);
-  int marble = addMaterial(s, "marble", {0.92f, 0.92f, 0.90f}, 0.6f);
-  int bronze = addMaterial(s, "bronze", {0.70f, 0.45f, 0.20f}, 0.9f);
-  int terracotta = addMaterial(s, "terracotta", {0.75f, 0.35f, 0.22f}, 0.3f);
-  int leaves = addMaterial(s, "leaves", {1.0f, 1.0f, 1.0f}, 0.1f, 1);
-  s.materials[leaves].alphaMode = AlphaMode::Mask;
-  s.materials[leaves].alphaCutoff = 0.5f;
-  s.materials[leaves].doubleSided = true;
+  TempleMaterials m;
+  m.floor = addMaterial(s, "floor", {1.0f, 1.0f, 1.0f}, 0.25f, 0);
+  m.stone = addMaterial(s, "stone", {0.80f, 0.76f, 0.68f}, 0.15f);
+  m.marble = addMaterial(s, "marble", {0.92f, 0.92f, 0.90f}, 0.6f);
+  m.bronze = addMaterial(s, "bronze", {0.70f, 0.45f, 0.20f}, 0.9f);
+  m.terracotta = addMaterial(s, "terracotta", {0.75f, 0.35f, 0.22f}, 0.3f);
+  m.leaves = addMaterial(s, "leaves", {1.0f, 1.0f, 1.0f}, 0.1f, 1);
+  s.materials[m.leaves].alphaMode = AlphaMode::Mask;
+  s.materials[m.leaves].alphaCutoff = 0.5f;
+  s.materials[m.leaves].doubleSided = true;
+  return m;
+}
 
-  MeshBuilder b{s};
-  b.begin("floor", floorMat);
+// The platform's top (three steps of 0.3) and the columns' shaft height.
+constexpr float kTop = 0.9f, kShaft = 4.6f;
+
+// The floor and the three steps of the platform.
+static void addPlatform(Scene& s, MeshBuilder& b, const TempleMaterials& mat) {
+  b.begin("floor", mat.floor);
   b.quad({-20, 0, 20}, {40, 0, 0}, {0, 0, -40}, {10, 10});
   b.end();
   place(s, b.meshIndex);
 
-  b.begin("steps", stone);
+  b.begin("steps", mat.stone);
   for (int i = 0; i < 3; ++i) {
     float h = 0.3f * float(i), half = 8.0f - 1.0f * float(i);
     b.box({-half, h, -half}, {half, h + 0.3f, half}, 0.5f);
   }
   b.end();
   place(s, b.meshIndex);
+}
 
-  // One column (base, shaft, capital) instanced around a ring: exercises instancing.
-  const float top = 0.9f, shaft = 4.6f;
-  uint32_t column = b.begin("column", marble);
+// One column (base, shaft, capital) instanced around a ring (exercises instancing), and the
+// lintels joining neighbouring capitals: they cast the long shadows across the platform.
+static void addColonnade(Scene& s, MeshBuilder& b, const TempleMaterials& mat) {
+  uint32_t column = b.begin("column", mat.marble);
   b.box({-0.55f, 0.0f, -0.55f}, {0.55f, 0.25f, 0.55f});
-  b.cylinder({0, 0.25f, 0}, 0.38f, shaft, 24, false);
-  b.box({-0.6f, 0.25f + shaft, -0.6f}, {0.6f, 0.6f + shaft, 0.6f});
+  b.cylinder({0, 0.25f, 0}, 0.38f, kShaft, 24, false);
+  b.box({-0.6f, 0.25f + kShaft, -0.6f}, {0.6f, 0.6f + kShaft, 0.6f});
   b.end();
   const int columns = 12;
   const double ringRadius = 5.5;
   for (int i = 0; i < columns; ++i) {
     double a = 2.0 * 3.141592653589793 * i / columns;
     glm::dmat4 m(1.0);
-    m[3] = glm::dvec4(std::cos(a) * ringRadius, top, std::sin(a) * ringRadius, 1.0);
+    m[3] = glm::dvec4(std::cos(a) * ringRadius, kTop, std::sin(a) * ringRadius, 1.0);
     place(s, column, m);
   }
-  // Lintels joining neighbouring capitals: they cast the long shadows across the platform.
-  b.begin("lintels", stone);
+  b.begin("lintels", mat.stone);
   for (int i = 0; i < columns; ++i) {
     double a0 = 2.0 * 3.141592653589793 * i / columns, a1 = 2.0 * 3.141592653589793 * (i + 1) / columns;
     glm::vec3 p0(std::cos(a0) * ringRadius, 0, std::sin(a0) * ringRadius);
     glm::vec3 p1(std::cos(a1) * ringRadius, 0, std::sin(a1) * ringRadius);
     glm::vec3 mid = (p0 + p1) * 0.5f, along = glm::normalize(p1 - p0);
     glm::vec3 out = glm::normalize(mid);
-    float len = glm::length(p1 - p0) * 0.5f + 0.6f, y0 = top + 0.6f + shaft, y1 = y0 + 0.55f;
+    float len = glm::length(p1 - p0) * 0.5f + 0.6f, y0 = kTop + 0.6f + kShaft, y1 = y0 + 0.55f;
     glm::vec3 A = mid - along * len - out * 0.5f, B = mid + along * len - out * 0.5f;
     glm::vec3 C = mid + along * len + out * 0.5f, D = mid - along * len + out * 0.5f;
     glm::vec3 up(0, y1 - y0, 0), lift(0, y0, 0);
@@ -164,25 +179,28 @@ Scene builtinTemple(int lightCount) {
   }
   b.end();
   place(s, b.meshIndex);
+}
 
-  b.begin("pedestal", stone);
-  b.cylinder({0, top, 0}, 0.8f, 1.0f, 32);
+// The bronze orb on its pedestal, two terracotta tori and four marble spheres.
+static void addOrnaments(Scene& s, MeshBuilder& b, const TempleMaterials& mat) {
+  b.begin("pedestal", mat.stone);
+  b.cylinder({0, kTop, 0}, 0.8f, 1.0f, 32);
   b.end();
   place(s, b.meshIndex);
-  b.begin("orb", bronze);
-  b.sphere({0, top + 1.0f + 1.1f, 0}, 1.1f, 48, 24);
+  b.begin("orb", mat.bronze);
+  b.sphere({0, kTop + 1.0f + 1.1f, 0}, 1.1f, 48, 24);
   b.end();
   place(s, b.meshIndex);
-  b.begin("torus", terracotta);
+  b.begin("torus", mat.terracotta);
   b.torus({0, 0, 0}, 0.9f, 0.28f, 48, 16);
   b.end();
   uint32_t torus = b.meshIndex;
   for (int i = 0; i < 2; ++i) {
     glm::dmat4 m(1.0);
-    m[3] = glm::dvec4(i ? 3.0 : -3.0, top + 0.28, 1.5, 1.0);
+    m[3] = glm::dvec4(i ? 3.0 : -3.0, kTop + 0.28, 1.5, 1.0);
     place(s, torus, m);
   }
-  b.begin("small_sphere", marble);
+  b.begin("small_sphere", mat.marble);
   b.sphere({0, 0, 0}, 0.45f, 24, 12);
   b.end();
   uint32_t small = b.meshIndex;
@@ -192,9 +210,11 @@ Scene builtinTemple(int lightCount) {
     m[3] = glm::dvec4(std::cos(a) * 10.5, 0.45, std::sin(a) * 10.5, 1.0);
     place(s, small, m);
   }
+}
 
-  // Foliage: two crossed double-sided cards per plant, alpha-tested.
-  uint32_t plant = b.begin("foliage", leaves);
+// Foliage: two crossed double-sided cards per plant, alpha-tested, ten plants around the platform.
+static void addFoliage(Scene& s, MeshBuilder& b, const TempleMaterials& mat) {
+  uint32_t plant = b.begin("foliage", mat.leaves);
   b.quad({-1.2f, 0, 0}, {2.4f, 0, 0}, {0, 2.4f, 0});
   b.quad({0, 0, 1.2f}, {0, 0, -2.4f}, {0, 2.4f, 0});
   b.end();
@@ -206,9 +226,11 @@ Scene builtinTemple(int lightCount) {
     m[3] = glm::dvec4(std::cos(a) * 12.5, 0.0, std::sin(a) * 12.5, 1.0);
     place(s, plant, m);
   }
+}
 
-  computeBounds(s);
-
+// The camera, and late evening as the sample's temple: a low warm sun, a dusk sky, and the
+// point lights carrying most of the light.
+static void addCameraAndLight(Scene& s, int lightCount) {
   CameraDesc cam;
   cam.name = "temple";
   cam.worldFromEye = lookAt({2.0, 7.5, 17.5}, {0.0, 2.2, 0.0});
@@ -217,8 +239,6 @@ Scene builtinTemple(int lightCount) {
   cam.zfar = 120.0;
   s.cameras.push_back(cam);
 
-  // Late evening, as the sample's temple: a low warm sun, a dusk sky, and the point lights
-  // carrying most of the light.
   s.sun.enabled = true;
   s.sun.toSun = glm::normalize(glm::dvec3(-0.62, 0.42, 0.52));
   s.sun.color = {1.05f, 0.78f, 0.52f};
@@ -227,6 +247,19 @@ Scene builtinTemple(int lightCount) {
   s.sky.ground = {0.06f, 0.05f, 0.05f};
   s.sky.ambient = {0.045f, 0.05f, 0.08f};
   generateLights(s, lightCount);
+}
+
+Scene builtinTemple(int lightCount) {
+  Scene s;
+  s.source = "builtin:temple";
+  const TempleMaterials mat = addMaterials(s);
+  MeshBuilder b{s};
+  addPlatform(s, b, mat);
+  addColonnade(s, b, mat);
+  addOrnaments(s, b, mat);
+  addFoliage(s, b, mat);
+  computeBounds(s);  // before the lights: generated lights are placed within the bounds
+  addCameraAndLight(s, lightCount);
   return s;
 }
 

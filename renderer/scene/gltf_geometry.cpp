@@ -91,14 +91,11 @@ int attribute(const tinygltf::Primitive& p, const char* name) {
   return it == p.attributes.end() ? -1 : it->second;
 }
 
-void buildPrimitive(Doc& doc, const std::string& el, const tinygltf::Primitive& prim, std::vector<uint32_t>& meshes) {
+// The primitive's vertex count; fails when an attribute's count differs from POSITION's, or when
+// the scene would grow beyond the limits (checked before anything of that size is allocated).
+size_t checkedVertexCount(const Doc& doc, const std::string& el, const tinygltf::Primitive& prim, int position) {
   const tinygltf::Model& model = doc.model;
-  Scene& scene = *doc.scene;
-  const int position = attribute(prim, "POSITION");
-  if (position < 0) {
-    warn(doc, el + ": no POSITION attribute, skipped");
-    return;
-  }
+  const Scene& scene = *doc.scene;
   const size_t vertexCount = model.accessors[size_t(position)].count;
   for (const auto& [name, accessor] : prim.attributes)
     if (model.accessors[size_t(accessor)].count != vertexCount)
@@ -114,7 +111,12 @@ void buildPrimitive(Doc& doc, const std::string& el, const tinygltf::Primitive& 
       scene.indices.size() + triangleIndices > kMaxIndices)
     fail(doc, el, "the scene would exceed " + std::to_string(kMaxVertices) + " vertices or " +
                       std::to_string(kMaxIndices) + " indices (absurd size)");
+  return vertexCount;
+}
 
+// The primitive's triangle list (its indices, or 0..n-1 without them), every index checked.
+std::vector<uint32_t> primitiveTriangles(const Doc& doc, const std::string& el, const tinygltf::Primitive& prim,
+                                         size_t vertexCount) {
   std::vector<uint32_t> indices;
   if (prim.indices >= 0) {
     indices = readIndices(doc, prim.indices, el + " indices");
@@ -126,23 +128,90 @@ void buildPrimitive(Doc& doc, const std::string& el, const tinygltf::Primitive& 
     indices.resize(vertexCount);
     for (size_t k = 0; k < vertexCount; ++k) indices[k] = uint32_t(k);
   }
-  indices = triangleList(doc, el, prim.mode, std::move(indices));
+  return triangleList(doc, el, prim.mode, std::move(indices));
+}
+
+// The attributes gblens reads, as floats (TEXCOORD_1 falls back to TEXCOORD_0).
+struct Attributes {
+  std::vector<float> position, normal, tangent, uv[2];
+};
+
+Attributes readAttributes(const Doc& doc, const std::string& el, const tinygltf::Primitive& prim, bool flat) {
+  Attributes a;
+  const int normal = attribute(prim, "NORMAL"), tangent = attribute(prim, "TANGENT");
+  a.position = readFloats(doc, attribute(prim, "POSITION"), 3, el + " POSITION");
+  if (!flat) a.normal = readFloats(doc, normal, 3, el + " NORMAL");
+  if (tangent >= 0 && !flat) a.tangent = readFloats(doc, tangent, 4, el + " TANGENT");
+  for (int set = 0; set < 2; ++set) {
+    int uv = attribute(prim, set ? "TEXCOORD_1" : "TEXCOORD_0");
+    if (uv >= 0) a.uv[set] = readFloats(doc, uv, 2, el + (set ? " TEXCOORD_1" : " TEXCOORD_0"));
+  }
+  if (a.uv[1].empty()) a.uv[1] = a.uv[0];
+  return a;
+}
+
+// Positions, UVs and unit normals into `out`. Flat: one vertex per triangle corner with the
+// face's normal, and `indices` become 0..n-1.
+void writeVertices(Vertex* out, const Attributes& a, size_t vertexCount, bool flat, std::vector<uint32_t>& indices) {
+  auto fill = [&](Vertex& v, size_t src) {
+    v.position = glm::vec3(a.position[src * 3], a.position[src * 3 + 1], a.position[src * 3 + 2]);
+    if (!a.uv[0].empty()) v.uv0 = glm::vec2(a.uv[0][src * 2], a.uv[0][src * 2 + 1]);
+    if (!a.uv[1].empty()) v.uv1 = glm::vec2(a.uv[1][src * 2], a.uv[1][src * 2 + 1]);
+  };
+  if (flat) {
+    for (size_t k = 0; k < indices.size(); ++k) fill(out[k], indices[k]);
+    for (size_t k = 0; k + 2 < indices.size(); k += 3) {
+      glm::vec3 fn = faceNormal(out[k].position, out[k + 1].position, out[k + 2].position);
+      out[k].normal = out[k + 1].normal = out[k + 2].normal = fn;
+    }
+    for (size_t k = 0; k < indices.size(); ++k) indices[k] = uint32_t(k);
+  } else {
+    const std::vector<float>& n = a.normal;
+    for (size_t k = 0; k < vertexCount; ++k) {
+      fill(out[k], k);
+      glm::vec3 nk(n[k * 3], n[k * 3 + 1], n[k * 3 + 2]);
+      float len = glm::length(nk);
+      out[k].normal = len > 0.0f ? nk / len : glm::vec3(0, 0, 1);
+    }
+  }
+}
+
+// Tangents: the file's (normalized, handedness from w), else generated from the normal
+// texture's UV set, else any perpendicular (nothing samples a normal map).
+void writeTangents(Vertex* out, const Attributes& a, size_t vertexCount, size_t outVertices,
+                   const std::vector<uint32_t>& indices, const MaterialDesc& mat) {
+  const std::vector<float>& t = a.tangent;
+  if (!t.empty()) {
+    for (size_t k = 0; k < vertexCount; ++k) {
+      glm::vec3 tk(t[k * 4], t[k * 4 + 1], t[k * 4 + 2]);
+      float len = glm::length(tk);
+      out[k].tangent = len > 0.0f ? glm::vec4(tk / len, t[k * 4 + 3] < 0.0f ? -1.0f : 1.0f)
+                                  : glm::vec4(anyPerpendicular(out[k].normal), 1.0f);
+    }
+  } else if (mat.normalTexture >= 0 && !a.uv[mat.normalUv].empty()) {
+    generateTangents(out, outVertices, indices, mat.normalUv, mat.normalUvTransform);
+  } else {
+    for (size_t k = 0; k < outVertices; ++k) out[k].tangent = glm::vec4(anyPerpendicular(out[k].normal), 1.0f);
+  }
+}
+
+// One triangle primitive -> one Scene mesh (appended to `meshes`); a primitive without
+// POSITION is skipped with a warning, one without triangles silently.
+void buildPrimitive(Doc& doc, const std::string& el, const tinygltf::Primitive& prim, std::vector<uint32_t>& meshes) {
+  Scene& scene = *doc.scene;
+  const int position = attribute(prim, "POSITION");
+  if (position < 0) {
+    warn(doc, el + ": no POSITION attribute, skipped");
+    return;
+  }
+  const size_t vertexCount = checkedVertexCount(doc, el, prim, position);
+  std::vector<uint32_t> indices = primitiveTriangles(doc, el, prim, vertexCount);
   if (indices.empty()) return;
 
   const int material = prim.material >= 0 ? prim.material : defaultMaterial(doc);
-  const MaterialDesc& mat = scene.materials[size_t(material)];
-  const int normal = attribute(prim, "NORMAL"), tangent = attribute(prim, "TANGENT");
+  const bool flat = attribute(prim, "NORMAL") < 0;
   const size_t outVertices = flat ? indices.size() : vertexCount;
-
-  std::vector<float> p = readFloats(doc, position, 3, el + " POSITION");
-  std::vector<float> n = flat ? std::vector<float>() : readFloats(doc, normal, 3, el + " NORMAL");
-  std::vector<float> t = tangent >= 0 && !flat ? readFloats(doc, tangent, 4, el + " TANGENT") : std::vector<float>();
-  std::vector<float> uv[2];
-  for (int set = 0; set < 2; ++set) {
-    int a = attribute(prim, set ? "TEXCOORD_1" : "TEXCOORD_0");
-    if (a >= 0) uv[set] = readFloats(doc, a, 2, el + (set ? " TEXCOORD_1" : " TEXCOORD_0"));
-  }
-  if (uv[1].empty()) uv[1] = uv[0];
+  const Attributes attributes = readAttributes(doc, el, prim, flat);
 
   Mesh mesh;
   mesh.name = el;
@@ -153,38 +222,8 @@ void buildPrimitive(Doc& doc, const std::string& el, const tinygltf::Primitive& 
   mesh.indexCount = uint32_t(indices.size());
   scene.vertices.resize(scene.vertices.size() + outVertices);
   Vertex* out = &scene.vertices[mesh.firstVertex];
-  auto fill = [&](Vertex& v, size_t src) {
-    v.position = glm::vec3(p[src * 3], p[src * 3 + 1], p[src * 3 + 2]);
-    if (!uv[0].empty()) v.uv0 = glm::vec2(uv[0][src * 2], uv[0][src * 2 + 1]);
-    if (!uv[1].empty()) v.uv1 = glm::vec2(uv[1][src * 2], uv[1][src * 2 + 1]);
-  };
-  if (flat) {
-    for (size_t k = 0; k < indices.size(); ++k) fill(out[k], indices[k]);
-    for (size_t k = 0; k + 2 < indices.size(); k += 3) {
-      glm::vec3 fn = faceNormal(out[k].position, out[k + 1].position, out[k + 2].position);
-      out[k].normal = out[k + 1].normal = out[k + 2].normal = fn;
-    }
-    for (size_t k = 0; k < indices.size(); ++k) indices[k] = uint32_t(k);
-  } else {
-    for (size_t k = 0; k < vertexCount; ++k) {
-      fill(out[k], k);
-      glm::vec3 nk(n[k * 3], n[k * 3 + 1], n[k * 3 + 2]);
-      float len = glm::length(nk);
-      out[k].normal = len > 0.0f ? nk / len : glm::vec3(0, 0, 1);
-    }
-  }
-  if (!t.empty()) {
-    for (size_t k = 0; k < vertexCount; ++k) {
-      glm::vec3 tk(t[k * 4], t[k * 4 + 1], t[k * 4 + 2]);
-      float len = glm::length(tk);
-      out[k].tangent = len > 0.0f ? glm::vec4(tk / len, t[k * 4 + 3] < 0.0f ? -1.0f : 1.0f)
-                                  : glm::vec4(anyPerpendicular(out[k].normal), 1.0f);
-    }
-  } else if (mat.normalTexture >= 0 && !uv[mat.normalUv].empty()) {
-    generateTangents(out, outVertices, indices, mat.normalUv, mat.normalUvTransform);
-  } else {
-    for (size_t k = 0; k < outVertices; ++k) out[k].tangent = glm::vec4(anyPerpendicular(out[k].normal), 1.0f);
-  }
+  writeVertices(out, attributes, vertexCount, flat, indices);
+  writeTangents(out, attributes, vertexCount, outVertices, indices, scene.materials[size_t(material)]);
   scene.indices.insert(scene.indices.end(), indices.begin(), indices.end());
   scene.meshes.push_back(mesh);
   meshes.push_back(uint32_t(scene.meshes.size() - 1));

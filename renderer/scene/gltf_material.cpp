@@ -102,11 +102,12 @@ std::vector<bool> imagesNeeded(const Doc& doc) {
   return needed;
 }
 
-void buildMaterials(Doc& doc, std::vector<DecodedImage>& images) {
-  const tinygltf::Model& model = doc.model;
-  Scene& scene = *doc.scene;
+namespace {
 
-  // Specular from metallic-roughness (see the top of this file), before the pixels move on.
+// Each material's specular intensity from metallic-roughness (see the top of this file), read
+// before the pixels move into the scene's textures.
+std::vector<float> materialSpecular(const Doc& doc, const std::vector<DecodedImage>& images) {
+  const tinygltf::Model& model = doc.model;
   std::vector<float> specular(model.materials.size());
   for (size_t i = 0; i < model.materials.size(); ++i) {
     const auto& pbr = model.materials[i].pbrMetallicRoughness;
@@ -127,8 +128,14 @@ void buildMaterials(Doc& doc, std::vector<DecodedImage>& images) {
       specular[i] = float(specularOf(metallic, roughness, luminance));
     }
   }
+  return specular;
+}
 
-  // Scene textures: one per (glTF texture, colour space) that a material samples.
+// The scene textures: one per (glTF texture, colour space) that a material samples, in first-use
+// order; the last user of an image takes its pixels, earlier users copy them. Returns where
+// each landed in scene.textures.
+std::map<TextureKey, int> buildTextures(Doc& doc, std::vector<DecodedImage>& images) {
+  const tinygltf::Model& model = doc.model;
   std::map<TextureKey, int> textureIndex;
   std::vector<TextureKey> order;
   auto want = [&](int texture, bool srgb) {
@@ -150,7 +157,6 @@ void buildMaterials(Doc& doc, std::vector<DecodedImage>& images) {
     t.name = !gt.name.empty() ? gt.name : !gi.name.empty() ? gi.name : fileUri ? gi.uri : "image " + std::to_string(image);
     t.width = images[image].width;
     t.height = images[image].height;
-    // The last user takes the pixels; earlier users copy them.
     if (--usesLeft[image] == 0)
       t.rgba8 = std::move(images[image].rgba8);
     else
@@ -164,52 +170,62 @@ void buildMaterials(Doc& doc, std::vector<DecodedImage>& images) {
       if ((s.wrapS == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) != (s.wrapT == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE))
         ignored(doc, "different wrap modes for S and T (drawn as REPEAT)");
     }
-    scene.textures.push_back(std::move(t));
+    doc.scene->textures.push_back(std::move(t));
   }
+  return textureIndex;
+}
 
-  for (size_t i = 0; i < model.materials.size(); ++i) {
-    const tinygltf::Material& m = model.materials[i];
-    const auto& pbr = m.pbrMetallicRoughness;
-    const std::string el = named("material", i, m.name);
-    MaterialDesc d;
-    d.name = m.name.empty() ? "material " + std::to_string(i) : m.name;
-    d.baseColor = glm::vec4(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]), float(pbr.baseColorFactor[2]),
-                            float(pbr.baseColorFactor[3]));
-    auto lookup = [&](int texture, bool srgb) {
-      auto it = textureIndex.find({texture, srgb});
-      return it == textureIndex.end() ? -1 : it->second;
-    };
-    if (pbr.baseColorTexture.index >= 0) {
-      d.baseColorTexture = lookup(pbr.baseColorTexture.index, true);
-      int uv = pbr.baseColorTexture.texCoord;
-      d.baseUvTransform = textureTransform(pbr.baseColorTexture.extensions, uv);
-      d.baseColorUv = uvSet(doc, el, "baseColor", uv);
-    }
-    if (m.normalTexture.index >= 0) {
-      d.normalTexture = lookup(m.normalTexture.index, false);
-      int uv = m.normalTexture.texCoord;
-      d.normalUvTransform = textureTransform(m.normalTexture.extensions, uv);
-      d.normalUv = uvSet(doc, el, "normal", uv);
-      d.normalScale = std::isfinite(m.normalTexture.scale) ? float(m.normalTexture.scale) : 1.0f;
-    }
-    if (m.alphaMode == "MASK") {
-      d.alphaMode = AlphaMode::Mask;
-      d.alphaCutoff = float(m.alphaCutoff);
-    } else if (m.alphaMode == "BLEND") {
-      d.alphaMode = AlphaMode::Blend;
-      d.alphaCutoff = 0.5f;
-      warn(doc, el + ": alphaMode BLEND drawn as MASK at alpha 0.5 (a deferred G-buffer holds one surface per pixel)");
-    }
-    d.doubleSided = m.doubleSided;
-
-    d.specular = specular[i];
-
-    if (m.emissiveTexture.index >= 0 ||
-        (m.emissiveFactor.size() == 3 && (m.emissiveFactor[0] > 0 || m.emissiveFactor[1] > 0 || m.emissiveFactor[2] > 0)))
-      ignored(doc, "emissive colour (the G-buffer has no emission target)");
-    if (m.occlusionTexture.index >= 0) ignored(doc, "occlusion textures");
-    scene.materials.push_back(d);
+// Material i as gblens draws it: base colour and normal textures with their UV sets and
+// transforms, alpha mode, double-sided, specular; what the G-buffer cannot hold is reported.
+MaterialDesc materialDesc(Doc& doc, size_t i, const std::map<TextureKey, int>& textureIndex, float specular) {
+  const tinygltf::Material& m = doc.model.materials[i];
+  const auto& pbr = m.pbrMetallicRoughness;
+  const std::string el = named("material", i, m.name);
+  MaterialDesc d;
+  d.name = m.name.empty() ? "material " + std::to_string(i) : m.name;
+  d.baseColor = glm::vec4(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]), float(pbr.baseColorFactor[2]),
+                          float(pbr.baseColorFactor[3]));
+  auto lookup = [&](int texture, bool srgb) {
+    auto it = textureIndex.find({texture, srgb});
+    return it == textureIndex.end() ? -1 : it->second;
+  };
+  if (pbr.baseColorTexture.index >= 0) {
+    d.baseColorTexture = lookup(pbr.baseColorTexture.index, true);
+    int uv = pbr.baseColorTexture.texCoord;
+    d.baseUvTransform = textureTransform(pbr.baseColorTexture.extensions, uv);
+    d.baseColorUv = uvSet(doc, el, "baseColor", uv);
   }
+  if (m.normalTexture.index >= 0) {
+    d.normalTexture = lookup(m.normalTexture.index, false);
+    int uv = m.normalTexture.texCoord;
+    d.normalUvTransform = textureTransform(m.normalTexture.extensions, uv);
+    d.normalUv = uvSet(doc, el, "normal", uv);
+    d.normalScale = std::isfinite(m.normalTexture.scale) ? float(m.normalTexture.scale) : 1.0f;
+  }
+  if (m.alphaMode == "MASK") {
+    d.alphaMode = AlphaMode::Mask;
+    d.alphaCutoff = float(m.alphaCutoff);
+  } else if (m.alphaMode == "BLEND") {
+    d.alphaMode = AlphaMode::Blend;
+    d.alphaCutoff = 0.5f;
+    warn(doc, el + ": alphaMode BLEND drawn as MASK at alpha 0.5 (a deferred G-buffer holds one surface per pixel)");
+  }
+  d.doubleSided = m.doubleSided;
+  d.specular = specular;
+  if (m.emissiveTexture.index >= 0 ||
+      (m.emissiveFactor.size() == 3 && (m.emissiveFactor[0] > 0 || m.emissiveFactor[1] > 0 || m.emissiveFactor[2] > 0)))
+    ignored(doc, "emissive colour (the G-buffer has no emission target)");
+  if (m.occlusionTexture.index >= 0) ignored(doc, "occlusion textures");
+  return d;
+}
+
+}  // namespace
+
+void buildMaterials(Doc& doc, std::vector<DecodedImage>& images) {
+  const std::vector<float> specular = materialSpecular(doc, images);
+  const std::map<TextureKey, int> textureIndex = buildTextures(doc, images);
+  for (size_t i = 0; i < doc.model.materials.size(); ++i)
+    doc.scene->materials.push_back(materialDesc(doc, i, textureIndex, specular[i]));
 }
 
 }  // namespace gb::gltf

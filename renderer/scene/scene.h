@@ -1,11 +1,11 @@
 // A scene on the CPU: meshes, materials, textures, instances, cameras, sun, point lights.
 // Filled by the built-in temple or the glTF loader; drawn by the renderer and ray cast by the reference.
 #pragma once
+#include <glm/glm.hpp>
+
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "renderer/core/camera.h"
 #include "renderer/core/lights.h"

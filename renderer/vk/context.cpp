@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "renderer/vk/check.h"
+#include "renderer/vk/debug_utils.h"
 
 namespace gb {
 
@@ -162,10 +163,9 @@ static VkPhysicalDevice chooseDevice(VkInstance instance, const std::string& wan
   return devices[0];
 }
 
-GpuContext createContext(const ContextOptions& options) {
-  GpuContext ctx;
-  ctx.validation = options.validation || validationRequestedByEnvironment();
-
+// The instance (validation layer and synchronization validation when asked) and the messenger
+// that counts validation messages.
+static void createInstance(GpuContext& ctx, const ContextOptions& options) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "gblens";
   app.apiVersion = VK_API_VERSION_1_3;
@@ -181,7 +181,10 @@ GpuContext createContext(const ContextOptions& options) {
     }
     layers.push_back("VK_LAYER_KHRONOS_validation");
   }
-  extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  // Debug utils whenever the loader offers it (it is cheap): the validation messenger, and the object
+  // names and pass labels RenderDoc and Nsight show.
+  const bool debugUtils = debugUtilsAvailable();
+  if (debugUtils) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
 
   VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
   messengerInfo.messageSeverity =
@@ -204,14 +207,18 @@ GpuContext createContext(const ContextOptions& options) {
   ici.ppEnabledLayerNames = layers.data();
   ici.enabledExtensionCount = uint32_t(extensions.size());
   ici.ppEnabledExtensionNames = extensions.data();
-  ici.pNext = ctx.validation ? static_cast<void*>(&features) : static_cast<void*>(&messengerInfo);
+  if (!debugUtils) features.pNext = nullptr;
+  ici.pNext = ctx.validation ? static_cast<void*>(&features) : debugUtils ? static_cast<void*>(&messengerInfo) : nullptr;
   VK_CHECK(vkCreateInstance(&ici, nullptr, &ctx.instance));
 
   auto createMessenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
       vkGetInstanceProcAddr(ctx.instance, "vkCreateDebugUtilsMessengerEXT"));
   if (createMessenger) VK_CHECK(createMessenger(ctx.instance, &messengerInfo, nullptr, &ctx.messenger));
+}
 
-  ctx.physical = chooseDevice(ctx.instance, options.device);
+// The chosen device's properties, driver, queue family (graphics + compute) and the features
+// gblens can use on it (ctx.features).
+static void describeDevice(GpuContext& ctx) {
   vkGetPhysicalDeviceProperties(ctx.physical, &ctx.properties);
   vkGetPhysicalDeviceMemoryProperties(ctx.physical, &ctx.memory);
   ctx.deviceName = ctx.properties.deviceName;
@@ -248,9 +255,24 @@ GpuContext createContext(const ContextOptions& options) {
   for (uint32_t i = 0; i < ctx.memory.memoryTypeCount; ++i)
     if (ctx.memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_LAZILY_ALLOCATED_BIT)
       ctx.features.lazilyAllocatedMemory = true;
+}
 
-  std::vector<const char*> deviceExtensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
-  if (options.swapchain) deviceExtensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+// What the device supports of the features and extensions gblens enables.
+namespace {
+struct DeviceSupport {
+  VkPhysicalDeviceFeatures core{};
+  VkBool32 maintenance4 = VK_FALSE, scalarBlockLayout = VK_FALSE;
+  std::vector<const char*> extensions;  // to enable
+};
+}  // namespace
+
+// Reads the device's Vulkan 1.2/1.3 features and the optional rasterization-order extension;
+// exits with a message when VK_KHR_push_descriptor, which gblens needs, is missing.
+static DeviceSupport querySupport(GpuContext& ctx, const ContextOptions& options) {
+  DeviceSupport s;
+  vkGetPhysicalDeviceFeatures(ctx.physical, &s.core);
+  s.extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+  if (options.swapchain) s.extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
 
   VkPhysicalDeviceRasterizationOrderAttachmentAccessFeaturesEXT rasterOrder{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RASTERIZATION_ORDER_ATTACHMENT_ACCESS_FEATURES_EXT};
@@ -265,36 +287,40 @@ GpuContext createContext(const ContextOptions& options) {
     vkGetPhysicalDeviceFeatures2(ctx.physical, &f2);
     ctx.features.rasterOrderAttachmentAccess = rasterOrder.rasterizationOrderColorAttachmentAccess;
     if (ctx.features.rasterOrderAttachmentAccess)
-      deviceExtensions.push_back(VK_EXT_RASTERIZATION_ORDER_ATTACHMENT_ACCESS_EXTENSION_NAME);
-    else
-      v12.pNext = nullptr;
+      s.extensions.push_back(VK_EXT_RASTERIZATION_ORDER_ATTACHMENT_ACCESS_EXTENSION_NAME);
   }
   if (!hasDeviceExtension(ctx.physical, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) {
     std::fprintf(stderr, "gblens: device %s lacks VK_KHR_push_descriptor, which gblens needs\n",
                  ctx.deviceName.c_str());
     std::exit(2);
   }
+  s.maintenance4 = v13.maintenance4;
+  s.scalarBlockLayout = v12.scalarBlockLayout;
+  return s;
+}
 
-  // Only the features gblens uses, so behaviour matches between devices.
+// The device with one queue and only the features gblens uses (so behaviour matches between
+// devices), the push-descriptor entry point and the command pool.
+static void createDevice(GpuContext& ctx, const DeviceSupport& s) {
   VkPhysicalDeviceFeatures2 enabled{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-  enabled.features.depthClamp = supported.depthClamp;
-  enabled.features.depthBiasClamp = supported.depthBiasClamp;
-  enabled.features.pipelineStatisticsQuery = supported.pipelineStatisticsQuery;
-  enabled.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
-  enabled.features.shaderSampledImageArrayDynamicIndexing = supported.shaderSampledImageArrayDynamicIndexing;
-  enabled.features.samplerAnisotropy = supported.samplerAnisotropy;
-  enabled.features.multiDrawIndirect = supported.multiDrawIndirect;
-  enabled.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
-  enabled.features.independentBlend = supported.independentBlend;
-  enabled.features.geometryShader = supported.geometryShader;  // gl_PrimitiveID in the primitive_id target
-  enabled.features.shaderFloat64 = supported.shaderFloat64;    // light setup on the GPU
+  enabled.features.depthClamp = s.core.depthClamp;
+  enabled.features.depthBiasClamp = s.core.depthBiasClamp;
+  enabled.features.pipelineStatisticsQuery = s.core.pipelineStatisticsQuery;
+  enabled.features.fragmentStoresAndAtomics = s.core.fragmentStoresAndAtomics;
+  enabled.features.shaderSampledImageArrayDynamicIndexing = s.core.shaderSampledImageArrayDynamicIndexing;
+  enabled.features.samplerAnisotropy = s.core.samplerAnisotropy;
+  enabled.features.multiDrawIndirect = s.core.multiDrawIndirect;
+  enabled.features.shaderStorageImageWriteWithoutFormat = s.core.shaderStorageImageWriteWithoutFormat;
+  enabled.features.independentBlend = s.core.independentBlend;
+  enabled.features.geometryShader = s.core.geometryShader;  // gl_PrimitiveID in the primitive_id target
+  enabled.features.shaderFloat64 = s.core.shaderFloat64;    // light setup on the GPU
   VkPhysicalDeviceVulkan13Features e13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
   e13.synchronization2 = VK_TRUE;
-  e13.maintenance4 = v13.maintenance4;  // relaxed interface matching (unused vertex outputs)
+  e13.maintenance4 = s.maintenance4;  // relaxed interface matching (unused vertex outputs)
   VkPhysicalDeviceVulkan12Features e12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   e12.separateDepthStencilLayouts = VK_TRUE;
   e12.hostQueryReset = VK_TRUE;
-  e12.scalarBlockLayout = v12.scalarBlockLayout;
+  e12.scalarBlockLayout = s.scalarBlockLayout;
   VkPhysicalDeviceRasterizationOrderAttachmentAccessFeaturesEXT eRaster{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RASTERIZATION_ORDER_ATTACHMENT_ACCESS_FEATURES_EXT};
   eRaster.rasterizationOrderColorAttachmentAccess = ctx.features.rasterOrderAttachmentAccess;
@@ -311,19 +337,28 @@ GpuContext createContext(const ContextOptions& options) {
   dci.pNext = &enabled;
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
-  dci.enabledExtensionCount = uint32_t(deviceExtensions.size());
-  dci.ppEnabledExtensionNames = deviceExtensions.data();
+  dci.enabledExtensionCount = uint32_t(s.extensions.size());
+  dci.ppEnabledExtensionNames = s.extensions.data();
   VK_CHECK(vkCreateDevice(ctx.physical, &dci, nullptr, &ctx.device));
   vkGetDeviceQueue(ctx.device, ctx.queueFamily, 0, &ctx.queue);
   ctx.cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
       vkGetDeviceProcAddr(ctx.device, "vkCmdPushDescriptorSetKHR"));
   GB_ASSERT(ctx.cmdPushDescriptorSet);
+  if (debugUtilsAvailable()) loadDebugUtils(ctx);  // the instance enabled it under the same condition
 
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   pci.queueFamilyIndex = ctx.queueFamily;
   VK_CHECK(vkCreateCommandPool(ctx.device, &pci, nullptr, &ctx.commandPool));
+}
 
+GpuContext createContext(const ContextOptions& options) {
+  GpuContext ctx;
+  ctx.validation = options.validation || validationRequestedByEnvironment();
+  createInstance(ctx, options);
+  ctx.physical = chooseDevice(ctx.instance, options.device);
+  describeDevice(ctx);
+  createDevice(ctx, querySupport(ctx, options));
   if (!options.quiet) {
     uint32_t v = ctx.properties.apiVersion;
     std::fprintf(stderr, "gblens: device: %s (%s), Vulkan %u.%u.%u, %s%s\n", ctx.deviceName.c_str(),

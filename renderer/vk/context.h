@@ -39,6 +39,13 @@ struct DeviceFeatures {
   bool float64 = false;      // shaderFloat64: light setup on the GPU computes in double
 };
 
+// VK_EXT_debug_utils entry points (renderer/vk/debug_utils.h); null when the instance lacks it.
+struct DebugUtilsFunctions {
+  PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
+  PFN_vkCmdBeginDebugUtilsLabelEXT cmdBeginLabel = nullptr;
+  PFN_vkCmdEndDebugUtilsLabelEXT cmdEndLabel = nullptr;
+};
+
 struct GpuContext {
   VkInstance instance = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
@@ -55,6 +62,7 @@ struct GpuContext {
   bool isCpu = false;
   bool validation = false;
   PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;  // VK_KHR_push_descriptor
+  DebugUtilsFunctions debugUtils;                                  // object names, label regions
 };
 
 // One line per physical device: "INDEX: NAME (type)". For --device help and errors.

@@ -3,6 +3,7 @@
 
 #include "renderer/core/vertex.h"
 #include "renderer/vk/check.h"
+#include "renderer/vk/debug_utils.h"
 
 namespace gb {
 
@@ -14,6 +15,7 @@ VkShaderModule createShaderModule(GpuContext& ctx, Shader shader) {
   ci.pCode = code.data();
   VkShaderModule m;
   VK_CHECK(vkCreateShaderModule(ctx.device, &ci, nullptr, &m));
+  setName(ctx, uint64_t(m), VK_OBJECT_TYPE_SHADER_MODULE, shaderName(shader));
   return m;
 }
 
@@ -39,47 +41,118 @@ struct SpecData {
   }
 };
 
-VkPipeline createGraphicsPipeline(GpuContext& ctx, const GraphicsPipelineDesc& d) {
-  SpecData spec(d.spec);
-  std::vector<VkPipelineShaderStageCreateInfo> stages;
+// The shader stages (vertex, and fragment unless depth/stencil only); the modules are destroyed
+// once the pipeline exists.
+namespace {
+struct Stages {
   std::vector<VkShaderModule> modules;
+  std::vector<VkPipelineShaderStageCreateInfo> infos;
+};
+}  // namespace
+
+static void createStages(GpuContext& ctx, const GraphicsPipelineDesc& d, const VkSpecializationInfo* spec, Stages& out) {
   auto addStage = [&](VkShaderStageFlagBits stage, Shader name) {
     VkShaderModule m = createShaderModule(ctx, name);
-    modules.push_back(m);
+    out.modules.push_back(m);
     VkPipelineShaderStageCreateInfo s{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     s.stage = stage;
     s.module = m;
     s.pName = "main";
-    s.pSpecializationInfo = &spec.info;
-    stages.push_back(s);
+    s.pSpecializationInfo = spec;
+    out.infos.push_back(s);
   };
   addStage(VK_SHADER_STAGE_VERTEX_BIT, d.vertexShader);
   if (d.fragmentShader != Shader::None) addStage(VK_SHADER_STAGE_FRAGMENT_BIT, d.fragmentShader);
+}
 
-  VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
-  VkVertexInputAttributeDescription attrs[] = {
+// Vertex input: the scene's Vertex (only the locations the shader reads), positions alone (vec3
+// at location 0), or none. `info` points into the struct: fill it in place.
+namespace {
+struct VertexInputState {
+  VkVertexInputBindingDescription binding{};
+  std::vector<VkVertexInputAttributeDescription> attributes;
+  VkPipelineVertexInputStateCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+};
+}  // namespace
+
+static void vertexInputState(const GraphicsPipelineDesc& d, VertexInputState& out) {
+  const VkVertexInputAttributeDescription attrs[] = {
       {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
       {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
       {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv0)},
       {3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv1)},
       {4, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)},
   };
-  VkVertexInputBindingDescription positionBinding{0, sizeof(float) * 3, VK_VERTEX_INPUT_RATE_VERTEX};
-  VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  std::vector<VkVertexInputAttributeDescription> used;
-  for (uint32_t i = 0; i < 5; ++i)
-    if (d.vertexAttributes & (1u << i)) used.push_back(attrs[i]);
   if (d.vertexInput == VertexInput::SceneVertex) {
-    vi.vertexBindingDescriptionCount = 1;
-    vi.pVertexBindingDescriptions = &binding;
-    vi.vertexAttributeDescriptionCount = uint32_t(used.size());
-    vi.pVertexAttributeDescriptions = used.data();
+    out.binding = {0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    for (uint32_t i = 0; i < 5; ++i)
+      if (d.vertexAttributes & (1u << i)) out.attributes.push_back(attrs[i]);
   } else if (d.vertexInput == VertexInput::Position) {
-    vi.vertexBindingDescriptionCount = 1;
-    vi.pVertexBindingDescriptions = &positionBinding;
-    vi.vertexAttributeDescriptionCount = 1;
-    vi.pVertexAttributeDescriptions = attrs;  // location 0, vec3 at offset 0
+    out.binding = {0, sizeof(float) * 3, VK_VERTEX_INPUT_RATE_VERTEX};
+    out.attributes = {attrs[0]};  // location 0, vec3 at offset 0
+  } else {
+    return;
   }
+  out.info.vertexBindingDescriptionCount = 1;
+  out.info.pVertexBindingDescriptions = &out.binding;
+  out.info.vertexAttributeDescriptionCount = uint32_t(out.attributes.size());
+  out.info.pVertexAttributeDescriptions = out.attributes.data();
+}
+
+// Colour blending per attachment, and raster-order attachment access where asked and supported.
+namespace {
+struct BlendStates {
+  std::vector<VkPipelineColorBlendAttachmentState> attachments;
+  VkPipelineColorBlendStateCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+};
+}  // namespace
+
+static void blendState(const GpuContext& ctx, const GraphicsPipelineDesc& d, BlendStates& out) {
+  for (auto& b : d.colorBlend) {
+    VkPipelineColorBlendAttachmentState s{};
+    s.blendEnable = b.enable;
+    s.srcColorBlendFactor = b.src;
+    s.dstColorBlendFactor = b.dst;
+    s.colorBlendOp = VK_BLEND_OP_ADD;
+    s.srcAlphaBlendFactor = b.srcAlpha;
+    s.dstAlphaBlendFactor = b.dstAlpha;
+    s.alphaBlendOp = VK_BLEND_OP_ADD;
+    s.colorWriteMask = b.writeMask;
+    out.attachments.push_back(s);
+  }
+  out.info.attachmentCount = uint32_t(out.attachments.size());
+  out.info.pAttachments = out.attachments.data();
+  if (d.rasterOrderColor && ctx.features.rasterOrderAttachmentAccess)
+    out.info.flags |= VK_PIPELINE_COLOR_BLEND_STATE_CREATE_RASTERIZATION_ORDER_ATTACHMENT_ACCESS_BIT_EXT;
+}
+
+// Dynamic state: viewport, scissor, cull mode, front face and stencil reference always; depth
+// bias and stencil masks when the pipeline uses them.
+namespace {
+struct DynamicStates {
+  std::vector<VkDynamicState> states;
+  VkPipelineDynamicStateCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+};
+}  // namespace
+
+static void dynamicState(const GraphicsPipelineDesc& d, DynamicStates& out) {
+  out.states = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR, VK_DYNAMIC_STATE_CULL_MODE,
+                VK_DYNAMIC_STATE_FRONT_FACE, VK_DYNAMIC_STATE_STENCIL_REFERENCE};
+  if (d.depthBias) out.states.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
+  if (d.dynamicStencilMasks) {
+    out.states.push_back(VK_DYNAMIC_STATE_STENCIL_COMPARE_MASK);
+    out.states.push_back(VK_DYNAMIC_STATE_STENCIL_WRITE_MASK);
+  }
+  out.info.dynamicStateCount = uint32_t(out.states.size());
+  out.info.pDynamicStates = out.states.data();
+}
+
+VkPipeline createGraphicsPipeline(GpuContext& ctx, const GraphicsPipelineDesc& d) {
+  SpecData spec(d.spec);
+  Stages stages;
+  createStages(ctx, d, &spec.info, stages);
+  VertexInputState vi;
+  vertexInputState(d, vi);
   VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
@@ -99,52 +172,29 @@ VkPipeline createGraphicsPipeline(GpuContext& ctx, const GraphicsPipelineDesc& d
   ds.stencilTestEnable = d.stencilTest;
   ds.front = d.stencil;
   ds.back = d.separateBackStencil ? d.stencilBack : d.stencil;
-  std::vector<VkPipelineColorBlendAttachmentState> blends;
-  for (auto& b : d.colorBlend) {
-    VkPipelineColorBlendAttachmentState s{};
-    s.blendEnable = b.enable;
-    s.srcColorBlendFactor = b.src;
-    s.dstColorBlendFactor = b.dst;
-    s.colorBlendOp = VK_BLEND_OP_ADD;
-    s.srcAlphaBlendFactor = b.srcAlpha;
-    s.dstAlphaBlendFactor = b.dstAlpha;
-    s.alphaBlendOp = VK_BLEND_OP_ADD;
-    s.colorWriteMask = b.writeMask;
-    blends.push_back(s);
-  }
-  VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  cb.attachmentCount = uint32_t(blends.size());
-  cb.pAttachments = blends.data();
-  if (d.rasterOrderColor && ctx.features.rasterOrderAttachmentAccess)
-    cb.flags |= VK_PIPELINE_COLOR_BLEND_STATE_CREATE_RASTERIZATION_ORDER_ATTACHMENT_ACCESS_BIT_EXT;
-  std::vector<VkDynamicState> dyn = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR, VK_DYNAMIC_STATE_CULL_MODE,
-                                     VK_DYNAMIC_STATE_FRONT_FACE, VK_DYNAMIC_STATE_STENCIL_REFERENCE};
-  if (d.depthBias) dyn.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
-  if (d.dynamicStencilMasks) {
-    dyn.push_back(VK_DYNAMIC_STATE_STENCIL_COMPARE_MASK);
-    dyn.push_back(VK_DYNAMIC_STATE_STENCIL_WRITE_MASK);
-  }
-  VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-  dy.dynamicStateCount = uint32_t(dyn.size());
-  dy.pDynamicStates = dyn.data();
+  BlendStates cb;
+  blendState(ctx, d, cb);
+  DynamicStates dy;
+  dynamicState(d, dy);
 
   VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-  ci.stageCount = uint32_t(stages.size());
-  ci.pStages = stages.data();
-  ci.pVertexInputState = &vi;
+  ci.stageCount = uint32_t(stages.infos.size());
+  ci.pStages = stages.infos.data();
+  ci.pVertexInputState = &vi.info;
   ci.pInputAssemblyState = &ia;
   ci.pViewportState = &vp;
   ci.pRasterizationState = &rs;
   ci.pMultisampleState = &ms;
   ci.pDepthStencilState = &ds;
-  ci.pColorBlendState = &cb;
-  ci.pDynamicState = &dy;
+  ci.pColorBlendState = &cb.info;
+  ci.pDynamicState = &dy.info;
   ci.layout = d.layout;
   ci.renderPass = d.renderPass;
   ci.subpass = d.subpass;
   VkPipeline pipeline;
   VK_CHECK(vkCreateGraphicsPipelines(ctx.device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline));
-  for (auto m : modules) vkDestroyShaderModule(ctx.device, m, nullptr);
+  setName(ctx, uint64_t(pipeline), VK_OBJECT_TYPE_PIPELINE, d.name.empty() ? nullptr : d.name.c_str());
+  for (auto m : stages.modules) vkDestroyShaderModule(ctx.device, m, nullptr);
   return pipeline;
 }
 
@@ -161,6 +211,7 @@ VkPipeline createComputePipeline(GpuContext& ctx, Shader shader, std::span<const
   ci.layout = layout;
   VkPipeline pipeline;
   VK_CHECK(vkCreateComputePipelines(ctx.device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline));
+  setName(ctx, uint64_t(pipeline), VK_OBJECT_TYPE_PIPELINE, shaderName(shader));
   vkDestroyShaderModule(ctx.device, m, nullptr);
   return pipeline;
 }

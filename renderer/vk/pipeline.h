@@ -49,6 +49,7 @@ struct GraphicsPipelineDesc {
   VkRenderPass renderPass = VK_NULL_HANDLE;
   uint32_t subpass = 0;
   VkPipelineLayout layout = VK_NULL_HANDLE;
+  std::string name;  // the pipeline's debug name (RenderDoc): the pass's pipeline id
 };
 
 // The values of specialization constants, in order (cache keys).

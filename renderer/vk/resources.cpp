@@ -18,25 +18,14 @@ uint32_t findMemoryType(const GpuContext& ctx, uint32_t typeBits, VkMemoryProper
   return UINT32_MAX;
 }
 
-void setName(GpuContext& ctx, uint64_t handle, VkObjectType type, const char* name) {
-  if (!name || !ctx.validation) return;
-  static auto fn = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
-      vkGetInstanceProcAddr(ctx.instance, "vkSetDebugUtilsObjectNameEXT"));
-  if (!fn) return;
-  VkDebugUtilsObjectNameInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
-  info.objectType = type;
-  info.objectHandle = handle;
-  info.pObjectName = name;
-  fn(ctx.device, &info);
-}
-
-Buffer createBuffer(GpuContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use) {
+Buffer createBuffer(GpuContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use, const char* name) {
   Buffer b;
   b.size = size;
   VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bci.size = size > 0 ? size : 16;
   bci.usage = usage;
   VK_CHECK(vkCreateBuffer(ctx.device, &bci, nullptr, &b.buffer));
+  setName(ctx, uint64_t(b.buffer), VK_OBJECT_TYPE_BUFFER, name);
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(ctx.device, b.buffer, &req);
   VkMemoryPropertyFlags required = 0, preferred = 0;
@@ -56,6 +45,7 @@ Buffer createBuffer(GpuContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage
   mai.memoryTypeIndex = findMemoryType(ctx, req.memoryTypeBits, required, preferred);
   GB_ASSERT(mai.memoryTypeIndex != UINT32_MAX);
   VK_CHECK(vkAllocateMemory(ctx.device, &mai, nullptr, &b.memory));
+  setName(ctx, uint64_t(b.memory), VK_OBJECT_TYPE_DEVICE_MEMORY, name);
   VK_CHECK(vkBindBufferMemory(ctx.device, b.buffer, b.memory, 0));
   if (use != MemoryUse::Device) VK_CHECK(vkMapMemory(ctx.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
   return b;
@@ -118,8 +108,9 @@ uint32_t bytesPerPixel(VkFormat f) {
   }
 }
 
-static VkImageView makeCamera(GpuContext& ctx, VkImage image, VkFormat format, VkImageAspectFlags aspect,
-                            uint32_t mips) {
+// A view named after its image (and aspect): RenderDoc lists views beside images.
+static VkImageView makeImageView(GpuContext& ctx, VkImage image, VkFormat format, VkImageAspectFlags aspect,
+                                 uint32_t mips, const char* name, const char* suffix) {
   VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vci.image = image;
   vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
@@ -127,6 +118,7 @@ static VkImageView makeCamera(GpuContext& ctx, VkImage image, VkFormat format, V
   vci.subresourceRange = {aspect, 0, mips, 0, 1};
   VkImageView view;
   VK_CHECK(vkCreateImageView(ctx.device, &vci, nullptr, &view));
+  if (name) setName(ctx, uint64_t(view), VK_OBJECT_TYPE_IMAGE_VIEW, (std::string(name) + suffix).c_str());
   return view;
 }
 
@@ -159,13 +151,15 @@ Image createImage(GpuContext& ctx, const ImageDesc& desc) {
   mai.allocationSize = req.size;
   mai.memoryTypeIndex = type;
   VK_CHECK(vkAllocateMemory(ctx.device, &mai, nullptr, &img.memory));
+  setName(ctx, uint64_t(img.memory), VK_OBJECT_TYPE_DEVICE_MEMORY, desc.name);
   VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
 
-  img.view = makeCamera(ctx, img.image, desc.format, aspectsOf(desc.format), desc.mipLevels);
+  img.view = makeImageView(ctx, img.image, desc.format, aspectsOf(desc.format), desc.mipLevels, desc.name, "");
   if (isDepthFormat(desc.format)) {
-    img.depthView = makeCamera(ctx, img.image, desc.format, VK_IMAGE_ASPECT_DEPTH_BIT, 1);
+    img.depthView = makeImageView(ctx, img.image, desc.format, VK_IMAGE_ASPECT_DEPTH_BIT, 1, desc.name, ".depth");
     if (hasStencil(desc.format))
-      img.stencilView = makeCamera(ctx, img.image, desc.format, VK_IMAGE_ASPECT_STENCIL_BIT, 1);
+      img.stencilView =
+          makeImageView(ctx, img.image, desc.format, VK_IMAGE_ASPECT_STENCIL_BIT, 1, desc.name, ".stencil");
   }
   return img;
 }
@@ -227,7 +221,7 @@ uint32_t wholeImageCopies(const ImageDesc& d, VkBufferImageCopy (&copies)[2]) {
 
 void uploadBuffer(GpuContext& ctx, Buffer& dst, const void* data, VkDeviceSize size) {
   if (size == 0) return;
-  Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
+  Buffer staging = createBuffer(ctx, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload, "staging");
   std::memcpy(staging.mapped, data, size);
   submitOnce(ctx, [&](VkCommandBuffer cmd) {
     VkBufferCopy region{0, 0, size};
@@ -265,7 +259,7 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange ra
 void uploadTexture(GpuContext& ctx, Image& img, std::span<const uint8_t> rgba8) {
   const ImageDesc& d = img.desc;
   GB_ASSERT(rgba8.size() == size_t(d.width) * d.height * 4);
-  Buffer staging = createBuffer(ctx, rgba8.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
+  Buffer staging = createBuffer(ctx, rgba8.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload, "staging");
   std::memcpy(staging.mapped, rgba8.data(), rgba8.size());
   submitOnce(ctx, [&](VkCommandBuffer cmd) {
     imageBarrier(cmd, img.image, {VK_IMAGE_ASPECT_COLOR_BIT, 0, d.mipLevels, 0, 1}, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,

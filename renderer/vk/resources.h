@@ -8,6 +8,7 @@
 #include <span>
 
 #include "renderer/vk/context.h"
+#include "renderer/vk/debug_utils.h"  // setName: every buffer and image the renderer creates is named
 
 namespace gb {
 
@@ -42,7 +43,9 @@ struct Image {
 uint32_t findMemoryType(const GpuContext& ctx, uint32_t typeBits, VkMemoryPropertyFlags required,
                         VkMemoryPropertyFlags preferred = 0);
 
-Buffer createBuffer(GpuContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use);
+// `name` (RenderDoc, validation messages): what the buffer holds, as the shaders call it.
+Buffer createBuffer(GpuContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
+                    const char* name = nullptr);
 void destroyBuffer(GpuContext& ctx, Buffer& buffer);
 
 Image createImage(GpuContext& ctx, const ImageDesc& desc);
@@ -78,8 +81,5 @@ void uploadBuffer(GpuContext& ctx, Buffer& dst, const void* data, VkDeviceSize s
 
 // Uploads RGBA8 level 0, generates the mip chain by blits and leaves the image SHADER_READ_ONLY.
 void uploadTexture(GpuContext& ctx, Image& image, std::span<const uint8_t> rgba8);
-
-// Sets a debug name (shows in validation messages).
-void setName(GpuContext& ctx, uint64_t handle, VkObjectType type, const char* name);
 
 }  // namespace gb

@@ -64,6 +64,55 @@ static VkRenderPass createPresentPass(GpuContext& ctx, VkFormat format) {
   return rp;
 }
 
+// What does not change with the size, made on first use: the surface format, the present pass,
+// the acquire semaphore, the frame fence and the command buffer.
+static void createOnce(GpuContext& ctx, Swapchain& sc) {
+  sc.format = chooseFormat(ctx, sc.surface);
+  sc.renderPass = createPresentPass(ctx, sc.format.format);
+  VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  VK_CHECK(vkCreateSemaphore(ctx.device, &si, nullptr, &sc.acquired));
+  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  fi.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+  VK_CHECK(vkCreateFence(ctx.device, &fi, nullptr, &sc.fence));
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = ctx.commandPool;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  VK_CHECK(vkAllocateCommandBuffers(ctx.device, &ai, &sc.cmd));
+}
+
+// Per swapchain image: a view, a framebuffer of the present pass and a render-done semaphore.
+static void createImageResources(GpuContext& ctx, Swapchain& sc) {
+  uint32_t n = 0;
+  VK_CHECK(vkGetSwapchainImagesKHR(ctx.device, sc.swapchain, &n, nullptr));
+  sc.images.resize(n);
+  VK_CHECK(vkGetSwapchainImagesKHR(ctx.device, sc.swapchain, &n, sc.images.data()));
+  for (VkImage img : sc.images) {
+    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vi.image = img;
+    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.format = sc.format.format;
+    vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkImageView view;
+    VK_CHECK(vkCreateImageView(ctx.device, &vi, nullptr, &view));
+    sc.views.push_back(view);
+    VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fi.renderPass = sc.renderPass;
+    fi.attachmentCount = 1;
+    fi.pAttachments = &view;
+    fi.width = sc.extent.width;
+    fi.height = sc.extent.height;
+    fi.layers = 1;
+    VkFramebuffer fb;
+    VK_CHECK(vkCreateFramebuffer(ctx.device, &fi, nullptr, &fb));
+    sc.framebuffers.push_back(fb);
+    VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VkSemaphore s;
+    VK_CHECK(vkCreateSemaphore(ctx.device, &si, nullptr, &s));
+    sc.renderDone.push_back(s);
+  }
+}
+
 bool createSwapchain(GpuContext& ctx, Swapchain& sc, uint32_t width, uint32_t height) {
   GB_ASSERT(sc.surface);
   VkBool32 supported = VK_FALSE;
@@ -80,21 +129,7 @@ bool createSwapchain(GpuContext& ctx, Swapchain& sc, uint32_t width, uint32_t he
     extent.height = std::clamp(height, caps.minImageExtent.height, caps.maxImageExtent.height);
   }
   if (extent.width == 0 || extent.height == 0 || width == 0 || height == 0) return false;
-
-  if (!sc.renderPass) {
-    sc.format = chooseFormat(ctx, sc.surface);
-    sc.renderPass = createPresentPass(ctx, sc.format.format);
-    VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-    VK_CHECK(vkCreateSemaphore(ctx.device, &si, nullptr, &sc.acquired));
-    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    fi.flags = VK_FENCE_CREATE_SIGNALED_BIT;
-    VK_CHECK(vkCreateFence(ctx.device, &fi, nullptr, &sc.fence));
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = ctx.commandPool;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    VK_CHECK(vkAllocateCommandBuffers(ctx.device, &ai, &sc.cmd));
-  }
+  if (!sc.renderPass) createOnce(ctx, sc);
 
   sc.minImageCount = std::max(2u, caps.minImageCount);
   if (caps.maxImageCount) sc.minImageCount = std::min(sc.minImageCount, caps.maxImageCount);
@@ -119,35 +154,7 @@ bool createSwapchain(GpuContext& ctx, Swapchain& sc, uint32_t width, uint32_t he
   destroyImageResources(ctx, sc);
   if (old) vkDestroySwapchainKHR(ctx.device, old, nullptr);
   sc.extent = extent;
-
-  uint32_t n = 0;
-  VK_CHECK(vkGetSwapchainImagesKHR(ctx.device, sc.swapchain, &n, nullptr));
-  sc.images.resize(n);
-  VK_CHECK(vkGetSwapchainImagesKHR(ctx.device, sc.swapchain, &n, sc.images.data()));
-  for (VkImage img : sc.images) {
-    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    vi.image = img;
-    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    vi.format = sc.format.format;
-    vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkImageView view;
-    VK_CHECK(vkCreateImageView(ctx.device, &vi, nullptr, &view));
-    sc.views.push_back(view);
-    VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    fi.renderPass = sc.renderPass;
-    fi.attachmentCount = 1;
-    fi.pAttachments = &view;
-    fi.width = extent.width;
-    fi.height = extent.height;
-    fi.layers = 1;
-    VkFramebuffer fb;
-    VK_CHECK(vkCreateFramebuffer(ctx.device, &fi, nullptr, &fb));
-    sc.framebuffers.push_back(fb);
-    VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-    VkSemaphore s;
-    VK_CHECK(vkCreateSemaphore(ctx.device, &si, nullptr, &s));
-    sc.renderDone.push_back(s);
-  }
+  createImageResources(ctx, sc);
   return true;
 }
 

@@ -1,11 +1,11 @@
 // The command line as a user or CI job meets it: exit codes for mistakes, the --stats JSON
 // shape every later tool reads (frame_ms, passes with skip reasons, culling), and the PNG written.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <string>
 
 namespace gb {

@@ -1,6 +1,9 @@
 // `gblens error` and `gblens bench` as a user runs them (validation on through GBLENS_VALIDATE):
 // the JSON has every quantity with sane values, the bench writes its files with one row per
 // variant, and user mistakes exit 2 with a message while a glTF that fails to load is skipped.
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -9,8 +12,6 @@
 #include <fstream>
 #include <map>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace gb {
 

@@ -46,7 +46,7 @@ TEST(Compare, ExitCodesFollowIdiff) {
   EXPECT_NE(size.output.find("size 20x10 vs 10x10"), std::string::npos) << size.output;
   FrameSnapshot fewer = base;
   fewer.target(Target::CoverageMasked) = TargetImage{};
-  fewer.absent[size_t(Target::CoverageMasked)] = Absent::CoverageOff;
+  fewer.setAbsence(Target::CoverageMasked, Absent::CoverageOff);
   Capture ca, cf;
   std::string message;
   ASSERT_TRUE(loadCapture(a, ca, message) && loadCapture(write(fewer, root + "/fewer"), cf, message)) << message;

@@ -1,6 +1,7 @@
 // glTF files on the command line: a bad file or --camera is one line on stderr and exit code 2.
-#include <gtest/gtest.h>
 #include <sys/wait.h>
+
+#include <gtest/gtest.h>
 
 #include <fstream>
 #include <sstream>

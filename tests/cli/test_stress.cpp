@@ -1,12 +1,12 @@
 // gblens stress as CI meets it (the suite itself runs as the CTest entry stress.quick): mistakes
 // exit 2, one case runs alone and writes its table as JSON.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 
 
 namespace gb {

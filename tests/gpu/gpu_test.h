@@ -8,10 +8,10 @@
 #include <memory>
 
 #include "renderer/renderer.h"
-#include "renderer/session.h"
 #include "renderer/scene/scene.h"
-#include "tests/support/scenes.h"
+#include "renderer/session.h"
 #include "renderer/vk/context.h"
+#include "tests/support/scenes.h"
 
 namespace gb {
 

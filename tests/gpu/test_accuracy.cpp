@@ -5,10 +5,10 @@
 // truncates), and says conversions to normalized formats should round to nearest (half a step).
 #include <cmath>
 
-#include "renderer/scene/builtin.h"
 #include "renderer/core/codec.h"
-#include "renderer/scene/mesh_builder.h"
 #include "renderer/reference/reference.h"
+#include "renderer/scene/builtin.h"
+#include "renderer/scene/mesh_builder.h"
 #include "tests/gpu/gpu_test.h"
 #include "views/analysis/accuracy.h"
 

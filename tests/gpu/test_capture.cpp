@@ -7,13 +7,13 @@
 #include <map>
 #include <set>
 
+#include "renderer/render_targets.h"
 #include "renderer/scene/builtin.h"
-#include "tests/support/capture_util.h"
 #include "tests/gpu/gpu_test.h"
+#include "tests/support/capture_util.h"
 #include "views/capture/capture.h"
 #include "views/capture/exr.h"
 #include "views/capture/report.h"
-#include "renderer/render_targets.h"
 
 namespace gb {
 
@@ -66,7 +66,7 @@ TEST_F(GpuTest, CaptureRoundTripIsBitExactInEveryStorageFormat) {
     std::string error;
     ASSERT_TRUE(loadCapture(dir, c, error)) << error;
     for (size_t i = 0; i < kTargetCount; ++i) {
-      const CpuImage &a = live.targets[i].image, &b = c.frame.targets[i].image;
+      const CpuImage &a = live.images[i].image, &b = c.frame.images[i].image;
       if (targetAbsence(Target(i), o) != Absent::No) {  // not computed under these options
         EXPECT_TRUE(a.empty() && b.empty()) << targetName(Target(i));
         continue;
@@ -116,7 +116,7 @@ TEST_F(GpuTest, TwoCapturesOfTheSameFrameAreIdentical) {
   // Every file (EXRs, final.png, lights.json) has the same bytes: compare the digests.
   EXPECT_EQ(ca.manifest["files"], cb.manifest["files"]);
   for (size_t i = 0; i < kTargetCount; ++i)
-    EXPECT_TRUE(ca.frame.targets[i].image.data == cb.frame.targets[i].image.data) << targetName(Target(i));
+    EXPECT_TRUE(ca.frame.images[i].image.data == cb.frame.images[i].image.data) << targetName(Target(i));
 }
 
 TEST_F(GpuTest, CaptureReadsBackOnlyTheRequestedTargets) {
@@ -135,7 +135,7 @@ TEST_F(GpuTest, CaptureReadsBackOnlyTheRequestedTargets) {
   FrameSnapshot s = snapshotFromRenderer(r, wanted);
   EXPECT_TRUE(s.target(Target::Depth).present());
   EXPECT_FALSE(s.target(Target::Hdr).present());
-  EXPECT_EQ(s.absent[size_t(Target::Hdr)], Absent::NotReadBack);
+  EXPECT_EQ(s.absence(Target::Hdr), Absent::NotReadBack);
 
   // The command line: only the named EXRs, the others listed with their reasons.
   std::string dir = freshDir("targets") + "/cap";
@@ -210,7 +210,7 @@ TEST_F(GpuTest, TransientAndUncomputedTargetsAreSkippedWithTheReason) {
   Capture c;
   std::string error;
   ASSERT_TRUE(loadCapture(dir, c, error)) << error;
-  EXPECT_EQ(absentText(c.frame.absent[size_t(Target::Depth)]), skipped["depth"]);
+  EXPECT_EQ(absentText(c.frame.absence(Target::Depth)), skipped["depth"]);
   EXPECT_FALSE(m["stats"]["culling"]["valid"].get<bool>());
 }
 

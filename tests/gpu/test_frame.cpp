@@ -2,8 +2,8 @@
 // resizing, determinism — each checked against an independent computation.
 #include <cmath>
 
-#include "renderer/scene/builtin.h"
 #include "renderer/core/camera.h"
+#include "renderer/scene/builtin.h"
 #include "tests/gpu/gpu_test.h"
 
 namespace gb {

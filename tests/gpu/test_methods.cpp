@@ -13,12 +13,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "renderer/scene/builtin.h"
 #include "renderer/core/camera.h"
 #include "renderer/core/codec.h"
 #include "renderer/light_culling.h"
-#include "tests/gpu/gpu_test.h"
+#include "renderer/scene/builtin.h"
 #include "renderer/srgb_probe.h"
+#include "tests/gpu/gpu_test.h"
 
 namespace gb {
 

@@ -4,10 +4,10 @@
 // lights sharing a stencil bit (a layer) rasterize disjoint pixels.
 #include <cmath>
 
-#include "renderer/scene/builtin.h"
 #include "renderer/core/camera.h"
-#include "renderer/scene/mesh_builder.h"
 #include "renderer/light_culling.h"
+#include "renderer/scene/builtin.h"
+#include "renderer/scene/mesh_builder.h"
 #include "shaders/shading.h"
 #include "tests/gpu/gpu_test.h"
 

@@ -4,13 +4,13 @@
 // reproduces the stored shadow term.
 #include <cmath>
 
-#include "renderer/scene/builtin.h"
 #include "renderer/core/camera.h"
-#include "tests/support/capture_util.h"
-#include "tests/gpu/gpu_test.h"
-#include "views/capture/capture.h"
-#include "views/analysis/probe.h"
 #include "renderer/render_targets.h"
+#include "renderer/scene/builtin.h"
+#include "tests/gpu/gpu_test.h"
+#include "tests/support/capture_util.h"
+#include "views/analysis/probe.h"
+#include "views/capture/capture.h"
 
 namespace gb {
 
@@ -101,7 +101,7 @@ TEST_F(GpuTest, ProbeOfARegionReadBackEqualsProbeOfWholeTargets) {
   for (auto [x, y] : {std::pair{0u, 0u}, {95u, 53u}, {48u, 30u}, {20u, 40u}, {70u, 35u}, {10u, 5u}}) {
     FrameSnapshot region = full;
     for (size_t i = 0; i < kTargetCount; ++i)
-      if (screenSpaceTarget(Target(i))) region.targets[i] = crop(full.targets[i], int32_t(x), int32_t(y), 1, 1);
+      if (screenSpaceTarget(Target(i))) region.images[i] = crop(full.images[i], int32_t(x), int32_t(y), 1, 1);
     int32_t sx = 0, sy = 0;
     bool shadow = shadowMapFootprint(full, x, y, sx, sy);
     region.target(Target::ShadowMap) = crop(full.target(Target::ShadowMap), sx, sy, shadow ? 2 : 0, shadow ? 2 : 0);

@@ -3,9 +3,9 @@
 // centre. Each skip is also checked to lose nothing (same pixels as the frame that ran it).
 #include <cmath>
 
-#include "renderer/scene/builtin.h"
 #include "renderer/core/camera.h"
 #include "renderer/light_culling.h"
+#include "renderer/scene/builtin.h"
 #include "tests/gpu/gpu_test.h"
 
 namespace gb {

@@ -5,11 +5,12 @@
 #include <cmath>
 #include <cstring>
 
-#include "renderer/scene/builtin.h"
 #include "renderer/region_readback.h"
+#include "renderer/scene/builtin.h"
 #include "renderer/upload_targets.h"
 #include "renderer/vk/check.h"
 #include "tests/gpu/gpu_test.h"
+#include "views/analysis/probe.h"
 #include "views/analysis/visualize.h"
 #include "views/ui/view_params.h"
 
@@ -357,12 +358,6 @@ TEST_F(GpuTest, UploadedTargetsReadBackBitForBit) {
     }
   }
 }
-
-}  // namespace gb
-
-#include "views/analysis/probe.h"
-
-namespace gb {
 
 // Clicking a shadow-map texel marks the screen pixels whose shadow lookup reads it: mark the
 // texel the dossier says a pixel read (the 2x2 footprint's top-left) and that pixel is marked,

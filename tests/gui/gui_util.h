@@ -3,8 +3,9 @@
 #pragma once
 #include <sys/types.h>
 
-#include <functional>
 #include <nlohmann/json.hpp>
+
+#include <functional>
 #include <string>
 #include <vector>
 

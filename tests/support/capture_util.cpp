@@ -1,18 +1,18 @@
 // Capture test helpers.
 #include "tests/support/capture_util.h"
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
-
-#include <cstring>
 
 #include "renderer/core/camera.h"
+#include "renderer/core/layout_json.h"
 
 namespace gb {
 
@@ -84,7 +84,7 @@ FrameSnapshot syntheticFrame(uint32_t w, uint32_t h) {
   CameraDesc cam;
   cam.worldFromEye = lookAt({0, 2, 5}, {0, 0, 0});
   f.camera = makeCamera(cam, w, h, false);
-  for (size_t i = 0; i < kTargetCount; ++i) f.absent[i] = Absent::NotCaptured;
+  f.setLayout(nativeLayout(f.options));
   for (Target t : {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth, Target::DepthStencil, Target::Hdr,
                    Target::Final, Target::CoverageMasked}) {
     TargetImage& ti = f.target(t);
@@ -109,7 +109,7 @@ FrameSnapshot syntheticFrame(uint32_t w, uint32_t h) {
           setTexel(ti.image, x, y, c, value);
         }
       }
-    f.absent[size_t(t)] = Absent::No;
+    f.setAbsence(t, Absent::No);
   }
   return f;
 }

@@ -2,6 +2,8 @@
 // README lists every case). Valid files: exact vertex/index data, transforms and winding, checked
 // against values worked out by hand from how each file was built. Invalid files: the message names
 // the file and the element. (The command line and the GPU: test_gltf_gpu.cpp.)
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -9,7 +11,6 @@
 
 #include "renderer/scene/builtin.h"
 #include "renderer/scene/gltf.h"
-#include <gtest/gtest.h>
 
 namespace gb {
 

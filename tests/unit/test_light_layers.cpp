@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "renderer/scene/builtin.h"
 #include "renderer/core/camera.h"
-#include "renderer/scene/mesh_builder.h"
 #include "renderer/light_culling.h"
+#include "renderer/scene/builtin.h"
+#include "renderer/scene/mesh_builder.h"
 #include "shaders/shading.h"
 #include "tests/support/scenes.h"
 

@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "renderer/core/camera.h"
-#include "renderer/scene/mesh_builder.h"
 #include "renderer/reference/reference.h"
+#include "renderer/scene/mesh_builder.h"
 #include "tests/support/scenes.h"
 
 namespace gb {

@@ -1,14 +1,13 @@
 // Capture comparison: channel groups and their metrics, idiff's decision rule, the report.
 #include "views/analysis/compare.h"
 
-#include "renderer/core/statistics.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
 
 #include "renderer/core/codec.h"
+#include "renderer/core/statistics.h"
 
 namespace gb {
 
@@ -118,66 +117,65 @@ static glm::dvec3 normalAt(Target t, const Capture& cap, const CpuImage& img, co
   return v;
 }
 
-static void compareGroup(Target t, const Capture& ca, const Capture& cb, GroupResult& r) {
-  const CpuImage& a = ca.frame.target(t).image;
-  const CpuImage& b = cb.frame.target(t).image;
-  const ChannelGroup& g = r.group;
-  r.width = a.width;
-  r.height = a.height;
-  r.pixels = uint64_t(a.width) * a.height;
-  r.errors.assign(r.pixels, 0.0f);
+namespace {
+// Running sums over a group's pixels (colour/exact: per channel sample; depth/position: per pixel).
+struct ErrorSums {
   double sumAbs = 0.0, sumSq = 0.0, sumRel = 0.0, maxAbs = 0.0, maxRel = 0.0, sumErr = 0.0;
   uint64_t samples = 0, differing = 0;
-  for (uint32_t y = 0; y < a.height; ++y)
-    for (uint32_t x = 0; x < a.width; ++x) {
-      double e = 0.0;
-      switch (g.kind) {
-        case MetricKind::Colour:
-        case MetricKind::Exact:
-          for (uint32_t c : g.channels) {
-            double va = g.kind == MetricKind::Colour ? colourValue(a, x, y, c) : a.value(x, y, c);
-            double vb = g.kind == MetricKind::Colour ? colourValue(b, x, y, c) : b.value(x, y, c);
-            double d = absDiff(va, vb);
-            e = std::max(e, d);
-            sumAbs += d;
-            sumSq += d * d;
-            ++samples;
-          }
-          break;
-        case MetricKind::Normal: e = angleDegrees(normalAt(t, ca, a, g, x, y), normalAt(t, cb, b, g, x, y)); break;
-        case MetricKind::Depth:
-        case MetricKind::Position: {
-          double dist2 = 0.0, mag = 0.0, rel = 0.0;
-          for (uint32_t c : g.channels) {
-            double va = a.value(x, y, c), vb = b.value(x, y, c), d = absDiff(va, vb);
-            dist2 += d * d;
-            mag = std::max({mag, std::abs(va), std::abs(vb)});
-            if (d > 0.0) rel = std::max(rel, d / std::max(std::abs(va), std::abs(vb)));
-          }
-          double abs = std::sqrt(dist2);
-          if (std::isnan(rel) || std::isinf(abs)) rel = INFINITY;
-          maxAbs = std::max(maxAbs, abs);
-          maxRel = std::max(maxRel, rel);
-          sumAbs += abs;
-          sumRel += rel;
-          e = g.kind == MetricKind::Depth ? rel : abs;
-          break;
-        }
-      }
-      r.errors[size_t(y) * a.width + x] = float(e);
-      r.maxError = std::max(r.maxError, e);
-      sumErr += e;
-      differing += e > 0.0;
-      r.overWarn += e > r.thresholds.warn;
-      r.overFail += e > r.thresholds.fail;
-    }
-  double n = double(std::max<uint64_t>(r.pixels, 1));
-  r.meanError = sumErr / n;
-  nlohmann::json& m = r.metrics;
+};
+}  // namespace
+
+// The error of one pixel by the group's metric (largest channel difference, angle in degrees,
+// relative depth or position distance), with the group's sums updated.
+static double pixelError(Target t, const Capture& ca, const Capture& cb, const ChannelGroup& g, uint32_t x, uint32_t y,
+                         ErrorSums& s) {
+  const CpuImage& a = ca.frame.target(t).image;
+  const CpuImage& b = cb.frame.target(t).image;
+  double e = 0.0;
   switch (g.kind) {
+    case MetricKind::Colour:
+    case MetricKind::Exact:
+      for (uint32_t c : g.channels) {
+        double va = g.kind == MetricKind::Colour ? colourValue(a, x, y, c) : a.value(x, y, c);
+        double vb = g.kind == MetricKind::Colour ? colourValue(b, x, y, c) : b.value(x, y, c);
+        double d = absDiff(va, vb);
+        e = std::max(e, d);
+        s.sumAbs += d;
+        s.sumSq += d * d;
+        ++s.samples;
+      }
+      break;
+    case MetricKind::Normal: e = angleDegrees(normalAt(t, ca, a, g, x, y), normalAt(t, cb, b, g, x, y)); break;
+    case MetricKind::Depth:
+    case MetricKind::Position: {
+      double dist2 = 0.0, mag = 0.0, rel = 0.0;
+      for (uint32_t c : g.channels) {
+        double va = a.value(x, y, c), vb = b.value(x, y, c), d = absDiff(va, vb);
+        dist2 += d * d;
+        mag = std::max({mag, std::abs(va), std::abs(vb)});
+        if (d > 0.0) rel = std::max(rel, d / std::max(std::abs(va), std::abs(vb)));
+      }
+      double abs = std::sqrt(dist2);
+      if (std::isnan(rel) || std::isinf(abs)) rel = INFINITY;
+      s.maxAbs = std::max(s.maxAbs, abs);
+      s.maxRel = std::max(s.maxRel, rel);
+      s.sumAbs += abs;
+      s.sumRel += rel;
+      e = g.kind == MetricKind::Depth ? rel : abs;
+      break;
+    }
+  }
+  return e;
+}
+
+// The group's metrics under its kind's names, the fractions over the thresholds.
+static nlohmann::json groupMetrics(const GroupResult& r, const ErrorSums& s) {
+  const double n = double(std::max<uint64_t>(r.pixels, 1));
+  nlohmann::json m;
+  switch (r.group.kind) {
     case MetricKind::Colour: {
-      double rmse = std::sqrt(sumSq / double(std::max<uint64_t>(samples, 1)));
-      m = {{"max_abs", r.maxError}, {"mean_abs", sumAbs / double(std::max<uint64_t>(samples, 1))}, {"rmse", rmse},
+      double rmse = std::sqrt(s.sumSq / double(std::max<uint64_t>(s.samples, 1)));
+      m = {{"max_abs", r.maxError}, {"mean_abs", s.sumAbs / double(std::max<uint64_t>(s.samples, 1))}, {"rmse", rmse},
            {"psnr_db", rmse > 0.0 ? 20.0 * std::log10(1.0 / rmse) : INFINITY}};
       break;
     }
@@ -188,13 +186,35 @@ static void compareGroup(Target t, const Capture& ca, const Capture& cb, GroupRe
     }
     case MetricKind::Depth:
     case MetricKind::Position:
-      m = {{"max_abs", maxAbs}, {"mean_abs", sumAbs / n}, {"max_rel", maxRel}, {"mean_rel", sumRel / n}};
+      m = {{"max_abs", s.maxAbs}, {"mean_abs", s.sumAbs / n}, {"max_rel", s.maxRel}, {"mean_rel", s.sumRel / n}};
       break;
-    case MetricKind::Exact: m = {{"differing_pixels", differing}, {"max_abs", r.maxError}}; break;
+    case MetricKind::Exact: m = {{"differing_pixels", s.differing}, {"max_abs", r.maxError}}; break;
   }
-  m["differing_pixels"] = differing;
+  m["differing_pixels"] = s.differing;
   m["fraction_over_fail"] = double(r.overFail) / n;
   m["fraction_over_warn"] = double(r.overWarn) / n;
+  return m;
+}
+
+static void compareGroup(Target t, const Capture& ca, const Capture& cb, GroupResult& r) {
+  const CpuImage& a = ca.frame.target(t).image;
+  r.width = a.width;
+  r.height = a.height;
+  r.pixels = uint64_t(a.width) * a.height;
+  r.errors.assign(r.pixels, 0.0f);
+  ErrorSums s;
+  for (uint32_t y = 0; y < a.height; ++y)
+    for (uint32_t x = 0; x < a.width; ++x) {
+      double e = pixelError(t, ca, cb, r.group, x, y, s);
+      r.errors[size_t(y) * a.width + x] = float(e);
+      r.maxError = std::max(r.maxError, e);
+      s.sumErr += e;
+      s.differing += e > 0.0;
+      r.overWarn += e > r.thresholds.warn;
+      r.overFail += e > r.thresholds.fail;
+    }
+  r.meanError = s.sumErr / double(std::max<uint64_t>(r.pixels, 1));
+  r.metrics = groupMetrics(r, s);
   r.verdict = decide(r.thresholds, r.pixels, r.overWarn, r.overFail, r.maxError);
 }
 
@@ -224,17 +244,17 @@ bool compareCaptures(const Capture& ca, const Capture& cb, const ThresholdSettin
   manifestDifferences(ca.manifest, cb.manifest, report.differences);
   std::vector<std::string> knownKeys = {""};
   Verdict worst = Verdict::Pass;
-  for (size_t i = 0; i < kTargetCount; ++i) {
-    Target t = Target(i);
-    const TargetImage &a = ca.frame.targets[i], &b = cb.frame.targets[i];
+  for (const TargetInfo& info : targetTable()) {
+    const Target t = info.target;
+    const TargetImage &a = ca.frame.target(t), &b = cb.frame.target(t);
     std::string tn = targetName(t);
     if (!a.present() && !b.present()) {
-      report.skipped.push_back({tn, std::string("absent in both (A: ") + absentText(ca.frame.absent[i]) +
-                                        "; B: " + absentText(cb.frame.absent[i]) + ")"});
+      report.skipped.push_back({tn, std::string("absent in both (A: ") + absentText(ca.frame.absence(t)) +
+                                        "; B: " + absentText(cb.frame.absence(t)) + ")"});
       continue;
     }
     if (a.present() != b.present()) {
-      const char* why = absentText(a.present() ? cb.frame.absent[i] : ca.frame.absent[i]);
+      const char* why = absentText(a.present() ? cb.frame.absence(t) : ca.frame.absence(t));
       report.mismatches.push_back({tn, std::string("only in ") + (a.present() ? "A" : "B") + " (" + why + ")"});
       continue;
     }

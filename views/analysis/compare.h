@@ -2,9 +2,10 @@
 // pass/warn/fail decisions with OpenImageIO idiff's semantics and exit codes
 // (docs/capture-format.md, "Compare").
 #pragma once
+#include <nlohmann/json.hpp>
+
 #include <limits>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>

@@ -4,8 +4,8 @@
 #include <filesystem>
 
 #include "views/analysis/compare.h"
-#include "views/capture/image_io.h"
 #include "views/analysis/visualize.h"
+#include "views/capture/image_io.h"
 
 namespace gb {
 

@@ -21,7 +21,7 @@ static ProbeTarget rawTarget(const FrameSnapshot& f, Target t, uint32_t x, uint3
   p.target = targetName(t);
   const TargetImage& ti = f.target(t);
   if (!ti.present()) {
-    p.absent = absentText(f.absent[size_t(t)] == Absent::No ? Absent::NotCaptured : f.absent[size_t(t)]);
+    p.absent = absentText(f.absence(t) == Absent::No ? Absent::NotCaptured : f.absence(t));
     return p;
   }
   p.type = name(ti.image.type);
@@ -86,7 +86,7 @@ static void probeShadow(const FrameSnapshot& f, const glm::dvec3& eye, PixelDoss
   s.y0 = int32_t(std::floor(s.texel.y));
   const TargetImage& sm = f.target(Target::ShadowMap);
   if (!sm.present()) {
-    const Absent why = f.absent[size_t(Target::ShadowMap)];
+    const Absent why = f.absence(Target::ShadowMap);
     s.note = std::string("shadow_map: ") + absentText(why == Absent::No ? Absent::NotCaptured : why);
     d.missing.push_back("shadow_map");
     return;
@@ -175,31 +175,22 @@ static void probeLights(const FrameSnapshot& f, uint32_t x, uint32_t y, const gl
   }
 }
 
-PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
-  PixelDossier d;
-  d.x = x;
-  d.y = y;
-  d.width = f.camera.width;
-  d.height = f.camera.height;
-  if (x >= f.camera.width || y >= f.camera.height) {
-    d.error = "pixel " + std::to_string(x) + "," + std::to_string(y) + " is outside the " +
-              std::to_string(f.camera.width) + "x" + std::to_string(f.camera.height) + " frame";
-    return d;
-  }
-  for (size_t i = 0; i < kTargetCount; ++i)
-    if (screenSpaceTarget(Target(i))) d.targets.push_back(rawTarget(f, Target(i), x, y));
-  auto need = [&](Target t) {
-    if (f.target(t).contains(x, y)) return true;
-    d.missing.push_back(targetName(t));
-    return false;
-  };
+// True when the snapshot holds target t at the pixel; else its name joins d.missing.
+static bool need(const FrameSnapshot& f, Target t, uint32_t x, uint32_t y, PixelDossier& d) {
+  if (f.target(t).contains(x, y)) return true;
+  d.missing.push_back(targetName(t));
+  return false;
+}
 
-  if ((d.hasAlbedo = need(Target::AlbedoSpecular))) {
+// The decoded G-buffer: albedo and specular, the normal (stored and unit) and the shadow term,
+// both depths and the stencil.
+static void decodeGBuffer(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDossier& d) {
+  if ((d.hasAlbedo = need(f, Target::AlbedoSpecular, x, y, d))) {
     const TargetImage& a = f.target(Target::AlbedoSpecular);
     d.albedo = {a.value(x, y, 0), a.value(x, y, 1), a.value(x, y, 2)};
     d.specular = a.value(x, y, 3);
   }
-  if ((d.hasNormal = need(Target::NormalShadow))) {
+  if ((d.hasNormal = need(f, Target::NormalShadow, x, y, d))) {
     const TargetImage& n = f.target(Target::NormalShadow);
     DecodedNormal dn = decodeNormalTexel(n.image, x - n.x0, y - n.y0, f.options.normalFormat);
     d.normal = dn.unit;
@@ -208,21 +199,24 @@ PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
     d.normalLengthError = length > 0.0 ? std::abs(length - 1.0) : 0.0;  // zero: no geometry
     d.shadow = dn.shadow;
   }
-  bool hasEye = d.hasEyeDepth = need(Target::Depth), hasHw = d.hasHardwareDepth = need(Target::DepthStencil);
-  if (hasEye) d.eyeDepth = f.target(Target::Depth).value(x, y, 0);
-  if (hasHw) {
+  d.hasEyeDepth = need(f, Target::Depth, x, y, d);
+  d.hasHardwareDepth = need(f, Target::DepthStencil, x, y, d);
+  if (d.hasEyeDepth) d.eyeDepth = f.target(Target::Depth).value(x, y, 0);
+  if (d.hasHardwareDepth) {
     d.hardwareDepth = f.target(Target::DepthStencil).value(x, y, 0);
     d.stencil = uint32_t(f.target(Target::DepthStencil).value(x, y, 1));
   }
-  glm::dvec3 P(0.0);
-  d.geometry = usedPosition(f, x, y, P);
-  d.positionSource = f.options.eyeDepth ? "eye_depth" : "hardware_depth";
+}
+
+// The position from each depth (eye and world space) and how far apart they are, in scene units
+// and in float ulps of each stored depth.
+static void reconstructPositions(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDossier& d) {
   double far = f.options.reversedZ ? 0.0 : 1.0;
-  if (hasEye && d.eyeDepth > 0.0) {
+  if (d.hasEyeDepth && d.eyeDepth > 0.0) {
     d.fromEyeDepth = {true, eyeFromEyeDepth(f.camera, x, y, d.eyeDepth), {}};
     d.fromEyeDepth.world = glm::dvec3(f.camera.worldFromEye * glm::dvec4(d.fromEyeDepth.eye, 1.0));
   }
-  if (hasHw && d.hardwareDepth != far) {
+  if (d.hasHardwareDepth && d.hardwareDepth != far) {
     d.fromHardwareDepth = {true, eyeFromHardwareDepth(f.camera, x, y, d.hardwareDepth), {}};
     d.fromHardwareDepth.world = glm::dvec3(f.camera.worldFromEye * glm::dvec4(d.fromHardwareDepth.eye, 1.0));
   }
@@ -231,23 +225,13 @@ PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
     d.eyeDepthUlps = std::abs(d.fromEyeDepth.eye.z - d.fromHardwareDepth.eye.z) / floatUlp(d.eyeDepth);
     d.hardwareDepthUlps = std::abs(hardwareDepth(f.camera, d.fromEyeDepth.eye) - d.hardwareDepth) / floatUlp(d.hardwareDepth);
   }
+}
 
-  if (d.geometry) {
-    d.viewDirection = glm::normalize(-P);
-    probeShadow(f, P, d);
-    glm::dvec3 sun = f.sunEyeDirection();
-    d.directional = shading::shadeDirectional(d.albedo, d.specular, d.normal, d.viewDirection, sun,
-                                              glm::dvec3(f.sun.color), glm::dvec3(f.sky.ambient),
-                                              f.sun.enabled ? d.shadow : 0.0);
-  } else {
-    d.shadowMap.note = "no geometry at this pixel";
-  }
-  probeLights(f, x, y, P, d);
-  d.hdrExpected = d.directional + d.pointLightTotal;
-
+// The stored outputs: coverage counts, hdr and what tone mapping it should give, final.
+static void readOutputs(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDossier& d) {
   for (auto [t, out] : {std::pair{Target::CoverageMasked, &d.coverageMasked}, {Target::CoverageFull, &d.coverageFull}})
     if (f.target(t).contains(x, y)) *out = int64_t(f.target(t).raw(x, y, 0));
-  if (need(Target::Hdr)) {
+  if (need(f, Target::Hdr, x, y, d)) {
     const TargetImage& h = f.target(Target::Hdr);
     d.hasHdr = true;
     d.hdr = {h.value(x, y, 0), h.value(x, y, 1), h.value(x, y, 2), h.value(x, y, 3)};
@@ -261,11 +245,45 @@ PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
       d.finalExpectedSrgb8[i] = uint32_t(std::lround(v * 255.0));
     }
   }
-  if (need(Target::Final)) {
+  if (need(f, Target::Final, x, y, d)) {
     const TargetImage& fi = f.target(Target::Final);
     d.hasFinal = true;
     d.finalColor = {fi.value(x, y, 0), fi.value(x, y, 1), fi.value(x, y, 2), fi.value(x, y, 3)};
   }
+}
+
+PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
+  PixelDossier d;
+  d.x = x;
+  d.y = y;
+  d.width = f.camera.width;
+  d.height = f.camera.height;
+  if (x >= f.camera.width || y >= f.camera.height) {
+    d.error = "pixel " + std::to_string(x) + "," + std::to_string(y) + " is outside the " +
+              std::to_string(f.camera.width) + "x" + std::to_string(f.camera.height) + " frame";
+    return d;
+  }
+  for (size_t i = 0; i < kTargetCount; ++i)
+    if (screenSpaceTarget(Target(i))) d.targets.push_back(rawTarget(f, Target(i), x, y));
+  decodeGBuffer(f, x, y, d);
+  glm::dvec3 P(0.0);
+  d.geometry = usedPosition(f, x, y, P);
+  d.positionSource = f.options.eyeDepth ? "eye_depth" : "hardware_depth";
+  reconstructPositions(f, x, y, d);
+
+  if (d.geometry) {
+    d.viewDirection = glm::normalize(-P);
+    probeShadow(f, P, d);
+    glm::dvec3 sun = f.sunEyeDirection();
+    d.directional = shading::shadeDirectional(d.albedo, d.specular, d.normal, d.viewDirection, sun,
+                                              glm::dvec3(f.sun.color), glm::dvec3(f.sky.ambient),
+                                              f.sun.enabled ? d.shadow : 0.0);
+  } else {
+    d.shadowMap.note = "no geometry at this pixel";
+  }
+  probeLights(f, x, y, P, d);
+  d.hdrExpected = d.directional + d.pointLightTotal;
+  readOutputs(f, x, y, d);
   return d;
 }
 

@@ -11,6 +11,7 @@
 // Anything not in the snapshot is reported as missing, never guessed.
 #pragma once
 #include <nlohmann/json.hpp>
+
 #include <string>
 #include <vector>
 

@@ -21,13 +21,10 @@ static nlohmann::json position(const ProbePosition& p) {
   return {{"eye", v3(p.eye)}, {"world", v3(p.world)}};
 }
 
-nlohmann::json dossierJson(const PixelDossier& d) {
-  nlohmann::json j = {{"pixel", {d.x, d.y}}, {"size", {d.width, d.height}}};
-  if (!d.error.empty()) {
-    j["error"] = d.error;
-    return j;
-  }
-  j["missing"] = d.missing;
+static nlohmann::json opt(bool has, nlohmann::json v) { return has ? v : nlohmann::json(nullptr); }
+
+// Every screen target's raw channels (bits and value), or why it is absent.
+static nlohmann::json targetsJson(const PixelDossier& d) {
   nlohmann::json targets = nlohmann::json::array();
   for (const ProbeTarget& t : d.targets) {
     nlohmann::json e = {{"target", t.target}};
@@ -42,8 +39,61 @@ nlohmann::json dossierJson(const PixelDossier& d) {
     }
     targets.push_back(e);
   }
-  j["targets"] = targets;
-  auto opt = [](bool has, nlohmann::json v) { return has ? v : nlohmann::json(nullptr); };
+  return targets;
+}
+
+// The shadow-map lookup: bias, and when valid the receiver, the four texels and the filter.
+static nlohmann::json shadowJson(const ProbeShadow& s) {
+  nlohmann::json sm = {{"valid", s.valid}, {"note", s.note}, {"bias", {{"constant", s.biasConstant}, {"slope", s.biasSlope}, {"clamp", s.biasClamp}}}};
+  if (!s.valid) return sm;
+  nlohmann::json texels = nlohmann::json::array();
+  for (int k = 0; k < 4; ++k)
+    texels.push_back({{"texel", {s.x0 + (k & 1), s.y0 + (k >> 1)}}, {"stored_depth", s.stored[k]},
+                      {"weight", s.weight[k]}, {"lit", s.lit[k]}, {"outside", s.outside[k]}});
+  sm["light_clip"] = v3(s.lightClip);
+  sm["receiver_depth"] = s.receiverDepth;
+  sm["texel_coordinates"] = {s.texel.x, s.texel.y};
+  sm["texels"] = texels;
+  sm["nearest_margin"] = s.nearestMargin;
+  sm["filtered"] = s.filtered;
+  sm["stored_shadow"] = s.storedShadow;
+  return sm;
+}
+
+// Sun and ambient, each point light whose volume the ray meets, the coverage counts.
+static nlohmann::json lightingJson(const PixelDossier& d) {
+  nlohmann::json lights = nlohmann::json::array();
+  for (const ProbeLight& l : d.lights)
+    lights.push_back({{"index", l.index},
+                      {"class", l.lightClass},
+                      {"eye_position", v3(l.eyePosition)},
+                      {"radius", l.radius},
+                      {"color", v3(l.color)},
+                      {"volume_enter", l.enter},
+                      {"volume_exit", l.exit},
+                      {"distance", l.distance},
+                      {"distance_over_radius", l.distance / l.radius},
+                      {"attenuation", l.attenuation},
+                      {"stencil_pass", l.stencilPass},
+                      {"contribution", v3(l.contribution)}});
+  return {{"view_direction", v3(d.viewDirection)},
+          {"directional", v3(d.directional)},
+          {"point_lights", lights},
+          {"covering_lights", d.lights.size()},
+          {"shaded_lights", d.shadedLights},
+          {"coverage_full", d.coverageFull < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.coverageFull)},
+          {"coverage_masked", d.coverageMasked < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.coverageMasked)},
+          {"point_light_total", v3(d.pointLightTotal)}};
+}
+
+nlohmann::json dossierJson(const PixelDossier& d) {
+  nlohmann::json j = {{"pixel", {d.x, d.y}}, {"size", {d.width, d.height}}};
+  if (!d.error.empty()) {
+    j["error"] = d.error;
+    return j;
+  }
+  j["missing"] = d.missing;
+  j["targets"] = targetsJson(d);
   j["decoded"] = {{"geometry", d.geometry},
                   {"albedo", opt(d.hasAlbedo, v3(d.albedo))},
                   {"specular", opt(d.hasAlbedo, d.specular)},
@@ -60,44 +110,8 @@ nlohmann::json dossierJson(const PixelDossier& d) {
                    {"difference", d.positionDifference},
                    {"eye_depth_ulps", d.eyeDepthUlps},
                    {"hardware_depth_ulps", d.hardwareDepthUlps}};
-  const ProbeShadow& s = d.shadowMap;
-  nlohmann::json sm = {{"valid", s.valid}, {"note", s.note}, {"bias", {{"constant", s.biasConstant}, {"slope", s.biasSlope}, {"clamp", s.biasClamp}}}};
-  if (s.valid) {
-    nlohmann::json texels = nlohmann::json::array();
-    for (int k = 0; k < 4; ++k)
-      texels.push_back({{"texel", {s.x0 + (k & 1), s.y0 + (k >> 1)}}, {"stored_depth", s.stored[k]},
-                        {"weight", s.weight[k]}, {"lit", s.lit[k]}, {"outside", s.outside[k]}});
-    sm["light_clip"] = v3(s.lightClip);
-    sm["receiver_depth"] = s.receiverDepth;
-    sm["texel_coordinates"] = {s.texel.x, s.texel.y};
-    sm["texels"] = texels;
-    sm["nearest_margin"] = s.nearestMargin;
-    sm["filtered"] = s.filtered;
-    sm["stored_shadow"] = s.storedShadow;
-  }
-  j["shadow_map"] = sm;
-  nlohmann::json lights = nlohmann::json::array();
-  for (const ProbeLight& l : d.lights)
-    lights.push_back({{"index", l.index},
-                      {"class", l.lightClass},
-                      {"eye_position", v3(l.eyePosition)},
-                      {"radius", l.radius},
-                      {"color", v3(l.color)},
-                      {"volume_enter", l.enter},
-                      {"volume_exit", l.exit},
-                      {"distance", l.distance},
-                      {"distance_over_radius", l.distance / l.radius},
-                      {"attenuation", l.attenuation},
-                      {"stencil_pass", l.stencilPass},
-                      {"contribution", v3(l.contribution)}});
-  j["lighting"] = {{"view_direction", v3(d.viewDirection)},
-                   {"directional", v3(d.directional)},
-                   {"point_lights", lights},
-                   {"covering_lights", d.lights.size()},
-                   {"shaded_lights", d.shadedLights},
-                   {"coverage_full", d.coverageFull < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.coverageFull)},
-                   {"coverage_masked", d.coverageMasked < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.coverageMasked)},
-                   {"point_light_total", v3(d.pointLightTotal)}};
+  j["shadow_map"] = shadowJson(d.shadowMap);
+  j["lighting"] = lightingJson(d);
   // Without geometry the skybox wrote hdr: there is no lighting to expect.
   j["hdr"] = {{"stored", opt(d.hasHdr, v4(d.hdr))},
               {"expected", opt(d.geometry, v3(d.hdrExpected))},
@@ -121,12 +135,10 @@ static std::string t3(const glm::dvec3& v) {
   return b;
 }
 
-std::string dossierText(const PixelDossier& d) {
+// What is missing and every target's raw channels.
+static std::string targetsText(const PixelDossier& d) {
   std::string o;
   char line[512];
-  std::snprintf(line, sizeof(line), "pixel %u,%u of %ux%u\n", d.x, d.y, d.width, d.height);
-  o += line;
-  if (!d.error.empty()) return o + "error: " + d.error + "\n";
   if (!d.missing.empty()) {
     o += "missing:";
     for (const std::string& m : d.missing) o += " " + m;
@@ -144,7 +156,12 @@ std::string dossierText(const PixelDossier& d) {
       o += line;
     }
   }
-  o += "\ndecoded\n";
+  return o;
+}
+
+// The decoded G-buffer and both reconstructed positions.
+static std::string decodedText(const PixelDossier& d) {
+  std::string o = "\ndecoded\n";
   o += "  geometry        " + std::string(d.geometry ? "yes" : "no (sky)") + "\n";
   o += "  albedo          " + (d.hasAlbedo ? t3(d.albedo) + "   specular " + f9(d.specular) : "-") + "\n";
   o += "  normal          " + (d.hasNormal ? t3(d.normal) + "   stored length error " + f9(d.normalLengthError) : "-") + "\n";
@@ -159,6 +176,13 @@ std::string dossierText(const PixelDossier& d) {
     o += std::string("  ") + label + " " + (p->valid ? t3(p->eye) + " | " + t3(p->world) : std::string("-")) + "\n";
   o += "  difference          " + f9(d.positionDifference) + " scene units; eye depth " + f9(d.eyeDepthUlps) +
        " ulps, hardware depth " + f9(d.hardwareDepthUlps) + " ulps\n";
+  return o;
+}
+
+// The shadow-map lookup and the point lights met by the ray.
+static std::string lightingText(const PixelDossier& d) {
+  std::string o;
+  char line[512];
   const ProbeShadow& s = d.shadowMap;
   o += "\nshadow map: " + s.note + "\n";
   if (s.valid) {
@@ -185,6 +209,12 @@ std::string dossierText(const PixelDossier& d) {
   }
   o += "  point-light total   " + t3(d.pointLightTotal) + "\n";
   o += "  directional+ambient " + t3(d.directional) + "\n";
+  return o;
+}
+
+// The stored hdr and final against what the dossier expects.
+static std::string outputsText(const PixelDossier& d) {
+  std::string o;
   if (d.hasHdr) {
     o += "\nhdr stored          " + t3(glm::dvec3(d.hdr)) + " a " + f9(d.hdr.w) + (d.geometry ? "" : " (the skybox)") + "\n";
     if (d.geometry) {
@@ -195,12 +225,21 @@ std::string dossierText(const PixelDossier& d) {
   if (d.hasFinal) {
     o += "final (linear)      " + t3(glm::dvec3(d.finalColor)) + " a " + f9(d.finalColor.w) + "\n";
     if (d.hasHdr) {
+      char line[512];
       std::snprintf(line, sizeof(line), "  toneMap(hdr)      %s = sRGB 0x%02x 0x%02x 0x%02x\n", t3(d.finalExpected).c_str(),
                     d.finalExpectedSrgb8.x, d.finalExpectedSrgb8.y, d.finalExpectedSrgb8.z);
       o += line;
     }
   }
   return o;
+}
+
+std::string dossierText(const PixelDossier& d) {
+  char line[512];
+  std::snprintf(line, sizeof(line), "pixel %u,%u of %ux%u\n", d.x, d.y, d.width, d.height);
+  std::string o = line;
+  if (!d.error.empty()) return o + "error: " + d.error + "\n";
+  return o + targetsText(d) + decodedText(d) + lightingText(d) + outputsText(d);
 }
 
 }  // namespace gb

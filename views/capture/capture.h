@@ -4,6 +4,7 @@
 // SHA-256 and every EXR's channels before anything is used.
 #pragma once
 #include <nlohmann/json.hpp>
+
 #include <string>
 #include <vector>
 

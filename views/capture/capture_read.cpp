@@ -4,10 +4,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "renderer/core/sha256.h"
 #include "views/capture/capture.h"
+
+#include "renderer/core/layout_json.h"
 #include "views/capture/exr.h"
 #include "views/capture/report.h"
-#include "renderer/core/sha256.h"
 
 namespace gb {
 
@@ -148,29 +150,44 @@ static bool loadLights(const fs::path& dir, FrameSnapshot& f, std::string& error
   return true;
 }
 
-static bool loadTargets(const fs::path& dir, const nlohmann::json& m, FrameSnapshot& f, std::string& error) {
-  for (size_t i = 0; i < kTargetCount; ++i) f.absent[i] = Absent::NotCaptured;
-  for (const nlohmann::json& s : m.at("skipped")) {
-    Target t;
-    if (parseTarget(s.at("name").get<std::string>(), t)) f.absent[size_t(t)] = absentFromText(s.at("reason").get<std::string>());
+// The layout the manifest embeds; manifests before layouts: gblens's own for the options.
+static bool layoutFromManifest(const nlohmann::json& m, FrameSnapshot& f, std::string& error) {
+  auto it = m.find("layout");
+  if (it == m.end()) {
+    f.setLayout(nativeLayout(f.options));
+    return true;
   }
+  Layout l;
+  if (!parseLayout(*it, "manifest.json: layout", l, error)) return false;
+  f.setLayout(std::move(l));
+  return true;
+}
+
+static bool loadTargets(const fs::path& dir, const nlohmann::json& m, FrameSnapshot& f, std::string& error) {
+  for (const nlohmann::json& s : m.at("skipped"))
+    if (int i = f.indexOf(s.at("name").get<std::string>()); i >= 0)
+      f.absences[size_t(i)] = absentFromText(s.at("reason").get<std::string>());
   for (const nlohmann::json& e : m.at("targets")) {
     std::string nameText = e.at("name").get<std::string>();
-    Target t;
-    if (!parseTarget(nameText, t)) {
-      error = "manifest.json: unknown target \"" + nameText + "\" (written by a newer gblens?)";
+    const int index = f.indexOf(nameText);
+    if (index < 0) {
+      error = "manifest.json: target \"" + nameText + "\" is not in the capture's layout";
       return false;
     }
     CpuImage img;
-    describeReadback(t, f.options, img);
+    describeImage(f.layout.targets[size_t(index)], img);
     std::string type = e.at("type").get<std::string>(), encoding = e.at("encoding").get<std::string>();
-    if (!parseName<PixelType, 7>(type, img.type, name) || !parseName<Encoding, 7>(encoding, img.encoding, name)) {
-      error = "manifest.json: target " + nameText + ": unknown type " + type + " / encoding " + encoding;
+    PixelType storedType;
+    Encoding storedEncoding;
+    if (!parseName<PixelType, 7>(type, storedType, name) || !parseName<Encoding, 7>(encoding, storedEncoding, name) ||
+        storedType != img.type || storedEncoding != img.encoding) {
+      error = "manifest.json: target " + nameText + ": type " + type + " / encoding " + encoding + " is not what its layout format " +
+              f.layout.targets[size_t(index)].format.name + " stores";
       return false;
     }
     if (e.at("channels").get<std::vector<std::string>>() != img.channels) {
       error = "manifest.json: target " + nameText + ": channels " + e.at("channels").dump() +
-              " differ from this gblens's " + nlohmann::json(img.channels).dump();
+              " differ from its layout's " + nlohmann::json(img.channels).dump();
       return false;
     }
     std::string file = e.at("file").get<std::string>();
@@ -181,11 +198,11 @@ static bool loadTargets(const fs::path& dir, const nlohmann::json& m, FrameSnaps
     img.width = e.at("width").get<uint32_t>();
     img.height = e.at("height").get<uint32_t>();
     if (!readExr((dir / file).string(), img, error)) return false;
-    TargetImage& ti = f.target(t);
+    TargetImage& ti = f.images[size_t(index)];
     ti.image = std::move(img);
     ti.targetWidth = ti.image.width;
     ti.targetHeight = ti.image.height;
-    f.absent[size_t(t)] = Absent::No;
+    f.absences[size_t(index)] = Absent::No;
   }
   return true;
 }
@@ -228,6 +245,7 @@ bool loadCapture(const std::string& dirText, Capture& out, std::string& error, C
     // "camera" (earlier manifests: "view").
     const nlohmann::json& camera = m.contains("camera") ? m.at("camera") : m.at("view");
     if (!optionsFromJson(m.at("options"), f.options, error) || !cameraFromJson(camera, f.camera, error) ||
+        !layoutFromManifest(m, f, error) ||
         !loadLights(dir, f, error))
       return fail(CaptureProblem::Corrupt, dirText + ": " + error);
     if (!matrixFromJson(m.at("lightClipFromWorld"), f.lightClipFromWorld))

@@ -8,12 +8,13 @@
 #include <filesystem>
 #include <fstream>
 
+#include "renderer/core/layout_json.h"
+#include "renderer/core/sha256.h"
 #include "renderer/core/version.h"
 #include "views/capture/capture.h"
 #include "views/capture/exr.h"
 #include "views/capture/image_io.h"
 #include "views/capture/report.h"
-#include "renderer/core/sha256.h"
 
 namespace gb {
 
@@ -27,28 +28,6 @@ std::vector<Target> availableTargets(const RenderOptions& o, bool sceneHasSun) {
 }
 
 static nlohmann::json vec3Json(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
-
-static nlohmann::json statsJson(const FrameStats& st) {
-  nlohmann::json passes = nlohmann::json::array();
-  for (const PassStat& p : st.passes) {
-    nlohmann::json j = {{"name", p.name}, {"ms", p.ms}, {"skipped", p.skipped}};
-    if (p.skipped) j["reason"] = p.reason;
-    passes.push_back(j);
-  }
-  nlohmann::json j = {{"frame_ms", st.frameMs}, {"gpu_ms", st.gpuMs}, {"passes", passes},
-                      {"method", {{"ran", st.method}, {"why", st.methodReason}}},
-                      {"lights", {{"total", st.lights}, {"visible", st.lightsVisible},
-                                  {"near_plane", st.lightsInside}, {"culled", st.lightsCulled}}}};
-  if (st.culling.valid)
-    j["culling"] = {{"valid", true},
-                    {"invocations", st.culling.invocations},
-                    {"ideal_pairs", st.culling.idealPairs},
-                    {"work_over_ideal", st.culling.workOverIdeal},
-                    {"pipeline_invocations", st.culling.pipelineInvocations}};
-  else
-    j["culling"] = {{"valid", false}, {"reason", "needs coverage on and the coverage_masked and depth targets"}};
-  return j;
-}
 
 // Lights exactly as uploaded (float values print and parse back bit-exactly through double).
 static nlohmann::json lightsJson(const FrameSnapshot& f) {
@@ -104,27 +83,27 @@ static bool record(const fs::path& tmp, const std::string& file, nlohmann::json&
 static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const CaptureMeta& meta, std::string& error) {
   nlohmann::json files = nlohmann::json::object(), targets = nlohmann::json::array();
   nlohmann::json skipped = nlohmann::json::array();
-  for (size_t i = 0; i < kTargetCount; ++i) {
-    Target t = Target(i);
-    const TargetImage& ti = f.targets[i];
+  for (size_t i = 0; i < f.images.size(); ++i) {
+    const std::string& targetName = f.layout.targets[i].name;
+    const TargetImage& ti = f.images[i];
     if (!ti.present()) {
-      skipped.push_back({{"name", targetName(t)},
-                         {"reason", absentText(f.absent[i] == Absent::No ? Absent::NotCaptured : f.absent[i])}});
+      skipped.push_back({{"name", targetName},
+                         {"reason", absentText(f.absences[i] == Absent::No ? Absent::NotCaptured : f.absences[i])}});
       continue;
     }
     if (!ti.whole()) {
-      error = std::string(targetName(t)) + ": a region read-back cannot be captured (whole targets only)";
+      error = targetName + ": a region read-back cannot be captured (whole targets only)";
       return false;
     }
-    std::string file = std::string(targetName(t)) + ".exr";
+    std::string file = targetName + ".exr";
     if (!writeExr((tmp / file).string(), ti.image, error) || !record(tmp, file, files, error)) return false;
     nlohmann::json exr = nlohmann::json::array();
     for (const ExrChannel& c : exrChannels(ti.image)) exr.push_back({{"name", c.name}, {"type", c.type}});
-    targets.push_back({{"name", targetName(t)}, {"file", file}, {"width", ti.image.width},
+    targets.push_back({{"name", targetName}, {"file", file}, {"width", ti.image.width},
                        {"height", ti.image.height}, {"type", name(ti.image.type)},
                        {"encoding", name(ti.image.encoding)}, {"channels", ti.image.channels},
                        {"exr_channels", exr}});
-    if (t == Target::Final) {  // the tone-mapped sRGB bytes, exactly
+    if (int(i) == f.indexOf(Target::Final)) {  // the tone-mapped sRGB bytes, exactly
       Rgba8Image png{ti.image.width, ti.image.height, ti.image.data};
       if (ti.image.type != PixelType::U8 || ti.image.channelCount() != 4) {
         error = "final: expected 8-bit RGBA";
@@ -150,6 +129,7 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
       {"size", {f.camera.width, f.camera.height}},
       {"time", f.options.time},
       {"options", optionsJson(f.options)},
+      {"layout", layoutJson(f.layout)},
       {"camera", cameraJson(f.camera)},
       {"lightClipFromWorld", matrixJson(f.lightClipFromWorld)},
       {"sun", {{"enabled", f.sun.enabled}, {"to_sun", vec3Json(f.sun.toSun)},
@@ -159,7 +139,7 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
       {"lights", {{"file", "lights.json"}, {"sha256", files["lights.json"]["sha256"]},
                   {"count", f.eyeLights.size()}, {"visible", f.visibleLights.size()},
                   {"stencil_class", f.stencilCount}, {"culled", culled}}},
-      {"stats", statsJson(meta.stats)},
+      {"stats", frameStatsJson(meta.stats)},
       {"targets", targets},
       {"skipped", skipped},
       {"files", files}};

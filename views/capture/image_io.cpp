@@ -1,8 +1,9 @@
 // PNG output through OpenImageIO, atomic by temporary file + rename.
 #include "views/capture/image_io.h"
 
-#include <OpenImageIO/imageio.h>
 #include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
 
 #include <filesystem>
 

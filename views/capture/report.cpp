@@ -1,10 +1,10 @@
 // JSON reports of frames and options, with one name per thing (the CLI flag names).
 #include "views/capture/report.h"
 
-#include "renderer/core/statistics.h"
-
 #include <algorithm>
 #include <cstdio>
+
+#include "renderer/core/statistics.h"
 
 namespace gb {
 
@@ -82,11 +82,58 @@ bool optionsFromJson(const nlohmann::json& j, RenderOptions& o, std::string& err
   return flag(j, "coverage", o.coverage, error) && flag(j, "keep_gbuffer", o.keepGBuffer, error);
 }
 
+static nlohmann::json passJson(const PassStat& p, double ms) {
+  nlohmann::json j = {{"name", p.name}, {"ms", p.skipped ? 0.0 : ms}, {"skipped", p.skipped}};
+  if (p.skipped) j["reason"] = p.reason;
+  return j;
+}
+
+static nlohmann::json cullingJson(const CullingStats& c) {
+  if (!c.valid) return {{"valid", false}, {"reason", "needs coverage on and the coverage_masked and depth targets"}};
+  return {{"valid", true},
+          {"invocations", c.invocations},
+          {"ideal_pairs", c.idealPairs},
+          {"work_over_ideal", c.workOverIdeal},
+          {"pipeline_invocations", c.pipelineInvocations}};
+}
+
+nlohmann::json frameStatsJson(const FrameStats& st) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const PassStat& p : st.passes) passes.push_back(passJson(p, p.ms));
+  nlohmann::json j = {{"frame_ms", st.frameMs},
+                      {"gpu_ms", st.gpuMs},
+                      {"cpu_ms", st.cpuMs},
+                      {"record_ms", st.recordMs},
+                      {"render_pass_groups", {{"compiled", st.groupsCompiled}, {"reused", st.groupsReused}}},
+                      {"method", {{"ran", st.method}, {"why", st.methodReason}}},
+                      {"light_setup", {{"ran", st.lightSetup}, {"why", st.lightSetupReason}}},
+                      {"passes", passes}};
+  j["lights"] = {{"total", st.lights},
+                 {"visible", st.lightsVisible},
+                 {"near_plane", st.lightsInside},
+                 {"stencil_layers", st.stencilLayers},
+                 {"culled", st.lightsCulled},
+                 {"culled_frustum", st.lightsCulledFrustum},
+                 {"culled_empty", st.lightsCulledEmpty},
+                 {"culled_subpixel", st.lightsCulledSubpixel},
+                 {"subpixel_rule",
+                  "skipped when the sphere's exact screen rectangle (+1/1000 px) holds no pixel centre: no shaded "
+                  "point can be inside it"}};
+  if (st.skyPixels >= 0) j["sky_pixels"] = st.skyPixels;
+  if (st.clusters.valid)
+    j["clusters"] = {{"occupied", st.clusters.clusters},
+                     {"list_entries", st.clusters.listEntries},
+                     {"lists_overflowed", st.clusters.listOverflows},
+                     {"tiles_without_room", st.clusters.tilesWithoutRoom}};
+  j["culling"] = cullingJson(st.culling);
+  return j;
+}
+
 nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSource& source, const RenderOptions& o,
                          const FrameStats* counted) {
-  nlohmann::json j;
-  if (frames.empty()) return j;
+  if (frames.empty()) return nlohmann::json();
   const FrameStats& last = frames.back();
+  nlohmann::json j = frameStatsJson(last);
   std::vector<double> frameMs, gpuMs, cpuMs, recordMs;
   for (const FrameStats& f : frames) {
     frameMs.push_back(f.frameMs);
@@ -105,9 +152,6 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSourc
   j["gpu_ms"] = median(gpuMs);
   j["cpu_ms"] = median(cpuMs);
   j["record_ms"] = median(recordMs);
-  j["method"] = {{"ran", last.method}, {"why", last.methodReason}};
-  j["light_setup"] = {{"ran", last.lightSetup}, {"why", last.lightSetupReason}};
-  j["render_pass_groups"] = {{"compiled", last.groupsCompiled}, {"reused", last.groupsReused}};
   nlohmann::json passes = nlohmann::json::array();
   for (size_t i = 0; i < last.passes.size(); ++i) {
     // A pass is reported as the last frame ran it: a skipped pass costs 0 ms there even if an
@@ -115,37 +159,14 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSourc
     std::vector<double> ms;
     for (const FrameStats& f : frames)
       if (i < f.passes.size() && f.passes[i].name == last.passes[i].name && !f.passes[i].skipped) ms.push_back(f.passes[i].ms);
-    const bool skipped = last.passes[i].skipped;
-    nlohmann::json p = {{"name", last.passes[i].name}, {"ms", skipped ? 0.0 : median(ms)}, {"skipped", skipped},
-                        {"runs", ms.size()}};
-    if (skipped) p["reason"] = last.passes[i].reason;
+    nlohmann::json p = passJson(last.passes[i], last.passes[i].skipped ? 0.0 : median(ms));
+    p["runs"] = ms.size();
     passes.push_back(p);
   }
   j["passes"] = passes;
-  j["lights"] = {{"total", last.lights},
-                 {"visible", last.lightsVisible},
-                 {"near_plane", last.lightsInside},
-                 {"stencil_layers", last.stencilLayers},
-                 {"culled", last.lightsCulled},
-                 {"culled_frustum", last.lightsCulledFrustum},
-                 {"culled_empty", last.lightsCulledEmpty},
-                 {"culled_subpixel", last.lightsCulledSubpixel},
-                 {"subpixel_rule",
-                  "skipped when the sphere's exact screen rectangle (+1/1000 px) holds no pixel centre: no shaded "
-                  "point can be inside it"}};
-  if (last.skyPixels >= 0) j["sky_pixels"] = last.skyPixels;
-  if (last.clusters.valid)
-    j["clusters"] = {{"occupied", last.clusters.clusters},
-                     {"list_entries", last.clusters.listEntries},
-                     {"lists_overflowed", last.clusters.listOverflows},
-                     {"tiles_without_room", last.clusters.tilesWithoutRoom}};
-  const CullingStats& culling = counted ? counted->culling : last.culling;
-  if (culling.valid) {
-    j["culling"] = {{"invocations", culling.invocations},
-                    {"ideal_pairs", culling.idealPairs},
-                    {"work_over_ideal", culling.workOverIdeal},
-                    {"pipeline_invocations", culling.pipelineInvocations}};
-    if (counted) j["culling"]["counted_on"] = "one more frame with coverage on, after the timed frames";
+  if (counted) {
+    j["culling"] = cullingJson(counted->culling);
+    if (counted->culling.valid) j["culling"]["counted_on"] = "one more frame with coverage on, after the timed frames";
   }
   return j;
 }

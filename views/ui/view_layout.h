@@ -2,9 +2,9 @@
 // Zoom and pan are shared by every view: zoom is relative to "fit the image in its rectangle",
 // pan is the image point (in [0,1]^2 of the image) at the rectangle's centre.
 #pragma once
-#include <vector>
-
 #include <glm/glm.hpp>
+
+#include <vector>
 
 #include "views/ui/view_params.h"
 

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cstring>
 
-#include "renderer/vk/check.h"
 #include "renderer/pipelines.h"
+#include "renderer/vk/check.h"
 
 namespace gb {
 

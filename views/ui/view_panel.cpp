@@ -110,18 +110,191 @@ struct HoverMarks {
   std::optional<glm::ivec2> texel, shadowTexel;
 };
 
-static void drawOneView(ViewerModel& m, ViewKind kind, const Rect& r, int index, ViewDrawCallback callback,
-                        std::vector<ViewDraw>& draws, bool showKey, const HoverMarks& hover, FrameSide side = FrameSide::A,
-                        bool split = false) {
-  const ViewDef& def = viewDef(kind);
-  const ViewSettings& s = m.settings[int(kind)];
+// One view slot of this interface frame, and what drawing it needs from around it.
+namespace {
+struct SlotDraw {
+  ViewKind kind = ViewKind::Final;
+  Rect rect;
+  int index = 0;                 // the ImGui id of the slot's button
+  FrameSide side = FrameSide::A;
+  bool split = false;            // A | B split at ViewerModel::splitAt
+  bool showKey = false;          // the grid labels views with their keys
+  HoverMarks hover;
+  ViewDrawCallback callback = nullptr;  // draws a view through the GPU mapping, in ImGui's order
+  std::vector<ViewDraw>* draws = nullptr;  // the callback's data: one entry per drawn view
+};
+}  // namespace
+
+// The view's GPU draw (mapping parameters in framebuffer pixels), queued as an ImDrawList
+// callback clipped to the slot.
+static void queueViewDraw(ViewerModel& m, const SlotDraw& v, const Placement& pl, const ResolvedRange& range) {
+  const ViewDef& def = viewDef(v.kind);
+  const ImGuiIO& io = ImGui::GetIO();
+  const Rect& r = v.rect;
+  std::optional<glm::ivec2> mark = m.shadowMark;
+  ViewDraw vd;
+  vd.source = def.source;
+  vd.side = v.side;
+  Placement fb = pl;  // framebuffer pixels (the same as window pixels unless the display scales)
+  fb.originX *= io.DisplayFramebufferScale.x;
+  fb.originY *= io.DisplayFramebufferScale.y;
+  fb.scale *= io.DisplayFramebufferScale.x;
+  if (m.source != FrameSource::Live) mark.reset();  // marks need the live frame's matrices on the GPU
+  vd.params = viewParams(def, m.settings[int(v.kind)], range, fb, m.grid, mark, m.shadowMapSize);
+  if (v.side == FrameSide::Difference) {
+    // |A - B| over the selected channels as a heat map from 0 to the largest difference.
+    vd.params.mode.x = gpu::kViewMapDiff;
+    vd.params.mode.z &= gpu::kViewFlagGrid;
+    vd.params.range = glm::vec4(0.0f, float(std::max(m.differenceMax[int(v.kind)], 1e-30)), vd.params.range.z, 0.0f);
+    if (def.mapping == gpu::kViewMapNormal || def.mapping == gpu::kViewMapColor) vd.params.mode.y &= 0x7u;
+  }
+  if (v.split) vd.splitX = (r.x + r.w * m.splitAt) * io.DisplayFramebufferScale.x;
+  vd.rect = {r.x * io.DisplayFramebufferScale.x, r.y * io.DisplayFramebufferScale.y, r.w * io.DisplayFramebufferScale.x,
+             r.h * io.DisplayFramebufferScale.y};
+  v.draws->push_back(vd);
   ImDrawList* dl = ImGui::GetWindowDrawList();
+  dl->PushClipRect(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), true);
+  dl->AddCallback(v.callback, reinterpret_cast<void*>(intptr_t(v.draws->size() - 1)));
+  dl->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
+  dl->PopClipRect();
+}
+
+// Marks: the hovered pixel on every screen view; on the shadow map, the texel the hovered (or
+// probed) pixel's lookup reads, and the clicked texel.
+static void drawMarks(const ViewerModel& m, const SlotDraw& v, const Placement& pl) {
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const Rect& r = v.rect;
+  if (viewDef(v.kind).source.target != Target::ShadowMap) {
+    if (v.hover.texel) markTexel(dl, pl, *v.hover.texel, rgb(1, 1, 1), r);
+    if (m.probePixel) markTexel(dl, pl, *m.probePixel, rgb(0.2f, 1.0f, 0.4f), r);
+  } else {
+    if (v.hover.shadowTexel) markTexel(dl, pl, *v.hover.shadowTexel, rgb(1, 1, 1), r);
+    if (m.shadowTexelOfProbe) markTexel(dl, pl, *m.shadowTexelOfProbe, rgb(0.2f, 1.0f, 0.4f), r);
+    if (m.shadowMark) markTexel(dl, pl, *m.shadowMark, rgb(1, 0, 1), r);
+  }
+}
+
+// The second label line: the largest difference, the automatic range, NaN/Inf counts.
+static std::string rangeLine(const ViewerModel& m, const SlotDraw& v, const ResolvedRange& range) {
+  std::string line;
+  char buf[128];
+  if (v.side == FrameSide::Difference) {
+    double worst = m.differenceMax[int(v.kind)];
+    if (worst > 0.0)
+      std::snprintf(buf, sizeof buf, "largest |A - B| %.6g", worst);
+    else
+      std::snprintf(buf, sizeof buf, "identical (every texel, selected channels)");
+    line = buf;
+  } else if (m.settings[int(v.kind)].autoRange) {
+    if (range.fromData)
+      std::snprintf(buf, sizeof buf, "auto %.6g .. %.6g", range.black, range.white);
+    else
+      std::snprintf(buf, sizeof buf, "auto: no valid texels");
+    line = buf;
+  }
+  if (range.stats.nan || range.stats.inf) {
+    std::snprintf(buf, sizeof buf, "%s%llu NaN, %llu Inf", line.empty() ? "" : "  ", (unsigned long long)range.stats.nan,
+                  (unsigned long long)range.stats.inf);
+    line += buf;
+  }
+  return line;
+}
+
+// The label box (side, key, name; the range line), the heat legend and the split handle.
+static void drawLabels(const ViewerModel& m, const SlotDraw& v, const ResolvedRange& range) {
+  const ViewDef& def = viewDef(v.kind);
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const Rect& r = v.rect;
+  char label[160];
+  const char* prefix = m.source != FrameSource::Compare ? ""
+                       : v.split                         ? "A | B  "
+                       : v.side == FrameSide::A          ? "A  "
+                       : v.side == FrameSide::B          ? "B  "
+                                                         : "|A-B|  ";
+  std::snprintf(label, sizeof label, "%s%s%s%s", prefix, v.showKey && def.key[0] ? def.key : "",
+                v.showKey && def.key[0] ? "  " : "", def.label);
+  std::string line2 = rangeLine(m, v, range);
+  ImVec2 ls = ImGui::CalcTextSize(label);
+  float boxW = std::max(ls.x, ImGui::CalcTextSize(line2.c_str()).x) + 10;
+  float boxH = ls.y * (line2.empty() ? 1 : 2) + 6;
+  dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x) + boxW, float(r.y) + boxH), rgb(0, 0, 0, 0.6f));
+  dl->AddText(ImVec2(float(r.x) + 5, float(r.y) + 3), rgb(1, 1, 1), label);
+  if (!line2.empty())
+    dl->AddText(ImVec2(float(r.x) + 5, float(r.y) + 3 + ls.y),
+                range.stats.nan || range.stats.inf ? rgb(1, 0.4f, 1) : rgb(0.8f, 0.8f, 0.8f), line2.c_str());
+  if (v.side == FrameSide::Difference && r.w > 120 && r.h > 80)
+    heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)),
+               float(m.differenceMax[int(v.kind)]), "|A - B|, max over the selected channels");
+  else if (def.mapping == gpu::kViewMapHeat && r.w > 120 && r.h > 80)
+    heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), range.white,
+               viewUnit(def, m.stats.method));
+  if (v.split) {  // the split line and its handle
+    float x = float(r.x + r.w * m.splitAt);
+    dl->AddLine(ImVec2(x, float(r.y)), ImVec2(x, float(r.y + r.h)), rgb(1, 1, 1), 2.0f);
+    dl->AddCircleFilled(ImVec2(x, float(r.y + r.h * 0.5)), 6.0f, rgb(1, 1, 1));
+  }
+}
+
+// The mouse over the slot's button: hover, wheel zoom (ctrl: dolly), the split handle, click or
+// drag to probe (a shadow-map click marks a texel), middle or shift drag to pan, right drag to
+// turn the camera.
+static void handleMouse(ViewerModel& m, const SlotDraw& v, const Placement& pl, bool hovered, bool active) {
   ImGuiIO& io = ImGui::GetIO();
-  const glm::uvec2 size = viewImageSize(m, kind);
-  const bool shadowMap = def.source.target == Target::ShadowMap;
+  const Rect& r = v.rect;
+  const glm::uvec2 size = viewImageSize(m, v.kind);
+  const bool shadowMap = viewDef(v.kind).source.target == Target::ShadowMap;
+  glm::dvec2 mouse(io.MousePos.x, io.MousePos.y);
+  glm::dvec2 t = texelAt(pl, mouse);
+  bool inside = t.x >= 0 && t.y >= 0 && t.x < size.x && t.y < size.y;
+  glm::ivec2 texel(int(std::floor(t.x)), int(std::floor(t.y)));
+  if (hovered) {
+    m.hoverView = v.kind;
+    if (inside && !shadowMap) m.hover = texel;
+    if (inside && shadowMap) m.hoverShadowTexel = texel;
+    if (io.MouseWheel != 0.0f) {
+      if (io.KeyCtrl)
+        m.cameraDolly += io.MouseWheel;
+      else
+        zoomAbout(m.transform, r, size.x, size.y, mouse, std::pow(1.25, double(io.MouseWheel)));
+      m.uiChanged = true;
+    }
+  }
+  if (v.split && ImGui::IsItemClicked(ImGuiMouseButton_Left) && std::abs(mouse.x - (r.x + r.w * m.splitAt)) < 8.0)
+    m.draggingSplit = true;
+  if (m.draggingSplit) {
+    if (active && ImGui::IsMouseDown(ImGuiMouseButton_Left))
+      m.splitAt = float(std::clamp((mouse.x - r.x) / std::max(r.w, 1.0), 0.0, 1.0));
+    else
+      m.draggingSplit = false;
+    m.uiChanged = true;
+  } else if (ImGui::IsItemClicked(ImGuiMouseButton_Left) || (active && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f) &&
+                                                       io.MouseDelta.x + io.MouseDelta.y != 0.0f && !io.KeyShift)) {
+    m.edited = v.kind;
+    if (inside && shadowMap) {
+      if (ImGui::IsItemClicked(ImGuiMouseButton_Left))
+        m.shadowMark = m.shadowMark && *m.shadowMark == texel ? std::nullopt : std::optional<glm::ivec2>(texel);
+    } else if (inside && (!m.probePixel || *m.probePixel != texel)) {
+      m.probeRequest = texel;
+    }
+    m.uiChanged = true;
+  }
+  if (active && (ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0.0f) ||
+                 (io.KeyShift && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f)))) {
+    panBy(m.transform, r, size.x, size.y, glm::dvec2(io.MouseDelta.x, io.MouseDelta.y));
+    m.uiChanged = true;
+  }
+  if (active && ImGui::IsMouseDragging(ImGuiMouseButton_Right, 0.0f))
+    m.cameraDrag += glm::dvec2(io.MouseDelta.x, io.MouseDelta.y);
+}
+
+// One view slot: its button (for the mouse), the view or why it is unavailable, marks, labels.
+static void drawOneView(ViewerModel& m, const SlotDraw& v) {
+  const ViewDef& def = viewDef(v.kind);
+  const Rect& r = v.rect;
+  const glm::uvec2 size = viewImageSize(m, v.kind);
 
   ImGui::SetCursorScreenPos(ImVec2(float(r.x), float(r.y)));
-  ImGui::PushID(index);
+  ImGui::PushID(v.index);
   ImGui::InvisibleButton("view", ImVec2(float(std::max(r.w, 1.0)), float(std::max(r.h, 1.0))),
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
                              ImGuiButtonFlags_MouseButtonMiddle);
@@ -129,147 +302,18 @@ static void drawOneView(ViewerModel& m, ViewKind kind, const Rect& r, int index,
   ImGui::PopID();
 
   Placement pl = placeImage(r, size.x, size.y, m.transform);
-  const std::string& why = m.unavailable[int(kind)];
+  const std::string& why = m.unavailable[int(v.kind)];
   if (!why.empty()) {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), rgb(0.12f, 0.12f, 0.12f));
     dl->AddText(ImVec2(float(r.x) + 8, float(r.y + r.h * 0.5)), rgb(0.8f, 0.8f, 0.8f), why.c_str());
   } else {
-    ResolvedRange range = resolveRange(def, s, &m.ranges[int(kind)]);
-    std::optional<glm::ivec2> mark = m.shadowMark;
-    ViewDraw vd;
-    vd.source = def.source;
-    vd.side = side;
-    Placement fb = pl;  // framebuffer pixels (the same as window pixels unless the display scales)
-    fb.originX *= io.DisplayFramebufferScale.x;
-    fb.originY *= io.DisplayFramebufferScale.y;
-    fb.scale *= io.DisplayFramebufferScale.x;
-    if (m.source != FrameSource::Live) mark.reset();  // marks need the live frame's matrices on the GPU
-    vd.params = viewParams(def, s, range, fb, m.grid, mark, m.shadowMapSize);
-    if (side == FrameSide::Difference) {
-      // |A - B| over the selected channels as a heat map from 0 to the largest difference.
-      vd.params.mode.x = gpu::kViewMapDiff;
-      vd.params.mode.z &= gpu::kViewFlagGrid;
-      vd.params.range = glm::vec4(0.0f, float(std::max(m.differenceMax[int(kind)], 1e-30)), vd.params.range.z, 0.0f);
-      if (def.mapping == gpu::kViewMapNormal || def.mapping == gpu::kViewMapColor) vd.params.mode.y &= 0x7u;
-    }
-    if (split) vd.splitX = (r.x + r.w * m.splitAt) * io.DisplayFramebufferScale.x;
-    vd.rect = {r.x * io.DisplayFramebufferScale.x, r.y * io.DisplayFramebufferScale.y, r.w * io.DisplayFramebufferScale.x,
-               r.h * io.DisplayFramebufferScale.y};
-    draws.push_back(vd);
-    dl->PushClipRect(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), true);
-    dl->AddCallback(callback, reinterpret_cast<void*>(intptr_t(draws.size() - 1)));
-    dl->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
-    dl->PopClipRect();
-
-    // Marks: the hovered pixel on every screen view; on the shadow map, the texel the hovered
-    // (or probed) pixel's lookup reads, and the clicked texel.
-    if (!shadowMap) {
-      if (hover.texel) markTexel(dl, pl, *hover.texel, rgb(1, 1, 1), r);
-      if (m.probePixel) markTexel(dl, pl, *m.probePixel, rgb(0.2f, 1.0f, 0.4f), r);
-    } else {
-      if (hover.shadowTexel) markTexel(dl, pl, *hover.shadowTexel, rgb(1, 1, 1), r);
-      if (m.shadowTexelOfProbe) markTexel(dl, pl, *m.shadowTexelOfProbe, rgb(0.2f, 1.0f, 0.4f), r);
-      if (m.shadowMark) markTexel(dl, pl, *m.shadowMark, rgb(1, 0, 1), r);
-    }
-
-    // Label and range.
-    char label[160];
-    const char* prefix = m.source != FrameSource::Compare ? ""
-                         : split                           ? "A | B  "
-                         : side == FrameSide::A            ? "A  "
-                         : side == FrameSide::B            ? "B  "
-                                                           : "|A-B|  ";
-    std::snprintf(label, sizeof label, "%s%s%s%s", prefix, showKey && def.key[0] ? def.key : "",
-                  showKey && def.key[0] ? "  " : "", def.label);
-    std::string line2;
-    if (side == FrameSide::Difference) {
-      char buf[96];
-      double worst = m.differenceMax[int(kind)];
-      if (worst > 0.0)
-        std::snprintf(buf, sizeof buf, "largest |A - B| %.6g", worst);
-      else
-        std::snprintf(buf, sizeof buf, "identical (every texel, selected channels)");
-      line2 = buf;
-    } else if (s.autoRange) {
-      char buf[128];
-      if (range.fromData)
-        std::snprintf(buf, sizeof buf, "auto %.6g .. %.6g", range.black, range.white);
-      else
-        std::snprintf(buf, sizeof buf, "auto: no valid texels");
-      line2 = buf;
-    }
-    if (range.stats.nan || range.stats.inf) {
-      char buf[96];
-      std::snprintf(buf, sizeof buf, "%s%llu NaN, %llu Inf", line2.empty() ? "" : "  ", (unsigned long long)range.stats.nan,
-                    (unsigned long long)range.stats.inf);
-      line2 += buf;
-    }
-    ImVec2 ls = ImGui::CalcTextSize(label);
-    float boxW = std::max(ls.x, ImGui::CalcTextSize(line2.c_str()).x) + 10;
-    float boxH = ls.y * (line2.empty() ? 1 : 2) + 6;
-    dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x) + boxW, float(r.y) + boxH), rgb(0, 0, 0, 0.6f));
-    dl->AddText(ImVec2(float(r.x) + 5, float(r.y) + 3), rgb(1, 1, 1), label);
-    if (!line2.empty())
-      dl->AddText(ImVec2(float(r.x) + 5, float(r.y) + 3 + ls.y),
-                  range.stats.nan || range.stats.inf ? rgb(1, 0.4f, 1) : rgb(0.8f, 0.8f, 0.8f), line2.c_str());
-    if (side == FrameSide::Difference && r.w > 120 && r.h > 80)
-      heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)),
-                 float(m.differenceMax[int(kind)]), "|A - B|, max over the selected channels");
-    else if (def.mapping == gpu::kViewMapHeat && r.w > 120 && r.h > 80)
-      heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), range.white,
-                 viewUnit(def, m.stats.method));
-    if (split) {  // the split line and its handle
-      float x = float(r.x + r.w * m.splitAt);
-      dl->AddLine(ImVec2(x, float(r.y)), ImVec2(x, float(r.y + r.h)), rgb(1, 1, 1), 2.0f);
-      dl->AddCircleFilled(ImVec2(x, float(r.y + r.h * 0.5)), 6.0f, rgb(1, 1, 1));
-    }
+    ResolvedRange range = resolveRange(def, m.settings[int(v.kind)], &m.ranges[int(v.kind)]);
+    queueViewDraw(m, v, pl, range);
+    drawMarks(m, v, pl);
+    drawLabels(m, v, range);
   }
-
-  // The mouse.
-  if (hovered || active) {
-    glm::dvec2 mouse(io.MousePos.x, io.MousePos.y);
-    glm::dvec2 t = texelAt(pl, mouse);
-    bool inside = t.x >= 0 && t.y >= 0 && t.x < size.x && t.y < size.y;
-    glm::ivec2 texel(int(std::floor(t.x)), int(std::floor(t.y)));
-    if (hovered) {
-      m.hoverView = kind;
-      if (inside && !shadowMap) m.hover = texel;
-      if (inside && shadowMap) m.hoverShadowTexel = texel;
-      if (io.MouseWheel != 0.0f) {
-        if (io.KeyCtrl)
-          m.cameraDolly += io.MouseWheel;
-        else
-          zoomAbout(m.transform, r, size.x, size.y, mouse, std::pow(1.25, double(io.MouseWheel)));
-        m.uiChanged = true;
-      }
-    }
-    if (split && ImGui::IsItemClicked(ImGuiMouseButton_Left) && std::abs(mouse.x - (r.x + r.w * m.splitAt)) < 8.0)
-      m.draggingSplit = true;
-    if (m.draggingSplit) {
-      if (active && ImGui::IsMouseDown(ImGuiMouseButton_Left))
-        m.splitAt = float(std::clamp((mouse.x - r.x) / std::max(r.w, 1.0), 0.0, 1.0));
-      else
-        m.draggingSplit = false;
-      m.uiChanged = true;
-    } else if (ImGui::IsItemClicked(ImGuiMouseButton_Left) || (active && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f) &&
-                                                         io.MouseDelta.x + io.MouseDelta.y != 0.0f && !io.KeyShift)) {
-      m.edited = kind;
-      if (inside && shadowMap) {
-        if (ImGui::IsItemClicked(ImGuiMouseButton_Left))
-          m.shadowMark = m.shadowMark && *m.shadowMark == texel ? std::nullopt : std::optional<glm::ivec2>(texel);
-      } else if (inside && (!m.probePixel || *m.probePixel != texel)) {
-        m.probeRequest = texel;
-      }
-      m.uiChanged = true;
-    }
-    if (active && (ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0.0f) ||
-                   (io.KeyShift && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f)))) {
-      panBy(m.transform, r, size.x, size.y, glm::dvec2(io.MouseDelta.x, io.MouseDelta.y));
-      m.uiChanged = true;
-    }
-    if (active && ImGui::IsMouseDragging(ImGuiMouseButton_Right, 0.0f))
-      m.cameraDrag += glm::dvec2(io.MouseDelta.x, io.MouseDelta.y);
-  }
+  if (hovered || active) handleMouse(m, v, pl, hovered, active);
 }
 
 void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, std::vector<ViewDraw>& draws) {
@@ -288,8 +332,15 @@ void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, s
   m.hoverShadowTexel.reset();
   std::vector<ViewSlot> slots = viewSlots(m, area);
   for (size_t i = 0; i < slots.size(); ++i)
-    drawOneView(m, slots[i].kind, slots[i].rect, int(i), callback, draws, m.layout == LayoutMode::Grid,
-                {hoverBefore, shadowBefore}, slots[i].side, slots[i].split);
+    drawOneView(m, {.kind = slots[i].kind,
+                    .rect = slots[i].rect,
+                    .index = int(i),
+                    .side = slots[i].side,
+                    .split = slots[i].split,
+                    .showKey = m.layout == LayoutMode::Grid,
+                    .hover = {hoverBefore, shadowBefore},
+                    .callback = callback,
+                    .draws = &draws});
   if (m.hover != hoverBefore || m.hoverShadowTexel != shadowBefore) m.uiChanged = true;
   ImGui::End();
 }

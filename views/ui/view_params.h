@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "views/ui/view_map.h"
 #include "views/analysis/view_table.h"
+#include "views/ui/view_map.h"
 
 namespace gb {
 

@@ -2,12 +2,12 @@
 // it: it renders from it and fills in what the renderer produced; the panels (views/*_panel.cpp,
 // ImGui only) read and write it and never touch the renderer.
 #pragma once
+#include <nlohmann/json.hpp>
+
 #include <array>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "renderer/renderer.h"
 #include "views/analysis/probe.h"

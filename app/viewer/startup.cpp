@@ -1,0 +1,166 @@
+// The viewer's start and end (viewer.cpp runs the loop in between): the arguments and logs
+// checked, the window's Vulkan context and callbacks, the frame source (the live renderer, or
+// --capture / --compare), the model's first state; at the end the exit summary and the teardown.
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <tuple>
+
+#include "app/viewer/viewer.h"
+#include "renderer/core/statistics.h"
+#include "renderer/vk/check.h"
+
+namespace gb {
+
+static Viewer& viewerOf(GLFWwindow* w) { return *static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }
+static void wake(GLFWwindow* w) { viewerOf(w).uiFramesLeft = std::max(viewerOf(w).uiFramesLeft, 3); }
+
+// Every input event wakes the loop for a few interface frames; keys and clicks are also kept.
+static void installCallbacks(Viewer& v) {
+  glfwSetWindowUserPointer(v.window, &v);
+  glfwSetKeyCallback(v.window, [](GLFWwindow* w, int key, int, int action, int mods) {
+    if (action != GLFW_RELEASE) viewerOf(w).pressedKeys.push_back(key | (mods & GLFW_MOD_CONTROL ? 0x10000 : 0));
+    wake(w);
+  });
+  glfwSetMouseButtonCallback(v.window, [](GLFWwindow* w, int button, int action, int) {
+    if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_PRESS) {
+      viewerOf(w).clickTime = std::chrono::steady_clock::now();  // click-to-dossier latency starts here
+      viewerOf(w).clickPending = true;
+    }
+    wake(w);
+  });
+  glfwSetCursorPosCallback(v.window, [](GLFWwindow* w, double, double) { wake(w); });
+  glfwSetScrollCallback(v.window, [](GLFWwindow* w, double, double) { wake(w); });
+  glfwSetCharCallback(v.window, [](GLFWwindow* w, unsigned) { wake(w); });
+  glfwSetWindowRefreshCallback(v.window, [](GLFWwindow* w) { wake(w); });
+  glfwSetFramebufferSizeCallback(v.window, [](GLFWwindow* w, int, int) { wake(w); });
+  glfwSetWindowFocusCallback(v.window, [](GLFWwindow* w, int) { wake(w); });
+  glfwSetCursorEnterCallback(v.window, [](GLFWwindow* w, int) { wake(w); });
+}
+
+// --window WxH and --compare without --capture; a message and false on a mistake.
+static bool checkArgs(const ViewerArgs& args, unsigned& width, unsigned& height) {
+  char sep = 0;
+  if (std::sscanf(args.window.c_str(), "%u%c%u", &width, &sep, &height) != 3 || width < 64 || height < 64) {
+    std::fprintf(stderr, "gblens view: --window %s: expected WxH, at least 64x64\n", args.window.c_str());
+    return false;
+  }
+  if (!args.compare.empty() && args.capture.empty()) {
+    std::fprintf(stderr, "gblens view: --compare B needs --capture A\n");
+    return false;
+  }
+  return true;
+}
+
+// --probe-log and --event-log, opened for appending; a message and false when one cannot be.
+static bool openLogs(Viewer& v) {
+  for (auto [flag, path, file] : {std::tuple{"--probe-log", &v.args.probeLog, &v.probeLog},
+                                  std::tuple{"--event-log", &v.args.eventLog, &v.eventLog}}) {
+    if (path->empty()) continue;
+    file->open(*path, std::ios::app);
+    if (!*file) {
+      std::fprintf(stderr, "gblens view: %s %s: cannot open for writing\n", flag, path->c_str());
+      return false;
+    }
+  }
+  return true;
+}
+
+// The viewer's own Vulkan context (with the window's instance extensions and a swapchain), the
+// window's surface and swapchain, the input callbacks and Dear ImGui.
+static void openContext(Viewer& v) {
+  ContextOptions co;
+  co.validation = v.args.validate;
+  co.device = v.args.device;
+  co.swapchain = true;
+  uint32_t n = 0;
+  const char** exts = glfwGetRequiredInstanceExtensions(&n);
+  for (uint32_t i = 0; i < n; ++i) co.instanceExtensions.push_back(exts[i]);
+  v.ctx = createContext(co);
+  VK_CHECK(glfwCreateWindowSurface(v.ctx.instance, v.window, nullptr, &v.swapchain.surface));
+  installCallbacks(v);
+  while (!recreateSwapchain(v)) glfwWaitEvents();  // a window may open minimised
+  initImGui(v);
+}
+
+// The live renderer on the scene (from a copy of the chosen scene camera), or the captures; and
+// the GPU view mapping. False (a message was printed, everything torn down) when a capture fails.
+static bool openFrameSource(Viewer& v, bool live) {
+  if (live) {
+    // The scene camera the viewer starts from, copied to a camera of its own (the last one).
+    resetRig(v.rig, v.scene.cameras[size_t(v.args.render.camera)], v.scene.bounds);
+    v.scene.cameras.push_back(v.rig.desc);
+    initRenderer(v.renderer, v.ctx, v.scene);
+  } else if (!openCaptures(v)) {
+    shutdownImGui(v);
+    destroyRenderer(v.renderer);
+    destroyRenderer(v.rendererB);
+    closeWindow(v);
+    destroyContext(v.ctx);
+    return false;
+  }
+  initViewMapper(v.mapper, v.renderer);
+  return true;
+}
+
+// The model's first state: view settings, the options and view as given, names for the panels.
+static void initModel(Viewer& v, bool live) {
+  ViewerModel& m = v.model;
+  const ViewerArgs& args = v.args;
+  for (int k = 0; k < kViewKindCount; ++k) m.settings[k] = defaultSettings(ViewKind(k));
+  m.wanted = args.render;
+  m.fixedSize = args.sizeGiven;
+  m.lightCount = int(v.scene.generatedLights ? args.render.lights : int(v.scene.lights.size()));
+  m.playing = !args.paused;
+  parseView(args.initialView, m.primary);
+  m.edited = m.primary;
+  m.deviceName = v.ctx.deviceName;
+  m.sceneName = live ? args.scene : args.capture + (args.compare.empty() ? "" : " vs " + args.compare);
+  if (live) {
+    for (size_t i = 0; i + 1 < v.scene.cameras.size(); ++i)
+      m.cameraNames.push_back(v.scene.cameras[i].name.empty() ? "camera " + std::to_string(i) : v.scene.cameras[i].name);
+    m.captureAvailable = true;
+    m.captureHint = "Writes this frame, every target at full precision, to ./gblens-capture-<date>-<time>/\n"
+                    "(EXR per target + manifest.json; open it with gblens view --capture DIR)";
+  }
+}
+
+bool startViewer(Viewer& v) {
+  unsigned width = 0, height = 0;
+  if (!checkArgs(v.args, width, height) || !openLogs(v) || !openWindow(v, width, height)) return false;
+  openContext(v);
+  const bool live = v.args.capture.empty();
+  if (!openFrameSource(v, live)) return false;
+  initModel(v, live);
+  return true;
+}
+
+int finishViewer(Viewer& v) {
+  const ViewerModel& m = v.model;
+  nlohmann::json summary = {{"event", "exit"},
+                            {"frames_rendered", m.framesRendered},
+                            {"frames_presented", m.framesPresented},
+                            {"render_ms_median", median(v.renderMs)},
+                            {"present_ms_median", median(v.presentMs)},
+                            {"rendered_iteration_ms_median", median(v.renderedLoopMs)},
+                            {"size", {m.rendered.width, m.rendered.height}}};
+  logLine(v.eventLog, summary);
+  std::fprintf(stderr,
+               "gblens view: %llu frames rendered (median %.2f ms), %llu presented (median %.2f ms); "
+               "render + present %.2f ms\n",
+               (unsigned long long)m.framesRendered, median(v.renderMs), (unsigned long long)m.framesPresented,
+               median(v.presentMs), median(v.renderedLoopMs));
+  vkDeviceWaitIdle(v.ctx.device);
+  shutdownImGui(v);
+  destroyViewMapper(v.mapper, v.renderer);
+  destroyRenderer(v.renderer);
+  destroyRenderer(v.rendererB);
+  closeWindow(v);
+  int messages = reportValidation(v.ctx);
+  destroyContext(v.ctx);
+  return messages ? 1 : 0;
+}
+
+}  // namespace gb

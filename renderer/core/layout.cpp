@@ -1,0 +1,113 @@
+// Layout types: storage format names, quantity kinds, lookups (see layout.h).
+#include "renderer/core/layout.h"
+
+#include <regex>
+
+namespace gb {
+
+uint32_t StorageFormat::packedBytes() const {
+  if (packed10) return 4;
+  if (depth) return type == PixelType::U16 ? 2 : 4;  // d16; d24 in 32 bits; d32f
+  return uint32_t(pixelTypeSize(type)) * channels;
+}
+
+bool parseStorageFormat(const std::string& text, StorageFormat& f) {
+  f = StorageFormat{};
+  f.name = text;
+  if (text == "rgb10a2_unorm") {
+    f.type = PixelType::U16;
+    f.encoding = Encoding::Unorm10;
+    f.packed10 = true;
+    return true;
+  }
+  if (text == "d16" || text == "d32f" || text == "d24s8" || text == "d32s8") {
+    f.depth = true;
+    f.stencil = text == "d24s8" || text == "d32s8";
+    f.channels = f.stencil ? 2 : 1;
+    f.type = text == "d16" ? PixelType::U16 : PixelType::F32;
+    f.encoding = text == "d16" ? Encoding::Unorm : Encoding::Float;  // D24 is widened to float (texels.h)
+    return true;
+  }
+  static const std::regex re("(r|rg|rgb|rgba)(8|16|32)(_unorm|_snorm|_srgb|_uint|f)");
+  std::smatch m;
+  if (!std::regex_match(text, m, re)) return false;
+  f.channels = uint32_t(m[1].length());
+  const int bits = std::stoi(m[2]);
+  const std::string kind = m[3];
+  if (kind == "f") {
+    if (bits == 8) return false;
+    f.type = bits == 16 ? PixelType::F16 : PixelType::F32;
+    f.encoding = Encoding::Float;
+  } else if (kind == "_uint") {
+    f.type = bits == 8 ? PixelType::U8 : bits == 16 ? PixelType::U16 : PixelType::U32;
+    f.encoding = Encoding::Uint;
+  } else {
+    if (bits == 32) return false;
+    const bool snorm = kind == "_snorm";
+    if (kind == "_srgb" && bits != 8) return false;
+    f.type = bits == 8 ? (snorm ? PixelType::I8 : PixelType::U8) : (snorm ? PixelType::I16 : PixelType::U16);
+    f.encoding = snorm ? Encoding::Snorm : kind == "_srgb" ? Encoding::Srgb : Encoding::Unorm;
+    f.srgb = kind == "_srgb";
+  }
+  return true;
+}
+
+static const char* const kKindNames[] = {"albedo",   "base_color", "emission", "specular", "roughness",
+                                         "metallic", "occlusion",  "shadow",   "radiance", "display",
+                                         "normal",   "depth",      "position", "motion",   "id",
+                                         "stencil",  "count",      "scalar",   "vector"};
+static_assert(sizeof(kKindNames) / sizeof(kKindNames[0]) == size_t(QuantityKind::Vector) + 1);
+
+const char* name(QuantityKind k) { return kKindNames[size_t(k)]; }
+
+bool parseQuantityKind(const std::string& text, QuantityKind& out) {
+  for (size_t i = 0; i < std::size(kKindNames); ++i)
+    if (text == kKindNames[i]) {
+      out = QuantityKind(i);
+      return true;
+    }
+  return false;
+}
+
+const char* name(NormalEncoding e) {
+  static const char* n[] = {"xyz", "xyz_unorm", "octahedral", "octahedral_unorm", "octahedral", "spheremap", "lambert"};
+  return n[size_t(e)];
+}
+const char* name(DepthEncoding e) {
+  static const char* n[] = {"hardware", "eye", "radial"};
+  return n[size_t(e)];
+}
+
+void describeImage(const LayoutTarget& t, CpuImage& img) {
+  img.name = t.name;
+  img.channels = t.channels;
+  img.type = t.format.type;
+  img.encoding = t.format.encoding;
+}
+
+int Layout::findTarget(const std::string& targetName) const {
+  for (size_t i = 0; i < targets.size(); ++i)
+    if (targets[i].name == targetName) return int(i);
+  return -1;
+}
+
+const Quantity* Layout::find(QuantityKind kind, const std::string& quantityName) const {
+  for (const Quantity& q : quantities)
+    if (q.kind == kind && (quantityName.empty() || q.name == quantityName)) return &q;
+  return nullptr;
+}
+
+const Quantity* Layout::findByName(const std::string& quantityName) const {
+  for (const Quantity& q : quantities)
+    if (q.name == quantityName) return &q;
+  return nullptr;
+}
+
+std::vector<const Quantity*> Layout::quantitiesOf(uint32_t target) const {
+  std::vector<const Quantity*> out;
+  for (const Quantity& q : quantities)
+    if (q.target == target) out.push_back(&q);
+  return out;
+}
+
+}  // namespace gb

@@ -1,0 +1,135 @@
+// A G-buffer layout: the targets of a G-buffer (how texels are stored, where they come from) and the
+// quantities in their channels with their encodings, the camera and the lights. Every frame gblens
+// analyses carries one (docs/layout-format.md); decoding is driven by it (decode.h).
+#pragma once
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "renderer/core/image.h"
+#include "renderer/core/lights.h"
+
+namespace gb {
+
+// How the texels of a target are stored: per-channel type and encoding, or a packed format.
+struct StorageFormat {
+  std::string name;  // as written: "rgba16f", "rg16_snorm", "d32s8", ...
+  PixelType type = PixelType::F32;
+  Encoding encoding = Encoding::Float;
+  uint32_t channels = 4;
+  bool srgb = false;                 // 8_srgb: colour channels sRGB-encoded (alpha linear)
+  bool depth = false, stencil = false;
+  bool packed10 = false;             // rgb10a2_unorm
+  // Bytes a texel takes when packed (texels.h); depth/stencil: the depth plane only.
+  uint32_t packedBytes() const;
+};
+// Parses a storage format name; false when the text names none.
+bool parseStorageFormat(const std::string& text, StorageFormat& out);
+
+enum class QuantityKind : uint8_t {
+  Albedo, BaseColor, Emission, Specular, Roughness, Metallic, Occlusion, Shadow, Radiance, Display,
+  Normal, Depth, Position, Motion, Id, Stencil, Count, Scalar, Vector
+};
+const char* name(QuantityKind k);
+bool parseQuantityKind(const std::string& text, QuantityKind& out);
+
+enum class ColorEncoding : uint8_t { Linear, Srgb };
+enum class NormalEncoding : uint8_t { Xyz, XyzUnorm, Octahedral, OctahedralUnorm, Octahedral12, Spheremap, Lambert };
+enum class DepthEncoding : uint8_t { Hardware, Eye, Radial };
+// Where vectors are: view space (the camera's), world space, or camera-relative (world axes, the
+// eye at the origin: camera-relative rendering).
+enum class Space : uint8_t { View, World, CameraRelative };
+enum class MotionUnits : uint8_t { Pixels, Ndc, Uv };
+const char* name(NormalEncoding e);
+const char* name(DepthEncoding e);
+
+struct Quantity {
+  QuantityKind kind = QuantityKind::Scalar;
+  std::string name;                 // unique in the layout; the prefix of its channel names
+  uint32_t target = 0;              // index into Layout::targets
+  std::vector<uint32_t> channels;   // channels of that target, in component order
+  ColorEncoding color = ColorEncoding::Linear;
+  NormalEncoding normal = NormalEncoding::Xyz;
+  DepthEncoding depth = DepthEncoding::Eye;
+  Space space = Space::View;
+  bool normalized = true;
+  std::optional<double> background;  // depth: the value stored where nothing was drawn
+  bool ofSun = false;                // depth: the sun's shadow-map depth, not the camera's
+  double scale = 1.0, bias = 0.0;
+  MotionUnits units = MotionUnits::Pixels;
+  bool toPrevious = true;            // motion: current -> previous frame
+  std::string unit;                  // scalar/vector: for people
+  std::map<uint32_t, std::string> idNames;      // id: value -> name
+  std::map<std::string, uint32_t> stencilBits;  // stencil: name -> mask
+};
+
+// Where an imported target's texels come from (ignored for gblens's own frames).
+struct TargetSource {
+  enum class Kind : uint8_t { None, File, Raw, RenderDoc } kind = Kind::None;
+  std::string path;                  // File / Raw: as written (relative to the layout file)
+  std::string part;                  // File: EXR part (index or name; "" the first)
+  std::vector<std::string> channels; // File: the file's channel names in target channel order
+  uint64_t offset = 0;               // Raw: bytes skipped at the start
+  std::string resource;              // RenderDoc: texture name or "#id"
+};
+
+struct LayoutTarget {
+  std::string name;
+  StorageFormat format;
+  std::vector<std::string> channels;
+  uint32_t width = 0, height = 0;    // 0: the layout's size (or the source's)
+  TargetSource source;
+};
+// A CpuImage described as the target stores it (name, channel names, type, encoding; no texels).
+void describeImage(const LayoutTarget& t, CpuImage& image);
+
+// The camera as the layout gives it (before conversion to gblens's convention, import.h).
+struct LayoutCamera {
+  enum class Convention : uint8_t { Vulkan, D3d, Gl };
+  bool present = false;
+  glm::dmat4 viewFromWorld{1.0}, clipFromView{1.0};  // as glm matrices (column-major), already reordered
+  Convention convention = Convention::Vulkan;
+  bool leftHanded = false;   // the view looks down +Z
+  bool zUp = false;          // world Z is up
+  bool bottomOrigin = false; // row 0 of the stored images is the bottom of the picture
+  std::string sidecar;       // the matrices come from this JSON file (resolved at import)
+  struct BufferMatrix {
+    std::string buffer;
+    uint64_t viewOffset = 0, clipOffset = 0;
+    bool worldFromView = false;  // the view matrix given is world_from_view (inverted when read)
+    bool rowMajor = false;
+  };
+  std::optional<BufferMatrix> renderdoc;  // the matrices come from a capture's uniform buffer
+};
+
+struct LayoutLights {
+  bool present = false;
+  bool gblensModel = false;  // attenuation and shading as shaders/shading.h: the probe can evaluate them
+  std::string model;
+  std::vector<PointLightDesc> points;  // world space
+  Sun sun;
+  glm::vec3 ambient{0.0f};
+};
+
+struct Layout {
+  std::string name;
+  std::string file;  // where it was read from ("" : built in)
+  uint32_t width = 0, height = 0;
+  std::vector<LayoutTarget> targets;
+  std::vector<Quantity> quantities;
+  LayoutCamera camera;
+  LayoutLights lights;
+
+  int findTarget(const std::string& targetName) const;  // -1 when none
+  // The first quantity of this kind (and name, when given), or null.
+  const Quantity* find(QuantityKind kind, const std::string& quantityName = {}) const;
+  const Quantity* findByName(const std::string& quantityName) const;
+  // The quantities stored in one target, in layout order.
+  std::vector<const Quantity*> quantitiesOf(uint32_t target) const;
+};
+
+}  // namespace gb

@@ -1,0 +1,518 @@
+// Reading layout files: parameter resolution, then validation of every field with a message that
+// names the file, the target or quantity and the field (docs/layout-format.md).
+#include "renderer/core/layout_json.h"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace gb {
+
+using json = nlohmann::json;
+
+namespace {
+
+// Where in the file a value is, for messages: "my.json: targets[1] \"gbuf\": quantities[0] \"N\"".
+struct Where {
+  std::string text;
+  Where at(const std::string& part) const { return {text + ": " + part}; }
+  std::string field(const std::string& f) const { return text + ": " + f; }
+};
+
+struct Reader {
+  std::string& error;
+  bool fail(const Where& w, const std::string& field, const std::string& message) {
+    if (error.empty()) error = w.field(field) + ": " + message;
+    return false;
+  }
+  bool string(const json& j, const Where& w, const char* key, std::string& out, bool required) {
+    auto it = j.find(key);
+    if (it == j.end()) return !required || fail(w, key, "missing");
+    if (!it->is_string()) return fail(w, key, "expected a string, got " + it->dump());
+    out = it->get<std::string>();
+    return true;
+  }
+  bool number(const json& j, const Where& w, const char* key, double& out) {
+    auto it = j.find(key);
+    if (it == j.end()) return true;
+    if (!it->is_number() || !std::isfinite(it->get<double>())) return fail(w, key, "expected a number, got " + it->dump());
+    out = it->get<double>();
+    return true;
+  }
+  bool boolean(const json& j, const Where& w, const char* key, bool& out) {
+    auto it = j.find(key);
+    if (it == j.end()) return true;
+    if (!it->is_boolean()) return fail(w, key, "expected true or false, got " + it->dump());
+    out = it->get<bool>();
+    return true;
+  }
+  bool size(const json& j, const Where& w, const char* key, uint32_t& width, uint32_t& height) {
+    auto it = j.find(key);
+    if (it == j.end()) return true;
+    auto positive = [](const json& v) { return v.is_number_integer() && v.get<int64_t>() > 0 && v.get<int64_t>() <= 65536; };
+    if (!it->is_array() || it->size() != 2 || !positive((*it)[0]) || !positive((*it)[1]))
+      return fail(w, key, "expected [width, height] (1..65536), got " + it->dump());
+    width = (*it)[0].get<uint32_t>();
+    height = (*it)[1].get<uint32_t>();
+    return true;
+  }
+  bool vec3(const json& j, const Where& w, const char* key, glm::dvec3& out) {
+    auto it = j.find(key);
+    if (it == j.end()) return true;
+    if (!it->is_array() || it->size() != 3) return fail(w, key, "expected 3 numbers, got " + it->dump());
+    for (int i = 0; i < 3; ++i) {
+      if (!(*it)[i].is_number()) return fail(w, key, "expected 3 numbers, got " + it->dump());
+      out[i] = (*it)[i].get<double>();
+    }
+    return true;
+  }
+  // One of `choices`; `index` receives its position.
+  bool choice(const json& j, const Where& w, const char* key, std::initializer_list<const char*> choices, int& index) {
+    std::string v;
+    if (!string(j, w, key, v, false)) return false;
+    if (v.empty()) return true;
+    int i = 0;
+    std::string list;
+    for (const char* c : choices) {
+      if (v == c) {
+        index = i;
+        return true;
+      }
+      list += std::string(i++ ? ", " : "") + c;
+    }
+    return fail(w, key, "\"" + v + "\" is not one of " + list);
+  }
+  bool unknownKeys(const json& j, const Where& w, std::initializer_list<const char*> known) {
+    for (auto& [k, v] : j.items())
+      if (std::none_of(known.begin(), known.end(), [&](const char* n) { return k == n; }))
+        return fail(w, k, "unknown field");
+    return true;
+  }
+};
+
+bool validName(const std::string& s) {
+  if (s.empty()) return false;
+  for (char c : s)
+    if (!(std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_'))
+      return false;
+  return true;
+}
+
+// Channels a quantity of this kind and encoding takes (0: 2 to 4).
+uint32_t channelsFor(const Quantity& q) {
+  switch (q.kind) {
+    case QuantityKind::Albedo:
+    case QuantityKind::BaseColor:
+    case QuantityKind::Emission:
+    case QuantityKind::Position: return 3;
+    case QuantityKind::Radiance:
+    case QuantityKind::Display:
+    case QuantityKind::Vector: return 0;
+    case QuantityKind::Normal:
+      return q.normal == NormalEncoding::Xyz || q.normal == NormalEncoding::XyzUnorm ? 3
+             : q.normal == NormalEncoding::Octahedral12                            ? 3
+                                                                                    : 2;
+    case QuantityKind::Motion: return 2;
+    default: return 1;
+  }
+}
+
+bool readQuantityFields(Reader& r, const json& j, const Where& w, Quantity& q) {
+  int i = -1;
+  switch (q.kind) {
+    case QuantityKind::Normal: {
+      if (!r.choice(j, w, "encoding", {"xyz", "xyz_unorm", "octahedral", "octahedral_unorm", "spheremap", "lambert"}, i))
+        return false;
+      static const NormalEncoding e[] = {NormalEncoding::Xyz,        NormalEncoding::XyzUnorm,
+                                         NormalEncoding::Octahedral, NormalEncoding::OctahedralUnorm,
+                                         NormalEncoding::Spheremap,  NormalEncoding::Lambert};
+      if (i >= 0) q.normal = e[i];
+      double bits = 0.0;
+      if (!r.number(j, w, "bits", bits)) return false;
+      if (bits != 0.0 && bits != 8.0 && bits != 12.0 && bits != 16.0)
+        return r.fail(w, "bits", "expected 8, 12 or 16");
+      if (bits == 12.0) {
+        if (q.normal != NormalEncoding::Octahedral && q.normal != NormalEncoding::OctahedralUnorm)
+          return r.fail(w, "bits", "12 applies to octahedral encodings only");
+        q.normal = NormalEncoding::Octahedral12;
+      }
+      int s = -1;
+      if (!r.choice(j, w, "space", {"view", "world"}, s) || !r.boolean(j, w, "normalized", q.normalized)) return false;
+      if (s >= 0) q.space = Space(s);
+      return r.unknownKeys(j, w, {"quantity", "name", "channels", "encoding", "bits", "space", "normalized", "when"});
+    }
+    case QuantityKind::Depth: {
+      if (!r.choice(j, w, "encoding", {"hardware", "eye", "radial"}, i)) return false;
+      if (i < 0) return r.fail(w, "encoding", "missing (hardware, eye or radial)");
+      q.depth = DepthEncoding(i);
+      double bg = NAN;
+      int of = -1;
+      if (!r.number(j, w, "background", bg) || !r.choice(j, w, "of", {"camera", "sun"}, of)) return false;
+      if (!std::isnan(bg)) q.background = bg;
+      q.ofSun = of == 1;
+      return r.unknownKeys(j, w, {"quantity", "name", "channels", "encoding", "background", "of", "when"});
+    }
+    case QuantityKind::Position: {
+      int s = -1;
+      if (!r.choice(j, w, "space", {"view", "world", "camera_relative"}, s)) return false;
+      q.space = s < 0 ? Space::World : Space(s);
+      return r.unknownKeys(j, w, {"quantity", "name", "channels", "space", "when"});
+    }
+    case QuantityKind::Motion: {
+      int u = -1, d = -1;
+      if (!r.choice(j, w, "units", {"pixels", "ndc", "uv"}, u) || !r.choice(j, w, "direction", {"to_previous", "to_next"}, d))
+        return false;
+      if (u >= 0) q.units = MotionUnits(u);
+      q.toPrevious = d != 1;
+      return r.unknownKeys(j, w, {"quantity", "name", "channels", "units", "direction", "when"});
+    }
+    case QuantityKind::Id:
+      if (auto it = j.find("names"); it != j.end()) {
+        if (!it->is_object()) return r.fail(w, "names", "expected {\"value\": \"name\", ...}");
+        for (auto& [k, v] : it->items()) {
+          char* end = nullptr;
+          unsigned long id = std::strtoul(k.c_str(), &end, 10);
+          if (k.empty() || *end || !v.is_string()) return r.fail(w, "names", "expected {\"value\": \"name\", ...}");
+          q.idNames[uint32_t(id)] = v.get<std::string>();
+        }
+      }
+      return r.unknownKeys(j, w, {"quantity", "name", "channels", "names", "when"});
+    case QuantityKind::Stencil:
+      if (auto it = j.find("bits"); it != j.end()) {
+        if (!it->is_object()) return r.fail(w, "bits", "expected {\"name\": mask, ...}");
+        for (auto& [k, v] : it->items()) {
+          if (!v.is_number_unsigned() || v.get<uint64_t>() == 0 || v.get<uint64_t>() > 255)
+            return r.fail(w, "bits", "\"" + k + "\": expected a mask 1..255");
+          q.stencilBits[k] = v.get<uint32_t>();
+        }
+      }
+      return r.unknownKeys(j, w, {"quantity", "name", "channels", "bits", "when"});
+    case QuantityKind::Albedo:
+    case QuantityKind::BaseColor:
+    case QuantityKind::Emission:
+    case QuantityKind::Radiance:
+    case QuantityKind::Display:
+      if (!r.choice(j, w, "encoding", {"linear", "srgb"}, i)) return false;
+      if (i >= 0) q.color = ColorEncoding(i);
+      return r.unknownKeys(j, w, {"quantity", "name", "channels", "encoding", "when"});
+    default:
+      if (!r.number(j, w, "scale", q.scale) || !r.number(j, w, "bias", q.bias) ||
+          !r.string(j, w, "unit", q.unit, false))
+        return false;
+      return r.unknownKeys(j, w, {"quantity", "name", "channels", "scale", "bias", "unit", "when"});
+  }
+}
+
+bool readQuantity(Reader& r, const json& j, const Where& w, Layout& l, uint32_t target, Quantity& q) {
+  if (!j.is_object()) return r.fail(w, "quantity", "expected an object");
+  std::string kind;
+  if (!r.string(j, w, "quantity", kind, true)) return false;
+  if (!parseQuantityKind(kind, q.kind)) return r.fail(w, "quantity", "unknown kind \"" + kind + "\"");
+  if (!r.string(j, w, "name", q.name, false)) return false;
+  if (q.name.empty()) q.name = kind;
+  q.target = target;
+  if (!readQuantityFields(r, j, w, q)) return false;
+  const LayoutTarget& t = l.targets[target];
+  auto it = j.find("channels");
+  if (it == j.end() || !it->is_array() || it->empty()) return r.fail(w, "channels", "expected a list of channels");
+  for (const json& c : *it) {
+    if (c.is_number_integer() && c.get<int64_t>() >= 0) {
+      q.channels.push_back(uint32_t(c.get<int64_t>()));
+    } else if (c.is_string() && !t.channels.empty()) {
+      auto pos = std::find(t.channels.begin(), t.channels.end(), c.get<std::string>());
+      if (pos == t.channels.end()) return r.fail(w, "channels", "the target has no channel " + c.dump());
+      q.channels.push_back(uint32_t(pos - t.channels.begin()));
+    } else {
+      return r.fail(w, "channels", "expected channel indices (or names given in the target's \"channels\"), got " + c.dump());
+    }
+    if (q.channels.back() >= t.format.channels)
+      return r.fail(w, "channels", "channel " + std::to_string(q.channels.back()) + " is beyond the " +
+                                       std::to_string(t.format.channels) + " channels of format " + t.format.name);
+  }
+  const uint32_t want = channelsFor(q), have = uint32_t(q.channels.size());
+  if (want ? have != want : (have < 2 || have > 4)) {
+    std::string what = q.kind == QuantityKind::Normal ? std::string("encoding \"") + name(q.normal) + "\"" : "quantity " + kind;
+    return r.fail(w, "channels", what + " needs " + (want ? std::to_string(want) : std::string("2 to 4")) +
+                                     " channels, has " + std::to_string(have));
+  }
+  const bool integral = q.kind == QuantityKind::Id || q.kind == QuantityKind::Stencil || q.kind == QuantityKind::Count;
+  if (q.kind == QuantityKind::Normal && q.normal == NormalEncoding::Octahedral12 &&
+      !(t.format.type == PixelType::U8 && t.format.encoding == Encoding::Unorm))
+    return r.fail(w, "bits", "12+12-bit octahedral normals are packed in 8-bit unorm channels; the format is " + t.format.name);
+  if (q.kind == QuantityKind::Depth && q.depth == DepthEncoding::Hardware && t.format.encoding == Encoding::Uint)
+    return r.fail(w, "encoding", "hardware depth cannot be held by the integer format " + t.format.name);
+  if (integral && t.format.encoding == Encoding::Snorm)
+    return r.fail(w, "quantity", std::string(name(q.kind)) + " is an integer; the format " + t.format.name + " holds fractions");
+  if (l.findByName(q.name)) return r.fail(w, "name", "\"" + q.name + "\" names another quantity too");
+  return true;
+}
+
+bool readSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
+  if (!j.is_object()) return r.fail(w, "source", "expected an object");
+  Where ws = w.at("source");
+  bool raw = false;
+  double offset = 0.0;
+  if (!r.string(j, ws, "file", s.path, false) || !r.boolean(j, ws, "raw", raw) || !r.number(j, ws, "offset", offset) ||
+      !r.string(j, ws, "renderdoc", s.resource, false))
+    return false;
+  if (auto it = j.find("part"); it != j.end()) s.part = it->is_string() ? it->get<std::string>() : it->dump();
+  if (auto it = j.find("channels"); it != j.end()) {
+    if (!it->is_array()) return r.fail(ws, "channels", "expected the file's channel names");
+    for (const json& c : *it) {
+      if (!c.is_string()) return r.fail(ws, "channels", "expected the file's channel names");
+      s.channels.push_back(c.get<std::string>());
+    }
+  }
+  if (!s.path.empty() == !s.resource.empty()) return r.fail(ws, "file", "give exactly one of \"file\" and \"renderdoc\"");
+  s.kind = !s.resource.empty() ? TargetSource::Kind::RenderDoc : raw ? TargetSource::Kind::Raw : TargetSource::Kind::File;
+  if (offset < 0.0 || offset != std::floor(offset)) return r.fail(ws, "offset", "expected a byte count");
+  s.offset = uint64_t(offset);
+  return r.unknownKeys(j, ws, {"file", "raw", "offset", "part", "channels", "renderdoc"});
+}
+
+bool readTarget(Reader& r, const json& j, const Where& w, Layout& l) {
+  if (!j.is_object()) return r.fail(w, "", "expected an object");
+  LayoutTarget t;
+  if (!r.string(j, w, "name", t.name, true)) return false;
+  if (!validName(t.name)) return r.fail(w, "name", "\"" + t.name + "\": use a-z, 0-9 and _");
+  if (l.findTarget(t.name) >= 0) return r.fail(w, "name", "\"" + t.name + "\" names another target too");
+  Where wt = w.at("\"" + t.name + "\"");
+  std::string format;
+  if (!r.string(j, wt, "format", format, true)) return false;
+  if (!parseStorageFormat(format, t.format))
+    return r.fail(wt, "format", "unknown storage format \"" + format + "\" (e.g. rgba8_unorm, rg16_snorm, r32f, d32s8)");
+  if (!r.size(j, wt, "size", t.width, t.height)) return false;
+  if (auto it = j.find("channels"); it != j.end()) {
+    if (!it->is_array() || it->size() != t.format.channels)
+      return r.fail(wt, "channels", "expected " + std::to_string(t.format.channels) + " channel names for format " + format);
+    for (const json& c : *it) {
+      if (!c.is_string()) return r.fail(wt, "channels", "expected names");
+      t.channels.push_back(c.get<std::string>());
+    }
+  }
+  if (auto it = j.find("source"); it != j.end() && !readSource(r, *it, wt, t.source)) return false;
+  if (!r.unknownKeys(j, wt, {"name", "format", "size", "channels", "source", "quantities", "when"})) return false;
+  l.targets.push_back(t);
+  const uint32_t index = uint32_t(l.targets.size() - 1);
+  auto qs = j.find("quantities");
+  if (qs == j.end() || !qs->is_array()) return r.fail(wt, "quantities", "expected a list of quantities");
+  for (size_t i = 0; i < qs->size(); ++i) {
+    Quantity q;
+    std::string label = (*qs)[i].is_object() && (*qs)[i].contains("name") ? " " + (*qs)[i]["name"].dump() : "";
+    if (!readQuantity(r, (*qs)[i], wt.at("quantities[" + std::to_string(i) + "]" + label), l, index, q)) return false;
+    l.quantities.push_back(q);
+  }
+  // Default channel names: <quantity>.<component> (pbrt's "Albedo.R"), "C<n>" for unused channels.
+  LayoutTarget& lt = l.targets[index];
+  if (lt.channels.empty()) {
+    lt.channels.resize(lt.format.channels);
+    for (uint32_t c = 0; c < lt.format.channels; ++c) lt.channels[c] = "C" + std::to_string(c);
+    for (const Quantity* q : l.quantitiesOf(index)) {
+      static const char* xyzw[] = {"X", "Y", "Z", "W"};
+      static const char* rgba[] = {"R", "G", "B", "A"};
+      const bool colour = q->kind == QuantityKind::Albedo || q->kind == QuantityKind::BaseColor ||
+                          q->kind == QuantityKind::Emission || q->kind == QuantityKind::Radiance ||
+                          q->kind == QuantityKind::Display;
+      for (size_t k = 0; k < q->channels.size(); ++k)
+        lt.channels[q->channels[k]] = q->channels.size() == 1 ? q->name : q->name + "." + (colour ? rgba : xyzw)[k];
+    }
+  }
+  return true;
+}
+
+bool readMatrix(Reader& r, const json& j, const Where& w, const char* key, bool rowMajor, glm::dmat4& m) {
+  auto it = j.find(key);
+  if (it == j.end()) return r.fail(w, key, "missing");
+  if (!it->is_array() || it->size() != 16) return r.fail(w, key, "expected 16 numbers");
+  for (int i = 0; i < 16; ++i) {
+    if (!(*it)[i].is_number()) return r.fail(w, key, "expected 16 numbers");
+    const double v = (*it)[i].get<double>();
+    if (rowMajor)
+      m[i % 4][i / 4] = v;
+    else
+      m[i / 4][i % 4] = v;
+  }
+  const double det = glm::determinant(m);
+  if (!std::isfinite(det) || std::abs(det) < 1e-300) return r.fail(w, key, "the matrix is singular");
+  return true;
+}
+
+bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
+  if (!j.is_object()) return r.fail(w, "camera", "expected an object");
+  Where wc = w.at("camera");
+  c.present = true;
+  int order = -1, conv = -1, hand = -1, up = -1, origin = -1;
+  if (!r.choice(j, wc, "matrix_order", {"column_major", "row_major"}, order) ||
+      !r.choice(j, wc, "convention", {"vulkan", "d3d", "gl"}, conv) ||
+      !r.choice(j, wc, "view_handedness", {"right", "left"}, hand) || !r.choice(j, wc, "up", {"y", "z"}, up) ||
+      !r.choice(j, wc, "image_origin", {"top", "bottom"}, origin) || !r.string(j, wc, "sidecar", c.sidecar, false))
+    return false;
+  if (conv >= 0) c.convention = LayoutCamera::Convention(conv);
+  c.leftHanded = hand == 1;
+  c.zUp = up == 1;
+  c.bottomOrigin = origin == 1;
+  if (auto it = j.find("renderdoc"); it != j.end()) {
+    Where wr = wc.at("renderdoc");
+    LayoutCamera::BufferMatrix b;
+    double view = -1.0, clip = -1.0;
+    if (!it->is_object() || !r.string(*it, wr, "buffer", b.buffer, true)) return r.fail(wr, "buffer", "missing");
+    b.worldFromView = it->contains("world_from_view");
+    b.rowMajor = order == 1;
+    const char* viewKey = b.worldFromView ? "world_from_view" : "view_from_world";
+    for (auto [key, out] : {std::pair{viewKey, &view}, {"clip_from_view", &clip}}) {
+      auto m = it->find(key);
+      if (m == it->end() || !m->is_object() || !r.number(*m, wr.at(key), "offset", *out) || *out < 0.0)
+        return r.fail(wr, key, "expected {\"offset\": BYTES}");
+    }
+    b.viewOffset = uint64_t(view);
+    b.clipOffset = uint64_t(clip);
+    c.renderdoc = b;
+  }
+  const bool fromElsewhere = !c.sidecar.empty() || c.renderdoc;
+  if (!fromElsewhere) {
+    // The view matrix as view_from_world, or its inverse world_from_view (a camera's transform).
+    if (j.contains("world_from_view")) {
+      glm::dmat4 worldFromView;
+      if (!readMatrix(r, j, wc, "world_from_view", order == 1, worldFromView)) return false;
+      c.viewFromWorld = glm::inverse(worldFromView);
+    } else if (!readMatrix(r, j, wc, "view_from_world", order == 1, c.viewFromWorld)) {
+      return false;
+    }
+    if (!readMatrix(r, j, wc, "clip_from_view", order == 1, c.clipFromView)) return false;
+  }
+  return r.unknownKeys(j, wc, {"view_from_world", "world_from_view", "clip_from_view", "matrix_order", "convention",
+                               "view_handedness", "up", "image_origin", "sidecar", "renderdoc"});
+}
+
+bool readLights(Reader& r, const json& j, const Where& w, LayoutLights& l) {
+  if (!j.is_object()) return r.fail(w, "lights", "expected an object");
+  Where wl = w.at("lights");
+  l.present = true;
+  if (!r.string(j, wl, "model", l.model, true)) return false;
+  l.gblensModel = l.model == "gblens";
+  if (auto it = j.find("points"); it != j.end()) {
+    if (!it->is_array()) return r.fail(wl, "points", "expected a list");
+    for (size_t i = 0; i < it->size(); ++i) {
+      Where wp = wl.at("points[" + std::to_string(i) + "]");
+      PointLightDesc p;
+      glm::dvec3 color(1.0);
+      double radius = NAN;
+      if (!r.vec3((*it)[i], wp, "position", p.center) || !r.number((*it)[i], wp, "radius", radius) ||
+          !r.vec3((*it)[i], wp, "color", color) || !r.number((*it)[i], wp, "intensity", p.intensity))
+        return false;
+      if (!(radius > 0.0)) return r.fail(wp, "radius", "expected a positive radius");
+      p.radius = radius;
+      p.color = glm::vec3(color);
+      l.points.push_back(p);
+    }
+  }
+  if (auto it = j.find("sun"); it != j.end()) {
+    glm::dvec3 dir(0.0), color(l.sun.color);
+    if (!r.vec3(*it, wl.at("sun"), "direction", dir) || !r.vec3(*it, wl.at("sun"), "color", color)) return false;
+    if (glm::length(dir) == 0.0) return r.fail(wl.at("sun"), "direction", "expected a non-zero vector");
+    l.sun.toSun = glm::normalize(dir);
+    l.sun.color = glm::vec3(color);
+  } else {
+    l.sun.enabled = false;
+  }
+  glm::dvec3 ambient(0.0);
+  if (!r.vec3(j, wl, "ambient", ambient)) return false;
+  l.ambient = glm::vec3(ambient);
+  return r.unknownKeys(j, wl, {"model", "points", "sun", "ambient"});
+}
+
+}  // namespace
+
+bool resolveLayoutParameters(json& j, const LayoutParameters& params, const std::string& where, std::string& error) {
+  if (j.is_object() && j.contains("by") && j.contains("cases") && j.size() == 2) {
+    const std::string option = j["by"].is_string() ? j["by"].get<std::string>() : "";
+    auto p = params.find(option);
+    if (p == params.end()) {
+      error = where + ": \"by\": \"" + option + "\" is not an option of this layout's parameters";
+      return false;
+    }
+    if (!j["cases"].is_object() || !j["cases"].contains(p->second)) {
+      error = where + ": no case for " + option + " = " + p->second;
+      return false;
+    }
+    json chosen = j["cases"][p->second];
+    j = chosen;
+    return resolveLayoutParameters(j, params, where, error);
+  }
+  if (j.is_object()) {
+    for (auto& [k, v] : j.items())
+      if (k != "when" && !resolveLayoutParameters(v, params, where + ": " + k, error)) return false;
+  } else if (j.is_array()) {
+    json kept = json::array();
+    for (size_t i = 0; i < j.size(); ++i) {
+      json& e = j[i];
+      bool holds = true;
+      if (e.is_object() && e.contains("when")) {
+        for (auto& [option, values] : e["when"].items()) {
+          auto p = params.find(option);
+          if (p == params.end()) {
+            error = where + "[" + std::to_string(i) + "]: \"when\": \"" + option + "\" is not an option";
+            return false;
+          }
+          holds = holds && std::find(values.begin(), values.end(), json(p->second)) != values.end();
+        }
+        e.erase("when");
+      }
+      if (!holds) continue;
+      if (!resolveLayoutParameters(e, params, where + "[" + std::to_string(i) + "]", error)) return false;
+      kept.push_back(e);
+    }
+    j = kept;
+  }
+  return true;
+}
+
+bool parseLayout(const json& j, const std::string& file, Layout& out, std::string& error) {
+  out = Layout{};
+  out.file = file;
+  error.clear();
+  Reader r{error};
+  Where w{file.empty() ? "layout" : file};
+  if (!j.is_object()) return r.fail(w, "format", "expected a JSON object");
+  std::string format;
+  double version = 0.0;
+  if (!r.string(j, w, "format", format, true) || !r.number(j, w, "version", version)) return false;
+  if (format != "gblens-layout") return r.fail(w, "format", "expected \"gblens-layout\", got \"" + format + "\"");
+  if (version != 1.0) return r.fail(w, "version", "this gblens reads version 1");
+  if (!r.string(j, w, "name", out.name, false) || !r.size(j, w, "size", out.width, out.height)) return false;
+  if (!r.unknownKeys(j, w, {"format", "version", "name", "size", "parameters", "targets", "camera", "lights"}))
+    return false;
+  auto ts = j.find("targets");
+  if (ts == j.end() || !ts->is_array() || ts->empty()) return r.fail(w, "targets", "expected a list of targets");
+  for (size_t i = 0; i < ts->size(); ++i)
+    if (!readTarget(r, (*ts)[i], w.at("targets[" + std::to_string(i) + "]"), out)) return false;
+  if (auto it = j.find("camera"); it != j.end() && !readCamera(r, *it, w, out.camera)) return false;
+  if (auto it = j.find("lights"); it != j.end() && !readLights(r, *it, w, out.lights)) return false;
+  return true;
+}
+
+bool parseLayoutCamera(const json& j, const std::string& where, LayoutCamera& out, std::string& error) {
+  out = LayoutCamera{};
+  error.clear();
+  Reader r{error};
+  return readCamera(r, j, Where{where}, out);
+}
+
+bool loadLayoutFile(const std::string& path, const LayoutParameters& params, Layout& out, std::string& error) {
+  std::ifstream in(path);
+  if (!in) {
+    error = path + ": cannot read the layout file";
+    return false;
+  }
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    error = path + ": not valid JSON (" + e.what() + ")";
+    return false;
+  }
+  return resolveLayoutParameters(j, params, path, error) && parseLayout(j, path, out, error);
+}
+
+}  // namespace gb

@@ -1,0 +1,159 @@
+// Layouts back to JSON (what capture manifests embed), option parameters, and the layouts carried
+// in the binary: gblens's own (assets/layouts/gblens.json, resolved per options) and the others.
+#include <mutex>
+
+#include "renderer/core/assert.h"
+#include "renderer/core/assets.h"
+#include "renderer/core/layout_json.h"
+
+namespace gb {
+
+using json = nlohmann::json;
+
+LayoutParameters layoutParameters(const RenderOptions& o) {
+  LayoutParameters p;
+  for (const OptionInfo& info : optionTable()) p[info.name] = getOption(o, info.name);
+  return p;
+}
+
+static json matrix(const glm::dmat4& m) {
+  json a = json::array();
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) a.push_back(m[c][r]);
+  return a;
+}
+
+static json quantityJson(const Quantity& q) {
+  json j = {{"quantity", name(q.kind)}, {"name", q.name}, {"channels", q.channels}};
+  switch (q.kind) {
+    case QuantityKind::Normal: {
+      j["encoding"] = name(q.normal);
+      if (q.normal == NormalEncoding::Octahedral12) j["bits"] = 12;
+      j["space"] = q.space == Space::World ? "world" : "view";
+      if (!q.normalized) j["normalized"] = false;
+      break;
+    }
+    case QuantityKind::Depth:
+      j["encoding"] = name(q.depth);
+      if (q.background) j["background"] = *q.background;
+      if (q.ofSun) j["of"] = "sun";
+      break;
+    case QuantityKind::Position:
+      j["space"] = q.space == Space::View ? "view" : q.space == Space::World ? "world" : "camera_relative";
+      break;
+    case QuantityKind::Motion:
+      j["units"] = q.units == MotionUnits::Pixels ? "pixels" : q.units == MotionUnits::Ndc ? "ndc" : "uv";
+      j["direction"] = q.toPrevious ? "to_previous" : "to_next";
+      break;
+    case QuantityKind::Id:
+      if (!q.idNames.empty()) {
+        json names = json::object();
+        for (auto& [id, n] : q.idNames) names[std::to_string(id)] = n;
+        j["names"] = names;
+      }
+      break;
+    case QuantityKind::Stencil:
+      if (!q.stencilBits.empty()) j["bits"] = q.stencilBits;
+      break;
+    case QuantityKind::Albedo:
+    case QuantityKind::BaseColor:
+    case QuantityKind::Emission:
+    case QuantityKind::Radiance:
+    case QuantityKind::Display:
+      if (q.color == ColorEncoding::Srgb) j["encoding"] = "srgb";
+      break;
+    default:
+      if (q.scale != 1.0) j["scale"] = q.scale;
+      if (q.bias != 0.0) j["bias"] = q.bias;
+      if (!q.unit.empty()) j["unit"] = q.unit;
+      break;
+  }
+  return j;
+}
+
+static json sourceJson(const TargetSource& s) {
+  json j = json::object();
+  if (s.kind == TargetSource::Kind::RenderDoc) return {{"renderdoc", s.resource}};
+  j["file"] = s.path;
+  if (s.kind == TargetSource::Kind::Raw) j["raw"] = true;
+  if (s.offset) j["offset"] = s.offset;
+  if (!s.part.empty()) j["part"] = s.part;
+  if (!s.channels.empty()) j["channels"] = s.channels;
+  return j;
+}
+
+json layoutCameraJson(const LayoutCamera& c) {
+  static const char* conventions[] = {"vulkan", "d3d", "gl"};
+  json j = {{"matrix_order", "column_major"},
+            {"convention", conventions[size_t(c.convention)]},
+            {"view_handedness", c.leftHanded ? "left" : "right"},
+            {"up", c.zUp ? "z" : "y"},
+            {"image_origin", c.bottomOrigin ? "bottom" : "top"}};
+  if (!c.sidecar.empty()) j["sidecar"] = c.sidecar;
+  if (c.renderdoc) {
+    j["matrix_order"] = c.renderdoc->rowMajor ? "row_major" : "column_major";
+    j["renderdoc"] = {{"buffer", c.renderdoc->buffer},
+                      {c.renderdoc->worldFromView ? "world_from_view" : "view_from_world", {{"offset", c.renderdoc->viewOffset}}},
+                      {"clip_from_view", {{"offset", c.renderdoc->clipOffset}}}};
+  }
+  if (c.sidecar.empty() && !c.renderdoc) {
+    j["view_from_world"] = matrix(c.viewFromWorld);
+    j["clip_from_view"] = matrix(c.clipFromView);
+  }
+  return j;
+}
+
+static json lightsJson(const LayoutLights& l) {
+  json points = json::array();
+  for (const PointLightDesc& p : l.points)
+    points.push_back({{"position", {p.center.x, p.center.y, p.center.z}},
+                      {"radius", p.radius},
+                      {"color", {p.color.r, p.color.g, p.color.b}},
+                      {"intensity", p.intensity}});
+  json j = {{"model", l.model}, {"points", points}, {"ambient", {l.ambient.r, l.ambient.g, l.ambient.b}}};
+  if (l.sun.enabled)
+    j["sun"] = {{"direction", {l.sun.toSun.x, l.sun.toSun.y, l.sun.toSun.z}},
+                {"color", {l.sun.color.r, l.sun.color.g, l.sun.color.b}}};
+  return j;
+}
+
+json layoutJson(const Layout& l) {
+  json targets = json::array();
+  for (uint32_t t = 0; t < l.targets.size(); ++t) {
+    const LayoutTarget& lt = l.targets[t];
+    json j = {{"name", lt.name}, {"format", lt.format.name}, {"channels", lt.channels}};
+    if (lt.width) j["size"] = {lt.width, lt.height};
+    if (lt.source.kind != TargetSource::Kind::None) j["source"] = sourceJson(lt.source);
+    json qs = json::array();
+    for (const Quantity* q : l.quantitiesOf(t)) qs.push_back(quantityJson(*q));
+    j["quantities"] = qs;
+    targets.push_back(j);
+  }
+  json j = {{"format", "gblens-layout"}, {"version", 1}, {"name", l.name}, {"targets", targets}};
+  if (l.width) j["size"] = {l.width, l.height};
+  if (l.camera.present) j["camera"] = layoutCameraJson(l.camera);
+  if (l.lights.present) j["lights"] = lightsJson(l.lights);
+  return j;
+}
+
+const Layout& nativeLayout(const RenderOptions& o) {
+  static std::mutex mutex;
+  static std::map<LayoutParameters, Layout> cache;
+  const LayoutParameters params = layoutParameters(o);
+  std::lock_guard lock(mutex);
+  auto it = cache.find(params);
+  if (it != cache.end()) return it->second;
+  const std::string* text = assetText("layouts/gblens.json");
+  GB_ASSERT(text);
+  json j = json::parse(*text);
+  std::string error;
+  Layout l;
+  if (!resolveLayoutParameters(j, params, "assets/layouts/gblens.json", error) ||
+      !parseLayout(j, "assets/layouts/gblens.json", l, error)) {
+    std::fprintf(stderr, "gblens: %s\n", error.c_str());
+    GB_ASSERT(!"the built-in layout of gblens's own frame does not load");
+  }
+  return cache.emplace(params, std::move(l)).first->second;
+}
+
+}  // namespace gb

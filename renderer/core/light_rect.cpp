@@ -1,0 +1,36 @@
+// sphereScreenRect (light_rect.h): the tangent lines through the eye, per screen axis.
+#include "renderer/core/light_rect.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gb {
+
+// The pixel centres k + 0.5 (k in [0, size)) that the projection of a sphere in front of the
+// eye can cover along one screen axis, as [k0, k1] (empty when k0 > k1). The lines through the
+// eye tangent to the sphere's outline have slopes t = lateral / depth solving
+// (lateral - t depth)^2 = r^2 (1 + t^2); ndc = scale t - offset. `margin` widens it, in pixels.
+static void centreRange(double depth, double r, double lateral, double scale, double offset, uint32_t size,
+                        double margin, int64_t& k0, int64_t& k1) {
+  double d2 = depth * depth - r * r;
+  double root = r * std::sqrt(lateral * lateral + d2);
+  double t0 = (lateral * depth - root) / d2, t1 = (lateral * depth + root) / d2;
+  double a = (scale * t0 - offset + 1.0) * 0.5 * size, b = (scale * t1 - offset + 1.0) * 0.5 * size;
+  double lo = std::min(a, b) - margin, hi = std::max(a, b) + margin;
+  k0 = int64_t(std::max(std::ceil(lo - 0.5), 0.0));
+  k1 = int64_t(std::min(std::floor(hi - 0.5), double(size) - 1.0));
+}
+
+PixelRect sphereScreenRect(const Camera& camera, const glm::dvec3& c, double r, double margin) {
+  const double depth = -c.z;
+  if (depth + r <= 0.0) return {};  // behind the eye
+  if (!(depth - r > 0.0) || !(depth * depth - r * r > 0.0))
+    return {0, 0, int64_t(camera.width) - 1, int64_t(camera.height) - 1};  // reaches the eye's plane
+  const glm::dmat4& p = camera.clipFromEye;
+  PixelRect rect;
+  centreRange(depth, r, c.x, p[0][0], p[2][0], camera.width, margin, rect.x0, rect.x1);
+  centreRange(depth, r, c.y, p[1][1], p[2][1], camera.height, margin, rect.y0, rect.y1);
+  return rect;
+}
+
+}  // namespace gb

@@ -1,0 +1,274 @@
+// RenderDoc replay in a child process (see renderdoc_replay.h): the embedded script is written to a
+// private temporary folder, run by /usr/bin/python3 with a time limit, and the folder removed.
+#include "views/capture/renderdoc_replay.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+extern char** environ;
+
+namespace gb {
+
+const char* renderDocReplayScript();  // generated from renderdoc_replay.py (cmake/EmbedText.cmake)
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A private folder for the script, its output and texel files; removed with everything in it.
+struct TempFolder {
+  fs::path path;
+  TempFolder() {
+    std::string pattern = (fs::temp_directory_path() / "gblens-rdc-XXXXXX").string();
+    if (mkdtemp(pattern.data())) path = pattern;
+  }
+  ~TempFolder() {
+    std::error_code ec;
+    if (!path.empty()) fs::remove_all(path, ec);
+  }
+};
+
+std::string readText(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+bool readBytes(const fs::path& p, std::vector<uint8_t>& out) {
+  std::ifstream f(p, std::ios::binary);
+  if (!f) return false;
+  out.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  return true;
+}
+
+// The script's stderr: progress lines ("progress: ...") and, on failure, its one-line message.
+struct ScriptLog {
+  std::string lastProgress, lastMessage;
+  explicit ScriptLog(const std::string& text) {
+    std::stringstream s(text);
+    std::string line;
+    while (std::getline(s, line)) {
+      if (line.empty()) continue;
+      if (line.rfind("progress: ", 0) == 0)
+        lastProgress = line.substr(10);
+      else
+        lastMessage = line;
+    }
+  }
+};
+
+int timeoutSeconds(const RdcReplayOptions& o) {
+  if (const char* v = std::getenv("GBLENS_RENDERDOC_TIMEOUT"); v && std::atoi(v) > 0) return std::atoi(v);
+  return o.timeoutSeconds;
+}
+
+// Runs the script with `args`; true with its JSON result, else false with one line in `error`.
+bool runScript(const std::string& rdc, const std::vector<std::string>& args, const TempFolder& tmp,
+               const RdcReplayOptions& o, nlohmann::json& result, std::string& error) {
+  if (tmp.path.empty()) {
+    error = "cannot create a temporary folder in " + fs::temp_directory_path().string();
+    return false;
+  }
+  if (access(o.python.c_str(), X_OK) != 0) {
+    error = o.python + " not found: reading RenderDoc captures needs Python 3 and python3-renderdoc";
+    return false;
+  }
+  const fs::path script = tmp.path / "renderdoc_replay.py", out = tmp.path / "stdout", err = tmp.path / "stderr";
+  if (!(std::ofstream(script, std::ios::binary) << renderDocReplayScript())) {
+    error = "cannot write " + script.string();
+    return false;
+  }
+
+  std::vector<std::string> argv = {o.python, script.string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  std::vector<char*> cargv;
+  for (std::string& a : argv) cargv.push_back(a.data());
+  cargv.push_back(nullptr);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);  // its own group: a time-out ends all of it
+  posix_spawnattr_setpgroup(&attr, 0);
+  pid_t pid = 0;
+  int rc = posix_spawn(&pid, o.python.c_str(), &files, &attr, cargv.data(), environ);
+  posix_spawn_file_actions_destroy(&files);
+  posix_spawnattr_destroy(&attr);
+  if (rc != 0) {
+    error = "cannot run " + o.python + ": " + std::strerror(rc);
+    return false;
+  }
+
+  const int limit = timeoutSeconds(o);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(limit);
+  int status = 0;
+  bool timedOut = false;
+  while (waitpid(pid, &status, WNOHANG) == 0) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      kill(-pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      timedOut = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+
+  const ScriptLog log(readText(err));
+  const std::string doing = log.lastProgress.empty() ? "" : " (while " + log.lastProgress + ")";
+  if (timedOut) {
+    error = rdc + ": RenderDoc's replay did not finish within " + std::to_string(limit) + " s" + doing +
+            "; the capture may not replay on this machine's driver (GBLENS_RENDERDOC_TIMEOUT sets the limit)";
+    return false;
+  }
+  if (WIFSIGNALED(status)) {
+    error = rdc + ": RenderDoc's replay crashed (signal " + std::to_string(WTERMSIG(status)) + ")" + doing +
+            "; the capture may not replay on this machine's driver";
+    return false;
+  }
+  const int exitCode = WEXITSTATUS(status);
+  if (exitCode != 0) {
+    if (log.lastMessage.find("No module named 'renderdoc'") != std::string::npos)
+      error = "the Python module renderdoc is not installed for " + o.python + " (apt-get install python3-renderdoc)";
+    else if (exitCode == 2 && !log.lastMessage.empty())
+      error = log.lastMessage;
+    else
+      error = rdc + ": RenderDoc's replay failed" + doing + ": " + (log.lastMessage.empty() ? "no message" : log.lastMessage);
+    return false;
+  }
+  // The result is the last line of stdout (RenderDoc may print before it).
+  std::string text = readText(out);
+  while (!text.empty() && text.back() == '\n') text.pop_back();
+  size_t start = text.rfind('\n');
+  result = nlohmann::json::parse(text.substr(start == std::string::npos ? 0 : start + 1), nullptr, false);
+  if (result.is_discarded() || !result.is_object()) {
+    error = rdc + ": RenderDoc's replay printed no result" + doing;
+    return false;
+  }
+  return true;
+}
+
+RdcTexture textureFromJson(const nlohmann::json& j) {
+  RdcTexture t;
+  t.name = j.value("name", "");
+  t.id = j.value("id", uint64_t(0));
+  const nlohmann::json& f = j.at("format");
+  RdcFormat format{f.value("name", ""), f.value("type", ""), f.value("compType", ""), f.value("compCount", 0u),
+                   f.value("compByteWidth", 0u), f.value("bgra", false)};
+  t.format = format.name;
+  t.texelFormat = texelFormatOf(format);
+  t.width = j.value("width", 0u);
+  t.height = j.value("height", 0u);
+  t.depth = j.value("depth", 1u);
+  t.mips = j.value("mips", 1u);
+  t.layers = j.value("arraysize", 1u);
+  t.samples = j.value("samples", 1u);
+  return t;
+}
+
+}  // namespace
+
+std::optional<TexelFormat> texelFormatOf(const RdcFormat& f) {
+  if (f.type == "D32S8") return TexelFormat::D32fS8;
+  if (f.type == "D24S8") return TexelFormat::D24S8;
+  if (f.type == "R10G10B10A2")
+    return !f.bgra && f.compType == "UNorm" ? std::optional(TexelFormat::Rgb10a2Unorm) : std::nullopt;
+  if (f.type != "Regular" || f.bgra) return std::nullopt;
+  const std::string& c = f.compType;
+  if (f.compCount == 1 && c == "Depth") {
+    if (f.compByteWidth == 4) return TexelFormat::D32f;
+    if (f.compByteWidth == 2) return TexelFormat::D16;
+    return std::nullopt;
+  }
+  if (f.compCount == 1 && f.compByteWidth == 4) {
+    if (c == "Float") return TexelFormat::R32f;
+    if (c == "UInt") return TexelFormat::R32Uint;
+    return std::nullopt;
+  }
+  if (f.compCount != 4) return std::nullopt;
+  if (f.compByteWidth == 1) {
+    if (c == "UNormSRGB") return TexelFormat::Rgba8Srgb;
+    if (c == "UNorm") return TexelFormat::Rgba8Unorm;
+    if (c == "SNorm") return TexelFormat::Rgba8Snorm;
+  } else if (f.compByteWidth == 2) {
+    if (c == "SNorm") return TexelFormat::Rgba16Snorm;
+    if (c == "Float") return TexelFormat::Rgba16f;
+  } else if (f.compByteWidth == 4 && c == "Float") {
+    return TexelFormat::Rgba32f;
+  }
+  return std::nullopt;
+}
+
+bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& error, const RdcReplayOptions& o) {
+  TempFolder tmp;
+  nlohmann::json j;
+  if (!runScript(rdc, {"list", rdc}, tmp, o, j, error)) return false;
+  out = RdcListing{};
+  out.api = j.value("api", "");
+  out.driverNote = j.value("driver", "");
+  out.lastEvent = j.value("lastEvent", 0u);
+  std::map<uint64_t, std::string> names;
+  for (const nlohmann::json& t : j.at("textures")) {
+    out.textures.push_back(textureFromJson(t));
+    names[out.textures.back().id] = out.textures.back().name;
+  }
+  for (const nlohmann::json& p : j.at("passes")) {
+    RdcPass pass{p.value("name", ""), p.value("first", 0u), p.value("last", 0u), p.value("depth", 0u), {}};
+    for (uint64_t id : p.at("writes").get<std::vector<uint64_t>>())
+      pass.writes.push_back(names[id].empty() ? std::string("#") + std::to_string(id) : names[id]);
+    out.passes.push_back(std::move(pass));
+  }
+  return true;
+}
+
+bool readRenderDocTexels(const std::string& rdc, uint32_t event, const std::vector<std::string>& textures,
+                         std::vector<RdcTexels>& out, std::string& error, const RdcReplayOptions& o) {
+  TempFolder tmp;
+  std::vector<std::string> args = {"texels", rdc, std::to_string(event), tmp.path.string()};
+  args.insert(args.end(), textures.begin(), textures.end());
+  nlohmann::json j;
+  if (!runScript(rdc, args, tmp, o, j, error)) return false;
+  out.clear();
+  for (const nlohmann::json& t : j.at("textures")) {
+    RdcTexels texels;
+    texels.texture = textureFromJson(t);
+    texels.event = t.value("event", 0u);
+    if (!readBytes(t.value("file", ""), texels.bytes)) {
+      error = rdc + ": RenderDoc's replay wrote no texels for " + texels.texture.name;
+      return false;
+    }
+    out.push_back(std::move(texels));
+  }
+  return true;
+}
+
+bool readRenderDocBuffer(const std::string& rdc, uint32_t event, const std::string& buffer, std::vector<uint8_t>& out,
+                         std::string& error, const RdcReplayOptions& o) {
+  TempFolder tmp;
+  const std::string file = (tmp.path / "buffer.bin").string();
+  nlohmann::json j;
+  if (!runScript(rdc, {"buffer", rdc, std::to_string(event), buffer, file}, tmp, o, j, error)) return false;
+  if (!readBytes(file, out)) {
+    error = rdc + ": RenderDoc's replay wrote no bytes for buffer " + buffer;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace gb

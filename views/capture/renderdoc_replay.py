@@ -1,0 +1,299 @@
+"""gblens's RenderDoc replay: lists a capture and reads raw texels and buffer bytes from it.
+
+gblens carries this script inside its binary (cmake/EmbedText.cmake) and runs it with the system
+/usr/bin/python3 and Debian's python3-renderdoc (views/capture/renderdoc_replay.cpp). Commands:
+  list RDC                          JSON on stdout: api, driver, passes, textures, last event
+  texels RDC EVENT OUTDIR TEX...    OUTDIR/<i>.bin: the stored bits of each texture (a name or #id)
+                                    after EVENT (0: the end of the pass that last writes it), packed
+                                    as gblens packs read-backs (renderer/core/texels.h); JSON on stdout
+  buffer RDC EVENT BUFFER OUT       OUT: the bytes of a buffer (a name or #id) at EVENT (0: its first use)
+A problem prints one line on stderr and exits 2. Progress lines start with "progress:" (the caller
+shows the last one when the replay runs out of time).
+"""
+import json
+import os
+import sys
+
+import renderdoc as rd
+
+# How a texture can be written (RenderDoc's ResourceUsage): the writes of a pass.
+WRITES = {
+    rd.ResourceUsage.ColorTarget, rd.ResourceUsage.DepthStencilTarget, rd.ResourceUsage.Clear,
+    rd.ResourceUsage.CopyDst, rd.ResourceUsage.Copy, rd.ResourceUsage.ResolveDst, rd.ResourceUsage.Resolve,
+    rd.ResourceUsage.GenMips, rd.ResourceUsage.VS_RWResource, rd.ResourceUsage.HS_RWResource,
+    rd.ResourceUsage.DS_RWResource, rd.ResourceUsage.GS_RWResource, rd.ResourceUsage.PS_RWResource,
+    rd.ResourceUsage.CS_RWResource, rd.ResourceUsage.All_RWResource,
+}
+
+
+class Failure(Exception):
+    pass
+
+
+def progress(text):
+    print("progress: " + text, file=sys.stderr, flush=True)
+
+
+def rid_int(rid):
+    return int(rid)
+
+
+def enum_name(cls, value):
+    """The bindings' enums are plain ints: their names come from the class's constants."""
+    for name in dir(cls):
+        if name[:1].isupper() and isinstance(getattr(cls, name), int) and getattr(cls, name) == value:
+            return name
+    return str(value)
+
+
+def local_gpus(cap):
+    gpus = ["%s (%s)" % (g.name, g.driver) if g.driver else g.name for g in cap.GetAvailableGPUs()]
+    return ", ".join(gpus) if gpus else "no GPU RenderDoc can use"
+
+
+class Replay:
+    """An open capture: the controller, names of resources, the action tree flattened."""
+
+    def __init__(self, path):
+        self.path = path
+        progress("opening " + path)
+        self.cap = rd.OpenCaptureFile()
+        result = self.cap.OpenFile(path, "", None)
+        if not result.OK():
+            raise Failure("%s: RenderDoc cannot open it: %s" % (path, result.Message()))
+        self.api = self.cap.DriverName()
+        machine = self.cap.RecordedMachineIdent().strip()
+        if self.cap.LocalReplaySupport() == rd.ReplaySupport.Unsupported:
+            raise Failure("%s: a %s capture (recorded on %s) that RenderDoc %s cannot replay on this machine (%s)"
+                          % (path, self.api, machine, rd.GetVersionString(), local_gpus(self.cap)))
+        progress("replaying the %s capture on %s" % (self.api, local_gpus(self.cap)))
+        result, self.controller = self.cap.OpenCapture(rd.ReplayOptions(), None)
+        if not result.OK():
+            raise Failure("%s: RenderDoc %s could not replay this %s capture (recorded on %s) on this machine's "
+                          "driver, %s: %s" % (path, rd.GetVersionString(), self.api, machine, local_gpus(self.cap),
+                                              result.Message()))
+        props = self.controller.GetAPIProperties()
+        self.driver = "%s capture recorded on %s, replayed by RenderDoc %s on %s%s" % (
+            self.api, machine, rd.GetVersionString(), local_gpus(self.cap),
+            " (degraded: a different GPU than recorded)" if props.degraded else "")
+        self.sfile = self.controller.GetStructuredFile()
+        self.names = {rid_int(r.resourceId): r.name for r in self.controller.GetResources()}
+        self.textures = {rid_int(t.resourceId): t for t in self.controller.GetTextures()}
+        self.buffers = {rid_int(b.resourceId): b for b in self.controller.GetBuffers()}
+        self.actions = []  # (action, depth) in event order
+        self._flatten(self.controller.GetRootActions(), 0)
+        self.last_event = max([last_event(a) for a, _ in self.actions] + [0])
+        self._passes = None
+
+    def _flatten(self, actions, depth):
+        for a in actions:
+            self.actions.append((a, depth))
+            self._flatten(a.children, depth + 1)
+
+    def close(self):
+        self.controller.Shutdown()
+        self.cap.Shutdown()
+
+    def writes(self, tex_id):
+        return sorted(u.eventId for u in self.controller.GetUsage(self.textures[tex_id].resourceId)
+                      if u.usage in WRITES)
+
+    def passes(self):
+        """Label regions (every one, nested ones too), and render passes not already named by a
+        region that holds no other render pass."""
+        if self._passes is None:
+            self._passes = self._find_passes()
+        return [dict(p) for p in self._passes]
+
+    def _find_passes(self):
+        regions = []
+        for a, depth in self.actions:
+            if a.flags & rd.ActionFlags.PushMarker:
+                regions.append({"name": a.GetName(self.sfile), "first": a.eventId, "last": last_event(a),
+                                "depth": depth})
+        render_passes, begin = [], None
+        for a, depth in self.actions:
+            if a.flags & rd.ActionFlags.BeginPass:
+                begin = (a, depth)
+            elif a.flags & rd.ActionFlags.EndPass and begin:
+                render_passes.append((begin[0], a.eventId, begin[1]))
+                begin = None
+
+        def inside(r, first, last):
+            return r["first"] <= first and last <= r["last"]
+
+        for n, (a, end, depth) in enumerate(render_passes):
+            named = False
+            for r in regions:
+                if inside(r, a.eventId, end):
+                    held = [p for p in render_passes if inside(r, p[0].eventId, p[1])]
+                    named = named or len(held) == 1
+            if not named:
+                regions.append({"name": "render pass %d: %s" % (n + 1, a.GetName(self.sfile)), "first": a.eventId,
+                                "last": end, "depth": depth})
+        regions.sort(key=lambda r: (r["first"], -r["last"]))
+        return regions
+
+    def find(self, table, kind, wanted):
+        if wanted.startswith("#"):
+            try:
+                rid = int(wanted[1:])
+            except ValueError:
+                raise Failure("%s: %s \"%s\": an id is # and a number (see --list)" % (self.path, kind, wanted))
+            if rid not in table:
+                raise Failure("%s: no %s with id %s (see --list)" % (self.path, kind, wanted))
+            return rid
+        ids = [i for i in table if self.names.get(i) == wanted]
+        if not ids:
+            raise Failure("%s: no %s named \"%s\" (%ss: %s)" % (self.path, kind, wanted, kind,
+                                                             ", ".join(sorted(set(self.names[i] for i in table)))))
+        if len(ids) > 1:
+            raise Failure("%s: %d %ss are named \"%s\": name one by id (%s)" % (
+                self.path, len(ids), kind, wanted, ", ".join("#%d" % i for i in ids)))
+        return ids[0]
+
+    def check_event(self, event):
+        if event > self.last_event:
+            raise Failure("%s: event %d is out of range (the capture's events are 1..%d)"
+                          % (self.path, event, self.last_event))
+
+
+def last_event(action):
+    last = max([action.eventId] + [e.eventId for e in action.events])
+    for c in action.children:
+        last = max(last, last_event(c))
+    return last
+
+
+def describe_format(fmt):
+    return {"name": fmt.Name(), "type": enum_name(rd.ResourceFormatType, fmt.type),
+            "compType": enum_name(rd.CompType, fmt.compType),
+            "compCount": fmt.compCount, "compByteWidth": fmt.compByteWidth, "bgra": bool(fmt.BGRAOrder())}
+
+
+def describe_texture(replay, tex_id):
+    t = replay.textures[tex_id]
+    return {"name": replay.names.get(tex_id, "#%d" % tex_id), "id": tex_id, "format": describe_format(t.format),
+            "width": t.width, "height": t.height, "depth": t.depth, "mips": t.mips, "arraysize": t.arraysize,
+            "samples": t.msSamp}
+
+
+def command_list(replay):
+    passes = replay.passes()
+    writers = {}
+    for tex_id in replay.textures:
+        writers[tex_id] = replay.writes(tex_id)
+    for p in passes:
+        p["writes"] = [tex_id for tex_id, events in sorted(writers.items())
+                       if any(p["first"] <= e <= p["last"] for e in events)]
+    return {"api": replay.api, "driver": replay.driver, "lastEvent": replay.last_event, "passes": passes,
+            "textures": [describe_texture(replay, i) for i in sorted(replay.textures)]}
+
+
+def default_event(replay, tex_id):
+    """After the last write: the end of the innermost label region holding it (its pass), else the
+    write itself; a texture the frame never writes is read at the end of the frame."""
+    events = replay.writes(tex_id)
+    if not events:
+        return replay.last_event
+    write = events[-1]
+    holding = [r for r in replay.passes() if r["first"] <= write <= r["last"]]
+    return min(holding, key=lambda r: r["last"] - r["first"])["last"] if holding else write
+
+
+def packed(data, fmt, width, height):
+    """RenderDoc 1.24's Vulkan GetTextureData interleaves depth and stencil (vk_replay.cpp: D32S8 as
+    two 32-bit words a texel, D24S8 as one word with stencil in the top byte, D16S8 as two 16-bit
+    words); gblens packs the depth plane, then one stencil byte a texel."""
+    n = width * height
+    kind = enum_name(rd.ResourceFormatType, fmt.type)
+    data = bytes(data)
+    if kind == "D32S8":
+        expect(data, 8 * n)
+        words = memoryview(data).cast("I")
+        return words[0::2].tobytes() + data[4::8]
+    if kind == "D24S8":
+        # 1.24 sizes the buffer for separate planes (4 + 1 bytes a texel) but interleaves into the
+        # first 4 bytes a texel; the rest is unused.
+        expect(data, 4 * n, at_least=True)
+        depth = bytearray(data[:4 * n])
+        depth[3::4] = bytes(n)  # the top byte of X8_D24 holds nothing
+        return bytes(depth) + data[3:4 * n:4]
+    if kind == "D16S8":
+        expect(data, 4 * n)
+        return memoryview(data).cast("H")[0::2].tobytes() + data[2::4]
+    return data
+
+
+def expect(data, size, at_least=False):
+    if len(data) < size or (len(data) != size and not at_least):
+        raise Failure("RenderDoc returned %d bytes of depth/stencil texels, expected %d" % (len(data), size))
+
+
+def command_texels(replay, event, outdir, wanted):
+    replay.check_event(event)
+    out = []
+    for i, name in enumerate(wanted):
+        tex_id = replay.find(replay.textures, "texture", name)
+        t = replay.textures[tex_id]
+        if t.msSamp > 1 or t.depth > 1 or t.arraysize > 1:
+            raise Failure("%s: texture %s is %s; gblens reads single-sample 2D textures" % (
+                replay.path, name, "multisampled" if t.msSamp > 1 else "3D or an array"))
+        at = event or default_event(replay, tex_id)
+        progress("reading %s after event %d" % (name, at))
+        replay.controller.SetFrameEvent(at, False)
+        data = replay.controller.GetTextureData(t.resourceId, rd.Subresource(0, 0, 0))
+        if not data:
+            raise Failure("%s: RenderDoc returned no texels for %s at event %d" % (replay.path, name, at))
+        path = os.path.join(outdir, "%d.bin" % i)
+        with open(path, "wb") as f:
+            f.write(packed(data, t.format, t.width, t.height))
+        entry = describe_texture(replay, tex_id)
+        entry.update({"event": at, "file": path})
+        out.append(entry)
+    return {"textures": out}
+
+
+def command_buffer(replay, event, wanted, outpath):
+    replay.check_event(event)
+    buf_id = replay.find(replay.buffers, "buffer", wanted)
+    b = replay.buffers[buf_id]
+    at = event
+    if not at:
+        uses = sorted(u.eventId for u in replay.controller.GetUsage(b.resourceId) if u.eventId > 0)
+        at = uses[0] if uses else replay.last_event
+    replay.controller.SetFrameEvent(at, False)
+    data = replay.controller.GetBufferData(b.resourceId, 0, 0)
+    with open(outpath, "wb") as f:
+        f.write(bytes(data))
+    return {"name": replay.names.get(buf_id, "#%d" % buf_id), "id": buf_id, "event": at, "bytes": len(data)}
+
+
+def main(argv):
+    if len(argv) < 3 or argv[1] not in ("list", "texels", "buffer"):
+        raise Failure("usage: renderdoc_replay.py list RDC | texels RDC EVENT OUTDIR TEX... | buffer RDC EVENT BUF OUT")
+    command, path = argv[1], argv[2]
+    if not os.path.isfile(path):
+        raise Failure("%s: no such file" % path)
+    rd.InitialiseReplay(rd.GlobalEnvironment(), [])
+    replay = Replay(path)
+    try:
+        if command == "list":
+            result = command_list(replay)
+        elif command == "texels":
+            result = command_texels(replay, int(argv[3]), argv[4], argv[5:])
+        else:
+            result = command_buffer(replay, int(argv[3]), argv[4], argv[5])
+    finally:
+        replay.close()
+    json.dump(result, sys.stdout)
+    sys.stdout.write("\n")
+    rd.ShutdownReplay()
+
+
+if __name__ == "__main__":
+    try:
+        main(sys.argv)
+    except Failure as e:
+        print(str(e), file=sys.stderr)
+        sys.exit(2)
