@@ -168,7 +168,7 @@ void expectRoundTrip(const std::string& name, const std::string& options, bool c
   std::vector<std::string> names;
   std::vector<Target> targets;
   for (size_t i = 0; i < kTargetCount; ++i)
-    if (!cap.frame.targets[i].image.empty()) {
+    if (!cap.frame.target(Target(i)).image.empty()) {
       names.push_back(targetName(Target(i)));
       targets.push_back(Target(i));
     }
@@ -178,7 +178,7 @@ void expectRoundTrip(const std::string& name, const std::string& options, bool c
   ASSERT_EQ(texels.size(), targets.size());
   for (size_t k = 0; k < targets.size(); ++k) {
     const Target t = targets[k];
-    const CpuImage& want = cap.frame.targets[size_t(t)].image;
+    const CpuImage& want = cap.frame.target(t).image;
     const RdcTexels& got = texels[k];
     SCOPED_TRACE(std::string(targetName(t)) + " (" + got.texture.format + ")");
     ASSERT_TRUE(got.texture.texelFormat.has_value());
