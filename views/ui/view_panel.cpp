@@ -13,6 +13,7 @@ namespace gb {
 
 glm::uvec2 viewImageSize(const ViewerModel& m, ViewKind v) {
   if (viewDef(v).source.target == Target::ShadowMap) return m.shadowMapSize;
+  if (m.reducedBy > 1) return m.fullSize;
   return {m.rendered.width, m.rendered.height};
 }
 
@@ -139,6 +140,9 @@ static void queueViewDraw(ViewerModel& m, const SlotDraw& v, const Placement& pl
   fb.originX *= io.DisplayFramebufferScale.x;
   fb.originY *= io.DisplayFramebufferScale.y;
   fb.scale *= io.DisplayFramebufferScale.x;
+  // A reduced frame covers the full frame's placement: its texels are fullSize / rendered larger.
+  if (m.reducedBy > 1 && def.source.target != Target::ShadowMap && m.rendered.width > 0)
+    fb.scale *= double(m.fullSize.x) / double(m.rendered.width);
   if (m.source != FrameSource::Live) mark.reset();  // marks need the live frame's matrices on the GPU
   vd.params = viewParams(def, m.settings[int(v.kind)], range, fb, m.grid, mark, m.shadowMapSize);
   if (v.side == FrameSide::Difference) {
