@@ -78,8 +78,10 @@ class GuiTest : public GpuTest {
 
 TEST_F(GuiTest, KeysShowEveryViewAndAClickProbesThePixelAsAHeadlessRenderDoes) {
   const std::string size = std::to_string(kW) + "x" + std::to_string(kH);
+  // Full frames only: auto's reduction depends on measured times (the next test checks it).
   viewer_ = gui::spawn({GBLENS_BINARY, "view", "builtin:temple", "--validate", "--size", size, "--time", "1.5", "--paused",
-                        "--window", "1280x720", "--event-log", eventLog(), "--probe-log", probeLog()},
+                        "--window", "1280x720", "--reduce-while-moving", "off", "--event-log", eventLog(), "--probe-log",
+                        probeLog()},
                        {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
   ASSERT_FALSE(waitEvent([](const nlohmann::json& j) { return j["event"] == "ready"; }, 60.0).is_null())
       << "the viewer did not present a frame; see " << (dir_ / "viewer.log");
