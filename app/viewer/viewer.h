@@ -34,6 +34,7 @@ struct ViewerArgs {
   std::string probeLog;            // --probe-log: each dossier as one JSON line
   std::string eventLog;            // --event-log: layout/probe/exit events as JSON lines (tests)
   std::string capture, compare;    // --capture DIR / --compare B (Capture issue)
+  int reduceWhileMoving = 0;       // --reduce-while-moving: ViewerModel::kReduceAuto, kReduceOff or n
 };
 
 // The camera the viewer renders: starts as an exact copy of a scene camera; moving it derives
@@ -95,6 +96,12 @@ struct Viewer {
   std::vector<double> renderMs, presentMs;
   std::vector<double> renderedLoopMs;  // whole iterations that rendered a frame: render + views + present
   std::vector<int> pressedKeys;    // key presses since the last loop iteration
+  // Responsive rendering (viewer.cpp): what the frame on screen shows at full size, when input last
+  // changed it, and the last rendering iterations' times at full size and reduced.
+  RenderOptions fullOptions;
+  std::chrono::steady_clock::time_point lastInput;
+  double fullIterationMs = 0.0, reducedIterationMs = 0.0;
+  int autoReduceBy = 2;            // the reduction auto uses next (adapted to the measured times)
 };
 
 int runViewer(const ViewerArgs& args, Scene scene);
