@@ -438,14 +438,14 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
     out.camera.width = w;
     out.camera.height = h;
   }
+  if (camera.bottomOrigin)  // after the camera is resolved: a sidecar may say so
+    for (CpuImage& image : images) flipRows(image);
   // The manifest embeds the camera as imported: its matrices in the layout's conventions (not where
-  // they were read from), and rows top first (the images were flipped above).
+  // they were read from), and rows top first (the images were flipped just above).
   camera.sidecar.clear();
   camera.renderdoc.reset();
   camera.bottomOrigin = false;
   out.layout.camera = camera;
-  if (camera.bottomOrigin)  // after the camera is resolved: a sidecar may say so
-    for (CpuImage& image : images) flipRows(image);
   out.options.width = w;
   out.options.height = h;
   out.options.reversedZ = out.camera.reversedZ;
