@@ -54,6 +54,17 @@ struct Side {
   const Quantity& q;
 };
 
+// Two projections equal to float precision (a camera read back from a uniform buffer is the double
+// one rounded to float): hardware depths stored under them mean the same surfaces.
+bool sameProjection(const Camera& a, const Camera& b) {
+  if (a.reversedZ != b.reversedZ) return false;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (std::abs(a.clipFromEye[c][r] - b.clipFromEye[c][r]) > 1e-6 * std::max(1.0, std::abs(a.clipFromEye[c][r])))
+        return false;
+  return true;
+}
+
 // Both sides store the quantity the same way: then the stored values are compared as they are
 // (bit-equal frames compare equal whatever the encoding, and thresholds keep their stored units).
 bool sameStorage(const Side& a, const Side& b) {
@@ -62,8 +73,7 @@ bool sameStorage(const Side& a, const Side& b) {
   // A hardware or radial depth means an eye depth only through its projection (standard and
   // reversed Z store the same surface as d and about 1 - d).
   const bool projected = qa.kind == QuantityKind::Depth && !qa.ofSun && qa.depth != DepthEncoding::Eye;
-  if (projected && (a.f.camera.clipFromEye != b.f.camera.clipFromEye || a.f.camera.reversedZ != b.f.camera.reversedZ))
-    return false;
+  if (projected && !sameProjection(a.f.camera, b.f.camera)) return false;
   return ta.format.name == tb.format.name && qa.channels.size() == qb.channels.size() && qa.kind == qb.kind &&
          qa.color == qb.color && qa.normal == qb.normal && qa.depth == qb.depth && qa.space == qb.space &&
          qa.background == qb.background && qa.scale == qb.scale && qa.bias == qb.bias && qa.units == qb.units;
