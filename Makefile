@@ -4,7 +4,7 @@ JOBS    ?= $(shell nproc)
 GBLENS  := $(BUILD)/gblens
 PACKAGES := $(shell grep -v '^\#' debian-packages.txt)
 
-.PHONY: deps build run test bench stress fuzz test-asan clean golden
+.PHONY: deps build run test bench stress fuzz test-asan clean golden fixtures
 
 # Install missing Debian packages when root; otherwise print the exact command and stop.
 deps:
@@ -38,6 +38,18 @@ test: build
 # Rewrite tests/golden/temple after an intended change to the rendered frame (then review and commit).
 golden: build
 	tests/golden/golden.sh regenerate $(GBLENS)
+
+# Rewrite tests/data/blender (the Cycles G-buffer that tests/unit/test_blender_import.cpp imports) with
+# Blender (Debian's blender 3.4: installed when root, else named); then look at it and commit it.
+BLENDER ?= blender
+fixtures:
+	@command -v $(BLENDER) >/dev/null || { \
+	  if [ "$$(id -u)" = 0 ]; then \
+	    echo "make fixtures: installing blender"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends blender; \
+	  else echo "make fixtures: needs Blender; run:"; echo "  sudo apt-get install -y --no-install-recommends blender"; exit 1; fi; }
+	$(BLENDER) -b --factory-startup -noaudio -P assets/blender/render_gbuffer.py -- tests/data/blender
+	@ls -l tests/data/blender
 
 # The default sweep on the built-in temple and, when present, the shared VC model (a glTF that
 # does not load is skipped with a message). Budgeted to finish within 15 minutes on 2 cores.

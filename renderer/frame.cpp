@@ -1,8 +1,9 @@
 // The frame, top to bottom: shadow map -> G-buffer -> directional light -> light mask ->
 // point lights -> skybox -> fairy lights -> tone map, in the two-pass or single-pass path;
-// method tiled replaces the three lighting passes by one compute pass, method forward replaces
-// the G-buffer and lighting by one forward pass. Every pass that does not run is listed with
-// the reason (see --stats).
+// method tiled replaces the three lighting passes by one compute pass, method clustered by four
+// light-assignment passes and one shading pass (all compute), method forward replaces the
+// G-buffer and lighting by one forward pass. The method is r.method (auto resolved by
+// chooseMethod). Every pass that does not run is listed with the reason (see --stats).
 #include "renderer/frame.h"
 
 #include <algorithm>
@@ -24,13 +25,40 @@ SkyKey skyVisibilityKey(const Renderer& r) {
   return {r.scene->instances.size(), o.width, o.height, o.reversedZ, o.depthFormat, r.camera.clipFromWorld};
 }
 
+// ── Clustered shading (compute, after the G-buffer) ────────────────────────────────────────
+// Clusters and their boxes from the G-buffer, lights into bins, each cluster's list, shading.
+// With no visible light every cluster keeps the empty list cluster_bounds gave it.
+static void addClusteredPasses(FrameGraph& g, Renderer& r) {
+  const uint32_t visible = r.visibleBound;
+  addClusterClearPass(g, r);
+  addClusterBoundsPass(g, r);
+  if (visible == 0) {
+    g.skipPass("cluster_bins", "no (visible) point lights: every cluster's list is empty");
+    g.skipPass("cluster_lists", "no (visible) point lights: every cluster's list is empty");
+  } else {
+    addClusterBinsPass(g, r, visible);
+    addClusterListsPass(g, r);
+  }
+  addClusteredLightingPass(g, r);
+}
+
 void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   const Scene& scene = *r.scene;
   const RenderOptions& o = r.options;
-  const Method method = o.method;
+  const Method method = r.method;  // never auto
   const bool singlePass = singlePassFrame(o);  // deferred only
-  const size_t visibleLights = r.lights.visible.size();
+  // Visible lights: counted on the CPU, or bounded by the scene's lights when the GPU sets them up.
+  const size_t visibleLights = r.visibleBound;
   const char* methodName = name(method);
+
+  // ── 0. Lights: animation, eye space, culling, the visible list ────────────────────────────
+  if (!r.lightsOnGpu || scene.lights.empty()) {
+    const std::string why = !r.lightsOnGpu ? r.lightSetupReason : "no point lights in the scene";
+    g.skipPass("light_setup", why);
+    g.skipPass("light_compact", why);
+  } else {
+    addLightSetupPasses(g, r);  // light_setup + light_compact (compute)
+  }
 
   // ── Coverage counters (views 8/9, --stats, captures) ─────────────────────────────────────
   if (o.coverage)
@@ -64,6 +92,7 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
     } else {
       g.endRenderPass();
       if (method == Method::Tiled) addTiledLightingPass(g, r);  // compute: sun + binned point lights
+      if (method == Method::Clustered) addClusteredPasses(g, r);
       g.beginRenderPass("lighting");
     }
   }
@@ -71,7 +100,9 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   // ── 3. Directional light ──────────────────────────────────────────────────────────────────
   if (method != Method::Deferred)
     g.skipPass("directional_light", std::string("method ") + methodName + ": the sun is shaded in " +
-                                        (method == Method::Tiled ? "tiled_lighting" : "forward"));
+                                        (method == Method::Tiled       ? "tiled_lighting"
+                                         : method == Method::Clustered ? "clustered_lighting"
+                                                                       : "forward"));
   else
     addDirectionalLightPass(g, r);
 
@@ -92,6 +123,8 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   // ── 5. Point lights ───────────────────────────────────────────────────────────────────────
   if (method == Method::Tiled)
     g.skipPass("point_lights", "method tiled: lights are binned per 16x16 tile and shaded in tiled_lighting");
+  else if (method == Method::Clustered)
+    g.skipPass("point_lights", "method clustered: each cluster's lights are listed and shaded in clustered_lighting");
   else if (method == Method::Forward)
     g.skipPass("point_lights", "method forward: every fragment loops over the visible lights");
   else if (visibleLights == 0)
@@ -117,19 +150,26 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   else
     addSkyboxPass(g, r);
 
-  // ── 7. Fairy lights ───────────────────────────────────────────────────────────────────────
-  if (!o.fairies)
+  // ── 7. Fairy lights: drawn, or splatted per tile in compute (the same image) ───────────────
+  bool lightingOpen = true;  // the render pass begun above ("lighting" or "forward")
+  if (!o.fairies) {
     g.skipPass("fairy_lights", "fairies disabled");
-  else if (visibleLights == 0)
+  } else if (visibleLights == 0) {
     g.skipPass("fairy_lights", "no visible point lights");
-  else
+  } else if (r.fairyCompute) {
+    g.skipPass("fairy_lights", "splatted in compute (fairy_splat): " + r.fairyReason);
+    g.endRenderPass();
+    lightingOpen = false;
+    addFairySplatPasses(g, r, uint32_t(visibleLights));  // fairy_clear, fairy_bins, fairy_splat
+  } else {
     addFairyPass(g, r);
+  }
 
   // ── Tone map: hdr -> final ────────────────────────────────────────────────────────────────
   if (singlePass) {
     g.nextSubpass();
   } else {
-    g.endRenderPass();
+    if (lightingOpen) g.endRenderPass();
     g.beginRenderPass("tonemap");
   }
   addToneMapPass(g, r);

@@ -114,6 +114,9 @@ void createFrameBuffers(Renderer& r) {
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload, "lights");
   r.visibleBuffer = createBuffer(ctx, std::max<size_t>(scene.lights.size(), maxLights) * sizeof(uint32_t),
                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload, "visible_lights");
+  r.lightCountBuffer = createBuffer(ctx, sizeof(gpu::LightCounts),
+                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                                    MemoryUse::Upload, "light_counts");
 }
 
 void createDescriptors(Renderer& r) {
@@ -133,9 +136,10 @@ void createDescriptors(Renderer& r) {
       {gpu::kBindingMaterials, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {gpu::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {gpu::kBindingVisible, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingLightCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
   VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  lci.bindingCount = 5;
+  lci.bindingCount = 6;
   lci.pBindings = sceneBindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &r.sceneSetLayout));
   setName(ctx, uint64_t(r.sceneSetLayout), VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, "set0.scene");
@@ -152,10 +156,19 @@ void createDescriptors(Renderer& r) {
       {gpu::kBindingBaseColorTexture, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
       {gpu::kBindingNormalTexture, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, all, nullptr},
       {gpu::kBindingHdrStorage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, all, nullptr},
+      {gpu::kBindingClusterHeader, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingClusters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingPixelClusters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingLightLists, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingBinBits, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingBinBoxes, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingLightDescs, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingLightScratch, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingFairyBits, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
-  static_assert(gpu::kBindingHdrStorage == 9, "passBindings is indexed by binding");
+  static_assert(gpu::kBindingFairyBits == 18 && gpu::kPassBindingCount == 19, "passBindings is indexed by binding");
   lci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
-  lci.bindingCount = 10;
+  lci.bindingCount = gpu::kPassBindingCount;
   lci.pBindings = passBindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &r.passSetLayout));
   setName(ctx, uint64_t(r.passSetLayout), VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, "set1.pass");
@@ -181,7 +194,7 @@ void createDescriptors(Renderer& r) {
 void writeSceneSet(Renderer& r) {
   GpuContext& ctx = *r.ctx;
   VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}};
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5}};
   VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   dpci.maxSets = 1;
   dpci.poolSizeCount = 2;
@@ -198,9 +211,10 @@ void writeSceneSet(Renderer& r) {
                                    {r.drawBuffer.buffer, 0, VK_WHOLE_SIZE},
                                    {r.materialBuffer.buffer, 0, VK_WHOLE_SIZE},
                                    {r.lightBuffer.buffer, 0, VK_WHOLE_SIZE},
-                                   {r.visibleBuffer.buffer, 0, VK_WHOLE_SIZE}};
+                                   {r.visibleBuffer.buffer, 0, VK_WHOLE_SIZE},
+                                   {r.lightCountBuffer.buffer, 0, VK_WHOLE_SIZE}};
   std::vector<VkWriteDescriptorSet> writes;
-  for (uint32_t b = 0; b < 5; ++b) {
+  for (uint32_t b = 0; b < 6; ++b) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstSet = r.sceneSet;
     w.dstBinding = b;

@@ -22,6 +22,11 @@ struct PassImage {
   VkImageLayout layout;
   VkSampler sampler = VK_NULL_HANDLE;
 };
+// A storage buffer pushed to set 1 (clustered shading's buffers).
+struct PassBuffer {
+  uint32_t binding;
+  VkBuffer buffer;
+};
 // Binds set 0 (scene) and pushes set 1 (this pass's images) for a pipeline of `layout`.
 void bindDescriptors(Renderer& r, VkCommandBuffer cmd, VkPipelineLayout layout, std::initializer_list<PassImage> images,
                      VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS);

@@ -8,7 +8,10 @@
 #include <cstring>
 #include <sstream>
 
+#include "renderer/cluster_buffers.h"
+#include "renderer/core/method_choice.h"
 #include "renderer/frame.h"
+#include "renderer/gpu_lights.h"
 #include "renderer/gpu_scene.h"
 #include "renderer/light_culling.h"
 #include "renderer/passes/passes.h"
@@ -19,6 +22,22 @@
 namespace gb {
 
 // ---- per-frame CPU work -----------------------------------------------------------------------
+
+// Lights classified on the CPU (light_culling.h) and written to the light buffers.
+static void uploadCpuLights(Renderer& r) {
+  const RenderOptions& o = r.options;
+  classifyLights(*r.scene, r.camera, o.time, stencilLayersOn(o, r.method, r.ctx->isCpu), r.lights);
+  // (memcpy from an empty vector's null data() is undefined even for 0 bytes: UBSan reports it)
+  if (!r.lights.eye.empty())
+    std::memcpy(r.lightBuffer.mapped, r.lights.eye.data(), r.lights.eye.size() * sizeof(gpu::PointLight));
+  if (!r.lights.visible.empty())
+    std::memcpy(r.visibleBuffer.mapped, r.lights.visible.data(), r.lights.visible.size() * sizeof(uint32_t));
+  gpu::LightCounts counts{};
+  const uint32_t visible = uint32_t(r.lights.visible.size());
+  counts.counts = glm::uvec4(visible, r.lights.culledFrustum, r.lights.culledEmpty, r.lights.culledSubpixel);
+  counts.fairyDraw = glm::uvec4(6u, visible, 0u, 0u);
+  std::memcpy(r.lightCountBuffer.mapped, &counts, sizeof(counts));
+}
 
 static void prepareFrame(Renderer& r) {
   const Scene& s = *r.scene;
@@ -44,15 +63,17 @@ static void prepareFrame(Renderer& r) {
     draws[i] = d;
   }
 
-  classifyLights(s, r.camera, o.time, stencilLayersOn(o, r.ctx->isCpu), r.lights);
-  GB_ASSERT(r.lights.eye.size() <= r.lightBuffer.size / sizeof(gpu::PointLight));
-  // (memcpy from an empty vector's null data() is undefined even for 0 bytes: UBSan reports it)
-  if (!r.lights.eye.empty())
-    std::memcpy(r.lightBuffer.mapped, r.lights.eye.data(), r.lights.eye.size() * sizeof(gpu::PointLight));
-  if (!r.lights.visible.empty())
-    std::memcpy(r.visibleBuffer.mapped, r.lights.visible.data(), r.lights.visible.size() * sizeof(uint32_t));
-
   gpu::FrameData f{};
+  r.lightsOnGpu = lightsOnGpu(*r.ctx, o, r.method, r.lightSetupReason);
+  GB_ASSERT(s.lights.size() <= r.lightBuffer.size / sizeof(gpu::PointLight));
+  if (r.lightsOnGpu) {
+    prepareGpuLights(r, f);  // light_setup and light_compact do the rest
+    r.visibleBound = uint32_t(s.lights.size());
+  } else {
+    uploadCpuLights(r);
+    r.visibleBound = uint32_t(r.lights.visible.size());
+  }
+
   f.clipFromEye = glm::mat4(r.camera.clipFromEye);
   f.eyeFromClip = glm::mat4(r.camera.eyeFromClip);
   f.worldFromEye = glm::mat4(r.camera.worldFromEye);
@@ -70,6 +91,7 @@ static void prepareFrame(Renderer& r) {
   f.params = glm::vec4(o.exposure, 0.05f, 1.0f / float(o.shadowMapSize), float(o.time));
   f.counts = glm::uvec4(uint32_t(r.lights.visible.size()), uint32_t(r.lights.visible.size()) - r.lights.stencilCount,
                         0u, 0u);
+  clusterFrameData(r.camera, r.visibleBound, f);
   std::memcpy(r.frameBuffer.mapped, &f, sizeof(f));
   r.frameData = f;
 }
@@ -94,14 +116,14 @@ const FrameStats& renderCountingFrame(Renderer& r, const RenderOptions& options,
 
 // Culling statistics count from coverage_masked and the eye depth (forward has no eye-depth
 // target: its surface points come from the hardware depth).
-static Target cullingDepthSource(const RenderOptions& o) {
-  return o.method == Method::Forward ? Target::DepthStencil : Target::Depth;
+static Target cullingDepthSource(Method method) {
+  return method == Method::Forward ? Target::DepthStencil : Target::Depth;
 }
 
-static FrameRequest completeRequest(const FrameRequest& user, const RenderOptions& o) {
+static FrameRequest completeRequest(const FrameRequest& user, const RenderOptions& o, Method method) {
   FrameRequest request = user;
   if (request.cullingStats && o.coverage)
-    for (Target t : {Target::CoverageMasked, cullingDepthSource(o)})
+    for (Target t : {Target::CoverageMasked, cullingDepthSource(method)})
       if (std::find(request.readback.begin(), request.readback.end(), t) == request.readback.end())
         request.readback.push_back(t);
   return request;
@@ -205,7 +227,7 @@ static CullingStats cullingStats(Renderer& r, const FrameStats& st) {
   const CpuImage& masked = r.readback[size_t(Target::CoverageMasked)];
   for (uint32_t y = 0; y < masked.height; ++y)
     for (uint32_t x = 0; x < masked.width; ++x) c.invocations += masked.raw(x, y, 0);
-  const Target depth = cullingDepthSource(r.options);
+  const Target depth = cullingDepthSource(r.method);
   c.idealPairs = idealPairs(r.camera, depth == Target::Depth ? r.readback[size_t(Target::Depth)]
                                                              : eyeDepthFromHardware(r.camera, r.readback[size_t(depth)]),
                             r.lights.eye);
@@ -218,15 +240,23 @@ static CullingStats cullingStats(Renderer& r, const FrameStats& st) {
 
 const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const FrameRequest& userRequest) {
   auto start = std::chrono::steady_clock::now();
-  const FrameRequest request = completeRequest(userRequest, options);
+  const MethodChoice choice =
+      chooseMethod(options, r.ctx->isCpu ? DeviceKind::Cpu : DeviceKind::Gpu, r.scene->lights.size());
+  GB_ASSERT(choice.method != Method::Auto && (options.method != Method::Auto || choice.method != Method::Forward));
+  const FrameRequest request = completeRequest(userRequest, options, choice.method);
   ensureTargets(r, options);
   // Transient images have no memory to copy from, and forward frames never write the G-buffer.
   for (Target t : request.readback) {
     GB_ASSERT(!r.targets[size_t(t)].image.desc.transient);
-    GB_ASSERT(options.method != Method::Forward || targetInfo(t).role != TargetRole::GBuffer);
+    GB_ASSERT(choice.method != Method::Forward || targetInfo(t).role != TargetRole::GBuffer);
   }
   r.options = options;
+  r.method = choice.method;
+  r.methodReason = choice.reason;
   prepareFrame(r);
+  if (r.method == Method::Clustered) ensureClusterBuffers(r, r.visibleBound);
+  r.fairyCompute = fairiesInCompute(*r.ctx, options, r.fairyReason);
+  if (r.fairyCompute && options.fairies) ensureFairyBits(r, r.visibleBound);
 
   FrameGraph graph;
   r.skyQueryActive = false;
@@ -244,7 +274,14 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
   st.groupsCompiled = uint32_t(r.graphCache.compilations - compiled);
   st.groupsReused = uint32_t(r.graphCache.reuses - reused);
   st.passes = graph.stats();
+  st.method = name(r.method);
+  st.methodReason = r.methodReason;
   collectStats(r, st);
+  st.lightSetup = r.lightsOnGpu ? "gpu" : "cpu";
+  st.lightSetupReason = r.lightSetupReason;
+  // Light setup on the GPU: its counts, and the lights themselves when the frame is inspected.
+  if (r.lightsOnGpu) readGpuLights(r, st, !request.readback.empty() || request.cullingStats);
+  if (r.method == Method::Clustered) st.clusters = collectClusterStats(r);
   for (Target t : request.readback) r.readback[size_t(t)] = unpackReadback(r, t);
   if (request.cullingStats && options.coverage) st.culling = cullingStats(r, st);
   return st;
@@ -273,13 +310,15 @@ void destroyRenderer(Renderer& r) {
   GpuContext& ctx = *r.ctx;
   vkDeviceWaitIdle(ctx.device);
   destroyTargets(r);
+  destroyClusterBuffers(r);
+  destroyGpuLights(r);
   destroyGraphCache(ctx, r.graphCache);
   for (auto& [k, p] : r.pipelines) vkDestroyPipeline(ctx.device, p, nullptr);
   if (r.timestampPool) vkDestroyQueryPool(ctx.device, r.timestampPool, nullptr);
   if (r.statisticsPool) vkDestroyQueryPool(ctx.device, r.statisticsPool, nullptr);
   if (r.occlusionPool) vkDestroyQueryPool(ctx.device, r.occlusionPool, nullptr);
   for (Buffer* b : {&r.vertexBuffer, &r.indexBuffer, &r.icosahedronBuffer, &r.frameBuffer, &r.drawBuffer,
-                    &r.materialBuffer, &r.lightBuffer, &r.visibleBuffer})
+                    &r.materialBuffer, &r.lightBuffer, &r.visibleBuffer, &r.lightCountBuffer})
     destroyBuffer(ctx, *b);
   for (Image& img : r.textures) destroyImage(ctx, img);
   for (VkSampler s : {r.samplerRepeat, r.samplerClamp, r.samplerShadow, r.samplerPoint}) vkDestroySampler(ctx.device, s, nullptr);

@@ -77,6 +77,20 @@ struct PipelineKey {
   auto operator<=>(const PipelineKey&) const = default;
 };
 
+// Clustered shading's buffers (renderer/cluster_buffers.cpp): device-local, sized for the frame;
+// capacities in clusters and light-list entries grow when a frame runs out of room.
+struct ClusterBuffers {
+  Buffer header, headerReadback, clusters, pixelClusters, lists, binBits, binBoxes;
+  uint32_t clusterCapacity = 0, listCapacity = 0;
+  VkDeviceSize binBitsBytes = 0, binBoxBytes = 0;  // this frame's parts to clear
+};
+
+// Light setup on the GPU (renderer/gpu_lights.cpp): the scene's lights as uploaded, and scratch.
+struct GpuLights {
+  Buffer descs, scratch;
+  std::vector<PointLightDesc> uploaded;  // what `descs` holds
+};
+
 struct Renderer {
   GpuContext* ctx = nullptr;
   const Scene* scene = nullptr;
@@ -97,7 +111,19 @@ struct Renderer {
   VkDescriptorSet sceneSet = VK_NULL_HANDLE;
 
   // Frame resources.
-  RenderOptions options;  // the options the targets were created for
+  RenderOptions options;  // the options the targets were created for (as asked: method may be auto)
+  Method method = Method::Deferred;  // the method this frame runs (options.method resolved by chooseMethod)
+  std::string methodReason;
+  ClusterBuffers clusters;
+  Buffer lightCountBuffer;  // gpu::LightCounts of this frame (set 0, kBindingLightCounts)
+  GpuLights gpuLights;
+  Buffer fairyBits;                 // fairy_bins' masks (--fairy-splat compute), the light bins' layout
+  VkDeviceSize fairyBitsBytes = 0;  // this frame's part
+  bool fairyCompute = false;        // this frame splats the fairies in compute
+  std::string fairyReason;
+  bool lightsOnGpu = false;    // this frame's lights are set up on the GPU (r.lights is empty then)
+  std::string lightSetupReason;
+  uint32_t visibleBound = 0;   // visible lights this frame: exact on the CPU path, the scene's lights on the GPU's
   bool targetsValid = false;
   std::optional<TargetsKey> targetsKey;  // what the targets were created for (none: uploaded ones)
   uint32_t timestampCapacity = 0;

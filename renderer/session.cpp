@@ -5,6 +5,7 @@
 
 #include "renderer/core/layout_json.h"
 #include "renderer/frame_memory.h"
+#include "renderer/gpu_lights.h"
 #include "renderer/render_targets.h"
 #include "renderer/renderer.h"
 #include "renderer/srgb_probe.h"
@@ -99,9 +100,10 @@ FrameSnapshot snapshotFromRenderer(const Renderer& r, const std::vector<Target>&
   s.lightClipFromWorld = r.lightClipFromWorld;
   s.sun = r.scene->sun;
   s.sky = r.scene->sky;
-  s.eyeLights = r.lights.eye;
-  s.visibleLights = r.lights.visible;
-  s.stencilCount = r.lights.stencilCount;
+  const FrameLights lights = frameLights(r);  // read from the GPU when it set them up
+  s.eyeLights = lights.eye;
+  s.visibleLights = lights.visible;
+  s.stencilCount = lights.stencilCount;
   s.lightDescs = r.scene->lights;
   s.frameData = r.frameData;
   s.srgbDecode = r.srgbDecode;

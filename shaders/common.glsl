@@ -4,8 +4,15 @@
 layout(set = 0, binding = kBindingFrame) uniform FrameBlock { FrameData frame; };
 layout(set = 0, binding = kBindingDraws, std430) readonly buffer DrawBlock { DrawData draws[]; };
 layout(set = 0, binding = kBindingMaterials, std430) readonly buffer MaterialBlock { Material materials[]; };
-layout(set = 0, binding = kBindingLights, std430) readonly buffer LightBlock { PointLight lights[]; };
-layout(set = 0, binding = kBindingVisible, std430) readonly buffer VisibleBlock { uint visibleLights[]; };
+// Light setup on the GPU writes the lights (GB_LIGHTS_WRITTEN); every other shader reads them.
+#ifdef GB_LIGHTS_WRITTEN
+#define GB_LIGHT_ACCESS
+#else
+#define GB_LIGHT_ACCESS readonly
+#endif
+layout(set = 0, binding = kBindingLights, std430) GB_LIGHT_ACCESS buffer LightBlock { PointLight lights[]; };
+layout(set = 0, binding = kBindingVisible, std430) GB_LIGHT_ACCESS buffer VisibleBlock { uint visibleLights[]; };
+layout(set = 0, binding = kBindingLightCounts, std430) GB_LIGHT_ACCESS buffer LightCountBlock { LightCounts lightCounts; };
 
 layout(constant_id = kSpecEyeDepth) const uint EYE_DEPTH = 1;
 layout(constant_id = kSpecAlphaTest) const uint ALPHA_TEST = 0;

@@ -38,6 +38,17 @@ vec3 eyeFromStoredPosition(vec3 stored) {
   return eyeFromWorld * (POSITION == kPositionWorld ? stored - frame.worldFromEye[3].xyz : stored);
 }
 
+// Only the position (cluster bounds): false where nothing was drawn. The same values readSurface
+// gives, so a shaded point always lies in the box its cluster was given.
+bool readPosition(vec2 fragCoord, out vec3 P) {
+  ivec2 p = ivec2(fragCoord);
+  vec4 position = GB_FETCH(gDepth, p);
+  float stored = position.r;
+  bool geometry = POSITION != kPositionDepth ? position.w > 0.0 : (EYE_DEPTH != 0 ? stored > 0.0 : stored != farDepth());
+  P = POSITION != kPositionDepth ? eyeFromStoredPosition(position.xyz) : eyePosition(fragCoord, stored);
+  return geometry;
+}
+
 Surface readSurface(vec2 fragCoord) {
   ivec2 p = ivec2(fragCoord);
   Surface s;

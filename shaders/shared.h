@@ -26,6 +26,7 @@ GB_CONST(uint, kBindingDraws, 1);      // buffer DrawData[]
 GB_CONST(uint, kBindingMaterials, 2);  // buffer Material[]
 GB_CONST(uint, kBindingLights, 3);     // buffer PointLight[] (eye space, this frame)
 GB_CONST(uint, kBindingVisible, 4);    // buffer uint[]: indices of the lights drawn this frame
+GB_CONST(uint, kBindingLightCounts, 5); // buffer LightCounts: the visible count (written by the CPU or light_setup)
 
 // ---- descriptor set 1: the pass's inputs (push descriptors) ----
 GB_CONST(uint, kSetPass, 1);
@@ -41,6 +42,21 @@ GB_CONST(uint, kBindingTileLights, 6);  // a storage buffer for compute passes (
 GB_CONST(uint, kBindingBaseColorTexture, 7);
 GB_CONST(uint, kBindingNormalTexture, 8);
 GB_CONST(uint, kBindingHdrStorage, 9);  // hdr as a storage image (tiled lighting writes it)
+// Clustered shading's buffers (renderer/cluster_buffers.h), pushed to the compute passes.
+GB_CONST(uint, kBindingClusterHeader, 10);  // ClusterHeader
+GB_CONST(uint, kBindingClusters, 11);       // Cluster[]: the occupied clusters
+GB_CONST(uint, kBindingPixelClusters, 12);  // uint per pixel: its cluster (kNoCluster: sky or no room)
+GB_CONST(uint, kBindingLightLists, 13);     // uint[]: visible-list positions, each cluster's in order
+GB_CONST(uint, kBindingBinBits, 14);        // uint[]: per light bin, a bit per visible-list position
+GB_CONST(uint, kBindingBinBoxes, 15);       // uvec4[2] per light bin: the box of its surface points
+// Light setup on the GPU (renderer/gpu_lights.h): the scene's lights and per-light scratch.
+GB_CONST(uint, kBindingLightDescs, 16);     // LightDesc[]: world space, doubles
+GB_CONST(uint, kBindingLightScratch, 17);   // uint per light (its place among its group's visible), then uvec4 per group
+GB_CONST(uint, kPassBindingCount, 19);
+GB_CONST(uint, kLightSetupGroup, 256);      // lights per light_setup workgroup
+// Fairy sprites splatted in compute (fairy_bins, fairy_splat): the light bins' layout, own masks.
+GB_CONST(uint, kBindingFairyBits, 18);      // uint[]: per light bin, a bit per visible-list position
+GB_CONST(uint, kFairyListMax, 1024);        // sprites a 16x16 tile lists in shared memory (more: read from the bin)
 
 // Input attachment indices of the single-pass path (subpass inputs, in this order).
 GB_CONST(uint, kInputAlbedo, 0);
@@ -77,6 +93,18 @@ GB_CONST(uint, kAlphaBlend, 2);
 GB_CONST(uint, kStencilGeometry, 128);  // G-buffer writes this where geometry is (as the sample)
 GB_CONST(uint, kTileSize, 16);
 
+// ---- clustered shading (Olsson, Billeter, Assarsson, HPG 2012) ----
+// A cluster is a screen tile x an exponential depth slice holding surface points; only occupied
+// ones exist. Lights are first binned light by light into coarse screen bins (a bit per light
+// per bin: order-free, so each cluster's list comes out in visible-list order), then each
+// cluster keeps the bin's lights whose sphere reaches the box of its own surface points.
+GB_CONST(uint, kClusterTile, 16);          // pixels; one cluster_bounds workgroup per tile
+GB_CONST(uint, kClusterMaxSlices, 256);    // depth slices at most (a tile's slice mask: 8 words)
+GB_CONST(uint, kBinTile, 64);              // pixels per light bin side (4x4 cluster tiles)
+GB_CONST(uint, kClusterListGroup, 64);     // invocations per cluster in cluster_lists
+GB_CONST(uint, kNoCluster, 0xFFFFFFFFu);   // a pixel with no cluster: sky, or the clusters ran out
+GB_CONST(uint, kListOverflow, 0xFFFFFFFFu);  // Cluster.info.z: its list did not fit (shaded from the bin)
+
 GB_STRUCT(FrameData) {
   mat4 clipFromEye;
   mat4 eyeFromClip;
@@ -91,7 +119,14 @@ GB_STRUCT(FrameData) {
   vec4 skyHorizon;        // rgb
   vec4 skyGround;         // rgb
   vec4 params;            // x exposure, y fairy size (fraction of radius), z shadow-map texel size, w time
-  uvec4 counts;           // x visible lights, y lights drawn in the "inside" class, z tiles x, w tiles y
+  uvec4 counts;           // x visible lights, y lights drawn in the "inside" class, z, w unused
+  uvec4 clusterGrid;      // x cluster tiles across, y down, z light bins across, w words of a bin's light mask
+  vec4 clusterSlices;     // slice = floor(log2(eye depth) * x + y), clamped to [0, kClusterMaxSlices)
+  // Light setup on the GPU, in double as the CPU path does it (doubles as bit pairs, packDouble2x32):
+  uvec4 eyeFromWorld64[6];  // rows 0-2 of eyeFromWorld, two doubles per uvec4
+  uvec4 projection64[2];    // clipFromEye [0][0], [1][1] | [2][0], [2][1]
+  uvec4 depthRange64;       // znear, zfar
+  uvec4 time64;             // xy time (s); z scene lights; w 0
 };
 
 GB_STRUCT(DrawData) {
@@ -115,6 +150,34 @@ GB_STRUCT(Material) {
 GB_STRUCT(PointLight) {
   vec4 eyePositionRadius;  // xyz eye space, w radius (attenuation is exactly zero at the radius)
   vec4 color;              // rgb colour * intensity
+};
+
+// A light as the scene describes it (PointLightDesc), for light setup on the GPU: doubles as
+// bit pairs (unpackDouble2x32), so the layout rule above holds.
+GB_STRUCT(LightDesc) {
+  uvec4 centerXY;      // center.x, center.y
+  uvec4 centerZOrbit;  // center.z, orbitRadius
+  uvec4 speedPhase;    // orbitSpeed (rad/s), phase
+  uvec4 bobRadius;     // bob, radius
+  vec4 color;          // rgb colour * intensity (rounded to float as the CPU path does); w 1: adds nothing (culled)
+};
+
+// This frame's light counts on the GPU (written by the CPU, or by light_setup).
+GB_STRUCT(LightCounts) {
+  uvec4 counts;     // x visible lights, y culled outside the frustum, z culled empty, w culled sub-pixel
+  uvec4 fairyDraw;  // VkDrawIndirectCommand of the fairy sprites: 6 vertices, x visible instances
+};
+
+// Clustered shading: counters and indirect arguments, then the occupied clusters.
+GB_STRUCT(ClusterHeader) {
+  uvec4 counts;    // x occupied clusters, y light-list entries taken, z clusters whose list overflowed, w tiles out of room
+  uvec4 capacity;  // x clusters, y light-list entries (the buffers' sizes, set by the CPU)
+  uvec4 dispatch;  // VkDispatchIndirectCommand of cluster_lists: x workgroups (one per cluster, at most 65535)
+};
+GB_STRUCT(Cluster) {
+  vec4 lo;     // xyz: smallest eye-space coordinates of the cluster's surface points
+  vec4 hi;     // xyz: largest
+  uvec4 info;  // x cluster tile, y depth slice, z light-list offset (kListOverflow: none), w list length
 };
 
 // ---- the viewer's view mapping (renderer/view_map.cpp draws, views/view_params.cpp decides) ----
@@ -161,7 +224,10 @@ GB_STRUCT(RangeResult) {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameData) == 4 * 64 + 10 * 16);
+static_assert(sizeof(FrameData) == 4 * 64 + 22 * 16);
+static_assert(sizeof(LightDesc) == 80);
+static_assert(sizeof(LightCounts) == 32);
+static_assert(sizeof(Cluster) == 48);
 static_assert(sizeof(DrawData) == 3 * 64 + 16);
 static_assert(sizeof(Material) == 8 * 16);
 static_assert(sizeof(PointLight) == 32);

@@ -58,7 +58,7 @@ void main() {
     c = shadeDirectional(s.albedo, s.specular, s.N, normalize(-s.P), frame.sunEyeDirection.xyz, frame.sunColor.rgb,
                          frame.ambientColor.rgb, frame.sunEyeDirection.w > 0.0 ? s.shadow : 0.0);
   uint evaluated = 0u;
-  const uint n = anyGeometry ? frame.counts.x : 0u;  // uniform over the workgroup
+  const uint n = anyGeometry ? lightCounts.counts.x : 0u;  // uniform over the workgroup
   for (uint base = 0u; base < n; base += kGroup) {
     // Bin: the light reaches the box when the box's nearest point to its centre is inside its
     // radius. A surface point inside the sphere is inside the box, so nothing that lights a

@@ -1,7 +1,7 @@
 // The method comparison and the skip savings of gblens bench (see bench_methods.h). Methods are
 // timed in rounds, one frame of each per round in rotated order, on a renderer each (their own
 // targets and pipelines), so drift and other processes' load hit every method alike and the
-// ratios to the defaults come from frames taken side by side.
+// ratios to the defaults (the method auto picks on this device) come from frames taken side by side.
 #include "app/bench/bench_methods.h"
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "renderer/core/method_choice.h"
 #include "renderer/vk/check.h"
 
 namespace gb {
@@ -23,6 +24,114 @@ double passMs(const FrameStats& st, const std::string& name) {
   for (const PassStat& p : st.passes)
     if (p.name == name && !p.skipped) return p.ms;
   return 0.0;
+}
+
+// One (size, lights) cell of the comparison: each method's options, row, and whether it is timed.
+struct Cell {
+  std::vector<RenderOptions> opts;
+  std::vector<MethodRow> rows;
+  std::vector<bool> active;
+  size_t reference = 0;  // the row auto picks: `x defaults` is relative to it
+};
+
+Cell makeCell(const GpuContext& ctx, const Scene& scene, const RenderOptions& base, const MethodSettings& s,
+              const std::string& size, int lights) {
+  const auto& methods = benchMethods();
+  const size_t n = methods.size();
+  Cell c{std::vector<RenderOptions>(n, base), std::vector<MethodRow>(n), std::vector<bool>(n, true), 0};
+  RenderOptions autoOptions = base;
+  autoOptions.method = Method::Auto;
+  autoOptions.lights = lights;
+  const MethodChoice pick = chooseMethod(autoOptions, ctx.isCpu ? DeviceKind::Cpu : DeviceKind::Gpu, scene.lights.size());
+  for (size_t i = 0; i < n; ++i) {
+    RenderOptions& o = c.opts[i];
+    std::string error;
+    const bool sizeOk = setOption(o, "size", size, error);  // checked by gblens bench
+    GB_ASSERT(sizeOk);
+    o.lights = lights;
+    o.coverage = false;
+    const std::string& m = methods[i].first;
+    const bool parsed = parse(m == "deferred_unculled" ? std::string("deferred") : m, o.method);
+    GB_ASSERT(parsed);
+    o.stencilCulling = m != "deferred_unculled";
+    MethodRow& row = c.rows[i];
+    row.scene = scene.source;
+    row.method = m;
+    row.flags = methods[i].second;
+    row.options = o;
+    row.autoPick = m == name(pick.method);
+    if (row.autoPick) c.reference = i;
+    if (m == "forward" && lights > s.forwardMaxLights) {
+      c.active[i] = false;
+      row.note = "not measured above " + std::to_string(s.forwardMaxLights) + " lights (--methods-forward-max)";
+    }
+  }
+  return c;
+}
+
+// Timed rounds: one frame of each active method per round, order rotated; per-round ratios to the
+// reference method's frame.
+void timeRounds(std::vector<std::unique_ptr<Renderer>>& rs, Cell& c, int rounds,
+                std::vector<std::vector<FrameStats>>& stats, std::vector<std::vector<double>>& ratios) {
+  const size_t n = c.rows.size();
+  for (int k = 0; k < rounds; ++k) {
+    std::vector<double> t(n, 0.0);
+    for (size_t j = 0; j < n; ++j) {
+      const size_t i = (j + size_t(k)) % n;  // rotated: no method always runs first
+      if (!c.active[i]) continue;
+      stats[i].push_back(renderFrame(*rs[i], c.opts[i]));
+      t[i] = stats[i].back().frameMs;
+    }
+    for (size_t i = 0; i < n; ++i)
+      if (c.active[i]) ratios[i].push_back(t[i] / t[c.reference]);
+  }
+}
+
+// A row's timings from its frames, then its culling efficiency from one more frame with coverage
+// on (not timed) where that is affordable.
+void summarize(Renderer& r, const RenderOptions& o, MethodRow& row, const std::vector<FrameStats>& frames,
+               const std::vector<double>& ratios, const MethodSettings& s) {
+  std::vector<double> frameMs, gpuMs, cpuMs;
+  for (const FrameStats& f : frames) {
+    frameMs.push_back(f.frameMs);
+    gpuMs.push_back(f.gpuMs);
+    cpuMs.push_back(f.cpuMs);
+  }
+  row.measured = true;
+  row.frames = int(frames.size());
+  row.frameMs = timingOf(frameMs);
+  row.gpuMs = timingOf(gpuMs);
+  row.cpuMs = timingOf(cpuMs);
+  row.passes = passTimings(frames);
+  row.overDefault = timingOf(ratios).median;
+  row.lightSetup = frames.back().lightSetup;
+  if (frames.back().clusters.valid) row.clusters = frames.back().clusters;
+  // Forward's count is its visible lights times its shaded fragments; a frame over 3 s is not spent on it.
+  if (row.frameMs.median > 3000.0) {
+    row.note += "culling not measured (a frame takes " + std::to_string(int(row.frameMs.median / 1000.0)) + " s); ";
+    return;
+  }
+  // The ideal pairs are counted on the CPU, light by light over its screen rectangle: at 4K with
+  // 65536 lights that is about a minute per frame.
+  if (double(o.width) * o.height * o.lights > s.cullingMaxPixelLights) {
+    row.note += "culling not measured (pixels x lights above --methods-culling-max); ";
+    return;
+  }
+  const FrameStats& st = renderCountingFrame(r, o);
+  row.cullingValid = st.culling.valid;
+  row.invocations = st.culling.invocations;
+  row.idealPairs = st.culling.idealPairs;
+  row.workOverIdeal = st.culling.workOverIdeal;
+}
+
+void logRow(const std::string& size, int lights, const MethodRow& row) {
+  std::fprintf(stderr, "[methods] %-10s %5d lights %-18s ", size.c_str(), lights, row.method.c_str());
+  if (row.measured)
+    std::fprintf(stderr, "%2d fr %9.2f ms (cpu %.2f) x%.2f defaults  work/ideal %s%s\n", row.frames, row.frameMs.median,
+                 row.cpuMs.median, row.overDefault, row.cullingValid ? std::to_string(row.workOverIdeal).c_str() : "-",
+                 row.autoPick ? "  [auto]" : "");
+  else
+    std::fprintf(stderr, "%s\n", row.note.c_str());
 }
 
 }  // namespace
@@ -48,8 +157,7 @@ std::vector<PassTiming> passTimings(const std::vector<FrameStats>& frames) {
 
 std::vector<MethodRow> methodStudy(GpuContext& ctx, Scene& scene, const RenderOptions& base, const MethodSettings& s) {
   const auto start = Clock::now();
-  const auto& methods = benchMethods();
-  const size_t n = methods.size();
+  const size_t n = benchMethods().size();
   std::vector<MethodRow> out;
   const size_t cellsTotal = s.sizes.size() * s.lights.size();
   size_t cellsDone = 0;
@@ -64,40 +172,20 @@ std::vector<MethodRow> methodStudy(GpuContext& ctx, Scene& scene, const RenderOp
     for (int lights : s.lights) {
       ++cellsDone;
       if (scene.generatedLights) generateLights(scene, lights);
-      std::vector<RenderOptions> opts(n, base);
-      std::vector<bool> active(n, true);
-      std::vector<MethodRow> rows(n);
-      for (size_t i = 0; i < n; ++i) {
-        std::string error;
-        const bool sizeOk = setOption(opts[i], "size", size, error);  // checked by gblens bench
-        GB_ASSERT(sizeOk);
-        opts[i].lights = lights;
-        opts[i].coverage = false;
-        const std::string& m = methods[i].first;
-        opts[i].method = m == "forward" ? Method::Forward : m == "tiled" ? Method::Tiled : Method::Deferred;
-        opts[i].stencilCulling = m != "deferred_unculled";
-        rows[i].scene = scene.source;
-        rows[i].method = m;
-        rows[i].flags = methods[i].second;
-        rows[i].options = opts[i];
-        if (m == "forward" && lights > s.forwardMaxLights) {
-          active[i] = false;
-          rows[i].note = "not measured above " + std::to_string(s.forwardMaxLights) + " lights (--methods-forward-max)";
-        }
-      }
+      Cell c = makeCell(ctx, scene, base, s, size, lights);
       // Warm-up: a frame of each (pipelines, targets, light buffers), except for a method that
       // already ran at this size and takes over a second a frame: its estimate is scaled.
       double roundMs = 0.0;
       for (size_t i = 0; i < n; ++i) {
-        if (!active[i]) continue;
+        if (!c.active[i]) continue;
         if (lastMs[i] == 0.0 || lastMs[i] < 1000.0) {
-          lastMs[i] = renderFrame(*rs[i], opts[i]).frameMs;
+          lastMs[i] = renderFrame(*rs[i], c.opts[i]).frameMs;
           if (lastMs[i] > 1000.0)  // slow cells say where the time goes
             std::fprintf(stderr, "[methods] %s %d lights %s: warm-up frame %.1f s\n", size.c_str(), lights,
-                         methods[i].first.c_str(), lastMs[i] / 1000.0);
-        }
-        else if (lastLights > 0)
+                         c.rows[i].method.c_str(), lastMs[i] / 1000.0);
+        } else if (lastLights > 0) {
           lastMs[i] *= double(std::max(lights, 1)) / std::max(lastLights, 1);
+        }
         roundMs += lastMs[i];
       }
       lastLights = lights;
@@ -106,57 +194,14 @@ std::vector<MethodRow> methodStudy(GpuContext& ctx, Scene& scene, const RenderOp
       const int rounds = std::clamp(int(share * 1000.0 / std::max(roundMs, 1e-3)), s.minRounds, s.rounds);
       std::vector<std::vector<FrameStats>> stats(n);
       std::vector<std::vector<double>> ratios(n);
-      for (int k = 0; k < rounds; ++k) {
-        std::vector<double> t(n, 0.0);
-        for (size_t j = 0; j < n; ++j) {
-          const size_t i = (j + size_t(k)) % n;  // rotated: no method always runs first
-          if (!active[i]) continue;
-          stats[i].push_back(renderFrame(*rs[i], opts[i]));
-          t[i] = stats[i].back().frameMs;
-        }
-        for (size_t i = 0; i < n; ++i)
-          if (active[i]) ratios[i].push_back(t[i] / t[0]);
-      }
+      timeRounds(rs, c, rounds, stats, ratios);
       for (size_t i = 0; i < n; ++i) {
-        if (!active[i]) continue;
-        MethodRow& row = rows[i];
-        std::vector<double> frameMs, gpuMs;
-        for (const FrameStats& f : stats[i]) {
-          frameMs.push_back(f.frameMs);
-          gpuMs.push_back(f.gpuMs);
-        }
-        row.measured = true;
-        row.frames = int(stats[i].size());
-        row.frameMs = timingOf(frameMs);
-        row.gpuMs = timingOf(gpuMs);
-        row.passes = passTimings(stats[i]);
-        row.overDefault = timingOf(ratios[i]).median;
-        lastMs[i] = row.frameMs.median;
-        // Culling efficiency: one more frame with coverage on (not timed). Forward's count is
-        // its visible lights times its shaded fragments; a frame over 3 s is not spent on it.
-        if (lastMs[i] > 3000.0) {
-          row.note += "culling not measured (a frame takes " + std::to_string(int(lastMs[i] / 1000.0)) + " s); ";
-          continue;
-        }
-        // The ideal pairs are counted on the CPU, light by light over its screen rectangle: at
-        // 4K with 65536 lights that is about a minute per frame.
-        if (double(opts[i].width) * opts[i].height * lights > s.cullingMaxPixelLights) {
-          row.note += "culling not measured (pixels x lights above --methods-culling-max); ";
-          continue;
-        }
-        const FrameStats& st = renderCountingFrame(*rs[i], opts[i]);
-        row.cullingValid = st.culling.valid;
-        row.invocations = st.culling.invocations;
-        row.idealPairs = st.culling.idealPairs;
-        row.workOverIdeal = st.culling.workOverIdeal;
+        if (!c.active[i]) continue;
+        summarize(*rs[i], c.opts[i], c.rows[i], stats[i], ratios[i], s);
+        lastMs[i] = c.rows[i].frameMs.median;
       }
-      for (MethodRow& row : rows) {
-        std::fprintf(stderr, "[methods] %-10s %5d lights %-18s ", size.c_str(), lights, row.method.c_str());
-        if (row.measured)
-          std::fprintf(stderr, "%2d fr %9.1f ms  x%.2f defaults  work/ideal %s\n", row.frames, row.frameMs.median,
-                       row.overDefault, row.cullingValid ? std::to_string(row.workOverIdeal).c_str() : "-");
-        else
-          std::fprintf(stderr, "%s\n", row.note.c_str());
+      for (const MethodRow& row : c.rows) {
+        logRow(size, lights, row);
         out.push_back(row);
       }
     }
@@ -165,7 +210,6 @@ std::vector<MethodRow> methodStudy(GpuContext& ctx, Scene& scene, const RenderOp
   if (scene.generatedLights) generateLights(scene, base.lights);
   return out;
 }
-
 std::vector<SkipRow> skipSavings(GpuContext& ctx, Scene& scene, const RenderOptions& base, int pairs) {
   if (scene.generatedLights) generateLights(scene, base.lights);
   Renderer r;

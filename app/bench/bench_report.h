@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/core/frame_stats.h"
 #include "renderer/core/options.h"
 
 namespace gb {
@@ -109,16 +110,19 @@ std::vector<DefaultsCheck> checkDefaults(const std::vector<BenchRow>& rows, cons
 // all), and its culling efficiency from one more frame with coverage on.
 struct MethodRow {
   std::string scene;
-  std::string method;  // "deferred" (stencil-culled, the defaults), "deferred_unculled", "forward", "tiled"
+  std::string method;  // "deferred" (stencil-culled), "deferred_unculled", "forward", "tiled", "clustered"
   std::string flags;   // the gblens flags that select it
   RenderOptions options;
+  bool autoPick = false;  // the method --method auto (the defaults) runs in this cell on this device
   bool measured = false;
   std::string note;  // why not measured, or what was cut
   int frames = 0;
-  Timing frameMs, gpuMs;
+  Timing frameMs, gpuMs, cpuMs;  // cpuMs: the CPU's part before submission (FrameStats::cpuMs)
+  std::string lightSetup;        // where the lights were set up ("cpu", "gpu")
+  ClusterStats clusters;         // method clustered: occupied clusters, list entries
   std::vector<PassTiming> passes;
-  // Median over the rounds of this method's frame time / the stencil-culled deferred frame's in
-  // the same round (above 1: slower than the defaults).
+  // Median over the rounds of this method's frame time / the auto-picked method's (the defaults)
+  // in the same round (above 1: slower than the defaults).
   double overDefault = 0.0;
   // Culling efficiency: fragment invocations of the lighting work (coverage_masked summed: what
   // each method evaluated) / ideal (pixel, light) pairs (surface point inside the radius).
@@ -129,7 +133,7 @@ struct MethodRow {
 // The methods' names in table order, and their flags.
 const std::vector<std::pair<std::string, std::string>>& benchMethods();
 // Lighting work of a method's frame: the sum of its lighting passes' ms (directional_light,
-// light_mask, point_lights, tiled_lighting, forward).
+// light_mask, point_lights, tiled_lighting, the cluster passes, clustered_lighting, forward).
 double lightingMs(const MethodRow& row);
 
 // What a skip saves: frames with the pass run and frames with it skipped, alternating on one

@@ -60,6 +60,7 @@ Command addErrorCommand(CLI::App& root);
 Command addBenchCommand(CLI::App& root);
 Command addStressCommand(CLI::App& root);
 Command addImportCommand(CLI::App& root);
+Command addCheckCommand(CLI::App& root);
 
 // Loads SCENE; on a user mistake prints one line and returns false (caller exits 2).
 bool loadSceneOrReport(const CommonOptions& o, Scene& scene);

@@ -1,21 +1,35 @@
-// gblens import APP.rdc --list: what a RenderDoc capture holds, so that a user can write the layout
-// that says what its G-buffer means: the passes (label regions and unnamed render passes) with their
-// event ranges and the textures they write, and every texture's name, id, format and size.
+// gblens import: another renderer's G-buffer becomes an ordinary gblens capture.
+//   gblens import FILES... --layout L.json -o DIR [--camera CAM.json] [--param NAME=VALUE]... [--size WxH]
+//   gblens import APP.rdc --layout L.json [--event EID | --pass NAME] -o DIR [...]
+//   gblens import APP.rdc --list
+// The layout says what the files hold (docs/layout-format.md); the capture is written atomically, and
+// nothing at all when anything does not match (one line naming the file, the target and the field; exit 2).
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "app/cli/cli.h"
-#include "views/capture/renderdoc_replay.h"
+#include "views/capture/capture.h"
+#include "views/capture/import_renderdoc.h"
 
 namespace gb {
 
 namespace {
 
 struct ImportOptions {
-  std::string input;
+  std::vector<std::string> inputs;
+  std::string layout, output, camera, size, pass;
+  std::vector<std::string> params;
+  uint32_t event = 0;
   bool list = false;
 };
+
+bool isRenderDocCapture(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".rdc";
+}
 
 void printListing(const std::string& rdc, const RdcListing& l) {
   std::printf("capture   %s\n", rdc.c_str());
@@ -41,18 +55,99 @@ void printListing(const std::string& rdc, const RdcListing& l) {
   }
 }
 
+int fail(std::string message) {
+  // One line, whatever a library's message held.
+  for (size_t at; (at = message.find('\n')) != std::string::npos;) message.replace(at, 1, "; ");
+  std::fprintf(stderr, "gblens import: %s\n", message.c_str());
+  return 2;
+}
+
+// --param NAME=VALUE... (option names as in the option table, or as flags) -> option values; --size.
+bool parseParameters(const ImportOptions& o, RenderOptions& options, std::string& error) {
+  for (const std::string& p : o.params) {
+    const size_t eq = p.find('=');
+    std::string name = eq == std::string::npos ? "" : p.substr(0, eq);
+    if (name.rfind("--", 0) == 0) name = name.substr(2);
+    std::replace(name.begin(), name.end(), '-', '_');
+    if (name.empty() || !findOption(name)) {
+      error = "--param " + p + ": expected NAME=VALUE with NAME an option of gblens --help (e.g. normal_format=oct-rg16)";
+      return false;
+    }
+    if (!setOption(options, name, p.substr(eq + 1), error)) {
+      error = "--param " + p + ": " + error;
+      return false;
+    }
+  }
+  if (!o.size.empty() && !setOption(options, "size", o.size, error)) return false;
+  return true;
+}
+
+// The texts the summary shows for where a target came from.
+std::string sourceText(const LayoutTarget& t, const RenderDocImported& rdc) {
+  for (const RenderDocImported::Read& r : rdc.reads)
+    if (r.target == t.name) return r.texture + " (" + r.format + ") after event " + std::to_string(r.event);
+  const TargetSource& s = t.source;
+  std::string text = s.path.empty() ? "the file given" : s.path;
+  if (s.kind == TargetSource::Kind::Raw) text += " (raw, offset " + std::to_string(s.offset) + ")";
+  if (!s.part.empty()) text += " part " + s.part;
+  return text;
+}
+
 int runImport(const ImportOptions& o) {
-  if (!o.list) {
-    std::fprintf(stderr, "gblens import: %s: only --list is implemented so far\n", o.input.c_str());
-    return 2;
+  const bool rdc = o.inputs.size() == 1 && isRenderDocCapture(o.inputs[0]);
+  if (o.inputs.empty() && o.layout.empty()) return fail("INPUT: give image files and --layout, or a RenderDoc capture");
+  for (const std::string& input : o.inputs)
+    if (isRenderDocCapture(input) && !rdc) return fail(input + ": a RenderDoc capture is imported on its own");
+  if (o.list) {
+    if (!rdc) return fail("--list: lists a RenderDoc capture (one .rdc)");
+    RdcListing listing;
+    std::string error;
+    if (!listRenderDocCapture(o.inputs[0], listing, error)) return fail(error);
+    printListing(o.inputs[0], listing);
+    return 0;
   }
-  RdcListing listing;
+  if (o.layout.empty()) return fail("--layout: required (a layout file, docs/layout-format.md, or builtin:gblens)");
+  if (o.output.empty()) return fail("-o: required (the capture folder to write)");
+  if (!rdc && (o.event || !o.pass.empty())) return fail(std::string(o.event ? "--event" : "--pass") + ": applies to a RenderDoc capture (.rdc)");
+
+  RenderOptions options;
   std::string error;
-  if (!listRenderDocCapture(o.input, listing, error)) {
-    std::fprintf(stderr, "gblens import: %s\n", error.c_str());
-    return 2;
+  if (!parseParameters(o, options, error)) return fail(error);
+  ImportInput in;
+  if (!loadImportLayout(o.layout, layoutParameters(options), in.layout, in.layoutDir, error)) return fail(error);
+  if (!o.size.empty()) in.layout.width = options.width, in.layout.height = options.height;
+  in.cameraFile = o.camera;
+  RenderDocImported read;
+  if (rdc) {
+    RenderDocImport r{o.inputs[0], o.event, o.pass, !o.camera.empty(), {}};
+    if (!readRenderDocImport(r, in, read, error)) return fail(error);
+  } else {
+    in.files = o.inputs;
   }
-  printListing(o.input, listing);
+
+  FrameSnapshot frame;
+  if (!importFrame(in, frame, error)) return fail(error);
+  // The options the layout was resolved with are the frame's (gblens's own frames: how it was rendered).
+  const RenderOptions imported = frame.options;
+  frame.options = options;
+  frame.options.width = imported.width, frame.options.height = imported.height;
+  frame.options.reversedZ = imported.reversedZ;
+  CaptureMeta meta;
+  meta.scene = "import:";
+  for (const std::string& input : o.inputs) meta.scene += " " + input;
+  meta.driver = read.listing.driverNote;
+  meta.commandLine = commandLine();
+  if (!writeCapture(o.output, frame, meta, error)) return fail(error);
+
+  std::printf("imported %s (%ux%u) with layout %s into %s\n", rdc ? o.inputs[0].c_str() : "files", frame.camera.width,
+              frame.camera.height, o.layout.c_str(), o.output.c_str());
+  for (uint32_t t = 0; t < frame.layout.targets.size(); ++t) {
+    const LayoutTarget& lt = frame.layout.targets[t];
+    if (frame.images[t].present())
+      std::printf("  %-20s %-14s %ux%u  %s\n", lt.name.c_str(), lt.format.name.c_str(), frame.images[t].image.width,
+                  frame.images[t].image.height, sourceText(lt, read).c_str());
+  }
+  for (const std::string& name : read.leftOut) std::printf("  %-20s absent: no pass of the capture writes a texture of that name\n", name.c_str());
   return 0;
 }
 
@@ -60,9 +155,24 @@ int runImport(const ImportOptions& o) {
 
 Command addImportCommand(CLI::App& root) {
   auto o = std::make_shared<ImportOptions>();
-  CLI::App* cmd = root.add_subcommand("import", "turn another renderer's G-buffer into a gblens capture");
-  cmd->add_option("INPUT", o->input, "a RenderDoc capture (.rdc)")->required();
-  cmd->add_flag("--list", o->list, "print the capture's passes, events and textures (name, id, format, size)");
+  CLI::App* cmd = root.add_subcommand("import", "turn another renderer's G-buffer (image files, raw dumps, a RenderDoc "
+                                                "capture) into a gblens capture");
+  cmd->add_option("INPUT", o->inputs,
+                  "image files (EXR, PNG, TIFF, HDR, ...) and raw dumps (default: the files the layout names), or one "
+                  "RenderDoc capture (.rdc)");
+  cmd->add_option("--layout", o->layout, "what the G-buffer holds: a layout file (docs/layout-format.md) or builtin:gblens");
+  cmd->add_option("-o,--output", o->output, "the capture folder to write (atomically)");
+  cmd->add_option("--camera", o->camera, "a camera sidecar JSON (the layout's camera fields) overriding the layout's camera");
+  cmd->add_option("--param", o->params, "NAME=VALUE: an option value for a parameterised layout (e.g. normal_format=oct-rg16)")
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd->add_option("--size", o->size, "WxH of every target the layout gives no size (e.g. raw dumps)");
+  CLI::Option* event = cmd->add_option("--event", o->event, "RenderDoc: read every target after this event (1..last)")
+                           ->check(CLI::Validator([](std::string& v) { return v == "0" ? "events start at 1 (see --list)" : ""; },
+                                                  "EID", "event"));
+  cmd->add_option("--pass", o->pass, "RenderDoc: read every target at the end of this pass (label region, see --list)")
+      ->excludes(event);
+  cmd->add_flag("--list", o->list, "RenderDoc: print the capture's passes, events and textures (name, id, format, size)");
   return {cmd, [o]() -> int { return runImport(*o); }};
 }
 

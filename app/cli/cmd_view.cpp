@@ -18,9 +18,15 @@ Command addViewCommand(CLI::App& root) {
   addViewOption(cmd, "--view", a->initialView, "initial view");
   cmd->add_option("--probe-log", a->probeLog, "append each pixel dossier as one JSON line to FILE");
   cmd->add_option("--event-log", a->eventLog, "append viewer events (layout, probe latency, exit) as JSON lines to FILE");
+  auto reduce = std::make_shared<std::string>("auto");
+  cmd->add_option("--reduce-while-moving", *reduce,
+                  "while input changes the frame render at 1/N of the size, full when it stops: auto (only where a full "
+                  "frame is slower than the input budget), off, or N (2..8)")
+      ->check(CLI::IsMember({"auto", "off", "2", "3", "4", "5", "6", "7", "8"}))
+      ->capture_default_str();
   cmd->add_option("--capture", a->capture, "open a capture directory instead of rendering (gblens capture -o DIR)");
   cmd->add_option("--compare", a->compare, "with --capture A: compare with capture B (A, B, |A-B|, split, both dossiers)");
-  return {cmd, [a, common, cmd]() -> int {
+  return {cmd, [a, common, cmd, reduce]() -> int {
             std::string error;
             if (!finishCommonOptions(*common, error)) {
               std::fprintf(stderr, "gblens view: %s\n", error.c_str());
@@ -33,6 +39,9 @@ Command addViewCommand(CLI::App& root) {
             a->commandLine = commandLine();
             a->sizeGiven = cmd->get_option("--size")->count() > 0;
             a->windowGiven = cmd->get_option("--window")->count() > 0;
+            a->reduceWhileMoving = *reduce == "auto" ? ViewerModel::kReduceAuto
+                                   : *reduce == "off" ? ViewerModel::kReduceOff
+                                                      : std::stoi(*reduce);
             Scene scene;
             if (a->capture.empty() && !loadSceneOrReport(*common, scene)) return 2;
             return runViewer(*a, std::move(scene));

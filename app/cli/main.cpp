@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
       gb::addBenchCommand(app),
       gb::addStressCommand(app),
       gb::addImportCommand(app),
+      gb::addCheckCommand(app),
   };
   for (int i = 0; i < argc; ++i) gb::commandLine() += (i ? " " : "") + std::string(i ? argv[i] : "gblens");
   // An unknown first word is a mistyped command: name it and the commands there are.

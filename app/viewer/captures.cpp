@@ -11,25 +11,35 @@
 #include "renderer/render_targets.h"
 #include "renderer/session.h"
 #include "renderer/upload_targets.h"
+#include "renderer/vk/renderdoc_capture.h"
 #include "views/analysis/compare.h"
 #include "views/analysis/probe.h"
+#include "views/analysis/viewable.h"
 #include "views/capture/capture.h"
 
 namespace gb {
 
-bool captureLiveFrame(Viewer& v, std::string& written, std::string& error) {
+bool captureLiveFrame(Viewer& v, std::string& written, std::string& error, std::string* rdc) {
   Renderer& r = v.renderer;
   std::vector<Target> targets = readableTargets(r, r.options);
   FrameRequest request;
   request.readback = targets;
   request.sampleAfter = targets;
   request.cullingStats = r.options.coverage;
-  const FrameStats& stats = renderFrame(r, r.options, request);  // the same frame again (deterministic), whole
-  FrameSnapshot snapshot = snapshotFromRenderer(r, targets);
   char stamp[32];
   std::time_t now = std::time(nullptr);
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
   written = std::string("gblens-capture-") + stamp;
+  // "Capture in RenderDoc": the same frame in RenderDoc too, its .rdc beside the capture folder
+  // (RenderDoc appends "_frameN.rdc" to the template).
+  if (rdc) setRenderDocCaptureTemplate(written);
+  RenderDocCapture renderDoc(v.ctx, rdc != nullptr);
+  const FrameStats& stats = renderFrame(r, r.options, request);  // the same frame again (deterministic), whole
+  if (rdc) {
+    *rdc = renderDoc.end(&error);
+    if (rdc->empty()) return false;
+  }
+  FrameSnapshot snapshot = snapshotFromRenderer(r, targets);
   CaptureMeta meta;
   meta.device = v.ctx.deviceName;
   meta.driver = v.ctx.driverName;
@@ -44,6 +54,14 @@ static std::string describe(const Capture& c) {
   const nlohmann::json& m = c.manifest;
   std::ostringstream o;
   const RenderOptions& opt = c.frame.options;
+  if (!nativeFrame(c.frame)) {
+    // An imported G-buffer: its own layout; the views show its quantities decoded.
+    o << c.dir << "\n  layout " << c.frame.layout.name << ", " << opt.width << "x" << opt.height
+      << " (imported: the views show its quantities decoded)\n  targets:";
+    for (size_t i = 0; i < c.frame.images.size(); ++i)
+      if (c.frame.images[i].present()) o << " " << c.frame.layout.targets[i].name;
+    return o.str();
+  }
   o << c.dir << "\n  " << m.value("scene", nlohmann::json("?")).dump() << ", " << opt.width << "x" << opt.height << ", time "
     << opt.time << "\n  " << name(opt.path) << ", eye depth " << (opt.eyeDepth ? "on" : "off") << ", stencil culling "
     << (opt.stencilCulling ? "on" : "off") << "\n  device " << m.value("device", nlohmann::json("?")).dump() << "\n  targets:";
@@ -62,14 +80,14 @@ static Scene emptyScene(const Camera& camera) {
   return s;
 }
 
-static void upload(Renderer& r, GpuContext& ctx, Scene& scene, const Capture& c) {
-  scene = emptyScene(c.frame.camera);
+static void upload(Renderer& r, GpuContext& ctx, Scene& scene, const FrameSnapshot& shown) {
+  scene = emptyScene(shown.camera);
   initRenderer(r, ctx, scene);
   std::array<const CpuImage*, kTargetCount> images{};
   for (const TargetInfo& t : targetTable())
-    if (c.frame.target(t.target).present()) images[size_t(t.target)] = &c.frame.target(t.target).image;
-  uploadTargets(r, c.frame.options, images);
-  r.camera = c.frame.camera;
+    if (shown.target(t.target).present()) images[size_t(t.target)] = &shown.target(t.target).image;
+  uploadTargets(r, shown.options, images);
+  r.camera = shown.camera;
 }
 
 bool openCaptures(Viewer& v) {
@@ -79,7 +97,8 @@ bool openCaptures(Viewer& v) {
     std::fprintf(stderr, "gblens view: --capture %s\n", error.c_str());
     return false;
   }
-  upload(v.renderer, v.ctx, v.scene, v.captureA);
+  v.shownA = viewableFrame(v.captureA.frame);
+  upload(v.renderer, v.ctx, v.scene, v.shownA);
   m.source = FrameSource::Capture;
   m.captureA = v.args.capture;
   m.captureInfo = describe(v.captureA);
@@ -94,7 +113,8 @@ bool openCaptures(Viewer& v) {
                    v.args.capture.c_str(), a.width, a.height, v.args.compare.c_str(), b.width, b.height);
       return false;
     }
-    upload(v.rendererB, v.ctx, v.sceneB, v.captureB);
+    v.shownB = viewableFrame(v.captureB.frame);
+    upload(v.rendererB, v.ctx, v.sceneB, v.shownB);
     v.hasB = true;
     m.source = FrameSource::Compare;
     m.captureB = v.args.compare;
@@ -107,7 +127,7 @@ bool openCaptures(Viewer& v) {
     // The white point of each |A - B| view: the largest difference over its channels.
     for (int k = 0; k < kViewKindCount; ++k) {
       const ViewDef& d = viewDef(ViewKind(k));
-      const TargetImage &ta = v.captureA.frame.target(d.source.target), &tb = v.captureB.frame.target(d.source.target);
+      const TargetImage &ta = v.shownA.target(d.source.target), &tb = v.shownB.target(d.source.target);
       double worst = 0.0;
       if (ta.present() && tb.present() && ta.image.width == tb.image.width && ta.image.height == tb.image.height) {
         uint32_t mask = d.source.stencil ? 0x2u : d.channels;
@@ -123,7 +143,7 @@ bool openCaptures(Viewer& v) {
     }
   }
   // What the views can show.
-  const FrameSnapshot& f = v.captureA.frame;
+  const FrameSnapshot& f = v.shownA;
   m.rendered = f.options;
   const TargetImage& sm = f.target(Target::ShadowMap);
   m.shadowMapSize = sm.present() ? glm::uvec2(sm.image.width, sm.image.height) : glm::uvec2(1, 1);
@@ -131,8 +151,8 @@ bool openCaptures(Viewer& v) {
     Target t = viewDef(ViewKind(k)).source.target;
     m.unavailable[k].clear();
     if (!f.target(t).present()) m.unavailable[k] = std::string(targetName(t)) + ": " + absentText(f.absence(t));
-    else if (v.hasB && !v.captureB.frame.target(t).present())
-      m.unavailable[k] = std::string(targetName(t)) + " is not in B: " + absentText(v.captureB.frame.absence(t));
+    else if (v.hasB && !v.shownB.target(t).present())
+      m.unavailable[k] = std::string(targetName(t)) + " is not in B: " + absentText(v.shownB.absence(t));
   }
   m.captureAvailable = false;
   m.captureHint = "This is a capture already";
@@ -170,12 +190,12 @@ void probeCapturePixel(Viewer& v, glm::ivec2 p) {
 std::string captureHoverText(const Viewer& v, ViewKind view, glm::ivec2 texel) {
   const ViewDef& d = viewDef(view);
   std::string out;
-  for (const Capture* c : {&v.captureA, v.hasB ? &v.captureB : nullptr}) {
+  for (const FrameSnapshot* c : {&v.shownA, v.hasB ? &v.shownB : nullptr}) {
     if (!c) continue;
-    const TargetImage& ti = c->frame.target(d.source.target);
+    const TargetImage& ti = c->target(d.source.target);
     if (!ti.contains(uint32_t(texel.x), uint32_t(texel.y))) continue;
     char buf[96];
-    std::snprintf(buf, sizeof buf, "%s%s (%d, %d):", out.empty() ? "" : " | ", v.hasB ? (c == &v.captureA ? "A" : "B") : targetName(d.source.target),
+    std::snprintf(buf, sizeof buf, "%s%s (%d, %d):", out.empty() ? "" : " | ", v.hasB ? (c == &v.shownA ? "A" : "B") : targetName(d.source.target),
                   texel.x, texel.y);
     out += buf;
     for (uint32_t ch = 0; ch < ti.image.channelCount(); ++ch) {

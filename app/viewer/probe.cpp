@@ -93,11 +93,18 @@ void readHover(Viewer& v) {
   m.hoverText.clear();
   if (!texel || !view || !v.frameValid || !m.unavailable[int(*view)].empty()) return;
   const ViewDef& d = viewDef(*view);
+  // A reduced frame: the texel of it that covers the full-resolution texel (the probe refines first).
+  glm::ivec2 at = *texel;
+  const bool reduced = m.reducedBy > 1 && screenSpaceTarget(d.source.target);
+  if (reduced)
+    at = glm::min(glm::ivec2(glm::dvec2(at) * glm::dvec2(m.rendered.width, m.rendered.height) / glm::dvec2(m.fullSize)),
+                  glm::ivec2(int(m.rendered.width) - 1, int(m.rendered.height) - 1));
   std::vector<RegionImage> regions =
-      readbackRegions(v.renderer, {{d.source.target, texel->x, texel->y, 1, 1}}, readableTargets(v.renderer, v.renderer.options));
+      readbackRegions(v.renderer, {{d.source.target, at.x, at.y, 1, 1}}, readableTargets(v.renderer, v.renderer.options));
   if (regions[0].image.empty()) return;
-  char head[96];
-  std::snprintf(head, sizeof head, "%s (%d, %d): ", targetName(d.source.target), texel->x, texel->y);
+  char head[128];
+  std::snprintf(head, sizeof head, "%s (%d, %d)%s: ", targetName(d.source.target), texel->x, texel->y,
+                reduced ? " of the reduced frame" : "");
   m.hoverText = head + valuesText(regions[0].image);
 }
 

@@ -11,6 +11,7 @@
 #include "app/viewer/viewer.h"
 #include "renderer/core/statistics.h"
 #include "renderer/vk/check.h"
+#include "renderer/vk/renderdoc_capture.h"
 
 namespace gb {
 
@@ -114,6 +115,7 @@ static void initModel(Viewer& v, bool live) {
   m.fixedSize = args.sizeGiven;
   m.lightCount = int(v.scene.generatedLights ? args.render.lights : int(v.scene.lights.size()));
   m.playing = !args.paused;
+  m.reduceWhileMoving = args.reduceWhileMoving;
   parseView(args.initialView, m.primary);
   m.edited = m.primary;
   m.deviceName = v.ctx.deviceName;
@@ -122,6 +124,7 @@ static void initModel(Viewer& v, bool live) {
     for (size_t i = 0; i + 1 < v.scene.cameras.size(); ++i)
       m.cameraNames.push_back(v.scene.cameras[i].name.empty() ? "camera " + std::to_string(i) : v.scene.cameras[i].name);
     m.captureAvailable = true;
+    m.renderDocAvailable = underRenderDoc();
     m.captureHint = "Writes this frame, every target at full precision, to ./gblens-capture-<date>-<time>/\n"
                     "(EXR per target + manifest.json; open it with gblens view --capture DIR)";
   }

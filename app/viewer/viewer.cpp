@@ -1,6 +1,7 @@
 // The viewer's loop. Renders on demand: a frame is rendered only when something it depends on
 // changed (camera, options, lights, time), the interface is redrawn only for a few frames after
-// an event, and with nothing to do the loop sleeps in glfwWaitEventsTimeout.
+// an event, and with nothing to do the loop sleeps in glfwWaitEventsTimeout. Where a full frame
+// is slow (a CPU device), frames changed by input are rendered reduced and refined when it stops.
 #include "app/viewer/viewer.h"
 
 #define GLFW_INCLUDE_VULKAN
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <csignal>
 
 #include "renderer/render_targets.h"
@@ -20,6 +22,43 @@ namespace gb {
 ViewDrawCallback viewDrawCallback();  // window.cpp
 
 static std::atomic<bool> g_quit{false};
+
+// Responsive rendering (issue 16, as Blender's viewport does it): while input changes the frame
+// it is rendered at 1/n of the full size, n chosen so that one iteration (render, views, present)
+// takes at most kInputBudgetMs, so input -> updated view (at most the iteration under way and the
+// next) stays within 100 ms; kRefineAfterMs after the last input the full frame replaces it.
+constexpr double kInputBudgetMs = 50.0;
+constexpr double kRefineAfterMs = 100.0;
+constexpr int kMaxReduction = 8;
+
+static double msSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+// The reduction for a frame changed by input: fixed, off, or (auto) none while a full iteration
+// fits the budget, else the adapted one.
+static int reductionForInput(const Viewer& v) {
+  const int mode = v.model.reduceWhileMoving;
+  if (mode != ViewerModel::kReduceAuto) return std::max(mode, 1);
+  return v.fullIterationMs <= kInputBudgetMs ? 1 : v.autoReduceBy;
+}
+
+// After a rendering iteration of `ms`: auto's next reduction, from the first full iteration's time
+// (pixels scale as 1/n^2) and then from each reduced one (one step at a time).
+static void adaptReduction(Viewer& v, int reducedBy, double ms) {
+  int& n = v.autoReduceBy;
+  if (reducedBy == 1) {
+    v.fullIterationMs = ms;
+    if (v.reducedIterationMs == 0.0) n = std::clamp(int(std::ceil(std::sqrt(ms / kInputBudgetMs))), 2, kMaxReduction);
+    return;
+  }
+  v.reducedIterationMs = ms;
+  if (reducedBy != n) return;  // a fixed reduction or a refinement under way says nothing about n
+  if (ms > kInputBudgetMs && n < kMaxReduction)
+    ++n;
+  else if (n > 2 && ms * double(n * n) / double((n - 1) * (n - 1)) < 0.7 * kInputBudgetMs)
+    --n;
+}
 
 // The options the next frame needs: what the user chose, at the view area's size (or --size),
 // with coverage only when a coverage view is shown or culling is measured.
@@ -45,11 +84,27 @@ static RenderOptions wantedOptions(Viewer& v, int fbWidth, int fbHeight) {
   return o;
 }
 
-static void renderIfNeeded(Viewer& v, const RenderOptions& o) {
+// Renders when the frame is outdated (at 1/n of `full` when input changed it and n > 1), or at
+// full size when a reduced frame is on screen and input stopped kRefineAfterMs ago (or `refine`:
+// the probe and captures read full-resolution frames).
+static void renderIfNeeded(Viewer& v, const RenderOptions& full, bool animating, bool refine = false) {
   ViewerModel& m = v.model;
-  if (v.frameValid && !frameOutdated(v.renderer.options, o) && v.renderedCamera == v.cameraVersion &&
-      v.renderedLights == v.lightsVersion)
+  const bool sceneChanged = v.renderedCamera != v.cameraVersion || v.renderedLights != v.lightsVersion;
+  const bool outdated = !v.frameValid || frameOutdated(v.fullOptions, full) || sceneChanged;
+  RenderOptions before = v.fullOptions;
+  if (animating) before.time = full.time;  // the animation's own time step is not input
+  const bool input = v.frameValid && (sceneChanged || frameOutdated(before, full));
+  int n = 1;
+  if (input) {
+    v.lastInput = std::chrono::steady_clock::now();
+    n = reductionForInput(v);
+  } else if (!outdated && (m.reducedBy == 1 || (!refine && msSince(v.lastInput) < kRefineAfterMs))) {
     return;
+  }
+  RenderOptions o = full;
+  o.width = std::max(16u, (full.width + uint32_t(n) - 1) / uint32_t(n));
+  o.height = std::max(16u, (full.height + uint32_t(n) - 1) / uint32_t(n));
+  if (n == 1 || o.width >= full.width) o.width = full.width, o.height = full.height, n = 1;
   FrameRequest request;
   request.cullingStats = m.cullingStats;
   // Every target that can be read stays readable for the views and the probe.
@@ -64,6 +119,9 @@ static void renderIfNeeded(Viewer& v, const RenderOptions& o) {
   v.renderedLights = v.lightsVersion;
   v.rangesStale = true;
   m.rendered = o;
+  v.fullOptions = full;
+  m.fullSize = {full.width, full.height};
+  m.reducedBy = n;
   m.stats = stats;
   m.framesRendered++;
   v.renderMs.push_back(stats.frameMs);
@@ -87,6 +145,7 @@ static void updateRanges(Viewer& v) {
   std::vector<std::pair<ViewKind, size_t>> owners;  // view, count of its requests
   std::string key;
   for (ViewKind k : visibleViews(m)) {
+    if (!m.unavailable[int(k)].empty()) continue;  // no target to measure (e.g. not in an imported layout)
     std::vector<RangeRequest> q = rangeRequests(viewDef(k), m.settings[int(k)]);
     key += std::to_string(int(k)) + ":" + std::to_string(m.settings[int(k)].channels) + (q.empty() ? "m;" : "a;");
     if (std::any_of(owners.begin(), owners.end(), [&](auto& o) { return o.first == k; })) continue;
@@ -96,7 +155,11 @@ static void updateRanges(Viewer& v) {
   if (!v.rangesStale && key == v.rangesKey) return;
   v.rangesStale = false;
   v.rangesKey = key;
-  std::vector<RangeStats> stats = computeRanges(v.mapper, v.renderer, all, readableTargets(v.renderer, v.renderer.options));
+  // The targets that exist on the GPU (a capture uploads only those it holds).
+  std::vector<Target> targets;
+  for (Target t : readableTargets(v.renderer, v.renderer.options))
+    if (v.renderer.targets[size_t(t)].image.image != VK_NULL_HANDLE) targets.push_back(t);
+  std::vector<RangeStats> stats = computeRanges(v.mapper, v.renderer, all, targets);
   size_t at = 0;
   for (auto& [k, n] : owners) {
     m.ranges[int(k)].assign(stats.begin() + long(at), stats.begin() + long(at + n));
@@ -120,6 +183,8 @@ static void logLayout(Viewer& v, int windowW, int windowH) {
                     {"origin", {p.originX, p.originY}},
                     {"scale", p.scale},
                     {"image", {size.x, size.y}}});
+    // A view the frame cannot show (e.g. an imported layout without a shadow map) says why.
+    if (!m.unavailable[int(slot.kind)].empty()) list.back()["unavailable"] = m.unavailable[int(slot.kind)];
   }
   j["views"] = list;
   std::string key = j.dump();
@@ -130,6 +195,7 @@ static void logLayout(Viewer& v, int windowW, int windowH) {
 
 static void answerProbe(Viewer& v) {
   ViewerModel& m = v.model;
+  if (m.source == FrameSource::Live && m.reducedBy > 1) renderIfNeeded(v, v.fullOptions, false, true);
   if (m.source == FrameSource::Live)
     probeViewerPixel(v, *m.probeRequest, true);
   else
@@ -165,10 +231,12 @@ static bool awaitWork(Viewer& v, LoopState& s, int& fbw, int& fbh) {
   s.keysHeld = false;
   for (int key : {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E})
     s.keysHeld |= glfwGetKey(v.window, key) == GLFW_PRESS && glfwGetKey(v.window, GLFW_KEY_LEFT_CONTROL) != GLFW_PRESS;
+  // A reduced frame on screen is refined kRefineAfterMs after the last input.
+  const double refineIn = v.model.reducedBy > 1 ? kRefineAfterMs - msSince(v.lastInput) : 1e9;
   if (!s.minimised && (s.animating || s.keysHeld || v.uiFramesLeft > 0))
     glfwPollEvents();
   else
-    glfwWaitEventsTimeout(0.5);  // idle: sleep until an event (wake twice a second to notice SIGTERM)
+    glfwWaitEventsTimeout(std::clamp(refineIn / 1000.0, 0.001, 0.5));  // idle: until an event (or SIGTERM, or the refinement)
   glfwGetFramebufferSize(v.window, &fbw, &fbh);
   s.minimised = fbw == 0 || fbh == 0 || glfwGetWindowAttrib(v.window, GLFW_ICONIFIED);
   if (s.minimised) {
@@ -176,7 +244,8 @@ static bool awaitWork(Viewer& v, LoopState& s, int& fbw, int& fbh) {
     v.lastTick = std::chrono::steady_clock::now();
     return false;
   }
-  if (!s.animating && !s.keysHeld && v.uiFramesLeft <= 0) return false;
+  const bool refineDue = v.model.reducedBy > 1 && msSince(v.lastInput) >= kRefineAfterMs;
+  if (!s.animating && !s.keysHeld && v.uiFramesLeft <= 0 && !refineDue) return false;
   if (!v.swapchainValid || v.swapchain.extent.width != uint32_t(fbw) || v.swapchain.extent.height != uint32_t(fbh))
     if (!recreateSwapchain(v)) return false;
   return true;
@@ -195,7 +264,7 @@ static void updateFrame(Viewer& v, const LoopState& s, int fbw, int fbh, double 
     }
     updateCamera(v, dt);
     updateLights(v);
-    renderIfNeeded(v, wantedOptions(v, fbw, fbh));
+    renderIfNeeded(v, wantedOptions(v, fbw, fbh), s.animating);
   }
   m.stepForward = m.stepBack = false;
   updateRanges(v);
@@ -208,11 +277,13 @@ static void updateFrame(Viewer& v, const LoopState& s, int fbw, int fbh, double 
                                           : m.hover;
     m.hoverText = texel && m.hoverView ? captureHoverText(v, *m.hoverView, *texel) : "";
   }
-  if (m.captureRequested) {
-    m.captureRequested = false;
-    std::string dir, error;
-    m.captureStatus = captureLiveFrame(v, dir, error) ? "wrote " + dir : "capture failed: " + error;
-    logLine(v.eventLog, {{"event", "capture"}, {"status", m.captureStatus}});
+  if (m.captureRequested || m.renderDocRequested) {
+    if (s.live && m.reducedBy > 1) renderIfNeeded(v, v.fullOptions, false, true);  // captures are full-resolution
+    std::string dir, error, rdc;
+    const bool ok = captureLiveFrame(v, dir, error, m.renderDocRequested ? &rdc : nullptr);
+    m.captureStatus = ok ? "wrote " + dir + (rdc.empty() ? "" : " and " + rdc) : "capture failed: " + error;
+    logLine(v.eventLog, {{"event", "capture"}, {"status", m.captureStatus}, {"rdc", rdc}});
+    m.captureRequested = m.renderDocRequested = false;
     v.rangesStale = true;
   }
 }
@@ -252,8 +323,21 @@ static void iterate(Viewer& v, LoopState& s, int fbw, int fbh) {
   v.lastTick = now;
   updateFrame(v, s, fbw, fbh, dt);
   presentInterface(v);
-  if (m.framesRendered != renderedBefore)
-    v.renderedLoopMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - now).count());
+  if (m.framesRendered != renderedBefore) {
+    const double ms = msSince(now);
+    v.renderedLoopMs.push_back(ms);
+    adaptReduction(v, m.reducedBy, ms);
+    // Each rendered frame with its wall-clock time on screen (tests/gui/measure_viewer.sh times input -> view).
+    const double epochMs =
+        std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
+    logLine(v.eventLog, {{"event", "frame"},
+                         {"size", {m.rendered.width, m.rendered.height}},
+                         {"full", {m.fullSize.x, m.fullSize.y}},
+                         {"reduced_by", m.reducedBy},
+                         {"render_ms", m.stats.frameMs},
+                         {"iteration_ms", ms},
+                         {"shown_epoch_ms", epochMs}});
+  }
   int winW = 0, winH = 0;
   glfwGetWindowSize(v.window, &winW, &winH);
   logLayout(v, winW, winH);
@@ -263,8 +347,8 @@ static void iterate(Viewer& v, LoopState& s, int fbw, int fbh) {
   }
   // Changes made in this interface frame need another one (and maybe a render).
   bool pending = m.uiChanged || m.probeRequest || m.resetCamera || m.gltfCamera >= 0 || m.cameraDrag != glm::dvec2(0.0) ||
-                 m.cameraDolly != 0.0 || m.stepForward || m.stepBack || m.captureRequested ||
-                 (s.live && frameOutdated(v.renderer.options, wantedOptions(v, fbw, fbh)));
+                 m.cameraDolly != 0.0 || m.stepForward || m.stepBack || m.captureRequested || m.renderDocRequested ||
+                 (s.live && frameOutdated(v.fullOptions, wantedOptions(v, fbw, fbh)));
   v.uiFramesLeft = pending ? std::max(v.uiFramesLeft, 2) : v.uiFramesLeft - 1;
 }
 

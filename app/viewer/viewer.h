@@ -34,6 +34,7 @@ struct ViewerArgs {
   std::string probeLog;            // --probe-log: each dossier as one JSON line
   std::string eventLog;            // --event-log: layout/probe/exit events as JSON lines (tests)
   std::string capture, compare;    // --capture DIR / --compare B (Capture issue)
+  int reduceWhileMoving = 0;       // --reduce-while-moving: ViewerModel::kReduceAuto, kReduceOff or n
 };
 
 // The camera the viewer renders: starts as an exact copy of a scene camera; moving it derives
@@ -68,6 +69,9 @@ struct Viewer {
   ViewMapper mapper;
   // --capture A / --compare B: the captures, their targets uploaded (A into `renderer`).
   Capture captureA, captureB;
+  // What the views show of each: the capture's own targets, or an imported G-buffer's quantities
+  // decoded into gblens's targets (views/analysis/viewable.h). The probe reads the captures.
+  FrameSnapshot shownA, shownB;
   Renderer rendererB;
   Scene sceneB;
   bool hasB = false;
@@ -92,6 +96,12 @@ struct Viewer {
   std::vector<double> renderMs, presentMs;
   std::vector<double> renderedLoopMs;  // whole iterations that rendered a frame: render + views + present
   std::vector<int> pressedKeys;    // key presses since the last loop iteration
+  // Responsive rendering (viewer.cpp): what the frame on screen shows at full size, when input last
+  // changed it, and the last rendering iterations' times at full size and reduced.
+  RenderOptions fullOptions;
+  std::chrono::steady_clock::time_point lastInput;
+  double fullIterationMs = 0.0, reducedIterationMs = 0.0;
+  int autoReduceBy = 2;            // the reduction auto uses next (adapted to the measured times)
 };
 
 int runViewer(const ViewerArgs& args, Scene scene);
@@ -125,7 +135,9 @@ void probeViewerPixel(Viewer& v, glm::ivec2 pixel, bool logged);
 void readHover(Viewer& v);
 
 // captures.cpp
-bool captureLiveFrame(Viewer& v, std::string& written, std::string& error);
+// Captures the live frame (rendered again, whole) to ./gblens-capture-<date>-<time>/; with `rdc`,
+// under RenderDoc, the same frame is also a RenderDoc capture written beside it (*rdc: its path).
+bool captureLiveFrame(Viewer& v, std::string& written, std::string& error, std::string* rdc = nullptr);
 bool openCaptures(Viewer& v);  // false: a message was printed (exit 2)
 void probeCapturePixel(Viewer& v, glm::ivec2 pixel);
 std::string captureHoverText(const Viewer& v, ViewKind view, glm::ivec2 texel);

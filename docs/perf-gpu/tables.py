@@ -1,69 +1,99 @@
 #!/usr/bin/env python3
 # Tables and the log-log plot of docs/perf-gpu.md from the H100 runs of `gblens bench --only
-# methods` kept here (one bench.json per run; each cell's four methods come from one run, so
-# its ratios were measured side by side). Usage: python3 docs/perf-gpu/tables.py > /tmp/tables.md
+# methods` kept here (one bench.json per run; each cell's methods come from one run, so its ratios
+# were measured side by side). The issue-16 runs (h16_*.json, docs/perf-gpu/h16_run.sh) make the
+# main table; the earlier runs (h100_*.json, before clustered) supply forward at 65536 lights.
+# Usage: python3 docs/perf-gpu/tables.py > /tmp/tables.md
 import json, os, subprocess, sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-# (file, cells it supplies): a cell is (size, lights); the later file wins for a cell it has.
-RUNS = ["h100_1280x720.json", "h100_1920x1080.json", "h100_1920x1080_65536_forward.json",
-        "h100_3840x2160.json", "h100_3840x2160_65536_forward.json"]
-METHODS = ["deferred", "deferred_unculled", "forward", "tiled"]
-PASSES = ["gbuffer", "directional_light", "light_mask", "point_lights", "tiled_lighting", "forward", "skybox",
-          "fairy_lights", "tonemap"]
+MAIN = ["h16_m720.json", "h16_m1080.json", "h16_m4k.json"]
+METHODS = ["deferred", "deferred_unculled", "forward", "tiled", "clustered"]
+PASSES = ["light_setup", "gbuffer", "directional_light", "point_lights", "tiled_lighting", "cluster_bounds",
+          "cluster_bins", "cluster_lists", "clustered_lighting", "forward", "skybox", "fairy_splat", "tonemap"]
 
-cells = {}
-for f in RUNS:
-    j = json.load(open(os.path.join(HERE, f)))
-    by_cell = {}
-    for m in j["methods"]:
-        by_cell.setdefault((m["size"], m["lights"]), {})[m["method"]] = dict(m, run=f)
-    for cell, methods in by_cell.items():
-        # a run that measured forward there replaces one that did not
-        old = cells.get(cell)
-        if old is None or (methods.get("forward", {}).get("measured") and not old.get("forward", {}).get("measured")):
-            cells[cell] = methods
+
+def load(f):
+    return json.load(open(os.path.join(HERE, f)))
+
+
+def cells_of(files):
+    cells = {}
+    for f in files:
+        for m in load(f)["methods"]:
+            cells.setdefault((m["size"], m["lights"]), {})[m["method"]] = m
+    return cells
+
 
 def size_key(s):
     w, h = s.split("x")
     return int(w) * int(h)
 
-def ms(m, name):
+
+def pass_ms(m, name):
     for p in m.get("passes", []):
         if p["name"] == name and not p["skipped"]:
-            return "%.2f" % p["ms"]["median"]
-    return ""
+            return p["ms"]["median"]
+    return None
+
+
+def fmt(v, digits=2):
+    return "" if v is None else "%.*f" % (digits, v)
+
 
 out = sys.stdout
-out.write("| size | lights | method | frame ms (median) | rounds | x defaults | work/ideal | " +
-          " | ".join(PASSES) + " |\n")
-out.write("|" + " --- |" * (7 + len(PASSES)) + "\n")
+cells = cells_of(MAIN)
+out.write("| size | lights | method | frame ms | CPU ms | GPU ms | rounds | x auto | work/ideal | " + " | ".join(PASSES) + " |\n")
+out.write("|" + " --- |" * (9 + len(PASSES)) + "\n")
 for (size, lights) in sorted(cells, key=lambda c: (size_key(c[0]), c[1])):
     for method in METHODS:
         m = cells[(size, lights)].get(method)
         if m is None:
             continue
+        name = method + (" (auto)" if m.get("auto_pick") else "")
         if not m["measured"]:
-            out.write("| %s | %d | %s | not measured | | | | %s |\n" % (size, lights, method, " | " * (len(PASSES) - 1)))
+            out.write("| %s | %d | %s | not measured |%s\n" % (size, lights, name, " |" * (5 + len(PASSES))))
             continue
-        work = "%.2f" % m["culling"]["work_over_ideal"] if "culling" in m else "-"
-        out.write("| %s | %d | %s | %.2f | %d | %.2f | %s | %s |\n" % (
-            size, lights, method, m["frame_ms"]["median"], m["frames"], m["time_over_default"], work,
-            " | ".join(ms(m, p) for p in PASSES)))
+        c = m.get("culling", {})
+        work = fmt(c.get("work_over_ideal")) if c.get("work_over_ideal") else "-"
+        out.write("| %s | %d | %s | %.2f | %.2f | %.2f | %d | %.2f | %s | %s |\n" % (
+            size, lights, name, m["frame_ms"]["median"], m["cpu_ms"]["median"], m["gpu_ms"]["median"], m["frames"],
+            m["time_over_default"], work, " | ".join(fmt(pass_ms(m, p)) for p in PASSES)))
 
-# Log-log plot: frame ms vs lights, a colour per method, a dash pattern per size.
+# Light setup on the CPU vs the GPU, and the fairy sprites drawn vs splatted (65536 lights).
+out.write("\n| size | method | lights set up on | frame ms | CPU ms | GPU ms | fairies | fairy pass ms |\n")
+out.write("|" + " --- |" * 8 + "\n")
+variants = [("h16_m1080.json", "GPU (auto)", "splatted (auto)"), ("h16_m4k.json", "GPU (auto)", "splatted (auto)"),
+            ("h16_setup_cpu.json", "CPU (--light-setup cpu)", "splatted (auto)"),
+            ("h16_fairy_raster.json", "GPU (auto)", "drawn (--fairy-splat raster)")]
+rows = []
+for f, setup, fairies in variants:
+    for m in load(f)["methods"]:
+        if m["lights"] == 65536 and m["method"] in ("tiled", "clustered") and m["measured"]:
+            fp = pass_ms(m, "fairy_splat") or pass_ms(m, "fairy_lights")
+            rows.append((size_key(m["size"]), m["method"], f, "| %s | %s | %s | %.2f | %.2f | %.2f | %s | %.2f |\n" % (
+                m["size"], m["method"], setup, m["frame_ms"]["median"], m["cpu_ms"]["median"], m["gpu_ms"]["median"],
+                fairies, fp)))
+for r in sorted(rows, key=lambda r: (r[0], r[1])):
+    out.write(r[3])
+
+# Log-log plot: frame ms vs lights, a colour per method, a dash pattern per size; forward at
+# 65536 lights from the earlier runs.
+old = cells_of(["h100_1920x1080_65536_forward.json", "h100_3840x2160_65536_forward.json"])
 plot_dir = "/tmp/gblens_perf_gpu_plot"
 os.makedirs(plot_dir, exist_ok=True)
-colours = {"deferred": "#4477aa", "deferred_unculled": "#ee6677", "forward": "#228833", "tiled": "#ccbb44"}
+colours = {"deferred": "#4477aa", "deferred_unculled": "#ee6677", "forward": "#228833", "tiled": "#ccbb44",
+           "clustered": "#aa3377"}
 sizes = sorted({c[0] for c in cells}, key=size_key)
 series = []
 for si, size in enumerate(sizes):
     for method in METHODS:
         pts = []
-        for (s, lights), methods in cells.items():
-            m = methods.get(method)
-            if s == size and m and m["measured"]:
-                pts.append((max(lights, 1), m["frame_ms"]["median"]))
+        for source in (cells, old):
+            for (s, lights), methods in source.items():
+                m = methods.get(method)
+                if s == size and m and m["measured"] and not any(p[0] == max(lights, 1) for p in pts):
+                    pts.append((max(lights, 1), m["frame_ms"]["median"]))
         if not pts:
             continue
         path = os.path.join(plot_dir, "%s_%s.dat" % (method, size))

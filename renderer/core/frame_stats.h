@@ -31,7 +31,18 @@ struct CullingStats {
   double workOverIdeal = 0.0;        // invocations / idealPairs
 };
 
+// Clustered shading's counts (method clustered): occupied clusters, light-list entries, and the
+// clusters or tiles that found no room (shaded exactly from their bin; the next frame has room).
+struct ClusterStats {
+  bool valid = false;
+  uint32_t clusters = 0, listEntries = 0, listOverflows = 0, tilesWithoutRoom = 0;
+};
+
 struct FrameStats {
+  // The lighting method that ran (never "auto") and why: "auto: clustered on a GPU (...)".
+  std::string method, methodReason;
+  // Where the lights were set up ("cpu" or "gpu", --light-setup) and why.
+  std::string lightSetup, lightSetupReason;
   double frameMs = 0.0;  // CPU wall time of the frame: record + submit + wait
   double gpuMs = 0.0;    // first to last GPU timestamp
   // CPU time of the frame before submission: per-frame work (camera, draws, light classification,
@@ -42,6 +53,7 @@ struct FrameStats {
   uint32_t groupsCompiled = 0, groupsReused = 0;
   std::vector<PassStat> passes;
   CullingStats culling;
+  ClusterStats clusters;
   uint32_t lights = 0, lightsVisible = 0, lightsInside = 0, lightsCulled = 0;
   uint32_t stencilLayers = 0;  // screen-disjoint layers of the stencil class (FrameLights::layerStarts)
   uint32_t lightsCulledFrustum = 0, lightsCulledEmpty = 0, lightsCulledSubpixel = 0;  // lightsCulled split

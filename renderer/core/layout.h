@@ -96,6 +96,7 @@ struct LayoutCamera {
   bool leftHanded = false;   // the view looks down +Z
   bool zUp = false;          // world Z is up
   bool bottomOrigin = false; // row 0 of the stored images is the bottom of the picture
+  uint32_t width = 0, height = 0;  // the image size the projection was made for (0: not given)
   std::string sidecar;       // the matrices come from this JSON file (resolved at import)
   struct BufferMatrix {
     std::string buffer;

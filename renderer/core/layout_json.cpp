@@ -264,7 +264,8 @@ bool readSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
       s.channels.push_back(c.get<std::string>());
     }
   }
-  if (!s.path.empty() == !s.resource.empty()) return r.fail(ws, "file", "give exactly one of \"file\" and \"renderdoc\"");
+  // Neither: the file given on the command line (a shipped layout does not know the user's file name).
+  if (!s.path.empty() && !s.resource.empty()) return r.fail(ws, "file", "give one of \"file\" and \"renderdoc\", not both");
   s.kind = !s.resource.empty() ? TargetSource::Kind::RenderDoc : raw ? TargetSource::Kind::Raw : TargetSource::Kind::File;
   if (offset < 0.0 || offset != std::floor(offset)) return r.fail(ws, "offset", "expected a byte count");
   s.offset = uint64_t(offset);
@@ -346,7 +347,8 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
   if (!r.choice(j, wc, "matrix_order", {"column_major", "row_major"}, order) ||
       !r.choice(j, wc, "convention", {"vulkan", "d3d", "gl"}, conv) ||
       !r.choice(j, wc, "view_handedness", {"right", "left"}, hand) || !r.choice(j, wc, "up", {"y", "z"}, up) ||
-      !r.choice(j, wc, "image_origin", {"top", "bottom"}, origin) || !r.string(j, wc, "sidecar", c.sidecar, false))
+      !r.choice(j, wc, "image_origin", {"top", "bottom"}, origin) || !r.string(j, wc, "sidecar", c.sidecar, false) ||
+      !r.size(j, wc, "size", c.width, c.height))
     return false;
   if (conv >= 0) c.convention = LayoutCamera::Convention(conv);
   c.leftHanded = hand == 1;
@@ -382,7 +384,7 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
     if (!readMatrix(r, j, wc, "clip_from_view", order == 1, c.clipFromView)) return false;
   }
   return r.unknownKeys(j, wc, {"view_from_world", "world_from_view", "clip_from_view", "matrix_order", "convention",
-                               "view_handedness", "up", "image_origin", "sidecar", "renderdoc"});
+                               "view_handedness", "up", "image_origin", "sidecar", "renderdoc", "size"});
 }
 
 bool readLights(Reader& r, const json& j, const Where& w, LayoutLights& l) {

@@ -74,7 +74,7 @@ static json quantityJson(const Quantity& q) {
 static json sourceJson(const TargetSource& s) {
   json j = json::object();
   if (s.kind == TargetSource::Kind::RenderDoc) return {{"renderdoc", s.resource}};
-  j["file"] = s.path;
+  if (!s.path.empty()) j["file"] = s.path;
   if (s.kind == TargetSource::Kind::Raw) j["raw"] = true;
   if (s.offset) j["offset"] = s.offset;
   if (!s.part.empty()) j["part"] = s.part;
@@ -90,6 +90,7 @@ json layoutCameraJson(const LayoutCamera& c) {
             {"up", c.zUp ? "z" : "y"},
             {"image_origin", c.bottomOrigin ? "bottom" : "top"}};
   if (!c.sidecar.empty()) j["sidecar"] = c.sidecar;
+  if (c.width) j["size"] = {c.width, c.height};
   if (c.renderdoc) {
     j["matrix_order"] = c.renderdoc->rowMajor ? "row_major" : "column_major";
     j["renderdoc"] = {{"buffer", c.renderdoc->buffer},

@@ -13,8 +13,11 @@ template <class E, size_t N>
 using Names = std::array<std::pair<E, const char*>, N>;
 
 static const Names<Path, 2> kPath = {{{Path::TwoPass, "two-pass"}, {Path::SinglePass, "single-pass"}}};
-static const Names<Method, 3> kMethod = {
-    {{Method::Deferred, "deferred"}, {Method::Forward, "forward"}, {Method::Tiled, "tiled"}}};
+static const Names<Method, 5> kMethod = {{{Method::Auto, "auto"},
+                                          {Method::Deferred, "deferred"},
+                                          {Method::Forward, "forward"},
+                                          {Method::Tiled, "tiled"},
+                                          {Method::Clustered, "clustered"}}};
 static const Names<NormalFormat, 4> kNormal = {{{NormalFormat::Rgba16f, "rgba16f"},
                                                 {NormalFormat::Rgba8Snorm, "rgba8-snorm"},
                                                 {NormalFormat::OctRg16, "oct-rg16"},
@@ -27,6 +30,10 @@ static const Names<ShadowFormat, 2> kShadow = {{{ShadowFormat::D32f, "d32f"}, {S
 static const Names<StencilMask, 2> kMask = {{{StencilMask::PerLight, "per-light"}, {StencilMask::Shared, "shared"}}};
 static const Names<StencilLayers, 3> kLayers = {
     {{StencilLayers::Auto, "auto"}, {StencilLayers::On, "on"}, {StencilLayers::Off, "off"}}};
+static const Names<LightSetup, 3> kLightSetup = {
+    {{LightSetup::Auto, "auto"}, {LightSetup::Cpu, "cpu"}, {LightSetup::Gpu, "gpu"}}};
+static const Names<FairySplat, 3> kFairySplat = {
+    {{FairySplat::Auto, "auto"}, {FairySplat::Raster, "raster"}, {FairySplat::Compute, "compute"}}};
 static const Names<PositionSource, 3> kPosition = {
     {{PositionSource::Depth, "depth"}, {PositionSource::Rgba16f, "rgba16f"}, {PositionSource::Rgba32f, "rgba32f"}}};
 static const Names<PositionSpace, 2> kPositionSpace = {{{PositionSpace::World, "world"}, {PositionSpace::Camera, "camera"}}};
@@ -57,6 +64,10 @@ const char* name(ShadowFormat v) { return lookup(kShadow, v); }
 const char* name(StencilMask v) { return lookup(kMask, v); }
 const char* name(StencilLayers v) { return lookup(kLayers, v); }
 const char* name(PositionSource v) { return lookup(kPosition, v); }
+const char* name(LightSetup v) { return lookup(kLightSetup, v); }
+const char* name(FairySplat v) { return lookup(kFairySplat, v); }
+bool parse(const std::string& t, FairySplat& o) { return find(kFairySplat, t, o); }
+bool parse(const std::string& t, LightSetup& o) { return find(kLightSetup, t, o); }
 const char* name(PositionSpace v) { return lookup(kPositionSpace, v); }
 bool parse(const std::string& t, Path& o) { return find(kPath, t, o); }
 bool parse(const std::string& t, Method& o) { return find(kMethod, t, o); }
@@ -67,11 +78,12 @@ bool parse(const std::string& t, AccumFormat& o) { return find(kAccum, t, o); }
 bool parse(const std::string& t, ShadowFormat& o) { return find(kShadow, t, o); }
 bool parse(const std::string& t, StencilMask& o) { return find(kMask, t, o); }
 bool parse(const std::string& t, StencilLayers& o) { return find(kLayers, t, o); }
-bool perLightMask(const RenderOptions& o) {
-  return o.method == Method::Deferred && o.stencilCulling && o.stencilMask == StencilMask::PerLight;
+bool perLightMask(const RenderOptions& o, Method ran) {
+  return ran == Method::Deferred && o.stencilCulling && o.stencilMask == StencilMask::PerLight;
 }
-bool stencilLayersOn(const RenderOptions& o, bool cpuDevice) {
-  return perLightMask(o) && (o.stencilLayers == StencilLayers::On || (o.stencilLayers == StencilLayers::Auto && cpuDevice));
+bool stencilLayersOn(const RenderOptions& o, Method ran, bool cpuDevice) {
+  return perLightMask(o, ran) &&
+         (o.stencilLayers == StencilLayers::On || (o.stencilLayers == StencilLayers::Auto && cpuDevice));
 }
 bool parse(const std::string& t, PositionSource& o) { return find(kPosition, t, o); }
 bool parse(const std::string& t, PositionSpace& o) { return find(kPositionSpace, t, o); }
@@ -174,7 +186,10 @@ const std::vector<Entry>& entries() {
       integer("lights", "generated point lights (0..65536)", &RenderOptions::lights, 0, 65536),
       integer("camera", "camera index", &RenderOptions::camera, 0, 1 << 20),
       choice("path", "two render passes, or one with subpasses and input attachments", kPath, &RenderOptions::path),
-      choice("method", "lighting method", kMethod, &RenderOptions::method),
+      choice("method",
+             "lighting method (auto: the one measured fastest on this device for the light count; --stats says "
+             "which ran and why)",
+             kMethod, &RenderOptions::method),
       onOff("eye_depth", "USE_EYE_DEPTH: positions from the R32F eye-depth target (off: from hardware depth)",
             &RenderOptions::eyeDepth),
       onOff("stencil_culling", "LIGHT_STENCIL_CULLING", &RenderOptions::stencilCulling),
@@ -183,6 +198,10 @@ const std::vector<Entry>& entries() {
       choice("stencil_layers",
              "per-light mask: lights covering disjoint pixels share a bit, one draw per layer (auto: on a CPU device)",
              kLayers, &RenderOptions::stencilLayers),
+      choice("light_setup",
+             "where light animation, culling and the visible list run: cpu | gpu (compute; methods tiled and "
+             "clustered) | auto (gpu for those on a GPU device)",
+             kLightSetup, &RenderOptions::lightSetup),
       onOff("reversed_z", "hardware depth 1 at the near plane, 0 at the far plane", &RenderOptions::reversedZ),
       choice("normal_format", "normal_shadow storage", kNormal, &RenderOptions::normalFormat),
       choice("oct_encoding",
@@ -203,6 +222,10 @@ const std::vector<Entry>& entries() {
       real("shadow_bias_clamp", "largest shadow map depth bias (0: no clamp)", &RenderOptions::shadowBiasClamp, -1.0,
            1.0),
       onOff("fairies", "fairy-light sprites", &RenderOptions::fairies),
+      choice("fairy_splat",
+             "fairy sprites drawn as quads (raster) or splatted per tile in compute (the same image) | auto (compute on "
+             "a GPU device)",
+             kFairySplat, &RenderOptions::fairySplat),
       onOff("sky", "skybox", &RenderOptions::sky),
       real("exposure", "tone-mapping exposure", &RenderOptions::exposure, 0.0, 1e6),
       onOff("primitive_id", "write the primitive_id debug target (instance + triangle) in the G-buffer pass",

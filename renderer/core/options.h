@@ -8,7 +8,8 @@
 namespace gb {
 
 enum class Path { TwoPass, SinglePass };
-enum class Method { Deferred, Forward, Tiled };
+// Lighting methods. Auto picks, per device, the one measured fastest there (method_choice.h).
+enum class Method { Deferred, Forward, Tiled, Clustered, Auto };
 enum class NormalFormat { Rgba16f, Rgba8Snorm, OctRg16, Rgb10a2 };
 // How an octahedral normal is rounded to its code: each coordinate to the nearest, or the best
 // of the four neighbouring codes (smallest angle after decoding; Cigolle et al. 2014).
@@ -31,6 +32,17 @@ enum class StencilMask { PerLight, Shared };
 // rasterizer time as the fragments they shade; on a GPU draws are cheap and grouping only adds
 // CPU time. Auto: on for a CPU device.
 enum class StencilLayers { Auto, On, Off };
+// Where the per-frame light work (animation, eye space, culling, the visible list) runs: on the
+// CPU (classifyLights), or in two compute passes (light_setup, light_compact; no CPU work per
+// light). Auto: the GPU for methods tiled and clustered on a GPU device, where the CPU's per-light
+// work was most of the frame (docs/performance.md); the CPU elsewhere (deferred needs its light
+// classes and layers; a CPU device does it faster on the CPU).
+enum class LightSetup { Auto, Cpu, Gpu };
+// How the fairy sprites reach hdr: drawn (blended quads), or splatted in compute (binned per tile,
+// blended per pixel in draw order: the same image, no fill cost). Auto: compute on a GPU device
+// (where the raster pass cost more than the lighting at 65536 lights), raster on a CPU device
+// and in the single-pass path (fairies are a subpass there).
+enum class FairySplat { Auto, Raster, Compute };
 
 struct RenderOptions {
   uint32_t width = 1280, height = 720;
@@ -38,11 +50,13 @@ struct RenderOptions {
   int lights = 256;   // generated point lights (built-in scene, files without lights)
   int camera = 0;     // index into Scene::cameras
   Path path = Path::TwoPass;
-  Method method = Method::Deferred;
+  Method method = Method::Auto;
   bool eyeDepth = true;        // USE_EYE_DEPTH: reconstruct positions from the eye-depth target
   bool stencilCulling = true;  // LIGHT_STENCIL_CULLING
   StencilMask stencilMask = StencilMask::PerLight;
   StencilLayers stencilLayers = StencilLayers::Auto;
+  LightSetup lightSetup = LightSetup::Auto;
+  FairySplat fairySplat = FairySplat::Auto;
   bool reversedZ = false;
   // Octahedral 16+16-bit normals and fp32 accumulation: `gblens bench` found each dominating the
   // former defaults (rgba16f normals; fp16 accumulation) on lavapipe: same or lower frame time,
@@ -73,8 +87,11 @@ struct RenderOptions {
 };
 
 // The single-pass path (G-buffer and lighting as subpasses) applies to deferred lighting only:
-// forward has no G-buffer, and tiled reads it in a compute pass, outside any render pass.
-inline bool singlePassFrame(const RenderOptions& o) { return o.path == Path::SinglePass && o.method == Method::Deferred; }
+// forward has no G-buffer, and tiled and clustered read it in compute passes, outside any render
+// pass. (Auto with the single-pass path always picks deferred: chooseMethod.)
+inline bool singlePassFrame(const RenderOptions& o) {
+  return o.path == Path::SinglePass && (o.method == Method::Deferred || o.method == Method::Auto);
+}
 // The G-buffer lives only in tile memory (never stored): single pass and no view reads it.
 inline bool transientGBuffer(const RenderOptions& o) { return singlePassFrame(o) && !o.keepGBuffer; }
 
@@ -106,6 +123,8 @@ const char* name(AccumFormat f);
 const char* name(ShadowFormat f);
 const char* name(StencilMask m);
 const char* name(StencilLayers l);
+const char* name(LightSetup l);
+const char* name(FairySplat f);
 const char* name(PositionSource p);
 const char* name(PositionSpace p);
 
@@ -119,10 +138,13 @@ bool parse(const std::string& text, AccumFormat& out);
 bool parse(const std::string& text, ShadowFormat& out);
 bool parse(const std::string& text, StencilMask& out);
 bool parse(const std::string& text, StencilLayers& out);
-// The point lights are drawn with the per-light stencil mask (deferred, culling on, per-light);
-// with `cpuDevice`, whether they come in screen-disjoint layers (StencilLayers; auto: on a CPU).
-bool perLightMask(const RenderOptions& o);
-bool stencilLayersOn(const RenderOptions& o, bool cpuDevice);
+bool parse(const std::string& text, LightSetup& out);
+bool parse(const std::string& text, FairySplat& out);
+// The point lights are drawn with the per-light stencil mask (method `ran` deferred, culling on,
+// per-light); with `cpuDevice`, whether they come in screen-disjoint layers (StencilLayers; auto:
+// on a CPU). `ran` is the method the frame runs (RenderOptions::method unless that is auto).
+bool perLightMask(const RenderOptions& o, Method ran);
+bool stencilLayersOn(const RenderOptions& o, Method ran, bool cpuDevice);
 bool parse(const std::string& text, PositionSource& out);
 bool parse(const std::string& text, PositionSpace& out);
 

@@ -116,8 +116,9 @@ static const char* const kAbsentText[] = {
     "not requested (--targets)",
     "not captured",
     "pixel outside the read-back region",
+    "not in this G-buffer's layout (no quantity of the imported frame fills it)",
 };
-static_assert(sizeof(kAbsentText) / sizeof(kAbsentText[0]) == size_t(Absent::OutsideRegion) + 1);
+static_assert(sizeof(kAbsentText) / sizeof(kAbsentText[0]) == size_t(Absent::NotInLayout) + 1);
 
 const char* absentText(Absent a) { return kAbsentText[size_t(a)]; }
 

@@ -50,10 +50,11 @@ void FrameGraph::endRenderPass() {
   openGroup_ = -1;
 }
 
-void FrameGraph::addPass(std::string name, std::vector<Use> uses, PassFn execute) {
+void FrameGraph::addPass(std::string name, std::vector<Use> uses, PassFn execute, std::vector<BufferUse> buffers) {
   GraphPass node;
   node.name = name;
   node.uses = std::move(uses);
+  node.buffers = std::move(buffers);
   node.execute = std::move(execute);
   node.renderPass = openGroup_;
   if (openGroup_ >= 0) {
@@ -79,6 +80,7 @@ bool FrameGraph::usedAfter(Target t, size_t passIndex) const {
 void FrameGraph::record(GpuContext& ctx, VkCommandBuffer cmd, GraphTargets& targets, GraphCache& cache,
                         VkQueryPool timestamps) {
   GB_ASSERT(openGroup_ < 0);
+  buffers_.clear();
   std::vector<bool> groupDone(groups_.size(), false);
   for (GraphPass& p : passes_) {
     if (p.renderPass < 0) {
@@ -88,21 +90,44 @@ void FrameGraph::record(GpuContext& ctx, VkCommandBuffer cmd, GraphTargets& targ
       groupDone[p.renderPass] = true;
     }
   }
+  // Buffers written this frame may be read by the CPU after the fence (counters, read-backs):
+  // make the writes visible to the host.
+  bool written = false;
+  for (const auto& [buffer, state] : buffers_)
+    written |= (state.access & (VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT)) != 0;
+  if (written) hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT);
 }
 
 // A compute or transfer pass: a barrier into each use that needs one, then the pass.
+// A pass's uses of one buffer (say indirect arguments and a storage write) count as one use.
+void FrameGraph::bufferBarriers(const GraphPass& p, Barriers& out) {
+  std::map<VkBuffer, AccessInfo> combined;
+  for (const BufferUse& b : p.buffers) {
+    GB_ASSERT(b.buffer);
+    const AccessInfo a = bufferAccessInfo(b.access);
+    auto [it, fresh] = combined.try_emplace(b.buffer, a);
+    if (!fresh) {
+      it->second.stage |= a.stage;
+      it->second.access |= a.access;
+      it->second.write |= a.write;
+    }
+  }
+  for (const auto& [buffer, to] : combined) bufferUse(out, buffer, buffers_[buffer], to);
+}
+
 void FrameGraph::recordCompute(GpuContext& ctx, VkCommandBuffer cmd, GraphPass& p, GraphTargets& targets,
                                VkQueryPool timestamps) {
   LabelScope label(ctx, cmd, p.name.c_str());
-  std::vector<VkImageMemoryBarrier2> barriers;
+  Barriers barriers;
   for (const Use& u : p.uses) {
     GraphTarget& t = targets[size_t(u.target)];
     GB_ASSERT(t.image.image);
     AccessInfo to = accessInfo(u.access, t.image.desc.format);
     const bool barrier = needsBarrier(t, to);
-    if (barrier) imageBarrier(barriers, t, u.clear ? VK_IMAGE_LAYOUT_UNDEFINED : t.layout, to);
+    if (barrier) imageBarrier(barriers.images, t, u.clear ? VK_IMAGE_LAYOUT_UNDEFINED : t.layout, to);
     afterUse(t, barrier, to.layout, to.stage, to.access);
   }
+  bufferBarriers(p, barriers);
   flushBarriers(cmd, barriers);
   timestamp(cmd, timestamps, 2 * p.stat, false);
   PassContext pc;
@@ -134,12 +159,15 @@ void FrameGraph::recordGroup(GpuContext& ctx, VkCommandBuffer cmd, int g, GraphT
 void FrameGraph::executeGroup(GpuContext& ctx, VkCommandBuffer cmd, const GraphGroup& group, const CompiledGroup& c,
                               GraphTargets& targets, VkQueryPool timestamps) {
   LabelScope groupLabel(ctx, cmd, group.name.c_str());
-  std::vector<VkImageMemoryBarrier2> barriers;
+  Barriers barriers;
   for (const CompiledGroup::TargetStep& s : c.steps) {
     GraphTarget& t = targets[size_t(s.target)];
-    if (s.barrier) imageBarrier(barriers, t, s.discard ? VK_IMAGE_LAYOUT_UNDEFINED : t.layout, s.into);
+    if (s.barrier) imageBarrier(barriers.images, t, s.discard ? VK_IMAGE_LAYOUT_UNDEFINED : t.layout, s.into);
     afterUse(t, s.afterBarrier, s.afterLayout, s.afterStage, s.afterAccess);
   }
+  // Buffers the group's passes read (light lists, indirect arguments): barriers before the
+  // render pass begins (a render pass's own dependencies cover only its attachments).
+  for (int pi : group.passes) bufferBarriers(passes_[pi], barriers);
   flushBarriers(cmd, barriers);
   VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   bi.renderPass = c.renderPass;

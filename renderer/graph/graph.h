@@ -4,6 +4,7 @@
 #pragma once
 #include <vulkan/vulkan.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,7 @@ class FrameGraph {
   void beginRenderPass(std::string name);
   void nextSubpass();
   void endRenderPass();
-  void addPass(std::string name, std::vector<Use> uses, PassFn execute);
+  void addPass(std::string name, std::vector<Use> uses, PassFn execute, std::vector<BufferUse> buffers = {});
   void skipPass(std::string name, std::string reason);
 
   // Builds render passes and barriers and records every pass, each in a debug label region named as in
@@ -43,7 +44,9 @@ class FrameGraph {
   std::vector<GraphGroup> groups_;
   std::vector<PassStat> stats_;
   int openGroup_ = -1;
+  std::map<VkBuffer, GraphBufferState> buffers_;  // buffer state while recording
 
+  void bufferBarriers(const GraphPass& p, graph_sync::Barriers& out);
   void recordCompute(GpuContext& ctx, VkCommandBuffer cmd, GraphPass& p, GraphTargets& targets,
                      VkQueryPool timestamps);
   void recordGroup(GpuContext& ctx, VkCommandBuffer cmd, int group, GraphTargets& targets, GraphCache& cache,

@@ -128,6 +128,7 @@ using PassFn = std::function<void(PassContext&)>;
 struct GraphPass {
   std::string name;
   std::vector<Use> uses;
+  std::vector<BufferUse> buffers;
   PassFn execute;
   int renderPass = -1;  // index of its group, -1 for compute/transfer
   uint32_t subpass = 0;

@@ -78,13 +78,67 @@ void imageBarrier(std::vector<VkImageMemoryBarrier2>& out, const GraphTarget& t,
                                    t.access, to.stage, to.access));
 }
 
-void flushBarriers(VkCommandBuffer cmd, std::vector<VkImageMemoryBarrier2>& barriers) {
-  if (barriers.empty()) return;
+void flushBarriers(VkCommandBuffer cmd, Barriers& barriers) {
+  if (barriers.images.empty() && barriers.buffers.empty()) return;
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dep.imageMemoryBarrierCount = uint32_t(barriers.size());
-  dep.pImageMemoryBarriers = barriers.data();
+  dep.imageMemoryBarrierCount = uint32_t(barriers.images.size());
+  dep.pImageMemoryBarriers = barriers.images.data();
+  dep.bufferMemoryBarrierCount = uint32_t(barriers.buffers.size());
+  dep.pBufferMemoryBarriers = barriers.buffers.data();
   vkCmdPipelineBarrier2(cmd, &dep);
-  barriers.clear();
+  barriers.images.clear();
+  barriers.buffers.clear();
+}
+
+AccessInfo bufferAccessInfo(BufferAccess a) {
+  const VkImageLayout none = VK_IMAGE_LAYOUT_UNDEFINED;
+  switch (a) {
+    case BufferAccess::TransferWrite:
+      return {none, VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, true};
+    case BufferAccess::TransferRead:
+      return {none, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, false};
+    case BufferAccess::ComputeRead:
+      return {none, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, false};
+    case BufferAccess::ComputeReadWrite:
+      return {none, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+              VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, true};
+    case BufferAccess::IndirectRead:
+      return {none, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT, false};
+    case BufferAccess::VertexRead:
+      return {none, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, false};
+    case BufferAccess::FragmentRead:
+      return {none, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT, false};
+    case BufferAccess::HostRead:
+      return {none, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT, false};
+  }
+  GB_ASSERT(!"bufferAccessInfo");
+  return {};
+}
+
+void bufferUse(Barriers& out, VkBuffer buffer, GraphBufferState& state, const AccessInfo& to) {
+  const bool lastWasWrite = (state.access & (VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT)) != 0;
+  const bool used = state.stage != VK_PIPELINE_STAGE_2_NONE;
+  // Nothing before it in this frame: the submission orders host writes before it.
+  const bool barrier = used && (lastWasWrite || to.write || (to.stage & ~state.stage) != 0);
+  if (barrier) {
+    VkBufferMemoryBarrier2 b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
+    b.srcStageMask = state.stage;
+    b.srcAccessMask = state.access;
+    b.dstStageMask = to.stage;
+    b.dstAccessMask = to.access;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.buffer = buffer;
+    b.offset = 0;
+    b.size = VK_WHOLE_SIZE;
+    out.buffers.push_back(b);
+  }
+  if (barrier || !used) {
+    state.stage = to.stage;
+    state.access = to.access;
+  } else {
+    state.stage |= to.stage;
+    state.access |= to.access;
+  }
 }
 
 // Barrier into a use unless it is a read after a read in the same layout in stages the last

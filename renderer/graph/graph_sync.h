@@ -24,7 +24,16 @@ VkAccessFlags legacyAccess(VkAccessFlags2 a);
 
 void imageBarrier(std::vector<VkImageMemoryBarrier2>& out, const GraphTarget& t, VkImageLayout from,
                   const AccessInfo& to);
-void flushBarriers(VkCommandBuffer cmd, std::vector<VkImageMemoryBarrier2>& barriers);
+// Barriers collected for one point of the command buffer (images and buffers), then flushed.
+struct Barriers {
+  std::vector<VkImageMemoryBarrier2> images;
+  std::vector<VkBufferMemoryBarrier2> buffers;
+};
+void flushBarriers(VkCommandBuffer cmd, Barriers& barriers);
+// A buffer use: a barrier after the buffer's earlier uses in this frame when one is needed
+// (read after write, write after read or write), then the buffer's new state.
+AccessInfo bufferAccessInfo(BufferAccess a);
+void bufferUse(Barriers& out, VkBuffer buffer, GraphBufferState& state, const AccessInfo& to);
 
 // Whether a use needs a barrier after the target's last uses (see graph_sync.cpp).
 bool needsBarrier(const GraphTarget& t, const AccessInfo& to);

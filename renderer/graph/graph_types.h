@@ -33,6 +33,30 @@ struct Use {
   VkClearValue clearValue{};
 };
 
+// A buffer a pass reads or writes (light lists, cluster data, indirect arguments): the graph
+// places buffer barriers between its uses within a frame as it does image barriers. (Host
+// writes before the submission need none; a buffer the CPU reads after the frame is declared
+// HostRead by a pass at the end.)
+enum class BufferAccess : uint8_t {
+  TransferWrite,     // vkCmdFillBuffer / vkCmdUpdateBuffer / copy destination
+  TransferRead,      // copy source
+  ComputeRead,       // storage buffer read in a compute shader
+  ComputeReadWrite,  // storage buffer written (atomics included) in a compute shader
+  IndirectRead,      // indirect draw or dispatch arguments
+  VertexRead,        // storage buffer read in a vertex shader
+  FragmentRead,      // storage buffer read in a fragment shader
+  HostRead,          // mapped and read by the CPU after the fence
+};
+struct BufferUse {
+  VkBuffer buffer;
+  BufferAccess access;
+};
+// What the graph tracks per buffer within a frame (like GraphTarget's stage/access).
+struct GraphBufferState {
+  VkPipelineStageFlags2 stage = VK_PIPELINE_STAGE_2_NONE;
+  VkAccessFlags2 access = 0;
+};
+
 // A target as the graph sees it: its image and the state the last recorded use left it in.
 struct GraphTarget {
   Image image;

@@ -23,8 +23,13 @@ void addFairyPass(FrameGraph& g, Renderer& r) {
     vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_NONE);
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
-    vkCmdDraw(pc.cmd, 6, uint32_t(r.lights.visible.size()), 0, 0);
-  });
+    // The visible count as the GPU has it (light setup on the GPU leaves it there).
+    vkCmdDrawIndirect(pc.cmd, r.lightCountBuffer.buffer, offsetof(gpu::LightCounts, fairyDraw), 1, 0);
+  }, [&r] {
+    std::vector<BufferUse> b = lightReads(r, BufferAccess::VertexRead);
+    b.push_back({r.lightCountBuffer.buffer, BufferAccess::IndirectRead});
+    return b;
+  }());
 }
 
 }  // namespace gb

@@ -28,7 +28,8 @@ Shader lightingShader(const Renderer& r, Shader sampled, Shader input) { return 
 
 VkPipelineLayout lightingLayout(const Renderer& r) { return singlePass(r) ? r.pipelineLayoutInput : r.pipelineLayout; }
 
-void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassImage> extra, VkPipelineBindPoint bindPoint) {
+void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassImage> extra, VkPipelineBindPoint bindPoint,
+                 std::initializer_list<PassBuffer> buffers) {
   const bool input = singlePass(r);
   const VkDescriptorType type = input ? VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   const VkSampler sampler = input ? VK_NULL_HANDLE : r.samplerPoint;
@@ -47,7 +48,9 @@ void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassI
   VkPipelineLayout layout = lightingLayout(r);
   vkCmdBindDescriptorSets(pc.cmd, bindPoint, layout, gpu::kSetScene, 1, &r.sceneSet, 0, nullptr);
   std::vector<VkDescriptorImageInfo> infos(images.size());
-  std::vector<VkWriteDescriptorSet> writes(images.size(), {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET});
+  std::vector<VkDescriptorBufferInfo> bufferInfos;
+  for (const PassBuffer& b : buffers) bufferInfos.push_back({b.buffer, 0, VK_WHOLE_SIZE});
+  std::vector<VkWriteDescriptorSet> writes(images.size() + buffers.size(), {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET});
   for (size_t i = 0; i < images.size(); ++i) {
     infos[i] = {images[i].sampler, images[i].view, images[i].layout};
     writes[i].dstBinding = images[i].binding;
@@ -55,8 +58,38 @@ void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassI
     writes[i].descriptorType = images[i].type;
     writes[i].pImageInfo = &infos[i];
   }
+  size_t k = images.size();
+  for (const PassBuffer& b : buffers) {
+    writes[k].dstBinding = b.binding;
+    writes[k].descriptorCount = 1;
+    writes[k].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[k].pBufferInfo = &bufferInfos[k - images.size()];
+    ++k;
+  }
   r.ctx->cmdPushDescriptorSet(pc.cmd, bindPoint, layout, gpu::kSetPass, uint32_t(writes.size()),
                               writes.data());
+}
+
+void pushComputeBuffers(Renderer& r, VkCommandBuffer cmd, std::initializer_list<PassBuffer> buffers) {
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.pipelineLayout, gpu::kSetScene, 1, &r.sceneSet, 0, nullptr);
+  std::vector<VkDescriptorBufferInfo> infos;
+  infos.reserve(buffers.size());
+  std::vector<VkWriteDescriptorSet> writes;
+  for (const PassBuffer& b : buffers) {
+    infos.push_back({b.buffer, 0, VK_WHOLE_SIZE});
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstBinding = b.binding;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &infos.back();
+    writes.push_back(w);
+  }
+  r.ctx->cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.pipelineLayout, gpu::kSetPass,
+                              uint32_t(writes.size()), writes.data());
+}
+
+std::vector<BufferUse> lightReads(const Renderer& r, BufferAccess access) {
+  return {{r.lightBuffer.buffer, access}, {r.visibleBuffer.buffer, access}, {r.lightCountBuffer.buffer, access}};
 }
 
 void drawLightVolumes(Renderer& r, VkCommandBuffer cmd, uint32_t first, uint32_t count) {

@@ -15,6 +15,24 @@ void addLightMaskPass(FrameGraph& g, Renderer& r);
 void addPointLightPass(FrameGraph& g, Renderer& r);
 void addForwardPass(FrameGraph& g, Renderer& r);
 void addTiledLightingPass(FrameGraph& g, Renderer& r);
+// Clustered shading (passes/clusters.cpp, passes/clustered_lighting.cpp): `visibleMax` bounds the
+// visible list (the light bins' dispatch).
+void addClusterClearPass(FrameGraph& g, Renderer& r);
+void addClusterBoundsPass(FrameGraph& g, Renderer& r);
+void addClusterBinsPass(FrameGraph& g, Renderer& r, uint32_t visibleMax);
+void addClusterListsPass(FrameGraph& g, Renderer& r);
+void addClusteredLightingPass(FrameGraph& g, Renderer& r);
+// Fairy sprites in compute (passes/fairy_splat.cpp): fairy_clear, fairy_bins, fairy_splat.
+void addFairySplatPasses(FrameGraph& g, Renderer& r, uint32_t visibleMax);
+// Light setup on the GPU (passes/light_setup.cpp): light_setup and light_compact.
+void addLightSetupPasses(FrameGraph& g, Renderer& r);
+// Binds set 0 and pushes only `buffers` to set 1 (compute passes that read no image).
+void pushComputeBuffers(Renderer& r, VkCommandBuffer cmd, std::initializer_list<PassBuffer> buffers);
+// The frame's light buffers (eye-space lights, visible list, counts) as a pass reads them: after
+// light setup on the GPU the graph orders them (on the CPU path they were written before submission).
+std::vector<BufferUse> lightReads(const Renderer& r, BufferAccess access);
+// Binds set 0 and pushes the G-buffer reads, `images` and clustered shading's buffers (compute).
+void pushClusterDescriptors(Renderer& r, const PassContext& pc, std::initializer_list<PassImage> images);
 void addLightCoveragePass(FrameGraph& g, Renderer& r);
 void addSkyboxPass(FrameGraph& g, Renderer& r);
 void addFairyPass(FrameGraph& g, Renderer& r);
@@ -35,7 +53,8 @@ Shader lightingShader(const Renderer& r, Shader sampled, Shader input);
 VkPipelineLayout lightingLayout(const Renderer& r);
 // Binds set 0 and pushes the G-buffer reads (+ extra images) for a lighting pass.
 void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassImage> extra = {},
-                 VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS);
+                 VkPipelineBindPoint bindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS,
+                 std::initializer_list<PassBuffer> buffers = {});
 // Draws the visible lights' icosahedra: [first, first + count) of the visible list.
 void drawLightVolumes(Renderer& r, VkCommandBuffer cmd, uint32_t first, uint32_t count);
 // Draws the scene's instances in drawOrder [begin, end), pushing each material's textures

@@ -125,7 +125,7 @@ static void drawInstanced(Renderer& r, PassContext& pc) {
 }
 
 void addPointLightPass(FrameGraph& g, Renderer& r) {
-  const bool perLight = perLightMask(r.options);
+  const bool perLight = perLightMask(r.options, r.method);
   std::vector<Use> uses = gbufferReads(r);
   uses.push_back(hdrUse(Access::ColorBlend));
   uses.push_back(depthStencilUse(perLight ? Access::DepthTestStencilWrite : Access::DepthStencilRead));

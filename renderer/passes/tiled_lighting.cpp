@@ -26,7 +26,7 @@ void addTiledLightingPass(FrameGraph& g, Renderer& r) {
     vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p);
     const uint32_t tile = gpu::kTileSize;
     vkCmdDispatch(pc.cmd, (r.options.width + tile - 1) / tile, (r.options.height + tile - 1) / tile, 1);
-  });
+  }, lightReads(r, BufferAccess::ComputeRead));
 }
 
 }  // namespace gb

@@ -251,6 +251,7 @@ static void describeDevice(GpuContext& ctx) {
   ctx.features.depthClamp = supported.depthClamp;
   ctx.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
   ctx.features.primitiveId = supported.geometryShader;
+  ctx.features.float64 = supported.shaderFloat64;
   for (uint32_t i = 0; i < ctx.memory.memoryTypeCount; ++i)
     if (ctx.memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_LAZILY_ALLOCATED_BIT)
       ctx.features.lazilyAllocatedMemory = true;
@@ -312,6 +313,7 @@ static void createDevice(GpuContext& ctx, const DeviceSupport& s) {
   enabled.features.shaderStorageImageWriteWithoutFormat = s.core.shaderStorageImageWriteWithoutFormat;
   enabled.features.independentBlend = s.core.independentBlend;
   enabled.features.geometryShader = s.core.geometryShader;  // gl_PrimitiveID in the primitive_id target
+  enabled.features.shaderFloat64 = s.core.shaderFloat64;    // light setup on the GPU
   VkPhysicalDeviceVulkan13Features e13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
   e13.synchronization2 = VK_TRUE;
   e13.maintenance4 = s.maintenance4;  // relaxed interface matching (unused vertex outputs)

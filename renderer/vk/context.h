@@ -36,6 +36,7 @@ struct DeviceFeatures {
   bool fragmentStoresAndAtomics = false;
   bool timestamps = false;
   bool primitiveId = false;  // gl_PrimitiveID in fragment shaders (the geometryShader feature)
+  bool float64 = false;      // shaderFloat64: light setup on the GPU computes in double
 };
 
 // VK_EXT_debug_utils entry points (renderer/vk/debug_utils.h); null when the instance lacks it.

@@ -111,11 +111,12 @@ TEST(CliAccuracy, BenchWritesJsonCsvAndPlotsWithOneRowPerVariant) {
   EXPECT_EQ(run("bench --only nosuch --out " + dir).status, 2);
 }
 
-// The method comparison: the four methods at every light count, in bench.json, methods.csv and
-// bench.md, with their ratios to the defaults taken in the same rounds (the defaults' own is 1),
+// The method comparison: the five methods at every light count, in bench.json, methods.csv and
+// bench.md, with their ratios to the defaults (the method auto picks, marked) taken in the same
+// rounds (the defaults' own is 1),
 // culling work from the coverage counts (forward's: every visible light at every fragment it
 // shaded, far above the ideal pairs), and forward left out above --methods-forward-max.
-TEST(CliAccuracy, BenchComparesTheFourMethodsSideBySide) {
+TEST(CliAccuracy, BenchComparesTheMethodsSideBySide) {
   std::string dir = tempDir("bench_methods");
   CliRun r = run("bench --only methods --methods-sizes 96x54 --methods-lights 0,24 --methods-forward-max 8 "
                  "--methods-rounds 2 --methods-min-rounds 2 --size 96x54 --lights 8 --out " + dir);
@@ -123,7 +124,7 @@ TEST(CliAccuracy, BenchComparesTheFourMethodsSideBySide) {
   std::ifstream jf(std::filesystem::path(dir) / "bench.json");
   nlohmann::json j = nlohmann::json::parse(jf);
   EXPECT_EQ(j["rows"].size(), 0u);  // no sweep variant asked for
-  ASSERT_EQ(j["methods"].size(), 8u);  // 4 methods x 2 light counts
+  ASSERT_EQ(j["methods"].size(), 10u);  // 5 methods x 2 light counts
   std::map<std::string, int> seen;
   for (const auto& m : j["methods"]) {
     const std::string method = m["method"];
@@ -137,8 +138,9 @@ TEST(CliAccuracy, BenchComparesTheFourMethodsSideBySide) {
     ASSERT_TRUE(m["measured"].get<bool>()) << method << " " << lights;
     EXPECT_EQ(m["frames"].get<int>(), 2);
     EXPECT_GT(m["frame_ms"]["median"].get<double>(), 0.0);
-    if (method == "deferred") {
+    if (m["auto_pick"].get<bool>()) {
       EXPECT_EQ(m["time_over_default"].get<double>(), 1.0);
+      ++seen["auto"];
     }
     EXPECT_GT(m["time_over_default"].get<double>(), 0.0);
     ASSERT_TRUE(m.contains("culling")) << method;
@@ -155,13 +157,14 @@ TEST(CliAccuracy, BenchComparesTheFourMethodsSideBySide) {
         }
     }
   }
-  for (const char* method : {"deferred", "deferred_unculled", "forward", "tiled"}) EXPECT_EQ(seen[method], 2) << method;
+  for (const char* method : {"deferred", "deferred_unculled", "forward", "tiled", "clustered", "auto"})
+    EXPECT_EQ(seen[method], 2) << method;  // auto: one picked row per light count
   ASSERT_EQ(j["skips"].size(), 3u);
   EXPECT_EQ(j["skips"][0]["pass"], "shadow_map");
   int lines = 0;
   std::ifstream cf(std::filesystem::path(dir) / "methods.csv");
   for (std::string line; std::getline(cf, line);) ++lines;
-  EXPECT_EQ(lines, 9);
+  EXPECT_EQ(lines, 11);
   std::ifstream md(std::filesystem::path(dir) / "bench.md");
   std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("## Lighting methods"), std::string::npos);

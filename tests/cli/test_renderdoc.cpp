@@ -1,7 +1,8 @@
 // gblens and RenderDoc (issue 15): `renderdoccmd capture` of a headless gblens frame writes an .rdc
 // whose label regions are the passes --stats names and whose images carry the target table's names;
 // `gblens import --list` shows them; and the texels the replay reads from the .rdc equal, bit for
-// bit, a `gblens capture` of the same frame made without RenderDoc. Every RenderDoc run has a time
+// bit, a `gblens capture` of the same frame made without RenderDoc, and so does `gblens import` of the
+// .rdc with gblens's own layout (builtin:gblens, the options as --param). Every RenderDoc run has a time
 // limit: a capture that does not replay on this machine's driver fails with a message, not a hang.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -151,6 +152,80 @@ TEST(RenderDoc, MistakesGiveOneLineAndExitTwo) {
   EXPECT_NE(error.find("did not finish within 1 s (while replaying on a stuck driver)"), std::string::npos) << error;
 }
 
+// Every texel of `target` in two captures, bit for bit ("" when equal, else the first difference).
+std::string firstDifference(const Capture& a, const Capture& b, const std::string& target) {
+  const int ia = a.frame.indexOf(target), ib = b.frame.indexOf(target);
+  if (ia < 0 || ib < 0) return "not in both layouts";
+  const CpuImage& x = a.frame.images[size_t(ia)].image;
+  const CpuImage& y = b.frame.images[size_t(ib)].image;
+  if (x.empty() != y.empty()) return x.empty() ? "absent from the first" : "absent from the second";
+  if (x.type != y.type || x.encoding != y.encoding || x.channels != y.channels || x.width != y.width || x.height != y.height)
+    return "stored differently";
+  for (uint32_t py = 0; py < x.height; ++py)
+    for (uint32_t px = 0; px < x.width; ++px)
+      for (uint32_t c = 0; c < x.channelCount(); ++c)
+        if (x.raw(px, py, c) != y.raw(px, py, c)) {
+          std::ostringstream s;
+          s << "(" << px << ", " << py << ") channel " << c << ": " << x.raw(px, py, c) << " vs " << y.raw(px, py, c);
+          return s.str();
+        }
+  return "";
+}
+
+// `gblens import APP.rdc --layout builtin:gblens` with the variant's options as --param: a capture whose
+// every target equals `plain` (gblens capture of the same frame) bit for bit, the same targets absent,
+// and the camera the frame's, as the uniform buffer holds it (floats).
+Capture importRenderDoc(const std::string& rdc, const std::string& options, const std::string& out, const std::string& extra = "") {
+  std::string params, flag, value;
+  std::istringstream words(options);
+  while (words >> flag >> value) params += " --param " + flag.substr(2) + "=" + value;
+  RunResult r = runGblens("import '" + rdc + "' --layout builtin:gblens" + params + extra + " -o '" + out + "'");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  Capture c;
+  std::string error;
+  EXPECT_TRUE(loadCapture(out, c, error)) << error;
+  return c;
+}
+
+void expectImportEqualsCapture(const std::string& rdc, const std::string& options, const Capture& plain, const std::string& dir) {
+  const Capture imported = importRenderDoc(rdc, options, dir + "/imported");
+  ASSERT_EQ(imported.frame.layout.targets.size(), plain.frame.layout.targets.size());
+  size_t compared = 0;
+  for (const LayoutTarget& t : plain.frame.layout.targets) {
+    SCOPED_TRACE("imported " + t.name);
+    EXPECT_EQ(firstDifference(plain, imported, t.name), "");
+    compared += plain.frame.images[size_t(plain.frame.indexOf(t.name))].present();
+  }
+  EXPECT_GE(compared, 9u);
+  const Camera& a = plain.frame.camera;
+  const Camera& b = imported.frame.camera;
+  EXPECT_EQ(b.reversedZ, a.reversedZ);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) {
+      EXPECT_EQ(b.clipFromEye[c][r], double(float(a.clipFromEye[c][r]))) << c << "," << r;
+      // worldFromEye as floats, inverted: within a few float roundings of the scene's extent (~20 units).
+      EXPECT_NEAR(b.eyeFromWorld[c][r], a.eyeFromWorld[c][r], 1e-5) << c << "," << r;
+    }
+}
+
+// --event and --pass: out of range and unknown are refused (nothing written); at the end of the gbuffer
+// pass the G-buffer targets are already final while the lighting has not yet written hdr.
+void expectEventsAndPasses(const std::string& rdc, const std::string& options, const Capture& plain, const std::string& dir) {
+  RunResult late = runGblens("import '" + rdc + "' --layout builtin:gblens --event 999999 -o '" + dir + "/late'");
+  EXPECT_EQ(late.exitCode, 2) << late.output;
+  EXPECT_NE(late.output.find("--event 999999: out of range (the capture's events are 1.."), std::string::npos) << late.output;
+  EXPECT_FALSE(fs::exists(dir + "/late"));
+  RunResult unknown = runGblens("import '" + rdc + "' --layout builtin:gblens --pass nonesuch -o '" + dir + "/unknown'");
+  EXPECT_EQ(unknown.exitCode, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("--pass \"nonesuch\": no pass of that name (passes: "), std::string::npos) << unknown.output;
+  EXPECT_NE(unknown.output.find("gbuffer"), std::string::npos) << unknown.output;
+  EXPECT_FALSE(fs::exists(dir + "/unknown"));
+
+  const Capture atGbuffer = importRenderDoc(rdc, options, dir + "/at-gbuffer", " --pass gbuffer");
+  for (const char* t : {"albedo_specular", "normal_shadow", "depth"}) EXPECT_EQ(firstDifference(plain, atGbuffer, t), "") << t;
+  EXPECT_NE(firstDifference(plain, atGbuffer, "hdr"), "") << "hdr read at the end of gbuffer equals the lit frame's";
+}
+
 // The texels RenderDoc replays equal a gblens capture of the same frame, in every target.
 void expectRoundTrip(const std::string& name, const std::string& options, bool checkMore) {
   const std::string dir = freshDir("renderdoc-" + name);
@@ -168,7 +243,7 @@ void expectRoundTrip(const std::string& name, const std::string& options, bool c
   std::vector<std::string> names;
   std::vector<Target> targets;
   for (size_t i = 0; i < kTargetCount; ++i)
-    if (!cap.frame.targets[i].image.empty()) {
+    if (!cap.frame.target(Target(i)).image.empty()) {
       names.push_back(targetName(Target(i)));
       targets.push_back(Target(i));
     }
@@ -178,7 +253,7 @@ void expectRoundTrip(const std::string& name, const std::string& options, bool c
   ASSERT_EQ(texels.size(), targets.size());
   for (size_t k = 0; k < targets.size(); ++k) {
     const Target t = targets[k];
-    const CpuImage& want = cap.frame.targets[size_t(t)].image;
+    const CpuImage& want = cap.frame.target(t).image;
     const RdcTexels& got = texels[k];
     SCOPED_TRACE(std::string(targetName(t)) + " (" + got.texture.format + ")");
     ASSERT_TRUE(got.texture.texelFormat.has_value());
@@ -201,7 +276,9 @@ void expectRoundTrip(const std::string& name, const std::string& options, bool c
                   << want.raw(x, y, ch);
     EXPECT_EQ(differ, 0u) << "values differ from the gblens capture, first at " << first.str();
   }
+  expectImportEqualsCapture(rdc, args, cap, dir);
   if (!checkMore) return;
+  expectEventsAndPasses(rdc, args, cap, dir);
   // The camera from the uniform buffer the shaders read ("frame", shaders/common.glsl): clip-from-eye
   // first, as floats, equal to the capture's camera; the viewport after the four matrices.
   std::vector<uint8_t> frame;
@@ -219,7 +296,7 @@ void expectRoundTrip(const std::string& name, const std::string& options, bool c
   EXPECT_NE(error.find("no texture named \"no_such_target\" (textures: "), std::string::npos) << error;
 }
 
-TEST(RenderDoc, TexelsEqualAGblensCaptureBitForBit) {
+TEST(RenderDoc, TexelsAndImportEqualAGblensCaptureBitForBit) {
   requireRenderDoc();
   expectRoundTrip("default", "", true);
   // Other storage: every depth and shadow format, hdr in 8 bits, position in half floats.

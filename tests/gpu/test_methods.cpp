@@ -1,6 +1,7 @@
-// The four lighting methods (deferred with per-light or shared stencil masks or without culling,
-// tiled deferred, forward) give the same image within the accumulation bound, and their
-// coverage_masked counts say what each evaluated: every light that reaches a pixel at least.
+// The lighting methods (deferred with per-light or shared stencil masks or without culling,
+// tiled deferred, clustered deferred, forward) give the same image within the accumulation bound,
+// and their coverage_masked counts say what each evaluated: every light that reaches a pixel at
+// least. `--method auto` runs one of them and says which and why.
 //
 // The bound. A conversion to fp16 may land on either neighbour (Vulkan; llvmpipe truncates),
 // an error below one ulp, at most 2^-10 of the value. Deferred stores hdr after the directional
@@ -9,6 +10,7 @@
 // total E, so each result is within (m + 1) 2^-10 E of E and two of them within (m + 2) 2^-10 E.
 // m is at most n = coverage_masked of the unculled deferred frame (fragments that ran there);
 // fp32 summation (n 2^-24) and fp32 differences between shaders are inside the 1e-6 floor.
+#include <algorithm>
 #include <cmath>
 
 #include "renderer/core/camera.h"
@@ -31,6 +33,7 @@ struct Method3 {
 const Method3 kMethods[] = {{"deferred per-light", Method::Deferred, true, StencilMask::PerLight},
                             {"deferred shared", Method::Deferred, true, StencilMask::Shared},
                             {"tiled", Method::Tiled, true, StencilMask::PerLight},
+                            {"clustered", Method::Clustered, true, StencilMask::PerLight},
                             {"forward", Method::Forward, true, StencilMask::PerLight}};
 
 RenderOptions methodOptions(uint32_t w, uint32_t h, int lights) {
@@ -63,7 +66,8 @@ int outOfBound(const CpuImage& a, const CpuImage& b, const CpuImage& coverage, d
 // where the G-buffer stores exact values: elsewhere deferred shades values rounded to 8-bit
 // albedo and fp16 normals, which forward does not (that difference is the G-buffer's storage
 // error, measured against the reference by gblens error, not an accumulation difference).
-void expectMethodsAgree(GpuTest& t, const Scene& scene, RenderOptions o, const std::string& what, bool forward) {
+void expectMethodsAgree(GpuTest& t, const Scene& scene, RenderOptions o, const std::string& what, bool forward,
+                        const std::vector<Method>& only = {}) {
   o.method = Method::Deferred;
   o.stencilCulling = false;
   t.render(scene, o, {{Target::Hdr, Target::CoverageMasked}});
@@ -75,10 +79,15 @@ void expectMethodsAgree(GpuTest& t, const Scene& scene, RenderOptions o, const s
   EXPECT_GT(sum, 0.0) << what << ": a black frame compares equal to anything";
   for (const Method3& m : kMethods) {
     if (m.method == Method::Forward && !forward) continue;
+    if (!only.empty() && std::find(only.begin(), only.end(), m.method) == only.end()) continue;
     o.method = m.method;
     o.stencilCulling = m.stencilCulling;
     o.stencilMask = m.mask;
-    t.render(scene, o, {{Target::Hdr}});
+    const FrameStats& st = t.render(scene, o, {{Target::Hdr}});
+    EXPECT_EQ(st.method, name(m.method)) << what;
+    if (st.clusters.valid) {
+      EXPECT_EQ(st.clusters.listOverflows + st.clusters.tilesWithoutRoom, 0u) << what << ": the first frame had room";
+    }
     double worst = 0.0;
     EXPECT_EQ(outOfBound(t.renderer(scene).readback[size_t(Target::Hdr)], reference, coverage, &worst), 0)
         << what << ": " << m.label << " (worst |difference| / bound " << worst << ")";
@@ -105,7 +114,73 @@ Scene exactStorageScene(const std::vector<float>& srgbDecode, int lights) {
   return s;
 }
 
+// A long floor seen at a grazing angle, so surface points run from the near plane to beyond the
+// far plane (clipped there), with lights around the camera (containing it), straddling the near
+// plane, spread over the depth range, and straddling the far plane.
+Scene nearFarScene() {
+  Scene s = floorScene(200.0, 0.3f);
+  addBox(s, {-1.5f, 0.0f, -6.0f}, {1.5f, 2.5f, -4.0f});
+  s.sky.ambient = glm::vec3(0.05f);
+  const glm::dvec3 eye(0.0, 1.5, 0.0);
+  const double znear = 0.1, zfar = 40.0;
+  setCamera(s, eye, {0.0, 0.0, -30.0}, 0.9, znear, zfar);
+  auto light = [&](glm::dvec3 p, double radius, glm::vec3 color) {
+    PointLightDesc l;
+    l.center = p;
+    l.radius = radius;
+    l.color = color;
+    l.intensity = 1.5;
+    s.lights.push_back(l);
+  };
+  light(eye, 3.0, {1.0f, 0.9f, 0.8f});                        // contains the camera
+  light(eye + glm::dvec3(0.4, -0.3, -0.05), 1.6, {0.3f, 0.6f, 1.0f});  // straddles the near plane
+  light(eye + glm::dvec3(-0.2, -1.2, 0.3), 1.5, {1.0f, 0.4f, 0.3f});   // behind the camera, reaching the floor ahead
+  for (int i = 0; i < 24; ++i) {                              // along the view, near to far
+    const double z = -0.5 - 1.8 * i;
+    light({(i % 5 - 2) * 1.7, 0.2 + 0.1 * (i % 3), z}, 1.2 + 0.15 * (i % 4), {0.9f, 0.7f, 0.5f + 0.02f * i});
+  }
+  for (int i = 0; i < 6; ++i) light({-10.0 + 4.0 * i, 0.5, -zfar * 0.75}, 6.0, {0.6f, 1.0f, 0.6f});  // across the far plane
+  s.generatedLights = false;
+  return s;
+}
+
 }  // namespace
+
+TEST_F(GpuTest, ClusteredAgreesAroundTheCameraAndAcrossNearAndFar) {
+  Scene scene = nearFarScene();
+  RenderOptions o = methodOptions(128, 72, 0);
+  expectMethodsAgree(*this, scene, o, "near/far", false, {Method::Clustered, Method::Tiled});
+  o.reversedZ = true;
+  expectMethodsAgree(*this, scene, o, "near/far reversed z", false, {Method::Clustered});
+}
+
+TEST_F(GpuTest, ClusteredAgreesAtManyLights) {
+  Scene scene = builtinTemple(4096);
+  expectMethodsAgree(*this, scene, methodOptions(96, 54, 4096), "4096 lights", false, {Method::Clustered});
+}
+
+// Auto runs a real method, says why, and gives the image of the method it names.
+TEST_F(GpuTest, AutoPicksAMethodAndSaysWhy) {
+  Scene scene = builtinTemple(64);
+  RenderOptions o = methodOptions(96, 54, 64);
+  ASSERT_EQ(RenderOptions{}.method, Method::Auto);  // the default
+  o.method = Method::Auto;
+  const FrameStats& st = render(scene, o, {{Target::Hdr}});
+  Method ran;
+  ASSERT_TRUE(parse(st.method, ran)) << st.method;
+  EXPECT_NE(ran, Method::Auto);
+  EXPECT_NE(ran, Method::Forward);  // never picked: slowest from 256 lights on every device measured
+  EXPECT_EQ(st.methodReason.rfind("auto: ", 0), 0u) << st.methodReason;
+  EXPECT_NE(st.methodReason.find(name(ran)), std::string::npos) << st.methodReason;
+  const CpuImage autoHdr = renderer(scene).readback[size_t(Target::Hdr)];
+  o.method = ran;
+  render(scene, o, {{Target::Hdr}});
+  EXPECT_EQ(autoHdr.data, renderer(scene).readback[size_t(Target::Hdr)].data) << "auto is " << name(ran) << " exactly";
+  // The single-pass path is deferred's.
+  o.method = Method::Auto;
+  o.path = Path::SinglePass;
+  EXPECT_EQ(render(scene, o).method, std::string("deferred"));
+}
 
 TEST_F(GpuTest, DeferredAndTiledGiveTheSameImageWithinTheAccumulationBound) {
   for (int lights : {0, 16, 256}) {
@@ -157,12 +232,15 @@ TEST_F(GpuTest, ForwardAgreesWithDeferredWhereTheGBufferStoresExactValues) {
 // What coverage_masked counts per method, checked against the lights that reach each pixel's
 // surface point (brute force in double): deferred counts point-light fragment shader runs,
 // tiled the lights in the pixel's tile list (the same for every geometry pixel of a tile),
-// forward the lights each fragment looped over (all visible lights, for every fragment shaded
-// there, hidden ones included). None may count fewer than the lights that reach the pixel.
+// clustered the lights in its cluster's list (a cluster's box lies inside its tile's, so never
+// more than tiled's count there), forward the lights each fragment looped over (all visible
+// lights, for every fragment shaded there, hidden ones included). None may count fewer than the
+// lights that reach the pixel.
 TEST_F(GpuTest, CoverageCountsWhatEachMethodEvaluatedAndNeverLessThanTheLightsThatReach) {
   Scene scene = builtinTemple(128);
   RenderOptions o = methodOptions(96, 54, 128);
-  for (Method method : {Method::Deferred, Method::Tiled, Method::Forward}) {
+  CpuImage tiledCoverage;
+  for (Method method : {Method::Deferred, Method::Tiled, Method::Clustered, Method::Forward}) {
     o.method = method;
     const FrameStats& st = render(scene, o, {{Target::CoverageMasked, Target::DepthStencil}, {}, true});
     const Renderer& r = renderer(scene);
@@ -195,6 +273,9 @@ TEST_F(GpuTest, CoverageCountsWhatEachMethodEvaluatedAndNeverLessThanTheLightsTh
           ASSERT_GE(count, visible) << x << "," << y;
           ASSERT_EQ(count % visible, 0u) << x << "," << y;
         }
+        if (method == Method::Clustered) {
+          ASSERT_LE(count, tiledCoverage.raw(x, y, 0)) << "clustered pixel " << x << "," << y;
+        }
         if (method == Method::Tiled) {  // one list per tile
           uint32_t tx = x - x % gpu::kTileSize, ty = y - y % gpu::kTileSize;
           for (uint32_t yy = ty; yy < std::min(ty + gpu::kTileSize, o.height); ++yy)
@@ -205,6 +286,7 @@ TEST_F(GpuTest, CoverageCountsWhatEachMethodEvaluatedAndNeverLessThanTheLightsTh
         }
       }
     EXPECT_GT(surface, int(o.width * o.height / 2));
+    if (method == Method::Tiled) tiledCoverage = coverage;
   }
 }
 

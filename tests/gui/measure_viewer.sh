@@ -2,10 +2,15 @@
 # Measures the viewer under its own Xvfb: idle CPU over 10 s (no input, animation paused),
 # click-to-dossier latency (5 clicks), and frame time while the animation plays, with
 # presentation (the viewer's render + views + present) and without (gblens render --frames).
-# Usage: tests/gui/measure_viewer.sh [BUILD_DIR] [RENDER_SIZE]   (defaults: build 320x180)
+# Then input -> updated view: five right-drag steps (orbit), each from idle, timed from just
+# before xdotool sends the motion to the first frame on screen after it (the viewer's "frame"
+# events carry their wall-clock time), and the refinement to the full size after it.
+# Usage: tests/gui/measure_viewer.sh [BUILD_DIR] [RENDER_SIZE] [REDUCE]
+#   (defaults: build 320x180 auto; REDUCE is --reduce-while-moving: auto, off or N)
 set -eu
 BUILD=${1:-build}
 SIZE=${2:-320x180}
+REDUCE=${3:-auto}
 GBLENS=$BUILD/gblens
 OUT=$(mktemp -d)
 exec 3>"$OUT/display"
@@ -15,7 +20,8 @@ trap 'kill $XVFB 2>/dev/null; rm -rf "$OUT"' EXIT
 while [ ! -s "$OUT/display" ]; do sleep 0.1; done
 export DISPLAY=:$(head -1 "$OUT/display")
 
-"$GBLENS" view --size "$SIZE" --window 1600x900 --paused --time 1 --event-log "$OUT/events" 2>"$OUT/viewer.log" &
+"$GBLENS" view --size "$SIZE" --window 1600x900 --paused --time 1 --reduce-while-moving "$REDUCE" \
+  --event-log "$OUT/events" 2>"$OUT/viewer.log" &
 VIEWER=$!
 until grep -q '"ready"' "$OUT/events" 2>/dev/null; do sleep 0.2; done
 WID=$(xdotool search --onlyvisible --name '^gblens' | head -1)
@@ -40,6 +46,36 @@ for p in "40 30" "100 60" "160 90" "220 120" "280 150"; do
 done
 echo "click -> dossier ready (ms):    $(grep '"probe"' "$OUT/events" | sed 's/.*"latency_ms":\([0-9.]*\).*/\1/' | tr '\n' ' ')"
 echo "click -> dossier on screen (ms): $(grep '"probe_shown"' "$OUT/events" | sed 's/.*"latency_ms":\([0-9.]*\).*/\1/' | tr '\n' ' ')"
+
+# Drag latency: right button held over the final view, five motions from idle.
+xdotool key --window "$WID" 0; sleep 2
+VIEW=$(grep '"layout"' "$OUT/events" | tail -1)
+VX=$(echo "$VIEW" | sed 's/.*"rect":\[\([0-9.]*\),\([0-9.]*\),\([0-9.]*\),\([0-9.]*\)\].*/\1 \3/' | awk '{print int($1 + $2 / 2)}')
+VY=$(echo "$VIEW" | sed 's/.*"rect":\[\([0-9.]*\),\([0-9.]*\),\([0-9.]*\),\([0-9.]*\)\].*/\2 \4/' | awk '{print int($1 + $2 / 2)}')
+xdotool mousemove --window "$WID" "$VX" "$VY" mousedown 3; sleep 1.5
+: > "$OUT/sent"
+for i in 1 2 3 4 5; do
+  date +%s%3N >> "$OUT/sent"; xdotool mousemove_relative -- 15 0; sleep 2.5
+done
+xdotool mouseup 3; sleep 1
+python3 - "$OUT/sent" "$OUT/events" "$SIZE" "$REDUCE" <<'PY'
+import json, sys
+sent = [float(l) for l in open(sys.argv[1])]
+frames = [j for j in map(json.loads, open(sys.argv[2])) if j.get("event") == "frame"]
+lat, ref, sizes = [], [], []
+for t in sent:
+    after = [f for f in frames if f["shown_epoch_ms"] > t]
+    if not after:
+        continue
+    lat.append(after[0]["shown_epoch_ms"] - t)
+    sizes.append("%dx%d" % tuple(after[0]["size"]))
+    full = [f for f in after if f["reduced_by"] == 1]
+    if full and after[0]["reduced_by"] > 1:
+        ref.append(full[0]["shown_epoch_ms"] - t)
+print("drag (%s, --reduce-while-moving %s): input -> updated view (ms): %s" % (sys.argv[3], sys.argv[4], " ".join("%.0f" % x for x in lat)))
+print("  first frame after each input: %s" % " ".join(sizes))
+print("  input -> full-size frame again (ms): %s" % (" ".join("%.0f" % x for x in ref) or "- (no reduced frames)"))
+PY
 
 # Animation: 10 s of continuous rendering with presentation, then quit.
 xdotool mousemove --window "$WID" 800 890 key --window "$WID" space

@@ -78,8 +78,10 @@ class GuiTest : public GpuTest {
 
 TEST_F(GuiTest, KeysShowEveryViewAndAClickProbesThePixelAsAHeadlessRenderDoes) {
   const std::string size = std::to_string(kW) + "x" + std::to_string(kH);
+  // Full frames only: auto's reduction depends on measured times (the next test checks it).
   viewer_ = gui::spawn({GBLENS_BINARY, "view", "builtin:temple", "--validate", "--size", size, "--time", "1.5", "--paused",
-                        "--window", "1280x720", "--event-log", eventLog(), "--probe-log", probeLog()},
+                        "--window", "1280x720", "--reduce-while-moving", "off", "--event-log", eventLog(), "--probe-log",
+                        probeLog()},
                        {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
   ASSERT_FALSE(waitEvent([](const nlohmann::json& j) { return j["event"] == "ready"; }, 60.0).is_null())
       << "the viewer did not present a frame; see " << (dir_ / "viewer.log");
@@ -195,6 +197,58 @@ TEST_F(GuiTest, KeysShowEveryViewAndAClickProbesThePixelAsAHeadlessRenderDoes) {
   nlohmann::json headless = nlohmann::json::parse(text);
   for (const char* key : {"targets", "decoded", "position", "shadow_map", "lighting", "hdr", "final"})
     EXPECT_EQ(dossier[key], headless[key]) << key << "\nviewer:   " << dossier[key].dump() << "\nheadless: " << headless[key].dump();
+}
+
+// While the camera is dragged the viewer shows reduced frames (--reduce-while-moving 3: a third of
+// the size each way, 64x36 for 192x108, rounded up), and when the drag stops the full frame
+// replaces them; a click then probes the full-resolution frame.
+TEST_F(GuiTest, AReducedFrameWhileMovingIsFollowedByAFullOne) {
+  const std::string size = std::to_string(kW) + "x" + std::to_string(kH);
+  viewer_ = gui::spawn({GBLENS_BINARY, "view", "builtin:temple", "--validate", "--size", size, "--time", "1.5", "--paused",
+                        "--window", "1280x720", "--reduce-while-moving", "3", "--event-log", eventLog()},
+                       {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
+  auto frame = [](int reducedBy, int w, int h) {
+    return [=](const nlohmann::json& j) {
+      return j["event"] == "frame" && j["reduced_by"] == reducedBy && j["size"] == nlohmann::json({w, h});
+    };
+  };
+  ASSERT_FALSE(waitEvent(frame(1, int(kW), int(kH)), 60.0).is_null()) << "no first full frame; see " << (dir_ / "viewer.log");
+  nlohmann::json layout = waitLayout("final");
+  ASSERT_FALSE(layout.is_null());
+  std::string wid = xdotool("search --onlyvisible --name '^gblens'");
+  wid = wid.substr(0, wid.find('\n'));
+  ASSERT_FALSE(wid.empty());
+  const nlohmann::json& view = layout["views"][0];
+  const int cx = int(double(view["rect"][0]) + double(view["rect"][2]) * 0.5);
+  const int cy = int(double(view["rect"][1]) + double(view["rect"][3]) * 0.5);
+
+  // Right-drag (orbit) in steps, the button held between them.
+  xdotool("mousemove --window " + wid + " " + std::to_string(cx) + " " + std::to_string(cy) + " mousedown 3");
+  for (int i = 0; i < 4; ++i) xdotool("mousemove_relative -- 12 0 sleep 0.15");
+  nlohmann::json reduced = waitEvent(frame(3, 64, 36));
+  EXPECT_FALSE(reduced.is_null()) << "dragging showed no reduced frame";
+  if (!reduced.is_null()) {
+    EXPECT_EQ(reduced["full"], nlohmann::json({int(kW), int(kH)}));
+  }
+  xdotool("mouseup 3");
+  nlohmann::json full = waitEvent(frame(1, int(kW), int(kH)));
+  EXPECT_FALSE(full.is_null()) << "the reduced frame was not refined to the full size";
+  shoot("refined");
+
+  // The probe's pixel is a full-resolution one (texel coordinates of the full frame).
+  const int px = 150, py = 90;
+  double sx = double(view["origin"][0]) + (px + 0.5) * double(view["scale"]);
+  double sy = double(view["origin"][1]) + (py + 0.5) * double(view["scale"]);
+  xdotool("mousemove --window " + wid + " " + std::to_string(int(sx)) + " " + std::to_string(int(sy)) + " click 1");
+  nlohmann::json probe = waitEvent([](const nlohmann::json& j) { return j["event"] == "probe"; });
+  ASSERT_FALSE(probe.is_null()) << "the click produced no dossier";
+  EXPECT_EQ(probe["pixel"], nlohmann::json({px, py}));
+
+  xdotool("key --window " + wid + " ctrl+q");
+  int status = -1;
+  ASSERT_TRUE(gui::waitExit(viewer_, 30.0, status)) << "the viewer did not quit";
+  viewer_ = -1;
+  EXPECT_EQ(status, 0) << "validation messages or a failure; see " << (dir_ / "viewer.log");
 }
 
 }  // namespace gb

@@ -1,12 +1,12 @@
-// Capture comparison: channel groups and their metrics, idiff's decision rule, the report.
+// Capture comparison by meaning: the targets of both layouts matched by name, their quantities by
+// name, each pixel decoded with its own frame's layout (renderer/core/decode.h) and compared with
+// the metric its kind calls for; the report and idiff's verdicts.
 #include "views/analysis/compare.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <functional>
 
-#include "renderer/core/codec.h"
+#include "renderer/core/decode.h"
 #include "renderer/core/statistics.h"
 
 namespace gb {
@@ -16,80 +16,28 @@ const char* name(MetricKind k) {
   return n[int(k)];
 }
 
-static bool startsWith(const std::string& s, const char* p) { return s.rfind(p, 0) == 0; }
-
-static MetricKind channelKind(Target t, const CpuImage& img, const std::string& ch) {
-  std::string target = targetName(t);
-  if (img.encoding == Encoding::Uint || ch == "Stencil") return MetricKind::Exact;
-  if (startsWith(ch, "N.")) return MetricKind::Normal;
-  if (startsWith(ch, "P.") || target.find("position") != std::string::npos) return MetricKind::Position;
-  if (ch == "Z" || ch == "Depth") return MetricKind::Depth;
-  return MetricKind::Colour;
+MetricKind metricOf(QuantityKind k) {
+  switch (k) {
+    case QuantityKind::Normal: return MetricKind::Normal;
+    case QuantityKind::Depth: return MetricKind::Depth;
+    case QuantityKind::Position:
+    case QuantityKind::Motion: return MetricKind::Position;
+    case QuantityKind::Id:
+    case QuantityKind::Stencil:
+    case QuantityKind::Count: return MetricKind::Exact;
+    default: return MetricKind::Colour;
+  }
 }
 
-std::vector<ChannelGroup> channelGroups(Target t, const CpuImage& img) {
+std::vector<ChannelGroup> channelGroups(const Layout& layout, uint32_t target) {
   std::vector<ChannelGroup> groups;
-  for (uint32_t c = 0; c < img.channelCount(); ++c) {
-    MetricKind k = channelKind(t, img, img.channels[c]);
-    auto it = std::find_if(groups.begin(), groups.end(), [k](const ChannelGroup& g) { return g.kind == k; });
-    if (it == groups.end()) {
-      const std::string& ch = img.channels[c];
-      groups.push_back({"", ch.substr(0, ch.find('.')), k, {}});
-      it = groups.end() - 1;
-    }
-    it->channels.push_back(c);
+  const std::vector<const Quantity*> qs = layout.quantitiesOf(target);
+  for (const Quantity* q : qs) {
+    const std::string& tn = layout.targets[target].name;
+    groups.push_back({qs.size() == 1 ? tn : tn + "." + q->name, q->name, metricOf(q->kind), q->channels});
   }
-  for (ChannelGroup& g : groups) g.key = groups.size() == 1 ? targetName(t) : std::string(targetName(t)) + "." + g.group;
   return groups;
 }
-
-// ---- thresholds --------------------------------------------------------------------------------
-
-bool ThresholdSettings::add(const std::string& param, const std::string& text, std::string& error) {
-  std::string key, number = text;
-  size_t eq = text.find('=');
-  if (eq != std::string::npos) {
-    key = text.substr(0, eq);
-    number = text.substr(eq + 1);
-    Target t;
-    if (key.empty() || !parseTarget(key.substr(0, key.find('.')), t)) {
-      error = "--" + param + " " + text + ": \"" + key + "\" names no target";
-      return false;
-    }
-  }
-  char* end = nullptr;
-  double v = std::strtod(number.c_str(), &end);
-  if (number.empty() || *end != '\0' || std::isnan(v) || v < 0.0) {
-    error = "--" + param + " " + text + ": expected a non-negative number" + (key.empty() ? "" : " after =");
-    return false;
-  }
-  byKey[key][param] = v;
-  return true;
-}
-
-Thresholds ThresholdSettings::resolve(const std::string& target, const std::string& key) const {
-  Thresholds t;
-  for (const std::string& k : {std::string(), target, key}) {
-    auto it = byKey.find(k);
-    if (it == byKey.end()) continue;
-    for (auto& [param, v] : it->second) {
-      if (param == "fail") t.fail = v;
-      if (param == "failpercent") t.failPercent = v;
-      if (param == "hardfail") t.hardFail = v;
-      if (param == "warn") t.warn = v;
-      if (param == "warnpercent") t.warnPercent = v;
-    }
-  }
-  return t;
-}
-
-Verdict decide(const Thresholds& t, uint64_t pixels, uint64_t overWarn, uint64_t overFail, double maxError) {
-  if (double(overFail) > t.failPercent / 100.0 * double(pixels) || maxError > t.hardFail) return Verdict::Fail;
-  if (double(overWarn) > t.warnPercent / 100.0 * double(pixels)) return Verdict::Warn;
-  return Verdict::Pass;
-}
-
-// ---- metrics -----------------------------------------------------------------------------------
 
 double angleDegrees(const glm::dvec3& a, const glm::dvec3& b) {
   bool za = glm::dot(a, a) == 0.0, zb = glm::dot(b, b) == 0.0;
@@ -98,121 +46,215 @@ double angleDegrees(const glm::dvec3& a, const glm::dvec3& b) {
   return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)) * (180.0 / M_PI);
 }
 
-// sRGB-stored channels compare in stored units (one 8-bit step = 1/255), as idiff does PNGs.
-static double colourValue(const CpuImage& img, uint32_t x, uint32_t y, uint32_t c) {
-  return img.encoding == Encoding::Srgb ? img.raw(x, y, c) / 255.0 : img.value(x, y, c);
+namespace {
+
+// One quantity on both sides.
+struct Side {
+  const FrameSnapshot& f;
+  const Quantity& q;
+};
+
+// Two projections equal to float precision (a camera read back from a uniform buffer is the double
+// one rounded to float): hardware depths stored under them mean the same surfaces.
+bool sameProjection(const Camera& a, const Camera& b) {
+  if (a.reversedZ != b.reversedZ) return false;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (std::abs(a.clipFromEye[c][r] - b.clipFromEye[c][r]) > 1e-6 * std::max(1.0, std::abs(a.clipFromEye[c][r])))
+        return false;
+  return true;
 }
 
-static double absDiff(double a, double b) {
+// Both sides store the quantity the same way: then the stored values are compared as they are
+// (bit-equal frames compare equal whatever the encoding, and thresholds keep their stored units).
+bool sameStorage(const Side& a, const Side& b) {
+  const LayoutTarget &ta = a.f.layout.targets[a.q.target], &tb = b.f.layout.targets[b.q.target];
+  const Quantity &qa = a.q, &qb = b.q;
+  // A hardware or radial depth means an eye depth only through its projection (standard and
+  // reversed Z store the same surface as d and about 1 - d).
+  const bool projected = qa.kind == QuantityKind::Depth && !qa.ofSun && qa.depth != DepthEncoding::Eye;
+  if (projected && !sameProjection(a.f.camera, b.f.camera)) return false;
+  return ta.format.name == tb.format.name && qa.channels.size() == qb.channels.size() && qa.kind == qb.kind &&
+         qa.color == qb.color && qa.normal == qb.normal && qa.depth == qb.depth && qa.space == qb.space &&
+         qa.background == qb.background && qa.scale == qb.scale && qa.bias == qb.bias && qa.units == qb.units;
+}
+
+// Stored values, sRGB-stored colour channels in stored units (one 8-bit step = 1/255, as idiff
+// compares PNGs).
+std::array<double, 4> storedUnits(const Side& s, uint32_t x, uint32_t y) {
+  std::array<double, 4> v = storedValues(s.f, s.q, x, y);
+  const TargetImage& ti = s.f.images[s.q.target];
+  if (ti.image.encoding == Encoding::Srgb)
+    for (size_t k = 0; k < s.q.channels.size() && k < 4; ++k) v[k] = ti.raw(x, y, s.q.channels[k]) / 255.0;
+  return v;
+}
+
+// Decoded components of a colour/scalar/vector/integer quantity.
+std::array<double, 4> decodedComponents(const Side& s, uint32_t x, uint32_t y) {
+  switch (s.q.kind) {
+    case QuantityKind::Albedo:
+    case QuantityKind::BaseColor:
+    case QuantityKind::Emission:
+    case QuantityKind::Radiance:
+    case QuantityKind::Display: {
+      glm::dvec4 c = decodeColor(s.f, s.q, x, y);
+      return {c.r, c.g, c.b, c.a};
+    }
+    case QuantityKind::Id:
+    case QuantityKind::Stencil:
+    case QuantityKind::Count: {
+      std::array<double, 4> v = storedValues(s.f, s.q, x, y);
+      for (double& c : v) c = std::isfinite(c) ? std::round(c) : c;
+      return v;
+    }
+    default: {
+      std::array<double, 4> v = storedValues(s.f, s.q, x, y);
+      for (double& c : v) c = c * s.q.scale + s.q.bias;
+      return v;
+    }
+  }
+}
+
+double absDiff(double a, double b) {
   if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b) ? 0.0 : INFINITY;
   if (a == b) return 0.0;  // equal infinities
   return std::abs(a - b);
 }
 
-static glm::dvec3 normalAt(Target t, const Capture& cap, const CpuImage& img, const ChannelGroup& g, uint32_t x,
-                           uint32_t y) {
-  if (t == Target::NormalShadow) return decodeNormalTexel(img, x, y, cap.frame.options.normalFormat).unit;
-  glm::dvec3 v(0.0);
-  for (size_t i = 0; i < g.channels.size() && i < 3; ++i) v[int(i)] = img.value(x, y, g.channels[i]);
-  return v;
-}
-
-namespace {
-// Running sums over a group's pixels (colour/exact: per channel sample; depth/position: per pixel).
+// Running sums over a group's compared pixels (colour/exact: per component; others: per pixel).
 struct ErrorSums {
   double sumAbs = 0.0, sumSq = 0.0, sumRel = 0.0, maxAbs = 0.0, maxRel = 0.0, sumErr = 0.0;
-  uint64_t samples = 0, differing = 0;
+  uint64_t samples = 0, differing = 0, compared = 0, coverage = 0;
 };
-}  // namespace
 
-// The error of one pixel by the group's metric (largest channel difference, angle in degrees,
-// relative depth or position distance), with the group's sums updated.
-static double pixelError(Target t, const Capture& ca, const Capture& cb, const ChannelGroup& g, uint32_t x, uint32_t y,
-                         ErrorSums& s) {
-  const CpuImage& a = ca.frame.target(t).image;
-  const CpuImage& b = cb.frame.target(t).image;
+// Largest component difference (colours, scalars, integers).
+double componentError(const Side& a, const Side& b, bool stored, uint32_t x, uint32_t y, ErrorSums& s) {
+  std::array<double, 4> va = stored ? storedUnits(a, x, y) : decodedComponents(a, x, y);
+  std::array<double, 4> vb = stored ? storedUnits(b, x, y) : decodedComponents(b, x, y);
+  const size_t n = std::min({a.q.channels.size(), b.q.channels.size(), size_t(4)});
   double e = 0.0;
-  switch (g.kind) {
-    case MetricKind::Colour:
-    case MetricKind::Exact:
-      for (uint32_t c : g.channels) {
-        double va = g.kind == MetricKind::Colour ? colourValue(a, x, y, c) : a.value(x, y, c);
-        double vb = g.kind == MetricKind::Colour ? colourValue(b, x, y, c) : b.value(x, y, c);
-        double d = absDiff(va, vb);
-        e = std::max(e, d);
-        s.sumAbs += d;
-        s.sumSq += d * d;
-        ++s.samples;
-      }
-      break;
-    case MetricKind::Normal: e = angleDegrees(normalAt(t, ca, a, g, x, y), normalAt(t, cb, b, g, x, y)); break;
-    case MetricKind::Depth:
-    case MetricKind::Position: {
-      double dist2 = 0.0, mag = 0.0, rel = 0.0;
-      for (uint32_t c : g.channels) {
-        double va = a.value(x, y, c), vb = b.value(x, y, c), d = absDiff(va, vb);
-        dist2 += d * d;
-        mag = std::max({mag, std::abs(va), std::abs(vb)});
-        if (d > 0.0) rel = std::max(rel, d / std::max(std::abs(va), std::abs(vb)));
-      }
-      double abs = std::sqrt(dist2);
-      if (std::isnan(rel) || std::isinf(abs)) rel = INFINITY;
-      s.maxAbs = std::max(s.maxAbs, abs);
-      s.maxRel = std::max(s.maxRel, rel);
-      s.sumAbs += abs;
-      s.sumRel += rel;
-      e = g.kind == MetricKind::Depth ? rel : abs;
-      break;
-    }
+  for (size_t k = 0; k < n; ++k) {
+    double d = absDiff(va[k], vb[k]);
+    e = std::max(e, d);
+    s.sumAbs += d;
+    s.sumSq += d * d;
+    ++s.samples;
   }
   return e;
 }
 
+// Distance and relative distance of two vectors (positions, motion, depths as 1-vectors).
+double distanceError(const std::array<double, 4>& va, const std::array<double, 4>& vb, size_t n, bool relative,
+                     ErrorSums& s) {
+  double dist2 = 0.0, rel = 0.0;
+  for (size_t k = 0; k < n; ++k) {
+    double d = absDiff(va[k], vb[k]);
+    dist2 += d * d;
+    if (d > 0.0) rel = std::max(rel, d / std::max(std::abs(va[k]), std::abs(vb[k])));
+  }
+  double abs = std::sqrt(dist2);
+  if (std::isnan(rel) || std::isinf(abs)) rel = INFINITY;
+  s.maxAbs = std::max(s.maxAbs, abs);
+  s.maxRel = std::max(s.maxRel, rel);
+  s.sumAbs += abs;
+  s.sumRel += rel;
+  return relative ? rel : abs;
+}
+
+std::array<double, 4> vec(const glm::dvec3& v) { return {v.x, v.y, v.z, 0.0}; }
+
+// The error of one pixel by the group's metric; nullopt where the pixel is not compared (normals
+// where neither frame has a surface).
+std::optional<double> pixelError(MetricKind kind, const Side& a, const Side& b, bool stored, uint32_t x, uint32_t y,
+                                 ErrorSums& s) {
+  switch (kind) {
+    case MetricKind::Colour:
+    case MetricKind::Exact: return componentError(a, b, stored, x, y, s);
+    case MetricKind::Normal: {
+      const bool sa = hasSurface(a.f, x, y), sb = hasSurface(b.f, x, y);
+      if (!sa && !sb) return std::nullopt;
+      if (sa != sb) return ++s.coverage, 180.0;
+      return angleDegrees(decodeNormal(a.f, a.q, x, y).unit, decodeNormal(b.f, b.q, x, y).unit);
+    }
+    case MetricKind::Depth: {
+      if (stored || a.q.ofSun || b.q.ofSun) return distanceError(storedValues(a.f, a.q, x, y), storedValues(b.f, b.q, x, y), 1, true, s);
+      std::optional<double> da = decodeEyeDepth(a.f, a.q, x, y), db = decodeEyeDepth(b.f, b.q, x, y);
+      if (!da && !db) return 0.0;
+      if (!da || !db) return ++s.coverage, 1.0;  // a surface in one frame only: 100 %
+      return distanceError({*da}, {*db}, 1, true, s);
+    }
+    case MetricKind::Position: {
+      if (stored) return distanceError(storedValues(a.f, a.q, x, y), storedValues(b.f, b.q, x, y),
+                                       std::min(a.q.channels.size(), b.q.channels.size()), false, s);
+      if (a.q.kind == QuantityKind::Motion) {
+        glm::dvec2 ma = decodeMotion(a.f, a.q, x, y), mb = decodeMotion(b.f, b.q, x, y);
+        return distanceError({ma.x, ma.y}, {mb.x, mb.y}, 2, false, s);
+      }
+      std::optional<glm::dvec3> pa = decodePosition(a.f, a.q, x, y), pb = decodePosition(b.f, b.q, x, y);
+      if (!pa && !pb) return 0.0;
+      if (!pa || !pb) return ++s.coverage, INFINITY;
+      return distanceError(vec(*pa), vec(*pb), 3, false, s);
+    }
+  }
+  return 0.0;
+}
+
 // The group's metrics under its kind's names, the fractions over the thresholds.
-static nlohmann::json groupMetrics(const GroupResult& r, const ErrorSums& s) {
+nlohmann::json groupMetrics(const GroupResult& r, const ErrorSums& s) {
   const double n = double(std::max<uint64_t>(r.pixels, 1));
+  const double samples = double(std::max<uint64_t>(s.samples, 1));
   nlohmann::json m;
   switch (r.group.kind) {
     case MetricKind::Colour: {
-      double rmse = std::sqrt(s.sumSq / double(std::max<uint64_t>(s.samples, 1)));
-      m = {{"max_abs", r.maxError}, {"mean_abs", s.sumAbs / double(std::max<uint64_t>(s.samples, 1))}, {"rmse", rmse},
+      double rmse = std::sqrt(s.sumSq / samples);
+      m = {{"max_abs", r.maxError}, {"mean_abs", s.sumAbs / samples}, {"rmse", rmse},
            {"psnr_db", rmse > 0.0 ? 20.0 * std::log10(1.0 / rmse) : INFINITY}};
       break;
     }
     case MetricKind::Normal: {
-      const double p99 = percentile(std::vector<double>(r.errors.begin(), r.errors.end()), 0.99);
-      m = {{"max_degrees", r.maxError}, {"mean_degrees", r.meanError}, {"p99_degrees", p99}};
+      std::vector<double> compared;
+      for (float e : r.errors)
+        if (!std::isnan(e)) compared.push_back(e);
+      m = {{"max_degrees", r.maxError}, {"mean_degrees", r.meanError}, {"p99_degrees", percentile(compared, 0.99)}};
       break;
     }
     case MetricKind::Depth:
     case MetricKind::Position:
       m = {{"max_abs", s.maxAbs}, {"mean_abs", s.sumAbs / n}, {"max_rel", s.maxRel}, {"mean_rel", s.sumRel / n}};
       break;
-    case MetricKind::Exact: m = {{"differing_pixels", s.differing}, {"max_abs", r.maxError}}; break;
+    case MetricKind::Exact: m = {{"max_abs", r.maxError}}; break;
   }
   m["differing_pixels"] = s.differing;
+  if (r.group.kind == MetricKind::Normal || r.group.kind == MetricKind::Depth || r.group.kind == MetricKind::Position)
+    m["coverage_differs"] = s.coverage;
   m["fraction_over_fail"] = double(r.overFail) / n;
   m["fraction_over_warn"] = double(r.overWarn) / n;
   return m;
 }
 
-static void compareGroup(Target t, const Capture& ca, const Capture& cb, GroupResult& r) {
-  const CpuImage& a = ca.frame.target(t).image;
-  r.width = a.width;
-  r.height = a.height;
-  r.pixels = uint64_t(a.width) * a.height;
-  r.errors.assign(r.pixels, 0.0f);
+void compareGroup(const Side& a, const Side& b, GroupResult& r) {
+  const TargetImage& ta = a.f.images[a.q.target];
+  r.width = ta.image.width;
+  r.height = ta.image.height;
+  r.errors.assign(size_t(r.width) * r.height, 0.0f);
+  const bool stored = sameStorage(a, b);
   ErrorSums s;
-  for (uint32_t y = 0; y < a.height; ++y)
-    for (uint32_t x = 0; x < a.width; ++x) {
-      double e = pixelError(t, ca, cb, r.group, x, y, s);
-      r.errors[size_t(y) * a.width + x] = float(e);
-      r.maxError = std::max(r.maxError, e);
-      s.sumErr += e;
-      s.differing += e > 0.0;
-      r.overWarn += e > r.thresholds.warn;
-      r.overFail += e > r.thresholds.fail;
+  for (uint32_t y = 0; y < r.height; ++y)
+    for (uint32_t x = 0; x < r.width; ++x) {
+      std::optional<double> e = pixelError(r.group.kind, a, b, stored, x + ta.x0, y + ta.y0, s);
+      if (!e) {
+        r.errors[size_t(y) * r.width + x] = NAN;  // not compared (heat map: black; percentiles skip it)
+        continue;
+      }
+      r.errors[size_t(y) * r.width + x] = float(*e);
+      ++r.pixels;
+      r.maxError = std::max(r.maxError, *e);
+      s.sumErr += *e;
+      s.differing += *e > 0.0;
+      r.overWarn += *e > r.thresholds.warn;
+      r.overFail += *e > r.thresholds.fail;
     }
+  r.coverageDiffers = s.coverage;
   r.meanError = s.sumErr / double(std::max<uint64_t>(r.pixels, 1));
   r.metrics = groupMetrics(r, s);
   r.verdict = decide(r.thresholds, r.pixels, r.overWarn, r.overFail, r.maxError);
@@ -220,7 +262,7 @@ static void compareGroup(Target t, const Capture& ca, const Capture& cb, GroupRe
 
 // Manifest fields whose difference a reader should know about: every option, the scene, the
 // lights, the device and the build.
-static void manifestDifferences(const nlohmann::json& a, const nlohmann::json& b, nlohmann::json& out) {
+void manifestDifferences(const nlohmann::json& a, const nlohmann::json& b, nlohmann::json& out) {
   nlohmann::json fa = nlohmann::json::object(), fb = nlohmann::json::object();
   for (const char* key : {"options", "scene", "device", "driver", "gblens", "lights", "sun"}) {
     fa[key] = a.is_object() ? a.value(key, nlohmann::json()) : nlohmann::json();
@@ -236,59 +278,96 @@ static void manifestDifferences(const nlohmann::json& a, const nlohmann::json& b
   for (auto& d : out) std::replace(d["name"].get_ref<std::string&>().begin(), d["name"].get_ref<std::string&>().end(), '/', '.');
 }
 
+// Target names of both layouts: A's in order, then B's that A lacks.
+std::vector<std::string> targetNames(const Layout& a, const Layout& b) {
+  std::vector<std::string> names;
+  for (const LayoutTarget& t : a.targets) names.push_back(t.name);
+  for (const LayoutTarget& t : b.targets)
+    if (a.findTarget(t.name) < 0) names.push_back(t.name);
+  return names;
+}
+
+std::string whyAbsent(const FrameSnapshot& f, int index) {
+  return index < 0 ? "not in its layout" : absentText(f.absences[size_t(index)]);
+}
+
+// Why two present targets of one name cannot be compared ("" when they can).
+std::string targetMismatch(const FrameSnapshot& fa, int ia, const FrameSnapshot& fb, int ib) {
+  const TargetImage &a = fa.images[size_t(ia)], &b = fb.images[size_t(ib)];
+  if (a.image.width != b.image.width || a.image.height != b.image.height || a.x0 != b.x0 || a.y0 != b.y0)
+    return "size " + std::to_string(a.image.width) + "x" + std::to_string(a.image.height) + " vs " +
+           std::to_string(b.image.width) + "x" + std::to_string(b.image.height);
+  for (const Quantity* q : fa.layout.quantitiesOf(uint32_t(ia))) {
+    const Quantity* other = fb.layout.findByName(q->name);
+    if (!other || int(other->target) != ib) return "quantity " + q->name + " only in A";
+    if (metricOf(other->kind) != metricOf(q->kind))
+      return "quantity " + q->name + " is " + name(q->kind) + " in A, " + name(other->kind) + " in B";
+  }
+  for (const Quantity* q : fb.layout.quantitiesOf(uint32_t(ib))) {
+    const Quantity* other = fa.layout.findByName(q->name);
+    if (!other || int(other->target) != ia) return "quantity " + q->name + " only in B";
+  }
+  return "";
+}
+
+}  // namespace
+
 bool compareCaptures(const Capture& ca, const Capture& cb, const ThresholdSettings& settings, CompareReport& report,
                      std::string& error) {
   report = CompareReport{};
   report.a = ca.dir;
   report.b = cb.dir;
   manifestDifferences(ca.manifest, cb.manifest, report.differences);
-  std::vector<std::string> knownKeys = {""};
+  const FrameSnapshot &fa = ca.frame, &fb = cb.frame;
+  std::vector<std::string> knownTargets, knownKeys = {""};
   Verdict worst = Verdict::Pass;
-  for (const TargetInfo& info : targetTable()) {
-    const Target t = info.target;
-    const TargetImage &a = ca.frame.target(t), &b = cb.frame.target(t);
-    std::string tn = targetName(t);
-    if (!a.present() && !b.present()) {
-      report.skipped.push_back({tn, std::string("absent in both (A: ") + absentText(ca.frame.absence(t)) +
-                                        "; B: " + absentText(cb.frame.absence(t)) + ")"});
+  for (const std::string& tn : targetNames(fa.layout, fb.layout)) {
+    knownTargets.push_back(tn);
+    const int ia = fa.indexOf(tn), ib = fb.indexOf(tn);
+    const bool pa = ia >= 0 && fa.images[size_t(ia)].present(), pb = ib >= 0 && fb.images[size_t(ib)].present();
+    if (!pa && !pb) {
+      report.skipped.push_back({tn, "absent in both (A: " + whyAbsent(fa, ia) + "; B: " + whyAbsent(fb, ib) + ")"});
       continue;
     }
-    if (a.present() != b.present()) {
-      const char* why = absentText(a.present() ? cb.frame.absence(t) : ca.frame.absence(t));
-      report.mismatches.push_back({tn, std::string("only in ") + (a.present() ? "A" : "B") + " (" + why + ")"});
+    if (pa != pb) {
+      report.mismatches.push_back(
+          {tn, std::string("only in ") + (pa ? "A" : "B") + " (" + (pa ? whyAbsent(fb, ib) : whyAbsent(fa, ia)) + ")"});
       continue;
     }
-    if (a.image.width != b.image.width || a.image.height != b.image.height) {
-      report.mismatches.push_back({tn, "size " + std::to_string(a.image.width) + "x" + std::to_string(a.image.height) +
-                                           " vs " + std::to_string(b.image.width) + "x" + std::to_string(b.image.height)});
-      continue;
-    }
-    if (a.image.channels != b.image.channels) {
-      report.mismatches.push_back({tn, "different channels"});
+    if (std::string why = targetMismatch(fa, ia, fb, ib); !why.empty()) {
+      report.mismatches.push_back({tn, why});
       continue;
     }
     knownKeys.push_back(tn);
-    for (const ChannelGroup& g : channelGroups(t, a.image)) {
+    for (const ChannelGroup& g : channelGroups(fa.layout, uint32_t(ia))) {
       knownKeys.push_back(g.key);
       GroupResult r;
       r.group = g;
       r.target = tn;
       r.thresholds = settings.resolve(tn, g.key);
-      compareGroup(t, ca, cb, r);
+      compareGroup({fa, *fa.layout.findByName(g.group)}, {fb, *fb.layout.findByName(g.group)}, r);
       worst = std::max(worst, r.verdict);
       report.groups.push_back(std::move(r));
     }
   }
-  // A key for a target that was compared must name it or one of its groups; keys for targets
-  // absent from both captures are ignored (one threshold file serves several configurations).
-  for (auto& [key, params] : settings.byKey)
-    if (std::find(knownKeys.begin(), knownKeys.end(), key.substr(0, key.find('.'))) != knownKeys.end() &&
+  // A key must name a target of either layout (or of gblens's own, so one threshold file serves
+  // several configurations); a key for a compared target must name it or one of its quantities.
+  for (auto& [key, params] : settings.byKey) {
+    if (key.empty()) continue;
+    const std::string target = key.substr(0, key.find('.'));
+    Target native;
+    if (std::find(knownTargets.begin(), knownTargets.end(), target) == knownTargets.end() && !parseTarget(target, native)) {
+      error = "threshold for \"" + key + "\": no target \"" + target + "\" in either capture";
+      return false;
+    }
+    if (std::find(knownKeys.begin(), knownKeys.end(), target) != knownKeys.end() &&
         std::find(knownKeys.begin(), knownKeys.end(), key) == knownKeys.end()) {
       error = "threshold for \"" + key + "\": no such group (groups:";
       for (const GroupResult& g : report.groups) error += " " + g.group.key;
       error += ")";
       return false;
     }
+  }
   report.exitCode = report.mismatches.empty() ? int(worst) : kCompareMismatch;
   return true;
 }

@@ -10,28 +10,32 @@
 #include <string>
 #include <vector>
 
+#include "renderer/core/layout.h"
 #include "views/capture/capture.h"
 
 namespace gb {
 
-// How a group of channels is compared, and what its per-pixel error (the number thresholds
-// apply to) means:
-//   Colour   max over channels of |a - b| in decoded units (albedo, specular, shadow, hdr, final)
-//   Normal   angle between the decoded unit normals, degrees
-//   Depth    relative error |a - b| / max(|a|, |b|) (eye depth, hardware depth, shadow map)
-//   Position Euclidean length of the difference, scene units
-//   Exact    max over channels of |a - b| (integers: stencil, coverage, ids)
+// How a quantity is compared, and what its per-pixel error (the number thresholds apply to)
+// means. Each side is decoded with its own layout (renderer/core/decode.h), so two frames that
+// store a quantity differently compare by meaning; where both store it the same way the stored
+// values are compared (sRGB-stored channels in stored units: one 8-bit step = 1/255).
+//   Colour   max over components of |a - b| (colours, specular, shadow, scalars, vectors)
+//   Normal   angle between the decoded unit normals, degrees (pixels where either frame has a surface)
+//   Depth    relative error |a - b| / max(|a|, |b|): stored values, or eye depths across encodings
+//   Position Euclidean length of the difference, scene units (motion: pixels)
+//   Exact    max over components of |a - b| (integers: stencil, counts, ids)
 enum class MetricKind { Colour, Normal, Depth, Position, Exact };
 const char* name(MetricKind k);
+MetricKind metricOf(QuantityKind k);
 
-// A group of channels of one target compared together. Its key is the target's name when the
-// target has one group, else "<target>.<group>" (e.g. "normal_shadow.N", "normal_shadow.Shadow").
+// One quantity of one target, compared as a whole. Its key is the target's name when the target
+// holds one quantity, else "<target>.<quantity>" (e.g. "normal_shadow.N", "normal_shadow.Shadow").
 struct ChannelGroup {
-  std::string key, group;
+  std::string key, group;   // group: the quantity's name
   MetricKind kind = MetricKind::Colour;
-  std::vector<uint32_t> channels;
+  std::vector<uint32_t> channels;  // of A's target
 };
-std::vector<ChannelGroup> channelGroups(Target t, const CpuImage& image);
+std::vector<ChannelGroup> channelGroups(const Layout& layout, uint32_t target);
 
 // idiff's thresholds; each may be set globally (key "") or per target / group key. The most
 // specific setting wins: "<target>.<group>", then "<target>", then global, then idiff's default.
@@ -52,7 +56,8 @@ enum class Verdict { Pass = 0, Warn = 1, Fail = 2 };
 struct GroupResult {
   ChannelGroup group;
   std::string target;
-  uint64_t pixels = 0, overWarn = 0, overFail = 0;
+  uint64_t pixels = 0, overWarn = 0, overFail = 0;  // pixels: those compared (normals: with a surface)
+  uint64_t coverageDiffers = 0;  // normals, depths, positions: a surface in one frame only
   double maxError = 0.0, meanError = 0.0;
   Thresholds thresholds;
   Verdict verdict = Verdict::Pass;

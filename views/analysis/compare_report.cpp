@@ -1,4 +1,5 @@
 // The compare report: JSON (--json), the console summary, and heat-map PNGs (-o DIFFDIR).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -90,8 +91,8 @@ std::string CompareReport::text() const {
     }
     std::snprintf(line, sizeof(line), "%-5s %-26s %-8s %s; %.4g%% over fail %s, %.4g%% over warn %s\n",
                   g.verdict == Verdict::Pass ? "PASS" : g.verdict == Verdict::Warn ? "WARN" : "FAIL",
-                  g.group.key.c_str(), name(g.group.kind), m.c_str(), 100.0 * double(g.overFail) / double(g.pixels),
-                  fmt(g.thresholds.fail).c_str(), 100.0 * double(g.overWarn) / double(g.pixels),
+                  g.group.key.c_str(), name(g.group.kind), m.c_str(), 100.0 * double(g.overFail) / double(std::max<uint64_t>(g.pixels, 1)),
+                  fmt(g.thresholds.fail).c_str(), 100.0 * double(g.overWarn) / double(std::max<uint64_t>(g.pixels, 1)),
                   fmt(g.thresholds.warn).c_str());
     out += line;
   }
@@ -111,14 +112,17 @@ bool writeHeatmaps(CompareReport& report, const std::string& dir, std::string& e
   for (GroupResult& g : report.groups) {
     if (!(g.maxError > 0.0)) continue;
     // Linear from 0 (black) to the largest finite error (red); infinite errors (NaN against a
-    // number) are drawn white.
+    // number, a position where one frame has no surface) are drawn white; pixels not compared
+    // (normals where neither frame has a surface) black.
     double top = 0.0;
     for (float e : g.errors)
       if (std::isfinite(e)) top = std::max(top, double(e));
     Rgba8Image img{g.width, g.height, std::vector<uint8_t>(size_t(g.width) * g.height * 4, 255)};
     for (size_t i = 0; i < g.errors.size(); ++i) {
       uint8_t* p = &img.pixels[i * 4];
-      if (std::isfinite(g.errors[i]))
+      if (std::isnan(g.errors[i]))
+        p[0] = p[1] = p[2] = 0;
+      else if (std::isfinite(g.errors[i]))
         heatColor(top > 0.0 ? g.errors[i] / top * 1000.0 : 0.0, 1000.0, p);  // heatColor's max is >= 1
       else
         p[0] = p[1] = p[2] = 255;

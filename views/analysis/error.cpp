@@ -6,6 +6,7 @@
 
 #include "renderer/core/assert.h"
 #include "renderer/core/codec.h"
+#include "renderer/core/decode.h"
 #include "renderer/core/statistics.h"
 #include "views/analysis/visualize.h"
 
@@ -92,7 +93,11 @@ GpuPixel readGpuPixel(const FrameSnapshot& g, uint32_t x, uint32_t y, bool store
     p.in.geometry = p.hwDepth != far;
     p.in.P = p.pHw;
   }
-  p.n = decodeNormalTexel(g.target(Target::NormalShadow).image, x, y, o.normalFormat);
+  // The normal and the shadow term through the frame's layout (the one decoder, decode.h).
+  const NormalSample n = decodeNormal(g, *g.layout.find(QuantityKind::Normal), x, y);
+  p.n.unit = n.unit;
+  p.n.stored = n.stored;
+  p.n.shadow = decodeScalar(g, *g.layout.find(QuantityKind::Shadow), x, y);
   p.in.N = p.n.unit;
   p.in.unlit = unlitTexel(g.target(Target::NormalShadow).image, x, y, o.normalFormat);
   for (int c = 0; c < 3; ++c)

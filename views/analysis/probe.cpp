@@ -6,8 +6,11 @@
 #include <cmath>
 
 #include "renderer/core/codec.h"
+#include "renderer/core/decode.h"
+#include "renderer/core/layout_json.h"
 #include "renderer/scene/mesh_builder.h"
 #include "shaders/shading.h"
+#include "views/analysis/probe_internal.h"
 
 namespace gb {
 
@@ -16,12 +19,12 @@ static double floatUlp(double v) {
   return double(std::nextafter(f, INFINITY)) - double(f);
 }
 
-static ProbeTarget rawTarget(const FrameSnapshot& f, Target t, uint32_t x, uint32_t y) {
+static ProbeTarget rawTarget(const FrameSnapshot& f, uint32_t t, uint32_t x, uint32_t y) {
   ProbeTarget p;
-  p.target = targetName(t);
-  const TargetImage& ti = f.target(t);
+  p.target = f.layout.targets[t].name;
+  const TargetImage& ti = f.images[t];
   if (!ti.present()) {
-    p.absent = absentText(f.absence(t) == Absent::No ? Absent::NotCaptured : f.absence(t));
+    p.absent = absentText(f.absences[t] == Absent::No ? Absent::NotCaptured : f.absences[t]);
     return p;
   }
   p.type = name(ti.image.type);
@@ -33,6 +36,20 @@ static ProbeTarget rawTarget(const FrameSnapshot& f, Target t, uint32_t x, uint3
   p.present = true;
   for (uint32_t c = 0; c < ti.image.channelCount(); ++c) p.channels.push_back({ti.image.channels[c], ti.raw(x, y, c), ti.value(x, y, c)});
   return p;
+}
+
+// A target holding only the sun's depth (the shadow map): the shadow-map lookup shows it.
+static bool sunDepthTarget(const Layout& l, uint32_t t) {
+  for (const Quantity* q : l.quantitiesOf(t))
+    if (!(q->kind == QuantityKind::Depth && q->ofSun)) return false;
+  return true;
+}
+
+// The layout's camera depth of one encoding (eye depth, hardware depth), or null.
+static const Quantity* cameraDepth(const Layout& l, DepthEncoding e) {
+  for (const Quantity& q : l.quantities)
+    if (q.kind == QuantityKind::Depth && !q.ofSun && q.depth == e) return &q;
+  return nullptr;
 }
 
 // Where the pixel's receiver point falls in the shadow map (continuous texel coordinates).
@@ -47,19 +64,24 @@ static bool shadowTexel(const FrameSnapshot& f, const glm::dvec3& eye, glm::dvec
   return f.sun.enabled;
 }
 
-// The position the lighting passes used, per USE_EYE_DEPTH, or none without geometry.
+// The depth the lighting passes reconstruct positions from: per USE_EYE_DEPTH when the layout has
+// both (gblens's frames), else the layout's first camera depth; null when it has none.
+static const Quantity* lightingDepth(const FrameSnapshot& f) {
+  const Quantity* eye = cameraDepth(f.layout, DepthEncoding::Eye);
+  const Quantity* hardware = cameraDepth(f.layout, DepthEncoding::Hardware);
+  if (eye && hardware) return f.options.eyeDepth ? eye : hardware;
+  return surfaceDepth(f.layout);
+}
+
+// The position the lighting passes used, or none without geometry (a stored position when the
+// layout has no depth).
 static bool usedPosition(const FrameSnapshot& f, uint32_t x, uint32_t y, glm::dvec3& eye) {
-  const TargetImage& depth = f.target(Target::Depth);
-  const TargetImage& ds = f.target(Target::DepthStencil);
-  if (f.options.eyeDepth) {
-    if (!depth.contains(x, y) || !(depth.value(x, y, 0) > 0.0)) return false;
-    eye = eyeFromEyeDepth(f.camera, x, y, depth.value(x, y, 0));
-    return true;
-  }
-  double far = f.options.reversedZ ? 0.0 : 1.0;
-  if (!ds.contains(x, y) || ds.value(x, y, 0) == far) return false;
-  eye = eyeFromHardwareDepth(f.camera, x, y, ds.value(x, y, 0));
-  return true;
+  const Quantity* q = lightingDepth(f);
+  if (!q) q = f.layout.find(QuantityKind::Position);
+  if (!q || !holds(f, *q, x, y)) return false;
+  std::optional<glm::dvec3> p = decodePosition(f, *q, x, y);
+  if (p) eye = *p;
+  return p.has_value();
 }
 
 bool shadowMapFootprint(const FrameSnapshot& f, uint32_t x, uint32_t y, int32_t& x0, int32_t& y0) {
@@ -176,57 +198,68 @@ static void probeLights(const FrameSnapshot& f, uint32_t x, uint32_t y, const gl
   }
 }
 
-// True when the snapshot holds target t at the pixel; else its name joins d.missing.
+// True when the snapshot holds the quantity at the pixel; else its target joins d.missing.
+static bool need(const FrameSnapshot& f, const Quantity* q, uint32_t x, uint32_t y, PixelDossier& d) {
+  if (!q) return false;  // the layout has no such quantity: nothing is missing
+  if (holds(f, *q, x, y)) return true;
+  d.missing.push_back(f.layout.targets[q->target].name);
+  return false;
+}
 static bool need(const FrameSnapshot& f, Target t, uint32_t x, uint32_t y, PixelDossier& d) {
   if (f.target(t).contains(x, y)) return true;
-  d.missing.push_back(targetName(t));
+  if (f.indexOf(t) >= 0) d.missing.push_back(targetName(t));
   return false;
 }
 
-// The decoded G-buffer: albedo and specular, the normal (stored and unit) and the shadow term,
-// both depths and the stencil.
+// The decoded G-buffer the lighting reads, through the layout: albedo and specular, the normal
+// (stored and unit) and the shadow term, both depths and the stencil.
 static void decodeGBuffer(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDossier& d) {
-  if ((d.hasAlbedo = need(f, Target::AlbedoSpecular, x, y, d))) {
-    const TargetImage& a = f.target(Target::AlbedoSpecular);
-    d.albedo = {a.value(x, y, 0), a.value(x, y, 1), a.value(x, y, 2)};
-    d.specular = a.value(x, y, 3);
-  }
-  if ((d.hasNormal = need(f, Target::NormalShadow, x, y, d))) {
-    const TargetImage& n = f.target(Target::NormalShadow);
-    DecodedNormal dn = decodeNormalTexel(n.image, x - n.x0, y - n.y0, f.options.normalFormat);
-    d.normal = dn.unit;
-    d.normalStored = dn.stored;
-    double length = glm::length(dn.stored);
+  const Layout& l = f.layout;
+  const Quantity* albedo = l.find(QuantityKind::Albedo) ? l.find(QuantityKind::Albedo) : l.find(QuantityKind::BaseColor);
+  const Quantity* specular = l.find(QuantityKind::Specular);
+  const Quantity* normal = l.find(QuantityKind::Normal);
+  const Quantity* shadow = l.find(QuantityKind::Shadow);
+  const Quantity* eye = cameraDepth(l, DepthEncoding::Eye);
+  const Quantity* hardware = cameraDepth(l, DepthEncoding::Hardware);
+  const Quantity* stencil = l.find(QuantityKind::Stencil);
+  if ((d.hasAlbedo = need(f, albedo, x, y, d))) d.albedo = glm::dvec3(decodeColor(f, *albedo, x, y));
+  if (need(f, specular, x, y, d)) d.specular = decodeScalar(f, *specular, x, y);
+  if ((d.hasNormal = need(f, normal, x, y, d))) {
+    NormalSample n = decodeNormal(f, *normal, x, y);
+    d.normal = n.unit;
+    d.normalStored = n.stored;
+    double length = glm::length(n.stored);
     d.normalLengthError = length > 0.0 ? std::abs(length - 1.0) : 0.0;  // zero: no geometry
-    d.shadow = dn.shadow;
-    d.unlit = unlitTexel(n.image, x - n.x0, y - n.y0, f.options.normalFormat);
+    // The unlit mark (KHR_materials_unlit) is gblens's own normal code: only its layout has it.
+    const bool native = f.layout.name == nativeLayout(f.options).name;
+    const int nt = f.indexOf("normal_shadow");
+    if (native && nt >= 0) {
+      const TargetImage& ni = f.images[size_t(nt)];
+      d.unlit = ni.contains(x, y) && unlitTexel(ni.image, x - ni.x0, y - ni.y0, f.options.normalFormat);
+    }
   }
-  d.hasEyeDepth = need(f, Target::Depth, x, y, d);
-  d.hasHardwareDepth = need(f, Target::DepthStencil, x, y, d);
-  if (d.hasEyeDepth) d.eyeDepth = f.target(Target::Depth).value(x, y, 0);
-  if (d.hasHardwareDepth) {
-    d.hardwareDepth = f.target(Target::DepthStencil).value(x, y, 0);
-    d.stencil = uint32_t(f.target(Target::DepthStencil).value(x, y, 1));
-  }
+  if (need(f, shadow, x, y, d)) d.shadow = decodeScalar(f, *shadow, x, y);
+  if ((d.hasEyeDepth = need(f, eye, x, y, d))) d.eyeDepth = storedValues(f, *eye, x, y)[0];
+  if ((d.hasHardwareDepth = need(f, hardware, x, y, d))) d.hardwareDepth = storedValues(f, *hardware, x, y)[0];
+  if (need(f, stencil, x, y, d)) d.stencil = decodeInteger(f, *stencil, x, y);
 }
 
 // The position from each depth (eye and world space) and how far apart they are, in scene units
 // and in float ulps of each stored depth.
 static void reconstructPositions(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDossier& d) {
-  double far = f.options.reversedZ ? 0.0 : 1.0;
-  if (d.hasEyeDepth && d.eyeDepth > 0.0) {
-    d.fromEyeDepth = {true, eyeFromEyeDepth(f.camera, x, y, d.eyeDepth), {}};
-    d.fromEyeDepth.world = glm::dvec3(f.camera.worldFromEye * glm::dvec4(d.fromEyeDepth.eye, 1.0));
-  }
-  if (d.hasHardwareDepth && d.hardwareDepth != far) {
-    d.fromHardwareDepth = {true, eyeFromHardwareDepth(f.camera, x, y, d.hardwareDepth), {}};
-    d.fromHardwareDepth.world = glm::dvec3(f.camera.worldFromEye * glm::dvec4(d.fromHardwareDepth.eye, 1.0));
-  }
+  auto from = [&](const Quantity* q, ProbePosition& p) {
+    if (!q || !holds(f, *q, x, y)) return;
+    std::optional<glm::dvec3> e = decodePosition(f, *q, x, y);
+    if (e) p = {true, *e, glm::dvec3(f.camera.worldFromEye * glm::dvec4(*e, 1.0))};
+  };
+  from(cameraDepth(f.layout, DepthEncoding::Eye), d.fromEyeDepth);
+  from(cameraDepth(f.layout, DepthEncoding::Hardware), d.fromHardwareDepth);
   if (d.fromEyeDepth.valid && d.fromHardwareDepth.valid) {
     d.positionDifference = glm::length(d.fromEyeDepth.eye - d.fromHardwareDepth.eye);
     d.eyeDepthUlps = std::abs(d.fromEyeDepth.eye.z - d.fromHardwareDepth.eye.z) / floatUlp(d.eyeDepth);
     d.hardwareDepthUlps = std::abs(hardwareDepth(f.camera, d.fromEyeDepth.eye) - d.hardwareDepth) / floatUlp(d.hardwareDepth);
   }
+  reconstructAll(f, x, y, d);
 }
 
 // The stored outputs: coverage counts, hdr and what tone mapping it should give, final.
@@ -254,6 +287,17 @@ static void readOutputs(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDos
   }
 }
 
+// Lights are evaluated with shaders/shading.h for gblens's own G-buffer and for layouts whose
+// lights say they use its model; "" when they are, else why not.
+static std::string lightingNote(const FrameSnapshot& f) {
+  if (f.layout.name == nativeLayout(f.options).name) return "";
+  if (!f.layout.lights.present) return "this layout gives no lights: lighting not evaluated";
+  if (!f.layout.lights.gblensModel)
+    return "this layout's lights use the model \"" + f.layout.lights.model +
+           "\", which gblens does not implement: lighting not evaluated";
+  return "";
+}
+
 PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
   PixelDossier d;
   d.x = x;
@@ -265,26 +309,33 @@ PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
               std::to_string(f.camera.width) + "x" + std::to_string(f.camera.height) + " frame";
     return d;
   }
-  for (size_t i = 0; i < kTargetCount; ++i)
-    if (screenSpaceTarget(Target(i))) d.targets.push_back(rawTarget(f, Target(i), x, y));
+  for (uint32_t t = 0; t < f.layout.targets.size(); ++t)
+    if (!sunDepthTarget(f.layout, t)) d.targets.push_back(rawTarget(f, t, x, y));
   decodeGBuffer(f, x, y, d);
+  decodeQuantities(f, x, y, d);
   glm::dvec3 P(0.0);
   d.geometry = usedPosition(f, x, y, P);
-  d.positionSource = f.options.eyeDepth ? "eye_depth" : "hardware_depth";
+  const Quantity* used = lightingDepth(f);
+  d.positionSource = !used ? "stored position" : used->depth == DepthEncoding::Eye ? "eye_depth" : "hardware_depth";
   reconstructPositions(f, x, y, d);
-
-  if (d.geometry) {
+  d.lightingNote = lightingNote(f);
+  const bool hasSunDepth = std::any_of(f.layout.quantities.begin(), f.layout.quantities.end(),
+                                       [](const Quantity& q) { return q.kind == QuantityKind::Depth && q.ofSun; });
+  if (!d.geometry) {
+    d.shadowMap.note = "no geometry at this pixel";
+  } else if (!hasSunDepth) {
+    d.shadowMap.note = "this layout has no shadow map";
+  }
+  if (d.geometry && d.lightingNote.empty()) {
     d.viewDirection = glm::normalize(-P);
-    probeShadow(f, P, d);
+    if (hasSunDepth) probeShadow(f, P, d);
     glm::dvec3 sun = f.sunEyeDirection();
     d.directional = d.unlit ? shading::shadeUnlit(d.albedo)
                             : shading::shadeDirectional(d.albedo, d.specular, d.normal, d.viewDirection, sun,
                                                         glm::dvec3(f.sun.color), glm::dvec3(f.sky.ambient),
                                                         f.sun.enabled ? d.shadow : 0.0);
-  } else {
-    d.shadowMap.note = "no geometry at this pixel";
   }
-  probeLights(f, x, y, P, d);
+  if (d.lightingNote.empty()) probeLights(f, x, y, P, d);
   d.hdrExpected = d.directional + d.pointLightTotal;
   readOutputs(f, x, y, d);
   return d;

@@ -31,6 +31,26 @@ struct ProbeTarget {
   std::vector<ProbeChannel> channels;
 };
 
+// One quantity of the frame's layout at the pixel, decoded (renderer/core/decode.h): what the
+// probe shows for any G-buffer, gblens's own or imported.
+struct ProbeQuantity {
+  std::string name, kind, target;  // "N", "normal", "normal_shadow"
+  std::string encoding;            // "octahedral (view space)", "hardware", "srgb", ...
+  bool present = false;            // the frame holds the texel
+  std::vector<double> values;      // decoded: colours linear, normals unit eye space, depth as eye depth, ...
+  std::string note;                // an id's name, stencil bits set, "no surface", a normal's length error
+};
+
+// A position the layout lets the probe reconstruct (from each depth quantity) or read (stored).
+struct ProbeReconstruction {
+  std::string quantity, method;    // "Z", "eye depth" | "hardware depth" | "radial distance" | "stored"
+  bool valid = false;
+  glm::dvec3 eye{0.0}, world{0.0};
+  bool hasStored = false;          // the layout stores a position: the difference to it
+  double toStored = 0.0;           // scene units
+  double toStoredUlps = 0.0;       // in float ulps of the stored position's largest coordinate
+};
+
 struct ProbePosition {
   bool valid = false;
   glm::dvec3 eye{0.0}, world{0.0};
@@ -70,6 +90,8 @@ struct PixelDossier {
   std::string error;  // non-empty: the pixel could not be probed (outside the frame)
   std::vector<std::string> missing;  // data the probe needed but the snapshot lacks
   std::vector<ProbeTarget> targets;  // raw values, every target (shadow map: see `shadow`)
+  std::vector<ProbeQuantity> quantities;          // every quantity of the layout, decoded
+  std::vector<ProbeReconstruction> reconstructions;  // every position the layout allows
 
   // Decoded G-buffer (each valid only with its target: has* say which were available).
   bool hasAlbedo = false, hasNormal = false, hasEyeDepth = false, hasHardwareDepth = false;
@@ -93,7 +115,8 @@ struct PixelDossier {
 
   ProbeShadow shadowMap;
 
-  // Lighting.
+  // Lighting (evaluated for gblens's frames and layouts whose lights use gblens's model).
+  std::string lightingNote;        // why lights were not evaluated ("" when they were)
   glm::dvec3 viewDirection{0.0};   // V (unit, toward the eye)
   glm::dvec3 directional{0.0};     // sun + ambient (shading.h)
   std::vector<ProbeLight> lights;  // every drawn light whose volume the pixel's ray meets

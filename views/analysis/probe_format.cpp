@@ -86,6 +86,31 @@ static nlohmann::json lightingJson(const PixelDossier& d) {
           {"point_light_total", v3(d.pointLightTotal)}};
 }
 
+// Every layout quantity decoded, and every position the layout allows.
+static nlohmann::json quantitiesJson(const PixelDossier& d) {
+  nlohmann::json qs = nlohmann::json::array();
+  for (const ProbeQuantity& q : d.quantities) {
+    nlohmann::json e = {{"name", q.name}, {"kind", q.kind}, {"target", q.target}, {"encoding", q.encoding},
+                        {"present", q.present}, {"values", q.values}};
+    if (!q.note.empty()) e["note"] = q.note;
+    qs.push_back(e);
+  }
+  return qs;
+}
+static nlohmann::json reconstructionsJson(const PixelDossier& d) {
+  nlohmann::json rs = nlohmann::json::array();
+  for (const ProbeReconstruction& r : d.reconstructions) {
+    nlohmann::json e = {{"quantity", r.quantity}, {"method", r.method}, {"valid", r.valid}};
+    if (r.valid) {
+      e["eye"] = v3(r.eye);
+      e["world"] = v3(r.world);
+    }
+    if (r.hasStored) e["to_stored"] = {{"distance", r.toStored}, {"ulps", r.toStoredUlps}};
+    rs.push_back(e);
+  }
+  return rs;
+}
+
 nlohmann::json dossierJson(const PixelDossier& d) {
   nlohmann::json j = {{"pixel", {d.x, d.y}}, {"size", {d.width, d.height}}};
   if (!d.error.empty()) {
@@ -105,6 +130,8 @@ nlohmann::json dossierJson(const PixelDossier& d) {
                   {"eye_depth", opt(d.hasEyeDepth, d.eyeDepth)},
                   {"hardware_depth", opt(d.hasHardwareDepth, d.hardwareDepth)},
                   {"stencil", opt(d.hasHardwareDepth, d.stencil)}};
+  j["quantities"] = quantitiesJson(d);
+  j["reconstructions"] = reconstructionsJson(d);
   j["position"] = {{"source", d.positionSource},
                    {"from_eye_depth", position(d.fromEyeDepth)},
                    {"from_hardware_depth", position(d.fromHardwareDepth)},
@@ -113,10 +140,12 @@ nlohmann::json dossierJson(const PixelDossier& d) {
                    {"hardware_depth_ulps", d.hardwareDepthUlps}};
   j["shadow_map"] = shadowJson(d.shadowMap);
   j["lighting"] = lightingJson(d);
+  if (!d.lightingNote.empty()) j["lighting"]["note"] = d.lightingNote;
+  const bool expected = d.geometry && d.lightingNote.empty();
   // Without geometry the skybox wrote hdr: there is no lighting to expect.
   j["hdr"] = {{"stored", opt(d.hasHdr, v4(d.hdr))},
-              {"expected", opt(d.geometry, v3(d.hdrExpected))},
-              {"residual", opt(d.hasHdr && d.geometry, v3(glm::dvec3(d.hdr) - d.hdrExpected))}};
+              {"expected", opt(expected, v3(d.hdrExpected))},
+              {"residual", opt(d.hasHdr && expected, v3(glm::dvec3(d.hdr) - d.hdrExpected))}};
   j["final"] = {{"stored", opt(d.hasFinal, v4(d.finalColor))},
                 {"expected", opt(d.hasHdr, v3(d.finalExpected))},
                 {"expected_srgb8", opt(d.hasHdr, {d.finalExpectedSrgb8.x, d.finalExpectedSrgb8.y, d.finalExpectedSrgb8.z})}};
@@ -175,11 +204,24 @@ static std::string decodedText(const PixelDossier& d) {
   if (d.hasHardwareDepth)
     o += "  stencil         " + std::to_string(d.stencil) + " (bit 7 geometry: " + ((d.stencil & 0x80) ? "set" : "clear") +
          ", low bits " + std::to_string(d.stencil & 0x7F) + ")\n";
+  o += "\nlayout quantities (decoded: colours linear, vectors in eye space, depths as eye depth)\n";
+  for (const ProbeQuantity& q : d.quantities) {
+    std::string v;
+    for (double x : q.values) v += (v.empty() ? "" : ", ") + f9(x);
+    o += "  " + q.target + "." + q.name + " (" + q.kind + (q.encoding.empty() ? "" : ", " + q.encoding) + ")  " +
+         (q.present ? (v.empty() ? "" : "(" + v + ")") + (q.note.empty() ? "" : "  " + q.note) : std::string("-")) + "\n";
+  }
   o += "\npositions (eye space | world space); the lighting used " + d.positionSource + "\n";
   for (auto [label, p] : {std::pair{"from eye depth     ", &d.fromEyeDepth}, {"from hardware depth", &d.fromHardwareDepth}})
     o += std::string("  ") + label + " " + (p->valid ? t3(p->eye) + " | " + t3(p->world) : std::string("-")) + "\n";
   o += "  difference          " + f9(d.positionDifference) + " scene units; eye depth " + f9(d.eyeDepthUlps) +
        " ulps, hardware depth " + f9(d.hardwareDepthUlps) + " ulps\n";
+  for (const ProbeReconstruction& r : d.reconstructions)
+    if (r.hasStored)
+      o += "  " + r.quantity + " (" + r.method + ") to the stored position: " + f9(r.toStored) + " scene units, " +
+           f9(r.toStoredUlps) + " ulps\n";
+    else if (r.valid && r.method == "radial distance")
+      o += "  from radial distance " + t3(r.eye) + " | " + t3(r.world) + "\n";
   return o;
 }
 
@@ -188,6 +230,7 @@ static std::string lightingText(const PixelDossier& d) {
   std::string o;
   char line[512];
   const ProbeShadow& s = d.shadowMap;
+  if (!d.lightingNote.empty()) o += "\nlighting: " + d.lightingNote + "\n";
   o += "\nshadow map: " + s.note + "\n";
   if (s.valid) {
     o += "  receiver depth " + f9(s.receiverDepth) + " at texel " + f9(s.texel.x) + ", " + f9(s.texel.y) + "; bias constant " +
@@ -221,7 +264,7 @@ static std::string outputsText(const PixelDossier& d) {
   std::string o;
   if (d.hasHdr) {
     o += "\nhdr stored          " + t3(glm::dvec3(d.hdr)) + " a " + f9(d.hdr.w) + (d.geometry ? "" : " (the skybox)") + "\n";
-    if (d.geometry) {
+    if (d.geometry && d.lightingNote.empty()) {
       o += "  expected          " + t3(d.hdrExpected) + " (directional + point lights; fairy sprites not included)\n";
       o += "  residual          " + t3(glm::dvec3(d.hdr) - d.hdrExpected) + "\n";
     }

@@ -59,6 +59,17 @@ const ViewDef& viewDef(ViewKind kind) {
 
 const char* viewName(ViewKind v) { return viewDef(v).name; }
 
+const char* viewUnit(const ViewDef& def, const std::string& method) {
+  if (def.kind == ViewKind::CoverageMasked) {
+    if (method == "deferred") return "point-light fragment shader runs";
+    if (method == "tiled") return "lights in the pixel's 16x16 tile list";
+    if (method == "clustered") return "lights in the pixel's cluster list";
+    if (method == "forward") return "lights looped over per fragment";
+  }
+  if (def.kind == ViewKind::CoverageFull) return "light volumes over the pixel (no depth or stencil test)";
+  return def.unit;
+}
+
 bool parseView(const std::string& name, ViewKind& out) {
   for (const ViewDef& d : kViews)
     if (name == d.name) {

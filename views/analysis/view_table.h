@@ -41,6 +41,9 @@ struct ViewDef {
 };
 const ViewDef& viewDef(ViewKind kind);
 const char* viewName(ViewKind v);
+// What a view's values count in a frame of lighting method `method` (FrameStats::method; empty:
+// not known): views 8 and 9 count each method's own lighting work.
+const char* viewUnit(const ViewDef& def, const std::string& method);
 bool parseView(const std::string& name, ViewKind& out);
 // Every view name, in table order ("final", "albedo", ...): the accepted values of --target / --view.
 std::vector<std::string> viewNames();

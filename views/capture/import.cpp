@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "renderer/core/assets.h"
 #include "renderer/core/layout_json.h"
 #include "renderer/core/texels.h"
 
@@ -18,13 +19,20 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string targetWhere(const Layout& l, uint32_t t) {
-  return (l.file.empty() ? std::string("layout") : l.file) + ": targets[" + std::to_string(t) + "] \"" +
+  return (l.file.empty() ? std::string("layout") : l.file) + ": targets[" + std::to_string(t) + "]: \"" +
          l.targets[t].name + "\"";
 }
 
-// Where a source file is: a file given on the command line of that name, else beside the layout.
-std::string sourcePath(const ImportInput& in, const TargetSource& s) {
-  if (s.path.empty()) return in.files.size() == 1 ? in.files[0] : std::string();
+// Where a source file is: a file given on the command line of that name, else beside the layout. A
+// target without a file name takes the only file given, or the one named as the target (albedo.exr).
+std::string sourcePath(const ImportInput& in, const LayoutTarget& t) {
+  const TargetSource& s = t.source;
+  if (s.path.empty()) {
+    if (in.files.size() == 1) return in.files[0];
+    for (const std::string& f : in.files)
+      if (fs::path(f).stem() == t.name) return f;
+    return std::string();
+  }
   for (const std::string& f : in.files)
     if (f == s.path || fs::path(f).filename() == fs::path(s.path).filename()) return f;
   fs::path p(s.path);
@@ -54,8 +62,10 @@ bool seekPart(OIIO::ImageInput& in, const std::string& part, const std::string& 
     error = where + ": source.part: the file has no part " + part;
     return false;
   }
+  // OpenImageIO gives an EXR part's name as "oiio:subimagename".
   for (int i = 0; in.seek_subimage(i, 0); ++i)
-    if (in.spec().get_string_attribute("name") == part) return true;
+    if (in.spec().get_string_attribute("oiio:subimagename") == part || in.spec().get_string_attribute("name") == part)
+      return true;
   error = where + ": source.part: the file has no part named \"" + part + "\"";
   return false;
 }
@@ -178,15 +188,20 @@ bool readTarget(const ImportInput& in, uint32_t t, uint32_t w, uint32_t h, CpuIm
   const TargetSource& s = lt.source;
   if (s.kind == TargetSource::Kind::RenderDoc) {
     auto it = in.renderdocTexels.find(lt.name);
+    if (in.renderdocTexels.empty()) {
+      error = where + ": source.renderdoc: \"" + s.resource + "\" is a texture of a RenderDoc capture: import the .rdc";
+      return false;
+    }
     if (it == in.renderdocTexels.end()) {
       error = where + ": source.renderdoc: the capture has no texture \"" + s.resource + "\"";
       return false;
     }
     return unpackDump(it->second, 0, lt, w, h, where + ": source.renderdoc \"" + s.resource + "\"", img, error);
   }
-  const std::string path = sourcePath(in, s);
+  const std::string path = sourcePath(in, lt);
   if (path.empty()) {
-    error = where + ": source.file: missing (give the file in the layout or exactly one on the command line)";
+    error = where + ": source.file: missing (give the file in the layout, exactly one on the command line, or one named " +
+            lt.name + ".*)";
     return false;
   }
   if (s.kind == TargetSource::Kind::Raw) {
@@ -215,16 +230,36 @@ glm::dmat4 matrixFromFloats(const std::vector<uint8_t>& bytes, uint64_t offset, 
   return m;
 }
 
-// The layout's camera with its matrices filled from the sidecar or the uniform buffer.
-bool resolveCamera(const ImportInput& in, LayoutCamera& c, std::string& error) {
-  const std::string where = (in.layout.file.empty() ? std::string("layout") : in.layout.file) + ": camera";
+// The camera's size, when it gives one, against the images' (the projection's aspect is for it).
+bool checkCameraSize(const LayoutCamera& c, const std::string& from, uint32_t w, uint32_t h, std::string& error) {
+  if (!c.width || (c.width == w && c.height == h)) return true;
+  error = from + ": camera: size: the matrices are for " + std::to_string(c.width) + "x" + std::to_string(c.height) +
+          ", the images are " + std::to_string(w) + "x" + std::to_string(h);
+  return false;
+}
+
+// The layout's camera with its matrices filled from the sidecar or the uniform buffer, for images
+// of w x h.
+bool resolveCamera(const ImportInput& in, LayoutCamera& c, uint32_t w, uint32_t h, std::string& error) {
+  const std::string file = in.layout.file.empty() ? std::string("layout") : in.layout.file;
+  const std::string where = file + ": camera";
   std::string sidecar = !in.cameraFile.empty() ? in.cameraFile : c.sidecar;
   if (!sidecar.empty()) {
-    if (in.cameraFile.empty() && fs::path(sidecar).is_relative() && !in.layoutDir.empty())
-      sidecar = (fs::path(in.layoutDir) / sidecar).string();
+    if (in.cameraFile.empty() && fs::path(sidecar).is_relative()) {
+      // Beside the imported files first (a renderer writes its camera beside its images; Blender's
+      // script does), then beside the layout.
+      std::string found;
+      std::error_code ec;
+      for (const std::string& input : in.files)
+        if (found.empty() && fs::exists(fs::path(input).parent_path() / sidecar, ec))
+          found = (fs::path(input).parent_path() / sidecar).string();
+      if (found.empty() && !in.layoutDir.empty()) found = (fs::path(in.layoutDir) / sidecar).string();
+      if (!found.empty()) sidecar = found;
+    }
     std::ifstream f(sidecar);
+    // The layout's conventions, the sidecar's matrices (and whatever conventions it gives).
     nlohmann::json j = layoutCameraJson(c), side;
-    j.erase("sidecar");
+    for (const char* key : {"sidecar", "renderdoc", "view_from_world", "clip_from_view"}) j.erase(key);
     try {
       if (!f) throw std::runtime_error("cannot read the file");
       side = nlohmann::json::parse(f);
@@ -234,11 +269,16 @@ bool resolveCamera(const ImportInput& in, LayoutCamera& c, std::string& error) {
       return false;
     }
     for (auto& [k, v] : side.items()) j[k] = v;
-    return parseLayoutCamera(j, sidecar, c, error);
+    return parseLayoutCamera(j, sidecar, c, error) && checkCameraSize(c, sidecar, w, h, error);
   }
   if (c.renderdoc) {
     const LayoutCamera::BufferMatrix& b = *c.renderdoc;
     const std::vector<uint8_t>& bytes = in.renderdocCameraBuffer;
+    if (bytes.empty()) {
+      error = where + ": renderdoc: the matrices are in buffer \"" + b.buffer +
+              "\" of a RenderDoc capture; import the .rdc, or give the camera with --camera";
+      return false;
+    }
     if (bytes.size() < std::max(b.viewOffset, b.clipOffset) + 64) {
       error = where + ": renderdoc: buffer \"" + b.buffer + "\" holds " + std::to_string(bytes.size()) +
               " bytes, the matrices need " + std::to_string(std::max(b.viewOffset, b.clipOffset) + 64);
@@ -253,7 +293,7 @@ bool resolveCamera(const ImportInput& in, LayoutCamera& c, std::string& error) {
       }
     c.viewFromWorld = b.worldFromView ? glm::inverse(view) : view;
   }
-  return true;
+  return checkCameraSize(c, file, w, h, error);
 }
 
 // The layout's lights in gblens's world (Y up) and as the probe reads them (eye space, uploaded form).
@@ -323,6 +363,26 @@ bool importCamera(const LayoutCamera& c, uint32_t width, uint32_t height, Camera
   return true;
 }
 
+bool loadImportLayout(const std::string& spec, const LayoutParameters& params, Layout& out, std::string& dir,
+                      std::string& error) {
+  dir.clear();
+  if (spec.rfind("builtin:", 0) != 0) {
+    dir = fs::path(spec).parent_path().string();
+    return loadLayoutFile(spec, params, out, error);
+  }
+  const std::string* text = assetText("layouts/" + spec.substr(8) + ".json");
+  if (!text) {
+    std::string names;
+    for (const auto& [path, unused] : assets())
+      if (path.rfind("layouts/", 0) == 0 && fs::path(path).extension() == ".json")
+        names += (names.empty() ? "builtin:" : ", builtin:") + fs::path(path).stem().string();
+    error = spec + ": no such built-in layout (built in: " + names + ")";
+    return false;
+  }
+  nlohmann::json j = nlohmann::json::parse(*text);
+  return resolveLayoutParameters(j, params, spec, error) && parseLayout(j, spec, out, error);
+}
+
 bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) {
   const Layout& l = in.layout;
   out = FrameSnapshot{};
@@ -330,27 +390,37 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
   std::vector<CpuImage> images(l.targets.size());
   uint32_t w = l.width, h = l.height;
   for (uint32_t t = 0; t < l.targets.size(); ++t) {
-    uint32_t tw = l.targets[t].width ? l.targets[t].width : w, th = l.targets[t].width ? l.targets[t].height : h;
-    if (!tw) {  // no size given: the file's
-      TargetSource probe = l.targets[t].source;
-      if (probe.kind == TargetSource::Kind::File) {
-        auto inp = OIIO::ImageInput::open(sourcePath(in, probe));
-        if (inp) tw = uint32_t(inp->spec().width), th = uint32_t(inp->spec().height);
+    const LayoutTarget& lt = l.targets[t];
+    if (in.leftOut.count(lt.name)) continue;
+    uint32_t tw = lt.width ? lt.width : l.width, th = lt.width ? lt.height : l.height;
+    auto rdcSize = in.renderdocSizes.find(lt.name);
+    if (rdcSize != in.renderdocSizes.end()) {  // a RenderDoc texture: its size must be the layout's
+      const auto [rw, rh] = rdcSize->second;
+      if (tw && (rw != tw || rh != th)) {
+        error = targetWhere(l, t) + ": size: the capture's texture \"" + lt.source.resource + "\" is " +
+                std::to_string(rw) + "x" + std::to_string(rh) + ", the layout says " + std::to_string(tw) + "x" +
+                std::to_string(th);
+        return false;
       }
+      tw = rw, th = rh;
     }
+    if (!tw && lt.source.kind != TargetSource::Kind::Raw) {  // no size given: the file's
+      auto inp = OIIO::ImageInput::open(sourcePath(in, lt));
+      if (inp) tw = uint32_t(inp->spec().width), th = uint32_t(inp->spec().height);
+    }
+    if (!tw) tw = w, th = h;  // a raw dump without a size: the frame's (the first target's)
     if (!tw) {
-      error = targetWhere(l, t) + ": size: unknown (give the layout's or the target's size)";
+      error = targetWhere(l, t) + ": size: unknown (give the layout's or the target's size, or --size)";
       return false;
     }
     if (!w) w = tw, h = th;
     if (!readTarget(in, t, tw, th, images[t], error)) return false;
     images[t].name = l.targets[t].name;
-    if (l.camera.bottomOrigin) flipRows(images[t]);
   }
   LayoutCamera camera = l.camera;
   if (camera.present || !in.cameraFile.empty()) {
     camera.present = true;
-    if (!resolveCamera(in, camera, error)) return false;
+    if (!resolveCamera(in, camera, w, h, error)) return false;
     std::string why;
     if (!importCamera(camera, w, h, out.camera, why)) {
       error = (l.file.empty() ? std::string("layout") : l.file) + ": " + why;
@@ -368,11 +438,19 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
     out.camera.width = w;
     out.camera.height = h;
   }
+  if (camera.bottomOrigin)  // after the camera is resolved: a sidecar may say so
+    for (CpuImage& image : images) flipRows(image);
+  // The manifest embeds the camera as imported: its matrices in the layout's conventions (not where
+  // they were read from), and rows top first (the images were flipped just above).
+  camera.sidecar.clear();
+  camera.renderdoc.reset();
+  camera.bottomOrigin = false;
   out.layout.camera = camera;
   out.options.width = w;
   out.options.height = h;
   out.options.reversedZ = out.camera.reversedZ;
   for (uint32_t t = 0; t < l.targets.size(); ++t) {
+    if (images[t].empty()) continue;  // left out: absent, not captured
     TargetImage& ti = out.images[t];
     ti.image = std::move(images[t]);
     ti.targetWidth = ti.image.width;

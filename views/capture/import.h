@@ -3,11 +3,14 @@
 // the layout, and assembled into a FrameSnapshot that captures, views, the probe and compare treat
 // exactly as gblens's own frames. The camera is turned into gblens's convention here.
 #pragma once
+#include <array>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "renderer/core/layout.h"
+#include "renderer/core/layout_json.h"
 #include "renderer/core/snapshot.h"
 
 namespace gb {
@@ -21,8 +24,18 @@ struct ImportInput {
   // Texels read from a RenderDoc capture for its targets ({"renderdoc": ...} sources), packed as
   // renderer/core/texels.h says, by target name; and the bytes of the camera's uniform buffer.
   std::map<std::string, std::vector<uint8_t>> renderdocTexels;
+  std::map<std::string, std::array<uint32_t, 2>> renderdocSizes;  // their textures' width and height
   std::vector<uint8_t> renderdocCameraBuffer;
+  // Targets the source does not hold (e.g. a target without a source whose name no texture of the
+  // RenderDoc capture has): absent from the frame ("not captured"), not an error.
+  std::set<std::string> leftOut;
 };
+
+// A layout for import: a file, or "builtin:NAME" (assets/layouts/NAME.json carried in the binary,
+// e.g. builtin:gblens), resolved with `params`. `dir` receives the folder relative source paths
+// start from ("" for a built-in layout: the files given on the command line).
+bool loadImportLayout(const std::string& spec, const LayoutParameters& params, Layout& out, std::string& dir,
+                      std::string& error);
 
 // Reads every target and the camera. False with one line naming the file, the target and the
 // field (a missing channel, a size or format the layout does not match, a singular camera, ...).

@@ -105,6 +105,8 @@ nlohmann::json frameStatsJson(const FrameStats& st) {
                       {"cpu_ms", st.cpuMs},
                       {"record_ms", st.recordMs},
                       {"render_pass_groups", {{"compiled", st.groupsCompiled}, {"reused", st.groupsReused}}},
+                      {"method", {{"ran", st.method}, {"why", st.methodReason}}},
+                      {"light_setup", {{"ran", st.lightSetup}, {"why", st.lightSetupReason}}},
                       {"passes", passes}};
   j["lights"] = {{"total", st.lights},
                  {"visible", st.lightsVisible},
@@ -118,6 +120,11 @@ nlohmann::json frameStatsJson(const FrameStats& st) {
                   "skipped when the sphere's exact screen rectangle (+1/1000 px) holds no pixel centre: no shaded "
                   "point can be inside it"}};
   if (st.skyPixels >= 0) j["sky_pixels"] = st.skyPixels;
+  if (st.clusters.valid)
+    j["clusters"] = {{"occupied", st.clusters.clusters},
+                     {"list_entries", st.clusters.listEntries},
+                     {"lists_overflowed", st.clusters.listOverflows},
+                     {"tiles_without_room", st.clusters.tilesWithoutRoom}};
   j["culling"] = cullingJson(st.culling);
   return j;
 }

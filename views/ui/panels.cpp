@@ -209,6 +209,14 @@ static void frameOptions(ViewerModel& m) {
     if (ImGui::Combo("##scale", &scale, scales, 4)) m.renderScale = scale + 1;
     tooltip("render at the view area's size, or a fraction of it (the views zoom it up, nearest texel)");
   }
+  // Responsive rendering: the index in {auto, never, 1/2, 1/3, 1/4} is the value (kReduceAuto, kReduceOff, 2..4).
+  const char* reduce[] = {"auto", "never", "1/2", "1/3", "1/4"};
+  int ri = std::clamp(m.reduceWhileMoving, 0, 4);
+  ImGui::SetNextItemWidth(90);
+  if (ImGui::Combo("reduce while moving", &ri, reduce, 5)) m.reduceWhileMoving = ri;
+  tooltip("while the camera, an option or the lights change, render at a fraction of the size and refine to "
+          "full when the input stops (auto: only where a full frame is slower than the input budget)");
+  if (m.reducedBy > 1) ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "showing 1/%d while moving", m.reducedBy);
 }
 
 static void animation(ViewerModel& m) {
@@ -301,6 +309,15 @@ static void controlsPanel(ViewerModel& m, const Rect& at) {
   if (ImGui::Button("Capture frame")) m.captureRequested = true;
   if (!m.captureAvailable) ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", m.captureHint.c_str());
+  const bool renderDoc = m.captureAvailable && m.renderDocAvailable;
+  ImGui::SameLine();
+  if (!renderDoc) ImGui::BeginDisabled();
+  if (ImGui::Button("Capture in RenderDoc")) m.renderDocRequested = true;
+  if (!renderDoc) ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("%s", renderDoc ? "The same frame as a gblens capture and, beside it, a RenderDoc capture (.rdc)"
+                                      : "Start gblens under RenderDoc (renderdoccmd capture gblens view ..., or qrenderdoc's "
+                                        "Launch Application) to capture the frame in RenderDoc too");
   if (!m.captureStatus.empty()) ImGui::TextWrapped("%s", m.captureStatus.c_str());
   ImGui::End();
 }
@@ -321,9 +338,13 @@ static void statusBar(ViewerModel& m, double w, double h) {
   ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
                                          ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImGui::PopStyleVar();
-  if (m.source == FrameSource::Live)
-    ImGui::Text("%s | %s | %ux%u | %.1f ms", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height,
-                m.stats.frameMs);
+  if (m.source == FrameSource::Live && m.reducedBy > 1)
+    ImGui::Text("%s | %s | %ux%u: reduced 1/%d while moving (full %ux%u when input stops) | %s | %.1f ms",
+                m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height, m.reducedBy,
+                m.fullSize.x, m.fullSize.y, m.stats.methodReason.c_str(), m.stats.frameMs);
+  else if (m.source == FrameSource::Live)
+    ImGui::Text("%s | %s | %ux%u | %s | %.1f ms", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width,
+                m.rendered.height, m.stats.methodReason.c_str(), m.stats.frameMs);
   else
     ImGui::Text("%s | %s | %ux%u", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height);
   if (!m.hoverText.empty()) {

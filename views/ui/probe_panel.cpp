@@ -68,17 +68,22 @@ static void gbufferSection(const PixelDossier& d) {
   if (!ImGui::CollapsingHeader("G-buffer", ImGuiTreeNodeFlags_DefaultOpen)) return;
   if (!d.geometry) ImGui::TextColored(ImVec4(0.6f, 0.8f, 1, 1), "no geometry here (sky)");
   if (!ImGui::BeginTable("gbuffer", 2, kTable)) return;
-  row("albedo", v3(d.albedo));
-  ImGui::SameLine();
-  swatch("albedo", d.albedo);
-  row("specular", f9(d.specular));
-  row("normal", v3(d.normal));
-  row("|stored| - 1", f9(d.normalLengthError));
-  row("shadow", f9(d.shadow));
-  row("eye depth", f9(d.eyeDepth));
-  row("hardware depth", f9(d.hardwareDepth));
-  row("stencil", std::to_string(d.stencil) + ((d.stencil & 0x80) ? " (geometry bit set" : " (geometry bit clear") +
-                     ", low bits " + std::to_string(d.stencil & 0x7F) + ")");
+  // What the lighting reads; "-" where the frame's layout has no such quantity (imported frames:
+  // the layout quantities above say what they hold).
+  row("albedo", d.hasAlbedo ? v3(d.albedo) : "-");
+  if (d.hasAlbedo) {
+    ImGui::SameLine();
+    swatch("albedo", d.albedo);
+  }
+  row("specular", d.hasAlbedo ? f9(d.specular) : "-");
+  row("normal", d.hasNormal ? v3(d.normal) : "-");
+  row("|stored| - 1", d.hasNormal ? f9(d.normalLengthError) : "-");
+  row("shadow", d.hasNormal ? f9(d.shadow) : "-");
+  row("eye depth", d.hasEyeDepth ? f9(d.eyeDepth) : "-");
+  row("hardware depth", d.hasHardwareDepth ? f9(d.hardwareDepth) : "-");
+  if (d.hasHardwareDepth)
+    row("stencil", std::to_string(d.stencil) + ((d.stencil & 0x80) ? " (geometry bit set" : " (geometry bit clear") +
+                       ", low bits " + std::to_string(d.stencil & 0x7F) + ")");
   ImGui::EndTable();
 }
 
@@ -212,6 +217,32 @@ static void storedSection(const PixelDossier& d) {
   ImGui::EndTable();
 }
 
+// Every quantity of the frame's layout, decoded (what an imported G-buffer shows), and every
+// position the layout allows with its distance to a stored one.
+static void quantitiesSection(const PixelDossier& d) {
+  if (!ImGui::CollapsingHeader("Layout quantities", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (ImGui::BeginTable("quantities", 3, kTable)) {
+    for (const ProbeQuantity& q : d.quantities) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextDisabled("%s.%s", q.target.c_str(), q.name.c_str());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s, %s", q.kind.c_str(), q.encoding.c_str());
+      ImGui::TableNextColumn();
+      std::string v;
+      for (double x : q.values) v += (v.empty() ? "" : ", ") + g5(x);
+      ImGui::TextUnformatted(q.present ? v.c_str() : "-");
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(q.note.c_str());
+    }
+    ImGui::EndTable();
+  }
+  for (const ProbeReconstruction& r : d.reconstructions)
+    if (r.hasStored)
+      ImGui::Text("%s (%s) to the stored position: %s units, %s ulps", r.quantity.c_str(), r.method.c_str(),
+                  g5(r.toStored).c_str(), g5(r.toStoredUlps).c_str());
+  if (!d.lightingNote.empty()) ImGui::TextWrapped("lighting: %s", d.lightingNote.c_str());
+}
+
 static void dossierSections(const PixelDossier& d) {
   if (!d.missing.empty()) {
     std::string missing;
@@ -219,6 +250,7 @@ static void dossierSections(const PixelDossier& d) {
     ImGui::TextColored(ImVec4(1, 0.6f, 0.3f, 1), "missing: %s", missing.c_str());
   }
   colourSection(d);
+  quantitiesSection(d);
   gbufferSection(d);
   positionSection(d);
   shadowSection(d);

@@ -13,6 +13,7 @@ namespace gb {
 
 glm::uvec2 viewImageSize(const ViewerModel& m, ViewKind v) {
   if (viewDef(v).source.target == Target::ShadowMap) return m.shadowMapSize;
+  if (m.reducedBy > 1) return m.fullSize;
   return {m.rendered.width, m.rendered.height};
 }
 
@@ -139,6 +140,9 @@ static void queueViewDraw(ViewerModel& m, const SlotDraw& v, const Placement& pl
   fb.originX *= io.DisplayFramebufferScale.x;
   fb.originY *= io.DisplayFramebufferScale.y;
   fb.scale *= io.DisplayFramebufferScale.x;
+  // A reduced frame covers the full frame's placement: its texels are fullSize / rendered larger.
+  if (m.reducedBy > 1 && def.source.target != Target::ShadowMap && m.rendered.width > 0)
+    fb.scale *= double(m.fullSize.x) / double(m.rendered.width);
   if (m.source != FrameSource::Live) mark.reset();  // marks need the live frame's matrices on the GPU
   vd.params = viewParams(def, m.settings[int(v.kind)], range, fb, m.grid, mark, m.shadowMapSize);
   if (v.side == FrameSide::Difference) {
@@ -227,7 +231,7 @@ static void drawLabels(const ViewerModel& m, const SlotDraw& v, const ResolvedRa
                float(m.differenceMax[int(v.kind)]), "|A - B|, max over the selected channels");
   else if (def.mapping == gpu::kViewMapHeat && r.w > 120 && r.h > 80)
     heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), range.white,
-               def.unit);
+               viewUnit(def, m.stats.method));
   if (v.split) {  // the split line and its handle
     float x = float(r.x + r.w * m.splitAt);
     dl->AddLine(ImVec2(x, float(r.y)), ImVec2(x, float(r.y + r.h)), rgb(1, 1, 1), 2.0f);
@@ -306,7 +310,9 @@ static void drawOneView(ViewerModel& m, const SlotDraw& v) {
   if (!why.empty()) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), rgb(0.12f, 0.12f, 0.12f));
-    dl->AddText(ImVec2(float(r.x) + 8, float(r.y + r.h * 0.5)), rgb(0.8f, 0.8f, 0.8f), why.c_str());
+    // Wrapped: the reason must be readable in a grid tile too.
+    dl->AddText(ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(float(r.x) + 8, float(r.y + r.h * 0.4)),
+                rgb(0.8f, 0.8f, 0.8f), why.c_str(), nullptr, float(r.w) - 16.0f);
   } else {
     ResolvedRange range = resolveRange(def, m.settings[int(v.kind)], &m.ranges[int(v.kind)]);
     queueViewDraw(m, v, pl, range);

@@ -70,6 +70,13 @@ struct ViewerModel {
   RenderOptions wanted;
   bool fixedSize = false;          // render at wanted.width x height, else at the view area's size
   int renderScale = 1;             // render at 1/renderScale of the view area (faster camera moves)
+  // While input changes the frame (camera, options, lights, a time step) the viewer may render at
+  // 1/n of the full size and refine to full when the input stops: kReduceAuto picks n from the
+  // measured frame times (none where a full frame is fast), kReduceOff never, n >= 2 always 1/n.
+  static constexpr int kReduceAuto = 0, kReduceOff = 1;
+  int reduceWhileMoving = kReduceAuto;
+  int reducedBy = 1;               // the frame on screen is 1/reducedBy of the full size (1: full)
+  glm::uvec2 fullSize{0, 0};       // the full frame's size: views place a reduced frame at it
   int lightCount = 256;
   float lightRadiusScale = 1.0f;
   bool cullingStats = true;        // culling efficiency: reads back coverage and depth each frame
@@ -103,6 +110,8 @@ struct ViewerModel {
   bool captureAvailable = false;
   std::string captureHint;                  // tooltip: what the button does, or why it is grey
   bool captureRequested = false;
+  bool renderDocRequested = false;          // "Capture in RenderDoc" (live frames under RenderDoc)
+  bool renderDocAvailable = false;          // gblens runs under RenderDoc
   std::string captureStatus;
 
   // Set by the panels when anything changed that needs another interface frame.
@@ -113,7 +122,8 @@ struct ViewerModel {
 // wants now differ in anything (every member of RenderOptions).
 inline bool frameOutdated(const RenderOptions& rendered, const RenderOptions& wanted) { return !(rendered == wanted); }
 
-// Image size a view shows (the shadow map has its own).
+// Image size a view shows (the shadow map has its own): the full frame's size, also while a
+// reduced frame stands in for it (texel coordinates, marks and probes stay full-resolution).
 glm::uvec2 viewImageSize(const ViewerModel& m, ViewKind v);
 
 // The whole interface for one ImGui frame: menu bar, panels, and the view area, whose views are

@@ -1,0 +1,99 @@
+// Clustered shading's buffers (see cluster_buffers.h).
+#include "renderer/cluster_buffers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace gb {
+
+static uint32_t divUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
+
+void clusterFrameData(const Camera& camera, uint32_t visibleMax, gpu::FrameData& f) {
+  const uint32_t tilesX = divUp(camera.width, gpu::kClusterTile), tilesY = divUp(camera.height, gpu::kClusterTile);
+  f.clusterGrid = glm::uvec4(tilesX, tilesY, divUp(camera.width, gpu::kBinTile), std::max(divUp(visibleMax, 32), 1u));
+  // Olsson et al.'s slices: k = log(depth / near) / log(1 + 2 tan(fovy / 2) / tiles down), near-cubic
+  // clusters; where that needs more than kClusterMaxSlices between near and far, that many
+  // exponential slices span [near, far] instead.
+  const double perSlice = std::log2(1.0 + 2.0 * std::tan(camera.yfov * 0.5) / tilesY);
+  double scale = 1.0 / perSlice;
+  const double range = std::log2(camera.zfar / camera.znear);
+  if (range * scale > double(gpu::kClusterMaxSlices)) scale = double(gpu::kClusterMaxSlices) / range;
+  f.clusterSlices = glm::vec4(float(scale), float(-std::log2(camera.znear) * scale), 0.0f, 0.0f);
+}
+
+// `name` as the shaders call the buffer (RenderDoc's resource list).
+static void replace(Renderer& r, Buffer& b, VkDeviceSize bytes, VkBufferUsageFlags usage, MemoryUse use,
+                    const char* name) {
+  if (b.buffer && b.size >= bytes) return;
+  if (b.buffer) {
+    vkDeviceWaitIdle(r.ctx->device);
+    destroyBuffer(*r.ctx, b);
+  }
+  b = createBuffer(*r.ctx, std::max<VkDeviceSize>(bytes, 16), usage, use, name);
+}
+
+void ensureClusterBuffers(Renderer& r, uint32_t visibleMax) {
+  ClusterBuffers& c = r.clusters;
+  const uint32_t w = r.options.width, h = r.options.height;
+  const uint32_t tiles = divUp(w, gpu::kClusterTile) * divUp(h, gpu::kClusterTile);
+  const uint32_t bins = divUp(w, gpu::kBinTile) * divUp(h, gpu::kBinTile);
+  const uint32_t words = std::max(divUp(visibleMax, 32), 1u);
+  // Typical frames hold a few clusters per tile and tens of lights per cluster; more is grown.
+  c.clusterCapacity = std::max(c.clusterCapacity, tiles * 4);
+  c.listCapacity = std::max(c.listCapacity, std::max(c.clusterCapacity * 16, 1u << 20));
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  replace(r, c.header, sizeof(gpu::ClusterHeader), storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Device, "cluster_header");
+  replace(r, c.headerReadback, sizeof(gpu::ClusterHeader), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback,
+          "cluster_header.readback");
+  replace(r, c.clusters, VkDeviceSize(c.clusterCapacity) * sizeof(gpu::Cluster), storage, MemoryUse::Device, "clusters");
+  replace(r, c.pixelClusters, VkDeviceSize(w) * h * 4, storage, MemoryUse::Device, "pixel_clusters");
+  replace(r, c.lists, VkDeviceSize(c.listCapacity) * 4, storage, MemoryUse::Device, "light_lists");
+  replace(r, c.binBits, VkDeviceSize(bins) * words * 4, storage, MemoryUse::Device, "bin_bits");
+  replace(r, c.binBoxes, VkDeviceSize(bins) * 32, storage, MemoryUse::Device, "bin_boxes");
+  c.binBitsBytes = VkDeviceSize(bins) * words * 4;
+  c.binBoxBytes = VkDeviceSize(bins) * 32;
+}
+
+void destroyClusterBuffers(Renderer& r) {
+  ClusterBuffers& c = r.clusters;
+  for (Buffer* b : {&c.header, &c.headerReadback, &c.clusters, &c.pixelClusters, &c.lists, &c.binBits, &c.binBoxes,
+                    &r.fairyBits})
+    if (b->buffer) destroyBuffer(*r.ctx, *b);
+  c = ClusterBuffers{};
+}
+
+bool fairiesInCompute(const GpuContext& ctx, const RenderOptions& o, std::string& reason) {
+  if (singlePassFrame(o)) return reason = "drawn: the single-pass path draws them in its lighting subpass", false;
+  if (o.fairySplat == FairySplat::Raster) return reason = "drawn (--fairy-splat raster)", false;
+  if (o.fairySplat == FairySplat::Auto && ctx.isCpu)
+    return reason = "drawn: a CPU device (cheaper there, docs/performance.md)", false;
+  reason = o.fairySplat == FairySplat::Compute ? "--fairy-splat compute" : "auto: a GPU device";
+  return true;
+}
+
+void ensureFairyBits(Renderer& r, uint32_t visibleMax) {
+  const uint32_t bins = divUp(r.options.width, gpu::kBinTile) * divUp(r.options.height, gpu::kBinTile);
+  r.fairyBitsBytes = VkDeviceSize(bins) * std::max(divUp(visibleMax, 32), 1u) * 4;
+  replace(r, r.fairyBits, r.fairyBitsBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+          MemoryUse::Device, "fairy_bits");
+}
+
+ClusterStats collectClusterStats(Renderer& r) {
+  ClusterBuffers& c = r.clusters;
+  gpu::ClusterHeader h;
+  std::memcpy(&h, c.headerReadback.mapped, sizeof(h));
+  ClusterStats s;
+  s.valid = true;
+  s.clusters = h.counts.x;
+  s.listEntries = h.counts.y;
+  s.listOverflows = h.counts.z;
+  s.tilesWithoutRoom = h.counts.w;
+  // Out of room: exact but slower (those pixels test their bin's lights); the next frame has room.
+  if (h.counts.w > 0) c.clusterCapacity = std::max(c.clusterCapacity, h.counts.x * 2);
+  if (h.counts.z > 0) c.listCapacity = std::max(c.listCapacity, h.counts.y * 2);
+  return s;
+}
+
+}  // namespace gb

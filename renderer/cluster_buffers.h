@@ -1,0 +1,24 @@
+// Clustered shading's GPU buffers (sized per frame size and light count, grown when a frame ran
+// out of room), the grid and depth-slice parameters of a frame, and what the last frame counted.
+#pragma once
+#include "renderer/renderer.h"
+
+namespace gb {
+
+// The cluster grid of this frame (FrameData::clusterGrid / clusterSlices) for `visibleMax` lights
+// at most in the visible list.
+void clusterFrameData(const Camera& camera, uint32_t visibleMax, gpu::FrameData& f);
+
+// Creates or grows the buffers for this frame's size and visible-list bound.
+void ensureClusterBuffers(Renderer& r, uint32_t visibleMax);
+void destroyClusterBuffers(Renderer& r);
+
+// Fairy sprites in compute (--fairy-splat): whether this frame splats them, and why; their bin masks.
+bool fairiesInCompute(const GpuContext& ctx, const RenderOptions& o, std::string& reason);
+void ensureFairyBits(Renderer& r, uint32_t visibleMax);
+
+// After the frame's fence: the clusters, list entries and overflows it counted; a frame that ran
+// out of room (shaded exactly, more slowly) makes the next one get buffers twice the size needed.
+ClusterStats collectClusterStats(Renderer& r);
+
+}  // namespace gb

@@ -1,0 +1,31 @@
+// The crossovers behind `--method auto` (see method_choice.h). Each entry names the bench run
+// it comes from; docs/performance.md has the tables and how to re-measure them.
+#include "renderer/core/method_choice.h"
+
+namespace gb {
+
+const char* name(DeviceKind d) { return d == DeviceKind::Cpu ? "a CPU device" : "a GPU"; }
+
+const std::vector<MethodCrossover>& methodCrossovers() {
+  static const std::vector<MethodCrossover> table = {
+      {DeviceKind::Cpu, 0, Method::Deferred,
+       "lavapipe, builtin:temple 1280x720: fastest at 16-4096 lights; clustered 1.4-3.1x, tiled 1.5-2.7x slower"},
+      {DeviceKind::Gpu, 0, Method::Tiled, "H100, builtin:temple 720p-4K: tiled 3-6% faster than clustered at 16-256 lights"},
+      {DeviceKind::Gpu, 1024, Method::Clustered,
+       "H100, builtin:temple 720p-4K: equal to tiled at 1024 lights, faster from 4096 (1.2-1.3x at 65536)"},
+  };
+  return table;
+}
+
+MethodChoice chooseMethod(const RenderOptions& o, DeviceKind device, size_t lights) {
+  if (o.method != Method::Auto) return {o.method, std::string("--method ") + name(o.method)};
+  if (o.path == Path::SinglePass)
+    return {Method::Deferred, "auto: deferred, the only method with the single-pass path (--path single-pass)"};
+  const MethodCrossover* pick = nullptr;
+  for (const MethodCrossover& c : methodCrossovers())
+    if (c.device == device && c.fromLights <= lights && (!pick || c.fromLights >= pick->fromLights)) pick = &c;
+  if (!pick) return {Method::Deferred, "auto: deferred (no crossover measured for this device)"};
+  return {pick->method, std::string("auto: ") + name(pick->method) + " on " + name(device) + " (" + pick->measured + ")"};
+}
+
+}  // namespace gb

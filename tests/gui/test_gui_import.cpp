@@ -1,0 +1,224 @@
+// The viewer on an imported G-buffer, as a person uses it: a capture in a third-party layout (its
+// own target names, base colour, world-space normals stored unorm x2-1, linear eye depth, object
+// ids), opened with `gblens view --capture` under Xvfb. The grid shows the views the layout allows
+// and says why the others are unavailable; a click probes the pixel and the dossier holds the
+// decoded values, checked against the analytic scene the frame was made from (a plane y = 0 seen
+// from above at an angle: every value known in closed form).
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "renderer/core/layout_json.h"
+#include "tests/gpu/gpu_test.h"
+#include "tests/gui/gui_util.h"
+#include "views/capture/capture.h"
+#include "views/capture/import.h"
+
+namespace gb {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr uint32_t kW = 160, kH = 90;
+
+// The layout a user would write for their renderer (docs/layout-format.md), with its camera: a
+// Vulkan projection (fov 60 degrees, near 0.5, far 50) looking at the plane y = 0 from (0, 4, 6).
+nlohmann::json layoutJsonText() {
+  return nlohmann::json::parse(R"({
+    "format": "gblens-layout", "version": 1, "name": "analytic plane", "size": [160, 90],
+    "targets": [
+      {"name": "gbuf_color", "format": "rgba8_unorm",
+       "quantities": [{"name": "BaseColor", "quantity": "base_color", "channels": [0, 1, 2]},
+                      {"name": "Roughness", "quantity": "roughness", "channels": [3]}]},
+      {"name": "gbuf_normal", "format": "rgba16_unorm",
+       "quantities": [{"name": "N", "quantity": "normal", "encoding": "xyz_unorm", "space": "world", "channels": [0, 1, 2]}]},
+      {"name": "lineardepth", "format": "r32f",
+       "quantities": [{"name": "Z", "quantity": "depth", "encoding": "eye", "channels": [0]}]},
+      {"name": "objects", "format": "r32_uint",
+       "quantities": [{"name": "Object", "quantity": "id", "channels": [0], "names": {"1": "left tiles", "2": "right tiles"}}]}
+    ]
+  })");
+}
+
+}  // namespace
+
+class GuiImportTest : public GpuTest {
+ protected:
+  void SetUp() override {
+    if (!gui::haveTool("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
+    for (const char* tool : {"xdotool", "xwd", "convert"}) ASSERT_TRUE(gui::haveTool(tool)) << tool << " is missing";
+    GpuTest::SetUp();
+    dir_ = fs::path(GBLENS_BUILD_DIR) / "gui_import_test";
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    std::string error;
+    ASSERT_TRUE(xvfb_.start(1280, 720, error)) << error;
+  }
+  void TearDown() override {
+    gui::terminate(viewer_);
+    xvfb_.stop();
+    if (!IsSkipped()) GpuTest::TearDown();
+  }
+  std::string xdotool(const std::string& args) { return gui::run("DISPLAY=" + xvfb_.display + " xdotool " + args + " 2>&1"); }
+  nlohmann::json waitEvent(const std::function<bool(const nlohmann::json&)>& pred, double seconds = 30.0) {
+    return gui::waitForLine((dir_ / "events.jsonl").string(), seconds, pred, eventCursor_);
+  }
+
+  fs::path dir_;
+  gui::Xvfb xvfb_;
+  pid_t viewer_ = -1;
+  size_t eventCursor_ = 0;
+};
+
+// The analytic frame: eye position, the camera, and for each pixel the plane point it sees.
+struct PlaneScene {
+  Camera camera;
+  glm::dvec3 eyeWorld{0.0, 4.0, 6.0};
+  PlaneScene() {
+    camera.width = kW;
+    camera.height = kH;
+    camera.eyeFromWorld = glm::lookAt(eyeWorld, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0));
+    camera.worldFromEye = glm::inverse(camera.eyeFromWorld);
+    camera.clipFromEye = perspective(glm::radians(60.0), double(kW) / kH, 0.5, 50.0, false);
+    camera.znear = 0.5;
+    camera.zfar = 50.0;
+  }
+  // Eye depth of the plane at pixel (x, y), or nothing where the ray misses it (the sky).
+  std::optional<double> eyeDepth(uint32_t x, uint32_t y) const {
+    glm::dvec3 dirEye = eyeFromEyeDepth(camera, x, y, 1.0);  // at eye depth 1
+    glm::dvec3 dirWorld = glm::dvec3(camera.worldFromEye * glm::dvec4(dirEye, 0.0));
+    if (dirWorld.y >= -1e-9) return std::nullopt;
+    return -eyeWorld.y / dirWorld.y;  // eye depth = the ray parameter, since dirEye.z = -1
+  }
+  glm::dvec3 baseColor(uint32_t x, uint32_t y) const { return {(x + 0.5) / kW, (y + 0.5) / kH, 0.25}; }
+};
+
+TEST_F(GuiImportTest, AnImportedCaptureShowsItsViewsAndAClickProbesItsDecodedValues) {
+  // The imported frame, built as gblens import builds one: the layout parsed, the camera turned
+  // into gblens's convention, each target's texels as the renderer would have stored them.
+  Layout layout;
+  std::string error;
+  ASSERT_TRUE(parseLayout(layoutJsonText(), "analytic.json", layout, error)) << error;
+  PlaneScene scene;
+  FrameSnapshot f;
+  f.setLayout(layout);
+  f.camera = scene.camera;
+  f.options.width = kW;
+  f.options.height = kH;
+  f.layout.camera.present = true;
+  f.layout.camera.viewFromWorld = scene.camera.eyeFromWorld;
+  f.layout.camera.clipFromView = scene.camera.clipFromEye;
+  for (size_t t = 0; t < f.images.size(); ++t) {
+    TargetImage& ti = f.images[t];
+    describeImage(f.layout.targets[t], ti.image);
+    ti.image.width = ti.targetWidth = kW;
+    ti.image.height = ti.targetHeight = kH;
+    ti.image.data.assign(size_t(kW) * kH * ti.image.texelBytes(), 0);
+    f.absences[t] = Absent::No;
+  }
+  auto put = [&](int t, uint32_t x, uint32_t y, uint32_t c, auto v) {
+    CpuImage& img = f.images[size_t(t)].image;
+    std::memcpy(img.data.data() + (size_t(y) * kW + x) * img.texelBytes() + c * pixelTypeSize(img.type), &v, sizeof v);
+  };
+  for (uint32_t y = 0; y < kH; ++y)
+    for (uint32_t x = 0; x < kW; ++x) {
+      glm::dvec3 c = scene.baseColor(x, y);
+      for (uint32_t k = 0; k < 3; ++k) put(0, x, y, k, uint8_t(std::lround(c[int(k)] * 255.0)));
+      put(0, x, y, 3, uint8_t(128));
+      std::optional<double> z = scene.eyeDepth(x, y);
+      if (!z) continue;
+      // World normal (0, 1, 0) stored unorm: n * 0.5 + 0.5.
+      for (uint32_t k = 0; k < 3; ++k) put(1, x, y, k, uint16_t(k == 1 ? 65535 : 32768));
+      put(2, x, y, 0, float(*z));
+      put(3, x, y, 0, uint32_t(x < kW / 2 ? 1 : 2));
+    }
+  const std::string capture = (dir_ / "imported").string();
+  ASSERT_TRUE(writeCapture(capture, f, CaptureMeta{}, error)) << error;
+
+  viewer_ = gui::spawn({GBLENS_BINARY, "view", "--capture", capture, "--validate", "--window", "1280x720", "--event-log",
+                        (dir_ / "events.jsonl").string(), "--probe-log", (dir_ / "probe.jsonl").string()},
+                       {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
+  ASSERT_FALSE(waitEvent([](const nlohmann::json& j) { return j["event"] == "ready"; }, 60.0).is_null())
+      << "the viewer did not present the capture; see " << (dir_ / "viewer.log");
+  std::string wid = xdotool("search --onlyvisible --name '^gblens'");
+  wid = wid.substr(0, wid.find('\n'));
+  ASSERT_FALSE(wid.empty());
+  int winX = 0, winY = 0;
+  std::string geometry = xdotool("getwindowgeometry " + wid);
+  std::sscanf(geometry.c_str() + geometry.find("Position:"), "Position: %d,%d", &winX, &winY);
+
+  // The grid: the views the layout fills are available; the shadow map and coverage say why not.
+  xdotool("key --window " + wid + " 1");
+  nlohmann::json grid = waitEvent([](const nlohmann::json& j) { return j["event"] == "layout" && j["views"].size() == 9; });
+  ASSERT_FALSE(grid.is_null());
+  gui::Screenshot shot;
+  ASSERT_TRUE(gui::screenshot(xvfb_.display, (dir_ / "grid.png").string(), shot, error)) << error;
+  std::map<std::string, nlohmann::json> views;
+  for (const nlohmann::json& v : grid["views"]) views[v["view"]] = v;
+  for (const char* available : {"albedo", "normal", "depth", "specular"})
+    EXPECT_FALSE(views[available].contains("unavailable")) << available << ": " << views[available].dump();
+  for (const char* unavailable : {"shadowmap", "coverage_masked", "coverage_full"}) {
+    ASSERT_TRUE(views[unavailable].contains("unavailable")) << unavailable;
+    EXPECT_NE(views[unavailable]["unavailable"].get<std::string>().find("layout"), std::string::npos);
+  }
+  // The albedo view shows the base-colour gradient: red grows to the right.
+  const nlohmann::json& a = views["albedo"];
+  auto screenAt = [&](const nlohmann::json& v, double px, double py) {
+    double sx = double(v["origin"][0]) + px * double(v["scale"]) + winX;
+    double sy = double(v["origin"][1]) + py * double(v["scale"]) + winY;
+    return shot.at(int(sx), int(sy));
+  };
+  EXPECT_LT(screenAt(a, 20, 60)[0] + 0.2f, screenAt(a, 140, 60)[0]) << "albedo: no red gradient";
+
+  // Albedo alone (key 2), then a click on a pixel of the plane.
+  xdotool("key --window " + wid + " 2");
+  nlohmann::json one = waitEvent([](const nlohmann::json& j) {
+    return j["event"] == "layout" && j["views"].size() == 1 && j["views"][0]["view"] == "albedo";
+  });
+  ASSERT_FALSE(one.is_null());
+  const nlohmann::json& v = one["views"][0];
+  const uint32_t px = 40, py = 70;
+  ASSERT_TRUE(scene.eyeDepth(px, py).has_value());
+  double sx = double(v["origin"][0]) + (px + 0.5) * double(v["scale"]);
+  double sy = double(v["origin"][1]) + (py + 0.5) * double(v["scale"]);
+  xdotool("mousemove --window " + wid + " " + std::to_string(int(sx)) + " " + std::to_string(int(sy)) + " click 1");
+  ASSERT_FALSE(waitEvent([](const nlohmann::json& j) { return j["event"] == "probe_shown"; }).is_null());
+  ASSERT_TRUE(gui::screenshot(xvfb_.display, (dir_ / "probe.png").string(), shot, error)) << error;
+  size_t cursor = 0;
+  nlohmann::json d = gui::waitForLine((dir_ / "probe.jsonl").string(), 5.0, [](const nlohmann::json&) { return true; }, cursor);
+  ASSERT_FALSE(d.is_null());
+  EXPECT_EQ(d["pixel"], nlohmann::json({px, py}));
+  std::map<std::string, nlohmann::json> q;
+  for (const nlohmann::json& e : d["quantities"]) q[e["name"]] = e;
+  // Base colour: 8-bit unorm, within half a step of the analytic value.
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(q["BaseColor"]["values"][k].get<double>(), scene.baseColor(px, py)[k], 0.5 / 255.0 + 1e-9);
+  // The normal: world +Y in eye space, unit length within the 16-bit unorm step.
+  glm::dvec3 nEye = glm::dvec3(scene.camera.eyeFromWorld * glm::dvec4(0.0, 1.0, 0.0, 0.0));
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(q["N"]["values"][k].get<double>(), nEye[k], 2.0 / 65535.0);
+  // Eye depth as stored (float) and the position reconstructed from it on the plane y = 0.
+  const double z = *scene.eyeDepth(px, py);
+  EXPECT_NEAR(q["Z"]["values"][0].get<double>(), z, z * 1e-7);
+  bool reconstructed = false;
+  for (const nlohmann::json& r : d["reconstructions"])
+    if (r["quantity"] == "Z" && r["valid"].get<bool>()) {
+      reconstructed = true;
+      EXPECT_NEAR(r["world"][1].get<double>(), 0.0, 1e-5);
+    }
+  EXPECT_TRUE(reconstructed);
+  EXPECT_EQ(q["Object"]["values"][0].get<double>(), 1.0);
+  EXPECT_EQ(q["Object"]["note"], "left tiles");
+  EXPECT_FALSE(d["lighting"].value("note", "").empty()) << "an imported layout without lights says it did not evaluate them";
+
+  xdotool("key --window " + wid + " ctrl+q");
+  int status = -1;
+  ASSERT_TRUE(gui::waitExit(viewer_, 30.0, status)) << "the viewer did not quit";
+  viewer_ = -1;
+  EXPECT_EQ(status, 0) << "validation messages or a failure; see " << (dir_ / "viewer.log");
+}
+
+}  // namespace gb

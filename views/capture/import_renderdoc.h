@@ -1,0 +1,37 @@
+// A RenderDoc capture as the source of an import: the event to read at (--event, --pass, or after the
+// pass that last writes each target), the raw texels of the layout's targets (checked against the
+// layout's formats), and the camera's uniform buffer, gathered into an ImportInput (import.h).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "views/capture/import.h"
+#include "views/capture/renderdoc_replay.h"
+
+namespace gb {
+
+struct RenderDocImport {
+  std::string rdc;
+  uint32_t event = 0;        // --event EID (0: not given)
+  std::string pass;          // --pass NAME: the last event of that label region
+  bool cameraGiven = false;  // --camera: the layout's uniform buffer is not read
+  RdcReplayOptions replay;
+};
+
+// What was read, for the command's summary.
+struct RenderDocImported {
+  RdcListing listing;
+  struct Read {
+    std::string target, texture, format;
+    uint32_t event = 0;
+  };
+  std::vector<Read> reads;
+  std::vector<std::string> leftOut;  // targets without a source whose name no written texture has
+};
+
+// Fills `in` (whose layout is set) from the capture. A target with {"renderdoc": NAME} reads that
+// texture; a target without a source reads the texture of its own name, and is left out (absent)
+// when the capture has none or no pass up to the event writes it. False with one line naming the capture or the layout's target and field.
+bool readRenderDocImport(const RenderDocImport& r, ImportInput& in, RenderDocImported& info, std::string& error);
+
+}  // namespace gb
