@@ -62,7 +62,7 @@ struct RenderOptions {
   // former defaults (rgba16f normals; fp16 accumulation) on lavapipe: same or lower frame time,
   // lower error (normal 0.0029 -> 0.00045 deg mean; lighting 7e-4 -> 8e-8 relative).
   NormalFormat normalFormat = NormalFormat::OctRg16;
-  OctEncoding octEncoding = OctEncoding::Nearest;
+  OctEncoding octEncoding = OctEncoding::Precise;  // on the frontier on both bench scenes (docs/accuracy.md)
   DepthFormat depthFormat = DepthFormat::D32S8;
   AccumFormat accumFormat = AccumFormat::Rgba32f;
   ShadowFormat shadowFormat = ShadowFormat::D32f;
