@@ -145,6 +145,10 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   const SkyKey skyKey = skyVisibilityKey(r);
   if (!o.sky)
     g.skipPass("skybox", "sky disabled");
+  else if (method == Method::Tiled || method == Method::Clustered)
+    g.skipPass("skybox", std::string("method ") + methodName + ": " +
+                             (method == Method::Tiled ? "tiled_lighting" : "clustered_lighting") +
+                             " writes the sky where no geometry was drawn (no raster pass)");
   else if (skyKey == r.skyKey && r.skyPixels == 0)
     g.skipPass("skybox", "no sky visible: geometry covered every pixel in the last frame with this camera and geometry");
   else

@@ -86,7 +86,7 @@ static void prepareFrame(Renderer& r) {
   f.sunColor = glm::vec4(s.sun.color, 0.0f);
   f.ambientColor = glm::vec4(s.sky.ambient, 0.0f);
   f.skyZenith = glm::vec4(s.sky.zenith, 0.0f);
-  f.skyHorizon = glm::vec4(s.sky.horizon, 0.0f);
+  f.skyHorizon = glm::vec4(s.sky.horizon, o.sky ? 1.0f : 0.0f);  // w: skyEnabled() in sky.glsl
   f.skyGround = glm::vec4(s.sky.ground, 0.0f);
   f.params = glm::vec4(o.exposure, 0.05f, 1.0f / float(o.shadowMapSize), float(o.time));
   f.counts = glm::uvec4(uint32_t(r.lights.visible.size()), uint32_t(r.lights.visible.size()) - r.lights.stencilCount,

@@ -9,6 +9,7 @@
 #include "gbuffer_read.glsl"
 #include "shading.h"
 #include "cluster_common.glsl"
+#include "sky.glsl"
 
 layout(local_size_x = kTileSize, local_size_y = kTileSize) in;
 layout(set = 1, binding = kBindingHdrStorage, GB_HDR_FORMAT) uniform writeonly image2D hdrOut;
@@ -46,6 +47,8 @@ void main() {
         }
     }
   }
-  imageStore(hdrOut, p, s.geometry ? vec4(c, 1.0) : vec4(0.0));
+  // No geometry: the sky (the skybox pass is skipped for this method), else nothing.
+  const vec2 ndc = (vec2(p) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
+  imageStore(hdrOut, p, s.geometry ? vec4(c, 1.0) : skyEnabled() ? vec4(skyColor(ndc), 1.0) : vec4(0.0));
   if (COVERAGE != 0) imageStore(coverage, p, uvec4(evaluated));
 }

@@ -116,7 +116,7 @@ GB_STRUCT(FrameData) {
   vec4 sunColor;          // rgb radiance
   vec4 ambientColor;      // rgb
   vec4 skyZenith;         // rgb
-  vec4 skyHorizon;        // rgb
+  vec4 skyHorizon;        // rgb; w 1 when the sky is drawn (sky.glsl skyEnabled)
   vec4 skyGround;         // rgb
   vec4 params;            // x exposure, y fairy size (fraction of radius), z shadow-map texel size, w time
   uvec4 counts;           // x visible lights, y lights drawn in the "inside" class, z, w unused

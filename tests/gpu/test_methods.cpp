@@ -197,6 +197,44 @@ TEST_F(GpuTest, DeferredAndTiledGiveTheSameImageWithinTheAccumulationBound) {
   expectMethodsAgree(*this, scene, o, "stored position", false);
 }
 
+// Tiled and clustered write the sky from their compute pass (on a GPU whose raster units are few,
+// as the H100's, a full-screen raster pass costs more than the compute work): no skybox pass,
+// and every sky pixel equals the skybox pass's within float rounding of the pixel's direction.
+TEST_F(GpuTest, ComputeMethodsWriteTheSkyTheSkyboxPassWouldDraw) {
+  Scene scene = builtinTemple(16);
+  RenderOptions o = methodOptions(96, 54, 16);
+  o.method = Method::Deferred;
+  render(scene, o, {{Target::Hdr, Target::Depth}});
+  const CpuImage sky = renderer(scene).readback[size_t(Target::Hdr)];
+  const CpuImage depth = renderer(scene).readback[size_t(Target::Depth)];
+  for (Method m : {Method::Tiled, Method::Clustered}) {
+    o.method = m;
+    const FrameStats& st = render(scene, o, {{Target::Hdr}});
+    auto skybox = std::find_if(st.passes.begin(), st.passes.end(), [](const PassStat& p) { return p.name == "skybox"; });
+    ASSERT_NE(skybox, st.passes.end());
+    EXPECT_TRUE(skybox->skipped) << name(m);
+    EXPECT_NE(skybox->reason.find("writes the sky"), std::string::npos) << skybox->reason;
+    const CpuImage& hdr = renderer(scene).readback[size_t(Target::Hdr)];
+    size_t skyPixels = 0;
+    for (uint32_t y = 0; y < hdr.height; ++y)
+      for (uint32_t x = 0; x < hdr.width; ++x) {
+        if (depth.value(x, y, 0) != 0.0) continue;  // geometry (eye depth 0: none)
+        ++skyPixels;
+        for (int c = 0; c < 4; ++c)
+          EXPECT_NEAR(hdr.value(x, y, c), sky.value(x, y, c), 1e-5 * std::max(1.0, std::abs(sky.value(x, y, c))))
+              << name(m) << " sky pixel " << x << "," << y << " channel " << c;
+      }
+    EXPECT_GT(skyPixels, 500u) << "the temple's camera sees the sky above the columns";
+  }
+  o.sky = false;  // and no sky: nothing where no geometry was drawn
+  o.method = Method::Clustered;
+  render(scene, o, {{Target::Hdr}});
+  const CpuImage& dark = renderer(scene).readback[size_t(Target::Hdr)];
+  for (uint32_t y = 0; y < dark.height; ++y)
+    for (uint32_t x = 0; x < dark.width; ++x)
+      if (depth.value(x, y, 0) == 0.0) ASSERT_EQ(dark.value(x, y, 0), 0.0) << x << "," << y;
+}
+
 TEST_F(GpuTest, ForwardAgreesWithDeferredWhereTheGBufferStoresExactValues) {
   Scene probe = floorScene();
   const std::vector<float> decode = probeSrgbDecode(renderer(probe));

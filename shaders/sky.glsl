@@ -1,0 +1,20 @@
+// The sky's colour by normalized device coordinates: a procedural gradient by world-space view
+// direction plus the sun's disc. One function for the skybox pass (sky.frag) and the compute
+// lighting passes, which write the sky where no geometry was drawn (no raster pass for it).
+vec3 skyColor(vec2 ndc) {
+  vec4 e = frame.eyeFromClip * vec4(ndc, 0.5, 1.0);
+  vec3 dir = normalize(mat3(frame.worldFromEye) * (e.xyz / e.w));
+  float h = dir.y;
+  vec3 c = h >= 0.0 ? mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, pow(h, 0.6))
+                    : mix(frame.skyHorizon.rgb, frame.skyGround.rgb, pow(-h, 0.4));
+  // The sun's disc, so shadows have a visible cause.
+  if (frame.sunEyeDirection.w > 0.0) {
+    vec3 toSun = normalize(mat3(frame.worldFromEye) * frame.sunEyeDirection.xyz);
+    float d = dot(dir, toSun);
+    c += frame.sunColor.rgb * (smoothstep(0.9995, 0.9998, d) * 4.0 + pow(max(d, 0.0), 256.0) * 0.3);
+  }
+  return c;
+}
+
+// Whether the frame draws a sky (frame.skyHorizon.w, from RenderOptions::sky).
+bool skyEnabled() { return frame.skyHorizon.w > 0.0; }
