@@ -61,6 +61,7 @@ Command addBenchCommand(CLI::App& root);
 Command addStressCommand(CLI::App& root);
 Command addImportCommand(CLI::App& root);
 Command addCheckCommand(CLI::App& root);
+Command addStatsCommand(CLI::App& root);
 
 // Loads SCENE; on a user mistake prints one line and returns false (caller exits 2).
 bool loadSceneOrReport(const CommonOptions& o, Scene& scene);

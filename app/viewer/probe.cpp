@@ -31,7 +31,7 @@ static std::string valuesText(const CpuImage& img) {
 
 // The frame as the probe sees it: matrices, lights and options of the live renderer, and the
 // read-back windows as region TargetImages (texel (x0, y0) of the target is image texel (0, 0)).
-static void addRegions(FrameSnapshot& s, const std::vector<RegionImage>& regions) {
+void addRegions(FrameSnapshot& s, const std::vector<RegionImage>& regions) {
   for (const RegionImage& ri : regions) {
     if (ri.image.empty()) continue;
     TargetImage& ti = s.target(ri.target);

@@ -135,6 +135,7 @@ static void renderIfNeeded(Viewer& v, const RenderOptions& full, bool animating,
   }
   // A pinned probe follows the frame (not logged: only clicks and arrow keys are).
   if (m.probePixel && !m.probeRequest) probeViewerPixel(v, *m.probePixel, false);
+  m.regionDirty = m.regionDirty || m.region.has_value();  // the region's numbers follow the frame too
   v.hoverRead.reset();  // re-read the value under the mouse
   v.hoverReadView.reset();
 }
@@ -269,6 +270,7 @@ static void updateFrame(Viewer& v, const LoopState& s, int fbw, int fbh, double 
   m.stepForward = m.stepBack = false;
   updateRanges(v);
   if (m.probeRequest) answerProbe(v);
+  updateRegion(v);
   if (s.live) {
     readHover(v);
   } else {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "renderer/core/options.h"
+#include "renderer/region_readback.h"
 #include "renderer/scene/scene.h"
 #include "renderer/vk/swapchain.h"
 #include "views/capture/capture.h"
@@ -133,6 +134,12 @@ bool presentFrame(Viewer& v);
 // shared dossier (views/probe.h). `logged`: a user's probe (written to --probe-log).
 void probeViewerPixel(Viewer& v, glm::ivec2 pixel, bool logged);
 void readHover(Viewer& v);
+// Read-back windows (texel (x0, y0) of the target is image texel (0, 0)) placed into a snapshot.
+void addRegions(FrameSnapshot& s, const std::vector<RegionImage>& regions);
+
+// region.cpp
+// The statistics of the selected region (ViewerModel::region) when it is new or the frame changed.
+void updateRegion(Viewer& v);
 
 // captures.cpp
 // Captures the live frame (rendered again, whole) to ./gblens-capture-<date>-<time>/; with `rdc`,

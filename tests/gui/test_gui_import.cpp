@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -97,13 +98,13 @@ struct PlaneScene {
   glm::dvec3 baseColor(uint32_t x, uint32_t y) const { return {(x + 0.5) / kW, (y + 0.5) / kH, 0.25}; }
 };
 
-TEST_F(GuiImportTest, AnImportedCaptureShowsItsViewsAndAClickProbesItsDecodedValues) {
-  // The imported frame, built as gblens import builds one: the layout parsed, the camera turned
-  // into gblens's convention, each target's texels as the renderer would have stored them.
+// The imported frame, built as gblens import builds one, written as a capture in `dir`.
+static std::string writePlaneCapture(const fs::path& dir, const PlaneScene& scene) {
+  // The layout parsed, the camera turned into gblens's convention, each target's texels as the
+  // renderer would have stored them.
   Layout layout;
   std::string error;
-  ASSERT_TRUE(parseLayout(layoutJsonText(), "analytic.json", layout, error)) << error;
-  PlaneScene scene;
+  if (!parseLayout(layoutJsonText(), "analytic.json", layout, error)) throw std::runtime_error(error);
   FrameSnapshot f;
   f.setLayout(layout);
   f.camera = scene.camera;
@@ -136,8 +137,15 @@ TEST_F(GuiImportTest, AnImportedCaptureShowsItsViewsAndAClickProbesItsDecodedVal
       put(2, x, y, 0, float(*z));
       put(3, x, y, 0, uint32_t(x < kW / 2 ? 1 : 2));
     }
-  const std::string capture = (dir_ / "imported").string();
-  ASSERT_TRUE(writeCapture(capture, f, CaptureMeta{}, error)) << error;
+  const std::string capture = (dir / "imported").string();
+  if (!writeCapture(capture, f, CaptureMeta{}, error)) throw std::runtime_error(error);
+  return capture;
+}
+
+TEST_F(GuiImportTest, AnImportedCaptureShowsItsViewsAndAClickProbesItsDecodedValues) {
+  PlaneScene scene;
+  std::string error;
+  const std::string capture = writePlaneCapture(dir_, scene);
 
   viewer_ = gui::spawn({GBLENS_BINARY, "view", "--capture", capture, "--validate", "--window", "1280x720", "--event-log",
                         (dir_ / "events.jsonl").string(), "--probe-log", (dir_ / "probe.jsonl").string()},
@@ -213,6 +221,74 @@ TEST_F(GuiImportTest, AnImportedCaptureShowsItsViewsAndAClickProbesItsDecodedVal
   EXPECT_EQ(q["Object"]["values"][0].get<double>(), 1.0);
   EXPECT_EQ(q["Object"]["note"], "left tiles");
   EXPECT_FALSE(d["lighting"].value("note", "").empty()) << "an imported layout without lights says it did not evaluate them";
+
+  xdotool("key --window " + wid + " ctrl+q");
+  int status = -1;
+  ASSERT_TRUE(gui::waitExit(viewer_, 30.0, status)) << "the viewer did not quit";
+  viewer_ = -1;
+  EXPECT_EQ(status, 0) << "validation messages or a failure; see " << (dir_ / "viewer.log");
+}
+
+}  // namespace gb
+
+namespace gb {
+
+// Region statistics as a person gets them: ctrl + drag over the albedo view of the imported frame
+// selects the texels under the press and the release; the viewer's numbers (its event log holds
+// what the Region panel shows) are those of `gblens stats` for that capture and rect, and the base
+// colour's mean is the analytic one (8-bit steps of (x + 0.5) / 160).
+TEST_F(GuiImportTest, ACtrlDragSelectsARegionWhoseStatisticsAreGblensStats) {
+  PlaneScene scene;
+  const std::string capture = writePlaneCapture(dir_, scene);
+  viewer_ = gui::spawn({GBLENS_BINARY, "view", "--capture", capture, "--validate", "--window", "1280x720", "--event-log",
+                        (dir_ / "events.jsonl").string()},
+                       {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
+  ASSERT_FALSE(waitEvent([](const nlohmann::json& j) { return j["event"] == "ready"; }, 60.0).is_null())
+      << "the viewer did not present the capture; see " << (dir_ / "viewer.log");
+  std::string wid = xdotool("search --onlyvisible --name '^gblens'");
+  wid = wid.substr(0, wid.find('\n'));
+  ASSERT_FALSE(wid.empty());
+  xdotool("key --window " + wid + " 2");
+  nlohmann::json one = waitEvent([](const nlohmann::json& j) {
+    return j["event"] == "layout" && j["views"].size() == 1 && j["views"][0]["view"] == "albedo";
+  });
+  ASSERT_FALSE(one.is_null());
+  const nlohmann::json& v = one["views"][0];
+  auto at = [&](uint32_t px, uint32_t py) {
+    return std::to_string(int(double(v["origin"][0]) + (px + 0.5) * double(v["scale"]))) + " " +
+           std::to_string(int(double(v["origin"][1]) + (py + 0.5) * double(v["scale"])));
+  };
+  const uint32_t x0 = 20, y0 = 50, x1 = 59, y1 = 79;  // both corners included: 40 x 30
+  xdotool("mousemove --window " + wid + " " + at(x0, y0) + " sleep 0.2 keydown ctrl sleep 0.2 mousedown 1 sleep 0.2" +
+          " mousemove --window " + wid + " " + at((x0 + x1) / 2, (y0 + y1) / 2) + " sleep 0.2 mousemove --window " + wid +
+          " " + at(x1, y1) + " sleep 0.3 mouseup 1 sleep 0.2 keyup ctrl");
+  nlohmann::json region = waitEvent([](const nlohmann::json& j) { return j["event"] == "region"; });
+  ASSERT_FALSE(region.is_null()) << "no region event; see " << (dir_ / "viewer.log");
+  const nlohmann::json& st = region["stats"];
+  EXPECT_EQ(st["rect"], nlohmann::json({{"x", x0}, {"y", y0}, {"width", x1 - x0 + 1}, {"height", y1 - y0 + 1}}));
+  gui::Screenshot shot;
+  std::string error;
+  ASSERT_TRUE(gui::screenshot(xvfb_.display, (dir_ / "region.png").string(), shot, error)) << error;
+
+  // The same numbers from the command line.
+  gui::run(std::string(GBLENS_BINARY) + " stats '" + capture + "' --rect 20,50,40,30 --json > '" +
+           (dir_ / "stats.json").string() + "'");
+  std::ifstream in(dir_ / "stats.json");
+  const nlohmann::json cli = nlohmann::json::parse(in);
+  EXPECT_EQ(st["channels"], cli["channels"]);
+  EXPECT_EQ(st["quantities"], cli["quantities"]);
+  // And from the analytic scene: the base colour's red mean over the rect, in 8-bit steps.
+  double red = 0.0;
+  for (uint32_t x = x0; x <= x1; ++x) red += std::lround(scene.baseColor(x, 0).x * 255.0) / 255.0;
+  red /= double(x1 - x0 + 1);
+  bool found = false;
+  for (const nlohmann::json& q : st["quantities"])
+    if (q["target"] == "gbuf_color" && q["series"] == "BaseColor.R") {
+      found = true;
+      EXPECT_NEAR(q["mean"].get<double>(), red, 1e-9);
+      EXPECT_EQ(q["count"].get<uint64_t>(), 40u * 30u);  // every pixel of the rect sees the plane
+    }
+  EXPECT_TRUE(found) << st.dump();
 
   xdotool("key --window " + wid + " ctrl+q");
   int status = -1;

@@ -51,23 +51,6 @@ double normalLengthTolerance(const Layout& l, const Quantity& q) {
   return std::max(1e-3, 2.0 * std::sqrt(3.0) * e);
 }
 
-bool surfaceQuantity(QuantityKind k) {
-  switch (k) {
-    case QuantityKind::Albedo:
-    case QuantityKind::BaseColor:
-    case QuantityKind::Emission:
-    case QuantityKind::Specular:
-    case QuantityKind::Roughness:
-    case QuantityKind::Metallic:
-    case QuantityKind::Occlusion:
-    case QuantityKind::Shadow:
-    case QuantityKind::Normal:
-    case QuantityKind::Position:
-    case QuantityKind::Motion:
-    case QuantityKind::Id: return true;
-    default: return false;
-  }
-}
 
 std::string number(double v) {
   char buf[32];
@@ -246,6 +229,24 @@ std::string valueText(double v) {
 }
 
 }  // namespace
+
+bool surfaceQuantity(QuantityKind k) {
+  switch (k) {
+    case QuantityKind::Albedo:
+    case QuantityKind::BaseColor:
+    case QuantityKind::Emission:
+    case QuantityKind::Specular:
+    case QuantityKind::Roughness:
+    case QuantityKind::Metallic:
+    case QuantityKind::Occlusion:
+    case QuantityKind::Shadow:
+    case QuantityKind::Normal:
+    case QuantityKind::Position:
+    case QuantityKind::Motion:
+    case QuantityKind::Id: return true;
+    default: return false;
+  }
+}
 
 const char* name(Anomaly a) {
   static const char* n[] = {"nan", "+inf", "-inf", "denormal", "out_of_range"};

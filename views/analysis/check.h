@@ -47,6 +47,10 @@ struct CheckReport {
   bool clean() const { return total() == 0; }
 };
 
+// Quantities that mean something only where a surface was drawn (albedo, normal, ...): scanned, and
+// summarised by `gblens stats`, over the surface pixels only.
+bool surfaceQuantity(QuantityKind k);
+
 // Scans every texel of every target the frame holds.
 CheckReport checkFrame(const FrameSnapshot& frame);
 

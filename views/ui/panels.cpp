@@ -11,6 +11,7 @@ namespace gb {
 
 void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, std::vector<ViewDraw>& draws);
 void drawDossier(ViewerModel& m);  // probe_panel.cpp
+void drawRegion(ViewerModel& m);   // region_panel.cpp
 
 static constexpr double kMenuHeight = 20.0, kStatusHeight = 22.0, kControlsWidth = 310.0, kPixelWidth = 450.0;
 
@@ -327,6 +328,7 @@ static void pixelPanel(ViewerModel& m, const Rect& at) {
   ImGui::SetNextWindowSize(ImVec2(float(at.w), float(at.h)));
   ImGui::Begin("Pixel", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                                      ImGuiWindowFlags_NoSavedSettings);
+  if (m.region && ImGui::CollapsingHeader("Region statistics", ImGuiTreeNodeFlags_DefaultOpen)) drawRegion(m);
   drawDossier(m);
   ImGui::End();
 }

@@ -171,6 +171,14 @@ static void drawMarks(const ViewerModel& m, const SlotDraw& v, const Placement& 
   if (viewDef(v.kind).source.target != Target::ShadowMap) {
     if (v.hover.texel) markTexel(dl, pl, *v.hover.texel, rgb(1, 1, 1), r);
     if (m.probePixel) markTexel(dl, pl, *m.probePixel, rgb(0.2f, 1.0f, 0.4f), r);
+    if (m.region) {  // the region statistics' rectangle, in every screen view
+      const RegionRect& g = *m.region;
+      glm::dvec2 a = windowAt(pl, glm::dvec2(g.x, g.y)), b = windowAt(pl, glm::dvec2(g.x + g.width, g.y + g.height));
+      dl->PushClipRect(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), true);
+      dl->AddRect(ImVec2(float(a.x), float(a.y)), ImVec2(float(b.x), float(b.y)), rgb(0, 0, 0), 0, 0, 3.0f);
+      dl->AddRect(ImVec2(float(a.x), float(a.y)), ImVec2(float(b.x), float(b.y)), rgb(1.0f, 0.8f, 0.1f), 0, 0, 1.5f);
+      dl->PopClipRect();
+    }
   } else {
     if (v.hover.shadowTexel) markTexel(dl, pl, *v.hover.shadowTexel, rgb(1, 1, 1), r);
     if (m.shadowTexelOfProbe) markTexel(dl, pl, *m.shadowTexelOfProbe, rgb(0.2f, 1.0f, 0.4f), r);
@@ -239,9 +247,23 @@ static void drawLabels(const ViewerModel& m, const SlotDraw& v, const ResolvedRa
   }
 }
 
+// Ctrl + left drag: the region's first corner at the press, the rectangle to the texel under the
+// mouse while it moves (both corners included, clamped to the frame), the statistics on release.
+static void selectRegion(ViewerModel& m, glm::uvec2 size, glm::ivec2 texel) {
+  texel = glm::clamp(texel, glm::ivec2(0), glm::ivec2(size) - 1);
+  if (ImGui::IsItemClicked(ImGuiMouseButton_Left) || !m.regionAnchor) m.regionAnchor = texel;
+  const glm::ivec2 lo = glm::min(*m.regionAnchor, texel), hi = glm::max(*m.regionAnchor, texel);
+  m.region = RegionRect{uint32_t(lo.x), uint32_t(lo.y), uint32_t(hi.x - lo.x + 1), uint32_t(hi.y - lo.y + 1)};
+  if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+    m.regionAnchor.reset();
+    m.regionDirty = true;
+  }
+  m.uiChanged = true;
+}
+
 // The mouse over the slot's button: hover, wheel zoom (ctrl: dolly), the split handle, click or
-// drag to probe (a shadow-map click marks a texel), middle or shift drag to pan, right drag to
-// turn the camera.
+// drag to probe (a shadow-map click marks a texel), ctrl drag to select a region, middle or shift
+// drag to pan, right drag to turn the camera.
 static void handleMouse(ViewerModel& m, const SlotDraw& v, const Placement& pl, bool hovered, bool active) {
   ImGuiIO& io = ImGui::GetIO();
   const Rect& r = v.rect;
@@ -271,6 +293,8 @@ static void handleMouse(ViewerModel& m, const SlotDraw& v, const Placement& pl, 
     else
       m.draggingSplit = false;
     m.uiChanged = true;
+  } else if (io.KeyCtrl && !shadowMap && (ImGui::IsItemClicked(ImGuiMouseButton_Left) || m.regionAnchor)) {
+    selectRegion(m, size, texel);
   } else if (ImGui::IsItemClicked(ImGuiMouseButton_Left) || (active && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f) &&
                                                        io.MouseDelta.x + io.MouseDelta.y != 0.0f && !io.KeyShift)) {
     m.edited = v.kind;

@@ -11,6 +11,7 @@
 
 #include "renderer/renderer.h"
 #include "views/analysis/probe.h"
+#include "views/analysis/region_stats.h"
 #include "views/ui/view_layout.h"
 
 struct ImDrawList;
@@ -105,6 +106,14 @@ struct ViewerModel {
   std::string probeError;
   double probeLatencyMs = 0.0;
   bool copyJson = false;
+
+  // ---- region statistics: ctrl + left drag in a screen view (views/analysis/region_stats.h) ----
+  std::optional<glm::ivec2> regionAnchor;      // drag in progress: the first corner (frame pixels)
+  std::optional<RegionRect> region;            // the selected rectangle (frame pixels)
+  bool regionDirty = false;                    // selection finished or frame changed: the app recomputes
+  std::optional<RegionStats> regionStats;      // of capture A or of the live frame's read-back
+  std::string regionNote;                      // why there are no numbers yet (a reduced frame, ...)
+  int regionSeries = -1;                       // the series whose histogram is drawn (-1: the first)
 
   // ---- capture ----
   bool captureAvailable = false;
