@@ -100,12 +100,11 @@ void drawRegion(ViewerModel& m) {
   if (chosen.count)
     ImGui::Text("p1 %.6g  p50 %.6g  p99 %.6g  sd %.6g", chosen.p1, chosen.p50, chosen.p99, chosen.stddev);
   histogram(chosen);
-  const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV |
-                                ImGuiTableFlags_SizingFixedFit;
+  const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV;
   if (!ImGui::BeginTable("region", 4, flags, ImVec2(0.0f, 200.0f))) return;
   ImGui::TableSetupScrollFreeze(0, 1);
   ImGui::TableSetupColumn("series (click: histogram)", ImGuiTableColumnFlags_WidthStretch);
-  for (const char* h : {"min", "max", "mean"}) ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthFixed, 62.0f);
+  for (const char* h : {"min", "max", "mean"}) ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthFixed, 64.0f);
   ImGui::TableHeadersRow();
   for (size_t i = 0; i < all.size(); ++i) {
     const SeriesStats& s = *all[i];
