@@ -12,32 +12,6 @@
 
 namespace gb {
 
-bool touchesNearPlane(const Camera& camera, const glm::dvec3& c, double radius) {
-  double circumradius = radius / kIcosahedronInradius;
-  // Nearest point of the icosahedron's bounding sphere vs the near plane, with a margin for
-  // the float rounding of the vertices on the GPU.
-  return -c.z - circumradius <= camera.znear * 1.001 + 1e-6 * circumradius;
-}
-
-// Sphere vs the camera frustum in eye space (planes through the origin and the near/far planes).
-static bool sphereInFrustum(const Camera& camera, const glm::dvec3& c, double r) {
-  if (-c.z + r < camera.znear || -c.z - r > camera.zfar) return false;
-  const glm::dmat4& p = camera.clipFromEye;
-  // Side planes -w <= x_clip <= w (and y) with x_clip = P00 x + P20 z, w = -z: inside when
-  // dot(n, c) <= 0 for each outward normal n below.
-  const glm::dvec3 planes[4] = {
-      {p[0][0], 0.0, p[2][0] + 1.0}, {-p[0][0], 0.0, 1.0 - p[2][0]},
-      {0.0, p[1][1], p[2][1] + 1.0}, {0.0, -p[1][1], 1.0 - p[2][1]}};
-  for (const glm::dvec3& n : planes)
-    if (glm::dot(n, c) > r * glm::length(n)) return false;
-  return true;
-}
-
-bool coversNoPixelCentre(const Camera& camera, const glm::dvec3& c, double r) {
-  if (-c.z - r <= camera.znear) return false;  // reaches the near plane: unbounded projection
-  return sphereScreenRect(camera, c, r, 1e-3).empty();
-}
-
 // Pixels the light's icosahedron can rasterize: the rectangle of its bounding sphere, widened
 // by a pixel so that rounding of the vertices on the GPU cannot reach outside it.
 static PixelRect icosahedronPixels(const Camera& camera, const glm::dvec3& c, double radius) {
@@ -145,22 +119,13 @@ void classifyLights(const Scene& scene, const Camera& camera, double time, bool 
     glm::dvec3 color = glm::dvec3(l.color) * l.intensity;
     out.eye[i].eyePositionRadius = glm::vec4(glm::vec3(c), float(l.radius));
     out.eye[i].color = glm::vec4(glm::vec3(color), 0.0f);
-    if (!(l.radius > 0.0) || !(l.intensity > 0.0) || glm::dot(color, color) <= 0.0 || !std::isfinite(l.radius)) {
-      out.culledEmpty++;
-      continue;
+    switch (cullLight(camera, c, l.radius, l.intensity, color)) {
+      case LightCull::Empty: out.culledEmpty++; break;
+      case LightCull::Frustum: out.culledFrustum++; break;
+      case LightCull::SubPixel: out.culledSubpixel++; break;
+      case LightCull::NearPlane: nearClass.push_back(uint32_t(i)); break;
+      case LightCull::Stencil: out.visible.push_back(uint32_t(i)); break;
     }
-    if (!sphereInFrustum(camera, c, l.radius)) {
-      out.culledFrustum++;
-      continue;
-    }
-    if (coversNoPixelCentre(camera, c, l.radius)) {
-      out.culledSubpixel++;
-      continue;
-    }
-    if (touchesNearPlane(camera, c, l.radius))
-      nearClass.push_back(uint32_t(i));
-    else
-      out.visible.push_back(uint32_t(i));
   }
   out.stencilCount = uint32_t(out.visible.size());
   out.layerStarts.clear();

@@ -4,6 +4,7 @@
 #pragma once
 #include "renderer/core/camera.h"
 #include "renderer/core/image.h"
+#include "renderer/core/light_rect.h"  // cullLight: the rules
 #include "renderer/renderer.h"
 
 namespace gb {
@@ -13,20 +14,11 @@ namespace gb {
 // per-light mask, which draws a layer at once.
 void classifyLights(const Scene& scene, const Camera& camera, double time, bool layers, FrameLights& lights);
 
-// True when the light's icosahedron may reach the near plane (or contain the camera): its front
-// faces would be clipped, so the stencil mask cannot be used for it.
-bool touchesNearPlane(const Camera& camera, const glm::dvec3& eyeCenter, double radius);
 
 // The eye-depth image (0 where nothing was drawn) of a read-back depth_stencil target, for
 // frames without the eye-depth target (method forward).
 CpuImage eyeDepthFromHardware(const Camera& camera, const CpuImage& depthStencil);
 
-// True when a light cannot light any pixel: the sphere lies in front of the near plane and its
-// exact screen-space bounding rectangle (tangent planes through the eye), widened by 1/1000 of a
-// pixel for rounding, holds no pixel centre. Every shaded surface point lies on the ray through
-// a pixel centre, and a ray that misses the sphere cannot reach a point inside it, so skipping
-// such a light changes no pixel (its projection is smaller than a pixel and falls between centres).
-bool coversNoPixelCentre(const Camera& camera, const glm::dvec3& eyeCenter, double radius);
 
 // (pixel, light) pairs whose surface point, reconstructed from the read-back eye depth, lies
 // strictly inside the light's radius. Only pixels within each light's screen rectangle are tested.

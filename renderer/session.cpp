@@ -95,6 +95,7 @@ FrameSnapshot snapshotFromRenderer(const Renderer& r, const std::vector<Target>&
   GB_ASSERT(r.scene);
   FrameSnapshot s;
   s.options = r.options;
+  s.method = r.method;
   s.setLayout(nativeLayout(r.options));
   s.camera = r.camera;
   s.lightClipFromWorld = r.lightClipFromWorld;

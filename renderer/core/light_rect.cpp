@@ -1,4 +1,5 @@
-// sphereScreenRect (light_rect.h): the tangent lines through the eye, per screen axis.
+// sphereScreenRect (light_rect.h): the tangent lines through the eye, per screen axis; and the
+// culling rule for one light (cullLight), shared by light culling and the probe's light ledger.
 #include "renderer/core/light_rect.h"
 
 #include <algorithm>
@@ -31,6 +32,51 @@ PixelRect sphereScreenRect(const Camera& camera, const glm::dvec3& c, double r, 
   centreRange(depth, r, c.x, p[0][0], p[2][0], camera.width, margin, rect.x0, rect.x1);
   centreRange(depth, r, c.y, p[1][1], p[2][1], camera.height, margin, rect.y0, rect.y1);
   return rect;
+}
+
+bool touchesNearPlane(const Camera& camera, const glm::dvec3& c, double radius) {
+  double circumradius = radius / kIcosahedronInradius;
+  // Nearest point of the icosahedron's bounding sphere vs the near plane, with a margin for
+  // the float rounding of the vertices on the GPU.
+  return -c.z - circumradius <= camera.znear * 1.001 + 1e-6 * circumradius;
+}
+
+// Sphere vs the camera frustum in eye space (planes through the origin and the near/far planes).
+bool sphereInFrustum(const Camera& camera, const glm::dvec3& c, double r) {
+  if (-c.z + r < camera.znear || -c.z - r > camera.zfar) return false;
+  const glm::dmat4& p = camera.clipFromEye;
+  // Side planes -w <= x_clip <= w (and y) with x_clip = P00 x + P20 z, w = -z: inside when
+  // dot(n, c) <= 0 for each outward normal n below.
+  const glm::dvec3 planes[4] = {
+      {p[0][0], 0.0, p[2][0] + 1.0}, {-p[0][0], 0.0, 1.0 - p[2][0]},
+      {0.0, p[1][1], p[2][1] + 1.0}, {0.0, -p[1][1], 1.0 - p[2][1]}};
+  for (const glm::dvec3& n : planes)
+    if (glm::dot(n, c) > r * glm::length(n)) return false;
+  return true;
+}
+
+bool coversNoPixelCentre(const Camera& camera, const glm::dvec3& c, double r) {
+  if (-c.z - r <= camera.znear) return false;  // reaches the near plane: unbounded projection
+  return sphereScreenRect(camera, c, r, 1e-3).empty();
+}
+
+const char* name(LightCull c) {
+  switch (c) {
+    case LightCull::Empty: return "empty";
+    case LightCull::Frustum: return "frustum_culled";
+    case LightCull::SubPixel: return "sub_pixel";
+    case LightCull::NearPlane: return "near_plane";
+    case LightCull::Stencil: return "stencil";
+  }
+  return "?";
+}
+
+LightCull cullLight(const Camera& camera, const glm::dvec3& c, double radius, double intensity, const glm::dvec3& color) {
+  if (!(radius > 0.0) || !(intensity > 0.0) || glm::dot(color, color) <= 0.0 || !std::isfinite(radius))
+    return LightCull::Empty;
+  if (!sphereInFrustum(camera, c, radius)) return LightCull::Frustum;
+  if (coversNoPixelCentre(camera, c, radius)) return LightCull::SubPixel;
+  return touchesNearPlane(camera, c, radius) ? LightCull::NearPlane : LightCull::Stencil;
 }
 
 }  // namespace gb

@@ -37,6 +37,7 @@ struct TargetImage {
 
 struct FrameSnapshot {
   RenderOptions options;                  // what the frame was rendered with (imports: the defaults, size)
+  Method method = Method::Auto;           // the lighting method that ran (Auto: not known, e.g. a capture)
   Layout layout;                          // what its targets hold (nativeLayout(options) for gblens's frames)
   Camera camera;                          // camera matrices (double), size, near/far, reversed Z
   glm::dmat4 lightClipFromWorld{1.0};     // the sun's shadow-map clip space

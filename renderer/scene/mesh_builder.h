@@ -3,6 +3,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include "renderer/core/light_rect.h"  // kIcosahedronInradius
 #include "renderer/scene/scene.h"
 
 namespace gb {
@@ -28,7 +29,5 @@ struct Icosahedron {
   uint16_t indices[60];
 };
 const Icosahedron& icosahedron();
-// Inradius of the unit icosahedron: scaling by radius / this makes a sphere of `radius` inscribed.
-constexpr double kIcosahedronInradius = 0.7946544722917661;
 
 }  // namespace gb

@@ -3,6 +3,7 @@
 // GPU's hdr, the stencil prediction matches the coverage counters, the shadow-map footprint
 // reproduces the stored shadow term.
 #include <cmath>
+#include <map>
 
 #include "renderer/core/camera.h"
 #include "renderer/render_targets.h"
@@ -193,6 +194,102 @@ TEST_F(GpuTest, StencilPredictionAndShadowFootprintAgreeWithTheGpu) {
     EXPECT_LE(shadowWrong, geometry / 500) << name(mask);
     EXPECT_LE(hdrWrong, geometry / 500) << name(mask);
   }
+}
+
+}  // namespace gb
+
+namespace gb {
+
+// "Why is this pixel lit" (issue 17, section 5): five point lights placed by hand around the
+// surface points of a floor, each with a known fate by construction — lights it, faces away (below
+// the floor, the sphere reaching the point), out of range (2.5 units above, radius 2), outside the
+// frustum (two radii beyond the left edge of the view, beside a pixel of the left column), and
+// sub-pixel (radius 0.001, 0.003 beside the surface point: its projection holds no pixel centre).
+// The ledger lists each with that fate, and its contributions add up to the dossier's total.
+TEST_F(GpuTest, TheLightLedgerSaysWhyEachConstructedLightDoesOrDoesNotLightThePixel) {
+  Scene s = floorScene(200.0, 0.6f);
+  setCamera(s, {0.0, 6.0, 2.0}, {0.0, 0.0, 0.0}, 0.9, 0.1, 100.0);
+  RenderOptions o = probeOptions();
+  o.sky = false;
+  // The camera as the renderer makes it, to place the lights from pixels.
+  FrameSnapshot plain = renderSnapshot(*this, s, o);
+  const Camera& cam = plain.camera;
+  const uint32_t cx = o.width / 2, cy = o.height / 2, ey = o.height / 2;
+  auto world = [&](const glm::dvec3& eye) { return glm::dvec3(cam.worldFromEye * glm::dvec4(eye, 1.0)); };
+  const glm::dvec3 P = world(floorHit(cam, cx, cy)), edge = floorHit(cam, 0, ey);  // pixel indices (centres inside)
+  const glm::dmat4& p = cam.clipFromEye;
+  // The left side plane (x_clip >= -w): outward normal (-P00, 0, 1 - P20) in eye space.
+  const glm::dvec3 outward = glm::normalize(glm::dvec3(-p[0][0], 0.0, 1.0 - p[2][0]));
+  auto light = [](glm::dvec3 c, double r) {
+    PointLightDesc l;
+    l.center = c;
+    l.radius = r;
+    l.color = glm::vec3(1.0f, 0.8f, 0.6f);
+    return l;
+  };
+  s.lights = {light(P + glm::dvec3(0.0, 1.0, 0.0), 3.0),     // 0: lights the centre pixel
+              light(P + glm::dvec3(0.0, -0.5, 0.0), 3.0),    // 1: below the floor: N.L < 0
+              light(P + glm::dvec3(0.0, 2.5, 0.0), 2.0),     // 2: out of range
+              light(world(edge + 1.0 * outward), 0.5),       // 3: outside the frustum
+              light(P + glm::dvec3(0.003, 0.0015, 0.0), 0.001)};  // 4: sub-pixel, beside the centre ray
+  o.lights = int(s.lights.size());
+  FrameSnapshot f = renderSnapshot(*this, s, o);
+  std::map<uint32_t, std::string> fates;
+  PixelDossier d = probePixel(f, cx, cy);
+  ASSERT_TRUE(d.geometry);
+  ASSERT_FALSE(d.ledger.entries.empty());
+  EXPECT_EQ(d.ledger.entries[0].light, "sun");
+  glm::dvec3 sum(0.0);
+  for (const LedgerEntry& e : d.ledger.entries)
+    if (e.light == "point") {
+      fates[e.index] = e.fate;
+      sum += e.contribution;
+    }
+  EXPECT_EQ(fates[0], "shaded");
+  EXPECT_EQ(fates[1], "facing_away");
+  EXPECT_EQ(fates[2], "out_of_range");
+  EXPECT_EQ(fates[4], "sub_pixel");
+  for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(sum[c], d.pointLightTotal[c]);
+  EXPECT_GT(sum.r, 0.0);
+  // The frustum-culled light is listed at the left edge's pixel (within 4 radii of its surface point).
+  PixelDossier e = probePixel(f, 0, ey);
+  bool frustum = false;
+  for (const LedgerEntry& l : e.ledger.entries) frustum |= l.light == "point" && l.index == 3 && l.fate == "frustum_culled";
+  EXPECT_TRUE(frustum) << dossierJson(e)["lighting"]["ledger"].dump(1);
+  // The JSON (probe --json, Copy as JSON) holds the ledger.
+  const nlohmann::json j = dossierJson(d)["lighting"]["ledger"];
+  EXPECT_EQ(j["entries"].size(), d.ledger.entries.size());
+  EXPECT_FALSE(j["rule"].get<std::string>().empty());
+}
+
+// The sun's entry: on the temple, a pixel whose stored shadow term is 0 with N.L > 0 is
+// "shadowed" (the shadow-map lookup's figures in the rule), one with shadow 1 is "lit".
+TEST_F(GpuTest, TheLightLedgerSaysTheSunIsShadowedWhereTheShadowMapSaysSo) {
+  Scene s = builtinTemple(0);
+  RenderOptions o = probeOptions();
+  o.lights = 0;
+  FrameSnapshot f = renderSnapshot(*this, s, o);
+  int shadowed = 0, lit = 0;
+  for (uint32_t y = 0; y < o.height; y += 3)
+    for (uint32_t x = 0; x < o.width; x += 3) {
+      PixelDossier d = probePixel(f, x, y);
+      if (!d.geometry || d.ledger.entries.empty()) continue;
+      const LedgerEntry& sun = d.ledger.entries[0];
+      ASSERT_EQ(sun.light, "sun");
+      const double nDotL = glm::dot(d.normal, f.sunEyeDirection());
+      if (nDotL <= 0.0) {
+        EXPECT_EQ(sun.fate, "facing_away") << x << "," << y;
+      } else if (d.shadow == 0.0) {
+        EXPECT_EQ(sun.fate, "shadowed") << x << "," << y;
+        EXPECT_NE(sun.why.find("shadow-map lookup"), std::string::npos) << sun.why;
+        ++shadowed;
+      } else if (d.shadow == 1.0) {
+        EXPECT_EQ(sun.fate, "lit") << x << "," << y;
+        ++lit;
+      }
+    }
+  EXPECT_GT(shadowed, 5);
+  EXPECT_GT(lit, 5);
 }
 
 }  // namespace gb

@@ -336,6 +336,7 @@ PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
                                                         f.sun.enabled ? d.shadow : 0.0);
   }
   if (d.lightingNote.empty()) probeLights(f, x, y, P, d);
+  if (d.lightingNote.empty() && d.geometry) d.ledger = lightLedger(f, x, y, P, d);
   d.hdrExpected = d.directional + d.pointLightTotal;
   readOutputs(f, x, y, d);
   return d;

@@ -85,6 +85,26 @@ struct ProbeLight {
   bool stencilPass = false;          // the stencil/depth tests let the light's shader run here
 };
 
+// "Why is this pixel lit — or not": one entry per light that could matter at the pixel (the sun,
+// and point lights near the surface point, drawn or culled), with the rule that decided its fate.
+struct LedgerEntry {
+  std::string light;          // "sun" or "point"
+  uint32_t index = 0;         // point: the scene's light index
+  // shaded, lit (sun), shadowed (sun), facing_away, out_of_range, volume_misses, stencil_test,
+  // frustum_culled, sub_pixel, empty, no_sun
+  std::string fate;
+  std::string why;            // the rule, with this pixel's numbers
+  std::string drawnAs;        // how the method drew it: "stencil class", "near-plane class", "tile (3, 2)", ...
+  double distance = 0.0, radius = 0.0;  // surface point to the light's centre; its radius
+  double nDotL = 0.0;
+  glm::dvec3 contribution{0.0};
+};
+struct LightLedger {
+  std::vector<LedgerEntry> entries;  // by contribution (luminance), then distance / radius
+  std::string rule;                  // which lights are listed
+  uint64_t notListed = 0;            // point lights farther than the rule
+};
+
 struct PixelDossier {
   uint32_t x = 0, y = 0, width = 0, height = 0;
   std::string error;  // non-empty: the pixel could not be probed (outside the frame)
@@ -122,6 +142,7 @@ struct PixelDossier {
   std::vector<ProbeLight> lights;  // every drawn light whose volume the pixel's ray meets
   glm::dvec3 pointLightTotal{0.0}; // sum of the contributions of lights that passed the stencil
   uint32_t shadedLights = 0;       // lights predicted to run their shader here
+  LightLedger ledger;              // every light that could matter, and why it does or does not
   int64_t coverageMasked = -1, coverageFull = -1;  // the targets' counts (-1: not available)
   bool hasHdr = false, hasFinal = false;
   glm::dvec4 hdr{0.0};             // stored

@@ -60,6 +60,19 @@ static nlohmann::json shadowJson(const ProbeShadow& s) {
   return sm;
 }
 
+// Why each light that could matter lights the pixel or not.
+static nlohmann::json ledgerJson(const LightLedger& l) {
+  nlohmann::json entries = nlohmann::json::array();
+  for (const LedgerEntry& e : l.entries) {
+    nlohmann::json j = {{"light", e.light}, {"fate", e.fate}, {"why", e.why}, {"contribution", v3(e.contribution)}};
+    if (e.light == "point")
+      j.update({{"index", e.index}, {"drawn_as", e.drawnAs}, {"distance", e.distance}, {"radius", e.radius}});
+    j["n_dot_l"] = e.nDotL;
+    entries.push_back(j);
+  }
+  return {{"rule", l.rule}, {"not_listed", l.notListed}, {"entries", entries}};
+}
+
 // Sun and ambient, each point light whose volume the ray meets, the coverage counts.
 static nlohmann::json lightingJson(const PixelDossier& d) {
   nlohmann::json lights = nlohmann::json::array();
@@ -83,7 +96,8 @@ static nlohmann::json lightingJson(const PixelDossier& d) {
           {"shaded_lights", d.shadedLights},
           {"coverage_full", d.coverageFull < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.coverageFull)},
           {"coverage_masked", d.coverageMasked < 0 ? nlohmann::json(nullptr) : nlohmann::json(d.coverageMasked)},
-          {"point_light_total", v3(d.pointLightTotal)}};
+          {"point_light_total", v3(d.pointLightTotal)},
+          {"ledger", ledgerJson(d.ledger)}};
 }
 
 // Every layout quantity decoded, and every position the layout allows.
@@ -256,6 +270,15 @@ static std::string lightingText(const PixelDossier& d) {
   }
   o += "  point-light total   " + t3(d.pointLightTotal) + "\n";
   o += "  directional+ambient " + t3(d.directional) + "\n";
+  if (!d.ledger.entries.empty()) {
+    o += "\nwhy is this pixel lit (" + d.ledger.rule + "; " + std::to_string(d.ledger.notListed) + " farther not listed):\n";
+    for (const LedgerEntry& e : d.ledger.entries) {
+      const std::string name = e.light == "sun" ? "sun" : "light " + std::to_string(e.index);
+      std::snprintf(line, sizeof(line), "  %-11s %-15s %s: %s\n", name.c_str(), e.fate.c_str(), t3(e.contribution).c_str(),
+                    e.why.c_str());
+      o += line;
+    }
+  }
   return o;
 }
 

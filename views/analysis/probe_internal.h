@@ -9,5 +9,8 @@ namespace gb {
 void decodeQuantities(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDossier& d);
 // Every position the layout allows at (x, y), with the difference to a stored one (probe_decode.cpp).
 void reconstructAll(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDossier& d);
+// The light ledger of a pixel with a surface at eye-space P (probe_ledger.cpp); needs d's decoded
+// G-buffer, its shadow lookup and its drawn lights (probeLights) first.
+LightLedger lightLedger(const FrameSnapshot& f, uint32_t x, uint32_t y, const glm::dvec3& P, const PixelDossier& d);
 
 }  // namespace gb

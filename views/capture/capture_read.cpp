@@ -248,6 +248,9 @@ bool loadCapture(const std::string& dirText, Capture& out, std::string& error, C
         !layoutFromManifest(m, f, error) ||
         !loadLights(dir, f, error))
       return fail(CaptureProblem::Corrupt, dirText + ": " + error);
+    // The method that ran, from the frame's statistics (manifests before issue 16 have none).
+    if (m.contains("stats") && m.at("stats").contains("method") && m.at("stats").at("method").contains("ran"))
+      parse(m.at("stats").at("method").at("ran").get<std::string>(), f.method);
     if (!matrixFromJson(m.at("lightClipFromWorld"), f.lightClipFromWorld))
       return fail(CaptureProblem::Corrupt, dirText + ": manifest.json: lightClipFromWorld: expected 16 numbers");
     const nlohmann::json& sun = m.at("sun");

@@ -12,6 +12,8 @@
 
 namespace gb {
 
+void ledgerSection(const PixelDossier& d);  // ledger_panel.cpp
+
 static const ImGuiTableFlags kTable = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit;
 
 static std::string f9(double v) {
@@ -254,6 +256,7 @@ static void dossierSections(const PixelDossier& d) {
   gbufferSection(d);
   positionSection(d);
   shadowSection(d);
+  ledgerSection(d);
   lightsSection(d);
   storedSection(d);
 }

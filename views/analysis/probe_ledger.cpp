@@ -1,0 +1,133 @@
+// The probe's light ledger: why each light that could matter does or does not light the pixel,
+// by the renderer's own rules (renderer/core/light_rect.h cullLight; the volume and stencil
+// prediction of probe.cpp; tiles and clusters, which keep every light whose sphere reaches the
+// surface), ordered by what it adds.
+#include <algorithm>
+#include <cstdio>
+
+#include "renderer/core/light_rect.h"
+#include "shaders/shared.h"
+#include "views/analysis/probe_internal.h"
+
+namespace gb {
+
+namespace {
+
+constexpr double kListedRadii = 4.0;   // point lights within this many radii of the surface point
+constexpr size_t kMostEntries = 256;
+
+std::string fmt(const char* f, double a, double b = 0.0) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, f, a, b);
+  return buf;
+}
+
+LedgerEntry sunEntry(const FrameSnapshot& f, const PixelDossier& d) {
+  LedgerEntry e;
+  e.light = "sun";
+  e.contribution = d.directional;
+  if (!f.sun.enabled) {
+    e.fate = "no_sun";
+    e.why = "the scene has no sun: ambient only";
+    return e;
+  }
+  e.nDotL = glm::dot(d.normal, f.sunEyeDirection());
+  if (d.unlit) {
+    e.fate = "shaded", e.why = "unlit material (KHR_materials_unlit): the albedo, no light";
+  } else if (e.nDotL <= 0.0) {
+    e.fate = "facing_away", e.why = fmt("N.L = %.4g <= 0: the surface faces away from the sun (ambient only)", e.nDotL);
+  } else if (d.shadow < 0.5) {
+    e.fate = "shadowed";
+    e.why = d.shadowMap.valid ? fmt("shadow-map lookup: %.4g of the filtered texels lit; nearest texel margin %.3g "
+                                    "(stored - receiver depth, < 0: occluded)",
+                                    d.shadowMap.filtered, d.shadowMap.nearestMargin)
+                              : fmt("the stored shadow term is %.4g", d.shadow);
+  } else {
+    e.fate = "lit", e.why = fmt("N.L = %.4g, stored shadow term %.4g", e.nDotL, d.shadow);
+  }
+  return e;
+}
+
+// A drawn light at the pixel: its volume and stencil (deferred) or its tile/cluster (compute).
+void drawnFate(const FrameSnapshot& f, uint32_t x, uint32_t y, const ProbeLight* drawn, bool stencilClass, LedgerEntry& e) {
+  const Method m = f.method != Method::Auto ? f.method : f.options.method;  // Auto: not known (deferred's rules)
+  if (m == Method::Tiled || m == Method::Clustered) {
+    const uint32_t tile = m == Method::Tiled ? gpu::kTileSize : gpu::kClusterTile;
+    e.drawnAs = std::string(m == Method::Tiled ? "tile (" : "cluster column (") + std::to_string(x / tile) + ", " +
+                std::to_string(y / tile) + ")";
+  } else {
+    e.drawnAs = stencilClass ? "stencil class (volume front faces, stencil mask)" : "near-plane class (back faces, no mask)";
+  }
+  if (e.distance >= e.radius) {
+    e.fate = "out_of_range";
+    e.why = fmt("distance %.4g >= radius %.4g: attenuation is exactly 0", e.distance, e.radius);
+  } else if (e.nDotL <= 0.0) {
+    e.fate = "facing_away";
+    e.why = fmt("N.L = %.4g <= 0 inside the radius (distance / radius %.3g): no diffuse or specular term", e.nDotL,
+                e.distance / e.radius);
+  } else if (m != Method::Tiled && m != Method::Clustered && !drawn) {
+    e.fate = "volume_misses", e.why = "the pixel's ray does not meet the light's icosahedron";
+  } else if (m != Method::Tiled && m != Method::Clustered && !drawn->stencilPass) {
+    e.fate = "stencil_test";
+    e.why = fmt("the volume spans eye depth %.4g..%.4g along the ray; the depth/stencil test rejected this pixel",
+                drawn->enter, drawn->exit);
+  } else {
+    e.fate = "shaded";
+    e.why = fmt("distance / radius %.3g, N.L %.4g", e.distance / e.radius, e.nDotL);
+  }
+}
+
+double luminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+}  // namespace
+
+LightLedger lightLedger(const FrameSnapshot& f, uint32_t x, uint32_t y, const glm::dvec3& P, const PixelDossier& d) {
+  LightLedger ledger;
+  ledger.entries.push_back(sunEntry(f, d));
+  std::vector<int> position(f.eyeLights.size(), -1);  // in the visible list
+  for (size_t k = 0; k < f.visibleLights.size(); ++k) position[f.visibleLights[k]] = int(k);
+  for (uint32_t i = 0; i < f.eyeLights.size(); ++i) {
+    const gpu::PointLight& l = f.eyeLights[i];
+    LedgerEntry e;
+    e.light = "point";
+    e.index = i;
+    const glm::dvec3 c(l.eyePositionRadius);
+    e.radius = l.eyePositionRadius.w;
+    e.distance = glm::length(c - P);
+    const ProbeLight* drawn = nullptr;
+    for (const ProbeLight& pl : d.lights)
+      if (pl.index == i) drawn = &pl;
+    if (!drawn && !(e.distance < kListedRadii * e.radius)) {
+      ledger.notListed++;
+      continue;
+    }
+    e.nDotL = e.distance > 0.0 ? glm::dot(d.normal, (c - P) / e.distance) : 0.0;
+    if (drawn && drawn->stencilPass) e.contribution = drawn->contribution;
+    switch (cullLight(f.camera, c, e.radius, 1.0, glm::dvec3(l.color))) {
+      case LightCull::Empty: e.fate = "empty", e.why = "zero radius or colour: lights nothing"; break;
+      case LightCull::Frustum: e.fate = "frustum_culled", e.why = "its sphere lies outside the camera frustum"; break;
+      case LightCull::SubPixel:
+        e.fate = "sub_pixel";
+        e.why = "in front of the near plane, its sphere's screen rectangle holds no pixel centre: no ray through a "
+                "pixel centre can reach a point inside it";
+        break;
+      default: drawnFate(f, x, y, drawn, position[i] >= 0 && uint32_t(position[i]) < f.stencilCount, e); break;
+    }
+    ledger.entries.push_back(std::move(e));
+  }
+  std::stable_sort(ledger.entries.begin() + 1, ledger.entries.end(), [](const LedgerEntry& a, const LedgerEntry& b) {
+    const double la = luminance(a.contribution), lb = luminance(b.contribution);
+    if (la != lb) return la > lb;
+    return a.distance / a.radius < b.distance / b.radius;
+  });
+  if (ledger.entries.size() > kMostEntries + 1) {
+    ledger.notListed += ledger.entries.size() - (kMostEntries + 1);
+    ledger.entries.resize(kMostEntries + 1);
+  }
+  ledger.rule = "the sun, and every point light whose volume the pixel's ray meets or whose centre is within " +
+                std::to_string(int(kListedRadii)) + " radii of the surface point (drawn or culled), at most " +
+                std::to_string(kMostEntries);
+  return ledger;
+}
+
+}  // namespace gb
