@@ -62,6 +62,7 @@ Command addStressCommand(CLI::App& root);
 Command addImportCommand(CLI::App& root);
 Command addCheckCommand(CLI::App& root);
 Command addStatsCommand(CLI::App& root);
+Command addDecomposeCommand(CLI::App& root);
 
 // Loads SCENE; on a user mistake prints one line and returns false (caller exits 2).
 bool loadSceneOrReport(const CommonOptions& o, Scene& scene);

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
       gb::addImportCommand(app),
       gb::addCheckCommand(app),
       gb::addStatsCommand(app),
+      gb::addDecomposeCommand(app),
   };
   for (int i = 0; i < argc; ++i) gb::commandLine() += (i ? " " : "") + std::string(i ? argv[i] : "gblens");
   // An unknown first word is a mistyped command: name it and the commands there are.

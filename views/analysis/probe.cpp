@@ -298,6 +298,17 @@ static std::string lightingNote(const FrameSnapshot& f) {
   return "";
 }
 
+bool lightingInputs(const FrameSnapshot& f, uint32_t x, uint32_t y, LightingInputs& in) {
+  PixelDossier d;
+  decodeGBuffer(f, x, y, d);
+  if (!usedPosition(f, x, y, in.P) || !d.hasAlbedo || !d.hasNormal) return false;
+  in.albedo = d.albedo, in.specular = d.specular, in.normal = d.normal, in.unlit = d.unlit;
+  in.shadow = f.layout.find(QuantityKind::Shadow) ? d.shadow : 1.0;  // no shadow term stored: lit
+  return true;
+}
+
+std::string lightingNotEvaluated(const FrameSnapshot& f) { return lightingNote(f); }
+
 PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
   PixelDossier d;
   d.x = x;
