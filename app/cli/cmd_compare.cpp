@@ -11,7 +11,7 @@ namespace gb {
 
 namespace {
 struct CompareArgs {
-  std::string a, b, diffDir, json;
+  std::string a, b, diffDir, json, mask;
   std::vector<std::string> fail, failPercent, hardFail, warn, warnPercent;
   bool quiet = false;
 };
@@ -33,6 +33,9 @@ Command addCompareCommand(CLI::App& root) {
   cmd->add_option("--warn", o->warn, std::string("warning threshold, default 1e-6") + keyHelp);
   cmd->add_option("--warnpercent", o->warnPercent, std::string("allow this % of pixels over --warn, default 0") + keyHelp);
   cmd->add_flag("-q,--quiet", o->quiet, "print only the verdict line");
+  cmd->add_option("--mask", o->mask,
+                  "pixels reported apart, not deciding pass/fail: silhouettes (primitive_id edges), penumbra (the "
+                  "shadow band), or a mask image FILE (non-zero = masked); comma-separated");
   Command c{cmd, [o]() -> int {
               std::string error;
               ThresholdSettings settings;
@@ -56,6 +59,14 @@ Command addCompareCommand(CLI::App& root) {
               if (!compareCaptures(a, b, settings, report, error)) {
                 std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
                 return kCompareFileError;
+              }
+              if (!o->mask.empty()) {
+                CompareMask mask;
+                if (!buildCompareMask(a, b, o->mask, mask, error)) {
+                  std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
+                  return kCompareFileError;
+                }
+                applyCompareMask(report, mask);
               }
               if (!o->diffDir.empty() && !writeHeatmaps(report, o->diffDir, error)) {
                 std::fprintf(stderr, "gblens compare: %s\n", error.c_str());

@@ -61,6 +61,11 @@ struct GroupResult {
   double maxError = 0.0, meanError = 0.0;
   Thresholds thresholds;
   Verdict verdict = Verdict::Pass;
+  // With --mask: the pixels masked out (reported apart, not deciding the verdict), their count
+  // over the fail threshold and their largest error; the fields above are then the unmasked ones.
+  bool masked = false;
+  uint64_t maskedPixels = 0, maskedOverFail = 0;
+  double maskedMaxError = 0.0;
   nlohmann::json metrics;         // the kind's metrics (see name(MetricKind))
   std::vector<float> errors;      // per-pixel error (the heat map), row major
   uint32_t width = 0, height = 0;
@@ -88,6 +93,21 @@ bool compareCaptures(const Capture& a, const Capture& b, const ThresholdSettings
 
 // The same decision for one group of errors (exposed for tests): idiff's rule.
 Verdict decide(const Thresholds& t, uint64_t pixels, uint64_t overWarn, uint64_t overFail, double maxError);
+
+// Pixels to report apart (`gblens compare --mask silhouettes,penumbra,FILE`): bit 1 silhouettes
+// (primitive_id differs from a 4-neighbour's, in A or B), bit 2 the shadow penumbra band (the
+// stored shadow term strictly between 0 and 1, or differing from a 4-neighbour's, in A or B, grown
+// by a pixel), bit 4 a user mask image (non-zero = masked; the frame's size).
+struct CompareMask {
+  uint32_t width = 0, height = 0;
+  std::vector<uint8_t> bits;
+  std::vector<std::string> parts;  // as given
+};
+// False with `error` naming the part that cannot be made (no primitive_id, no shadow term, a file
+// that cannot be read or has another size).
+bool buildCompareMask(const Capture& a, const Capture& b, const std::string& spec, CompareMask& mask, std::string& error);
+// Each full-frame group's pass/fail decided over the unmasked pixels; the masked ones counted apart.
+void applyCompareMask(CompareReport& report, const CompareMask& mask);
 
 // Writes a heat map PNG per group that differs into `dir` (created); records the file names.
 bool writeHeatmaps(CompareReport& report, const std::string& dir, std::string& error);

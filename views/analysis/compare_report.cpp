@@ -41,6 +41,8 @@ nlohmann::json CompareReport::json() const {
                            {{"fail", t.fail}, {"failpercent", t.failPercent}, {"hardfail", number(t.hardFail)},
                             {"warn", t.warn}, {"warnpercent", t.warnPercent}}},
                           {"metrics", metrics},
+                          {"masked_pixels", g.masked ? nlohmann::json(g.maskedPixels) : nlohmann::json(nullptr)},
+                          {"masked_over_fail", g.masked ? nlohmann::json(g.maskedOverFail) : nlohmann::json(nullptr)},
                           {"result", verdictName(g.verdict)},
                           {"heatmap", g.heatmap.empty() ? nlohmann::json(nullptr) : nlohmann::json(g.heatmap)}});
   }
@@ -95,6 +97,11 @@ std::string CompareReport::text() const {
                   fmt(g.thresholds.fail).c_str(), 100.0 * double(g.overWarn) / double(std::max<uint64_t>(g.pixels, 1)),
                   fmt(g.thresholds.warn).c_str());
     out += line;
+    if (g.masked && g.maskedPixels) {
+      std::snprintf(line, sizeof(line), "      masked apart: %llu pixels, %llu over fail, max %s\n",
+                    (unsigned long long)g.maskedPixels, (unsigned long long)g.maskedOverFail, fmt(g.maskedMaxError).c_str());
+      out += line;
+    }
   }
   std::string verdict = resultName(exitCode);
   for (char& c : verdict) c = char(std::toupper(c));
