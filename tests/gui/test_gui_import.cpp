@@ -289,6 +289,15 @@ TEST_F(GuiImportTest, ACtrlDragSelectsARegionWhoseStatisticsAreGblensStats) {
       EXPECT_EQ(q["count"].get<uint64_t>(), 40u * 30u);  // every pixel of the rect sees the plane
     }
   EXPECT_TRUE(found) << st.dump();
+  // The auto range reads the frame the views show: the capture decoded into gblens's targets, where the
+  // albedo view's channels live (the region's numbers above stay the layout's).
+  bool viewAlbedo = false;
+  for (const nlohmann::json& c : region["view_stats"]["channels"])
+    if (c["target"] == "albedo_specular" && c["series"] == "Albedo.R") {
+      viewAlbedo = true;
+      EXPECT_EQ(c["count"].get<uint64_t>(), 40u * 30u);
+    }
+  EXPECT_TRUE(viewAlbedo) << region["view_stats"].dump();
 
   xdotool("key --window " + wid + " ctrl+q");
   int status = -1;

@@ -47,7 +47,7 @@ void autoRangeButton(ViewerModel& m) {
   bool any = false;
   for (int c = 0; c < 4; ++c) {
     if (!(d.available & s.channels & (1u << c)) || size_t(c) >= channelNames(d.source.target).size()) continue;
-    const SeriesStats* st = m.regionStats->channel(targetName(d.source.target), channelNames(d.source.target)[c]);
+    const SeriesStats* st = (m.regionViewStats ? *m.regionViewStats : *m.regionStats).channel(targetName(d.source.target), channelNames(d.source.target)[c]);
     if (!st || st->count == 0) continue;
     lo = any ? std::min(lo, st->p1) : st->p1;
     hi = any ? std::max(hi, st->p99) : st->p99;
@@ -78,6 +78,7 @@ void drawRegion(ViewerModel& m) {
   if (ImGui::SmallButton("clear")) {
     m.region.reset();
     m.regionStats.reset();
+    m.regionViewStats.reset();
     m.uiChanged = true;
     return;
   }

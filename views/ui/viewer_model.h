@@ -112,6 +112,7 @@ struct ViewerModel {
   std::optional<RegionRect> region;            // the selected rectangle (frame pixels)
   bool regionDirty = false;                    // selection finished or frame changed: the app recomputes
   std::optional<RegionStats> regionStats;      // of capture A or of the live frame's read-back
+  std::optional<RegionStats> regionViewStats;  // imported capture A: of the frame its views show (auto range)
   std::string regionNote;                      // why there are no numbers yet (a reduced frame, ...)
   int regionSeries = -1;                       // the series whose histogram is drawn (-1: the first)
 
