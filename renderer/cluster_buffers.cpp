@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "renderer/core/light_rect.h"
+
 namespace gb {
 
 static uint32_t divUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
@@ -12,14 +14,8 @@ static uint32_t divUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 void clusterFrameData(const Camera& camera, uint32_t visibleMax, gpu::FrameData& f) {
   const uint32_t tilesX = divUp(camera.width, gpu::kClusterTile), tilesY = divUp(camera.height, gpu::kClusterTile);
   f.clusterGrid = glm::uvec4(tilesX, tilesY, divUp(camera.width, gpu::kBinTile), std::max(divUp(visibleMax, 32), 1u));
-  // Olsson et al.'s slices: k = log(depth / near) / log(1 + 2 tan(fovy / 2) / tiles down), near-cubic
-  // clusters; where that needs more than kClusterMaxSlices between near and far, that many
-  // exponential slices span [near, far] instead.
-  const double perSlice = std::log2(1.0 + 2.0 * std::tan(camera.yfov * 0.5) / tilesY);
-  double scale = 1.0 / perSlice;
-  const double range = std::log2(camera.zfar / camera.znear);
-  if (range * scale > double(gpu::kClusterMaxSlices)) scale = double(gpu::kClusterMaxSlices) / range;
-  f.clusterSlices = glm::vec4(float(scale), float(-std::log2(camera.znear) * scale), 0.0f, 0.0f);
+  const ClusterSlicing slicing = clusterSlicing(camera);  // renderer/core/light_rect.h
+  f.clusterSlices = glm::vec4(float(slicing.scale), float(slicing.bias), 0.0f, 0.0f);
 }
 
 // `name` as the shaders call the buffer (RenderDoc's resource list).

@@ -105,6 +105,7 @@ FrameSnapshot snapshotFromRenderer(const Renderer& r, const std::vector<Target>&
   s.eyeLights = lights.eye;
   s.visibleLights = lights.visible;
   s.stencilCount = lights.stencilCount;
+  s.layerStarts = lights.layerStarts;
   s.lightDescs = r.scene->lights;
   s.frameData = r.frameData;
   s.srgbDecode = r.srgbDecode;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shaders/shared.h"
+
 namespace gb {
 
 // The pixel centres k + 0.5 (k in [0, size)) that the projection of a sphere in front of the
@@ -77,6 +79,23 @@ LightCull cullLight(const Camera& camera, const glm::dvec3& c, double radius, do
   if (!sphereInFrustum(camera, c, radius)) return LightCull::Frustum;
   if (coversNoPixelCentre(camera, c, radius)) return LightCull::SubPixel;
   return touchesNearPlane(camera, c, radius) ? LightCull::NearPlane : LightCull::Stencil;
+}
+
+// Olsson et al.'s slices: k = log(depth / near) / log(1 + 2 tan(fovy / 2) / tiles down), near-cubic
+// clusters; where that needs more than kClusterMaxSlices between near and far, that many
+// exponential slices span [near, far] instead.
+ClusterSlicing clusterSlicing(const Camera& camera) {
+  const uint32_t tilesY = (camera.height + gpu::kClusterTile - 1) / gpu::kClusterTile;
+  const double perSlice = std::log2(1.0 + 2.0 * std::tan(camera.yfov * 0.5) / tilesY);
+  double scale = 1.0 / perSlice;
+  const double range = std::log2(camera.zfar / camera.znear);
+  if (range * scale > double(gpu::kClusterMaxSlices)) scale = double(gpu::kClusterMaxSlices) / range;
+  return {scale, -std::log2(camera.znear) * scale};
+}
+
+uint32_t clusterSlice(const ClusterSlicing& s, double eyeDepth) {
+  const float k = std::floor(std::log2(std::max(float(eyeDepth), 1e-30f)) * float(s.scale) + float(s.bias));
+  return uint32_t(std::clamp(k, 0.0f, float(gpu::kClusterMaxSlices - 1u)));
 }
 
 }  // namespace gb

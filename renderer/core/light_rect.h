@@ -47,4 +47,13 @@ bool coversNoPixelCentre(const Camera& camera, const glm::dvec3& eyeCenter, doub
 // The light's icosahedron may reach the near plane (or contain the camera).
 bool touchesNearPlane(const Camera& camera, const glm::dvec3& eyeCenter, double radius);
 
+// Clustered shading's exponential depth slices (Olsson et al.): slice = floor(log2(eye depth) *
+// scale + bias), clamped to [0, gpu::kClusterMaxSlices). The shaders get scale and bias as float
+// (FrameData::clusterSlices); clusterSlice rounds as they do, so the probe names the GPU's slice.
+struct ClusterSlicing {
+  double scale = 1.0, bias = 0.0;
+};
+ClusterSlicing clusterSlicing(const Camera& camera);
+uint32_t clusterSlice(const ClusterSlicing& s, double eyeDepth);
+
 }  // namespace gb

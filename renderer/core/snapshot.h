@@ -49,6 +49,9 @@ struct FrameSnapshot {
   std::vector<gpu::PointLight> eyeLights;
   std::vector<uint32_t> visibleLights;
   uint32_t stencilCount = 0;
+  // The per-light mask's layers: [layerStarts[k], layerStarts[k + 1]) of the visible list share a
+  // stencil bit (renderer/light_culling.cpp). Empty: each stencil-class light has its own bit.
+  std::vector<uint32_t> layerStarts;
   // One image and one reason per layout target, in layout order.
   std::vector<TargetImage> images;
   std::vector<Absent> absences;  // why a target is not here (Absent::No when present)

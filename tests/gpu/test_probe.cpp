@@ -4,6 +4,7 @@
 // reproduces the stored shadow term.
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "renderer/core/camera.h"
 #include "renderer/render_targets.h"
@@ -290,6 +291,67 @@ TEST_F(GpuTest, TheLightLedgerSaysTheSunIsShadowedWhereTheShadowMapSaysSo) {
     }
   EXPECT_GT(shadowed, 5);
   EXPECT_GT(lit, 5);
+}
+
+// Where each method put a light (issue 17, section 5): nine lights over one floor point, every
+// volume covering the centre pixel. The per-light mask gives them one stencil bit each within a
+// batch of 7 (renderer/passes/point_lights.cpp): without layers the light at visible position k
+// has batch k / 7 and bit k % 7; with layers, volumes over the same pixel never share a layer, so
+// no two of the nine may name the same batch and bit. Clustered names the pixel's tile and the
+// depth slice of Olsson et al.'s formula, k = floor(ln(depth / near) / ln(1 + 2 tan(fovy / 2) / tiles)).
+TEST_F(GpuTest, TheLightLedgerNamesEachLightsStencilBatchBitLayerAndCluster) {
+  Scene s = floorScene(200.0, 0.6f);
+  setCamera(s, {0.0, 6.0, 2.0}, {0.0, 0.0, 0.0}, 0.9, 0.1, 100.0);
+  RenderOptions o = probeOptions();
+  o.sky = false;
+  const Camera cam = renderSnapshot(*this, s, o).camera;
+  const uint32_t cx = o.width / 2, cy = o.height / 2;
+  const glm::dvec3 Pe = floorHit(cam, cx, cy), P = glm::dvec3(cam.worldFromEye * glm::dvec4(Pe, 1.0));
+  for (int i = 0; i < 9; ++i) {
+    PointLightDesc l;
+    l.center = P + glm::dvec3(0.1 * i - 0.4, 0.8, 0.05 * i);
+    l.radius = 2.0;
+    l.color = glm::vec3(1.0f);
+    s.lights.push_back(l);
+  }
+  o.lights = 9;
+  for (StencilLayers layers : {StencilLayers::Off, StencilLayers::On}) {
+    o.stencilLayers = layers;
+    FrameSnapshot f = renderSnapshot(*this, s, o);
+    ASSERT_EQ(f.stencilCount, 9u) << "every light in the stencil class";
+    PixelDossier d = probePixel(f, cx, cy);
+    std::set<std::string> slots;
+    for (const LedgerEntry& e : d.ledger.entries) {
+      if (e.light != "point") continue;
+      EXPECT_EQ(e.fate, "shaded") << e.index;
+      const size_t at = e.drawnAs.find("batch ");
+      ASSERT_NE(at, std::string::npos) << e.drawnAs;
+      const std::string slot = e.drawnAs.substr(at, e.drawnAs.find(',', e.drawnAs.find("bit")) - at);
+      EXPECT_TRUE(slots.insert(slot).second) << "two lights over one pixel share " << slot;
+      if (layers == StencilLayers::Off) {
+        const size_t k = std::find(f.visibleLights.begin(), f.visibleLights.end(), e.index) - f.visibleLights.begin();
+        EXPECT_EQ(slot, "batch " + std::to_string(k / 7) + ", stencil bit " + std::to_string(k % 7)) << e.drawnAs;
+      } else {
+        EXPECT_NE(e.drawnAs.find("layer "), std::string::npos) << e.drawnAs;
+      }
+    }
+    EXPECT_EQ(slots.size(), 9u);
+  }
+  o.method = Method::Clustered;
+  FrameSnapshot f = renderSnapshot(*this, s, o);
+  const double tiles = std::ceil(cam.height / 16.0);
+  const double k = std::log(-Pe.z / cam.znear) / std::log(1.0 + 2.0 * std::tan(cam.yfov / 2.0) / tiles);
+  ASSERT_GT(std::abs(k - std::round(k)), 1e-3) << "the point lies on a slice boundary: move it";
+  const std::string cluster = "cluster (" + std::to_string(cx / 16) + ", " + std::to_string(cy / 16) +
+                              ", depth slice " + std::to_string(int(std::floor(k))) + ")";
+  PixelDossier d = probePixel(f, cx, cy);
+  int named = 0;
+  for (const LedgerEntry& e : d.ledger.entries) {
+    if (e.light != "point") continue;
+    EXPECT_EQ(e.drawnAs, cluster);
+    ++named;
+  }
+  EXPECT_EQ(named, 9);
 }
 
 }  // namespace gb

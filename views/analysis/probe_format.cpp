@@ -277,6 +277,7 @@ static std::string lightingText(const PixelDossier& d) {
       std::snprintf(line, sizeof(line), "  %-11s %-15s %s: %s\n", name.c_str(), e.fate.c_str(), t3(e.contribution).c_str(),
                     e.why.c_str());
       o += line;
+      if (!e.drawnAs.empty()) o += "              drawn as: " + e.drawnAs + "\n";
     }
   }
   return o;

@@ -48,16 +48,43 @@ LedgerEntry sunEntry(const FrameSnapshot& f, const PixelDossier& d) {
   return e;
 }
 
-// A drawn light at the pixel: its volume and stencil (deferred) or its tile/cluster (compute).
-void drawnFate(const FrameSnapshot& f, uint32_t x, uint32_t y, const ProbeLight* drawn, bool stencilClass, LedgerEntry& e) {
-  const Method m = f.method != Method::Auto ? f.method : f.options.method;  // Auto: not known (deferred's rules)
-  if (m == Method::Tiled || m == Method::Clustered) {
-    const uint32_t tile = m == Method::Tiled ? gpu::kTileSize : gpu::kClusterTile;
-    e.drawnAs = std::string(m == Method::Tiled ? "tile (" : "cluster column (") + std::to_string(x / tile) + ", " +
-                std::to_string(y / tile) + ")";
-  } else {
-    e.drawnAs = stencilClass ? "stencil class (volume front faces, stencil mask)" : "near-plane class (back faces, no mask)";
+// Where the method that ran put drawn light `k` (its position in the visible list) for pixel
+// (x, y): the per-light mask's batch, stencil bit and layer (renderer/passes/point_lights.cpp
+// groups: the layers, or one per stencil-class light, then one per near-plane light; 7 bits a
+// batch), the shared mask, no mask, forward's loop, or the tile / cluster of the compute methods.
+std::string placement(const FrameSnapshot& f, Method m, uint32_t x, uint32_t y, uint32_t k, double eyeDepth) {
+  const bool stencilClass = k < f.stencilCount;
+  if (m == Method::Tiled) return "tile (" + std::to_string(x / gpu::kTileSize) + ", " + std::to_string(y / gpu::kTileSize) + ")";
+  if (m == Method::Clustered) {
+    const uint32_t slice = clusterSlice(clusterSlicing(f.camera), eyeDepth);
+    return "cluster (" + std::to_string(x / gpu::kClusterTile) + ", " + std::to_string(y / gpu::kClusterTile) +
+           ", depth slice " + std::to_string(slice) + ")";
   }
+  if (m == Method::Forward) return "forward: evaluated for every fragment of the pixel";
+  const std::string nearClass = "near-plane class (back faces, no mask)";
+  if (!f.options.stencilCulling) return stencilClass ? "front faces, no stencil mask (culling off)" : nearClass;
+  if (!perLightMask(f.options, m))
+    return stencilClass ? "stencil class (front faces where the shared light_mask marked the pixel)" : nearClass;
+  constexpr uint32_t kBitsPerBatch = 7;  // stencil bits 0..6; bit 7 marks geometry
+  const std::vector<uint32_t>& starts = f.layerStarts;
+  const uint32_t stencilGroups = starts.empty() ? f.stencilCount : uint32_t(starts.size() - 1);
+  uint32_t group = stencilClass ? k : stencilGroups + (k - f.stencilCount);
+  std::string layer;
+  if (stencilClass && !starts.empty()) {
+    group = uint32_t(std::upper_bound(starts.begin(), starts.end(), k) - starts.begin()) - 1;
+    layer = ", layer " + std::to_string(group) + " of " + std::to_string(stencilGroups) + " (" +
+            std::to_string(starts[group + 1] - starts[group]) + " lights with disjoint volumes share the bit)";
+  }
+  return std::string(stencilClass ? "per-light mask" : "per-light mask, near-plane light (both faces mark, back faces shade)") +
+         ": batch " + std::to_string(group / kBitsPerBatch) + ", stencil bit " + std::to_string(group % kBitsPerBatch) + layer;
+}
+
+// The fate of a drawn light at the pixel: its volume and stencil (deferred) or its tile/cluster (compute).
+void drawnFate(const FrameSnapshot& f, uint32_t x, uint32_t y, const ProbeLight* drawn, int visiblePosition,
+               double eyeDepth, LedgerEntry& e) {
+  const Method m = f.method != Method::Auto ? f.method : f.options.method;  // Auto: not known (deferred's rules)
+  if (visiblePosition >= 0) e.drawnAs = placement(f, m, x, y, uint32_t(visiblePosition), eyeDepth);
+  const bool volumes = m != Method::Tiled && m != Method::Clustered && m != Method::Forward;  // deferred's
   if (e.distance >= e.radius) {
     e.fate = "out_of_range";
     e.why = fmt("distance %.4g >= radius %.4g: attenuation is exactly 0", e.distance, e.radius);
@@ -65,9 +92,9 @@ void drawnFate(const FrameSnapshot& f, uint32_t x, uint32_t y, const ProbeLight*
     e.fate = "facing_away";
     e.why = fmt("N.L = %.4g <= 0 inside the radius (distance / radius %.3g): no diffuse or specular term", e.nDotL,
                 e.distance / e.radius);
-  } else if (m != Method::Tiled && m != Method::Clustered && !drawn) {
+  } else if (volumes && !drawn) {
     e.fate = "volume_misses", e.why = "the pixel's ray does not meet the light's icosahedron";
-  } else if (m != Method::Tiled && m != Method::Clustered && !drawn->stencilPass) {
+  } else if (volumes && !drawn->stencilPass) {
     e.fate = "stencil_test";
     e.why = fmt("the volume spans eye depth %.4g..%.4g along the ray; the depth/stencil test rejected this pixel",
                 drawn->enter, drawn->exit);
@@ -111,7 +138,7 @@ LightLedger lightLedger(const FrameSnapshot& f, uint32_t x, uint32_t y, const gl
         e.why = "in front of the near plane, its sphere's screen rectangle holds no pixel centre: no ray through a "
                 "pixel centre can reach a point inside it";
         break;
-      default: drawnFate(f, x, y, drawn, position[i] >= 0 && uint32_t(position[i]) < f.stencilCount, e); break;
+      default: drawnFate(f, x, y, drawn, position[i], -P.z, e); break;
     }
     ledger.entries.push_back(std::move(e));
   }

@@ -142,6 +142,12 @@ static bool loadLights(const fs::path& dir, FrameSnapshot& f, std::string& error
   }
   f.visibleLights = j.at("visible").get<std::vector<uint32_t>>();
   f.stencilCount = j.at("stencil_count").get<uint32_t>();
+  f.layerStarts = j.value("layer_starts", std::vector<uint32_t>{});  // captures before layers: none
+  for (size_t k = 0; k < f.layerStarts.size(); ++k)
+    if (f.layerStarts[k] > f.stencilCount || (k && f.layerStarts[k] < f.layerStarts[k - 1])) {
+      error = (dir / "lights.json").string() + ": layer_starts out of order or beyond stencil_count";
+      return false;
+    }
   for (uint32_t i : f.visibleLights)
     if (i >= f.eyeLights.size() || f.stencilCount > f.visibleLights.size()) {
       error = (dir / "lights.json").string() + ": visible light index out of range";

@@ -52,7 +52,7 @@ static nlohmann::json lightsJson(const FrameSnapshot& f) {
     lights.push_back(j);
   }
   return {{"format", "gblens-lights"}, {"time", f.options.time}, {"visible", f.visibleLights},
-          {"stencil_count", f.stencilCount}, {"lights", lights}};
+          {"stencil_count", f.stencilCount}, {"layer_starts", f.layerStarts}, {"lights", lights}};
 }
 
 static std::string utcNow() {
