@@ -80,6 +80,12 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   }
 
   // ── 2. G-buffer (deferred, tiled) or the forward pass ──────────────────────────────────────
+  if (method == Method::Forward)
+    g.skipPass("clear_gbuffer", "method forward: no G-buffer");
+  else if (!r.computeClear)
+    g.skipPass("clear_gbuffer", r.clearReason);  // the gbuffer render pass clears its targets
+  else
+    addClearGBufferPass(g, r);  // compute: zero the G-buffer's colour targets through storage views
   if (method == Method::Forward) {
     g.skipPass("gbuffer", "method forward: materials are shaded where they are drawn (no G-buffer)");
     g.beginRenderPass("forward");

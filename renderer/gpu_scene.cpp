@@ -165,8 +165,9 @@ void createDescriptors(Renderer& r) {
       {gpu::kBindingLightDescs, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {gpu::kBindingLightScratch, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {gpu::kBindingFairyBits, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingClearTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, all, nullptr},
   };
-  static_assert(gpu::kBindingFairyBits == 18 && gpu::kPassBindingCount == 19, "passBindings is indexed by binding");
+  static_assert(gpu::kBindingClearTarget == 19 && gpu::kPassBindingCount == 20, "passBindings is indexed by binding");
   lci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
   lci.bindingCount = gpu::kPassBindingCount;
   lci.pBindings = passBindings;

@@ -4,11 +4,41 @@
 
 #include <algorithm>
 
+#include "renderer/core/texels.h"
 #include "renderer/vk/check.h"
+#include "renderer/vk/formats.h"
 
 namespace gb {
 
 bool primitiveIdOn(const GpuContext& ctx, const RenderOptions& o) { return o.primitiveId && ctx.features.primitiveId; }
+
+bool clearViews(const GpuContext& ctx, const RenderOptions& o) {
+  return !transientGBuffer(o) && (o.gbufferClear == GBufferClear::Compute ||
+                                  (o.gbufferClear == GBufferClear::Auto && !ctx.isCpu));
+}
+
+bool computeClears(const GpuContext& ctx, const RenderOptions& o, Method ran, std::string& reason) {
+  if (transientGBuffer(o))
+    return reason = "the single-pass G-buffer may live in tile memory: the render pass clears it", false;
+  if (o.gbufferClear == GBufferClear::RenderPass) return reason = "the render pass clears (--gbuffer-clear render-pass)", false;
+  if (o.gbufferClear == GBufferClear::Compute) return reason = "--gbuffer-clear compute", true;
+  if (ctx.isCpu) return reason = "the render pass clears: a CPU device (a memset there)", false;
+  if (ran == Method::Deferred)
+    return reason = "the render pass clears: method deferred (compute clears measured slower there, docs/perf-gpu.md)", false;
+  return reason = "auto: a GPU device, method " + std::string(name(ran)), true;
+}
+
+// The unsigned format of a colour format's texel size: the storage view clear_gbuffer writes
+// zeros through (formats of one size are view-compatible; zero bits are 0 in every format).
+static VkFormat clearViewFormat(TexelFormat f) {
+  switch (packedTexelBytes(f)) {
+    case 4: return VK_FORMAT_R32_UINT;
+    case 8: return VK_FORMAT_R32G32_UINT;
+    case 16: return VK_FORMAT_R32G32B32A32_UINT;
+  }
+  GB_ASSERT(!"G-buffer texel size");
+  return VK_FORMAT_UNDEFINED;
+}
 
 std::vector<Target> readableTargets(const Renderer& r, const RenderOptions& o) {
   std::vector<Target> out;
@@ -41,6 +71,7 @@ static TargetsKey targetsKey(const GpuContext& ctx, const Scene& s, const Render
   k.coverage = o.coverage;
   k.transientGBuffer = transientGBuffer(o);
   k.primitiveId = primitiveIdOn(ctx, o);
+  k.clearViews = clearViews(ctx, o);
   return k;
 }
 
@@ -100,6 +131,10 @@ static ImageDesc targetDesc(const GpuContext& ctx, Target t, const Scene& s, con
   // An unused stored position is a 1x1 placeholder only ever bound for sampling.
   d.usage = t == Target::Position && o.position == PositionSource::Depth ? VkImageUsageFlags(VK_IMAGE_USAGE_SAMPLED_BIT)
                                                                           : targetUsage(targetInfo(t).role, d.transient);
+  const TargetRole role = targetInfo(t).role;
+  if ((role == TargetRole::GBuffer || role == TargetRole::Id) && !d.transient && (d.usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) &&
+      clearViews(ctx, o))
+    d.clearFormat = clearViewFormat(texelFormat(t, o));
   return d;
 }
 

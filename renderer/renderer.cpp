@@ -245,6 +245,7 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
   GB_ASSERT(choice.method != Method::Auto && (options.method != Method::Auto || choice.method != Method::Forward));
   const FrameRequest request = completeRequest(userRequest, options, choice.method);
   ensureTargets(r, options);
+  r.computeClear = computeClears(*r.ctx, options, choice.method, r.clearReason);
   // Transient images have no memory to copy from, and forward frames never write the G-buffer.
   for (Target t : request.readback) {
     GB_ASSERT(!r.targets[size_t(t)].image.desc.transient);

@@ -47,7 +47,7 @@ struct TargetsKey {
   AccumFormat accumFormat{};
   ShadowFormat shadowFormat{};
   PositionSource position{};
-  bool coverage = false, transientGBuffer = false, primitiveId = false;
+  bool coverage = false, transientGBuffer = false, primitiveId = false, clearViews = false;
   bool operator==(const TargetsKey&) const = default;
 };
 struct ShadowMapKey {
@@ -120,6 +120,8 @@ struct Renderer {
   Buffer fairyBits;                 // fairy_bins' masks (--fairy-splat compute), the light bins' layout
   VkDeviceSize fairyBitsBytes = 0;  // this frame's part
   bool fairyCompute = false;        // this frame splats the fairies in compute
+  bool computeClear = false;        // clear_gbuffer clears the G-buffer (not the render pass)
+  std::string clearReason;
   std::string fairyReason;
   bool lightsOnGpu = false;    // this frame's lights are set up on the GPU (r.lights is empty then)
   std::string lightSetupReason;

@@ -52,10 +52,11 @@ GB_CONST(uint, kBindingBinBoxes, 15);       // uvec4[2] per light bin: the box o
 // Light setup on the GPU (renderer/gpu_lights.h): the scene's lights and per-light scratch.
 GB_CONST(uint, kBindingLightDescs, 16);     // LightDesc[]: world space, doubles
 GB_CONST(uint, kBindingLightScratch, 17);   // uint per light (its place among its group's visible), then uvec4 per group
-GB_CONST(uint, kPassBindingCount, 19);
+GB_CONST(uint, kPassBindingCount, 20);
 GB_CONST(uint, kLightSetupGroup, 256);      // lights per light_setup workgroup
 // Fairy sprites splatted in compute (fairy_bins, fairy_splat): the light bins' layout, own masks.
 GB_CONST(uint, kBindingFairyBits, 18);      // uint[]: per light bin, a bit per visible-list position
+GB_CONST(uint, kBindingClearTarget, 19);    // clear_gbuffer: a G-buffer target's unsigned storage view
 GB_CONST(uint, kFairyListMax, 1024);        // sprites a 16x16 tile lists in shared memory (more: read from the bin)
 
 // Input attachment indices of the single-pass path (subpass inputs, in this order).

@@ -34,6 +34,8 @@ static const Names<LightSetup, 3> kLightSetup = {
     {{LightSetup::Auto, "auto"}, {LightSetup::Cpu, "cpu"}, {LightSetup::Gpu, "gpu"}}};
 static const Names<FairySplat, 3> kFairySplat = {
     {{FairySplat::Auto, "auto"}, {FairySplat::Raster, "raster"}, {FairySplat::Compute, "compute"}}};
+static const Names<GBufferClear, 3> kGBufferClear = {
+    {{GBufferClear::Auto, "auto"}, {GBufferClear::RenderPass, "render-pass"}, {GBufferClear::Compute, "compute"}}};
 static const Names<PositionSource, 3> kPosition = {
     {{PositionSource::Depth, "depth"}, {PositionSource::Rgba16f, "rgba16f"}, {PositionSource::Rgba32f, "rgba32f"}}};
 static const Names<PositionSpace, 2> kPositionSpace = {{{PositionSpace::World, "world"}, {PositionSpace::Camera, "camera"}}};
@@ -67,6 +69,8 @@ const char* name(PositionSource v) { return lookup(kPosition, v); }
 const char* name(LightSetup v) { return lookup(kLightSetup, v); }
 const char* name(FairySplat v) { return lookup(kFairySplat, v); }
 bool parse(const std::string& t, FairySplat& o) { return find(kFairySplat, t, o); }
+const char* name(GBufferClear v) { return lookup(kGBufferClear, v); }
+bool parse(const std::string& t, GBufferClear& o) { return find(kGBufferClear, t, o); }
 bool parse(const std::string& t, LightSetup& o) { return find(kLightSetup, t, o); }
 const char* name(PositionSpace v) { return lookup(kPositionSpace, v); }
 bool parse(const std::string& t, Path& o) { return find(kPath, t, o); }
@@ -226,6 +230,10 @@ const std::vector<Entry>& entries() {
              "fairy sprites drawn as quads (raster) or splatted per tile in compute (the same image) | auto (compute on "
              "a GPU device)",
              kFairySplat, &RenderOptions::fairySplat),
+      choice("gbuffer_clear",
+             "how the G-buffer's colour targets are cleared: render-pass (load op) | compute (clear_gbuffer, storage "
+             "views) | auto (compute for tiled and clustered on a GPU device)",
+             kGBufferClear, &RenderOptions::gbufferClear),
       onOff("sky", "skybox", &RenderOptions::sky),
       real("exposure", "tone-mapping exposure", &RenderOptions::exposure, 0.0, 1e6),
       onOff("primitive_id", "write the primitive_id debug target (instance + triangle) in the G-buffer pass",

@@ -43,6 +43,13 @@ enum class LightSetup { Auto, Cpu, Gpu };
 // (where the raster pass cost more than the lighting at 65536 lights), raster on a CPU device
 // and in the single-pass path (fairies are a subpass there).
 enum class FairySplat { Auto, Raster, Compute };
+// How the G-buffer's colour targets are cleared before the geometry: by the render pass (load op
+// CLEAR), or by a compute pass through storage views (clear_gbuffer). On the H100 the render
+// pass clears go through the GPU's few raster back ends and took 0.74 ms at 1080p and 2.95 ms at
+// 4K (docs/perf-gpu.md); compute writes at memory speed. Auto: compute on a GPU device for the
+// compute methods (tiled, clustered); the render pass for deferred (measured slower there), on a
+// CPU device and in the single-pass path (its G-buffer may live in tile memory).
+enum class GBufferClear { Auto, RenderPass, Compute };
 
 struct RenderOptions {
   uint32_t width = 1280, height = 720;
@@ -57,6 +64,7 @@ struct RenderOptions {
   StencilLayers stencilLayers = StencilLayers::Auto;
   LightSetup lightSetup = LightSetup::Auto;
   FairySplat fairySplat = FairySplat::Auto;
+  GBufferClear gbufferClear = GBufferClear::Auto;
   bool reversedZ = false;
   // Octahedral 16+16-bit normals and fp32 accumulation: `gblens bench` found each dominating the
   // former defaults (rgba16f normals; fp16 accumulation) on lavapipe: same or lower frame time,
@@ -125,6 +133,7 @@ const char* name(StencilMask m);
 const char* name(StencilLayers l);
 const char* name(LightSetup l);
 const char* name(FairySplat f);
+const char* name(GBufferClear c);
 const char* name(PositionSource p);
 const char* name(PositionSpace p);
 
@@ -140,6 +149,7 @@ bool parse(const std::string& text, StencilMask& out);
 bool parse(const std::string& text, StencilLayers& out);
 bool parse(const std::string& text, LightSetup& out);
 bool parse(const std::string& text, FairySplat& out);
+bool parse(const std::string& text, GBufferClear& out);
 // The point lights are drawn with the per-light stencil mask (method `ran` deferred, culling on,
 // per-light); with `cpuDevice`, whether they come in screen-disjoint layers (StencilLayers; auto:
 // on a CPU). `ran` is the method the frame runs (RenderOptions::method unless that is auto).

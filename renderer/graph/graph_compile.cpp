@@ -160,6 +160,10 @@ void attachmentsAndBarriers(const SubUses& sub, const std::array<int, kTargetCou
         step.into.access |= sub[si][ti].access;
       }
     step.into.write = f.write;
+    // An attachment loaded (not cleared, contents kept) is read by its load op.
+    if (attachment[ti] >= 0 && !step.discard)
+      step.into.access |= isDepthFormat(t.image.desc.format) ? VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT
+                                                             : VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT;
     step.barrier = needsBarrier(t, step.into);
     VkPipelineStageFlags2 storeStage = 0;
     VkAccessFlags2 storeAccess = 0;

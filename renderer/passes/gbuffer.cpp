@@ -5,20 +5,26 @@
 
 namespace gb {
 
+std::vector<Target> gbufferColourTargets(const Renderer& r) {
+  std::vector<Target> out = {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth};
+  if (primitiveIdOn(*r.ctx, r.options)) out.push_back(Target::PrimitiveId);
+  if (r.options.position != PositionSource::Depth) out.push_back(Target::Position);
+  return out;
+}
+
 void addGBufferPass(FrameGraph& g, Renderer& r) {
-  auto clear = [](Target t) {
-    Use u{t, Access::ColorWrite, true};
-    u.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // depth 0: no geometry
-    return u;
-  };
   Use depth{Target::DepthStencil, Access::DepthStencilWrite, true};
   depth.clearValue.depthStencil = {farDepth(r), 0};
-  // Colour attachments in this order = the shader's output locations (gbuffer.frag).
-  std::vector<Use> uses = {clear(Target::AlbedoSpecular), clear(Target::NormalShadow), clear(Target::Depth)};
+  // Colour attachments in this order = the shader's output locations (gbuffer.frag), cleared to 0
+  // (depth 0: no geometry) here or before, by clear_gbuffer (then loaded).
+  std::vector<Use> uses;
+  for (Target t : gbufferColourTargets(r)) {
+    Use u{t, Access::ColorWrite, !r.computeClear};
+    u.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    uses.push_back(u);
+  }
   const bool primitiveId = primitiveIdOn(*r.ctx, r.options);
   const bool position = r.options.position != PositionSource::Depth;
-  if (primitiveId) uses.push_back(clear(Target::PrimitiveId));
-  if (position) uses.push_back(clear(Target::Position));
   uses.push_back(depth);
   uses.push_back({Target::ShadowMap, Access::SampledFragment});
   // [primitive_id][stored position]

@@ -10,6 +10,10 @@ namespace gb {
 void addClearCoveragePass(FrameGraph& g, Renderer& r);
 void addShadowMapPass(FrameGraph& g, Renderer& r);
 void addGBufferPass(FrameGraph& g, Renderer& r);
+// The G-buffer's colour targets this frame writes, in the shader's output order (gbuffer.frag);
+// clear_gbuffer (passes/clear_gbuffer.cpp) zeroes them when the render pass does not.
+std::vector<Target> gbufferColourTargets(const Renderer& r);
+void addClearGBufferPass(FrameGraph& g, Renderer& r);
 void addDirectionalLightPass(FrameGraph& g, Renderer& r);
 void addLightMaskPass(FrameGraph& g, Renderer& r);
 void addPointLightPass(FrameGraph& g, Renderer& r);

@@ -109,9 +109,13 @@ uint32_t bytesPerPixel(VkFormat f) {
 }
 
 // A view named after its image (and aspect): RenderDoc lists views beside images.
+// `usage` (non-zero): the view's own usage, a subset of an EXTENDED_USAGE image's.
 static VkImageView makeImageView(GpuContext& ctx, VkImage image, VkFormat format, VkImageAspectFlags aspect,
-                                 uint32_t mips, const char* name, const char* suffix) {
+                                 uint32_t mips, const char* name, const char* suffix, VkImageUsageFlags usage = 0) {
+  VkImageViewUsageCreateInfo uci{VK_STRUCTURE_TYPE_IMAGE_VIEW_USAGE_CREATE_INFO};
+  uci.usage = usage;
   VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  if (usage) vci.pNext = &uci;
   vci.image = image;
   vci.viewType = VK_IMAGE_VIEW_TYPE_2D;
   vci.format = format;
@@ -134,6 +138,12 @@ Image createImage(GpuContext& ctx, const ImageDesc& desc) {
   ici.samples = VK_SAMPLE_COUNT_1_BIT;
   ici.tiling = VK_IMAGE_TILING_OPTIMAL;
   ici.usage = desc.usage | (desc.transient ? VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT : 0);
+  const bool clearable = desc.clearFormat != VK_FORMAT_UNDEFINED;
+  if (clearable) {
+    GB_ASSERT(!desc.transient && !isDepthFormat(desc.format));
+    ici.usage |= VK_IMAGE_USAGE_STORAGE_BIT;
+    ici.flags = VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT | VK_IMAGE_CREATE_EXTENDED_USAGE_BIT;
+  }
   ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   VK_CHECK(vkCreateImage(ctx.device, &ici, nullptr, &img.image));
   setName(ctx, uint64_t(img.image), VK_OBJECT_TYPE_IMAGE, desc.name);
@@ -154,7 +164,11 @@ Image createImage(GpuContext& ctx, const ImageDesc& desc) {
   setName(ctx, uint64_t(img.memory), VK_OBJECT_TYPE_DEVICE_MEMORY, desc.name);
   VK_CHECK(vkBindImageMemory(ctx.device, img.image, img.memory, 0));
 
-  img.view = makeImageView(ctx, img.image, desc.format, aspectsOf(desc.format), desc.mipLevels, desc.name, "");
+  img.view = makeImageView(ctx, img.image, desc.format, aspectsOf(desc.format), desc.mipLevels, desc.name, "",
+                           clearable ? desc.usage : 0);
+  if (clearable)
+    img.clearView = makeImageView(ctx, img.image, desc.clearFormat, VK_IMAGE_ASPECT_COLOR_BIT, 1, desc.name, ".clear",
+                                  VK_IMAGE_USAGE_STORAGE_BIT);
   if (isDepthFormat(desc.format)) {
     img.depthView = makeImageView(ctx, img.image, desc.format, VK_IMAGE_ASPECT_DEPTH_BIT, 1, desc.name, ".depth");
     if (hasStencil(desc.format))
@@ -165,7 +179,7 @@ Image createImage(GpuContext& ctx, const ImageDesc& desc) {
 }
 
 void destroyImage(GpuContext& ctx, Image& img) {
-  for (VkImageView v : {img.view, img.depthView, img.stencilView})
+  for (VkImageView v : {img.view, img.depthView, img.stencilView, img.clearView})
     if (v) vkDestroyImageView(ctx.device, v, nullptr);
   if (img.image) vkDestroyImage(ctx.device, img.image, nullptr);
   if (img.memory) vkFreeMemory(ctx.device, img.memory, nullptr);

@@ -27,6 +27,10 @@ struct ImageDesc {
   uint32_t mipLevels = 1;
   VkImageUsageFlags usage = 0;
   bool transient = false;  // transient attachment: lazily allocated memory when the device has it
+  // Set: the image also gets a storage view in this format of the same texel size (compute clears
+  // of formats that have no storage support themselves, such as sRGB): MUTABLE_FORMAT and
+  // EXTENDED_USAGE, the other views restricted to `usage`.
+  VkFormat clearFormat = VK_FORMAT_UNDEFINED;
   const char* name = nullptr;
 };
 
@@ -36,6 +40,7 @@ struct Image {
   VkImageView view = VK_NULL_HANDLE;         // every aspect (attachments)
   VkImageView depthView = VK_NULL_HANDLE;    // depth aspect only (sampling / input attachment)
   VkImageView stencilView = VK_NULL_HANDLE;  // stencil aspect only
+  VkImageView clearView = VK_NULL_HANDLE;    // storage view in desc.clearFormat (when set)
   ImageDesc desc;
   bool lazilyAllocated = false;  // memory came from a LAZILY_ALLOCATED type
 };
