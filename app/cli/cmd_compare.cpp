@@ -1,6 +1,8 @@
 // gblens compare A B [-o DIFFDIR] [--json REPORT] [--fail ...]: compares two captures target by
-// target (views/compare.h) with idiff's thresholds and exit codes.
+// target (views/compare.h) with idiff's thresholds and exit codes, and FLIP of final and hdr.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <memory>
 
@@ -12,7 +14,8 @@ namespace gb {
 namespace {
 struct CompareArgs {
   std::string a, b, diffDir, json, mask;
-  std::vector<std::string> fail, failPercent, hardFail, warn, warnPercent;
+  std::vector<std::string> fail, failPercent, hardFail, warn, warnPercent, failFlip, warnFlip;
+  std::string flipPpd;
   bool quiet = false;
 };
 }  // namespace
@@ -32,6 +35,13 @@ Command addCompareCommand(CLI::App& root) {
   cmd->add_option("--hardfail", o->hardFail, std::string("fail if any pixel is over this, default inf") + keyHelp);
   cmd->add_option("--warn", o->warn, std::string("warning threshold, default 1e-6") + keyHelp);
   cmd->add_option("--warnpercent", o->warnPercent, std::string("allow this % of pixels over --warn, default 0") + keyHelp);
+  cmd->add_option("--fail-flip", o->failFlip,
+                  "fail if the mean FLIP (LDR-FLIP of final, HDR-FLIP of hdr; 0 to 1) is over this (VALUE, or "
+                  "final=VALUE / hdr=VALUE; repeatable); without it FLIP is reported only");
+  cmd->add_option("--warn-flip", o->warnFlip, "warn if the mean FLIP is over this (as --fail-flip)");
+  cmd->add_option("--flip-ppd", o->flipPpd,
+                  "FLIP's observer: pixels per degree of visual angle (default 67: 0.7 m from a 0.7 m wide 3840-pixel "
+                  "monitor)");
   cmd->add_flag("-q,--quiet", o->quiet, "print only the verdict line");
   cmd->add_option("--mask", o->mask,
                   "pixels reported apart, not deciding pass/fail: silhouettes (primitive_id edges), penumbra (the "
@@ -47,6 +57,21 @@ Command addCompareCommand(CLI::App& root) {
                     std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
                     return kCompareFileError;
                   }
+              FlipSettings flip;
+              for (auto& [flag, values] : {std::pair{"--fail-flip", &o->failFlip}, {"--warn-flip", &o->warnFlip}})
+                for (const std::string& v : *values)
+                  if (!flip.add(flag, v, error)) {
+                    std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
+                    return kCompareFileError;
+                  }
+              if (!o->flipPpd.empty()) {
+                char* end = nullptr;
+                flip.ppd = std::strtod(o->flipPpd.c_str(), &end);
+                if (*end != '\0' || !(flip.ppd > 0.0) || !std::isfinite(flip.ppd)) {
+                  std::fprintf(stderr, "gblens compare: --flip-ppd %s: expected a positive number\n", o->flipPpd.c_str());
+                  return kCompareFileError;
+                }
+              }
               Capture a, b;
               for (auto [cap, dir] : {std::pair{&a, &o->a}, {&b, &o->b}}) {
                 CaptureProblem problem;
@@ -60,6 +85,7 @@ Command addCompareCommand(CLI::App& root) {
                 std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
                 return kCompareFileError;
               }
+              compareFlip(a, b, flip, report);
               if (!o->mask.empty()) {
                 CompareMask mask;
                 if (!buildCompareMask(a, b, o->mask, mask, error)) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "renderer/core/layout.h"
+#include "views/analysis/flip.h"
 #include "views/capture/capture.h"
 
 namespace gb {
@@ -72,6 +73,36 @@ struct GroupResult {
   std::string heatmap;            // file written, if any
 };
 
+// FLIP (flip.h) of `final` (LDR-FLIP: the sRGB display output, decoded to linear) and `hdr`
+// (HDR-FLIP: linear radiance) where both captures hold them at one size, pooled as the FLIP tool
+// does. Thresholds apply to the mean FLIP (idiff-style: over --fail-flip fails, over --warn-flip
+// warns); without them FLIP is reported and leaves the verdict alone.
+struct FlipSettings {
+  double ppd = flipDefaultPpd();
+  std::map<std::string, double> fail, warn;  // key "" (both targets), "final" or "hdr"
+  // Parses "VALUE" or "TARGET=VALUE" for `flag` ("--fail-flip", "--warn-flip"). False with a
+  // message naming the flag on a malformed value or target.
+  bool add(const std::string& flag, const std::string& text, std::string& error);
+};
+struct FlipResult {
+  std::string target, method;  // "final", "ldr" / "hdr", "hdr"
+  double ppd = 0.0;
+  FlipExposures exposures;     // HDR-FLIP only
+  FlipPool pool;               // with --mask: the unmasked pixels
+  std::optional<double> fail, warn;
+  Verdict verdict = Verdict::Pass;
+  bool masked = false;
+  FlipPool maskedPool;         // with --mask: the masked pixels, reported apart
+  std::vector<float> errors;   // per-pixel FLIP, row major
+  uint32_t width = 0, height = 0;
+  std::string heatmap;         // file written, if any
+};
+Verdict decideFlip(const FlipResult& r);
+nlohmann::json flipJson(const FlipResult& r);  // the report's entry
+std::string flipText(const FlipResult& r);     // the console lines
+// Writes r's map as `dir`/flip_<target>.png (magma, 0 black to 1 light yellow).
+bool writeFlipMap(FlipResult& r, const std::string& dir, std::string& error);
+
 // idiff's exit codes.
 enum CompareExit { kComparePass = 0, kCompareWarn = 1, kCompareFail = 2, kCompareMismatch = 3, kCompareFileError = 4 };
 
@@ -79,6 +110,7 @@ struct CompareReport {
   std::string a, b;
   int exitCode = kComparePass;
   std::vector<GroupResult> groups;
+  std::vector<FlipResult> flips;
   std::vector<std::pair<std::string, std::string>> mismatches;  // target, reason
   std::vector<std::pair<std::string, std::string>> skipped;     // target, reason (absent in both)
   nlohmann::json differences = nlohmann::json::array();         // manifest fields that differ
@@ -90,6 +122,9 @@ struct CompareReport {
 // error (returned in `error`, exit 4: a usage error, like idiff's).
 bool compareCaptures(const Capture& a, const Capture& b, const ThresholdSettings& thresholds, CompareReport& report,
                      std::string& error);
+
+// Adds FLIP of `final` and `hdr` to a report compareCaptures made (its exit code included).
+void compareFlip(const Capture& a, const Capture& b, const FlipSettings& settings, CompareReport& report);
 
 // The same decision for one group of errors (exposed for tests): idiff's rule.
 Verdict decide(const Thresholds& t, uint64_t pixels, uint64_t overWarn, uint64_t overFail, double maxError);
@@ -106,10 +141,12 @@ struct CompareMask {
 // False with `error` naming the part that cannot be made (no primitive_id, no shadow term, a file
 // that cannot be read or has another size).
 bool buildCompareMask(const Capture& a, const Capture& b, const std::string& spec, CompareMask& mask, std::string& error);
-// Each full-frame group's pass/fail decided over the unmasked pixels; the masked ones counted apart.
+// Each full-frame group's pass/fail decided over the unmasked pixels; the masked ones counted apart
+// (FLIP: pooled apart; the map itself is computed over the whole frame, its filters see every pixel).
 void applyCompareMask(CompareReport& report, const CompareMask& mask);
 
-// Writes a heat map PNG per group that differs into `dir` (created); records the file names.
+// Writes a heat map PNG per group that differs into `dir` (created), and each FLIP map (magma) as
+// flip_<target>.png; records the file names.
 bool writeHeatmaps(CompareReport& report, const std::string& dir, std::string& error);
 
 // Angle in degrees between two vectors (0 when both are zero, 180 when only one is).

@@ -149,6 +149,16 @@ void applyCompareMask(CompareReport& report, const CompareMask& m) {
     }
     worst = std::max(worst, g.verdict);
   }
+  for (FlipResult& f : report.flips) {
+    if (f.width != m.width || f.height != m.height) continue;
+    std::vector<uint8_t> unmasked(m.bits.size());
+    for (size_t i = 0; i < m.bits.size(); ++i) unmasked[i] = !m.bits[i];
+    f.masked = true;
+    f.pool = poolFlip(f.errors, m.bits);
+    f.maskedPool = poolFlip(f.errors, unmasked);
+    f.verdict = decideFlip(f);
+    worst = std::max(worst, f.verdict);
+  }
   if (report.exitCode != kCompareMismatch) report.exitCode = int(worst);
 }
 

@@ -1,4 +1,5 @@
-// The compare report: JSON (--json), the console summary, and heat-map PNGs (-o DIFFDIR).
+// The compare report: JSON (--json), the console summary, and heat-map PNGs (-o DIFFDIR); FLIP's
+// entries come from compare_flip.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -46,13 +47,16 @@ nlohmann::json CompareReport::json() const {
                           {"result", verdictName(g.verdict)},
                           {"heatmap", g.heatmap.empty() ? nlohmann::json(nullptr) : nlohmann::json(g.heatmap)}});
   }
+  nlohmann::json flipsJson = nlohmann::json::array();
+  for (const FlipResult& f : flips) flipsJson.push_back(flipJson(f));
   nlohmann::json mism = nlohmann::json::array(), skip = nlohmann::json::array();
   for (auto& [t, why] : mismatches) mism.push_back({{"target", t}, {"reason", why}});
   for (auto& [t, why] : skipped) skip.push_back({{"target", t}, {"reason", why}});
   return {{"a", a},           {"b", b},
           {"result", resultName(exitCode)}, {"exit_code", exitCode},
           {"differences", differences},     {"mismatches", mism},
-          {"skipped", skip},                {"groups", groupsJson}};
+          {"skipped", skip},                {"groups", groupsJson},
+          {"flip", flipsJson}};
 }
 
 static std::string fmt(double v) {
@@ -103,6 +107,7 @@ std::string CompareReport::text() const {
       out += line;
     }
   }
+  for (const FlipResult& f : flips) out += flipText(f);
   std::string verdict = resultName(exitCode);
   for (char& c : verdict) c = char(std::toupper(c));
   out += verdict + " (exit " + std::to_string(exitCode) + ")\n";
@@ -138,6 +143,8 @@ bool writeHeatmaps(CompareReport& report, const std::string& dir, std::string& e
     if (!writePng(file, img, error)) return false;
     g.heatmap = file;
   }
+  for (FlipResult& f : report.flips)
+    if (!writeFlipMap(f, dir, error)) return false;
   return true;
 }
 

@@ -1,0 +1,168 @@
+// FLIP in compare (compare.h, FlipResult): LDR-FLIP of `final`, HDR-FLIP of `hdr`, their pooled
+// values in the report, thresholds on the mean, and the magma error maps.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "renderer/core/decode.h"
+#include "views/analysis/compare.h"
+#include "views/capture/image_io.h"
+
+namespace gb {
+
+namespace {
+
+// The targets FLIP looks at, and which FLIP: the display output is LDR, the radiance HDR.
+struct FlipTarget {
+  const char* name;
+  QuantityKind kind;
+  bool hdr;
+};
+constexpr FlipTarget kFlipTargets[] = {{"final", QuantityKind::Display, false}, {"hdr", QuantityKind::Radiance, true}};
+
+// The target's colour decoded to linear RGB (sRGB-stored values linearised); false when the frame
+// does not hold it.
+bool flipImage(const FrameSnapshot& f, const FlipTarget& t, FlipImage& out) {
+  const int index = f.indexOf(t.name);
+  if (index < 0 || !f.images[size_t(index)].present()) return false;
+  const Quantity* q = nullptr;
+  for (const Quantity* c : f.layout.quantitiesOf(uint32_t(index)))
+    if (c->kind == t.kind && c->channels.size() >= 3) q = c;
+  if (!q) return false;
+  const TargetImage& ti = f.images[size_t(index)];
+  out.width = ti.image.width;
+  out.height = ti.image.height;
+  out.rgb.resize(size_t(out.width) * out.height * 3);
+  for (uint32_t y = 0; y < out.height; ++y)
+    for (uint32_t x = 0; x < out.width; ++x) {
+      const glm::dvec4 c = decodeColor(f, *q, x + ti.x0, y + ti.y0);
+      for (int k = 0; k < 3; ++k) out.rgb[(size_t(y) * out.width + x) * 3 + k] = float(c[k]);
+    }
+  return true;
+}
+
+std::optional<double> setting(const std::map<std::string, double>& m, const std::string& target) {
+  if (auto it = m.find(target); it != m.end()) return it->second;
+  if (auto it = m.find(""); it != m.end()) return it->second;
+  return std::nullopt;
+}
+
+nlohmann::json poolJson(const FlipPool& p) {
+  return {{"pixels", p.pixels}, {"mean", p.mean}, {"weighted_median", p.weightedMedian},
+          {"weighted_quartile_1", p.weightedQuartile1}, {"weighted_quartile_3", p.weightedQuartile3},
+          {"min", p.min}, {"max", p.max}};
+}
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.4g", v);
+  return buf;
+}
+
+}  // namespace
+
+bool FlipSettings::add(const std::string& flag, const std::string& text, std::string& error) {
+  std::string key, number = text;
+  if (size_t eq = text.find('='); eq != std::string::npos) {
+    key = text.substr(0, eq);
+    number = text.substr(eq + 1);
+    if (key != "final" && key != "hdr") {
+      error = flag + " " + text + ": FLIP applies to final or hdr, not \"" + key + "\"";
+      return false;
+    }
+  }
+  char* end = nullptr;
+  const double v = std::strtod(number.c_str(), &end);
+  if (number.empty() || *end != '\0' || !std::isfinite(v) || v < 0.0) {
+    error = flag + " " + text + ": expected a non-negative number (a mean FLIP, 0 to 1)";
+    return false;
+  }
+  (flag == "--fail-flip" ? fail : warn)[key] = v;
+  return true;
+}
+
+Verdict decideFlip(const FlipResult& r) {
+  if (r.fail && r.pool.mean > *r.fail) return Verdict::Fail;
+  if (r.warn && r.pool.mean > *r.warn) return Verdict::Warn;
+  return Verdict::Pass;
+}
+
+void compareFlip(const Capture& a, const Capture& b, const FlipSettings& settings, CompareReport& report) {
+  Verdict worst = Verdict::Pass;
+  for (const FlipTarget& t : kFlipTargets) {
+    FlipImage ia, ib;
+    if (!flipImage(a.frame, t, ia) || !flipImage(b.frame, t, ib) || ia.width != ib.width || ia.height != ib.height ||
+        ia.rgb.empty())
+      continue;  // absent or mismatched: the target's own entry says why
+    FlipResult r;
+    r.target = t.name;
+    r.method = t.hdr ? "hdr" : "ldr";
+    r.ppd = settings.ppd;
+    r.width = ia.width;
+    r.height = ia.height;
+    if (t.hdr) {
+      r.exposures = hdrFlipExposures(ia);  // from the reference, A
+      r.errors = hdrFlip(ia, ib, r.ppd, r.exposures);
+    } else {
+      r.errors = ldrFlip(ia, ib, r.ppd);
+    }
+    r.pool = poolFlip(r.errors);
+    r.fail = setting(settings.fail, t.name);
+    r.warn = setting(settings.warn, t.name);
+    r.verdict = decideFlip(r);
+    worst = std::max(worst, r.verdict);
+    report.flips.push_back(std::move(r));
+  }
+  if (report.exitCode != kCompareMismatch && report.exitCode != kCompareFileError)
+    report.exitCode = std::max(report.exitCode, int(worst));
+}
+
+nlohmann::json flipJson(const FlipResult& r) {
+  static const char* verdicts[] = {"pass", "warn", "fail"};
+  nlohmann::json j = {{"target", r.target}, {"method", r.method == "hdr" ? "HDR-FLIP" : "LDR-FLIP"},
+                      {"ppd", r.ppd}};
+  if (r.method == "hdr")
+    j["exposures"] = {{"start", r.exposures.start}, {"stop", r.exposures.stop}, {"count", r.exposures.count},
+                      {"tone_mapper", "aces"}};
+  j.update(poolJson(r.pool));
+  j["histogram"] = {{"buckets", r.pool.histogram.size()}, {"range", {0.0, 1.0}},
+                    {"weighting", "pixel count x bucket centre, per megapixel (2^20 pixels)"},
+                    {"values", r.pool.histogram}};
+  j["thresholds"] = {{"fail", r.fail ? nlohmann::json(*r.fail) : nlohmann::json(nullptr)},
+                     {"warn", r.warn ? nlohmann::json(*r.warn) : nlohmann::json(nullptr)}, {"on", "mean"}};
+  j["masked"] = r.masked ? poolJson(r.maskedPool) : nlohmann::json(nullptr);
+  j["result"] = verdicts[int(r.verdict)];
+  j["heatmap"] = r.heatmap.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.heatmap);
+  return j;
+}
+
+std::string flipText(const FlipResult& r) {
+  const FlipPool& p = r.pool;
+  std::string thresholds = r.fail || r.warn ? "" : "; no threshold (reported only)";
+  if (r.fail) thresholds += "; fail over " + fmt(*r.fail);
+  if (r.warn) thresholds += "; warn over " + fmt(*r.warn);
+  std::string out = std::string(r.verdict == Verdict::Pass ? "PASS " : r.verdict == Verdict::Warn ? "WARN " : "FAIL ") +
+                    " " + r.target + std::string(26 - std::min<size_t>(26, r.target.size()), ' ') + " " +
+                    (r.method == "hdr" ? "HDR-FLIP" : "LDR-FLIP") + " mean " + fmt(p.mean) + " weighted median " +
+                    fmt(p.weightedMedian) + " quartiles " + fmt(p.weightedQuartile1) + ".." +
+                    fmt(p.weightedQuartile3) + " min " + fmt(p.min) + " max " + fmt(p.max) + thresholds + "\n";
+  if (r.method == "hdr")
+    out += "      exposures " + fmt(r.exposures.start) + " to " + fmt(r.exposures.stop) + " in " +
+           std::to_string(r.exposures.count) + " (ACES), " + fmt(r.ppd) + " pixels per degree\n";
+  if (r.masked && r.maskedPool.pixels)
+    out += "      masked apart: " + std::to_string(r.maskedPool.pixels) + " pixels, mean " + fmt(r.maskedPool.mean) +
+           " max " + fmt(r.maskedPool.max) + "\n";
+  return out;
+}
+
+bool writeFlipMap(FlipResult& r, const std::string& dir, std::string& error) {
+  Rgba8Image img{r.width, r.height, std::vector<uint8_t>(size_t(r.width) * r.height * 4, 255)};
+  for (size_t i = 0; i < r.errors.size(); ++i) magmaColor(r.errors[i], &img.pixels[i * 4]);
+  const std::string file = (std::filesystem::path(dir) / ("flip_" + r.target + ".png")).string();
+  if (!writePng(file, img, error)) return false;
+  r.heatmap = file;
+  return true;
+}
+
+}  // namespace gb
