@@ -172,6 +172,8 @@ void probeCapturePixel(Viewer& v, glm::ivec2 p) {
   m.probeError = d.error;
   m.dossier = d;
   m.dossierJson = dossierJson(d);
+  m.reference.reset();
+  m.referenceNote = "captures: gblens probe CAPTURE X Y --reference (the viewer's reference follows live frames)";
   m.dossierB.reset();
   if (v.hasB) {
     PixelDossier b = probePixel(v.captureB.frame, uint32_t(p.x), uint32_t(p.y));

@@ -44,6 +44,20 @@ void addRegions(FrameSnapshot& s, const std::vector<RegionImage>& regions) {
   }
 }
 
+// The reference column of a live frame's probe, when the panel asks for it; the Embree scene is
+// built once (the viewer's geometry never changes; lights are read at each frame's time).
+static void probeReference(Viewer& v, const FrameSnapshot& snapshot, const PixelDossier& d) {
+  ViewerModel& m = v.model;
+  m.reference.reset();
+  m.referenceNote.clear();
+  if (!m.probeReference || !d.error.empty()) return;
+  const auto start = std::chrono::steady_clock::now();
+  if (!v.referenceRays) v.referenceRays = std::make_unique<reference::RayScene>(v.scene);
+  m.reference = referencePixel(*v.referenceRays, snapshot, d);
+  m.referenceMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  m.dossierJson["reference"] = referenceJson(*m.reference);
+}
+
 void probeViewerPixel(Viewer& v, glm::ivec2 p, bool logged) {
   auto start = v.clickPending && logged ? v.clickTime : std::chrono::steady_clock::now();
   if (logged) {
@@ -71,6 +85,7 @@ void probeViewerPixel(Viewer& v, glm::ivec2 p, bool logged) {
   m.probeError = d.error;
   m.dossier = d;
   m.dossierJson = dossierJson(d);
+  probeReference(v, snapshot, d);
   m.shadowTexelOfProbe.reset();
   if (d.shadowMap.valid)
     m.shadowTexelOfProbe = glm::ivec2(int(std::floor(d.shadowMap.texel.x + 0.5)), int(std::floor(d.shadowMap.texel.y + 0.5)));

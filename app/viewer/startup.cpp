@@ -115,6 +115,7 @@ static void initModel(Viewer& v, bool live) {
   m.fixedSize = args.sizeGiven;
   m.lightCount = int(v.scene.generatedLights ? args.render.lights : int(v.scene.lights.size()));
   m.playing = !args.paused;
+  m.probeReference = args.probeReference;
   m.reduceWhileMoving = args.reduceWhileMoving;
   parseView(args.initialView, m.primary);
   m.edited = m.primary;

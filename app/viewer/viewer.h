@@ -13,6 +13,7 @@
 #include "renderer/region_readback.h"
 #include "renderer/scene/scene.h"
 #include "renderer/vk/swapchain.h"
+#include "renderer/reference/reference.h"
 #include "views/capture/capture.h"
 #include "views/ui/view_map.h"
 #include "views/ui/viewer_model.h"
@@ -31,6 +32,7 @@ struct ViewerArgs {
   std::string window = "1280x800";  // initial window size
   bool windowGiven = false;        // --window given (else sized to the monitor)
   bool paused = false;
+  bool probeReference = false;     // --probe-reference: the Pixel panel's reference starts on
   std::string initialView = "final";
   std::string probeLog;            // --probe-log: each dossier as one JSON line
   std::string eventLog;            // --event-log: layout/probe/exit events as JSON lines (tests)
@@ -64,6 +66,7 @@ struct Viewer {
   bool swapchainValid = false;
   VkDescriptorPool imguiPool = VK_NULL_HANDLE;
   Scene scene;
+  std::unique_ptr<reference::RayScene> referenceRays;  // built the first time the probe asks for the reference
   std::vector<double> baseRadius;  // the scene's light radii before the radius scale
   Renderer renderer;
   bool rendererReady = false;

@@ -231,6 +231,10 @@ Context makeContext(const RayScene& rays, const Camera& camera, int64_t onlyInst
 
 }  // namespace
 
+Surface surfaceAtPixel(const RayScene& rays, const Camera& camera, uint32_t x, uint32_t y) {
+  return surfaceAt(makeContext(rays, camera), x, y);
+}
+
 Surface surfaceOnTriangle(const RayScene& rays, const Camera& camera, uint32_t instance, uint32_t triangle, uint32_t x,
                           uint32_t y) {
   Context c = makeContext(rays, camera, instance);

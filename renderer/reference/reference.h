@@ -87,6 +87,9 @@ class RayScene {
 // Renders the reference for `camera` (positions, normals, materials, sun visibility).
 Frame renderFrame(const RayScene& rays, const Camera& camera, unsigned threads = 2);
 
+// One pixel of renderFrame: the first surface on the ray through pixel (x, y)'s centre.
+Surface surfaceAtPixel(const RayScene& rays, const Camera& camera, uint32_t x, uint32_t y);
+
 // The surface of one given triangle where the ray through pixel (x, y) meets its plane, even
 // outside the triangle (attribute changes per pixel, for tolerances); sunVisible stays -1.
 Surface surfaceOnTriangle(const RayScene& rays, const Camera& camera, uint32_t instance, uint32_t triangle, uint32_t x,
@@ -133,6 +136,9 @@ ShadingInput shadingInput(const Surface& s);
 // pixel of) the ray through its centre, as the reference's and the G-buffer's positions do.
 Shaded shade(const std::vector<ShadingInput>& pixels, const Camera& camera, const std::vector<Light>& lights,
              const Sun& sun, unsigned threads = 2);
+
+// One pixel shaded as shade() does (every light, no binning: lights out of range add exactly 0).
+glm::dvec3 shadeOne(const ShadingInput& s, const std::vector<Light>& lights, const Sun& sun);
 
 // Runs f(y) for every row on `threads` threads (rows handed out one at a time).
 void parallelRows(uint32_t height, unsigned threads, const std::function<void(uint32_t)>& f);

@@ -46,6 +46,16 @@ ShadingInput shadingInput(const Surface& s) {
   return in;
 }
 
+glm::dvec3 shadeOne(const ShadingInput& s, const std::vector<Light>& lights, const Sun& sun) {
+  if (!s.geometry) return glm::dvec3(0.0);
+  if (s.unlit) return shading::shadeUnlit(s.albedo);
+  const glm::dvec3 V = glm::normalize(-s.P);
+  glm::dvec3 sum = shading::shadeDirectional(s.albedo, s.specular, s.N, V, sun.toSunEye, sun.color, sun.ambient,
+                                             sun.enabled ? s.shadow : 0.0);
+  for (const Light& l : lights) sum += shading::shadePoint(s.albedo, s.specular, s.N, s.P, l.eyePosition, l.radius, l.color);
+  return sum;
+}
+
 Shaded shade(const std::vector<ShadingInput>& px, const Camera& camera, const std::vector<Light>& lights, const Sun& sun,
              unsigned threads) {
   const uint32_t w = camera.width, h = camera.height, tile = 16;

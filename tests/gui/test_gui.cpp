@@ -81,7 +81,7 @@ TEST_F(GuiTest, KeysShowEveryViewAndAClickProbesThePixelAsAHeadlessRenderDoes) {
   // Full frames only: auto's reduction depends on measured times (the next test checks it).
   viewer_ = gui::spawn({GBLENS_BINARY, "view", "builtin:temple", "--validate", "--size", size, "--time", "1.5", "--paused",
                         "--window", "1280x720", "--reduce-while-moving", "off", "--event-log", eventLog(), "--probe-log",
-                        probeLog()},
+                        probeLog(), "--probe-reference"},
                        {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
   ASSERT_FALSE(waitEvent([](const nlohmann::json& j) { return j["event"] == "ready"; }, 60.0).is_null())
       << "the viewer did not present a frame; see " << (dir_ / "viewer.log");
@@ -191,11 +191,14 @@ TEST_F(GuiTest, KeysShowEveryViewAndAClickProbesThePixelAsAHeadlessRenderDoes) {
                " --time 1.5 --coverage on -o " + capture + " 2>&1", &st);
   ASSERT_EQ(st, 0);
   std::string text = gui::run(std::string(GBLENS_BINARY) + " probe " + capture + " " + std::to_string(px) + " " +
-                                  std::to_string(py) + " --json",
+                                  std::to_string(py) + " --json --reference",
                               &st);
   ASSERT_EQ(st, 0);
   nlohmann::json headless = nlohmann::json::parse(text);
-  for (const char* key : {"targets", "decoded", "position", "shadow_map", "lighting", "hdr", "final"})
+  // The Pixel panel's reference (--probe-reference) is the one `gblens probe --reference` computes.
+  ASSERT_TRUE(dossier.contains("reference"));
+  EXPECT_TRUE(dossier["reference"]["compared"].get<bool>()) << dossier["reference"].dump();
+  for (const char* key : {"targets", "decoded", "position", "shadow_map", "lighting", "hdr", "final", "reference"})
     EXPECT_EQ(dossier[key], headless[key]) << key << "\nviewer:   " << dossier[key].dump() << "\nheadless: " << headless[key].dump();
 }
 

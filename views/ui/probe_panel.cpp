@@ -261,6 +261,8 @@ static void dossierSections(const PixelDossier& d) {
   storedSection(d);
 }
 
+void referenceSection(ViewerModel& m);  // reference_panel.cpp
+
 void drawDossier(ViewerModel& m) {
   if (m.hover)
     ImGui::Text("mouse (%d, %d)", m.hover->x, m.hover->y);
@@ -291,6 +293,7 @@ void drawDossier(ViewerModel& m) {
   }
   if (!m.dossierB) {
     ImGui::BeginChild("dossier");
+    referenceSection(m);
     dossierSections(d);
     ImGui::EndChild();
     return;

@@ -11,6 +11,7 @@
 
 #include "renderer/renderer.h"
 #include "views/analysis/probe.h"
+#include "views/analysis/probe_reference.h"
 #include "views/analysis/region_stats.h"
 #include "views/ui/view_layout.h"
 
@@ -105,6 +106,12 @@ struct ViewerModel {
   std::optional<PixelDossier> dossierB;     // compare: capture B's dossier of the same pixel
   std::string probeError;
   double probeLatencyMs = 0.0;
+  // The reference column (views/analysis/probe_reference.h): asked for in the panel, computed by
+  // the app with each probe of a live frame; `referenceNote` says why there is none.
+  bool probeReference = false;
+  std::optional<ReferencePixel> reference;
+  std::string referenceNote;
+  double referenceMs = 0.0;
   bool copyJson = false;
 
   // ---- region statistics: ctrl + left drag in a screen view (views/analysis/region_stats.h) ----
