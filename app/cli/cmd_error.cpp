@@ -70,16 +70,10 @@ static void printReport(const FrameError& e, const RenderOptions& o, double band
 }
 
 static bool writeErrorImages(const std::string& dir, const FrameError& e) {
-  std::pair<const char*, Rgba8Image> images[] = {{"shadow.png", shadowErrorImage(e)},
-                                                 {"silhouettes.png", silhouetteImage(e)},
-                                                 {"normal.png", normalErrorImage(e)},
-                                                 {"hdr.png", hdrErrorImage(e)},
-                                                 {"position.png", positionErrorImage(e)},
-                                                 {"lighting.png", lightingErrorImage(e)}};
   bool ok = true;
-  for (auto& [file, img] : images) {
-    std::string error, path = (std::filesystem::path(dir) / file).string();
-    if (!writePng(path, img, error)) {
+  for (const ErrorMapDef& map : errorMaps()) {
+    std::string error, path = (std::filesystem::path(dir) / (std::string(map.name) + ".png")).string();
+    if (!writePng(path, map.make(e), error)) {
       std::fprintf(stderr, "gblens error: %s\n", error.c_str());
       ok = false;
     }

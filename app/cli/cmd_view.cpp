@@ -17,6 +17,9 @@ Command addViewCommand(CLI::App& root) {
   cmd->add_flag("--paused", a->paused, "start with the animation paused (at --time)");
   addViewOption(cmd, "--view", a->initialView, "initial view");
   cmd->add_option("--probe-log", a->probeLog, "append each pixel dossier as one JSON line to FILE");
+  cmd->add_option("--reference-error", a->referenceErrorDir,
+                  "open the Reference error window, compute it for the first frame and write its maps into DIR "
+                  "(the PNGs gblens error -o writes)");
   cmd->add_flag("--probe-reference", a->probeReference,
                 "start with the Pixel panel's reference on: each probe of a live frame adds the ray-traced reference");
   cmd->add_option("--event-log", a->eventLog, "append viewer events (layout, probe latency, exit) as JSON lines to FILE");

@@ -70,7 +70,7 @@ static std::string describe(const Capture& c) {
   return o.str();
 }
 
-static Scene emptyScene(const Camera& camera) {
+Scene emptyScene(const Camera& camera) {
   Scene s;
   s.source = "capture";
   s.materials.push_back(MaterialDesc{});

@@ -116,6 +116,7 @@ static void initModel(Viewer& v, bool live) {
   m.lightCount = int(v.scene.generatedLights ? args.render.lights : int(v.scene.lights.size()));
   m.playing = !args.paused;
   m.probeReference = args.probeReference;
+  m.referenceError.open = !args.referenceErrorDir.empty();
   m.reduceWhileMoving = args.reduceWhileMoving;
   parseView(args.initialView, m.primary);
   m.edited = m.primary;
@@ -161,6 +162,8 @@ int finishViewer(Viewer& v) {
   destroyViewMapper(v.mapper, v.renderer);
   destroyRenderer(v.renderer);
   destroyRenderer(v.rendererB);
+  if (v.referenceJob.valid()) v.referenceJob.wait();
+  destroyRenderer(v.rendererRef);
   closeWindow(v);
   int messages = reportValidation(v.ctx);
   destroyContext(v.ctx);

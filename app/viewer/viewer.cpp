@@ -269,6 +269,7 @@ static void updateFrame(Viewer& v, const LoopState& s, int fbw, int fbh, double 
   }
   m.stepForward = m.stepBack = false;
   updateRanges(v);
+  v.referenceBusy = updateReferenceError(v);
   if (m.probeRequest) answerProbe(v);
   updateRegion(v);
   if (s.live) {
@@ -350,6 +351,7 @@ static void iterate(Viewer& v, LoopState& s, int fbw, int fbh) {
   // Changes made in this interface frame need another one (and maybe a render).
   bool pending = m.uiChanged || m.probeRequest || m.resetCamera || m.gltfCamera >= 0 || m.cameraDrag != glm::dvec2(0.0) ||
                  m.cameraDolly != 0.0 || m.stepForward || m.stepBack || m.captureRequested || m.renderDocRequested ||
+                 v.referenceBusy || m.referenceError.computeRequested ||
                  (s.live && frameOutdated(v.fullOptions, wantedOptions(v, fbw, fbh)));
   v.uiFramesLeft = pending ? std::max(v.uiFramesLeft, 2) : v.uiFramesLeft - 1;
 }

@@ -5,6 +5,8 @@
 // the shared dossier), captures.cpp (capture button, --capture / --compare).
 #pragma once
 #include <chrono>
+#include <future>
+#include <memory>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -14,6 +16,7 @@
 #include "renderer/scene/scene.h"
 #include "renderer/vk/swapchain.h"
 #include "renderer/reference/reference.h"
+#include "views/analysis/error.h"
 #include "views/capture/capture.h"
 #include "views/ui/view_map.h"
 #include "views/ui/viewer_model.h"
@@ -33,6 +36,7 @@ struct ViewerArgs {
   bool windowGiven = false;        // --window given (else sized to the monitor)
   bool paused = false;
   bool probeReference = false;     // --probe-reference: the Pixel panel's reference starts on
+  std::string referenceErrorDir;   // --reference-error DIR: compute the reference error at start, write its maps
   std::string initialView = "final";
   std::string probeLog;            // --probe-log: each dossier as one JSON line
   std::string eventLog;            // --event-log: layout/probe/exit events as JSON lines (tests)
@@ -77,6 +81,17 @@ struct Viewer {
   // decoded into gblens's targets (views/analysis/viewable.h). The probe reads the captures.
   FrameSnapshot shownA, shownB;
   Renderer rendererB;
+  // The reference error, live (reference_error.cpp): the worker computing it, the frame it was
+  // computed for, its result, and a renderer that only holds the map shown (as its `final`).
+  std::future<FrameError> referenceJob;
+  std::chrono::steady_clock::time_point referenceStart;
+  RenderOptions referenceOptions;
+  uint64_t referenceCamera = 0, referenceLights = 0;
+  std::optional<FrameError> referenceResult;
+  Renderer rendererRef;
+  Scene sceneRef;
+  bool referenceShown = false;  // rendererRef holds the selected map
+  bool referenceBusy = false;   // the worker runs: keep iterating to show progress and pick it up
   Scene sceneB;
   bool hasB = false;
   ViewerModel model;
@@ -150,6 +165,12 @@ void updateRegion(Viewer& v);
 bool captureLiveFrame(Viewer& v, std::string& written, std::string& error, std::string* rdc = nullptr);
 bool openCaptures(Viewer& v);  // false: a message was printed (exit 2)
 void probeCapturePixel(Viewer& v, glm::ivec2 pixel);
+// A scene holding only a camera (renderers that hold uploaded frames).
+Scene emptyScene(const Camera& camera);
+// The "Reference error" window's work: starts the worker on request, picks up its result, uploads
+// the map shown, marks it stale when the frame changes, and with --reference-error DIR writes
+// every map there (reference_error.cpp). True while the worker runs (the loop keeps polling).
+bool updateReferenceError(Viewer& v);
 std::string captureHoverText(const Viewer& v, ViewKind view, glm::ivec2 texel);
 
 // Appends one JSON line to a log file (no-op when the file is not open).

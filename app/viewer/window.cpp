@@ -138,7 +138,9 @@ static void drawViewCallback(const ImDrawList*, const ImDrawCmd* cmd) {
     drawView(v.mapper, r, v.swapchain.cmd, v.swapchain.renderPass, v.swapchain.format.format, d.source, d.params, viewport,
              scissor, b);
   };
-  if (d.splitX >= 0.0 && v.hasB) {  // compare split: A on the left, B on the right
+  if (d.side == FrameSide::Reference) {
+    if (v.referenceShown) draw(v.rendererRef, x0, x1, nullptr);
+  } else if (d.splitX >= 0.0 && v.hasB) {  // compare split: A on the left, B on the right
     draw(v.renderer, x0, float(d.splitX), nullptr);
     draw(v.rendererB, float(d.splitX), x1, nullptr);
   } else if (d.side == FrameSide::B && v.hasB) {

@@ -5,6 +5,7 @@
 // viewer exits non-zero on any). Screenshots stay in the build tree (gui_test/) to look at.
 #include <algorithm>
 #include <filesystem>
+#include <thread>
 
 #include "renderer/scene/builtin.h"
 #include "tests/gpu/gpu_test.h"
@@ -252,6 +253,46 @@ TEST_F(GuiTest, AReducedFrameWhileMovingIsFollowedByAFullOne) {
   ASSERT_TRUE(gui::waitExit(viewer_, 30.0, status)) << "the viewer did not quit";
   viewer_ = -1;
   EXPECT_EQ(status, 0) << "validation messages or a failure; see " << (dir_ / "viewer.log");
+}
+
+// The reference error, live (issue 17, part 3): the viewer's "Reference error" window computes the
+// maps for the frame on screen in a worker thread; written out (--reference-error DIR), every map
+// is pixel for pixel the PNG `gblens error -o` writes for the same scene, size and time.
+TEST_F(GuiTest, TheLiveReferenceErrorMapsAreThoseOfGblensError) {
+  const std::string size = "160x90", out = (dir_ / "reference_error").string();
+  viewer_ = gui::spawn({GBLENS_BINARY, "view", "builtin:temple", "--validate", "--size", size, "--time", "1.5", "--paused",
+                        "--window", "1200x700", "--reduce-while-moving", "off", "--event-log", eventLog(),
+                        "--reference-error", out},
+                       {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
+  nlohmann::json done = waitEvent([](const nlohmann::json& j) { return j["event"] == "reference_error_written"; }, 120.0);
+  ASSERT_FALSE(done.is_null()) << "no reference error; see " << (dir_ / "viewer.log");
+  EXPECT_EQ(done["error"], "");
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // the window shows the map
+  shoot("reference_error");
+  std::string wid = xdotool("search --onlyvisible --name '^gblens'");
+  xdotool("key --window " + wid.substr(0, wid.find('\n')) + " ctrl+q");
+  int status = -1;
+  ASSERT_TRUE(gui::waitExit(viewer_, 30.0, status)) << "the viewer did not quit";
+  viewer_ = -1;
+  EXPECT_EQ(status, 0) << "validation messages or a failure; see " << (dir_ / "viewer.log");
+  const std::string cli = (dir_ / "gblens_error").string();
+  int st = -1;
+  gui::run(std::string(GBLENS_BINARY) + " error builtin:temple --size " + size + " --time 1.5 -o " + cli + " 2>&1", &st);
+  ASSERT_EQ(st, 0);
+  int maps = 0;
+  for (const char* name : {"shadow", "silhouettes", "normal", "hdr", "position", "lighting"}) {
+    auto pixels = [&](const std::string& dir) {
+      return gui::run("convert " + dir + "/" + name + ".png rgba:- | sha256sum");
+    };
+    ASSERT_TRUE(fs::exists(out + "/" + name + ".png")) << name;
+    ASSERT_TRUE(fs::exists(cli + "/" + name + ".png")) << name;
+    const std::string viewer = pixels(out), reference = pixels(cli);
+    const std::string empty = "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855";  // of no bytes
+    EXPECT_NE(viewer.substr(0, 64), empty) << name << ".png: convert read nothing";
+    EXPECT_EQ(viewer.substr(0, 64), reference.substr(0, 64)) << name << ".png differs";
+    ++maps;
+  }
+  EXPECT_EQ(maps, 6);
 }
 
 }  // namespace gb

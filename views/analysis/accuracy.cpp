@@ -41,31 +41,33 @@ ReferenceView ReferenceCache::get(const Camera& camera, double time, double band
   return {&e.frame, &shaded->second, &band->second, bandTexels, radius};
 }
 
-MeasuredFrame measureFrame(const FrameSource& render, const RenderOptions& options, ReferenceCache& cache,
-                           double bandTexels, const MeasureExtras& extras) {
+FrameSnapshot measuredSnapshot(const FrameRender& render, const RenderOptions& options, const MeasureExtras& extras) {
   RenderOptions o = options;
   o.primitiveId = true;  // silhouettes: where the rasterizer and the ray caster see different triangles
   o.fairies = false;     // sprites over the surfaces are not part of the reference
   std::vector<Target> targets = measuredTargets(o);
   for (Target t : extras.readback)
     if (std::find(targets.begin(), targets.end(), t) == targets.end()) targets.push_back(t);
+  if (o.method != Method::Forward) return render(o, targets);
   // Forward has no G-buffer: the surface figures come from the deferred frame of the same
   // options (the same rasterized surfaces), the colour from the forward frame itself.
+  RenderOptions forward = o;
+  forward.primitiveId = false;
+  TargetImage forwardHdr = render(forward, {Target::Hdr}).target(Target::Hdr);
+  RenderOptions deferred = o;
+  deferred.method = Method::Deferred;
+  FrameSnapshot f = render(deferred, targets);
+  f.target(Target::Hdr) = std::move(forwardHdr);
+  f.options.method = Method::Forward;
+  return f;
+}
+
+MeasuredFrame measureFrame(const FrameRender& render, const RenderOptions& options, ReferenceCache& cache,
+                           double bandTexels, const MeasureExtras& extras) {
   MeasuredFrame m;
-  if (o.method == Method::Forward) {
-    RenderOptions forward = o;
-    forward.primitiveId = false;
-    TargetImage forwardHdr = render(forward, {Target::Hdr}).target(Target::Hdr);
-    RenderOptions deferred = o;
-    deferred.method = Method::Deferred;
-    m.frame = render(deferred, targets);
-    m.frame.target(Target::Hdr) = std::move(forwardHdr);
-    m.frame.options.method = Method::Forward;
-  } else {
-    m.frame = render(o, targets);
-  }
-  ReferenceView ref = cache.get(extras.referenceCamera ? *extras.referenceCamera : m.frame.camera, o.time, bandTexels,
-                                o.shadowMapSize);
+  m.frame = measuredSnapshot(render, options, extras);
+  ReferenceView ref = cache.get(extras.referenceCamera ? *extras.referenceCamera : m.frame.camera, options.time, bandTexels,
+                                options.shadowMapSize);
   m.error = measureError(m.frame, ref);
   return m;
 }

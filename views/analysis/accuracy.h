@@ -46,15 +46,18 @@ struct MeasureExtras {
 };
 
 // A frame of these options with these targets read back (whole), as a snapshot.
-using FrameSource = std::function<FrameSnapshot(const RenderOptions&, const std::vector<Target>&)>;
+using FrameRender = std::function<FrameSnapshot(const RenderOptions&, const std::vector<Target>&)>;
 
 struct MeasuredFrame {
   FrameSnapshot frame;  // what was measured, with the extra read-backs
   FrameError error;
 };
+// The frame a measurement reads: `options` with primitive_id on and fairies off, every measured
+// target read back (forward: the surfaces from the deferred frame of the same options).
+FrameSnapshot measuredSnapshot(const FrameRender& render, const RenderOptions& options, const MeasureExtras& extras = {});
 // Renders `options` once more with the measure's read-backs and returns the frame and its error.
 // Method forward: surface figures from the deferred frame of the same options, hdr from forward.
-MeasuredFrame measureFrame(const FrameSource& render, const RenderOptions& options, ReferenceCache& cache,
+MeasuredFrame measureFrame(const FrameRender& render, const RenderOptions& options, ReferenceCache& cache,
                            double bandTexels = kShadowBandTexels, const MeasureExtras& extras = {});
 
 }  // namespace gb

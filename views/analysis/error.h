@@ -112,4 +112,13 @@ Rgba8Image hdrErrorImage(const FrameError& e);
 Rgba8Image positionErrorImage(const FrameError& e);  // from eye depth, relative, 1e-8 .. 1e-4
 Rgba8Image lightingErrorImage(const FrameError& e);  // per light contribution, 1e-8 .. 1e-4
 
+// The error maps under their one name (gblens error -o NAME.png, the viewer's "Reference error"
+// window), with their legend for people.
+struct ErrorMapDef {
+  const char* name;
+  const char* legend;
+  Rgba8Image (*make)(const FrameError&);
+};
+const std::vector<ErrorMapDef>& errorMaps();
+
 }  // namespace gb

@@ -11,6 +11,7 @@ namespace gb {
 
 void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, std::vector<ViewDraw>& draws);
 void drawDossier(ViewerModel& m);  // probe_panel.cpp
+void referenceErrorWindow(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDraw>& draws);  // reference_error_panel.cpp
 void drawRegion(ViewerModel& m);   // region_panel.cpp
 
 static constexpr double kMenuHeight = 20.0, kStatusHeight = 22.0, kControlsWidth = 310.0, kPixelWidth = 450.0;
@@ -74,6 +75,7 @@ static void menuBar(ViewerModel& m) {
     if (ImGui::MenuItem("Fit", "Z")) m.transform = ViewTransform{};
     ImGui::MenuItem("Controls panel", nullptr, &m.showControls);
     ImGui::MenuItem("Pixel panel", nullptr, &m.showPixel);
+    ImGui::MenuItem("Reference error (live frame)", nullptr, &m.referenceError.open);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Camera")) {
@@ -365,6 +367,7 @@ void drawViewerUi(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDra
   if (m.showControls) controlsPanel(m, {0, kMenuHeight, controlsWidth(m, w), area.h});
   if (m.showPixel) pixelPanel(m, {w - pixelWidth(m, w), kMenuHeight, pixelWidth(m, w), area.h});
   statusBar(m, w, h);
+  referenceErrorWindow(m, callback, draws);
 }
 
 }  // namespace gb

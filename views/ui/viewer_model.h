@@ -21,7 +21,8 @@ struct ImDrawCmd;
 namespace gb {
 
 // Which frame a view shows: the live one (or capture A), capture B, or |A - B|.
-enum class FrameSide { A, B, Difference };
+// Reference: the live frame's reference-error map (app/viewer/reference_error.cpp's renderer).
+enum class FrameSide { A, B, Difference, Reference };
 
 // A view to draw inside the ImGui draw data: the app's callback records it (renderer/view_map).
 struct ViewDraw {
@@ -109,6 +110,19 @@ struct ViewerModel {
   // The reference column (views/analysis/probe_reference.h): asked for in the panel, computed by
   // the app with each probe of a live frame; `referenceNote` says why there is none.
   bool probeReference = false;
+  // The reference error, live: the maps of `gblens error -o` for the frame on screen, computed on
+  // request in a worker thread (views/ui/reference_error_panel.cpp, app/viewer/reference_error.cpp).
+  struct ReferenceErrorUi {
+    bool open = false;
+    bool computeRequested = false;  // the panel's button
+    bool computing = false, ready = false;
+    bool stale = false;             // the frame changed since it was computed
+    double seconds = 0.0;           // computing: so far; ready: what it took
+    int map = 0;                    // errorMaps() index shown
+    bool mapChanged = false;
+    uint32_t width = 0, height = 0;
+    std::string summary, error;
+  } referenceError;
   std::optional<ReferencePixel> reference;
   std::string referenceNote;
   double referenceMs = 0.0;

@@ -1,0 +1,79 @@
+// The "Reference error" window: the maps `gblens error -o` writes (views/analysis/error.h
+// errorMaps), computed for the live frame on request while the viewer stays responsive; the map
+// is drawn through the view pipeline from the app's reference renderer (FrameSide::Reference).
+#include <imgui.h>
+
+#include <algorithm>
+
+#include "views/analysis/error.h"
+#include "views/ui/view_params.h"
+#include "views/ui/viewer_model.h"
+
+namespace gb {
+
+static void queueMap(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDraw>& draws) {
+  const auto& e = m.referenceError;
+  const ImVec2 avail = ImGui::GetContentRegionAvail(), at = ImGui::GetCursorScreenPos();
+  if (avail.x < 8 || avail.y < 8 || e.width == 0) return;
+  const double scale = std::min(avail.x / double(e.width), avail.y / double(e.height));
+  const ImGuiIO& io = ImGui::GetIO();
+  Placement fb{at.x * io.DisplayFramebufferScale.x, at.y * io.DisplayFramebufferScale.y, scale * io.DisplayFramebufferScale.x};
+  const ViewDef& def = viewDef(ViewKind::Final);  // the map is an sRGB colour image held as `final`
+  const ResolvedRange range = resolveRange(def, defaultSettings(ViewKind::Final), nullptr);
+  ViewDraw vd;
+  vd.source = def.source;
+  vd.side = FrameSide::Reference;
+  vd.params = viewParams(def, defaultSettings(ViewKind::Final), range, fb, false, std::nullopt, {1, 1});
+  const float w = float(e.width * scale), h = float(e.height * scale);
+  vd.rect = {fb.originX, fb.originY, w * io.DisplayFramebufferScale.x, h * io.DisplayFramebufferScale.y};
+  draws.push_back(vd);
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  dl->PushClipRect(at, ImVec2(at.x + w, at.y + h), true);
+  dl->AddCallback(callback, reinterpret_cast<void*>(intptr_t(draws.size() - 1)));
+  dl->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
+  dl->PopClipRect();
+  ImGui::Dummy(ImVec2(w, h));
+}
+
+void referenceErrorWindow(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDraw>& draws) {
+  auto& e = m.referenceError;
+  if (!e.open) return;
+  ImGui::SetNextWindowSize(ImVec2(560, 420), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Reference error", &e.open)) {
+    ImGui::End();
+    return;
+  }
+  if (m.source != FrameSource::Live) {
+    ImGui::TextWrapped("The reference needs the scene: live frames only (gblens error SCENE -o DIR for others).");
+    ImGui::End();
+    return;
+  }
+  const std::vector<ErrorMapDef>& maps = errorMaps();
+  ImGui::SetNextItemWidth(140);
+  if (ImGui::BeginCombo("map", maps[size_t(e.map)].name)) {
+    for (size_t i = 0; i < maps.size(); ++i)
+      if (ImGui::Selectable(maps[i].name, int(i) == e.map)) e.map = int(i), e.mapChanged = true;
+    ImGui::EndCombo();
+  }
+  ImGui::SameLine();
+  if (e.computing) {
+    ImGui::Text("computing the reference... %.1f s", e.seconds);
+  } else if (ImGui::Button(e.ready ? "Recompute for this frame" : "Compute for this frame")) {
+    e.computeRequested = true;
+  }
+  if (!e.error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", e.error.c_str());
+  if (!e.ready) {
+    ImGui::TextWrapped("The maps of gblens error -o for the frame on screen (fairy sprites off, primitive_id on, as "
+                       "gblens error renders it), against the double-precision ray-traced reference. It takes seconds "
+                       "on a CPU device; the viewer stays usable meanwhile.");
+    ImGui::End();
+    return;
+  }
+  if (e.stale) ImGui::TextColored(ImVec4(1, 0.7f, 0.3f, 1), "stale: the frame changed since (recompute)");
+  ImGui::TextWrapped("%s", maps[size_t(e.map)].legend);
+  ImGui::TextDisabled("%s (%.1f s)", e.summary.c_str(), e.seconds);
+  queueMap(m, callback, draws);
+  ImGui::End();
+}
+
+}  // namespace gb
