@@ -16,6 +16,7 @@
 #include "renderer/scene/scene.h"
 #include "renderer/vk/swapchain.h"
 #include "renderer/reference/reference.h"
+#include "views/analysis/decompose.h"
 #include "views/analysis/error.h"
 #include "views/capture/capture.h"
 #include "views/ui/view_map.h"
@@ -83,11 +84,16 @@ struct Viewer {
   Renderer rendererB;
   // The reference error, live (reference_error.cpp): the worker computing it, the frame it was
   // computed for, its result, and a renderer that only holds the map shown (as its `final`).
-  std::future<FrameError> referenceJob;
+  struct ReferenceResult {
+    FrameError error;
+    Decomposition decomposition;
+    std::string decomposeError;  // why there is none
+  };
+  std::future<ReferenceResult> referenceJob;
   std::chrono::steady_clock::time_point referenceStart;
   RenderOptions referenceOptions;
   uint64_t referenceCamera = 0, referenceLights = 0;
-  std::optional<FrameError> referenceResult;
+  std::optional<ReferenceResult> referenceResult;
   Renderer rendererRef;
   Scene sceneRef;
   bool referenceShown = false;  // rendererRef holds the selected map

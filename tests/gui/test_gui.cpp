@@ -5,6 +5,7 @@
 // viewer exits non-zero on any). Screenshots stay in the build tree (gui_test/) to look at.
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "renderer/scene/builtin.h"
@@ -257,7 +258,8 @@ TEST_F(GuiTest, AReducedFrameWhileMovingIsFollowedByAFullOne) {
 
 // The reference error, live (issue 17, part 3): the viewer's "Reference error" window computes the
 // maps for the frame on screen in a worker thread; written out (--reference-error DIR), every map
-// is pixel for pixel the PNG `gblens error -o` writes for the same scene, size and time.
+// is pixel for pixel the PNG `gblens error -o` writes for the same scene, size and time, and every
+// decomposition term the EXR `gblens decompose` writes for a capture of that frame.
 TEST_F(GuiTest, TheLiveReferenceErrorMapsAreThoseOfGblensError) {
   const std::string size = "160x90", out = (dir_ / "reference_error").string();
   viewer_ = gui::spawn({GBLENS_BINARY, "view", "builtin:temple", "--validate", "--size", size, "--time", "1.5", "--paused",
@@ -293,6 +295,22 @@ TEST_F(GuiTest, TheLiveReferenceErrorMapsAreThoseOfGblensError) {
     ++maps;
   }
   EXPECT_EQ(maps, 6);
+  // The decomposition terms the window offers are `gblens decompose`'s of a capture of that frame.
+  const std::string capture = (dir_ / "capture").string(), decomposed = (dir_ / "decomposed").string();
+  gui::run(std::string(GBLENS_BINARY) + " capture builtin:temple --size " + size + " --time 1.5 -o " + capture + " 2>&1", &st);
+  ASSERT_EQ(st, 0);
+  gui::run(std::string(GBLENS_BINARY) + " decompose " + capture + " -o " + decomposed + " 2>&1", &st);
+  ASSERT_EQ(st, 0);
+  // Both written by writeExr from images of the same description: equal files, equal data.
+  auto bytes = [](const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  };
+  for (const char* term : {"lighting", "diffuse", "specular", "sun", "point_lights", "light_count"}) {
+    const std::string viewer = bytes(out + "/decompose/" + term + ".exr"), cli = bytes(decomposed + "/" + term + ".exr");
+    ASSERT_GT(viewer.size(), 1000u) << term << ": missing or empty";  // compressed EXR
+    EXPECT_TRUE(viewer == cli) << term << ": the viewer's decomposition differs from gblens decompose's";
+  }
 }
 
 }  // namespace gb

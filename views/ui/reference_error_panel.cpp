@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "views/analysis/decompose.h"
 #include "views/analysis/error.h"
 #include "views/ui/view_params.h"
 #include "views/ui/viewer_model.h"
@@ -18,12 +19,15 @@ static void queueMap(ViewerModel& m, ViewDrawCallback callback, std::vector<View
   const double scale = std::min(avail.x / double(e.width), avail.y / double(e.height));
   const ImGuiIO& io = ImGui::GetIO();
   Placement fb{at.x * io.DisplayFramebufferScale.x, at.y * io.DisplayFramebufferScale.y, scale * io.DisplayFramebufferScale.x};
-  const ViewDef& def = viewDef(ViewKind::Final);  // the map is an sRGB colour image held as `final`
-  const ResolvedRange range = resolveRange(def, defaultSettings(ViewKind::Final), nullptr);
+  // Error maps are sRGB colour images held as `final`; decomposition terms linear colour in `hdr`
+  // drawn from 0 to their largest value; the light count as a heat map.
+  const ViewDef& def = viewDef(e.mapping);
+  ResolvedRange range = resolveRange(def, defaultSettings(e.mapping), nullptr);
+  if (e.mapping != ViewKind::Final) range.black = 0.0f, range.white = std::max(e.white, 1e-30f);
   ViewDraw vd;
   vd.source = def.source;
   vd.side = FrameSide::Reference;
-  vd.params = viewParams(def, defaultSettings(ViewKind::Final), range, fb, false, std::nullopt, {1, 1});
+  vd.params = viewParams(def, defaultSettings(e.mapping), range, fb, false, std::nullopt, {1, 1});
   const float w = float(e.width * scale), h = float(e.height * scale);
   vd.rect = {fb.originX, fb.originY, w * io.DisplayFramebufferScale.x, h * io.DisplayFramebufferScale.y};
   draws.push_back(vd);
@@ -49,10 +53,14 @@ void referenceErrorWindow(ViewerModel& m, ViewDrawCallback callback, std::vector
     return;
   }
   const std::vector<ErrorMapDef>& maps = errorMaps();
-  ImGui::SetNextItemWidth(140);
-  if (ImGui::BeginCombo("map", maps[size_t(e.map)].name)) {
-    for (size_t i = 0; i < maps.size(); ++i)
-      if (ImGui::Selectable(maps[i].name, int(i) == e.map)) e.map = int(i), e.mapChanged = true;
+  auto label = [&](size_t i) {
+    return i < maps.size() ? std::string("error: ") + maps[i].name
+                           : std::string("decomposition: ") + name(LightingTerm(i - maps.size()));
+  };
+  ImGui::SetNextItemWidth(220);
+  if (ImGui::BeginCombo("map", label(size_t(e.map)).c_str())) {
+    for (size_t i = 0; i < maps.size() + kLightingTermCount; ++i)
+      if (ImGui::Selectable(label(i).c_str(), int(i) == e.map)) e.map = int(i), e.mapChanged = true;
     ImGui::EndCombo();
   }
   ImGui::SameLine();
@@ -64,13 +72,20 @@ void referenceErrorWindow(ViewerModel& m, ViewDrawCallback callback, std::vector
   if (!e.error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", e.error.c_str());
   if (!e.ready) {
     ImGui::TextWrapped("The maps of gblens error -o for the frame on screen (fairy sprites off, primitive_id on, as "
-                       "gblens error renders it), against the double-precision ray-traced reference. It takes seconds "
-                       "on a CPU device; the viewer stays usable meanwhile.");
+                       "gblens error renders it), against the double-precision ray-traced reference, and the lighting "
+                       "decomposition of gblens decompose. It takes seconds on a CPU device; the viewer stays usable "
+                       "meanwhile.");
     ImGui::End();
     return;
   }
   if (e.stale) ImGui::TextColored(ImVec4(1, 0.7f, 0.3f, 1), "stale: the frame changed since (recompute)");
-  ImGui::TextWrapped("%s", maps[size_t(e.map)].legend);
+  if (size_t(e.map) < maps.size())
+    ImGui::TextWrapped("%s", maps[size_t(e.map)].legend);
+  else if (!e.decomposeNote.empty())
+    ImGui::TextWrapped("%s", e.decomposeNote.c_str());
+  else
+    ImGui::TextWrapped("%s from the G-buffer with shading.h in double (gblens decompose), drawn 0 .. %.4g",
+                       name(LightingTerm(size_t(e.map) - maps.size())), e.white);
   ImGui::TextDisabled("%s (%.1f s)", e.summary.c_str(), e.seconds);
   queueMap(m, callback, draws);
   ImGui::End();

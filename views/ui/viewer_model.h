@@ -118,10 +118,12 @@ struct ViewerModel {
     bool computing = false, ready = false;
     bool stale = false;             // the frame changed since it was computed
     double seconds = 0.0;           // computing: so far; ready: what it took
-    int map = 0;                    // errorMaps() index shown
+    int map = 0;                    // shown: errorMaps() index, then the lighting decomposition's terms
     bool mapChanged = false;
     uint32_t width = 0, height = 0;
-    std::string summary, error;
+    ViewKind mapping = ViewKind::Final;  // how the map is drawn: sRGB colour, HDR colour, heat (light count)
+    float white = 1.0f;             // HDR and heat maps: the value drawn white (their largest)
+    std::string summary, error, decomposeNote;
   } referenceError;
   std::optional<ReferencePixel> reference;
   std::string referenceNote;
