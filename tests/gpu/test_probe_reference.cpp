@@ -33,11 +33,11 @@ TEST_F(GpuTest, TheProbesReferenceIsTheReferenceFrameAtThatPixel) {
       const PixelDossier d = probePixel(f, x, y);
       const ReferencePixel r = referencePixel(rays, f, d);
       const reference::Surface& s = whole.at(x, y);
-      ASSERT_EQ(r.hit, s.hit) << x << "," << y;
+      ASSERT_EQ(r.surface.hit, s.hit) << x << "," << y;
       if (!s.hit) continue;
-      EXPECT_EQ(r.primitiveId, s.primitiveId);
-      EXPECT_EQ(r.eyeDepth, s.eyeDepth);
-      EXPECT_EQ(r.normal, s.normal);
+      EXPECT_EQ(r.surface.primitiveId, s.primitiveId);
+      EXPECT_EQ(r.surface.eyeDepth, s.eyeDepth);
+      EXPECT_EQ(r.surface.normal, s.normal);
       const glm::dvec3 h = shaded.hdr[size_t(y) * o.width + x];
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.hdr[c], h[c], 1e-12 * std::max(1.0, std::abs(h[c]))) << x << "," << y;
       if (!r.compared) {

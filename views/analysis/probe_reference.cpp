@@ -22,24 +22,25 @@ int64_t storedPrimitiveId(const FrameSnapshot& f, const PixelDossier& d) {
 }
 
 void compare(const FrameSnapshot& f, const PixelDossier& d, ReferencePixel& r) {
-  if (!d.geometry || !r.hit) {
+  const reference::Surface& s = r.surface;
+  if (!d.geometry || !s.hit) {
     r.note = d.geometry ? "the G-buffer has a surface here, the reference's ray misses: a silhouette"
-                        : r.hit ? "the reference's ray meets a surface the G-buffer does not have: a silhouette"
+                        : s.hit ? "the reference's ray meets a surface the G-buffer does not have: a silhouette"
                                 : "sky in both";
     return;
   }
   const int64_t id = storedPrimitiveId(f, d);
-  if (id >= 0 && uint64_t(id) != r.primitiveId) {
-    r.note = "a different triangle (primitive_id " + std::to_string(id) + ", reference " + std::to_string(r.primitiveId) +
+  if (id >= 0 && uint64_t(id) != s.primitiveId) {
+    r.note = "a different triangle (primitive_id " + std::to_string(id) + ", reference " + std::to_string(s.primitiveId) +
              "): a silhouette, not compared";
     return;
   }
   r.compared = true;
-  if (d.hasNormal && !d.unlit) r.normalDeg = angleDeg(d.normal, r.normal);
-  if (d.hasEyeDepth) r.eyeDepthRelative = std::abs(d.eyeDepth - r.eyeDepth) / r.eyeDepth;
+  if (d.hasNormal && !d.unlit) r.normalDeg = angleDeg(d.normal, s.normal);
+  if (d.hasEyeDepth) r.eyeDepthRelative = std::abs(d.eyeDepth - s.eyeDepth) / s.eyeDepth;
   const ProbePosition& used = d.positionSource == "hardware_depth" ? d.fromHardwareDepth : d.fromEyeDepth;
-  if (used.valid) r.positionRelative = glm::length(used.eye - r.eye) / r.eyeDepth;
-  if (r.sunVisible >= 0) r.shadowDiffers = (d.shadow >= 0.5) != (r.sunVisible == 1);
+  if (used.valid) r.positionRelative = glm::length(used.eye - s.eye) / s.eyeDepth;
+  if (s.sunVisible >= 0) r.shadowDiffers = (d.shadow >= 0.5) != (s.sunVisible == 1);
   if (d.hasHdr)
     for (int c = 0; c < 3; ++c)
       r.hdrRelative = std::max(r.hdrRelative, std::abs(d.hdr[c] - r.hdr[c]) / std::max(std::abs(r.hdr[c]), 1e-6));
@@ -57,17 +58,9 @@ std::string v3(const glm::dvec3& v) {
 
 ReferencePixel referencePixel(const reference::RayScene& rays, const FrameSnapshot& f, const PixelDossier& d) {
   ReferencePixel r;
-  const reference::Surface s = reference::surfaceAtPixel(rays, f.camera, d.x, d.y);
-  r.hit = s.hit;
+  r.surface = reference::surfaceAtPixel(rays, f.camera, d.x, d.y);
+  const reference::Surface& s = r.surface;
   if (s.hit) {
-    r.primitiveId = s.primitiveId;
-    r.normal = s.normal;
-    r.eye = s.eye;
-    r.world = s.world;
-    r.eyeDepth = s.eyeDepth;
-    r.albedo = s.albedo;
-    r.specular = s.specular;
-    r.sunVisible = s.sunVisible;
     const std::vector<reference::Light> lights = reference::eyeLights(rays.scene(), f.camera, f.options.time);
     r.hdr = reference::shadeOne(reference::shadingInput(s), lights, reference::sunOf(rays.scene(), f.camera));
   }
@@ -77,11 +70,12 @@ ReferencePixel referencePixel(const reference::RayScene& rays, const FrameSnapsh
 
 nlohmann::json referenceJson(const ReferencePixel& r) {
   auto vec = [](const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
-  nlohmann::json j = {{"hit", r.hit}, {"compared", r.compared}, {"note", r.note}};
-  if (r.hit)
-    j.update({{"primitive_id", r.primitiveId}, {"normal", vec(r.normal)},  {"eye_position", vec(r.eye)},
-              {"world_position", vec(r.world)}, {"eye_depth", r.eyeDepth}, {"albedo", vec(r.albedo)},
-              {"specular", r.specular},         {"sun_visible", r.sunVisible}, {"hdr", vec(r.hdr)}});
+  const reference::Surface& s = r.surface;
+  nlohmann::json j = {{"hit", s.hit}, {"compared", r.compared}, {"note", r.note}};
+  if (s.hit)
+    j.update({{"primitive_id", s.primitiveId}, {"normal", vec(s.normal)},  {"eye_position", vec(s.eye)},
+              {"world_position", vec(s.world)}, {"eye_depth", s.eyeDepth}, {"albedo", vec(s.albedo)},
+              {"specular", s.specular},         {"sun_visible", s.sunVisible}, {"hdr", vec(r.hdr)}});
   if (r.compared)
     j["error"] = {{"normal_deg", r.normalDeg},
                   {"eye_depth_relative", r.eyeDepthRelative},
@@ -92,14 +86,15 @@ nlohmann::json referenceJson(const ReferencePixel& r) {
 }
 
 std::string referenceText(const ReferencePixel& r) {
+  const reference::Surface& s = r.surface;
   std::string o = "\nreference (ray traced, double):\n";
-  if (r.hit) {
+  if (s.hit) {
     char b[320];
-    std::snprintf(b, sizeof b, "  normal %s  eye depth %.9g\n  position eye %s world %s\n", v3(r.normal).c_str(),
-                  r.eyeDepth, v3(r.eye).c_str(), v3(r.world).c_str());
+    std::snprintf(b, sizeof b, "  normal %s  eye depth %.9g\n  position eye %s world %s\n", v3(s.normal).c_str(),
+                  s.eyeDepth, v3(s.eye).c_str(), v3(s.world).c_str());
     o += b;
-    std::snprintf(b, sizeof b, "  albedo %s  specular %.6g  sun %s  primitive_id %u\n  hdr %s\n", v3(r.albedo).c_str(),
-                  r.specular, r.sunVisible < 0 ? "not evaluated" : r.sunVisible ? "reached" : "blocked", r.primitiveId,
+    std::snprintf(b, sizeof b, "  albedo %s  specular %.6g  sun %s  primitive_id %u\n  hdr %s\n", v3(s.albedo).c_str(),
+                  s.specular, s.sunVisible < 0 ? "not evaluated" : s.sunVisible ? "reached" : "blocked", s.primitiveId,
                   v3(r.hdr).c_str());
     o += b;
   } else {

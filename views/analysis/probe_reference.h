@@ -12,14 +12,7 @@
 namespace gb {
 
 struct ReferencePixel {
-  bool hit = false;                 // the pixel-centre ray meets a surface
-  uint32_t primitiveId = 0;         // as the primitive_id target numbers triangles (0: none)
-  glm::dvec3 normal{0.0};           // shading normal, eye space
-  glm::dvec3 eye{0.0}, world{0.0};  // the hit on the pixel-centre ray
-  double eyeDepth = 0.0;
-  glm::dvec3 albedo{0.0};
-  double specular = 0.0;
-  int sunVisible = -1;              // 1 reaches the sun, 0 blocked, -1 not evaluated (no sun, faces away)
+  reference::Surface surface;       // what the pixel-centre ray meets (hit, normal, depth, sun, ...)
   glm::dvec3 hdr{0.0};              // the reference's shading (no fairy sprites)
   // Against the G-buffer's dossier, where both have a surface and see the same triangle:
   bool compared = false;

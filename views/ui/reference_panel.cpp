@@ -19,15 +19,16 @@ void referenceSection(ViewerModel& m) {
     return;
   }
   const ReferencePixel& r = *m.reference;
-  if (!r.hit) {
+  const reference::Surface& s = r.surface;
+  if (!s.hit) {
     ImGui::Text("no surface (sky)");
   } else {
-    ImGui::Text("normal    %.7f %.7f %.7f", r.normal.x, r.normal.y, r.normal.z);
-    ImGui::Text("eye depth %.9g", r.eyeDepth);
-    ImGui::Text("world     %.7g %.7g %.7g", r.world.x, r.world.y, r.world.z);
-    ImGui::Text("albedo    %.5f %.5f %.5f  specular %.4g", r.albedo.x, r.albedo.y, r.albedo.z, r.specular);
-    ImGui::Text("sun       %s   primitive_id %u", r.sunVisible < 0 ? "not evaluated" : r.sunVisible ? "reached" : "blocked",
-                r.primitiveId);
+    ImGui::Text("normal    %.7f %.7f %.7f", s.normal.x, s.normal.y, s.normal.z);
+    ImGui::Text("eye depth %.9g", s.eyeDepth);
+    ImGui::Text("world     %.7g %.7g %.7g", s.world.x, s.world.y, s.world.z);
+    ImGui::Text("albedo    %.5f %.5f %.5f  specular %.4g", s.albedo.x, s.albedo.y, s.albedo.z, s.specular);
+    ImGui::Text("sun       %s   primitive_id %u", s.sunVisible < 0 ? "not evaluated" : s.sunVisible ? "reached" : "blocked",
+                s.primitiveId);
     ImGui::Text("hdr       %.6g %.6g %.6g", r.hdr.x, r.hdr.y, r.hdr.z);
   }
   if (r.compared) {
