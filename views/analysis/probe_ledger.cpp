@@ -52,11 +52,11 @@ LedgerEntry sunEntry(const FrameSnapshot& f, const PixelDossier& d) {
 // (x, y): the per-light mask's batch, stencil bit and layer (renderer/passes/point_lights.cpp
 // groups: the layers, or one per stencil-class light, then one per near-plane light; 7 bits a
 // batch), the shared mask, no mask, forward's loop, or the tile / cluster of the compute methods.
-std::string placement(const FrameSnapshot& f, Method m, uint32_t x, uint32_t y, uint32_t k, double eyeDepth) {
+// `slice`: the pixel's clustered depth slice.
+std::string placement(const FrameSnapshot& f, Method m, uint32_t x, uint32_t y, uint32_t k, uint32_t slice) {
   const bool stencilClass = k < f.stencilCount;
   if (m == Method::Tiled) return "tile (" + std::to_string(x / gpu::kTileSize) + ", " + std::to_string(y / gpu::kTileSize) + ")";
   if (m == Method::Clustered) {
-    const uint32_t slice = clusterSlice(clusterSlicing(f.camera), eyeDepth);
     return "cluster (" + std::to_string(x / gpu::kClusterTile) + ", " + std::to_string(y / gpu::kClusterTile) +
            ", depth slice " + std::to_string(slice) + ")";
   }
@@ -81,9 +81,9 @@ std::string placement(const FrameSnapshot& f, Method m, uint32_t x, uint32_t y, 
 
 // The fate of a drawn light at the pixel: its volume and stencil (deferred) or its tile/cluster (compute).
 void drawnFate(const FrameSnapshot& f, uint32_t x, uint32_t y, const ProbeLight* drawn, int visiblePosition,
-               double eyeDepth, LedgerEntry& e) {
+               uint32_t slice, LedgerEntry& e) {
   const Method m = f.method != Method::Auto ? f.method : f.options.method;  // Auto: not known (deferred's rules)
-  if (visiblePosition >= 0) e.drawnAs = placement(f, m, x, y, uint32_t(visiblePosition), eyeDepth);
+  if (visiblePosition >= 0) e.drawnAs = placement(f, m, x, y, uint32_t(visiblePosition), slice);
   const bool volumes = m != Method::Tiled && m != Method::Clustered && m != Method::Forward;  // deferred's
   if (e.distance >= e.radius) {
     e.fate = "out_of_range";
@@ -112,6 +112,7 @@ LightLedger lightLedger(const FrameSnapshot& f, uint32_t x, uint32_t y, const gl
   LightLedger ledger;
   ledger.entries.push_back(sunEntry(f, d));
   std::vector<int> position(f.eyeLights.size(), -1);  // in the visible list
+  const uint32_t slice = clusterSlice(clusterSlicing(f.camera), -P.z);  // clustered: the pixel's depth slice
   for (size_t k = 0; k < f.visibleLights.size(); ++k) position[f.visibleLights[k]] = int(k);
   for (uint32_t i = 0; i < f.eyeLights.size(); ++i) {
     const gpu::PointLight& l = f.eyeLights[i];
@@ -138,7 +139,7 @@ LightLedger lightLedger(const FrameSnapshot& f, uint32_t x, uint32_t y, const gl
         e.why = "in front of the near plane, its sphere's screen rectangle holds no pixel centre: no ray through a "
                 "pixel centre can reach a point inside it";
         break;
-      default: drawnFate(f, x, y, drawn, position[i], -P.z, e); break;
+      default: drawnFate(f, x, y, drawn, position[i], slice, e); break;
     }
     ledger.entries.push_back(std::move(e));
   }
