@@ -27,6 +27,12 @@ FrameSnapshot renderAll(GpuTest& t, const Scene& scene, const RenderOptions& o) 
   t.render(scene, o, captureRequest(all, o));
   return snapshotFromRenderer(t.renderer(scene), all);
 }
+// A frame of `scene` with every target read back, and its decomposition.
+void renderAndDecompose(GpuTest& t, const Scene& scene, const RenderOptions& o, FrameSnapshot& f, Decomposition& d) {
+  f = renderAll(t, scene, o);
+  std::string error;
+  ASSERT_TRUE(decomposeLighting(f, d, error, 2)) << error;
+}
 glm::dvec3 rgb(const CpuImage& img, uint32_t x, uint32_t y) {
   return {img.value(x, y, 0), img.value(x, y, 1), img.value(x, y, 2)};
 }
@@ -35,10 +41,9 @@ glm::dvec3 rgb(const CpuImage& img, uint32_t x, uint32_t y) {
 TEST_F(GpuTest, LightingDecompositionAddsUpToTheShadedFrame) {
   Scene scene = builtinTemple(16);
   const RenderOptions o = decomposeOptions();
-  FrameSnapshot f = renderAll(*this, scene, o);
+  FrameSnapshot f;
   Decomposition d;
-  std::string error;
-  ASSERT_TRUE(decomposeLighting(f, d, error, 2)) << error;
+  ASSERT_NO_FATAL_FAILURE(renderAndDecompose(*this, scene, o, f, d));
   const CpuImage& hdr = f.target(Target::Hdr).image;
   const CpuImage& eye = f.target(Target::Depth).image;
   auto term = [&](LightingTerm t) -> const CpuImage& { return d.images[size_t(t)]; };
@@ -70,10 +75,9 @@ TEST_F(GpuTest, LightingDecompositionAddsUpToTheShadedFrame) {
 TEST_F(GpuTest, LightingOnlyIsTheFrameWithWhiteMaterials) {
   Scene scene = builtinTemple(16);
   const RenderOptions o = decomposeOptions();
-  FrameSnapshot f = renderAll(*this, scene, o);
+  FrameSnapshot f;
   Decomposition d;
-  std::string error;
-  ASSERT_TRUE(decomposeLighting(f, d, error, 2)) << error;
+  ASSERT_NO_FATAL_FAILURE(renderAndDecompose(*this, scene, o, f, d));
   Scene white = scene;
   for (MaterialDesc& m : white.materials)
     if (m.alphaMode == AlphaMode::Opaque) {  // masked leaves keep their texture (its alpha cuts them)
