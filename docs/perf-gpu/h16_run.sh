@@ -4,8 +4,9 @@
 # lights the same comparison with the lights set up on the CPU and with the fairy sprites drawn
 # (rasterized) instead of splatted, for the CPU ms per frame and the fairy pass. Run from the
 # checkout the run tool sends, with the carry folder made by make_carry.sh as $1 (default
-# .carry-h16); every bench.json and the log go to $OUT. (`render` is not used: it writes a PNG
-# through OpenImageIO, which the carry folder only stubs.)
+# .carry-h16); every bench.json and the log go to $OUT as $PREFIX_NAME.json (PREFIX default h16).
+# RUNS names the runs (default all five; h16_retable_run.sh: the main table only). (`render` is not
+# used: it writes a PNG through OpenImageIO, which the carry folder only stubs.)
 set -u
 C=${1:-.carry-h16}
 for f in "$C"/gl/*.deb; do dpkg -x "$f" /; done; ldconfig
@@ -14,11 +15,14 @@ G=$C/gblens
 OUT=${OUT:-/tmp/out}; mkdir -p "$OUT"
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > "$OUT/device.txt" 2>&1
 B="bench --only methods"
+P=${PREFIX:-h16}
+RUNS=${RUNS:-m720 m1080 m4k setup_cpu fairy_raster}
 run() {  # name, then bench flags
   n=$1; shift
+  case " $RUNS " in *" $n "*) ;; *) return ;; esac
   echo "== $n: $*"; s=$(date +%s)
   $G $B "$@" --out "$n"; echo "rc $? in $(( $(date +%s) - s )) s"
-  cp "$n/bench.json" "$OUT/h16_$n.json" 2>/dev/null
+  cp "$n/bench.json" "$OUT/${P}_$n.json" 2>/dev/null
 }
 {
 run m720 --methods-sizes 1280x720 --methods-lights 16,256,1024,4096,16384,65536 --methods-forward-max 1024 \
@@ -31,5 +35,5 @@ run setup_cpu --methods-sizes 1920x1080,3840x2160 --methods-lights 65536 --metho
   --methods-rounds 2 --methods-min-rounds 2 --methods-seconds 20 --methods-culling-max 0 --light-setup cpu
 run fairy_raster --methods-sizes 1920x1080,3840x2160 --methods-lights 65536 --methods-forward-max 0 \
   --methods-rounds 2 --methods-min-rounds 2 --methods-seconds 20 --methods-culling-max 0 --fairy-splat raster
-} > "$OUT/h16_bench.log" 2>&1
+} > "$OUT/${P}_bench.log" 2>&1
 echo done
