@@ -2,7 +2,7 @@
 // Return and a click from xdotool, screenshots checked by pixel statistics (the grid shows nine
 // different views; each key shows its view), the clicked pixel's dossier (--probe-log) checked
 // against a headless render of the same frame, and zero validation messages (--validate: the
-// viewer exits non-zero on any). Screenshots stay in the build tree (gui_test/) to look at.
+// viewer exits non-zero on any). Screenshots stay in the build tree (gui_test/TEST/) to look at.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -23,7 +23,8 @@ class GuiTest : public GpuTest {
     for (const char* tool : {"xdotool", "xwd", "convert"})
       ASSERT_TRUE(gui::haveTool(tool)) << tool << " is missing (debian-packages.txt lists it; run make deps)";
     GpuTest::SetUp();
-    dir_ = fs::path(GBLENS_BUILD_DIR) / "gui_test";
+    // One folder per test: CTest runs them in parallel, and each starts by emptying its own.
+    dir_ = fs::path(GBLENS_BUILD_DIR) / "gui_test" / ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     std::string error;
