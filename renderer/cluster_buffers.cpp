@@ -11,14 +11,6 @@ namespace gb {
 
 static uint32_t divUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 
-void clusterFrameData(const Camera& camera, uint32_t visibleMax, gpu::FrameData& f) {
-  const uint32_t tilesX = divUp(camera.width, gpu::kClusterTile), tilesY = divUp(camera.height, gpu::kClusterTile);
-  f.clusterGrid = glm::uvec4(tilesX, tilesY, divUp(camera.width, gpu::kBinTile), std::max(divUp(visibleMax, 32), 1u));
-  const ClusterSlicing slicing = clusterSlicing(camera);  // renderer/core/light_rect.h
-  f.clusterSlices = glm::vec4(float(slicing.scale), float(slicing.bias), 0.0f, 0.0f);
-}
-
-// `name` as the shaders call the buffer (RenderDoc's resource list).
 static void replace(Renderer& r, Buffer& b, VkDeviceSize bytes, VkBufferUsageFlags usage, MemoryUse use,
                     const char* name) {
   if (b.buffer && b.size >= bytes) return;
@@ -28,6 +20,52 @@ static void replace(Renderer& r, Buffer& b, VkDeviceSize bytes, VkBufferUsageFla
   }
   b = createBuffer(*r.ctx, std::max<VkDeviceSize>(bytes, 16), usage, use, name);
 }
+
+void clusterFrameData(const Camera& camera, uint32_t visibleMax, gpu::FrameData& f) {
+  const uint32_t tilesX = divUp(camera.width, gpu::kClusterTile), tilesY = divUp(camera.height, gpu::kClusterTile);
+  f.clusterGrid = glm::uvec4(tilesX, tilesY, divUp(camera.width, gpu::kBinTile), std::max(divUp(visibleMax, 32), 1u));
+  const ClusterSlicing slicing = clusterSlicing(camera);  // renderer/core/light_rect.h
+  f.clusterSlices = glm::vec4(float(slicing.scale), float(slicing.bias), 0.0f, 0.0f);
+}
+
+void gridFrameData(const GridShape& grid, gpu::FrameData& f) {
+  f.gridShape = glm::uvec4(grid.tilesX, grid.tilesY, grid.slices, grid.tile);
+  f.gridSlices = glm::vec4(float(grid.scale), float(grid.bias), 0.0f, 0.0f);
+}
+
+// How far the lighting passes' surface point may be from its pixel's ray: a stored position's rounding.
+static PositionSlack positionSlack(const Renderer& r) {
+  const RenderOptions& o = r.options;
+  PositionSlack e;
+  if (o.position == PositionSource::Depth) return e;
+  e.relative = std::ldexp(1.0, o.position == PositionSource::Rgba16f ? -11 : -24);  // half an ULP, relative
+  if (o.positionSpace == PositionSpace::World) e.storedOffset = glm::length(glm::dvec3(r.camera.worldFromEye[3]));
+  return e;
+}
+
+void writeClusterGrid(Renderer& r) {
+  ClusterBuffers& c = r.clusters;
+  assignLights(r.camera, r.lights.eye, r.lights.visible, positionSlack(r), c.grid);
+  const VkDeviceSize cellBytes = c.grid.cells.size() * sizeof(glm::uvec2);
+  const VkDeviceSize lightBytes = c.grid.lights.size() * sizeof(gpu::PointLight);
+  const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  // Grown by half again, so a moving light count does not re-create them every frame.
+  if (!c.gridCells.buffer || c.gridCells.size < cellBytes) replace(r, c.gridCells, cellBytes, usage, MemoryUse::Upload, "grid_cells");
+  if (!c.gridLights.buffer || c.gridLights.size < lightBytes)
+    replace(r, c.gridLights, lightBytes + lightBytes / 2, usage, MemoryUse::Upload, "grid_lights");
+  std::memcpy(c.gridCells.mapped, c.grid.cells.data(), cellBytes);
+  if (lightBytes) std::memcpy(c.gridLights.mapped, c.grid.lights.data(), lightBytes);
+}
+
+ClusterStats gridClusterStats(const Renderer& r) {
+  ClusterStats s;
+  s.valid = true;
+  s.clusters = r.clusters.grid.occupiedCells();
+  s.listEntries = uint32_t(r.clusters.grid.lights.size());
+  return s;
+}
+
+// `name` as the shaders call the buffer (RenderDoc's resource list).
 
 void ensureClusterBuffers(Renderer& r, uint32_t visibleMax) {
   ClusterBuffers& c = r.clusters;
@@ -55,7 +93,7 @@ void ensureClusterBuffers(Renderer& r, uint32_t visibleMax) {
 void destroyClusterBuffers(Renderer& r) {
   ClusterBuffers& c = r.clusters;
   for (Buffer* b : {&c.header, &c.headerReadback, &c.clusters, &c.pixelClusters, &c.lists, &c.binBits, &c.binBoxes,
-                    &r.fairyBits})
+                    &c.gridCells, &c.gridLights, &r.fairyBits})
     if (b->buffer) destroyBuffer(*r.ctx, *b);
   c = ClusterBuffers{};
 }

@@ -9,6 +9,14 @@ namespace gb {
 // at most in the visible list.
 void clusterFrameData(const Camera& camera, uint32_t visibleMax, gpu::FrameData& f);
 
+// The cluster grid's shape as its shader reads it (FrameData::gridShape, gridSlices).
+void gridFrameData(const GridShape& grid, gpu::FrameData& f);
+// The cluster grid (--cluster-assign cpu): assigns this frame's visible lights (r.lights, set up on
+// the CPU) to its cells and writes the host-visible buffers the grid lighting pass reads.
+void writeClusterGrid(Renderer& r);
+// What the grid holds: occupied cells and light entries (FrameStats::clusters).
+ClusterStats gridClusterStats(const Renderer& r);
+
 // Creates or grows the buffers for this frame's size and visible-list bound.
 void ensureClusterBuffers(Renderer& r, uint32_t visibleMax);
 void destroyClusterBuffers(Renderer& r);

@@ -1,7 +1,8 @@
 // The frame, top to bottom: shadow map -> G-buffer -> directional light -> light mask ->
 // point lights -> skybox -> fairy lights -> tone map, in the two-pass or single-pass path;
 // method tiled replaces the three lighting passes by one compute pass, method clustered by four
-// light-assignment passes and one shading pass (all compute), method forward replaces the
+// light-assignment passes and one shading pass (all compute), or, with the cluster grid filled on
+// the CPU (--cluster-assign cpu), by one full-screen raster pass; method forward replaces the
 // G-buffer and lighting by one forward pass. The method is r.method (auto resolved by
 // chooseMethod). Every pass that does not run is listed with the reason (see --stats).
 #include "renderer/frame.h"
@@ -98,8 +99,13 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
     } else {
       g.endRenderPass();
       if (method == Method::Tiled) addTiledLightingPass(g, r);  // compute: sun + binned point lights
-      if (method == Method::Clustered) addClusteredPasses(g, r);
+      if (method == Method::Clustered && !r.clusterGrid) addClusteredPasses(g, r);
+      if (method == Method::Clustered && r.clusterGrid)
+        for (const char* pass : {"cluster_clear", "cluster_bounds", "cluster_bins", "cluster_lists"})
+          g.skipPass(pass, r.clusterAssignReason + ": the CPU listed each grid cell's lights before submission");
       g.beginRenderPass("lighting");
+      // The cluster grid's shading is a raster pass: the sun, the cells' lights and the sky, full screen.
+      if (method == Method::Clustered && r.clusterGrid) addClusterGridLightingPass(g, r);
     }
   }
 
@@ -154,7 +160,7 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   else if (method == Method::Tiled || method == Method::Clustered)
     g.skipPass("skybox", std::string("method ") + methodName + ": " +
                              (method == Method::Tiled ? "tiled_lighting" : "clustered_lighting") +
-                             " writes the sky where no geometry was drawn (no raster pass)");
+                             " writes the sky where no geometry was drawn (no pass of its own)");
   else if (skyKey == r.skyKey && r.skyPixels == 0)
     g.skipPass("skybox", "no sky visible: geometry covered every pixel in the last frame with this camera and geometry");
   else

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "renderer/core/method_choice.h"
 #include "renderer/vk/check.h"
 
 namespace gb {
@@ -14,6 +15,9 @@ bool lightsOnGpu(const GpuContext& ctx, const RenderOptions& o, Method method, s
     return reason = std::string("lights set up on the CPU: method ") + name(method) +
                     " draws them in the near-plane and stencil classes the CPU sorts",
            false;
+  std::string gridReason;
+  if (clusterGridOn(o, ctx.isCpu ? DeviceKind::Cpu : DeviceKind::Gpu, method, gridReason))
+    return reason = "lights set up on the CPU: the cluster grid is filled there (" + gridReason + ")", false;
   if (o.coverage)
     return reason = "lights set up on the CPU: coverage on (light_coverage draws the CPU's near-plane classes)", false;
   if (!ctx.features.float64) return reason = "lights set up on the CPU: the device has no shaderFloat64", false;

@@ -50,7 +50,12 @@ static uint32_t mipCount(uint32_t w, uint32_t h) {
 
 uint32_t drawVariant(const Scene& scene, uint32_t instance) {
   const MaterialDesc& m = scene.materials[scene.meshes[scene.instances[instance].mesh].material];
-  return (m.alphaMode != AlphaMode::Opaque ? 2u : 0u) + (m.normalTexture >= 0 ? 1u : 0u);
+  return (m.alphaMode != AlphaMode::Opaque ? 4u : 0u) + (m.normalTexture >= 0 ? 2u : 0u) + (m.baseColorTexture >= 0 ? 1u : 0u);
+}
+
+std::string drawVariantName(uint32_t v) {
+  const DrawVariantBits b = drawVariantBits(v);
+  return std::string(b.alpha ? ".alpha" : ".opaque") + (b.normalMap ? ".normal_map" : "") + (b.baseTexture ? ".base_texture" : "");
 }
 
 void uploadScene(Renderer& r) {
@@ -166,8 +171,10 @@ void createDescriptors(Renderer& r) {
       {gpu::kBindingLightScratch, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {gpu::kBindingFairyBits, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {gpu::kBindingClearTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, all, nullptr},
+      {gpu::kBindingGridCells, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingGridLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
-  static_assert(gpu::kBindingClearTarget == 19 && gpu::kPassBindingCount == 20, "passBindings is indexed by binding");
+  static_assert(gpu::kBindingGridLights == 21 && gpu::kPassBindingCount == 22, "passBindings is indexed by binding");
   lci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
   lci.bindingCount = gpu::kPassBindingCount;
   lci.pBindings = passBindings;
@@ -231,7 +238,7 @@ void sortDraws(Renderer& r) {
   const Scene& scene = *r.scene;
   // Draw order by pipeline variant: opaque before alpha-tested (early depth before discard),
   // without before with a normal texture; by material within a variant (fewer texture pushes).
-  for (uint32_t variant = 0; variant < 4; ++variant) {
+  for (uint32_t variant = 0; variant < kDrawVariants; ++variant) {
     r.drawVariants[variant] = uint32_t(r.drawOrder.size());
     size_t begin = r.drawOrder.size();
     for (uint32_t i = 0; i < scene.instances.size(); ++i)
@@ -240,7 +247,7 @@ void sortDraws(Renderer& r) {
       return scene.meshes[scene.instances[a].mesh].material < scene.meshes[scene.instances[b].mesh].material;
     });
   }
-  r.drawVariants[4] = uint32_t(r.drawOrder.size());
+  r.drawVariants[kDrawVariants] = uint32_t(r.drawOrder.size());
 }
 
 }  // namespace gb

@@ -4,8 +4,16 @@
 
 namespace gb {
 
-// G-buffer pipeline variant of an instance: bit 1 alpha-tested, bit 0 has a normal texture.
+// G-buffer (and forward) pipeline variant of an instance: bit 2 alpha-tested, bit 1 has a normal
+// texture, bit 0 has a base-colour texture. Opaque variants are [0, 4), alpha-tested [4, 8).
+constexpr uint32_t kDrawVariants = 8;
 uint32_t drawVariant(const Scene& scene, uint32_t instance);
+struct DrawVariantBits {
+  bool alpha, normalMap, baseTexture;
+};
+inline DrawVariantBits drawVariantBits(uint32_t v) { return {(v & 4u) != 0, (v & 2u) != 0, (v & 1u) != 0}; }
+// The pipeline id suffix of a variant: ".opaque" / ".alpha", ".normal_map", ".base_texture".
+std::string drawVariantName(uint32_t v);
 
 // Vertex and index buffers, the light-volume icosahedron, materials, textures (the scene's, then
 // white and flat-normal stand-ins).

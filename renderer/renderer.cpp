@@ -72,6 +72,7 @@ static void prepareFrame(Renderer& r) {
   } else {
     uploadCpuLights(r);
     r.visibleBound = uint32_t(r.lights.visible.size());
+    if (r.clusterGrid) writeClusterGrid(r);  // the lights of each cell of the cluster grid
   }
 
   f.clipFromEye = glm::mat4(r.camera.clipFromEye);
@@ -92,6 +93,7 @@ static void prepareFrame(Renderer& r) {
   f.counts = glm::uvec4(uint32_t(r.lights.visible.size()), uint32_t(r.lights.visible.size()) - r.lights.stencilCount,
                         0u, 0u);
   clusterFrameData(r.camera, r.visibleBound, f);
+  if (r.clusterGrid) gridFrameData(r.clusters.grid.shape, f);
   std::memcpy(r.frameBuffer.mapped, &f, sizeof(f));
   r.frameData = f;
 }
@@ -254,8 +256,9 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
   r.options = options;
   r.method = choice.method;
   r.methodReason = choice.reason;
+  r.clusterGrid = clusterGridOn(options, r.ctx->isCpu ? DeviceKind::Cpu : DeviceKind::Gpu, r.method, r.clusterAssignReason);
   prepareFrame(r);
-  if (r.method == Method::Clustered) ensureClusterBuffers(r, r.visibleBound);
+  if (r.method == Method::Clustered && !r.clusterGrid) ensureClusterBuffers(r, r.visibleBound);
   r.fairyCompute = fairiesInCompute(*r.ctx, options, r.fairyReason);
   if (r.fairyCompute && options.fairies) ensureFairyBits(r, r.visibleBound);
 
@@ -282,7 +285,11 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
   st.lightSetupReason = r.lightSetupReason;
   // Light setup on the GPU: its counts, and the lights themselves when the frame is inspected.
   if (r.lightsOnGpu) readGpuLights(r, st, !request.readback.empty() || request.cullingStats);
-  if (r.method == Method::Clustered) st.clusters = collectClusterStats(r);
+  if (r.method == Method::Clustered) {
+    st.clusters = r.clusterGrid ? gridClusterStats(r) : collectClusterStats(r);
+    st.clusterAssign = r.clusterGrid ? "cpu" : "gpu";
+    st.clusterAssignReason = r.clusterAssignReason;
+  }
   for (Target t : request.readback) r.readback[size_t(t)] = unpackReadback(r, t);
   if (request.cullingStats && options.coverage) st.culling = cullingStats(r, st);
   return st;

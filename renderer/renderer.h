@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "renderer/core/camera.h"
+#include "renderer/core/cluster_grid.h"
 #include "renderer/core/frame_stats.h"
 #include "renderer/core/image.h"
 #include "renderer/core/options.h"
@@ -79,10 +80,14 @@ struct PipelineKey {
 
 // Clustered shading's buffers (renderer/cluster_buffers.cpp): device-local, sized for the frame;
 // capacities in clusters and light-list entries grow when a frame runs out of room.
+// With --cluster-assign cpu: the CPU's cluster grid (renderer/core/cluster_grid.h) and its
+// host-visible copies (gridCells, gridLights), written before the frame is submitted.
 struct ClusterBuffers {
   Buffer header, headerReadback, clusters, pixelClusters, lists, binBits, binBoxes;
   uint32_t clusterCapacity = 0, listCapacity = 0;
   VkDeviceSize binBitsBytes = 0, binBoxBytes = 0;  // this frame's parts to clear
+  ClusterGrid grid;
+  Buffer gridCells, gridLights;
 };
 
 // Light setup on the GPU (renderer/gpu_lights.cpp): the scene's lights as uploaded, and scratch.
@@ -100,7 +105,7 @@ struct Renderer {
   Buffer frameBuffer, drawBuffer, materialBuffer, lightBuffer, visibleBuffer;
   std::vector<Image> textures;      // the scene's, then white and flat-normal stand-ins
   std::vector<uint32_t> drawOrder;  // instance indices grouped by drawVariant()
-  std::array<uint32_t, 5> drawVariants{};  // drawOrder[drawVariants[v], drawVariants[v+1]) has variant v
+  std::array<uint32_t, 9> drawVariants{};  // drawOrder[drawVariants[v], drawVariants[v+1]) has variant v (gpu_scene.h)
   VkSampler samplerRepeat = VK_NULL_HANDLE, samplerClamp = VK_NULL_HANDLE;
   VkSampler samplerShadow = VK_NULL_HANDLE, samplerPoint = VK_NULL_HANDLE;
   VkDescriptorSetLayout sceneSetLayout = VK_NULL_HANDLE, passSetLayout = VK_NULL_HANDLE;
@@ -120,6 +125,8 @@ struct Renderer {
   Buffer fairyBits;                 // fairy_bins' masks (--fairy-splat compute), the light bins' layout
   VkDeviceSize fairyBitsBytes = 0;  // this frame's part
   bool fairyCompute = false;        // this frame splats the fairies in compute
+  bool clusterGrid = false;         // method clustered with the lights assigned on the CPU (--cluster-assign)
+  std::string clusterAssignReason;
   bool computeClear = false;        // clear_gbuffer clears the G-buffer (not the render pass)
   std::string clearReason;
   std::string fairyReason;

@@ -96,6 +96,7 @@ FrameSnapshot snapshotFromRenderer(const Renderer& r, const std::vector<Target>&
   FrameSnapshot s;
   s.options = r.options;
   s.method = r.method;
+  s.clusterGrid = r.method == Method::Clustered && r.clusterGrid;
   s.setLayout(nativeLayout(r.options));
   s.camera = r.camera;
   s.lightClipFromWorld = r.lightClipFromWorld;

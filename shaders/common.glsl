@@ -20,6 +20,7 @@ layout(constant_id = kSpecCoverage) const uint COVERAGE = 0;
 layout(constant_id = kSpecReversedZ) const uint REVERSED_Z = 0;
 layout(constant_id = kSpecNormalEncoding) const uint NORMAL_ENCODING = kNormalRgba16f;
 layout(constant_id = kSpecNormalMap) const uint NORMAL_MAP = 0;
+layout(constant_id = kSpecBaseColorTexture) const uint BASE_TEXTURE = 1;
 layout(constant_id = kSpecOctPrecise) const uint OCT_PRECISE = 0;
 layout(constant_id = kSpecPosition) const uint POSITION = kPositionDepth;
 

@@ -4,8 +4,10 @@
 layout(set = 1, binding = kBindingBaseColorTexture) uniform sampler2D baseColorTexture;
 layout(set = 1, binding = kBindingNormalTexture) uniform sampler2D normalTexture;
 
+// Without a base-colour texture (the BASE_TEXTURE 0 variant) the white stand-in would multiply by
+// exactly 1: it is not sampled, which a CPU device's filtering makes costly (docs/performance.md).
 vec4 baseColor(Material m, vec4 uvs) {
-  return m.baseColor * texture(baseColorTexture, uvs.xy);
+  return BASE_TEXTURE != 0 ? m.baseColor * texture(baseColorTexture, uvs.xy) : m.baseColor;
 }
 
 // Unit eye-space normal: interpolated, flipped for back faces of double-sided materials,

@@ -52,7 +52,9 @@ GB_CONST(uint, kBindingBinBoxes, 15);       // uvec4[2] per light bin: the box o
 // Light setup on the GPU (renderer/gpu_lights.h): the scene's lights and per-light scratch.
 GB_CONST(uint, kBindingLightDescs, 16);     // LightDesc[]: world space, doubles
 GB_CONST(uint, kBindingLightScratch, 17);   // uint per light (its place among its group's visible), then uvec4 per group
-GB_CONST(uint, kPassBindingCount, 20);
+GB_CONST(uint, kBindingGridCells, 20);      // uvec2 per grid cell: offset, count in kBindingGridLights (cluster grid)
+GB_CONST(uint, kBindingGridLights, 21);     // PointLight[]: each cell's lights, in visible-list order
+GB_CONST(uint, kPassBindingCount, 22);
 GB_CONST(uint, kLightSetupGroup, 256);      // lights per light_setup workgroup
 // Fairy sprites splatted in compute (fairy_bins, fairy_splat): the light bins' layout, own masks.
 GB_CONST(uint, kBindingFairyBits, 18);      // uint[]: per light bin, a bit per visible-list position
@@ -75,6 +77,7 @@ GB_CONST(uint, kSpecNormalMap, 5);      // 1: the material has a normal texture
 GB_CONST(uint, kSpecPosition, 6);       // kPosition* below: where lighting gets the surface position
 GB_CONST(uint, kSpecOutputSrgb, 7);     // 1: the view pipeline writes an sRGB attachment (hardware encodes)
 GB_CONST(uint, kSpecOctPrecise, 8);     // 1: octahedral normals keep the best of the 4 neighbouring codes
+GB_CONST(uint, kSpecBaseColorTexture, 9);  // 0: the material has no base-colour texture (not sampled)
 
 // The lighting passes' position source.
 GB_CONST(uint, kPositionDepth, 0);      // reconstructed from eye depth or hardware depth (kSpecEyeDepth)
@@ -105,6 +108,11 @@ GB_CONST(uint, kBinTile, 64);              // pixels per light bin side (4x4 clu
 GB_CONST(uint, kClusterListGroup, 64);     // invocations per cluster in cluster_lists
 GB_CONST(uint, kNoCluster, 0xFFFFFFFFu);   // a pixel with no cluster: sky, or the clusters ran out
 GB_CONST(uint, kListOverflow, 0xFFFFFFFFu);  // Cluster.info.z: its list did not fit (shaded from the bin)
+// The cluster grid (--cluster-assign cpu; renderer/core/cluster_grid.h): every cell of a fixed
+// view-space grid (screen tiles x exponential depth slices from the near to the far plane) gets
+// its lights on the CPU, and one full-screen fragment pass shades each pixel from its cell.
+GB_CONST(uint, kGridTile, 32);    // pixels per grid tile side
+GB_CONST(uint, kGridSlices, 64);  // depth slices between the near and the far plane
 
 GB_STRUCT(FrameData) {
   mat4 clipFromEye;
@@ -123,6 +131,8 @@ GB_STRUCT(FrameData) {
   uvec4 counts;           // x visible lights, y lights drawn in the "inside" class, z, w unused
   uvec4 clusterGrid;      // x cluster tiles across, y down, z light bins across, w words of a bin's light mask
   vec4 clusterSlices;     // slice = floor(log2(eye depth) * x + y), clamped to [0, kClusterMaxSlices)
+  uvec4 gridShape;        // the cluster grid: x tiles across, y down, z depth slices, w tile size (pixels)
+  vec4 gridSlices;        // its slice = floor(log2(eye depth) * x + y), clamped to [0, gridShape.z)
   // Light setup on the GPU, in double as the CPU path does it (doubles as bit pairs, packDouble2x32):
   uvec4 eyeFromWorld64[6];  // rows 0-2 of eyeFromWorld, two doubles per uvec4
   uvec4 projection64[2];    // clipFromEye [0][0], [1][1] | [2][0], [2][1]
@@ -225,7 +235,7 @@ GB_STRUCT(RangeResult) {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameData) == 4 * 64 + 22 * 16);
+static_assert(sizeof(FrameData) == 4 * 64 + 24 * 16);
 static_assert(sizeof(LightDesc) == 80);
 static_assert(sizeof(LightCounts) == 32);
 static_assert(sizeof(Cluster) == 48);

@@ -5,8 +5,9 @@ vec3 skyColor(vec2 ndc) {
   vec4 e = frame.eyeFromClip * vec4(ndc, 0.5, 1.0);
   vec3 dir = normalize(mat3(frame.worldFromEye) * (e.xyz / e.w));
   float h = dir.y;
-  vec3 c = h >= 0.0 ? mix(frame.skyHorizon.rgb, frame.skyZenith.rgb, pow(h, 0.6))
-                    : mix(frame.skyHorizon.rgb, frame.skyGround.rgb, pow(-h, 0.4));
+  // One pow and one mix per pixel (a CPU device evaluates both sides of a per-pixel branch).
+  const bool up = h >= 0.0;
+  vec3 c = mix(frame.skyHorizon.rgb, up ? frame.skyZenith.rgb : frame.skyGround.rgb, pow(abs(h), up ? 0.6 : 0.4));
   // The sun's disc, so shadows have a visible cause.
   if (frame.sunEyeDirection.w > 0.0) {
     vec3 toSun = normalize(mat3(frame.worldFromEye) * frame.sunEyeDirection.xyz);

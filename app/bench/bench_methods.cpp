@@ -105,6 +105,7 @@ void summarize(Renderer& r, const RenderOptions& o, MethodRow& row, const std::v
   row.passes = passTimings(frames);
   row.overDefault = timingOf(ratios).median;
   row.lightSetup = frames.back().lightSetup;
+  row.clusterAssign = frames.back().clusterAssign;
   if (frames.back().clusters.valid) row.clusters = frames.back().clusters;
   // Forward's count is its visible lights times its shaded fragments; a frame over 3 s is not spent on it.
   if (row.frameMs.median > 3000.0) {

@@ -59,6 +59,7 @@ nlohmann::json methodsJson(const BenchReport& r) {
       o["gpu_ms"] = timingJson(m.gpuMs);
       o["cpu_ms"] = timingJson(m.cpuMs);
       o["light_setup"] = m.lightSetup;
+      if (!m.clusterAssign.empty()) o["cluster_assign"] = m.clusterAssign;
       o["time_over_default"] = m.overDefault;
       o["lighting_ms"] = lightingMs(m);
       o["passes"] = passesJson(m.passes);

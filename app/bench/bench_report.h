@@ -119,6 +119,7 @@ struct MethodRow {
   int frames = 0;
   Timing frameMs, gpuMs, cpuMs;  // cpuMs: the CPU's part before submission (FrameStats::cpuMs)
   std::string lightSetup;        // where the lights were set up ("cpu", "gpu")
+  std::string clusterAssign;     // method clustered: where its lights were assigned ("cpu" grid, "gpu")
   ClusterStats clusters;         // method clustered: occupied clusters, list entries
   std::vector<PassTiming> passes;
   // Median over the rounds of this method's frame time / the auto-picked method's (the defaults)

@@ -43,6 +43,9 @@ struct FrameStats {
   std::string method, methodReason;
   // Where the lights were set up ("cpu" or "gpu", --light-setup) and why.
   std::string lightSetup, lightSetupReason;
+  // Method clustered: where its lights were assigned ("gpu": occupied clusters, "cpu": the cluster
+  // grid, --cluster-assign) and why; empty for the other methods.
+  std::string clusterAssign, clusterAssignReason;
   double frameMs = 0.0;  // CPU wall time of the frame: record + submit + wait
   double gpuMs = 0.0;    // first to last GPU timestamp
   // CPU time of the frame before submission: per-frame work (camera, draws, light classification,

@@ -28,4 +28,17 @@ MethodChoice chooseMethod(const RenderOptions& o, DeviceKind device, size_t ligh
   return {pick->method, std::string("auto: ") + name(pick->method) + " on " + name(device) + " (" + pick->measured + ")"};
 }
 
+bool clusterGridOn(const RenderOptions& o, DeviceKind device, Method ran, std::string& reason) {
+  if (ran != Method::Clustered) return reason = std::string("method ") + name(ran) + ": no clusters", false;
+  if (o.clusterAssign == ClusterAssign::Gpu) return reason = "occupied clusters in compute (--cluster-assign gpu)", false;
+  if (o.clusterAssign == ClusterAssign::Cpu) return reason = "cluster grid on the CPU (--cluster-assign cpu)", true;
+  if (o.lightSetup == LightSetup::Gpu)
+    return reason = "auto: occupied clusters in compute (--light-setup gpu: the grid needs the lights on the CPU)", false;
+  if (device == DeviceKind::Cpu)
+    return reason = "auto: cluster grid on the CPU, shaded in a fragment pass (a CPU device: its compute passes are "
+                    "slow, docs/performance.md)",
+           true;
+  return reason = "auto: occupied clusters in compute (a GPU)", false;
+}
+
 }  // namespace gb

@@ -32,4 +32,8 @@ const std::vector<MethodCrossover>& methodCrossovers();
 // The method a frame with these options runs on `device` with `lights` scene lights.
 MethodChoice chooseMethod(const RenderOptions& o, DeviceKind device, size_t lights);
 
+// Whether a frame of method `ran` (clustered) assigns its lights on the CPU, to the cluster grid
+// (--cluster-assign; auto: on a CPU device), and why ("cluster grid on the CPU: a CPU device ...").
+bool clusterGridOn(const RenderOptions& o, DeviceKind device, Method ran, std::string& reason);
+
 }  // namespace gb

@@ -50,6 +50,12 @@ enum class FairySplat { Auto, Raster, Compute };
 // compute methods (tiled, clustered); the render pass for deferred (measured slower there), on a
 // CPU device and in the single-pass path (its G-buffer may live in tile memory).
 enum class GBufferClear { Auto, RenderPass, Compute };
+// Where method clustered assigns lights to clusters: on the GPU, to the occupied clusters of the
+// G-buffer (Olsson et al. 2012: cluster_bounds, cluster_bins, cluster_lists in compute, shading in
+// compute), or on the CPU, to a fixed view-space grid shaded by one full-screen fragment pass
+// (renderer/core/cluster_grid.h). Auto: the CPU on a CPU device, whose compute passes and image
+// stores are slow (lavapipe, docs/performance.md), the GPU elsewhere.
+enum class ClusterAssign { Auto, Gpu, Cpu };
 
 struct RenderOptions {
   uint32_t width = 1280, height = 720;
@@ -65,6 +71,7 @@ struct RenderOptions {
   LightSetup lightSetup = LightSetup::Auto;
   FairySplat fairySplat = FairySplat::Auto;
   GBufferClear gbufferClear = GBufferClear::Auto;
+  ClusterAssign clusterAssign = ClusterAssign::Auto;
   bool reversedZ = false;
   // Octahedral 16+16-bit normals and fp32 accumulation: `gblens bench` found each dominating the
   // former defaults (rgba16f normals; fp16 accumulation) on lavapipe: same or lower frame time,
@@ -134,6 +141,7 @@ const char* name(StencilLayers l);
 const char* name(LightSetup l);
 const char* name(FairySplat f);
 const char* name(GBufferClear c);
+const char* name(ClusterAssign a);
 const char* name(PositionSource p);
 const char* name(PositionSpace p);
 
@@ -150,6 +158,7 @@ bool parse(const std::string& text, StencilLayers& out);
 bool parse(const std::string& text, LightSetup& out);
 bool parse(const std::string& text, FairySplat& out);
 bool parse(const std::string& text, GBufferClear& out);
+bool parse(const std::string& text, ClusterAssign& out);
 // The point lights are drawn with the per-light stencil mask (method `ran` deferred, culling on,
 // per-light); with `cpuDevice`, whether they come in screen-disjoint layers (StencilLayers; auto:
 // on a CPU). `ran` is the method the frame runs (RenderOptions::method unless that is auto).

@@ -38,6 +38,7 @@ struct TargetImage {
 struct FrameSnapshot {
   RenderOptions options;                  // what the frame was rendered with (imports: the defaults, size)
   Method method = Method::Auto;           // the lighting method that ran (Auto: not known, e.g. a capture)
+  bool clusterGrid = false;               // method clustered ran with the CPU's cluster grid (--cluster-assign)
   Layout layout;                          // what its targets hold (nativeLayout(options) for gblens's frames)
   Camera camera;                          // camera matrices (double), size, near/far, reversed Z
   glm::dmat4 lightClipFromWorld{1.0};     // the sun's shadow-map clip space

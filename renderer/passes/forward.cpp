@@ -14,17 +14,18 @@ void addForwardPass(FrameGraph& g, Renderer& r) {
   std::vector<Use> uses = {hdrUse(Access::ColorWrite, true), depth, {Target::ShadowMap, Access::SampledFragment},
                            {Target::CoverageMasked, Access::StorageFragment}};
   g.addPass("forward", uses, [&r](PassContext& pc) {
-    auto describe = [&](bool alpha, bool normalMap) {
-      return [&r, alpha, normalMap](GraphicsPipelineDesc& d) {
+    auto describe = [&](DrawVariantBits v) {
+      return [&r, v](GraphicsPipelineDesc& d) {
         d.vertexShader = Shader::gbuffer_vert;
-        d.fragmentShader = alpha ? Shader::forward_alpha_frag : Shader::forward_frag;  // early depth tests when opaque
+        d.fragmentShader = v.alpha ? Shader::forward_alpha_frag : Shader::forward_frag;  // early depth tests when opaque
         d.vertexInput = VertexInput::SceneVertex;
         d.depthTest = d.depthWrite = true;
         d.depthCompare = r.options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
         d.stencilTest = true;  // stencil 128 where geometry is, as the G-buffer pass writes it
         d.stencil = stencil(VK_COMPARE_OP_ALWAYS, 0xFF, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_REPLACE);
-        d.spec.push_back({gpu::kSpecAlphaTest, alpha ? 1u : 0u});
-        d.spec.push_back({gpu::kSpecNormalMap, normalMap ? 1u : 0u});
+        d.spec.push_back({gpu::kSpecAlphaTest, v.alpha ? 1u : 0u});
+        d.spec.push_back({gpu::kSpecNormalMap, v.normalMap ? 1u : 0u});
+        d.spec.push_back({gpu::kSpecBaseColorTexture, v.baseTexture ? 1u : 0u});
       };
     };
     const GraphTarget& shadow = r.targets[size_t(Target::ShadowMap)];
@@ -34,11 +35,10 @@ void addForwardPass(FrameGraph& g, Renderer& r) {
                       pc.layouts[size_t(Target::ShadowMap)], r.samplerShadow},
                      {gpu::kBindingCoverage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, coverage.image.view, VK_IMAGE_LAYOUT_GENERAL}});
     // The G-buffer's draw order: opaque before alpha-tested, by material within a variant.
-    for (uint32_t v = 0; v < 4; ++v) {  // drawVariant(): bit 1 alpha-tested, bit 0 normal texture
+    for (uint32_t v = 0; v < kDrawVariants; ++v) {  // drawVariant() (renderer/gpu_scene.h)
       if (r.drawVariants[v] == r.drawVariants[v + 1]) continue;
-      bool alpha = v & 2, normalMap = v & 1;
-      std::string id = std::string("forward") + (alpha ? ".alpha" : ".opaque") + (normalMap ? ".normal_map" : "");
-      bindPipeline(pc, graphicsPipeline(r, pc, id, describe(alpha, normalMap)));
+      const std::string id = std::string("forward") + drawVariantName(v);
+      bindPipeline(pc, graphicsPipeline(r, pc, id, describe(drawVariantBits(v))));
       vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);
       drawInstances(r, pc.cmd, r.drawVariants[v], r.drawVariants[v + 1], false);
     }

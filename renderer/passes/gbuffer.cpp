@@ -32,8 +32,8 @@ void addGBufferPass(FrameGraph& g, Renderer& r) {
                                          {Shader::gbuffer_id_frag, Shader::gbuffer_id_position_frag}};
   const Shader fragment = kFragment[primitiveId][position];
   g.addPass("gbuffer", uses, [&r, fragment](PassContext& pc) {
-    auto describe = [&](bool alpha, bool normalMap) {
-      return [&r, alpha, normalMap, fragment](GraphicsPipelineDesc& d) {
+    auto describe = [&](DrawVariantBits v) {
+      return [&r, v, fragment](GraphicsPipelineDesc& d) {
         d.vertexShader = Shader::gbuffer_vert;
         d.fragmentShader = fragment;
         d.vertexInput = VertexInput::SceneVertex;
@@ -41,19 +41,19 @@ void addGBufferPass(FrameGraph& g, Renderer& r) {
         d.depthCompare = r.options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
         d.stencilTest = true;
         d.stencil = stencil(VK_COMPARE_OP_ALWAYS, 0xFF, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_REPLACE);
-        d.spec.push_back({gpu::kSpecAlphaTest, alpha ? 1u : 0u});
-        d.spec.push_back({gpu::kSpecNormalMap, normalMap ? 1u : 0u});
+        d.spec.push_back({gpu::kSpecAlphaTest, v.alpha ? 1u : 0u});
+        d.spec.push_back({gpu::kSpecNormalMap, v.normalMap ? 1u : 0u});
+        d.spec.push_back({gpu::kSpecBaseColorTexture, v.baseTexture ? 1u : 0u});
       };
     };
     const GraphTarget& shadow = r.targets[size_t(Target::ShadowMap)];
     bindDescriptors(r, pc.cmd, r.pipelineLayout,
                     {{gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, shadow.image.depthView,
                       pc.layouts[size_t(Target::ShadowMap)], r.samplerShadow}});
-    for (uint32_t v = 0; v < 4; ++v) {  // drawVariant(): bit 1 alpha-tested, bit 0 normal texture
+    for (uint32_t v = 0; v < kDrawVariants; ++v) {  // drawVariant() (renderer/gpu_scene.h)
       if (r.drawVariants[v] == r.drawVariants[v + 1]) continue;
-      bool alpha = v & 2, normalMap = v & 1;
-      std::string id = std::string(shaderName(fragment)) + (alpha ? ".alpha" : ".opaque") + (normalMap ? ".normal_map" : "");
-      bindPipeline(pc, graphicsPipeline(r, pc, id, describe(alpha, normalMap)));
+      const std::string id = std::string(shaderName(fragment)) + drawVariantName(v);
+      bindPipeline(pc, graphicsPipeline(r, pc, id, describe(drawVariantBits(v))));
       vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);
       drawInstances(r, pc.cmd, r.drawVariants[v], r.drawVariants[v + 1], false);
     }

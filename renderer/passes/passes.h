@@ -26,6 +26,9 @@ void addClusterBoundsPass(FrameGraph& g, Renderer& r);
 void addClusterBinsPass(FrameGraph& g, Renderer& r, uint32_t visibleMax);
 void addClusterListsPass(FrameGraph& g, Renderer& r);
 void addClusteredLightingPass(FrameGraph& g, Renderer& r);
+// Clustered lighting from the CPU's cluster grid (passes/clustered_grid.cpp): a full-screen raster
+// pass, inside the lighting render pass.
+void addClusterGridLightingPass(FrameGraph& g, Renderer& r);
 // Fairy sprites in compute (passes/fairy_splat.cpp): fairy_clear, fairy_bins, fairy_splat.
 void addFairySplatPasses(FrameGraph& g, Renderer& r, uint32_t visibleMax);
 // Light setup on the GPU (passes/light_setup.cpp): light_setup and light_compact.

@@ -1,5 +1,6 @@
 // Shadow map: depth only from the sun's orthographic view, with depth bias. Opaque casters have
 // no fragment stage; alpha-tested ones cut out the same texels as in the G-buffer.
+#include "renderer/gpu_scene.h"
 #include "renderer/passes/passes.h"
 
 namespace gb {
@@ -27,11 +28,11 @@ void addShadowMapPass(FrameGraph& g, Renderer& r) {
     bindDescriptors(r, pc.cmd, r.pipelineLayout, {});
     vkCmdSetDepthBias(pc.cmd, r.options.shadowBiasConstant, r.options.shadowBiasClamp, r.options.shadowBiasSlope);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
-    // Opaque variants (0, 1) need no fragment stage; alpha-tested ones (2, 3) cut out texels.
+    // Opaque variants [0, 4) need no fragment stage; alpha-tested ones [4, 8) cut out texels.
     bindPipeline(pc, opaque);
-    drawInstances(r, pc.cmd, r.drawVariants[0], r.drawVariants[2], true);
+    drawInstances(r, pc.cmd, r.drawVariants[0], r.drawVariants[4], true);
     bindPipeline(pc, alpha);
-    drawInstances(r, pc.cmd, r.drawVariants[2], r.drawVariants[4], true);
+    drawInstances(r, pc.cmd, r.drawVariants[4], r.drawVariants[kDrawVariants], true);
   });
   g.endRenderPass();
 }

@@ -11,6 +11,7 @@
 // m is at most n = coverage_masked of the unculled deferred frame (fragments that ran there);
 // fp32 summation (n 2^-24) and fp32 differences between shaders are inside the 1e-6 floor.
 #include <algorithm>
+#include <map>
 #include <cmath>
 
 #include "renderer/core/camera.h"
@@ -29,12 +30,15 @@ struct Method3 {
   Method method;
   bool stencilCulling;
   StencilMask mask;
+  ClusterAssign assign = ClusterAssign::Auto;
 };
-const Method3 kMethods[] = {{"deferred per-light", Method::Deferred, true, StencilMask::PerLight},
-                            {"deferred shared", Method::Deferred, true, StencilMask::Shared},
-                            {"tiled", Method::Tiled, true, StencilMask::PerLight},
-                            {"clustered", Method::Clustered, true, StencilMask::PerLight},
-                            {"forward", Method::Forward, true, StencilMask::PerLight}};
+const Method3 kMethods[] = {
+    {"deferred per-light", Method::Deferred, true, StencilMask::PerLight},
+    {"deferred shared", Method::Deferred, true, StencilMask::Shared},
+    {"tiled", Method::Tiled, true, StencilMask::PerLight},
+    {"clustered (occupied clusters, gpu)", Method::Clustered, true, StencilMask::PerLight, ClusterAssign::Gpu},
+    {"clustered (cluster grid, cpu)", Method::Clustered, true, StencilMask::PerLight, ClusterAssign::Cpu},
+    {"forward", Method::Forward, true, StencilMask::PerLight}};
 
 RenderOptions methodOptions(uint32_t w, uint32_t h, int lights) {
   RenderOptions o;
@@ -83,8 +87,10 @@ void expectMethodsAgree(GpuTest& t, const Scene& scene, RenderOptions o, const s
     o.method = m.method;
     o.stencilCulling = m.stencilCulling;
     o.stencilMask = m.mask;
+    o.clusterAssign = m.assign;
     const FrameStats& st = t.render(scene, o, {{Target::Hdr}});
     EXPECT_EQ(st.method, name(m.method)) << what;
+    if (m.method == Method::Clustered) EXPECT_EQ(st.clusterAssign, name(m.assign)) << what;
     if (st.clusters.valid) {
       EXPECT_EQ(st.clusters.listOverflows + st.clusters.tilesWithoutRoom, 0u) << what << ": the first frame had room";
     }
@@ -157,6 +163,54 @@ TEST_F(GpuTest, ClusteredAgreesAroundTheCameraAndAcrossNearAndFar) {
 TEST_F(GpuTest, ClusteredAgreesAtManyLights) {
   Scene scene = builtinTemple(4096);
   expectMethodsAgree(*this, scene, methodOptions(96, 54, 4096), "4096 lights", false, {Method::Clustered});
+}
+
+// The two clusterings list different lights (the grid's cells hold lights that reach their box,
+// Olsson's clusters those that reach the box of their own surface points), but both list every
+// light that reaches a pixel's point and add them in visible-list order, and a light that does not
+// reach adds exactly zero: the same sums, bit for bit, whatever the position source.
+TEST_F(GpuTest, TheClusterGridShadesAsTheOccupiedClustersDo) {
+  struct Case {
+    const char* what;
+    Scene scene;
+    RenderOptions o;
+  };
+  std::vector<Case> cases;
+  for (int lights : {0, 16, 256, 4096}) cases.push_back({"temple", builtinTemple(lights), methodOptions(96, 54, lights)});
+  cases.push_back({"near/far", nearFarScene(), methodOptions(128, 72, 0)});
+  cases.push_back({"near/far reversed z", nearFarScene(), methodOptions(128, 72, 0)});
+  cases.back().o.reversedZ = true;
+  cases.push_back({"hardware depth", builtinTemple(256), methodOptions(96, 54, 256)});
+  cases.back().o.eyeDepth = false;
+  cases.push_back({"stored fp16 world position", builtinTemple(256), methodOptions(96, 54, 256)});
+  cases.back().o.position = PositionSource::Rgba16f;
+  cases.push_back({"stored fp32 camera-relative position", builtinTemple(256), methodOptions(96, 54, 256)});
+  cases.back().o.position = PositionSource::Rgba32f;
+  cases.back().o.positionSpace = PositionSpace::Camera;
+  for (Case& c : cases) {
+    c.o.method = Method::Clustered;
+    c.o.clusterAssign = ClusterAssign::Gpu;
+    render(c.scene, c.o, {{Target::Hdr, Target::CoverageMasked}});
+    const CpuImage clusters = renderer(c.scene).readback[size_t(Target::Hdr)];
+    const CpuImage clusterCounts = renderer(c.scene).readback[size_t(Target::CoverageMasked)];
+    c.o.clusterAssign = ClusterAssign::Cpu;
+    const FrameStats& st = render(c.scene, c.o, {{Target::Hdr, Target::CoverageMasked}});
+    EXPECT_EQ(st.clusterAssign, "cpu") << c.what;
+    for (const char* pass : {"cluster_bounds", "cluster_lists"})
+      for (const PassStat& p : st.passes)
+        if (p.name == pass) EXPECT_TRUE(p.skipped) << c.what << ": " << pass;
+    const Renderer& r = renderer(c.scene);
+    EXPECT_EQ(r.readback[size_t(Target::Hdr)].data, clusters.data) << c.what;
+    // Each geometry pixel evaluated its cell's lights: at least those its cluster listed.
+    uint64_t grid = 0, occupied = 0;
+    const CpuImage& counts = r.readback[size_t(Target::CoverageMasked)];
+    for (uint32_t y = 0; y < counts.height; ++y)
+      for (uint32_t x = 0; x < counts.width; ++x) {
+        grid += counts.raw(x, y, 0);
+        occupied += clusterCounts.raw(x, y, 0);
+      }
+    EXPECT_GE(grid, occupied) << c.what;
+  }
 }
 
 // Auto runs a real method, says why, and gives the image of the method it names.
@@ -271,16 +325,27 @@ TEST_F(GpuTest, ForwardAgreesWithDeferredWhereTheGBufferStoresExactValues) {
 // surface point (brute force in double): deferred counts point-light fragment shader runs,
 // tiled the lights in the pixel's tile list (the same for every geometry pixel of a tile),
 // clustered the lights in its cluster's list (a cluster's box lies inside its tile's, so never
-// more than tiled's count there), forward the lights each fragment looped over (all visible
-// lights, for every fragment shaded there, hidden ones included). None may count fewer than the
-// lights that reach the pixel.
+// more than tiled's count there) or in its cluster grid cell's (the same for every pixel of a tile
+// at one depth slice), forward the lights each fragment looped over (all visible lights, for every
+// fragment shaded there, hidden ones included). None may count fewer than the lights that reach
+// the pixel.
 TEST_F(GpuTest, CoverageCountsWhatEachMethodEvaluatedAndNeverLessThanTheLightsThatReach) {
   Scene scene = builtinTemple(128);
   RenderOptions o = methodOptions(96, 54, 128);
   CpuImage tiledCoverage;
-  for (Method method : {Method::Deferred, Method::Tiled, Method::Clustered, Method::Forward}) {
+  const std::pair<Method, ClusterAssign> kRuns[] = {{Method::Deferred, ClusterAssign::Auto},
+                                                    {Method::Tiled, ClusterAssign::Auto},
+                                                    {Method::Clustered, ClusterAssign::Gpu},
+                                                    {Method::Clustered, ClusterAssign::Cpu},
+                                                    {Method::Forward, ClusterAssign::Auto}};
+  for (auto [method, assign] : kRuns) {
     o.method = method;
-    const FrameStats& st = render(scene, o, {{Target::CoverageMasked, Target::DepthStencil}, {}, true});
+    o.clusterAssign = assign;
+    const bool grid = assign == ClusterAssign::Cpu;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> cellCounts;  // (tile, slice) -> count
+    std::vector<Target> readback = {Target::CoverageMasked, Target::DepthStencil};
+    if (grid) readback.push_back(Target::Depth);
+    const FrameStats& st = render(scene, o, {readback, {}, true});
     const Renderer& r = renderer(scene);
     const CpuImage& coverage = r.readback[size_t(Target::CoverageMasked)];
     const CpuImage eye = eyeDepthFromHardware(r.camera, r.readback[size_t(Target::DepthStencil)]);
@@ -311,8 +376,15 @@ TEST_F(GpuTest, CoverageCountsWhatEachMethodEvaluatedAndNeverLessThanTheLightsTh
           ASSERT_GE(count, visible) << x << "," << y;
           ASSERT_EQ(count % visible, 0u) << x << "," << y;
         }
-        if (method == Method::Clustered) {
+        if (method == Method::Clustered && !grid) {
           ASSERT_LE(count, tiledCoverage.raw(x, y, 0)) << "clustered pixel " << x << "," << y;
+        }
+        if (grid) {  // one list per cell: tile and depth slice (of the eye depth the shader reads)
+          const GridShape& g = r.clusters.grid.shape;
+          const uint32_t tile = (y / g.tile) * g.tilesX + x / g.tile;
+          const double eyeDepth = r.readback[size_t(Target::Depth)].value(x, y, 0);  // as the shader reads it
+          const auto [it, fresh] = cellCounts.insert({{tile, gridSlice(g, eyeDepth)}, count});
+          if (!fresh) ASSERT_EQ(it->second, count) << "grid pixel " << x << "," << y;
         }
         if (method == Method::Tiled) {  // one list per tile
           uint32_t tx = x - x % gpu::kTileSize, ty = y - y % gpu::kTileSize;
@@ -324,6 +396,7 @@ TEST_F(GpuTest, CoverageCountsWhatEachMethodEvaluatedAndNeverLessThanTheLightsTh
         }
       }
     EXPECT_GT(surface, int(o.width * o.height / 2));
+    if (grid) EXPECT_GT(cellCounts.size(), 20u);
     if (method == Method::Tiled) tiledCoverage = coverage;
   }
 }

@@ -338,6 +338,7 @@ TEST_F(GpuTest, TheLightLedgerNamesEachLightsStencilBatchBitLayerAndCluster) {
     EXPECT_EQ(slots.size(), 9u);
   }
   o.method = Method::Clustered;
+  o.clusterAssign = ClusterAssign::Gpu;
   FrameSnapshot f = renderSnapshot(*this, s, o);
   const double tiles = std::ceil(cam.height / 16.0);
   const double k = std::log(-Pe.z / cam.znear) / std::log(1.0 + 2.0 * std::tan(cam.yfov / 2.0) / tiles);
@@ -349,6 +350,31 @@ TEST_F(GpuTest, TheLightLedgerNamesEachLightsStencilBatchBitLayerAndCluster) {
   for (const LedgerEntry& e : d.ledger.entries) {
     if (e.light != "point") continue;
     EXPECT_EQ(e.drawnAs, cluster);
+    ++named;
+  }
+  EXPECT_EQ(named, 9);
+
+  // The cluster grid: 32-pixel tiles, 64 slices exponential over the visible lights' depths.
+  o.clusterAssign = ClusterAssign::Cpu;
+  f = renderSnapshot(*this, s, o);
+  ASSERT_TRUE(f.clusterGrid);
+  double lo = 1e30, hi = 0.0;
+  for (uint32_t i : f.visibleLights) {
+    const glm::vec4 l = f.eyeLights[i].eyePositionRadius;
+    lo = std::min(lo, double(-l.z - l.w));
+    hi = std::max(hi, double(-l.z + l.w));
+  }
+  lo = std::clamp(lo, cam.znear, cam.zfar);
+  hi = std::clamp(hi, lo * 1.01, cam.zfar);
+  const double g = 64.0 * std::log(-Pe.z / lo) / std::log(hi / lo);
+  ASSERT_GT(std::abs(g - std::round(g)), 1e-3) << "the point lies on a grid slice boundary: move it";
+  const std::string cell = "cluster grid cell (" + std::to_string(cx / 32) + ", " + std::to_string(cy / 32) +
+                           ", depth slice " + std::to_string(int(std::floor(g))) + "), listed on the CPU";
+  d = probePixel(f, cx, cy);
+  named = 0;
+  for (const LedgerEntry& e : d.ledger.entries) {
+    if (e.light != "point") continue;
+    EXPECT_EQ(e.drawnAs, cell);
     ++named;
   }
   EXPECT_EQ(named, 9);

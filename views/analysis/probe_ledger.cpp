@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "renderer/core/cluster_grid.h"
 #include "renderer/core/light_rect.h"
 #include "shaders/shared.h"
 #include "views/analysis/probe_internal.h"
@@ -56,6 +57,11 @@ LedgerEntry sunEntry(const FrameSnapshot& f, const PixelDossier& d) {
 std::string placement(const FrameSnapshot& f, Method m, uint32_t x, uint32_t y, uint32_t k, uint32_t slice) {
   const bool stencilClass = k < f.stencilCount;
   if (m == Method::Tiled) return "tile (" + std::to_string(x / gpu::kTileSize) + ", " + std::to_string(y / gpu::kTileSize) + ")";
+  if (m == Method::Clustered && f.clusterGrid) {
+    const uint32_t tile = gpu::kGridTile;
+    return "cluster grid cell (" + std::to_string(x / tile) + ", " + std::to_string(y / tile) + ", depth slice " +
+           std::to_string(slice) + "), listed on the CPU";
+  }
   if (m == Method::Clustered) {
     return "cluster (" + std::to_string(x / gpu::kClusterTile) + ", " + std::to_string(y / gpu::kClusterTile) +
            ", depth slice " + std::to_string(slice) + ")";
@@ -112,7 +118,9 @@ LightLedger lightLedger(const FrameSnapshot& f, uint32_t x, uint32_t y, const gl
   LightLedger ledger;
   ledger.entries.push_back(sunEntry(f, d));
   std::vector<int> position(f.eyeLights.size(), -1);  // in the visible list
-  const uint32_t slice = clusterSlice(clusterSlicing(f.camera), -P.z);  // clustered: the pixel's depth slice
+  // Clustered: the pixel's depth slice, of the cluster grid or of Olsson's slicing.
+  const uint32_t slice = f.clusterGrid ? gridSlice(gridShapeForLights(f.camera, f.eyeLights, f.visibleLights), -P.z)
+                                       : clusterSlice(clusterSlicing(f.camera), -P.z);
   for (size_t k = 0; k < f.visibleLights.size(); ++k) position[f.visibleLights[k]] = int(k);
   for (uint32_t i = 0; i < f.eyeLights.size(); ++i) {
     const gpu::PointLight& l = f.eyeLights[i];

@@ -257,6 +257,9 @@ bool loadCapture(const std::string& dirText, Capture& out, std::string& error, C
     // The method that ran, from the frame's statistics (manifests before issue 16 have none).
     if (m.contains("stats") && m.at("stats").contains("method") && m.at("stats").at("method").contains("ran"))
       parse(m.at("stats").at("method").at("ran").get<std::string>(), f.method);
+    // Clustered with the cluster grid (manifests before it: the occupied clusters).
+    if (m.contains("stats") && m.at("stats").contains("cluster_assign"))
+      f.clusterGrid = m.at("stats").at("cluster_assign").value("ran", "") == "cpu";
     if (!matrixFromJson(m.at("lightClipFromWorld"), f.lightClipFromWorld))
       return fail(CaptureProblem::Corrupt, dirText + ": manifest.json: lightClipFromWorld: expected 16 numbers");
     const nlohmann::json& sun = m.at("sun");

@@ -108,6 +108,7 @@ nlohmann::json frameStatsJson(const FrameStats& st) {
                       {"method", {{"ran", st.method}, {"why", st.methodReason}}},
                       {"light_setup", {{"ran", st.lightSetup}, {"why", st.lightSetupReason}}},
                       {"passes", passes}};
+  if (!st.clusterAssign.empty()) j["cluster_assign"] = {{"ran", st.clusterAssign}, {"why", st.clusterAssignReason}};
   j["lights"] = {{"total", st.lights},
                  {"visible", st.lightsVisible},
                  {"near_plane", st.lightsInside},
