@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "renderer/core/assert.h"
 #include "renderer/vk/check.h"
 
 namespace gb {
@@ -53,10 +54,21 @@ static bool sameLights(const std::vector<PointLightDesc>& a, const std::vector<P
   return true;
 }
 
+// Whether `descs` holds this scene's lights: the scene and its lights' generation are those of
+// the last upload (O(1): every edit of Scene::lights draws a new generation, light_list.h). With
+// validation on, the lights are compared too, and an edit the generation missed (made through a
+// reference kept across a frame) stops the program.
+static bool uploaded(const Renderer& r) {
+  const GpuLights& g = r.gpuLights;
+  const bool same = g.descs.buffer && g.scene == r.scene && g.generation == r.scene->lights.generation();
+  if (same && r.ctx->validation) GB_ASSERT(sameLights(g.checkCopy, r.scene->lights));
+  return same;
+}
+
 void prepareGpuLights(Renderer& r, gpu::FrameData& f) {
-  const std::vector<PointLightDesc>& lights = r.scene->lights;
+  const LightList& lights = r.scene->lights;
   GpuLights& g = r.gpuLights;
-  if (!g.descs.buffer || !sameLights(g.uploaded, lights)) {
+  if (!uploaded(r)) {
     const size_t n = std::max<size_t>(lights.size(), 1);
     const size_t groups = (n + gpu::kLightSetupGroup - 1) / gpu::kLightSetupGroup;
     if (g.descs.size < n * sizeof(gpu::LightDesc)) {
@@ -74,7 +86,10 @@ void prepareGpuLights(Renderer& r, gpu::FrameData& f) {
     std::vector<gpu::LightDesc> descs(lights.size());
     for (size_t i = 0; i < lights.size(); ++i) descs[i] = toGpu(lights[i]);
     if (!descs.empty()) uploadBuffer(*r.ctx, g.descs, descs.data(), descs.size() * sizeof(gpu::LightDesc));
-    g.uploaded = lights;
+    g.scene = r.scene;
+    g.generation = lights.generation();
+    if (r.ctx->validation) g.checkCopy = lights.vector();
+    g.uploads++;
   }
   for (int row = 0; row < 3; ++row) {
     const glm::dmat4& m = r.camera.eyeFromWorld;  // column-major: m[column][row]

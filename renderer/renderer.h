@@ -86,9 +86,13 @@ struct ClusterBuffers {
 };
 
 // Light setup on the GPU (renderer/gpu_lights.cpp): the scene's lights as uploaded, and scratch.
+// `descs` holds the lights of `scene` at lights generation `generation` (LightList).
 struct GpuLights {
   Buffer descs, scratch;
-  std::vector<PointLightDesc> uploaded;  // what `descs` holds
+  const Scene* scene = nullptr;
+  uint64_t generation = 0;
+  uint64_t uploads = 0;  // how many times `descs` was written (tests: an unchanged scene uploads nothing)
+  std::vector<PointLightDesc> checkCopy;  // with validation on: what `descs` holds, to catch a missed edit
 };
 
 struct Renderer {
