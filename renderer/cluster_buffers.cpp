@@ -41,8 +41,9 @@ void ensureClusterBuffers(Renderer& r, uint32_t visibleMax) {
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   replace(r, c.header, sizeof(gpu::ClusterHeader), storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
                                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Device, "cluster_header");
-  replace(r, c.headerReadback, sizeof(gpu::ClusterHeader), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback,
-          "cluster_header.readback");
+  // The current slot's copy for the CPU (its previous frame is retired: nothing reads it now).
+  replace(r, frameSlot(r).clusterHeader, sizeof(gpu::ClusterHeader), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+          MemoryUse::Readback, "cluster_header.readback");
   replace(r, c.clusters, VkDeviceSize(c.clusterCapacity) * sizeof(gpu::Cluster), storage, MemoryUse::Device, "clusters");
   replace(r, c.pixelClusters, VkDeviceSize(w) * h * 4, storage, MemoryUse::Device, "pixel_clusters");
   replace(r, c.lists, VkDeviceSize(c.listCapacity) * 4, storage, MemoryUse::Device, "light_lists");
@@ -54,7 +55,7 @@ void ensureClusterBuffers(Renderer& r, uint32_t visibleMax) {
 
 void destroyClusterBuffers(Renderer& r) {
   ClusterBuffers& c = r.clusters;
-  for (Buffer* b : {&c.header, &c.headerReadback, &c.clusters, &c.pixelClusters, &c.lists, &c.binBits, &c.binBoxes,
+  for (Buffer* b : {&c.header, &c.clusters, &c.pixelClusters, &c.lists, &c.binBits, &c.binBoxes,
                     &r.fairyBits})
     if (b->buffer) destroyBuffer(*r.ctx, *b);
   c = ClusterBuffers{};
@@ -76,10 +77,10 @@ void ensureFairyBits(Renderer& r, uint32_t visibleMax) {
           MemoryUse::Device, "fairy_bits");
 }
 
-ClusterStats collectClusterStats(Renderer& r) {
+ClusterStats collectClusterStats(Renderer& r, const FrameSlot& slot) {
   ClusterBuffers& c = r.clusters;
   gpu::ClusterHeader h;
-  std::memcpy(&h, c.headerReadback.mapped, sizeof(h));
+  std::memcpy(&h, slot.clusterHeader.mapped, sizeof(h));
   ClusterStats s;
   s.valid = true;
   s.clusters = h.counts.x;
