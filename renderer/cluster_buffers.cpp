@@ -45,16 +45,18 @@ static PositionSlack positionSlack(const Renderer& r) {
 
 void writeClusterGrid(Renderer& r) {
   ClusterBuffers& c = r.clusters;
+  FrameSlot& slot = frameSlot(r);  // the other slot's frame may still read its own grid
   assignLights(r.camera, r.lights.eye, r.lights.visible, positionSlack(r), c.grid);
   const VkDeviceSize cellBytes = c.grid.cells.size() * sizeof(glm::uvec2);
   const VkDeviceSize lightBytes = c.grid.lights.size() * sizeof(gpu::PointLight);
   const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   // Grown by half again, so a moving light count does not re-create them every frame.
-  if (!c.gridCells.buffer || c.gridCells.size < cellBytes) replace(r, c.gridCells, cellBytes, usage, MemoryUse::Upload, "grid_cells");
-  if (!c.gridLights.buffer || c.gridLights.size < lightBytes)
-    replace(r, c.gridLights, lightBytes + lightBytes / 2, usage, MemoryUse::Upload, "grid_lights");
-  std::memcpy(c.gridCells.mapped, c.grid.cells.data(), cellBytes);
-  if (lightBytes) std::memcpy(c.gridLights.mapped, c.grid.lights.data(), lightBytes);
+  if (!slot.gridCells.buffer || slot.gridCells.size < cellBytes)
+    replace(r, slot.gridCells, cellBytes, usage, MemoryUse::Upload, "grid_cells");
+  if (!slot.gridLights.buffer || slot.gridLights.size < lightBytes)
+    replace(r, slot.gridLights, lightBytes + lightBytes / 2, usage, MemoryUse::Upload, "grid_lights");
+  std::memcpy(slot.gridCells.mapped, c.grid.cells.data(), cellBytes);
+  if (lightBytes) std::memcpy(slot.gridLights.mapped, c.grid.lights.data(), lightBytes);
 }
 
 ClusterStats gridClusterStats(const Renderer& r) {
@@ -79,8 +81,9 @@ void ensureClusterBuffers(Renderer& r, uint32_t visibleMax) {
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   replace(r, c.header, sizeof(gpu::ClusterHeader), storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
                                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Device, "cluster_header");
-  replace(r, c.headerReadback, sizeof(gpu::ClusterHeader), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback,
-          "cluster_header.readback");
+  // The current slot's copy for the CPU (its previous frame is retired: nothing reads it now).
+  replace(r, frameSlot(r).clusterHeader, sizeof(gpu::ClusterHeader), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+          MemoryUse::Readback, "cluster_header.readback");
   replace(r, c.clusters, VkDeviceSize(c.clusterCapacity) * sizeof(gpu::Cluster), storage, MemoryUse::Device, "clusters");
   replace(r, c.pixelClusters, VkDeviceSize(w) * h * 4, storage, MemoryUse::Device, "pixel_clusters");
   replace(r, c.lists, VkDeviceSize(c.listCapacity) * 4, storage, MemoryUse::Device, "light_lists");
@@ -92,8 +95,7 @@ void ensureClusterBuffers(Renderer& r, uint32_t visibleMax) {
 
 void destroyClusterBuffers(Renderer& r) {
   ClusterBuffers& c = r.clusters;
-  for (Buffer* b : {&c.header, &c.headerReadback, &c.clusters, &c.pixelClusters, &c.lists, &c.binBits, &c.binBoxes,
-                    &c.gridCells, &c.gridLights, &r.fairyBits})
+  for (Buffer* b : {&c.header, &c.clusters, &c.pixelClusters, &c.lists, &c.binBits, &c.binBoxes, &r.fairyBits})
     if (b->buffer) destroyBuffer(*r.ctx, *b);
   c = ClusterBuffers{};
 }
@@ -114,10 +116,10 @@ void ensureFairyBits(Renderer& r, uint32_t visibleMax) {
           MemoryUse::Device, "fairy_bits");
 }
 
-ClusterStats collectClusterStats(Renderer& r) {
+ClusterStats collectClusterStats(Renderer& r, const FrameSlot& slot) {
   ClusterBuffers& c = r.clusters;
   gpu::ClusterHeader h;
-  std::memcpy(&h, c.headerReadback.mapped, sizeof(h));
+  std::memcpy(&h, slot.clusterHeader.mapped, sizeof(h));
   ClusterStats s;
   s.valid = true;
   s.clusters = h.counts.x;

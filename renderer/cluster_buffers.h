@@ -25,8 +25,9 @@ void destroyClusterBuffers(Renderer& r);
 bool fairiesInCompute(const GpuContext& ctx, const RenderOptions& o, std::string& reason);
 void ensureFairyBits(Renderer& r, uint32_t visibleMax);
 
-// After the frame's fence: the clusters, list entries and overflows it counted; a frame that ran
-// out of room (shaded exactly, more slowly) makes the next one get buffers twice the size needed.
-ClusterStats collectClusterStats(Renderer& r);
+// After the frame's fence: the clusters, list entries and overflows it counted (its slot's copy
+// of the header); a frame that ran out of room (shaded exactly, more slowly) makes the next one
+// get buffers twice the size needed.
+ClusterStats collectClusterStats(Renderer& r, const FrameSlot& slot);
 
 }  // namespace gb

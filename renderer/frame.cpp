@@ -55,9 +55,14 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   // ── 0. Lights: animation, eye space, culling, the visible list ────────────────────────────
   if (!r.lightsOnGpu || scene.lights.empty()) {
     const std::string why = !r.lightsOnGpu ? r.lightSetupReason : "no point lights in the scene";
+    g.skipPass("light_upload", why);
     g.skipPass("light_setup", why);
     g.skipPass("light_compact", why);
   } else {
+    if (r.gpuLights.uploadBytes == 0)
+      g.skipPass("light_upload", "the scene's lights are unchanged since they were uploaded (same generation)");
+    else
+      addLightUploadPass(g, r);  // the new descriptions, from the frame slot
     addLightSetupPasses(g, r);  // light_setup + light_compact (compute)
   }
 

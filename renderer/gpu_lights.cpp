@@ -1,9 +1,11 @@
 // Light setup on the GPU, the CPU's side (see gpu_lights.h).
 #include "renderer/gpu_lights.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
+#include "renderer/core/assert.h"
 #include "renderer/core/method_choice.h"
 #include "renderer/vk/check.h"
 
@@ -57,29 +59,56 @@ static bool sameLights(const std::vector<PointLightDesc>& a, const std::vector<P
   return true;
 }
 
-void prepareGpuLights(Renderer& r, gpu::FrameData& f) {
-  const std::vector<PointLightDesc>& lights = r.scene->lights;
+// Whether `descs` holds this scene's lights: the scene and its lights' generation are those of
+// the last upload (O(1): every edit of Scene::lights draws a new generation, light_list.h). With
+// validation on, the lights are compared too, and an edit the generation missed (made through a
+// reference kept across a frame) stops the program.
+static bool uploaded(const Renderer& r) {
+  const GpuLights& g = r.gpuLights;
+  const bool same = g.descs.buffer && g.scene == r.scene && g.generation == r.scene->lights.generation();
+  if (same && r.ctx->validation) GB_ASSERT(sameLights(g.checkCopy, r.scene->lights));
+  return same;
+}
+
+// New light descriptions into the current slot's staging buffer (the slot's previous frame is
+// retired: nothing reads it); light_upload copies them into `descs` on the GPU, after everything
+// submitted before, so a frame in flight still reads the descriptions it was recorded with.
+static void stageLights(Renderer& r) {
+  const LightList& lights = r.scene->lights;
   GpuLights& g = r.gpuLights;
-  if (!g.descs.buffer || !sameLights(g.uploaded, lights)) {
-    const size_t n = std::max<size_t>(lights.size(), 1);
-    const size_t groups = (n + gpu::kLightSetupGroup - 1) / gpu::kLightSetupGroup;
-    if (g.descs.size < n * sizeof(gpu::LightDesc)) {
-      if (g.descs.buffer) {
-        vkDeviceWaitIdle(r.ctx->device);
-        destroyBuffer(*r.ctx, g.descs);
-        destroyBuffer(*r.ctx, g.scratch);
-      }
-      g.descs = createBuffer(*r.ctx, n * sizeof(gpu::LightDesc),
-                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device,
-                             "light_descs");
-      g.scratch = createBuffer(*r.ctx, (n + groups * 4) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                               MemoryUse::Device, "light_scratch");
+  const size_t n = std::max<size_t>(lights.size(), 1);
+  const size_t groups = (n + gpu::kLightSetupGroup - 1) / gpu::kLightSetupGroup;
+  if (g.descs.size < n * sizeof(gpu::LightDesc)) {
+    if (g.descs.buffer) {
+      vkDeviceWaitIdle(r.ctx->device);  // frames in flight use them
+      destroyBuffer(*r.ctx, g.descs);
+      destroyBuffer(*r.ctx, g.scratch);
     }
-    std::vector<gpu::LightDesc> descs(lights.size());
-    for (size_t i = 0; i < lights.size(); ++i) descs[i] = toGpu(lights[i]);
-    if (!descs.empty()) uploadBuffer(*r.ctx, g.descs, descs.data(), descs.size() * sizeof(gpu::LightDesc));
-    g.uploaded = lights;
+    g.descs = createBuffer(*r.ctx, n * sizeof(gpu::LightDesc),
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Device,
+                           "light_descs");
+    g.scratch = createBuffer(*r.ctx, (n + groups * 4) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                             MemoryUse::Device, "light_scratch");
   }
+  Buffer& staging = frameSlot(r).lightDescStaging;
+  if (staging.size < n * sizeof(gpu::LightDesc)) {
+    if (staging.buffer) destroyBuffer(*r.ctx, staging);
+    staging = createBuffer(*r.ctx, n * sizeof(gpu::LightDesc), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload,
+                           "light_descs.staging");
+  }
+  auto* descs = static_cast<gpu::LightDesc*>(staging.mapped);
+  for (size_t i = 0; i < lights.size(); ++i) descs[i] = toGpu(lights[i]);
+  g.uploadBytes = lights.size() * sizeof(gpu::LightDesc);
+  g.scene = r.scene;
+  g.generation = lights.generation();
+  if (r.ctx->validation) g.checkCopy = lights.vector();
+  g.uploads++;
+}
+
+void prepareGpuLights(Renderer& r, gpu::FrameData& f) {
+  const LightList& lights = r.scene->lights;
+  r.gpuLights.uploadBytes = 0;
+  if (!uploaded(r)) stageLights(r);
   for (int row = 0; row < 3; ++row) {
     const glm::dmat4& m = r.camera.eyeFromWorld;  // column-major: m[column][row]
     f.eyeFromWorld64[2 * row] = bits(m[0][row], m[1][row]);
@@ -93,25 +122,27 @@ void prepareGpuLights(Renderer& r, gpu::FrameData& f) {
   r.lights = FrameLights{};
   if (lights.empty()) {  // no light_setup pass runs: the counts are zero
     const gpu::LightCounts zero{};
-    std::memcpy(r.lightCountBuffer.mapped, &zero, sizeof zero);
+    std::memcpy(frameSlot(r).lightCountBuffer.mapped, &zero, sizeof zero);
   }
 }
 
-static gpu::LightCounts gpuCounts(const Renderer& r) {
+static gpu::LightCounts gpuCounts(const FrameSlot& s) {
   gpu::LightCounts c;
-  std::memcpy(&c, r.lightCountBuffer.mapped, sizeof c);
+  std::memcpy(&c, s.lightCountBuffer.mapped, sizeof c);
   return c;
 }
 
 FrameLights frameLights(const Renderer& r) {
   if (!r.lightsOnGpu) return r.lights;
+  const FrameSlot& s = frameSlot(r);  // the last frame's
+  GB_ASSERT(!s.pending);
   FrameLights l;
-  const gpu::LightCounts c = gpuCounts(r);
+  const gpu::LightCounts c = gpuCounts(s);
   const size_t n = r.scene->lights.size();
   l.eye.resize(n);
-  if (n) std::memcpy(l.eye.data(), r.lightBuffer.mapped, n * sizeof(gpu::PointLight));
+  if (n) std::memcpy(l.eye.data(), s.lightBuffer.mapped, n * sizeof(gpu::PointLight));
   l.visible.resize(c.counts.x);
-  if (c.counts.x) std::memcpy(l.visible.data(), r.visibleBuffer.mapped, c.counts.x * sizeof(uint32_t));
+  if (c.counts.x) std::memcpy(l.visible.data(), s.visibleBuffer.mapped, c.counts.x * sizeof(uint32_t));
   l.stencilCount = c.counts.x;  // no near-plane class: the compute methods need none
   l.culledFrustum = c.counts.y;
   l.culledEmpty = c.counts.z;
@@ -119,8 +150,8 @@ FrameLights frameLights(const Renderer& r) {
   return l;
 }
 
-void readGpuLights(Renderer& r, FrameStats& st, bool withLights) {
-  const gpu::LightCounts c = gpuCounts(r);
+void readGpuLightCounts(const FrameSlot& s, FrameStats& st) {
+  const gpu::LightCounts c = gpuCounts(s);
   st.lightsVisible = c.counts.x;
   st.lightsInside = 0;
   st.stencilLayers = 0;
@@ -128,10 +159,11 @@ void readGpuLights(Renderer& r, FrameStats& st, bool withLights) {
   st.lightsCulledEmpty = c.counts.z;
   st.lightsCulledSubpixel = c.counts.w;
   st.lightsCulled = c.counts.y + c.counts.z + c.counts.w;
-  if (withLights) {
-    r.lights = frameLights(r);
-    r.lightsOnGpu = false;  // r.lights now holds them
-  }
+}
+
+void readGpuLights(Renderer& r) {
+  r.lights = frameLights(r);
+  r.lightsOnGpu = false;  // r.lights now holds them
 }
 
 void destroyGpuLights(Renderer& r) {

@@ -1,6 +1,6 @@
 // Light setup on the GPU (--light-setup; passes light_setup and light_compact): what the CPU
-// does per frame instead of classifying every light (compare the scene's lights with what was
-// uploaded, fill the double-precision camera fields), and the lights read back from the GPU's
+// does per frame instead of classifying every light (upload the scene's lights when their
+// generation changed, fill the double-precision camera fields), and the lights read back from the GPU's
 // buffers when someone asks for them (snapshots, culling statistics).
 #pragma once
 #include <string>
@@ -12,14 +12,16 @@ namespace gb {
 // Whether this frame sets its lights up on the GPU, and why (or why not).
 bool lightsOnGpu(const GpuContext& ctx, const RenderOptions& o, Method method, std::string& reason);
 
-// The frame's light data when they are set up on the GPU: uploads the scene's lights when they
-// differ from the last upload (a comparison per light, no arithmetic) and fills FrameData's
-// double-precision fields.
+// The frame's light data when they are set up on the GPU: stages the scene's lights for
+// light_upload when the scene or its lights' generation differ from the last upload (O(1)
+// otherwise: nothing per light on the CPU) and fills FrameData's double-precision fields.
 void prepareGpuLights(Renderer& r, gpu::FrameData& f);
 
-// After the fence: the counts light_compact wrote (FrameStats), and, with `withLights`, the
-// eye-space lights and visible list into r.lights (as the CPU path leaves them).
-void readGpuLights(Renderer& r, FrameStats& st, bool withLights);
+// After the slot's fence: the counts its light_compact wrote (FrameStats).
+void readGpuLightCounts(const FrameSlot& s, FrameStats& st);
+// After the last frame's fence: its eye-space lights and visible list into r.lights (as the CPU
+// path leaves them), for snapshots and culling statistics.
+void readGpuLights(Renderer& r);
 
 // The lights of the last frame as the CPU path describes them: r.lights, or read from the GPU's
 // buffers when it set them up (snapshotFromRenderer).

@@ -1,5 +1,6 @@
-// The scene on the GPU: vertex/index buffers, textures, materials, samplers, and the descriptor
-// set 0 that every pipeline shares (set 1 is pushed per pass).
+// The scene on the GPU: vertex/index buffers, textures, materials, samplers, and the layout of
+// descriptor set 0 that every pipeline shares (one set per frame slot, frame_slots.cpp; set 1 is
+// pushed per pass).
 #include "renderer/gpu_scene.h"
 
 #include <algorithm>
@@ -105,25 +106,6 @@ void uploadScene(Renderer& r) {
   }
 }
 
-void createFrameBuffers(Renderer& r) {
-  GpuContext& ctx = *r.ctx;
-  const Scene& scene = *r.scene;
-  // Per-frame data: host-visible, rewritten every frame (one frame in flight).
-  // Named as in shaders/common.glsl: "frame" is the uniform buffer with the camera matrices.
-  r.frameBuffer =
-      createBuffer(ctx, sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::Upload, "frame");
-  r.drawBuffer = createBuffer(ctx, std::max<size_t>(scene.instances.size(), 1) * sizeof(gpu::DrawData),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload, "draws");
-  const size_t maxLights = 65536;  // --lights range; the buffers never need to grow
-  r.lightBuffer = createBuffer(ctx, std::max<size_t>(scene.lights.size(), maxLights) * sizeof(gpu::PointLight),
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload, "lights");
-  r.visibleBuffer = createBuffer(ctx, std::max<size_t>(scene.lights.size(), maxLights) * sizeof(uint32_t),
-                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::Upload, "visible_lights");
-  r.lightCountBuffer = createBuffer(ctx, sizeof(gpu::LightCounts),
-                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
-                                    MemoryUse::Upload, "light_counts");
-}
-
 void createDescriptors(Renderer& r) {
   GpuContext& ctx = *r.ctx;
   r.samplerRepeat =
@@ -197,41 +179,6 @@ void createDescriptors(Renderer& r) {
   layouts[1] = r.passSetLayoutInput;
   VK_CHECK(vkCreatePipelineLayout(ctx.device, &pci, nullptr, &r.pipelineLayoutInput));
   setName(ctx, uint64_t(r.pipelineLayoutInput), VK_OBJECT_TYPE_PIPELINE_LAYOUT, "pipeline_layout.input");
-}
-
-void writeSceneSet(Renderer& r) {
-  GpuContext& ctx = *r.ctx;
-  VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5}};
-  VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  dpci.maxSets = 1;
-  dpci.poolSizeCount = 2;
-  dpci.pPoolSizes = sizes;
-  VK_CHECK(vkCreateDescriptorPool(ctx.device, &dpci, nullptr, &r.descriptorPool));
-  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  ai.descriptorPool = r.descriptorPool;
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &r.sceneSetLayout;
-  VK_CHECK(vkAllocateDescriptorSets(ctx.device, &ai, &r.sceneSet));
-  setName(ctx, uint64_t(r.sceneSet), VK_OBJECT_TYPE_DESCRIPTOR_SET, "set0.scene");
-
-  VkDescriptorBufferInfo bufs[] = {{r.frameBuffer.buffer, 0, VK_WHOLE_SIZE},
-                                   {r.drawBuffer.buffer, 0, VK_WHOLE_SIZE},
-                                   {r.materialBuffer.buffer, 0, VK_WHOLE_SIZE},
-                                   {r.lightBuffer.buffer, 0, VK_WHOLE_SIZE},
-                                   {r.visibleBuffer.buffer, 0, VK_WHOLE_SIZE},
-                                   {r.lightCountBuffer.buffer, 0, VK_WHOLE_SIZE}};
-  std::vector<VkWriteDescriptorSet> writes;
-  for (uint32_t b = 0; b < 6; ++b) {
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = r.sceneSet;
-    w.dstBinding = b;
-    w.descriptorCount = 1;
-    w.descriptorType = b == gpu::kBindingFrame ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w.pBufferInfo = &bufs[b];
-    writes.push_back(w);
-  }
-  vkUpdateDescriptorSets(ctx.device, uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 
 void sortDraws(Renderer& r) {

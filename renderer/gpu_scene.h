@@ -18,12 +18,8 @@ std::string drawVariantName(uint32_t v);
 // Vertex and index buffers, the light-volume icosahedron, materials, textures (the scene's, then
 // white and flat-normal stand-ins).
 void uploadScene(Renderer& r);
-// Host-visible per-frame buffers: frame data, draws, lights, visible-light list.
-void createFrameBuffers(Renderer& r);
 // Samplers, set 0 (scene + frame) and set 1 (pushed per pass) layouts, the pipeline layouts.
 void createDescriptors(Renderer& r);
-// Allocates and writes set 0.
-void writeSceneSet(Renderer& r);
 // Draw order by pipeline variant: opaque before alpha-tested, by material within a variant.
 void sortDraws(Renderer& r);
 

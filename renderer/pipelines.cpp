@@ -53,7 +53,7 @@ std::vector<SpecConstant> commonSpec(const Renderer& r) {
 
 void bindDescriptors(Renderer& r, VkCommandBuffer cmd, VkPipelineLayout layout, std::initializer_list<PassImage> images,
                      VkPipelineBindPoint bindPoint) {
-  vkCmdBindDescriptorSets(cmd, bindPoint, layout, gpu::kSetScene, 1, &r.sceneSet, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd, bindPoint, layout, gpu::kSetScene, 1, &frameSlot(r).sceneSet, 0, nullptr);
   if (images.size() == 0) return;
   std::vector<VkDescriptorImageInfo> infos;
   infos.reserve(images.size());

@@ -151,14 +151,21 @@ void destroyTargets(Renderer& r) {
   r.targetsValid = false;
 }
 
+bool targetsCurrent(const Renderer& r, const RenderOptions& o) {
+  return r.targetsValid && targetsKey(*r.ctx, *r.scene, o) == r.targetsKey;
+}
+
 void ensureTargets(Renderer& r, const RenderOptions& o) {
   TargetsKey key = targetsKey(*r.ctx, *r.scene, o);
   if (r.targetsValid && key == r.targetsKey) return;
-  vkDeviceWaitIdle(r.ctx->device);
+  vkDeviceWaitIdle(r.ctx->device);  // frames in flight use the old ones
   destroyTargets(r);
   for (size_t i = 0; i < kTargetCount; ++i)
     r.targets[i].image = createImage(*r.ctx, targetDesc(*r.ctx, Target(i), *r.scene, o));
   r.targets[size_t(Target::ShadowMap)].keep = true;  // reused while the sun and geometry stay
+  // The frame's product: stored even when nothing reads it in the frame (a frame in flight is read
+  // back, presented or compared after it, not in it).
+  r.targets[size_t(Target::Final)].keep = true;
   r.targetsValid = true;
   r.targetsKey = key;
 }

@@ -31,8 +31,10 @@ std::vector<Target> readableTargets(const Renderer& r, const RenderOptions& o);
 // only when they need no extra read-back (coverage on, coverage_masked and depth asked).
 FrameRequest captureRequest(const std::vector<Target>& targets, const RenderOptions& options);
 
-// Creates the targets for these options, or keeps them when size, formats and usage are the same.
+// Creates the targets for these options, or keeps them when size, formats and usage are the same
+// (targetsCurrent).
 void ensureTargets(Renderer& r, const RenderOptions& o);
+bool targetsCurrent(const Renderer& r, const RenderOptions& o);
 void destroyTargets(Renderer& r);
 
 }  // namespace gb

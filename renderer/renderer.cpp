@@ -1,5 +1,6 @@
-// renderFrame: per-frame CPU work (view, draws, lights, frame data), target (re)creation,
-// recording the frame graph, submission, timings, read-back and culling statistics.
+// renderFrame and submitFrame: per-frame CPU work (view, draws, lights, frame data), target
+// (re)creation, recording the frame graph into a frame slot and submitting it; renderFrame then
+// waits for it (statistics, read-back, culling statistics). Frame slots: frame_slots.cpp.
 #include "renderer/renderer.h"
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include "renderer/cluster_buffers.h"
 #include "renderer/core/method_choice.h"
 #include "renderer/frame.h"
+#include "renderer/frame_slots.h"
 #include "renderer/gpu_lights.h"
 #include "renderer/gpu_scene.h"
 #include "renderer/light_culling.h"
@@ -28,15 +30,16 @@ static void uploadCpuLights(Renderer& r) {
   const RenderOptions& o = r.options;
   classifyLights(*r.scene, r.camera, o.time, stencilLayersOn(o, r.method, r.ctx->isCpu), r.lights);
   // (memcpy from an empty vector's null data() is undefined even for 0 bytes: UBSan reports it)
+  FrameSlot& slot = frameSlot(r);
   if (!r.lights.eye.empty())
-    std::memcpy(r.lightBuffer.mapped, r.lights.eye.data(), r.lights.eye.size() * sizeof(gpu::PointLight));
+    std::memcpy(slot.lightBuffer.mapped, r.lights.eye.data(), r.lights.eye.size() * sizeof(gpu::PointLight));
   if (!r.lights.visible.empty())
-    std::memcpy(r.visibleBuffer.mapped, r.lights.visible.data(), r.lights.visible.size() * sizeof(uint32_t));
+    std::memcpy(slot.visibleBuffer.mapped, r.lights.visible.data(), r.lights.visible.size() * sizeof(uint32_t));
   gpu::LightCounts counts{};
   const uint32_t visible = uint32_t(r.lights.visible.size());
   counts.counts = glm::uvec4(visible, r.lights.culledFrustum, r.lights.culledEmpty, r.lights.culledSubpixel);
   counts.fairyDraw = glm::uvec4(6u, visible, 0u, 0u);
-  std::memcpy(r.lightCountBuffer.mapped, &counts, sizeof(counts));
+  std::memcpy(slot.lightCountBuffer.mapped, &counts, sizeof(counts));
 }
 
 static void prepareFrame(Renderer& r) {
@@ -48,7 +51,7 @@ static void prepareFrame(Renderer& r) {
   r.lightClipFromWorld = shadowClipFromWorld(s);
 
   // Draws: camera-relative transforms formed in double.
-  auto* draws = static_cast<gpu::DrawData*>(r.drawBuffer.mapped);
+  auto* draws = static_cast<gpu::DrawData*>(frameSlot(r).drawBuffer.mapped);
   const std::vector<uint32_t> firstPrimitive = firstPrimitiveIds(s);
   for (size_t i = 0; i < s.instances.size(); ++i) {
     const Instance& inst = s.instances[i];
@@ -65,7 +68,7 @@ static void prepareFrame(Renderer& r) {
 
   gpu::FrameData f{};
   r.lightsOnGpu = lightsOnGpu(*r.ctx, o, r.method, r.lightSetupReason);
-  GB_ASSERT(s.lights.size() <= r.lightBuffer.size / sizeof(gpu::PointLight));
+  GB_ASSERT(s.lights.size() <= frameSlot(r).lightBuffer.size / sizeof(gpu::PointLight));
   if (r.lightsOnGpu) {
     prepareGpuLights(r, f);  // light_setup and light_compact do the rest
     r.visibleBound = uint32_t(s.lights.size());
@@ -94,12 +97,12 @@ static void prepareFrame(Renderer& r) {
                         0u, 0u);
   clusterFrameData(r.camera, r.visibleBound, f);
   if (r.clusterGrid) gridFrameData(r.clusters.grid.shape, f);
-  std::memcpy(r.frameBuffer.mapped, &f, sizeof(f));
+  std::memcpy(frameSlot(r).frameBuffer.mapped, &f, sizeof(f));
   r.frameData = f;
 }
 
 void runAfterFrame(Renderer& r, const std::function<void(FrameGraph&)>& build, const std::vector<Target>& handOff) {
-  GB_ASSERT(r.targetsValid);
+  GB_ASSERT(r.targetsValid && !framesInFlight(r));
   FrameGraph graph;
   build(graph);
   if (!handOff.empty()) addSampleAfterPass(graph, handOff);
@@ -131,68 +134,8 @@ static FrameRequest completeRequest(const FrameRequest& user, const RenderOption
   return request;
 }
 
-static VkQueryPool createQueryPool(GpuContext& ctx, VkQueryType type, uint32_t count,
-                                   VkQueryPipelineStatisticFlags statistics = 0) {
-  VkQueryPoolCreateInfo qci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-  qci.queryType = type;
-  qci.queryCount = count;
-  qci.pipelineStatistics = statistics;
-  VkQueryPool pool;
-  VK_CHECK(vkCreateQueryPool(ctx.device, &qci, nullptr, &pool));
-  return pool;
-}
-
-// Timestamps for every pass of `graph`, the skybox's occlusion query and the point-light
-// pass's pipeline statistics when this frame uses them: created on first use, reset each frame.
-static void resetQueries(Renderer& r, const FrameGraph& graph, const FrameRequest& request) {
-  GpuContext& ctx = *r.ctx;
-  if (r.skyQueryActive) {
-    if (!r.occlusionPool) r.occlusionPool = createQueryPool(ctx, VK_QUERY_TYPE_OCCLUSION, 1);
-    vkResetQueryPool(ctx.device, r.occlusionPool, 0, 1);
-  }
-  uint32_t queries = std::max(graph.timestampCount(), 2u);
-  if (!r.timestampPool || r.timestampCapacity < queries) {
-    if (r.timestampPool) vkDestroyQueryPool(ctx.device, r.timestampPool, nullptr);
-    r.timestampCapacity = std::max(queries, 64u);
-    r.timestampPool = createQueryPool(ctx, VK_QUERY_TYPE_TIMESTAMP, r.timestampCapacity);
-  }
-  vkResetQueryPool(ctx.device, r.timestampPool, 0, r.timestampCapacity);
-  r.statisticsActive = request.cullingStats && ctx.features.pipelineStatistics;
-  if (r.statisticsActive) {
-    if (!r.statisticsPool)
-      r.statisticsPool = createQueryPool(ctx, VK_QUERY_TYPE_PIPELINE_STATISTICS, 1,
-                                         VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT);
-    vkResetQueryPool(ctx.device, r.statisticsPool, 0, 1);
-  }
-}
-
-static void recordAndSubmit(Renderer& r, FrameGraph& graph) {
-  GpuContext& ctx = *r.ctx;
-  VK_CHECK(vkResetCommandBuffer(r.cmd, 0));
-  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  VK_CHECK(vkBeginCommandBuffer(r.cmd, &bi));
-  graph.record(ctx, r.cmd, r.targets, r.graphCache, ctx.features.timestamps ? r.timestampPool : VK_NULL_HANDLE);
-  VK_CHECK(vkEndCommandBuffer(r.cmd));
-  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  si.commandBufferCount = 1;
-  si.pCommandBuffers = &r.cmd;
-  VK_CHECK(vkResetFences(ctx.device, 1, &r.fence));
-  r.submitted = std::chrono::steady_clock::now();
-  VK_CHECK(vkQueueSubmit(ctx.queue, 1, &si, r.fence));
-  VK_CHECK(vkWaitForFences(ctx.device, 1, &r.fence, VK_TRUE, UINT64_MAX));
-}
-
-static uint64_t queryResult(GpuContext& ctx, VkQueryPool pool, uint32_t query) {
-  uint64_t v = 0;
-  VK_CHECK(vkGetQueryPoolResults(ctx.device, pool, query, 1, sizeof(v), &v, sizeof(v),
-                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-  return v;
-}
-
-// Light counts, the sky count and per-pass GPU times of the frame just submitted.
-static void collectStats(Renderer& r, FrameStats& st) {
-  GpuContext& ctx = *r.ctx;
+// The light counts of the CPU path (light setup on the GPU: retireFrame reads the GPU's).
+static void cpuLightCounts(const Renderer& r, FrameStats& st) {
   const FrameLights& l = r.lights;
   st.lights = uint32_t(r.scene->lights.size());
   st.lightsVisible = uint32_t(l.visible.size());
@@ -202,24 +145,6 @@ static void collectStats(Renderer& r, FrameStats& st) {
   st.lightsCulledFrustum = l.culledFrustum;
   st.lightsCulledEmpty = l.culledEmpty;
   st.lightsCulledSubpixel = l.culledSubpixel;
-  if (r.skyQueryActive) {
-    // Non-zero exactly when some sample passed (a non-precise query may overcount).
-    r.skyPixels = queryResult(ctx, r.occlusionPool, 0);
-    r.skyKey = skyVisibilityKey(r);
-    st.skyPixels = int64_t(r.skyPixels);
-  }
-  if (!ctx.features.timestamps) return;
-  const double period = ctx.properties.limits.timestampPeriod * 1e-6;
-  double first = 1e300, last = -1e300;
-  for (size_t i = 0; i < st.passes.size(); ++i) {
-    if (st.passes[i].skipped) continue;
-    double t0 = double(queryResult(ctx, r.timestampPool, uint32_t(2 * i))) * period;
-    double t1 = double(queryResult(ctx, r.timestampPool, uint32_t(2 * i + 1))) * period;
-    st.passes[i].ms = t1 - t0;
-    first = std::min(first, t0);
-    last = std::max(last, t1);
-  }
-  if (last > first) st.gpuMs = last - first;
 }
 
 // Point-light shader runs (coverage_masked) against the ideal pixel-light pairs.
@@ -240,8 +165,11 @@ static CullingStats cullingStats(Renderer& r, const FrameStats& st) {
   return c;
 }
 
-const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const FrameRequest& userRequest) {
-  auto start = std::chrono::steady_clock::now();
+// The frame's CPU part, into the current slot (its previous frame retired), up to submission:
+// method, targets, per-frame data, the graph, recording. The slot's FrameStats get what the CPU
+// knows; retireFrame adds what the GPU measured and counted.
+static FrameRequest recordFrame(Renderer& r, const RenderOptions& options, const FrameRequest& userRequest) {
+  const auto start = std::chrono::steady_clock::now();
   const MethodChoice choice =
       chooseMethod(options, r.ctx->isCpu ? DeviceKind::Cpu : DeviceKind::Gpu, r.scene->lights.size());
   GB_ASSERT(choice.method != Method::Auto && (options.method != Method::Auto || choice.method != Method::Forward));
@@ -269,48 +197,65 @@ const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const F
   const auto recordStart = std::chrono::steady_clock::now();
   const uint64_t compiled = r.graphCache.compilations, reused = r.graphCache.reuses;
   recordAndSubmit(r, graph);
+  const auto submitted = std::chrono::steady_clock::now();
 
-  FrameStats& st = r.stats;
+  FrameSlot& slot = frameSlot(r);
+  FrameStats& st = slot.stats;
   st = FrameStats{};
-  st.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  st.cpuMs = std::chrono::duration<double, std::milli>(r.submitted - start).count();
-  st.recordMs = std::chrono::duration<double, std::milli>(r.submitted - recordStart).count();
+  st.cpuMs = std::chrono::duration<double, std::milli>(submitted - start).count();
+  st.recordMs = std::chrono::duration<double, std::milli>(submitted - recordStart).count();
   st.groupsCompiled = uint32_t(r.graphCache.compilations - compiled);
   st.groupsReused = uint32_t(r.graphCache.reuses - reused);
   st.passes = graph.stats();
+  for (PassStat& p : st.passes) p.ms = p.skipped ? 0.0 : -1.0;  // -1 until the frame is retired
+  st.gpuMs = -1.0;
   st.method = name(r.method);
   st.methodReason = r.methodReason;
-  collectStats(r, st);
   st.lightSetup = r.lightsOnGpu ? "gpu" : "cpu";
   st.lightSetupReason = r.lightSetupReason;
-  // Light setup on the GPU: its counts, and the lights themselves when the frame is inspected.
-  if (r.lightsOnGpu) readGpuLights(r, st, !request.readback.empty() || request.cullingStats);
+  cpuLightCounts(r, st);
   if (r.method == Method::Clustered) {
-    st.clusters = r.clusterGrid ? gridClusterStats(r) : collectClusterStats(r);
     st.clusterAssign = r.clusterGrid ? "cpu" : "gpu";
     st.clusterAssignReason = r.clusterAssignReason;
+    if (r.clusterGrid) st.clusters = gridClusterStats(r);  // known on the CPU; the GPU's counts when retired
   }
+  slot.start = start;
+  slot.skyQuery = r.skyQueryActive;
+  slot.skyKey = skyVisibilityKey(r);
+  slot.gpuLightCounts = r.lightsOnGpu;
+  slot.clusterCounts = r.method == Method::Clustered && !r.clusterGrid;
+  return request;
+}
+
+const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const FrameRequest& userRequest) {
+  retireFrames(r);  // frames in flight first (their stats wait in r.retired for finishFrames)
+  nextFrameSlot(r);
+  const FrameRequest request = recordFrame(r, options, userRequest);
+  FrameStats& st = r.stats;
+  st = retireFrame(r, frameSlot(r));
+  // Light setup on the GPU: the lights themselves when the frame is inspected.
+  if (r.lightsOnGpu && (!request.readback.empty() || request.cullingStats)) readGpuLights(r);
   for (Target t : request.readback) r.readback[size_t(t)] = unpackReadback(r, t);
   if (request.cullingStats && options.coverage) st.culling = cullingStats(r, st);
   return st;
+}
+
+void submitFrame(Renderer& r, const RenderOptions& options) {
+  // Coverage frames count per pixel for read-backs and culling statistics: renderFrame's.
+  GB_ASSERT(!options.coverage);
+  // New targets: the frames in flight finish on the old ones first (their sky counts belong there).
+  if (!targetsCurrent(r, options)) retireFrames(r);
+  nextFrameSlot(r);  // waits for the frame that last used this slot
+  recordFrame(r, options, {});
 }
 
 void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
   r.ctx = &ctx;
   r.scene = &scene;
   uploadScene(r);
-  createFrameBuffers(r);
   createDescriptors(r);
-  writeSceneSet(r);
+  createFrameSlots(r);
   sortDraws(r);
-  VkCommandBufferAllocateInfo cai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  cai.commandPool = ctx.commandPool;
-  cai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  cai.commandBufferCount = 1;
-  VK_CHECK(vkAllocateCommandBuffers(ctx.device, &cai, &r.cmd));
-  setName(ctx, uint64_t(r.cmd), VK_OBJECT_TYPE_COMMAND_BUFFER, "frame");
-  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &r.fence));
 }
 
 void destroyRenderer(Renderer& r) {
@@ -322,22 +267,16 @@ void destroyRenderer(Renderer& r) {
   destroyGpuLights(r);
   destroyGraphCache(ctx, r.graphCache);
   for (auto& [k, p] : r.pipelines) vkDestroyPipeline(ctx.device, p, nullptr);
-  if (r.timestampPool) vkDestroyQueryPool(ctx.device, r.timestampPool, nullptr);
   if (r.statisticsPool) vkDestroyQueryPool(ctx.device, r.statisticsPool, nullptr);
-  if (r.occlusionPool) vkDestroyQueryPool(ctx.device, r.occlusionPool, nullptr);
-  for (Buffer* b : {&r.vertexBuffer, &r.indexBuffer, &r.icosahedronBuffer, &r.frameBuffer, &r.drawBuffer,
-                    &r.materialBuffer, &r.lightBuffer, &r.visibleBuffer, &r.lightCountBuffer})
-    destroyBuffer(ctx, *b);
+  destroyFrameSlots(r);
+  for (Buffer* b : {&r.vertexBuffer, &r.indexBuffer, &r.icosahedronBuffer, &r.materialBuffer}) destroyBuffer(ctx, *b);
   for (Image& img : r.textures) destroyImage(ctx, img);
   for (VkSampler s : {r.samplerRepeat, r.samplerClamp, r.samplerShadow, r.samplerPoint}) vkDestroySampler(ctx.device, s, nullptr);
-  vkDestroyDescriptorPool(ctx.device, r.descriptorPool, nullptr);
   vkDestroyPipelineLayout(ctx.device, r.pipelineLayout, nullptr);
   vkDestroyPipelineLayout(ctx.device, r.pipelineLayoutInput, nullptr);
   vkDestroyDescriptorSetLayout(ctx.device, r.sceneSetLayout, nullptr);
   vkDestroyDescriptorSetLayout(ctx.device, r.passSetLayout, nullptr);
   vkDestroyDescriptorSetLayout(ctx.device, r.passSetLayoutInput, nullptr);
-  vkFreeCommandBuffers(ctx.device, ctx.commandPool, 1, &r.cmd);
-  vkDestroyFence(ctx.device, r.fence, nullptr);
   r = Renderer{};
 }
 

@@ -1,5 +1,6 @@
 // The renderer: a scene on the GPU, the frame's targets, and renderFrame(), which builds the
-// frame graph (frame.cpp), records it, submits, waits, and reads back what was asked for.
+// frame graph (frame.cpp), records it, submits, waits, and reads back what was asked for; or
+// submitFrame(), which leaves the frame in flight (frame slots, frame_slots.h).
 #pragma once
 #include <array>
 #include <chrono>
@@ -79,21 +80,52 @@ struct PipelineKey {
 };
 
 // Clustered shading's buffers (renderer/cluster_buffers.cpp): device-local, sized for the frame;
-// capacities in clusters and light-list entries grow when a frame runs out of room.
-// With --cluster-assign cpu: the CPU's cluster grid (renderer/core/cluster_grid.h) and its
-// host-visible copies (gridCells, gridLights), written before the frame is submitted.
+// capacities in clusters and light-list entries grow when a frame runs out of room. (The header's
+// copy for the CPU is per frame slot: FrameSlot::clusterHeader.) With --cluster-assign cpu: the
+// CPU's cluster grid (renderer/core/cluster_grid.h); its copies for the GPU are per frame slot.
 struct ClusterBuffers {
-  Buffer header, headerReadback, clusters, pixelClusters, lists, binBits, binBoxes;
+  Buffer header, clusters, pixelClusters, lists, binBits, binBoxes;
   uint32_t clusterCapacity = 0, listCapacity = 0;
   VkDeviceSize binBitsBytes = 0, binBoxBytes = 0;  // this frame's parts to clear
   ClusterGrid grid;
-  Buffer gridCells, gridLights;
 };
 
 // Light setup on the GPU (renderer/gpu_lights.cpp): the scene's lights as uploaded, and scratch.
+// `descs` holds the lights of `scene` at lights generation `generation` (LightList).
 struct GpuLights {
   Buffer descs, scratch;
-  std::vector<PointLightDesc> uploaded;  // what `descs` holds
+  VkDeviceSize uploadBytes = 0;  // this frame copies this many bytes of new descriptions (light_upload)
+  const Scene* scene = nullptr;
+  uint64_t generation = 0;
+  uint64_t uploads = 0;  // how many times `descs` was written (tests: an unchanged scene uploads nothing)
+  std::vector<PointLightDesc> checkCopy;  // with validation on: what `descs` holds, to catch a missed edit
+};
+
+// Frames in flight: the renderer records a frame into one slot while the GPU may still run the
+// frame of the other (submitFrame; renderFrame waits for its own). A slot holds what a frame
+// writes from the CPU and what the CPU reads after it (renderer/frame_slots.cpp).
+inline constexpr uint32_t kFrameSlots = 2;
+
+struct FrameSlot {
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VkFence fence = VK_NULL_HANDLE;
+  // Set 0's per-frame buffers (written by the CPU before submission, or by light setup on the
+  // GPU) and set 0 naming them: the other slot's frame may still read its own.
+  Buffer frameBuffer, drawBuffer, lightBuffer, visibleBuffer, lightCountBuffer;
+  VkDescriptorSet sceneSet = VK_NULL_HANDLE;
+  Buffer lightDescStaging;  // new light descriptions, copied into GpuLights::descs by light_upload
+  Buffer clusterHeader;     // the cluster counters copied for the CPU (clustered frames)
+  Buffer gridCells, gridLights;  // the cluster grid's cells and lights as the CPU wrote them (--cluster-assign cpu)
+  VkQueryPool timestampPool = VK_NULL_HANDLE, occlusionPool = VK_NULL_HANDLE;
+  uint32_t timestampCapacity = 0;
+
+  // The frame in the slot, from its submission until it is retired (fence waited, stats complete).
+  bool pending = false;
+  FrameStats stats;        // what the CPU knew at submission; the GPU's figures when retired
+  bool skyQuery = false;   // its skybox counted sky pixels ...
+  SkyKey skyKey;           // ... for this camera, size and geometry
+  bool gpuLightCounts = false, clusterCounts = false;  // counts to read from the GPU when retired
+  std::chrono::steady_clock::time_point start;        // when its CPU work began
 };
 
 struct Renderer {
@@ -101,8 +133,7 @@ struct Renderer {
   const Scene* scene = nullptr;
 
   // The scene on the GPU (gpu_scene.cpp).
-  Buffer vertexBuffer, indexBuffer, icosahedronBuffer;
-  Buffer frameBuffer, drawBuffer, materialBuffer, lightBuffer, visibleBuffer;
+  Buffer vertexBuffer, indexBuffer, icosahedronBuffer, materialBuffer;
   std::vector<Image> textures;      // the scene's, then white and flat-normal stand-ins
   std::vector<uint32_t> drawOrder;  // instance indices grouped by drawVariant()
   std::array<uint32_t, 9> drawVariants{};  // drawOrder[drawVariants[v], drawVariants[v+1]) has variant v (gpu_scene.h)
@@ -112,15 +143,13 @@ struct Renderer {
   VkDescriptorSetLayout passSetLayoutInput = VK_NULL_HANDLE;  // set 1 with subpass inputs
   VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayoutInput = VK_NULL_HANDLE;      // single-pass lighting pipelines
-  VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
-  VkDescriptorSet sceneSet = VK_NULL_HANDLE;
+  VkDescriptorPool descriptorPool = VK_NULL_HANDLE;  // set 0 of each frame slot
 
   // Frame resources.
   RenderOptions options;  // the options the targets were created for (as asked: method may be auto)
   Method method = Method::Deferred;  // the method this frame runs (options.method resolved by chooseMethod)
   std::string methodReason;
   ClusterBuffers clusters;
-  Buffer lightCountBuffer;  // gpu::LightCounts of this frame (set 0, kBindingLightCounts)
   GpuLights gpuLights;
   Buffer fairyBits;                 // fairy_bins' masks (--fairy-splat compute), the light bins' layout
   VkDeviceSize fairyBitsBytes = 0;  // this frame's part
@@ -135,18 +164,17 @@ struct Renderer {
   uint32_t visibleBound = 0;   // visible lights this frame: exact on the CPU path, the scene's lights on the GPU's
   bool targetsValid = false;
   std::optional<TargetsKey> targetsKey;  // what the targets were created for (none: uploaded ones)
-  uint32_t timestampCapacity = 0;
   GraphTargets targets;
   GraphCache graphCache;
   std::map<PipelineKey, VkPipeline> pipelines;
-  VkQueryPool timestampPool = VK_NULL_HANDLE, statisticsPool = VK_NULL_HANDLE;
+  std::array<FrameSlot, kFrameSlots> slots;
+  uint32_t slot = 0;                  // the slot of the frame being recorded, or of the last one submitted
+  std::vector<FrameStats> retired;    // frames in flight retired since finishFrames last returned them
+  VkQueryPool statisticsPool = VK_NULL_HANDLE;  // culling frames only (synchronous)
   bool statisticsActive = false;  // this frame counts fragment invocations of the point-light pass
-  VkQueryPool occlusionPool = VK_NULL_HANDLE;  // sky pixels drawn by the skybox
-  bool skyQueryActive = false;                 // this frame's skybox counts them
-  std::optional<SkyKey> skyKey;                // skyVisibilityKey() of the last count
-  uint64_t skyPixels = UINT64_MAX;             // the last count (UINT64_MAX: none yet)
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  VkFence fence = VK_NULL_HANDLE;
+  bool skyQueryActive = false;    // this frame's skybox counts sky pixels (the slot's occlusion query)
+  std::optional<SkyKey> skyKey;   // skyVisibilityKey() of the last count of a retired frame
+  uint64_t skyPixels = UINT64_MAX;  // that count (UINT64_MAX: none yet); never a pending frame's
   std::array<Buffer, kTargetCount> readbackBuffers;
   std::array<CpuImage, kTargetCount> readback;  // filled for the targets a request named
 
@@ -157,9 +185,11 @@ struct Renderer {
   gpu::FrameData frameData{};  // this frame's uniform data, as the shaders saw it
   std::vector<float> srgbDecode;  // probeSrgbDecode's table (empty until probed)
   std::optional<ShadowMapKey> shadowKey;  // what the shadow map was rendered for (reuse when unchanged)
-  FrameStats stats;
-  std::chrono::steady_clock::time_point submitted;  // when this frame was submitted (FrameStats::cpuMs)
+  FrameStats stats;  // of the last synchronous frame (renderFrame)
 };
+
+inline FrameSlot& frameSlot(Renderer& r) { return r.slots[r.slot]; }
+inline const FrameSlot& frameSlot(const Renderer& r) { return r.slots[r.slot]; }
 
 // Uploads the scene; the Renderer keeps a pointer to it (the scene must outlive the renderer;
 // lights may change between frames).
@@ -167,8 +197,20 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene);
 void destroyRenderer(Renderer& r);
 
 // Renders one frame with these options and waits for it. Targets are re-created when the size
-// or a format changes.
+// or a format changes. Frames still in flight are finished first (their stats wait for finishFrames).
 const FrameStats& renderFrame(Renderer& r, const RenderOptions& options, const FrameRequest& request = {});
+
+// Frames in flight: records and submits one frame and returns without waiting for it, so the
+// CPU records the next frame while the GPU runs this one. Waits only for the frame that last
+// used this frame's slot (kFrameSlots in flight at most). Nothing is read back (coverage frames
+// are for read-backs: renderFrame). Its FrameStats come from finishFrames.
+void submitFrame(Renderer& r, const RenderOptions& options);
+// Waits for every frame in flight; the FrameStats of every frame retired since the last call
+// (renderFrame's own excepted), complete (GPU times, light and cluster counts), oldest first.
+std::vector<FrameStats> finishFrames(Renderer& r);
+// A burst of `frames` frames of these options in flight (at least 2; FrameBurst says what is
+// timed), for the bench and gblens render --stats.
+FrameBurst renderBurst(Renderer& r, const RenderOptions& options, int frames);
 // One more frame with the coverage counters on and the eye depth kept, for its culling counts
 // (FrameStats::culling): the counters' atomics would slow frames that are being timed.
 const FrameStats& renderCountingFrame(Renderer& r, const RenderOptions& options, FrameRequest request = {});
@@ -176,6 +218,7 @@ const FrameStats& renderCountingFrame(Renderer& r, const RenderOptions& options,
 // Runs a small graph over this frame's targets after renderFrame (the viewer's region read-back
 // and view ranges): `build` adds passes, then the `handOff` targets are left readable by fragment
 // shaders again. Barriers come from the passes' declarations, as in the frame. Submits and waits.
+// No frame may be in flight (finishFrames).
 void runAfterFrame(Renderer& r, const std::function<void(FrameGraph&)>& build, const std::vector<Target>& handOff);
 
 }  // namespace gb

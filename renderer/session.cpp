@@ -58,6 +58,11 @@ const FrameStats& HeadlessSession::render(const RenderOptions& o, const FrameReq
   return renderFrame(*renderer_, o, request);
 }
 
+FrameBurst HeadlessSession::renderBurst(const RenderOptions& o, int frames) {
+  GB_ASSERT(sceneInUse_);
+  return gb::renderBurst(*renderer_, o, frames);
+}
+
 const FrameStats& HeadlessSession::renderCounting(const RenderOptions& o, const FrameRequest& request) {
   GB_ASSERT(sceneInUse_);
   return renderCountingFrame(*renderer_, o, request);

@@ -44,6 +44,8 @@ class HeadlessSession {
 
   // One frame; the request's targets are read back.
   const FrameStats& render(const RenderOptions& options, const FrameRequest& request = {});
+  // A burst of frames in flight (renderBurst: the throughput; nothing read back).
+  FrameBurst renderBurst(const RenderOptions& options, int frames);
   // One more frame with the coverage counters on, for its culling counts (renderCountingFrame).
   const FrameStats& renderCounting(const RenderOptions& options, const FrameRequest& request = {});
   // One frame of `targets`, as a snapshot (render + snapshot), with the device's sRGB decode table.

@@ -1,7 +1,9 @@
 // The method comparison and the skip savings of gblens bench (see bench_methods.h). Methods are
-// timed in rounds, one frame of each per round in rotated order, on a renderer each (their own
-// targets and pipelines), so drift and other processes' load hit every method alike and the
-// ratios to the defaults (the method auto picks on this device) come from frames taken side by side.
+// timed in rounds, one burst of frames in flight of each per round in rotated order, on a renderer
+// each (their own targets and pipelines), so drift and other processes' load hit every method
+// alike and the ratios to the defaults (the method auto picks on this device) come from bursts
+// taken side by side. A burst's frame time is its throughput (renderBurst: the CPU records a frame
+// while the GPU runs the one before).
 #include "app/bench/bench_methods.h"
 
 #include <algorithm>
@@ -69,41 +71,50 @@ Cell makeCell(const GpuContext& ctx, const Scene& scene, const RenderOptions& ba
   return c;
 }
 
-// Timed rounds: one frame of each active method per round, order rotated; per-round ratios to the
-// reference method's frame.
-void timeRounds(std::vector<std::unique_ptr<Renderer>>& rs, Cell& c, int rounds,
-                std::vector<std::vector<FrameStats>>& stats, std::vector<std::vector<double>>& ratios) {
+// A method's timed rounds: each burst's frame time (throughput), its counted frames, and the
+// ratio to the reference method's burst of the same round.
+struct Timed {
+  std::vector<double> burstMs, ratios;
+  std::vector<FrameStats> frames;
+};
+
+// Timed rounds: one burst of `burst` frames in flight of each active method per round, order
+// rotated; per-round ratios to the reference method's burst.
+void timeRounds(std::vector<std::unique_ptr<Renderer>>& rs, Cell& c, int rounds, int burst, std::vector<Timed>& timed) {
   const size_t n = c.rows.size();
   for (int k = 0; k < rounds; ++k) {
     std::vector<double> t(n, 0.0);
     for (size_t j = 0; j < n; ++j) {
       const size_t i = (j + size_t(k)) % n;  // rotated: no method always runs first
       if (!c.active[i]) continue;
-      stats[i].push_back(renderFrame(*rs[i], c.opts[i]));
-      t[i] = stats[i].back().frameMs;
+      FrameBurst b = renderBurst(*rs[i], c.opts[i], burst);
+      t[i] = b.msPerFrame;
+      timed[i].burstMs.push_back(b.msPerFrame);
+      for (FrameStats& f : b.frames) timed[i].frames.push_back(std::move(f));
     }
     for (size_t i = 0; i < n; ++i)
-      if (c.active[i]) ratios[i].push_back(t[i] / t[c.reference]);
+      if (c.active[i]) timed[i].ratios.push_back(t[i] / t[c.reference]);
   }
 }
 
-// A row's timings from its frames, then its culling efficiency from one more frame with coverage
-// on (not timed) where that is affordable.
-void summarize(Renderer& r, const RenderOptions& o, MethodRow& row, const std::vector<FrameStats>& frames,
-               const std::vector<double>& ratios, const MethodSettings& s) {
-  std::vector<double> frameMs, gpuMs, cpuMs;
+// A row's timings from its bursts (frame ms: the bursts' throughputs; GPU and CPU ms: their
+// frames'), then its culling efficiency from one more frame with coverage on (not timed) where
+// that is affordable.
+void summarize(Renderer& r, const RenderOptions& o, MethodRow& row, const Timed& timed, const MethodSettings& s) {
+  const std::vector<FrameStats>& frames = timed.frames;
+  std::vector<double> gpuMs, cpuMs;
   for (const FrameStats& f : frames) {
-    frameMs.push_back(f.frameMs);
     gpuMs.push_back(f.gpuMs);
     cpuMs.push_back(f.cpuMs);
   }
   row.measured = true;
   row.frames = int(frames.size());
-  row.frameMs = timingOf(frameMs);
+  row.bursts = int(timed.burstMs.size());
+  row.frameMs = timingOf(timed.burstMs);
   row.gpuMs = timingOf(gpuMs);
   row.cpuMs = timingOf(cpuMs);
   row.passes = passTimings(frames);
-  row.overDefault = timingOf(ratios).median;
+  row.overDefault = timingOf(timed.ratios).median;
   row.lightSetup = frames.back().lightSetup;
   row.clusterAssign = frames.back().clusterAssign;
   if (frames.back().clusters.valid) row.clusters = frames.back().clusters;
@@ -187,18 +198,17 @@ std::vector<MethodRow> methodStudy(GpuContext& ctx, Scene& scene, const RenderOp
         } else if (lastLights > 0) {
           lastMs[i] *= double(std::max(lights, 1)) / std::max(lastLights, 1);
         }
-        roundMs += lastMs[i];
+        roundMs += lastMs[i] * s.burst;
       }
       lastLights = lights;
       // This cell's share of what is left of the comparison's time.
       const double share = (s.seconds - since(start)) / double(cellsTotal - cellsDone + 1);
       const int rounds = std::clamp(int(share * 1000.0 / std::max(roundMs, 1e-3)), s.minRounds, s.rounds);
-      std::vector<std::vector<FrameStats>> stats(n);
-      std::vector<std::vector<double>> ratios(n);
-      timeRounds(rs, c, rounds, stats, ratios);
+      std::vector<Timed> timed(n);
+      timeRounds(rs, c, rounds, s.burst, timed);
       for (size_t i = 0; i < n; ++i) {
         if (!c.active[i]) continue;
-        summarize(*rs[i], c.opts[i], c.rows[i], stats[i], ratios[i], s);
+        summarize(*rs[i], c.opts[i], c.rows[i], timed[i], s);
         lastMs[i] = c.rows[i].frameMs.median;
       }
       for (const MethodRow& row : c.rows) {

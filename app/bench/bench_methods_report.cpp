@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "app/bench/bench_format.h"
+#include "app/bench/bench_methods.h"
 
 namespace gb {
 
@@ -55,6 +56,8 @@ nlohmann::json methodsJson(const BenchReport& r) {
     if (!m.note.empty()) o["note"] = m.note;
     if (m.measured) {
       o["frames"] = m.frames;
+      o["bursts"] = m.bursts;
+      o["frames_in_flight"] = kFrameSlots;  // frame_ms: the bursts' throughput (methods_settings.frame_ms)
       o["frame_ms"] = timingJson(m.frameMs);
       o["gpu_ms"] = timingJson(m.gpuMs);
       o["cpu_ms"] = timingJson(m.cpuMs);
@@ -154,8 +157,10 @@ std::string methodsMarkdown(const BenchReport& r) {
   }
   if (!r.methods.empty()) {
     md << "## Lighting methods (" << r.methods.front().scene << ")\n\n"
-       << "Each cell: the four methods timed in interleaved rounds (one frame of each per round, order rotated), "
-          "shadow map reused (a static scene). The defaults are `--method auto`: the row marked (auto) is the method it "
+       << "Each cell: the methods timed in interleaved rounds (one burst of frames in flight of each per round, "
+          "order rotated), shadow map reused (a static scene). `frame ms` is a burst's throughput: "
+       << kBurstFrameMs
+       << ". The defaults are `--method auto`: the row marked (auto) is the method it "
           "runs in that cell on this device. `x defaults` is the median over rounds of the method's frame time / the "
           "auto-picked method's frame time of the same round. `cpu ms`: the frame's CPU time before submission. "
           "`lighting ms` sums the lighting passes' GPU timestamps (directional_light, light_mask, point_lights, "

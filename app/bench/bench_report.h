@@ -116,8 +116,11 @@ struct MethodRow {
   bool autoPick = false;  // the method --method auto (the defaults) runs in this cell on this device
   bool measured = false;
   std::string note;  // why not measured, or what was cut
-  int frames = 0;
-  Timing frameMs, gpuMs, cpuMs;  // cpuMs: the CPU's part before submission (FrameStats::cpuMs)
+  int frames = 0;  // counted frames (each burst's but its first)
+  int bursts = 0;  // timed rounds: one burst of frames in flight each
+  // frameMs: the bursts' throughput (wall time per counted frame, renderBurst); gpuMs, cpuMs: the
+  // counted frames' (cpuMs: the CPU's part before submission, FrameStats::cpuMs).
+  Timing frameMs, gpuMs, cpuMs;
   std::string lightSetup;        // where the lights were set up ("cpu", "gpu")
   std::string clusterAssign;     // method clustered: where its lights were assigned ("cpu" grid, "gpu")
   ClusterStats clusters;         // method clustered: occupied clusters, list entries

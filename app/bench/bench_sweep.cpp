@@ -292,6 +292,9 @@ BenchReport runBench(GpuContext& ctx, const BenchPlan& p) {
                                        {"forward_max_lights", s.methods.forwardMaxLights},
                                        {"rounds", s.methods.rounds},
                                        {"min_rounds", s.methods.minRounds},
+                                       {"burst", s.methods.burst},
+                                       {"frames_in_flight", kFrameSlots},
+                                       {"frame_ms", kBurstFrameMs},
                                        {"seconds", s.methods.seconds},
                                        {"shadow_map", "reused (a static scene)"}};
     Scene temple = loadScene("builtin:temple", p.defaults.lights);

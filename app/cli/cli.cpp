@@ -23,7 +23,9 @@ void addCommonOptions(CLI::App* cmd, CommonOptions& o, const std::vector<std::st
     CLI::Option* opt = cmd->add_option(flagName(info.name), value, info.help)->capture_default_str();
     if (info.kind == OptionKind::Choice) opt->check(CLI::IsMember(info.choices));
   }
-  cmd->add_option("--frames", o.frames, "render N frames, report the median")
+  cmd->add_option("--frames", o.frames,
+                  "render N frames, report the median (render: from 3 frames on, those before the last in flight, "
+                  "frame_ms their throughput)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   cmd->add_flag("--stats", o.stats, "print frame statistics as JSON on stdout");

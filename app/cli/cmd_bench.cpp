@@ -107,6 +107,11 @@ Command addBenchCommand(CLI::App& root) {
   cmd->add_option("--methods-min-rounds", s->methods.minRounds, "timed rounds per cell, at least")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
+  cmd->add_option("--methods-burst", s->methods.burst,
+                  "frames in flight per method per round; the first is waited for and not counted, frame ms is "
+                  "the rest's throughput")
+      ->check(CLI::Range(2, 1000))
+      ->capture_default_str();
   cmd->add_option("--shadow-reuse", s->shadowReuse,
                   "off: timed frames render the shadow map every frame (a moving sun); on: a static scene reuses it")
       ->check(CLI::IsMember({"on", "off"}))

@@ -1,7 +1,9 @@
 // gblens render: one headless frame of a scene, written as a PNG of the final image or of one
-// examination view (--target, a name of the view table).
+// examination view (--target, a name of the view table); with --frames N, the frames before the
+// last in flight (frame_ms in --stats: their throughput).
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "app/cli/cli.h"
 #include "renderer/session.h"
@@ -38,7 +40,15 @@ static int render(const CommonOptions& o, ViewKind view) {
   FrameRequest request;
   request.readback = {target};
   std::vector<FrameStats> frames;
-  for (int i = 0; i < o.frames; ++i) {
+  // Frames before the last in flight (the CPU records one while the GPU runs the one before),
+  // when there are enough for a burst and none counts coverage; the last one is read back.
+  std::optional<FrameBurst> burst;
+  if (o.frames >= 3 && !ro.coverage) {
+    burst = session.renderBurst(ro, o.frames - 1);
+    frames.push_back(burst->first);
+    frames.insert(frames.end(), burst->frames.begin(), burst->frames.end());
+  }
+  for (int i = int(frames.size()); i < o.frames; ++i) {
     RenderDocCapture rdc(session.context(), i + 1 == o.frames);  // under RenderDoc: the frame written
     frames.push_back(session.render(ro, request));
     reportRenderDocCapture("gblens render", rdc);
@@ -56,7 +66,10 @@ static int render(const CommonOptions& o, ViewKind view) {
   }
   if (o.stats)
     std::printf("%s\n",
-                statsJson(frames, {session.deviceName(), session.driverName(), scene.source}, ro, &counted).dump(2).c_str());
+                statsJson(frames, {session.deviceName(), session.driverName(), scene.source}, ro, &counted,
+                          burst ? &*burst : nullptr)
+                    .dump(2)
+                    .c_str());
   if (session.reportValidation() && status == 0) status = 1;
   return status;
 }

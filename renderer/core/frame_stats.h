@@ -20,7 +20,7 @@ struct PassStat {
   std::string name;
   bool skipped = false;
   std::string reason;
-  double ms = 0.0;
+  double ms = 0.0;  // GPU time (-1 for a pass that ran until its frame in flight is retired)
 };
 
 struct CullingStats {
@@ -46,8 +46,10 @@ struct FrameStats {
   // Method clustered: where its lights were assigned ("gpu": occupied clusters, "cpu": the cluster
   // grid, --cluster-assign) and why; empty for the other methods.
   std::string clusterAssign, clusterAssignReason;
-  double frameMs = 0.0;  // CPU wall time of the frame: record + submit + wait
-  double gpuMs = 0.0;    // first to last GPU timestamp
+  // CPU wall time of the frame: record + submit + wait. A frame in flight (submitFrame): from its
+  // start until it was seen finished, a latency (its throughput is a burst's: FrameBurst).
+  double frameMs = 0.0;
+  double gpuMs = 0.0;    // first to last GPU timestamp (-1 until a frame in flight is retired)
   // CPU time of the frame before submission: per-frame work (camera, draws, light classification,
   // frame data), building the frame graph and recording it.
   double cpuMs = 0.0;
@@ -61,6 +63,17 @@ struct FrameStats {
   uint32_t stencilLayers = 0;  // screen-disjoint layers of the stencil class (FrameLights::layerStarts)
   uint32_t lightsCulledFrustum = 0, lightsCulledEmpty = 0, lightsCulledSubpixel = 0;  // lightsCulled split
   int64_t skyPixels = -1;  // sky pixels the skybox drew (occlusion query; -1: skybox not drawn)
+};
+
+// A burst of frames in flight (renderBurst, renderer.h): the first is submitted and waited for
+// (not counted), the others back to back; msPerFrame is the wall time from the start of the second
+// to the end of the last, per counted frame: the throughput, with the pipeline's fill (one frame's
+// CPU or GPU time, the smaller) spread over the counted frames.
+struct FrameBurst {
+  FrameStats first;                // the first frame (waited for, not counted)
+  std::vector<FrameStats> frames;  // the counted frames, oldest first
+  double msPerFrame = 0.0;
+  int inFlight = 0;  // frames submitted at once at most (the renderer's frame slots)
 };
 
 }  // namespace gb

@@ -11,7 +11,7 @@ void addClusterGridLightingPass(FrameGraph& g, Renderer& r) {
   std::vector<Use> uses = gbufferReads(r);
   uses.push_back(hdrUse(Access::ColorWrite));  // every pixel is written: geometry, sky or zero
   uses.push_back({Target::CoverageMasked, Access::StorageFragment});  // bound even when off (1x1)
-  const ClusterBuffers& c = r.clusters;
+  const FrameSlot& slot = frameSlot(r);  // the grid the CPU wrote for this frame
   g.addPass("clustered_lighting", uses, [&r](PassContext& pc) {
     VkPipeline p = graphicsPipeline(r, pc, "clustered_grid", [&r](GraphicsPipelineDesc& d) {
       d.vertexShader = Shader::fullscreen_vert;
@@ -19,17 +19,17 @@ void addClusterGridLightingPass(FrameGraph& g, Renderer& r) {
       d.layout = r.pipelineLayout;
     });
     const GraphTarget& coverage = r.targets[size_t(Target::CoverageMasked)];
-    const ClusterBuffers& c = r.clusters;
+    const FrameSlot& slot = frameSlot(r);
     bindGBuffer(r, pc,
                 {{gpu::kBindingCoverage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, coverage.image.view, VK_IMAGE_LAYOUT_GENERAL}},
                 VK_PIPELINE_BIND_POINT_GRAPHICS,
-                {{gpu::kBindingGridCells, c.gridCells.buffer}, {gpu::kBindingGridLights, c.gridLights.buffer}});
+                {{gpu::kBindingGridCells, slot.gridCells.buffer}, {gpu::kBindingGridLights, slot.gridLights.buffer}});
     bindPipeline(pc, p);
     vkCmdSetCullMode(pc.cmd, VK_CULL_MODE_NONE);
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
     vkCmdDraw(pc.cmd, 3, 1, 0, 0);
-  }, {{c.gridCells.buffer, BufferAccess::FragmentRead}, {c.gridLights.buffer, BufferAccess::FragmentRead}});
+  }, {{slot.gridCells.buffer, BufferAccess::FragmentRead}, {slot.gridLights.buffer, BufferAccess::FragmentRead}});
 }
 
 }  // namespace gb

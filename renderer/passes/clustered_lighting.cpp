@@ -18,7 +18,7 @@ void addClusteredLightingPass(FrameGraph& g, Renderer& r) {
                                                                          : Shader::clustered_lighting_rgba16f_comp;
     const ClusterBuffers& c = r.clusters;
     VkBufferCopy copy{0, 0, sizeof(gpu::ClusterHeader)};
-    vkCmdCopyBuffer(pc.cmd, c.header.buffer, c.headerReadback.buffer, 1, &copy);
+    vkCmdCopyBuffer(pc.cmd, c.header.buffer, frameSlot(r).clusterHeader.buffer, 1, &copy);
     const GraphTarget& hdr = r.targets[size_t(Target::Hdr)];
     const GraphTarget& coverage = r.targets[size_t(Target::CoverageMasked)];
     pushClusterDescriptors(
@@ -30,7 +30,8 @@ void addClusteredLightingPass(FrameGraph& g, Renderer& r) {
     vkCmdDispatch(pc.cmd, (r.options.width + tile - 1) / tile, (r.options.height + tile - 1) / tile, 1);
   }, [&] {
     std::vector<BufferUse> b = lightReads(r, BufferAccess::ComputeRead);
-    b.insert(b.end(), {{c.header.buffer, BufferAccess::TransferRead}, {c.headerReadback.buffer, BufferAccess::TransferWrite},
+    b.insert(b.end(), {{c.header.buffer, BufferAccess::TransferRead},
+                       {frameSlot(r).clusterHeader.buffer, BufferAccess::TransferWrite},
                        {c.clusters.buffer, BufferAccess::ComputeRead}, {c.pixelClusters.buffer, BufferAccess::ComputeRead},
                        {c.lists.buffer, BufferAccess::ComputeRead}, {c.binBits.buffer, BufferAccess::ComputeRead}});
     return b;

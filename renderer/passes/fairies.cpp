@@ -24,10 +24,10 @@ void addFairyPass(FrameGraph& g, Renderer& r) {
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
     // The visible count as the GPU has it (light setup on the GPU leaves it there).
-    vkCmdDrawIndirect(pc.cmd, r.lightCountBuffer.buffer, offsetof(gpu::LightCounts, fairyDraw), 1, 0);
+    vkCmdDrawIndirect(pc.cmd, frameSlot(r).lightCountBuffer.buffer, offsetof(gpu::LightCounts, fairyDraw), 1, 0);
   }, [&r] {
     std::vector<BufferUse> b = lightReads(r, BufferAccess::VertexRead);
-    b.push_back({r.lightCountBuffer.buffer, BufferAccess::IndirectRead});
+    b.push_back({frameSlot(r).lightCountBuffer.buffer, BufferAccess::IndirectRead});
     return b;
   }());
 }

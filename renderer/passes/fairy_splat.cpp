@@ -42,7 +42,7 @@ void addFairySplatPasses(FrameGraph& g, Renderer& r, uint32_t visibleMax) {
     w[2].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     w[2].pBufferInfo = &buffer;
     for (VkWriteDescriptorSet& x : w) x.descriptorCount = 1;
-    vkCmdBindDescriptorSets(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.pipelineLayout, gpu::kSetScene, 1, &r.sceneSet, 0,
+    vkCmdBindDescriptorSets(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.pipelineLayout, gpu::kSetScene, 1, &frameSlot(r).sceneSet, 0,
                             nullptr);
     r.ctx->cmdPushDescriptorSet(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.pipelineLayout, gpu::kSetPass, 3, w);
     vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, computePipeline(r, shader));

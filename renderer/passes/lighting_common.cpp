@@ -46,7 +46,7 @@ void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassI
   images.insert(images.end(), extra.begin(), extra.end());
   // bindDescriptors takes an initializer_list; push through a small adapter.
   VkPipelineLayout layout = lightingLayout(r);
-  vkCmdBindDescriptorSets(pc.cmd, bindPoint, layout, gpu::kSetScene, 1, &r.sceneSet, 0, nullptr);
+  vkCmdBindDescriptorSets(pc.cmd, bindPoint, layout, gpu::kSetScene, 1, &frameSlot(r).sceneSet, 0, nullptr);
   std::vector<VkDescriptorImageInfo> infos(images.size());
   std::vector<VkDescriptorBufferInfo> bufferInfos;
   for (const PassBuffer& b : buffers) bufferInfos.push_back({b.buffer, 0, VK_WHOLE_SIZE});
@@ -71,7 +71,7 @@ void bindGBuffer(Renderer& r, const PassContext& pc, std::initializer_list<PassI
 }
 
 void pushComputeBuffers(Renderer& r, VkCommandBuffer cmd, std::initializer_list<PassBuffer> buffers) {
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.pipelineLayout, gpu::kSetScene, 1, &r.sceneSet, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.pipelineLayout, gpu::kSetScene, 1, &frameSlot(r).sceneSet, 0, nullptr);
   std::vector<VkDescriptorBufferInfo> infos;
   infos.reserve(buffers.size());
   std::vector<VkWriteDescriptorSet> writes;
@@ -89,7 +89,7 @@ void pushComputeBuffers(Renderer& r, VkCommandBuffer cmd, std::initializer_list<
 }
 
 std::vector<BufferUse> lightReads(const Renderer& r, BufferAccess access) {
-  return {{r.lightBuffer.buffer, access}, {r.visibleBuffer.buffer, access}, {r.lightCountBuffer.buffer, access}};
+  return {{frameSlot(r).lightBuffer.buffer, access}, {frameSlot(r).visibleBuffer.buffer, access}, {frameSlot(r).lightCountBuffer.buffer, access}};
 }
 
 void drawLightVolumes(Renderer& r, VkCommandBuffer cmd, uint32_t first, uint32_t count) {

@@ -31,7 +31,9 @@ void addClusteredLightingPass(FrameGraph& g, Renderer& r);
 void addClusterGridLightingPass(FrameGraph& g, Renderer& r);
 // Fairy sprites in compute (passes/fairy_splat.cpp): fairy_clear, fairy_bins, fairy_splat.
 void addFairySplatPasses(FrameGraph& g, Renderer& r, uint32_t visibleMax);
-// Light setup on the GPU (passes/light_setup.cpp): light_setup and light_compact.
+// Light setup on the GPU (passes/light_setup.cpp): light_upload (the lights changed since the last
+// upload: GpuLights::uploadBytes), light_setup and light_compact.
+void addLightUploadPass(FrameGraph& g, Renderer& r);
 void addLightSetupPasses(FrameGraph& g, Renderer& r);
 // Binds set 0 and pushes only `buffers` to set 1 (compute passes that read no image).
 void pushComputeBuffers(Renderer& r, VkCommandBuffer cmd, std::initializer_list<PassBuffer> buffers);

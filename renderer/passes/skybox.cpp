@@ -23,9 +23,9 @@ void addSkyboxPass(FrameGraph& g, Renderer& r) {
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
     // Count the sky pixels (depth test passed): zero lets later frames with the same camera skip.
-    if (r.skyQueryActive) vkCmdBeginQuery(pc.cmd, r.occlusionPool, 0, 0);
+    if (r.skyQueryActive) vkCmdBeginQuery(pc.cmd, frameSlot(r).occlusionPool, 0, 0);
     vkCmdDraw(pc.cmd, 3, 1, 0, 0);
-    if (r.skyQueryActive) vkCmdEndQuery(pc.cmd, r.occlusionPool, 0);
+    if (r.skyQueryActive) vkCmdEndQuery(pc.cmd, frameSlot(r).occlusionPool, 0);
   });
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "renderer/core/camera.h"
+#include "renderer/core/light_list.h"
 #include "renderer/core/lights.h"
 #include "renderer/core/vertex.h"
 
@@ -84,7 +85,7 @@ struct Scene {
   std::vector<CameraDesc> cameras;  // [0] is the default view
   Sun sun;
   Sky sky;
-  std::vector<PointLightDesc> lights;
+  LightList lights;  // every non-const access changes lights.generation() (light_list.h)
   bool generatedLights = false;  // lights come from --lights N (regenerated when N changes)
   Bounds bounds;                 // world space, of all instances
   std::vector<std::string> warnings;

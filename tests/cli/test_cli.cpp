@@ -47,6 +47,9 @@ TEST(Cli, RenderStatsReportEveryPassAndTheCullingEfficiency) {
   nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_GT(j["frame_ms"].get<double>(), 0.0);
   EXPECT_EQ(j["frames"].get<int>(), 3);
+  // Frames 1 and 2 in flight (2 counted after the first), frame 3 read back for the PNG.
+  EXPECT_EQ(j["frames_in_flight"].get<int>(), 2);
+  EXPECT_NE(j["frame_ms_measured"].get<std::string>().find("throughput of frames in flight: wall time per frame of 1 timed"), std::string::npos);
   std::vector<std::string> names;
   for (const auto& p : j["passes"]) {
     names.push_back(p["name"]);

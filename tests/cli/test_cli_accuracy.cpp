@@ -119,11 +119,15 @@ TEST(CliAccuracy, BenchWritesJsonCsvAndPlotsWithOneRowPerVariant) {
 TEST(CliAccuracy, BenchComparesTheMethodsSideBySide) {
   std::string dir = tempDir("bench_methods");
   CliRun r = run("bench --only methods --methods-sizes 96x54 --methods-lights 0,24 --methods-forward-max 8 "
-                 "--methods-rounds 2 --methods-min-rounds 2 --size 96x54 --lights 8 --out " + dir);
+                 "--methods-rounds 2 --methods-min-rounds 2 --methods-burst 3 --size 96x54 --lights 8 --out " + dir);
   ASSERT_EQ(r.status, 0) << r.out;
   std::ifstream jf(std::filesystem::path(dir) / "bench.json");
   nlohmann::json j = nlohmann::json::parse(jf);
   EXPECT_EQ(j["rows"].size(), 0u);  // no sweep variant asked for
+  // Frame ms is the throughput of bursts of frames in flight, and the report says so.
+  EXPECT_EQ(j["methods_settings"]["burst"].get<int>(), 3);
+  EXPECT_EQ(j["methods_settings"]["frames_in_flight"].get<int>(), 2);
+  EXPECT_NE(j["methods_settings"]["frame_ms"].get<std::string>().find("throughput"), std::string::npos);
   ASSERT_EQ(j["methods"].size(), 10u);  // 5 methods x 2 light counts
   std::map<std::string, int> seen;
   for (const auto& m : j["methods"]) {
@@ -136,7 +140,9 @@ TEST(CliAccuracy, BenchComparesTheMethodsSideBySide) {
       continue;
     }
     ASSERT_TRUE(m["measured"].get<bool>()) << method << " " << lights;
-    EXPECT_EQ(m["frames"].get<int>(), 2);
+    EXPECT_EQ(m["bursts"].get<int>(), 2);  // one per round
+    EXPECT_EQ(m["frames"].get<int>(), 4);  // each burst's but its first
+    EXPECT_EQ(m["frames_in_flight"].get<int>(), 2);
     EXPECT_GT(m["frame_ms"]["median"].get<double>(), 0.0);
     if (m["auto_pick"].get<bool>()) {
       EXPECT_EQ(m["time_over_default"].get<double>(), 1.0);

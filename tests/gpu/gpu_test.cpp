@@ -1,11 +1,19 @@
 // GpuTest: the shared Vulkan context with validation, one renderer per scene of a test.
 #include "tests/gpu/gpu_test.h"
 
+#include <cstdlib>
 
 namespace gb {
 
 GpuContext& GpuTest::ctx() {
   static GpuContext* context = [] {
+    // Synchronization validation between submissions too, not only within a command buffer:
+    // frames in flight share buffers and targets across submissions. The layer (1.3.239) takes
+    // this alpha check only from its environment (no VK_EXT_layer_settings yet); ':' separates.
+    setenv("VK_LAYER_ENABLES",
+           "VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT:"
+           "VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT",
+           0);
     ContextOptions o;
     o.validation = true;  // every test runs with validation layers, whatever the environment
     o.quiet = true;

@@ -1,6 +1,6 @@
 // Test fixture for everything that touches the GPU: one Vulkan context per test process with
-// validation layers (and synchronization validation) always on; any validation message
-// during a test fails it.
+// validation layers and synchronization validation (between submissions too) always on; any
+// validation message during a test fails it.
 #pragma once
 #include <gtest/gtest.h>
 

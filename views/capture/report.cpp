@@ -131,7 +131,7 @@ nlohmann::json frameStatsJson(const FrameStats& st) {
 }
 
 nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSource& source, const RenderOptions& o,
-                         const FrameStats* counted) {
+                         const FrameStats* counted, const FrameBurst* burst) {
   if (frames.empty()) return nlohmann::json();
   const FrameStats& last = frames.back();
   nlohmann::json j = frameStatsJson(last);
@@ -147,9 +147,19 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSourc
   j["scene"] = source.scene;
   j["options"] = optionsJson(o);
   j["frames"] = frames.size();
-  j["frame_ms"] = median(frameMs);
-  j["frame_ms_min"] = *std::min_element(frameMs.begin(), frameMs.end());
-  j["frame_ms_max"] = *std::max_element(frameMs.begin(), frameMs.end());
+  if (burst) {
+    j["frame_ms"] = burst->msPerFrame;
+    j["frames_in_flight"] = burst->inFlight;
+    j["frame_ms_measured"] = "throughput of frames in flight: wall time per frame of " +
+                             std::to_string(burst->frames.size()) +
+                             " timed after one waited for (a frame read back after them is waited for apart); "
+                             "gpu_ms, cpu_ms and passes: medians over every frame";
+  } else {
+    j["frame_ms"] = median(frameMs);
+    j["frame_ms_min"] = *std::min_element(frameMs.begin(), frameMs.end());
+    j["frame_ms_max"] = *std::max_element(frameMs.begin(), frameMs.end());
+    j["frame_ms_measured"] = "median over the frames, each recorded, submitted and waited for";
+  }
   j["gpu_ms"] = median(gpuMs);
   j["cpu_ms"] = median(cpuMs);
   j["record_ms"] = median(recordMs);

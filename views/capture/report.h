@@ -25,8 +25,10 @@ struct StatsSource {
 };
 // Times, passes and lights of `frames` (frameStatsJson of the last, with times and pass times as
 // medians over all); the culling counts of `counted` when given (a frame rendered with coverage
-// on after the timed ones), else of the last frame.
+// on after the timed ones), else of the last frame. With `burst` (`frames` began with a burst of
+// frames in flight), frame_ms is its throughput; else the median of the frames' (each waited for);
+// frame_ms_measured says which.
 nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSource& source, const RenderOptions& o,
-                         const FrameStats* counted = nullptr);
+                         const FrameStats* counted = nullptr, const FrameBurst* burst = nullptr);
 
 }  // namespace gb

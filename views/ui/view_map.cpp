@@ -90,7 +90,7 @@ static void pushImages(Renderer& r, VkCommandBuffer cmd, VkPipelineBindPoint bin
     w.pBufferInfo = &bufferInfo;
     writes.push_back(w);
   }
-  vkCmdBindDescriptorSets(cmd, bindPoint, layout, gpu::kSetScene, 1, &r.sceneSet, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd, bindPoint, layout, gpu::kSetScene, 1, &frameSlot(r).sceneSet, 0, nullptr);
   r.ctx->cmdPushDescriptorSet(cmd, bindPoint, layout, gpu::kSetPass, uint32_t(writes.size()), writes.data());
 }
 
