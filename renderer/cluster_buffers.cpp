@@ -43,12 +43,21 @@ static PositionSlack positionSlack(const Renderer& r) {
   return e;
 }
 
-void writeClusterGrid(Renderer& r) {
+bool writeClusterGrid(Renderer& r, std::string& why) {
   ClusterBuffers& c = r.clusters;
   FrameSlot& slot = frameSlot(r);  // the other slot's frame may still read its own grid
   assignLights(r.camera, r.lights.eye, r.lights.visible, positionSlack(r), c.grid);
   const VkDeviceSize cellBytes = c.grid.cells.size() * sizeof(glm::uvec2);
   const VkDeviceSize lightBytes = c.grid.lights.size() * sizeof(gpu::PointLight);
+  // Many large lights over many cells can list more than one storage buffer may hold (the stress
+  // suite's 16384 overlapping lights: 178 MB): that frame takes the occupied clusters instead.
+  const VkDeviceSize limit = std::min<VkDeviceSize>(r.ctx->properties.limits.maxStorageBufferRange, kGridBudgetBytes);
+  if (lightBytes + lightBytes / 2 > limit || cellBytes > limit) {
+    why = "the cluster grid would list " + std::to_string(c.grid.lights.size()) + " lights (" +
+          std::to_string(lightBytes >> 20) + " MiB, over " + std::to_string(limit >> 20) +
+          " MiB): occupied clusters in compute this frame";
+    return false;
+  }
   const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   // Grown by half again, so a moving light count does not re-create them every frame.
   if (!slot.gridCells.buffer || slot.gridCells.size < cellBytes)
@@ -57,6 +66,7 @@ void writeClusterGrid(Renderer& r) {
     replace(r, slot.gridLights, lightBytes + lightBytes / 2, usage, MemoryUse::Upload, "grid_lights");
   std::memcpy(slot.gridCells.mapped, c.grid.cells.data(), cellBytes);
   if (lightBytes) std::memcpy(slot.gridLights.mapped, c.grid.lights.data(), lightBytes);
+  return true;
 }
 
 ClusterStats gridClusterStats(const Renderer& r) {

@@ -12,8 +12,10 @@ void clusterFrameData(const Camera& camera, uint32_t visibleMax, gpu::FrameData&
 // The cluster grid's shape as its shader reads it (FrameData::gridShape, gridSlices).
 void gridFrameData(const GridShape& grid, gpu::FrameData& f);
 // The cluster grid (--cluster-assign cpu): assigns this frame's visible lights (r.lights, set up on
-// the CPU) to its cells and writes the host-visible buffers the grid lighting pass reads.
-void writeClusterGrid(Renderer& r);
+// the CPU) to its cells and writes the host-visible buffers the grid lighting pass reads; false
+// (and why) when its lists would not fit one storage buffer of at most kGridBudgetBytes.
+constexpr VkDeviceSize kGridBudgetBytes = VkDeviceSize(64) << 20;
+bool writeClusterGrid(Renderer& r, std::string& why);
 // What the grid holds: occupied cells and light entries (FrameStats::clusters).
 ClusterStats gridClusterStats(const Renderer& r);
 

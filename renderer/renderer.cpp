@@ -75,7 +75,8 @@ static void prepareFrame(Renderer& r) {
   } else {
     uploadCpuLights(r);
     r.visibleBound = uint32_t(r.lights.visible.size());
-    if (r.clusterGrid) writeClusterGrid(r);  // the lights of each cell of the cluster grid
+    std::string why;  // the lights of each cell of the cluster grid, or the occupied clusters if they do not fit
+    if (r.clusterGrid && !writeClusterGrid(r, why)) r.clusterGrid = false, r.clusterAssignReason = why;
   }
 
   f.clipFromEye = glm::mat4(r.camera.clipFromEye);
