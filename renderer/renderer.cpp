@@ -193,8 +193,7 @@ static FrameRequest recordFrame(Renderer& r, const RenderOptions& options, const
   resetQueries(r, graph, request);
   const auto recordStart = std::chrono::steady_clock::now();
   const uint64_t compiled = r.graphCache.compilations, reused = r.graphCache.reuses;
-  recordAndSubmit(r, graph);
-  const auto submitted = std::chrono::steady_clock::now();
+  const auto submitted = recordAndSubmit(r, graph);
 
   FrameSlot& slot = frameSlot(r);
   FrameStats& st = slot.stats;
