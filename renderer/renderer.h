@@ -48,7 +48,7 @@ struct TargetsKey {
   AccumFormat accumFormat{};
   ShadowFormat shadowFormat{};
   PositionSource position{};
-  bool coverage = false, transientGBuffer = false, primitiveId = false, clearViews = false;
+  bool coverage = false, transientGBuffer = false, primitiveId = false, clearViews = false, finalStorage = false;
   bool operator==(const TargetsKey&) const = default;
 };
 struct ShadowMapKey {
@@ -152,6 +152,8 @@ struct Renderer {
   bool fairyCompute = false;        // this frame splats the fairies in compute
   bool computeClear = false;        // clear_gbuffer clears the G-buffer (not the render pass)
   std::string clearReason;
+  bool computeToneMap = false;      // tonemap_compute writes final (not the raster tonemap pass)
+  std::string toneMapReason;
   std::string fairyReason;
   bool lightsOnGpu = false;    // this frame's lights are set up on the GPU (r.lights is empty then)
   std::string lightSetupReason;
