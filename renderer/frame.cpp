@@ -1,5 +1,6 @@
 // The frame, top to bottom: shadow map -> G-buffer -> directional light -> light mask ->
-// point lights -> skybox -> fairy lights -> tone map, in the two-pass or single-pass path;
+// point lights -> skybox -> fairy lights -> tone map (raster or compute), in the two-pass or
+// single-pass path;
 // method tiled replaces the three lighting passes by one compute pass, method clustered by four
 // light-assignment passes and one shading pass (all compute), or, with the cluster grid filled on
 // the CPU (--cluster-assign cpu), by one full-screen raster pass; method forward replaces the
@@ -186,15 +187,22 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
     addFairyPass(g, r);
   }
 
-  // ── Tone map: hdr -> final ────────────────────────────────────────────────────────────────
-  if (singlePass) {
-    g.nextSubpass();
-  } else {
+  // ── Tone map: hdr -> final, a raster pass or in compute ───────────────────────────────────
+  if (r.computeToneMap) {
     if (lightingOpen) g.endRenderPass();
-    g.beginRenderPass("tonemap");
+    g.skipPass("tonemap", "in compute (tonemap_compute): " + r.toneMapReason);
+    addToneMapComputePass(g, r);  // sRGB encoded in the shader, through final's UNORM storage view
+  } else {
+    if (singlePass) {
+      g.nextSubpass();
+    } else {
+      if (lightingOpen) g.endRenderPass();
+      g.beginRenderPass("tonemap");
+    }
+    addToneMapPass(g, r);
+    g.endRenderPass();
+    g.skipPass("tonemap_compute", r.toneMapReason);
   }
-  addToneMapPass(g, r);
-  g.endRenderPass();
 
   // ── Hand-off: read-back for the CPU, sampling for the viewer ─────────────────────────────
   if (!request.readback.empty()) addReadbackPass(g, r, request.readback);

@@ -212,7 +212,7 @@ static void afterEarlierFrames(VkCommandBuffer cmd) {
   vkCmdPipelineBarrier2(cmd, &di);
 }
 
-void recordAndSubmit(Renderer& r, FrameGraph& graph) {
+std::chrono::steady_clock::time_point recordAndSubmit(Renderer& r, FrameGraph& graph) {
   GpuContext& ctx = *r.ctx;
   FrameSlot& s = frameSlot(r);
   const bool othersInFlight = framesInFlight(r);  // this slot's own frame was retired
@@ -227,8 +227,10 @@ void recordAndSubmit(Renderer& r, FrameGraph& graph) {
   si.commandBufferCount = 1;
   si.pCommandBuffers = &s.cmd;
   VK_CHECK(vkResetFences(ctx.device, 1, &s.fence));
+  const Clock::time_point submitted = Clock::now();
   VK_CHECK(vkQueueSubmit(ctx.queue, 1, &si, s.fence));
   s.pending = true;
+  return submitted;
 }
 
 std::vector<FrameStats> finishFrames(Renderer& r) {

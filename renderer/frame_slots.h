@@ -23,8 +23,9 @@ FrameStats retireFrame(Renderer& r, FrameSlot& s);
 // The current slot's queries for the passes of `graph` (created or grown on first use, reset),
 // and the pipeline-statistics query of a culling frame.
 void resetQueries(Renderer& r, const FrameGraph& graph, const FrameRequest& request);
-// Records `graph` into the current slot's command buffer and submits it, without waiting.
-void recordAndSubmit(Renderer& r, FrameGraph& graph);
+// Records `graph` into the current slot's command buffer and submits it, without waiting; the
+// time just before the submission (FrameStats::cpuMs ends there).
+std::chrono::steady_clock::time_point recordAndSubmit(Renderer& r, FrameGraph& graph);
 uint64_t queryResult(GpuContext& ctx, VkQueryPool pool, uint32_t query);
 
 }  // namespace gb

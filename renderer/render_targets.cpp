@@ -28,6 +28,22 @@ bool computeClears(const GpuContext& ctx, const RenderOptions& o, Method ran, st
   return reason = "auto: a GPU device, method " + std::string(name(ran)), true;
 }
 
+bool finalStorageView(const GpuContext& ctx, const RenderOptions& o) {
+  return !singlePassFrame(o) &&
+         (o.tonemapPass == TonemapPass::Compute || (o.tonemapPass == TonemapPass::Auto && !ctx.isCpu));
+}
+
+bool computeToneMap(const GpuContext& ctx, const RenderOptions& o, Method ran, std::string& reason) {
+  if (singlePassFrame(o))
+    return reason = "raster: the single-pass path tone-maps in its last subpass (hdr as an input attachment)", false;
+  if (o.tonemapPass == TonemapPass::Raster) return reason = "raster (--tonemap-pass raster)", false;
+  if (o.tonemapPass == TonemapPass::Compute) return reason = "--tonemap-pass compute", true;
+  if (ctx.isCpu) return reason = "raster: a CPU device (compute image stores are slow there, docs/performance.md)", false;
+  if (ran != Method::Tiled && ran != Method::Clustered)
+    return reason = std::string("raster: method ") + name(ran) + " (auto: compute for tiled and clustered)", false;
+  return reason = "auto: a GPU device, method " + std::string(name(ran)), true;
+}
+
 // The unsigned format of a colour format's texel size: the storage view clear_gbuffer writes
 // zeros through (formats of one size are view-compatible; zero bits are 0 in every format).
 static VkFormat clearViewFormat(TexelFormat f) {
@@ -72,6 +88,7 @@ static TargetsKey targetsKey(const GpuContext& ctx, const Scene& s, const Render
   k.transientGBuffer = transientGBuffer(o);
   k.primitiveId = primitiveIdOn(ctx, o);
   k.clearViews = clearViews(ctx, o);
+  k.finalStorage = finalStorageView(ctx, o);
   return k;
 }
 
@@ -135,6 +152,12 @@ static ImageDesc targetDesc(const GpuContext& ctx, Target t, const Scene& s, con
   if ((role == TargetRole::GBuffer || role == TargetRole::Id) && !d.transient && (d.usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) &&
       clearViews(ctx, o))
     d.clearFormat = clearViewFormat(texelFormat(t, o));
+  // final (sRGB, no storage support) written by tonemap_compute through a UNORM view, the shader
+  // encoding sRGB itself.
+  if (t == Target::Final && finalStorageView(ctx, o)) {
+    GB_ASSERT(d.format == VK_FORMAT_R8G8B8A8_SRGB);
+    d.clearFormat = VK_FORMAT_R8G8B8A8_UNORM;
+  }
   return d;
 }
 

@@ -20,6 +20,13 @@ bool targetTransient(Target t, const RenderOptions& o);
 bool clearViews(const GpuContext& ctx, const RenderOptions& o);
 bool computeClears(const GpuContext& ctx, const RenderOptions& o, Method ran, std::string& reason);
 
+// The tone map runs in compute (tonemap_compute) rather than as a raster pass (TonemapPass):
+// forced, or auto on a GPU device for tiled and clustered; `reason` says why, for the frame's pass
+// list. finalStorageView: final gets the UNORM storage view it writes through (on a GPU device
+// whatever the method, so switching methods keeps the targets).
+bool finalStorageView(const GpuContext& ctx, const RenderOptions& o);
+bool computeToneMap(const GpuContext& ctx, const RenderOptions& o, Method ran, std::string& reason);
+
 // The primitive_id target is written this frame (requested, and the device has gl_PrimitiveID).
 bool primitiveIdOn(const GpuContext& ctx, const RenderOptions& o);
 

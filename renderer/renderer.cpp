@@ -177,6 +177,7 @@ static FrameRequest recordFrame(Renderer& r, const RenderOptions& options, const
   const FrameRequest request = completeRequest(userRequest, options, choice.method);
   ensureTargets(r, options);
   r.computeClear = computeClears(*r.ctx, options, choice.method, r.clearReason);
+  r.computeToneMap = computeToneMap(*r.ctx, options, choice.method, r.toneMapReason);
   // Transient images have no memory to copy from, and forward frames never write the G-buffer.
   for (Target t : request.readback) {
     GB_ASSERT(!r.targets[size_t(t)].image.desc.transient);
@@ -197,8 +198,7 @@ static FrameRequest recordFrame(Renderer& r, const RenderOptions& options, const
   resetQueries(r, graph, request);
   const auto recordStart = std::chrono::steady_clock::now();
   const uint64_t compiled = r.graphCache.compilations, reused = r.graphCache.reuses;
-  recordAndSubmit(r, graph);
-  const auto submitted = std::chrono::steady_clock::now();
+  const auto submitted = recordAndSubmit(r, graph);
 
   FrameSlot& slot = frameSlot(r);
   FrameStats& st = slot.stats;

@@ -49,7 +49,7 @@ struct TargetsKey {
   AccumFormat accumFormat{};
   ShadowFormat shadowFormat{};
   PositionSource position{};
-  bool coverage = false, transientGBuffer = false, primitiveId = false, clearViews = false;
+  bool coverage = false, transientGBuffer = false, primitiveId = false, clearViews = false, finalStorage = false;
   bool operator==(const TargetsKey&) const = default;
 };
 struct ShadowMapKey {
@@ -158,6 +158,8 @@ struct Renderer {
   std::string clusterAssignReason;
   bool computeClear = false;        // clear_gbuffer clears the G-buffer (not the render pass)
   std::string clearReason;
+  bool computeToneMap = false;      // tonemap_compute writes final (not the raster tonemap pass)
+  std::string toneMapReason;
   std::string fairyReason;
   bool lightsOnGpu = false;    // this frame's lights are set up on the GPU (r.lights is empty then)
   std::string lightSetupReason;

@@ -38,6 +38,8 @@ static const Names<GBufferClear, 3> kGBufferClear = {
     {{GBufferClear::Auto, "auto"}, {GBufferClear::RenderPass, "render-pass"}, {GBufferClear::Compute, "compute"}}};
 static const Names<ClusterAssign, 3> kClusterAssign = {
     {{ClusterAssign::Auto, "auto"}, {ClusterAssign::Gpu, "gpu"}, {ClusterAssign::Cpu, "cpu"}}};
+static const Names<TonemapPass, 3> kTonemapPass = {
+    {{TonemapPass::Auto, "auto"}, {TonemapPass::Raster, "raster"}, {TonemapPass::Compute, "compute"}}};
 static const Names<PositionSource, 3> kPosition = {
     {{PositionSource::Depth, "depth"}, {PositionSource::Rgba16f, "rgba16f"}, {PositionSource::Rgba32f, "rgba32f"}}};
 static const Names<PositionSpace, 2> kPositionSpace = {{{PositionSpace::World, "world"}, {PositionSpace::Camera, "camera"}}};
@@ -75,6 +77,8 @@ const char* name(GBufferClear v) { return lookup(kGBufferClear, v); }
 bool parse(const std::string& t, GBufferClear& o) { return find(kGBufferClear, t, o); }
 const char* name(ClusterAssign v) { return lookup(kClusterAssign, v); }
 bool parse(const std::string& t, ClusterAssign& o) { return find(kClusterAssign, t, o); }
+const char* name(TonemapPass v) { return lookup(kTonemapPass, v); }
+bool parse(const std::string& t, TonemapPass& o) { return find(kTonemapPass, t, o); }
 bool parse(const std::string& t, LightSetup& o) { return find(kLightSetup, t, o); }
 const char* name(PositionSpace v) { return lookup(kPositionSpace, v); }
 bool parse(const std::string& t, Path& o) { return find(kPath, t, o); }
@@ -242,6 +246,10 @@ const std::vector<Entry>& entries() {
              "method clustered: lights assigned to the occupied clusters in compute (gpu) or to a fixed view-space "
              "grid on the CPU, shaded in a fragment pass (cpu) | auto (cpu on a CPU device)",
              kClusterAssign, &RenderOptions::clusterAssign),
+      choice("tonemap_pass",
+             "how hdr becomes final: raster (full-screen pass, sRGB attachment) | compute (tonemap_compute: sRGB "
+             "encoded in the shader, a storage view of final) | auto (compute for tiled and clustered on a GPU device)",
+             kTonemapPass, &RenderOptions::tonemapPass),
       onOff("sky", "skybox", &RenderOptions::sky),
       real("exposure", "tone-mapping exposure", &RenderOptions::exposure, 0.0, 1e6),
       onOff("primitive_id", "write the primitive_id debug target (instance + triangle) in the G-buffer pass",

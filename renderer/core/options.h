@@ -56,6 +56,13 @@ enum class GBufferClear { Auto, RenderPass, Compute };
 // (renderer/core/cluster_grid.h). Auto: the CPU on a CPU device, whose compute passes and image
 // stores are slow (lavapipe, docs/performance.md), the GPU elsewhere.
 enum class ClusterAssign { Auto, Gpu, Cpu };
+// How hdr becomes final: a full-screen raster pass writing the sRGB attachment, or a compute
+// pass encoding sRGB itself into a UNORM storage view of final (tonemap_compute). On the H100 a
+// raster pass runs on 2 of 66 TPCs (the tone map took 0.15 ms at 1080p, 0.67 ms at 4K); compute
+// writes at memory speed. Auto: compute for tiled and clustered on a GPU device (as GBufferClear);
+// raster on a CPU device (lavapipe's compute pass took 6 ms at 720p: docs/performance.md), for
+// deferred and forward, and in the single-pass path (the tone map is its last subpass).
+enum class TonemapPass { Auto, Raster, Compute };
 
 struct RenderOptions {
   uint32_t width = 1280, height = 720;
@@ -72,6 +79,7 @@ struct RenderOptions {
   FairySplat fairySplat = FairySplat::Auto;
   GBufferClear gbufferClear = GBufferClear::Auto;
   ClusterAssign clusterAssign = ClusterAssign::Auto;
+  TonemapPass tonemapPass = TonemapPass::Auto;
   bool reversedZ = false;
   // Octahedral 16+16-bit normals and fp32 accumulation: `gblens bench` found each dominating the
   // former defaults (rgba16f normals; fp16 accumulation) on lavapipe: same or lower frame time,
@@ -142,6 +150,7 @@ const char* name(LightSetup l);
 const char* name(FairySplat f);
 const char* name(GBufferClear c);
 const char* name(ClusterAssign a);
+const char* name(TonemapPass t);
 const char* name(PositionSource p);
 const char* name(PositionSpace p);
 
@@ -159,6 +168,7 @@ bool parse(const std::string& text, LightSetup& out);
 bool parse(const std::string& text, FairySplat& out);
 bool parse(const std::string& text, GBufferClear& out);
 bool parse(const std::string& text, ClusterAssign& out);
+bool parse(const std::string& text, TonemapPass& out);
 // The point lights are drawn with the per-light stencil mask (method `ran` deferred, culling on,
 // per-light); with `cpuDevice`, whether they come in screen-disjoint layers (StencilLayers; auto:
 // on a CPU). `ran` is the method the frame runs (RenderOptions::method unless that is auto).

@@ -46,6 +46,8 @@ void addLightCoveragePass(FrameGraph& g, Renderer& r);
 void addSkyboxPass(FrameGraph& g, Renderer& r);
 void addFairyPass(FrameGraph& g, Renderer& r);
 void addToneMapPass(FrameGraph& g, Renderer& r);
+// tonemap_compute: the tone map in compute, through final's UNORM storage view (TonemapPass).
+void addToneMapComputePass(FrameGraph& g, Renderer& r);
 void addReadbackPass(FrameGraph& g, Renderer& r, const std::vector<Target>& targets);
 void addSampleAfterPass(FrameGraph& g, const std::vector<Target>& targets);
 

@@ -1,4 +1,7 @@
-// Tone map: hdr -> final (sRGB). In the single-pass path hdr is read as a subpass input.
+// Tone map: hdr -> final (sRGB). In the single-pass path hdr is read as a subpass input. Or in
+// compute (tonemap_compute, TonemapPass): through final's UNORM storage view (Image::clearView),
+// encoding sRGB in the shader (shaders/tonemap.comp).
+#include "renderer/core/assert.h"
 #include "renderer/passes/passes.h"
 
 namespace gb {
@@ -22,6 +25,21 @@ void addToneMapPass(FrameGraph& g, Renderer& r) {
     vkCmdSetFrontFace(pc.cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
     vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
     vkCmdDraw(pc.cmd, 3, 1, 0, 0);
+  });
+}
+
+void addToneMapComputePass(FrameGraph& g, Renderer& r) {
+  const std::vector<Use> uses = {hdrUse(Access::SampledCompute), {Target::Final, Access::StorageCompute, true}};
+  g.addPass("tonemap_compute", uses, [&r](PassContext& pc) {
+    const Image& final = r.targets[size_t(Target::Final)].image;
+    GB_ASSERT(final.clearView && final.desc.clearFormat == VK_FORMAT_R8G8B8A8_UNORM);
+    bindDescriptors(r, pc.cmd, r.pipelineLayout,
+                    {{gpu::kBindingHdr, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, r.targets[size_t(Target::Hdr)].image.view,
+                      pc.layouts[size_t(Target::Hdr)], r.samplerPoint},
+                     {gpu::kBindingClearTarget, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, final.clearView, VK_IMAGE_LAYOUT_GENERAL}},
+                    VK_PIPELINE_BIND_POINT_COMPUTE);
+    vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, computePipeline(r, Shader::tonemap_comp));
+    vkCmdDispatch(pc.cmd, (final.desc.width + 7) / 8, (final.desc.height + 7) / 8, 1);
   });
 }
 

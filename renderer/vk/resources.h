@@ -27,9 +27,10 @@ struct ImageDesc {
   uint32_t mipLevels = 1;
   VkImageUsageFlags usage = 0;
   bool transient = false;  // transient attachment: lazily allocated memory when the device has it
-  // Set: the image also gets a storage view in this format of the same texel size (compute clears
-  // of formats that have no storage support themselves, such as sRGB): MUTABLE_FORMAT and
-  // EXTENDED_USAGE, the other views restricted to `usage`.
+  // Set: the image also gets a storage view in this format of the same texel size (compute writes
+  // to formats that have no storage support themselves, such as sRGB: clear_gbuffer's zeros, the
+  // compute tone map's sRGB-encoded texels): MUTABLE_FORMAT and EXTENDED_USAGE, the other views
+  // restricted to `usage`.
   VkFormat clearFormat = VK_FORMAT_UNDEFINED;
   const char* name = nullptr;
 };
