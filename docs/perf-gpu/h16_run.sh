@@ -5,7 +5,8 @@
 # (rasterized) instead of splatted, for the CPU ms per frame and the fairy pass. Run from the
 # checkout the run tool sends, with the carry folder made by make_carry.sh as $1 (default
 # .carry-h16); every bench.json and the log go to $OUT as $PREFIX_NAME.json (PREFIX default h16).
-# RUNS names the runs (default all five; h16_retable_run.sh: the main table only). (`render` is not
+# RUNS names the runs (default the first five; h16_retable_run.sh: the main table only;
+# h16_inflight_run.sh: frames in flight). EXTRA flags go to every run. (`render` is not
 # used: it writes a PNG through OpenImageIO, which the carry folder only stubs.)
 set -u
 C=${1:-.carry-h16}
@@ -21,7 +22,7 @@ run() {  # name, then bench flags
   n=$1; shift
   case " $RUNS " in *" $n "*) ;; *) return ;; esac
   echo "== $n: $*"; s=$(date +%s)
-  $G $B "$@" --out "$n"; echo "rc $? in $(( $(date +%s) - s )) s"
+  $G $B "$@" ${EXTRA:-} --out "$n"; echo "rc $? in $(( $(date +%s) - s )) s"
   cp "$n/bench.json" "$OUT/${P}_$n.json" 2>/dev/null
 }
 {
@@ -35,5 +36,11 @@ run setup_cpu --methods-sizes 1920x1080,3840x2160 --methods-lights 65536 --metho
   --methods-rounds 2 --methods-min-rounds 2 --methods-seconds 20 --methods-culling-max 0 --light-setup cpu
 run fairy_raster --methods-sizes 1920x1080,3840x2160 --methods-lights 65536 --methods-forward-max 0 \
   --methods-rounds 2 --methods-min-rounds 2 --methods-seconds 20 --methods-culling-max 0 --fairy-splat raster
+# Named only (not in the default RUNS): clustered with the cluster grid filled on the CPU, and the
+# raster tone map, against the defaults of the same cells (h16_inflight_run.sh).
+run grid --methods-sizes 1920x1080,3840x2160 --methods-lights 256,4096 --methods-forward-max 0 \
+  --methods-rounds 3 --methods-min-rounds 2 --methods-seconds 30 --methods-culling-max 0 --cluster-assign cpu
+run tonemap_raster --methods-sizes 1920x1080,3840x2160 --methods-lights 256,65536 --methods-forward-max 0 \
+  --methods-rounds 3 --methods-min-rounds 2 --methods-seconds 30 --methods-culling-max 0 --tonemap-pass raster
 } > "$OUT/${P}_bench.log" 2>&1
 echo done

@@ -85,4 +85,4 @@ wait $VIEWER || true
 echo "viewer (animation playing, $SIZE): $(grep '"exit"' "$OUT/events")"
 # Without presentation: the same frames headless.
 "$GBLENS" render --size "$SIZE" --time 1 --frames 20 --stats -o "$OUT/f.png" 2>/dev/null |
-  python3 -c 'import json,sys; j=json.load(sys.stdin); print("headless render (%s): frame_ms median %.1f (min %.1f)" % (j["options"]["size"], j["frame_ms"], j["frame_ms_min"]))'
+  python3 -c 'import json,sys; j=json.load(sys.stdin); print("headless render (%s, %s): frame_ms %.1f (frames in flight: %s), gpu_ms median %.1f" % (j["options"]["size"], j["method"]["ran"], j["frame_ms"], j.get("frames_in_flight", 1), j["gpu_ms"]))'
