@@ -11,6 +11,7 @@ namespace gb {
 
 static uint32_t divUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 
+// `name` as the shaders call the buffer (RenderDoc's resource list).
 static void replace(Renderer& r, Buffer& b, VkDeviceSize bytes, VkBufferUsageFlags usage, MemoryUse use,
                     const char* name) {
   if (b.buffer && b.size >= bytes) return;
@@ -59,9 +60,8 @@ bool writeClusterGrid(Renderer& r, std::string& why) {
     return false;
   }
   const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  replace(r, slot.gridCells, cellBytes, usage, MemoryUse::Upload, "grid_cells");
   // Grown by half again, so a moving light count does not re-create them every frame.
-  if (!slot.gridCells.buffer || slot.gridCells.size < cellBytes)
-    replace(r, slot.gridCells, cellBytes, usage, MemoryUse::Upload, "grid_cells");
   if (!slot.gridLights.buffer || slot.gridLights.size < lightBytes)
     replace(r, slot.gridLights, lightBytes + lightBytes / 2, usage, MemoryUse::Upload, "grid_lights");
   std::memcpy(slot.gridCells.mapped, c.grid.cells.data(), cellBytes);
@@ -76,8 +76,6 @@ ClusterStats gridClusterStats(const Renderer& r) {
   s.listEntries = uint32_t(r.clusters.grid.lights.size());
   return s;
 }
-
-// `name` as the shaders call the buffer (RenderDoc's resource list).
 
 void ensureClusterBuffers(Renderer& r, uint32_t visibleMax) {
   ClusterBuffers& c = r.clusters;

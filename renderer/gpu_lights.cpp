@@ -6,20 +6,18 @@
 #include <cstring>
 
 #include "renderer/core/assert.h"
-#include "renderer/core/method_choice.h"
 #include "renderer/vk/check.h"
 
 namespace gb {
 
-bool lightsOnGpu(const GpuContext& ctx, const RenderOptions& o, Method method, std::string& reason) {
+bool lightsOnGpu(const GpuContext& ctx, const RenderOptions& o, Method method, const std::string* clusterGrid,
+                 std::string& reason) {
   if (o.lightSetup == LightSetup::Cpu) return reason = "lights set up on the CPU (--light-setup cpu)", false;
   if (method != Method::Tiled && method != Method::Clustered)
     return reason = std::string("lights set up on the CPU: method ") + name(method) +
                     " draws them in the near-plane and stencil classes the CPU sorts",
            false;
-  std::string gridReason;
-  if (clusterGridOn(o, ctx.isCpu ? DeviceKind::Cpu : DeviceKind::Gpu, method, gridReason))
-    return reason = "lights set up on the CPU: the cluster grid is filled there (" + gridReason + ")", false;
+  if (clusterGrid) return reason = "lights set up on the CPU: the cluster grid is filled there (" + *clusterGrid + ")", false;
   if (o.coverage)
     return reason = "lights set up on the CPU: coverage on (light_coverage draws the CPU's near-plane classes)", false;
   if (!ctx.features.float64) return reason = "lights set up on the CPU: the device has no shaderFloat64", false;

@@ -9,8 +9,10 @@
 
 namespace gb {
 
-// Whether this frame sets its lights up on the GPU, and why (or why not).
-bool lightsOnGpu(const GpuContext& ctx, const RenderOptions& o, Method method, std::string& reason);
+// Whether this frame sets its lights up on the GPU, and why (or why not). `clusterGrid`: why the
+// frame fills the cluster grid on the CPU (clusterGridOn), which needs the lights there; null if not.
+bool lightsOnGpu(const GpuContext& ctx, const RenderOptions& o, Method method, const std::string* clusterGrid,
+                 std::string& reason);
 
 // The frame's light data when they are set up on the GPU: stages the scene's lights for
 // light_upload when the scene or its lights' generation differ from the last upload (O(1)

@@ -67,7 +67,7 @@ static void prepareFrame(Renderer& r) {
   }
 
   gpu::FrameData f{};
-  r.lightsOnGpu = lightsOnGpu(*r.ctx, o, r.method, r.lightSetupReason);
+  r.lightsOnGpu = lightsOnGpu(*r.ctx, o, r.method, r.clusterGrid ? &r.clusterAssignReason : nullptr, r.lightSetupReason);
   GB_ASSERT(s.lights.size() <= frameSlot(r).lightBuffer.size / sizeof(gpu::PointLight));
   if (r.lightsOnGpu) {
     prepareGpuLights(r, f);  // light_setup and light_compact do the rest

@@ -102,21 +102,10 @@ uint32_t ClusterGrid::occupiedCells() const {
   return uint32_t(std::count_if(cells.begin(), cells.end(), [](const glm::uvec2& c) { return c.y != 0; }));
 }
 
-CellBox cellBox(const Camera& camera, const GridShape& g, uint32_t tx, uint32_t ty, uint32_t slice,
-                const PositionSlack& slack) {
-  const GridGeometry geo = gridGeometry(camera, g, slack);
-  const double n = geo.near[slice], f = geo.far[slice], m = geo.margin[slice];
-  CellBox b;
-  b.lo = {std::min(geo.x0[tx] * n, geo.x0[tx] * f) - m, std::min(geo.y0[ty] * n, geo.y0[ty] * f) - m, -f - m};
-  b.hi = {std::max(geo.x1[tx] * n, geo.x1[tx] * f) + m, std::max(geo.y1[ty] * n, geo.y1[ty] * f) + m, -n + m};
-  return b;
-}
-
 void assignLights(const Camera& camera, const std::vector<gpu::PointLight>& eyeLights,
                   const std::vector<uint32_t>& visible, const PositionSlack& slack, ClusterGrid& grid) {
   const GridShape g = gridShapeForLights(camera, eyeLights, visible);
   grid.shape = g;
-  grid.tests = 0;
   const GridGeometry geo = gridGeometry(camera, g, slack);
 
   // Pairs (cell, position in the visible list), light by light; the box test is separable, so
@@ -151,7 +140,6 @@ void assignLights(const Camera& camera, const std::vector<gpu::PointLight>& eyeL
       for (uint32_t ty = ty0; ty <= ty1; ++ty) {
         const double dy = gap(c.y, geo.y0[ty], geo.y1[ty], n, f, m);
         const double dyz = dy * dy + dz * dz;
-        grid.tests += tx1 - tx0 + 1;
         if (dyz >= r2) continue;
         for (uint32_t tx = tx0; tx <= tx1; ++tx) {
           if (dyz + dx2[tx] >= r2) continue;

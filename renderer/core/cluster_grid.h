@@ -47,7 +47,6 @@ struct ClusterGrid {
   std::vector<glm::uvec2> cells;
   std::vector<gpu::PointLight> lights;
   std::vector<uint32_t> listed;  // per entry of `lights`: its light's position in the visible list
-  uint64_t tests = 0;            // sphere / cell-box tests made (rows of a slice, counted per cell)
   std::vector<uint32_t> pairCell, pairLight, count;  // scratch, kept between frames
   uint32_t occupiedCells() const;
 };
@@ -56,13 +55,5 @@ struct ClusterGrid {
 // on the grid of gridShapeForLights.
 void assignLights(const Camera& camera, const std::vector<gpu::PointLight>& eyeLights,
                   const std::vector<uint32_t>& visible, const PositionSlack& error, ClusterGrid& grid);
-
-// The box of eye-space points cell (tx, ty, slice) can hold: pixel centres of the tile, depths of
-// the slice, widened by rounding and `error` (exposed for the tests).
-struct CellBox {
-  glm::dvec3 lo, hi;
-};
-CellBox cellBox(const Camera& camera, const GridShape& g, uint32_t tx, uint32_t ty, uint32_t slice,
-                const PositionSlack& error);
 
 }  // namespace gb

@@ -63,4 +63,19 @@ std::function<FrameSnapshot(const RenderOptions&, const std::vector<Target>&)> G
   return [r](const RenderOptions& o, const std::vector<Target>& t) { return renderSnapshot(*r, o, t); };
 }
 
+bool passRan(const FrameStats& st, const std::string& name) {
+  for (const PassStat& p : st.passes)
+    if (p.name == name) return !p.skipped;
+  return false;
+}
+
+size_t differingTexels(const CpuImage& a, const CpuImage& b) {
+  EXPECT_TRUE(a.width == b.width && a.height == b.height);
+  size_t n = 0;
+  for (uint32_t y = 0; y < a.height; ++y)
+    for (uint32_t x = 0; x < a.width; ++x)
+      for (uint32_t c = 0; c < a.channelCount(); ++c) n += a.raw(x, y, c) != b.raw(x, y, c);
+  return n;
+}
+
 }  // namespace gb

@@ -15,6 +15,11 @@
 
 namespace gb {
 
+// Whether the frame ran pass `name` (listed and not skipped).
+bool passRan(const FrameStats& st, const std::string& name);
+// Texels (per channel) whose stored bits differ between a and b (same size).
+size_t differingTexels(const CpuImage& a, const CpuImage& b);
+
 class GpuTest : public ::testing::Test {
  public:
   static GpuContext& ctx();

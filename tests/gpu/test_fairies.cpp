@@ -11,12 +11,6 @@ namespace gb {
 
 namespace {
 
-bool ran(const FrameStats& st, const std::string& name) {
-  for (const PassStat& p : st.passes)
-    if (p.name == name) return !p.skipped;
-  return false;
-}
-
 // hdr of the frame with fairies drawn, splatted, and without them.
 struct Frames {
   CpuImage drawn, splatted, none;
@@ -27,11 +21,11 @@ Frames renderFairies(GpuTest& t, const Scene& scene, RenderOptions o) {
   o.fairies = true;
   o.fairySplat = FairySplat::Raster;
   const FrameStats& a = t.render(scene, o, {{Target::Hdr}});
-  EXPECT_TRUE(ran(a, "fairy_lights"));
+  EXPECT_TRUE(passRan(a, "fairy_lights"));
   f.drawn = t.renderer(scene).readback[size_t(Target::Hdr)];
   o.fairySplat = FairySplat::Compute;
   const FrameStats& b = t.render(scene, o, {{Target::Hdr}});
-  EXPECT_TRUE(ran(b, "fairy_splat") && !ran(b, "fairy_lights"));
+  EXPECT_TRUE(passRan(b, "fairy_splat") && !passRan(b, "fairy_lights"));
   f.splatted = t.renderer(scene).readback[size_t(Target::Hdr)];
   o.fairies = false;
   t.render(scene, o, {{Target::Hdr}});

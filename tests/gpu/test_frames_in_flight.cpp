@@ -29,21 +29,6 @@ std::vector<CpuImage> readBackLastFrame(Renderer& r, const std::vector<Target>& 
   return out;
 }
 
-size_t differing(const CpuImage& a, const CpuImage& b) {
-  EXPECT_TRUE(a.width == b.width && a.height == b.height);
-  size_t n = 0;
-  for (uint32_t y = 0; y < a.height; ++y)
-    for (uint32_t x = 0; x < a.width; ++x)
-      for (uint32_t c = 0; c < a.channelCount(); ++c) n += a.raw(x, y, c) != b.raw(x, y, c);
-  return n;
-}
-
-bool ran(const FrameStats& st, const std::string& pass) {
-  for (const PassStat& p : st.passes)
-    if (p.name == pass) return !p.skipped;
-  return false;
-}
-
 // Frame i of the burst: the camera moved, one light brighter and larger, one more light off (so
 // every frame's counts differ: i + 1 empty lights), another time.
 void changeFrame(Scene& scene, RenderOptions& o, const glm::dmat4& baseCamera, int i) {
@@ -123,7 +108,7 @@ TEST_F(GpuTest, ABurstInFlightEndsOnTheSynchronousFrameWithCompleteStatistics) {
     OwnRenderer fresh(alone);
     renderFrame(fresh.r, o, {targets});
     for (size_t t = 0; t < targets.size(); ++t)
-      EXPECT_EQ(differing(last[t], fresh.r.readback[size_t(targets[t])]), 0u)
+      EXPECT_EQ(differingTexels(last[t], fresh.r.readback[size_t(targets[t])]), 0u)
           << what << ": " << targetName(targets[t]) << " of the burst's last frame";
   }
 }
@@ -142,7 +127,7 @@ TEST_F(GpuTest, TheSkyboxSkipUsesOnlyRetiredFrames) {
   Renderer& r = renderer(scene);
   o.camera = 1;
   const FrameStats& first = renderFrame(r, o);
-  ASSERT_TRUE(ran(first, "skybox"));
+  ASSERT_TRUE(passRan(first, "skybox"));
   ASSERT_EQ(first.skyPixels, 0);
   const std::vector<int> cameras = {0, 1, 1, 1, 0, 0, 0, 1, 0, 1, 1, 1};
   for (int camera : cameras) {
@@ -161,14 +146,14 @@ TEST_F(GpuTest, TheSkyboxSkipUsesOnlyRetiredFrames) {
       countedSky = cameras[i - kFrameSlots] == 0;
     }
     drew[i] = !(countedCamera == cameras[i] && !countedSky);
-    EXPECT_EQ(ran(got[i], "skybox"), drew[i]) << "frame " << i << " (camera " << cameras[i] << ")";
-    if (ran(got[i], "skybox")) EXPECT_EQ(got[i].skyPixels > 0, cameras[i] == 0) << "frame " << i;
+    EXPECT_EQ(passRan(got[i], "skybox"), drew[i]) << "frame " << i << " (camera " << cameras[i] << ")";
+    if (passRan(got[i], "skybox")) EXPECT_EQ(got[i].skyPixels > 0, cameras[i] == 0) << "frame " << i;
   }
   // The last frame (camera 1, drawn or skipped) is the synchronous one.
   const std::vector<CpuImage> last = readBackLastFrame(r, {Target::Final});
   OwnRenderer fresh(scene);
   renderFrame(fresh.r, o, {{Target::Final}});
-  EXPECT_EQ(differing(last[0], fresh.r.readback[size_t(Target::Final)]), 0u);
+  EXPECT_EQ(differingTexels(last[0], fresh.r.readback[size_t(Target::Final)]), 0u);
 }
 
 // Frames in flight back to back, with every buffer the GPU alone writes and reads again each

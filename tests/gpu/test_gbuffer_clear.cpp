@@ -19,16 +19,11 @@ TEST_F(GpuTest, ComputeClearsLeaveTheGBufferAsTheRenderPassClearDoes) {
   o.position = PositionSource::Rgba32f;  // a 16-byte float target
   const std::vector<Target> targets = {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth,
                                        Target::Position,       Target::Hdr,          Target::Final};
-  auto ranClear = [](const FrameStats& st) {
-    for (const PassStat& p : st.passes)
-      if (p.name == "clear_gbuffer") return !p.skipped;
-    return false;
-  };
   for (Method m : {Method::Deferred, Method::Clustered}) {
     o.method = m;
     o.camera = 0;
     o.gbufferClear = GBufferClear::RenderPass;
-    EXPECT_FALSE(ranClear(render(scene, o, {targets})));
+    EXPECT_FALSE(passRan(render(scene, o, {targets}), "clear_gbuffer"));
     std::vector<CpuImage> expected;
     for (Target t : targets) expected.push_back(renderer(scene).readback[size_t(t)]);
     o.gbufferClear = GBufferClear::Compute;
@@ -38,7 +33,7 @@ TEST_F(GpuTest, ComputeClearsLeaveTheGBufferAsTheRenderPassClearDoes) {
     for (uint32_t y = 0; y < o.height; ++y)
       for (uint32_t x = 0; x < o.width; ++x) ASSERT_GT(full.value(x, y, 0), 0.0) << "camera 1 sees geometry everywhere";
     o.camera = 0;
-    EXPECT_TRUE(ranClear(render(scene, o, {targets}))) << name(m);
+    EXPECT_TRUE(passRan(render(scene, o, {targets}), "clear_gbuffer")) << name(m);
     size_t sky = 0;
     for (size_t i = 0; i < targets.size(); ++i) {
       const CpuImage& got = renderer(scene).readback[size_t(targets[i])];

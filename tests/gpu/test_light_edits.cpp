@@ -36,16 +36,6 @@ std::vector<CpuImage> freshFrame(GpuContext& ctx, const Scene& scene, const Rend
   return out;
 }
 
-// Texels that differ between a and b (same size).
-size_t differing(const CpuImage& a, const CpuImage& b) {
-  EXPECT_TRUE(a.width == b.width && a.height == b.height);
-  size_t n = 0;
-  for (uint32_t y = 0; y < a.height; ++y)
-    for (uint32_t x = 0; x < a.width; ++x)
-      for (uint32_t c = 0; c < a.channelCount(); ++c) n += a.raw(x, y, c) != b.raw(x, y, c);
-  return n;
-}
-
 }  // namespace
 
 TEST_F(GpuTest, EveryLightEditReachesTheNextFrameAndNothingElseUploads) {
@@ -83,10 +73,10 @@ TEST_F(GpuTest, EveryLightEditReachesTheNextFrameAndNothingElseUploads) {
     render(scene, o, {targets});
     EXPECT_EQ(r.gpuLights.uploads, uploads + 1) << what;
     EXPECT_EQ(scene.lights.generation(), generation) << what << ": the renderer's reads changed the generation";
-    EXPECT_GT(differing(r.readback[size_t(Target::Hdr)], before[0]), 0u) << what << ": the edit shows nowhere";
+    EXPECT_GT(differingTexels(r.readback[size_t(Target::Hdr)], before[0]), 0u) << what << ": the edit shows nowhere";
     const std::vector<CpuImage> expected = freshFrame(ctx(), scene, o, targets);
     for (size_t i = 0; i < targets.size(); ++i)
-      EXPECT_EQ(differing(r.readback[size_t(targets[i])], expected[i]), 0u)
+      EXPECT_EQ(differingTexels(r.readback[size_t(targets[i])], expected[i]), 0u)
           << what << ": " << targetName(targets[i]) << " differs from a fresh renderer's frame of the edited scene";
     // Unchanged lights, another time and camera position: no upload.
     o.time += 0.25;

@@ -15,12 +15,6 @@ namespace gb {
 
 namespace {
 
-bool ran(const FrameStats& st, const std::string& name) {
-  for (const PassStat& p : st.passes)
-    if (p.name == name) return !p.skipped;
-  return false;
-}
-
 void expectSameLights(GpuTest& t, const Scene& scene, RenderOptions o, const std::string& what) {
   if (!t.ctx().features.float64) GTEST_SKIP() << "no shaderFloat64: light setup stays on the CPU";
   o.lightSetup = LightSetup::Cpu;
@@ -28,7 +22,7 @@ void expectSameLights(GpuTest& t, const Scene& scene, RenderOptions o, const std
   const FrameSnapshot a = snapshotFromRenderer(t.renderer(scene), {Target::Hdr});
   o.lightSetup = LightSetup::Gpu;
   const FrameStats gpu = t.render(scene, o, {{Target::Hdr}});
-  ASSERT_TRUE(ran(gpu, "light_setup") && ran(gpu, "light_compact")) << what;
+  ASSERT_TRUE(passRan(gpu, "light_setup") && passRan(gpu, "light_compact")) << what;
   EXPECT_EQ(gpu.lightSetup, "gpu");
   const FrameSnapshot b = snapshotFromRenderer(t.renderer(scene), {Target::Hdr});
   ASSERT_EQ(a.eyeLights.size(), b.eyeLights.size());
@@ -101,7 +95,7 @@ TEST_F(GpuTest, LightSetupSaysWhereItRan) {
   o.lightSetup = LightSetup::Gpu;
   const FrameStats& st = render(scene, o);
   EXPECT_EQ(st.lightSetup, "cpu");  // deferred needs the CPU's light classes
-  EXPECT_FALSE(ran(st, "light_setup"));
+  EXPECT_FALSE(passRan(st, "light_setup"));
   o.method = Method::Clustered;
   o.lightSetup = LightSetup::Auto;
   const FrameStats& c = render(scene, o);

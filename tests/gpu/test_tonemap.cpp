@@ -32,12 +32,6 @@ double exactCode(float hdr, double exposure) {
   return 255.0 * srgbEncode(shading::toneMap(glm::dvec3(x), exposure).x);
 }
 
-bool ran(const FrameStats& st, const std::string& pass) {
-  for (const PassStat& p : st.passes)
-    if (p.name == pass) return !p.skipped;
-  return false;
-}
-
 struct Deviation {
   double worst = 0.0;  // |code - exact code|, 8-bit steps
   size_t nan = 0, overexposed = 0;
@@ -89,12 +83,12 @@ TEST_F(GpuTest, ComputeToneMapMatchesTheRasterPassAndToneMapInDouble) {
     o.method = m;
     o.tonemapPass = TonemapPass::Raster;
     const FrameStats raster = render(scene, o, {targets});
-    ASSERT_TRUE(ran(raster, "tonemap") && !ran(raster, "tonemap_compute")) << what;
+    ASSERT_TRUE(passRan(raster, "tonemap") && !passRan(raster, "tonemap_compute")) << what;
     const CpuImage hdrA = renderer(scene).readback[size_t(Target::Hdr)];
     const CpuImage finalA = renderer(scene).readback[size_t(Target::Final)];
     o.tonemapPass = TonemapPass::Compute;
     const FrameStats compute = render(scene, o, {targets});
-    ASSERT_TRUE(ran(compute, "tonemap_compute") && !ran(compute, "tonemap")) << what;
+    ASSERT_TRUE(passRan(compute, "tonemap_compute") && !passRan(compute, "tonemap")) << what;
     const CpuImage& hdrB = renderer(scene).readback[size_t(Target::Hdr)];
     const CpuImage& finalB = renderer(scene).readback[size_t(Target::Final)];
     size_t differing = 0, sameHdr = 0;
@@ -130,15 +124,15 @@ TEST_F(GpuTest, TheToneMapSaysWhereItRan) {
   o.height = 36;
   o.method = Method::Clustered;
   const FrameStats& autoPick = render(scene, o);
-  EXPECT_EQ(ran(autoPick, "tonemap_compute"), !ctx().isCpu);
-  EXPECT_EQ(ran(autoPick, "tonemap"), ctx().isCpu);
+  EXPECT_EQ(passRan(autoPick, "tonemap_compute"), !ctx().isCpu);
+  EXPECT_EQ(passRan(autoPick, "tonemap"), ctx().isCpu);
   for (const PassStat& p : autoPick.passes)
     if (p.skipped && (p.name == "tonemap" || p.name == "tonemap_compute")) EXPECT_FALSE(p.reason.empty());
   o.method = Method::Deferred;
   o.path = Path::SinglePass;
   o.tonemapPass = TonemapPass::Compute;
   const FrameStats& single = render(scene, o);
-  EXPECT_TRUE(ran(single, "tonemap"));
+  EXPECT_TRUE(passRan(single, "tonemap"));
   for (const PassStat& p : single.passes)
     if (p.name == "tonemap_compute") EXPECT_NE(p.reason.find("single-pass"), std::string::npos) << p.reason;
 }
