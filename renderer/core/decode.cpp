@@ -74,20 +74,30 @@ glm::dvec3 decodeNormalValues(NormalEncoding e, const std::array<double, 4>& c, 
   return {};
 }
 
-// World Z up (Blender) -> gblens's Y up: (x, y, z) -> (x, z, -y).
-static glm::dvec3 yUp(const glm::dvec3& v) { return {v.x, v.z, -v.y}; }
-
 glm::dvec3 eyeFromSpace(const FrameSnapshot& f, Space space, const glm::dvec3& v, bool point) {
   const LayoutCamera& c = f.layout.camera;
   switch (space) {
     case Space::View: return c.leftHanded ? glm::dvec3(v.x, v.y, -v.z) : v;
     case Space::World: {
-      glm::dvec3 w = c.zUp ? yUp(v) : v;
+      glm::dvec3 w = worldFromLayoutWorld(c) * v;
       return point ? glm::dvec3(f.camera.eyeFromWorld * glm::dvec4(w, 1.0)) : glm::dmat3(f.camera.eyeFromWorld) * w;
     }
-    case Space::CameraRelative: return glm::dmat3(f.camera.eyeFromWorld) * (c.zUp ? yUp(v) : v);
+    case Space::CameraRelative: return glm::dmat3(f.camera.eyeFromWorld) * (worldFromLayoutWorld(c) * v);
   }
   return v;
+}
+
+glm::dvec3 spaceFromEye(const FrameSnapshot& f, Space space, const glm::dvec3& e, bool point) {
+  const LayoutCamera& c = f.layout.camera;
+  switch (space) {
+    case Space::View: return c.leftHanded ? glm::dvec3(e.x, e.y, -e.z) : e;
+    case Space::World: {
+      glm::dvec3 w = point ? glm::dvec3(f.camera.worldFromEye * glm::dvec4(e, 1.0)) : glm::dmat3(f.camera.worldFromEye) * e;
+      return layoutWorldFromWorld(c) * w;
+    }
+    case Space::CameraRelative: return layoutWorldFromWorld(c) * (glm::dmat3(f.camera.worldFromEye) * e);
+  }
+  return e;
 }
 
 NormalSample decodeNormal(const FrameSnapshot& f, const Quantity& q, uint32_t x, uint32_t y) {

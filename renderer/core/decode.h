@@ -50,7 +50,9 @@ const Quantity* surfaceDepth(const Layout& layout);
 // pixel does when the layout has no depth; a pixel outside the frame's region does not).
 bool hasSurface(const FrameSnapshot& f, uint32_t x, uint32_t y);
 
-// Eye space <-> the space a layout stores vectors in (normals: directions; positions: points).
+// Eye space <-> the space a layout stores vectors in (normals: directions; positions: points). World
+// space is the layout's own world (its up axis), not gblens's Y-up world: what users see and script.
 glm::dvec3 eyeFromSpace(const FrameSnapshot& f, Space space, const glm::dvec3& v, bool point);
+glm::dvec3 spaceFromEye(const FrameSnapshot& f, Space space, const glm::dvec3& eye, bool point);
 
 }  // namespace gb

@@ -110,4 +110,12 @@ std::vector<const Quantity*> Layout::quantitiesOf(uint32_t target) const {
   return out;
 }
 
+glm::dmat3 worldFromLayoutWorld(const LayoutCamera& c) {
+  // Z up (Blender): (x, y, z) -> (x, z, -y); glm matrices are column-major.
+  if (c.zUp) return glm::dmat3(glm::dvec3(1, 0, 0), glm::dvec3(0, 0, -1), glm::dvec3(0, 1, 0));
+  return glm::dmat3(1.0);
+}
+
+glm::dmat3 layoutWorldFromWorld(const LayoutCamera& c) { return glm::transpose(worldFromLayoutWorld(c)); }
+
 }  // namespace gb

@@ -107,6 +107,12 @@ struct LayoutCamera {
   std::optional<BufferMatrix> renderdoc;  // the matrices come from a capture's uniform buffer
 };
 
+// gblens's world is Y-up; a layout's world may have another up axis (camera.up). The rotation that
+// takes the layout's world coordinates into gblens's (applied on import to the camera, and to
+// world-space vectors when decoded), and back (what people and scripts see: the layout's own axes).
+glm::dmat3 worldFromLayoutWorld(const LayoutCamera& c);
+glm::dmat3 layoutWorldFromWorld(const LayoutCamera& c);
+
 struct LayoutLights {
   bool present = false;
   bool gblensModel = false;  // attenuation and shading as shaders/shading.h: the probe can evaluate them

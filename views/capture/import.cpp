@@ -302,7 +302,8 @@ void importLights(const Layout& l, FrameSnapshot& f) {
   f.sun.enabled = false;
   f.sky.ambient = glm::vec3(0.0f);
   if (!lights.present) return;
-  auto world = [&](glm::dvec3 v) { return l.camera.zUp ? glm::dvec3(v.x, v.z, -v.y) : v; };
+  const glm::dmat3 toWorld = worldFromLayoutWorld(l.camera);
+  auto world = [&](glm::dvec3 v) { return toWorld * v; };
   f.sun = lights.sun;
   if (f.sun.enabled) f.sun.toSun = glm::normalize(world(lights.sun.toSun));
   f.sky.ambient = lights.ambient;
@@ -325,7 +326,7 @@ bool importCamera(const LayoutCamera& c, uint32_t width, uint32_t height, Camera
   // R * source world (R turns Z up into Y up). Clip space: Vulkan's, y down, depth 0..1.
   glm::dmat4 S(1.0), R(1.0), C(1.0);
   if (c.leftHanded) S[2][2] = -1.0;
-  if (c.zUp) R = glm::dmat4(glm::dvec4(1, 0, 0, 0), glm::dvec4(0, 0, -1, 0), glm::dvec4(0, 1, 0, 0), glm::dvec4(0, 0, 0, 1));
+  R = glm::dmat4(worldFromLayoutWorld(c));
   if (c.convention != LayoutCamera::Convention::Vulkan) C[1][1] = -1.0;  // NDC y up -> down (rows are top first)
   if (c.convention == LayoutCamera::Convention::Gl) {  // z' = (z + w) / 2
     C[2][2] = 0.5;
