@@ -44,6 +44,15 @@ uint32_t memory_type(const device_t& d, uint32_t bits, VkMemoryPropertyFlags wan
   std::exit(1);
 }
 
+VkDeviceMemory allocate(const device_t& d, const VkMemoryRequirements& req, VkMemoryPropertyFlags want) {
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = memory_type(d, req.memoryTypeBits, want);
+  VkDeviceMemory memory;
+  FD_CHECK(vkAllocateMemory(d.device, &alloc, nullptr, &memory));
+  return memory;
+}
+
 void create_instance(device_t& d) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "foreign_deferred";
@@ -165,10 +174,7 @@ image_t create_image(const device_t& d, VkFormat format, uint32_t width, uint32_
   FD_CHECK(vkCreateImage(d.device, &info, nullptr, &i.image));
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(d.device, i.image, &req);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex = memory_type(d, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  FD_CHECK(vkAllocateMemory(d.device, &alloc, nullptr, &i.memory));
+  i.memory = allocate(d, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   FD_CHECK(vkBindImageMemory(d.device, i.image, i.memory, 0));
   VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   view.image = i.image;
@@ -195,11 +201,7 @@ buffer_t create_host_buffer(const device_t& d, VkDeviceSize size, VkBufferUsageF
   FD_CHECK(vkCreateBuffer(d.device, &info, nullptr, &b.buffer));
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(d.device, b.buffer, &req);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex =
-      memory_type(d, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  FD_CHECK(vkAllocateMemory(d.device, &alloc, nullptr, &b.memory));
+  b.memory = allocate(d, req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   FD_CHECK(vkBindBufferMemory(d.device, b.buffer, b.memory, 0));
   FD_CHECK(vkMapMemory(d.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
   return b;

@@ -34,37 +34,33 @@ VkSubpassDependency external(bool into) {
   return dep;
 }
 
+// One attachment: cleared at the start, stored, left in `final_layout` for the passes after.
+VkAttachmentDescription attachment(VkFormat format, VkImageLayout final_layout) {
+  VkAttachmentDescription a{};
+  a.format = format;
+  a.samples = VK_SAMPLE_COUNT_1_BIT;
+  a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  a.finalLayout = final_layout;
+  return a;
+}
+
 // A render pass writing `colors` (left sampled-ready) and optionally a depth attachment, and its framebuffer.
 void make_pass(const device_t& d, renderer& r, screen_pass& p, std::initializer_list<target_id> colors, bool depth) {
   std::vector<VkAttachmentDescription> attachments;
   std::vector<VkAttachmentReference> color_refs;
   std::vector<VkImageView> views;
   for (target_id t : colors) {
-    VkAttachmentDescription a{};
-    a.format = describe(t).format;
-    a.samples = VK_SAMPLE_COUNT_1_BIT;
-    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    a.finalLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     color_refs.push_back({uint32_t(attachments.size()), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL});
-    attachments.push_back(a);
+    attachments.push_back(attachment(describe(t).format, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
     views.push_back(r.targets[t].view);
   }
   VkAttachmentReference depth_ref{uint32_t(attachments.size()), VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
   if (depth) {
-    VkAttachmentDescription a{};
-    a.format = describe(t_depth).format;
-    a.samples = VK_SAMPLE_COUNT_1_BIT;
-    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    a.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-    attachments.push_back(a);
+    attachments.push_back(attachment(describe(t_depth).format, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL));
     views.push_back(r.targets[t_depth].view);
   }
   VkSubpassDescription subpass{};
