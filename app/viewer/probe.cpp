@@ -57,7 +57,15 @@ void probeViewerPixel(Viewer& v, glm::ivec2 p, bool logged) {
   }
   Renderer& r = v.renderer;
   ViewerModel& m = v.model;
-  p = glm::clamp(p, glm::ivec2(0), glm::ivec2(int(r.options.width) - 1, int(r.options.height) - 1));
+  m.probeNote.clear();
+  if (p.x < 0 || p.y < 0 || p.x >= int(r.options.width) || p.y >= int(r.options.height)) {
+    // The pixel keeps its coordinates (never moved to another one); the frame does not hold it now.
+    m.probePixel = p;
+    m.dossier.reset();
+    m.probeError = "pixel " + std::to_string(p.x) + "," + std::to_string(p.y) + " is outside the " +
+                   std::to_string(r.options.width) + "x" + std::to_string(r.options.height) + " frame";
+    return;
+  }
   const uint32_t x = uint32_t(p.x), y = uint32_t(p.y);
   std::vector<Target> readable = readableTargets(r, r.options);
   // 1. The pixel in every screen-space target (1x1 windows).
@@ -86,6 +94,22 @@ void probeViewerPixel(Viewer& v, glm::ivec2 p, bool logged) {
   logLine(v.probeLog, m.dossierJson);
   logLine(v.eventLog, {{"event", "probe"}, {"pixel", {p.x, p.y}}, {"latency_ms", ms}});
   std::fprintf(stderr, "gblens view: probe (%d, %d): dossier ready %.2f ms after the click\n", p.x, p.y, ms);
+}
+
+void refreshProbe(Viewer& v) {
+  ViewerModel& m = v.model;
+  const std::optional<PixelDossier> before = m.dossier;
+  probeViewerPixel(v, *m.probePixel, false);
+  if (!before || !m.dossier) return;
+  // Stored bits of every target at the pixel: what "the content changed" means.
+  bool changed = before->targets.size() != m.dossier->targets.size();
+  for (size_t t = 0; !changed && t < before->targets.size(); ++t) {
+    const ProbeTarget &a = before->targets[t], &b = m.dossier->targets[t];
+    changed = a.present != b.present || a.channels.size() != b.channels.size();
+    for (size_t c = 0; !changed && c < a.channels.size(); ++c) changed = a.channels[c].bits != b.channels[c].bits;
+  }
+  if (changed) m.probeNote = "the frame changed since the click: same pixel, new content";
+  logLine(v.eventLog, {{"event", "probe_refreshed"}, {"pixel", {m.probePixel->x, m.probePixel->y}}, {"changed", changed}});
 }
 
 void readHover(Viewer& v) {

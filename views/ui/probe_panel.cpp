@@ -301,6 +301,7 @@ void drawDossier(ViewerModel& m) {
   ImGui::SameLine();
   if (ImGui::SmallButton("Copy as JSON")) m.copyJson = true;
   ImGui::TextDisabled("dossier ready %.1f ms after the click", m.probeLatencyMs);
+  if (!m.probeNote.empty()) ImGui::TextColored(ImVec4(1, 0.75f, 0.3f, 1), "%s", m.probeNote.c_str());
   if (!m.probeError.empty()) {
     ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", m.probeError.c_str());
     return;

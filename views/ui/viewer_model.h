@@ -112,6 +112,7 @@ struct ViewerModel {
   nlohmann::json dossierJson;               // the same as JSON (copy, --probe-log)
   std::optional<PixelDossier> dossierB;     // compare: capture B's dossier of the same pixel
   std::string probeError;
+  std::string probeNote;                    // the dossier is of an earlier frame, or its pixel's content changed
   double probeLatencyMs = 0.0;
   // The reference column (views/analysis/probe_reference.h): asked for in the panel, computed by
   // the app with each probe of a live frame; `referenceNote` says why there is none.
