@@ -112,6 +112,37 @@ void refreshProbe(Viewer& v) {
   logLine(v.eventLog, {{"event", "probe_refreshed"}, {"pixel", {m.probePixel->x, m.probePixel->y}}, {"changed", changed}});
 }
 
+void countMarkedPixels(Viewer& v) {
+  ViewerModel& m = v.model;
+  if (!m.shadowMark || m.source != FrameSource::Live || m.reducedBy > 1) {
+    if (!m.shadowMark) m.shadowMarkCount = -1;
+    return;
+  }
+  const std::string key = std::to_string(m.shadowMark->x) + "," + std::to_string(m.shadowMark->y) + "@" +
+                          std::to_string(m.framesRendered);
+  if (key == v.markCountKey) return;
+  v.markCountKey = key;
+  // Where each pixel's lookup falls, from its depth (the same rule as the shader's mark and the probe).
+  Renderer& r = v.renderer;
+  const std::vector<Target> readable = readableTargets(r, r.options);
+  std::vector<RegionRequest> requests;
+  for (Target t : {Target::Depth, Target::DepthStencil, Target::Position})
+    if (std::find(readable.begin(), readable.end(), t) != readable.end())
+      requests.push_back({t, 0, 0, r.options.width, r.options.height});
+  FrameSnapshot snapshot = snapshotFromRenderer(r, {});
+  addRegions(snapshot, readbackRegions(r, requests, readable));
+  int64_t count = 0;
+  for (uint32_t y = 0; y < r.options.height; ++y)
+    for (uint32_t x = 0; x < r.options.width; ++x) {
+      int32_t x0 = 0, y0 = 0;
+      if (!shadowMapFootprint(snapshot, x, y, x0, y0)) continue;
+      const glm::ivec2 k = *m.shadowMark - glm::ivec2(x0, y0);
+      count += k.x >= 0 && k.x <= 1 && k.y >= 0 && k.y <= 1;
+    }
+  m.shadowMarkCount = count;
+  logLine(v.eventLog, {{"event", "shadow_mark"}, {"texel", {m.shadowMark->x, m.shadowMark->y}}, {"pixels", count}});
+}
+
 void readHover(Viewer& v) {
   ViewerModel& m = v.model;
   std::optional<int> view = m.hoverView;

@@ -335,6 +335,7 @@ static void updateFrame(Viewer& v, const LoopState& s, int fbw, int fbh, double 
   v.referenceBusy = updateReferenceError(v);
   if (m.probeRequest) answerProbe(v);
   updateRegion(v);
+  countMarkedPixels(v);
   if (s.live) {
     readHover(v);
   } else {
@@ -370,8 +371,12 @@ static void presentInterface(Viewer& v) {
     buildInterface(v, false);
   }
   if (m.copyJson) {
-    glfwSetClipboardString(v.window, m.dossierJson.dump(2).c_str());
+    const std::string text = m.dossierJson.dump(2);
+    glfwSetClipboardString(v.window, text.c_str());
     m.copyJson = false;
+    m.copiedBytes = text.size();
+    m.copiedAt = ImGui::GetTime();
+    logLine(v.eventLog, {{"event", "copied"}, {"bytes", text.size()}});
   }
   ImGui::Render();
   if (!presentFrame(v)) recreateSwapchain(v);

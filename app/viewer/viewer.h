@@ -134,6 +134,7 @@ struct Viewer {
   std::optional<glm::ivec2> hoverRead;
   std::optional<int> hoverReadView;
   std::string loggedHover;         // the hover text last written to --event-log
+  std::string markCountKey;        // the mark and frame the marked pixels were counted for
   std::optional<glm::ivec2> dossierShownFor;  // the probed pixel whose dossier the panel has settled on
   std::string layoutKey;           // logged layout, to log changes only
   std::ofstream probeLog, eventLog;
@@ -187,6 +188,9 @@ bool presentFrame(Viewer& v);
 // shared dossier (views/probe.h). `logged`: a user's probe (written to --probe-log).
 void probeViewerPixel(Viewer& v, glm::ivec2 pixel, bool logged);
 void readHover(Viewer& v);
+// How many screen pixels sample the marked shadow-map texel (a full read-back of the depth, once per
+// mark and frame).
+void countMarkedPixels(Viewer& v);
 // The probed pixel again on a new full frame (the same image coordinates); notes when its content changed.
 void refreshProbe(Viewer& v);
 // Read-back windows (texel (x0, y0) of the target is image texel (0, 0)) placed into a snapshot.

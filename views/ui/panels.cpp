@@ -225,8 +225,15 @@ static void frameOptions(ViewerModel& m) {
   o.path = Path(path);
   ImGui::Checkbox("USE_EYE_DEPTH", &o.eyeDepth);
   tooltip("positions from the eye-depth target (on) or hardware depth through eyeFromClip (off)");
-  ImGui::Checkbox("LIGHT_STENCIL_CULLING", &o.stencilCulling);
-  if (o.stencilCulling) {
+  // Stencil culling is the deferred method's: under tiled, clustered or forward it does nothing, and
+  // the panel says so instead of offering controls without effect.
+  const bool deferred = m.stats.method.empty() || m.stats.method == "deferred";
+  if (!deferred) {
+    ImGui::TextDisabled("LIGHT_STENCIL_CULLING: deferred only (this frame ran %s)", m.stats.method.c_str());
+  } else {
+    ImGui::Checkbox("LIGHT_STENCIL_CULLING", &o.stencilCulling);
+  }
+  if (deferred && o.stencilCulling) {
     int mask = int(o.stencilMask);
     ImGui::TextDisabled("  stencil mask");
     ImGui::SameLine();
