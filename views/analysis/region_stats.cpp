@@ -108,7 +108,7 @@ void decodeAt(const FrameSnapshot& f, const Quantity& q, uint32_t x, uint32_t y,
     case QuantityKind::Normal: {
       const NormalSample n = decodeNormal(f, q, x, y);
       if (n.unit == glm::dvec3(0.0)) break;  // nothing stored
-      const glm::dvec3 toViewer = -glm::normalize(eyeFromEyeDepth(f.camera, x, y, 1.0));
+      const glm::dvec3 toViewer = -pixelRay(f.camera, x, y).direction;
       put("angle_to_view_deg", "deg", glm::degrees(std::acos(std::clamp(glm::dot(n.unit, toViewer), -1.0, 1.0))));
       break;
     }

@@ -70,7 +70,8 @@ bool seekPart(OIIO::ImageInput& in, const std::string& part, const std::string& 
   return false;
 }
 
-bool readImageFile(const std::string& path, const TargetSource& s, const LayoutTarget& t, const std::string& where,
+// Reads an image file's channels; a target with a list of formats gets the one the file holds.
+bool readImageFile(const std::string& path, const TargetSource& s, LayoutTarget& t, const std::string& where,
                    CpuImage& img, std::string& error) {
   const std::string at = where + ": " + path;
   if (t.format.depth || t.format.packed10) {
@@ -102,10 +103,28 @@ bool readImageFile(const std::string& path, const TargetSource& s, const LayoutT
       return false;
     }
     index.push_back(int(it - spec.channelnames.begin()));
-    const OIIO::TypeDesc type = spec.channelformat(index.back());
+  }
+  // The format: the layout's, or the one of its list the file's channel type is held in exactly.
+  for (size_t k = 0; k < names.size(); ++k) {
+    const OIIO::TypeDesc type = spec.channelformat(index[k]);
+    if (k == 0 && !t.formatChoices.empty()) {
+      std::string list;
+      for (const StorageFormat& f : t.formatChoices) {
+        if (type == fileType(f.type)) t.format = f;
+        list += (list.empty() ? "" : ", ") + f.name;
+      }
+      if (type != fileType(t.format.type)) {
+        error = at + ": format: channel \"" + names[k] + "\" is " + type.c_str() + "; none of " + list + " holds it exactly";
+        return false;
+      }
+    }
     if (type != fileType(t.format.type)) {
-      error = at + ": format: channel \"" + n + "\" is " + type.c_str() + "; " + t.format.name +
-              " holds only " + fileType(t.format.type).c_str() + " exactly";
+      const bool half = type == OIIO::TypeDesc::FLOAT && t.format.type == PixelType::F16;
+      error = at + ": format: channel \"" + names[k] + "\" is " + type.c_str() + "; " + t.format.name + " holds only " +
+              fileType(t.format.type).c_str() + " exactly" +
+              (half ? " (a full-float file: give the target's format as [\"" + t.format.name + "\", \"" +
+                          t.format.name.substr(0, t.format.name.size() - 3) + "32f\"] to accept both)"
+                    : "");
       return false;
     }
   }
@@ -181,9 +200,10 @@ void flipRows(CpuImage& img) {
                      img.data.begin() + long((img.height - 1 - y) * row));
 }
 
-bool readTarget(const ImportInput& in, uint32_t t, uint32_t w, uint32_t h, CpuImage& img, std::string& error) {
+// One target's texels; `lt` (the frame's copy of the layout's target) gets the format a file holds.
+bool readTarget(const ImportInput& in, uint32_t t, LayoutTarget& lt, uint32_t w, uint32_t h, CpuImage& img,
+                std::string& error) {
   const Layout& l = in.layout;
-  const LayoutTarget& lt = l.targets[t];
   const std::string where = targetWhere(l, t);
   const TargetSource& s = lt.source;
   if (s.kind == TargetSource::Kind::RenderDoc) {
@@ -238,28 +258,52 @@ bool checkCameraSize(const LayoutCamera& c, const std::string& from, uint32_t w,
   return false;
 }
 
+// Where a relative sidecar may be: beside the imported images (or the RenderDoc capture), nowhere
+// else (not beside the layout, not the current folder: a stale camera.json there would be taken).
+std::vector<std::string> sidecarCandidates(const ImportInput& in, const std::string& sidecar) {
+  std::vector<std::string> places;
+  std::vector<std::string> inputs = in.files;
+  if (!in.capture.empty()) inputs.push_back(in.capture);
+  for (const LayoutTarget& t : in.layout.targets)
+    if (t.source.kind == TargetSource::Kind::File || t.source.kind == TargetSource::Kind::Raw)
+      if (std::string path = sourcePath(in, t); !path.empty()) inputs.push_back(path);
+  for (const std::string& input : inputs) {
+    const std::string place = (fs::path(input).parent_path() / sidecar).lexically_normal().string();
+    if (std::find(places.begin(), places.end(), place) == places.end()) places.push_back(place);
+  }
+  return places;
+}
+
+bool findSidecar(const ImportInput& in, const std::string& where, std::string& sidecar, std::string& error) {
+  if (fs::path(sidecar).is_absolute()) return true;
+  const std::vector<std::string> places = sidecarCandidates(in, sidecar);
+  std::error_code ec;
+  for (const std::string& place : places)
+    if (fs::is_regular_file(place, ec)) {
+      sidecar = place;
+      return true;
+    }
+  std::string looked;
+  for (const std::string& place : places) looked += (looked.empty() ? "" : ", ") + place;
+  error = where + ": sidecar \"" + sidecar + "\": not found beside the imported files (" +
+          (looked.empty() ? std::string("no file to look beside") : "looked for " + looked) +
+          "); give it with --camera FILE";
+  return false;
+}
+
 // The layout's camera with its matrices filled from the sidecar or the uniform buffer, for images
-// of w x h.
+// of w x h; `from` says where they were read.
 bool resolveCamera(const ImportInput& in, LayoutCamera& c, uint32_t w, uint32_t h, std::string& error) {
   const std::string file = in.layout.file.empty() ? std::string("layout") : in.layout.file;
   const std::string where = file + ": camera";
   std::string sidecar = !in.cameraFile.empty() ? in.cameraFile : c.sidecar;
   if (!sidecar.empty()) {
-    if (in.cameraFile.empty() && fs::path(sidecar).is_relative()) {
-      // Beside the imported files first (a renderer writes its camera beside its images; Blender's
-      // script does), then beside the layout.
-      std::string found;
-      std::error_code ec;
-      for (const std::string& input : in.files)
-        if (found.empty() && fs::exists(fs::path(input).parent_path() / sidecar, ec))
-          found = (fs::path(input).parent_path() / sidecar).string();
-      if (found.empty() && !in.layoutDir.empty()) found = (fs::path(in.layoutDir) / sidecar).string();
-      if (!found.empty()) sidecar = found;
-    }
+    if (in.cameraFile.empty() && !findSidecar(in, where, sidecar, error)) return false;
     std::ifstream f(sidecar);
     // The layout's conventions, the sidecar's matrices (and whatever conventions it gives).
     nlohmann::json j = layoutCameraJson(c), side;
-    for (const char* key : {"sidecar", "renderdoc", "view_from_world", "clip_from_view"}) j.erase(key);
+    for (const char* key : {"sidecar", "renderdoc", "view_from_world", "clip_from_view", "world_handedness", "projection"})
+      j.erase(key);
     try {
       if (!f) throw std::runtime_error("cannot read the file");
       side = nlohmann::json::parse(f);
@@ -269,7 +313,9 @@ bool resolveCamera(const ImportInput& in, LayoutCamera& c, uint32_t w, uint32_t 
       return false;
     }
     for (auto& [k, v] : side.items()) j[k] = v;
-    return parseLayoutCamera(j, sidecar, c, error) && checkCameraSize(c, sidecar, w, h, error);
+    if (!parseLayoutCamera(j, sidecar, c, error) || !checkCameraSize(c, sidecar, w, h, error)) return false;
+    c.from = (in.cameraFile.empty() ? "sidecar " : "--camera ") + fs::absolute(sidecar).lexically_normal().string();
+    return true;
   }
   if (c.renderdoc) {
     const LayoutCamera::BufferMatrix& b = *c.renderdoc;
@@ -292,6 +338,11 @@ bool resolveCamera(const ImportInput& in, LayoutCamera& c, uint32_t w, uint32_t 
         return false;
       }
     c.viewFromWorld = b.worldFromView ? glm::inverse(view) : view;
+    c.from = "buffer \"" + b.buffer + "\"" + in.renderdocCameraBufferAt + ": " +
+             (b.worldFromView ? "world_from_view" : "view_from_world") + " at byte " + std::to_string(b.viewOffset) +
+             ", clip_from_view at byte " + std::to_string(b.clipOffset) + (b.rowMajor ? ", row-major" : ", column-major");
+  } else {
+    c.from = "the layout's matrices (" + file + ")";
   }
   return checkCameraSize(c, file, w, h, error);
 }
@@ -321,9 +372,41 @@ void importLights(const Layout& l, FrameSnapshot& f) {
 
 }  // namespace
 
-bool importCamera(const LayoutCamera& c, uint32_t width, uint32_t height, Camera& out, std::string& error) {
+namespace {
+
+// The projection's near and far eye depths and whether depth runs reversed (1 at the near plane).
+void depthRange(Camera& out) {
+  const glm::dmat4& p = out.clipFromEye;
+  if (orthographic(out)) {  // depth = p22 z + p32 (w = 1): linear in the eye depth -z
+    out.reversedZ = p[2][2] > 0.0;
+    auto depthAt = [&](double target) { return (p[3][2] - target) / p[2][2]; };
+    out.znear = depthAt(out.reversedZ ? 1.0 : 0.0);
+    out.zfar = depthAt(out.reversedZ ? 0.0 : 1.0);
+    return;
+  }
+  // Where the far plane lands: 0 for reversed Z (a perspective's depth at infinity is -p22 / p23 ...).
+  const double farDepth = hardwareDepth(out, {0.0, 0.0, -1e12});
+  out.reversedZ = farDepth < 0.5;
+  auto depthAt = [&](double target) {  // eye depth where the hardware depth is `target` (bisection)
+    double lo = 1e-9, hi = 1e12;
+    for (int i = 0; i < 200; ++i) {
+      double mid = std::sqrt(lo * hi);
+      (hardwareDepth(out, {0.0, 0.0, -mid}) < target) != out.reversedZ ? lo = mid : hi = mid;
+    }
+    return lo;
+  };
+  out.znear = depthAt(out.reversedZ ? 1.0 : 0.0);
+  out.zfar = depthAt(out.reversedZ ? 0.0 : 1.0);
+}
+
+}  // namespace
+
+bool importCamera(const LayoutCamera& given, uint32_t width, uint32_t height, Camera& out, std::string& error) {
+  LayoutCamera c = given;
+  if (!settleWorldHandedness(c, error)) return false;
   // gblens eye space = S * source view space (S flips Z for a left-handed view); gblens world =
-  // R * source world (R turns Z up into Y up). Clip space: Vulkan's, y down, depth 0..1.
+  // R * source world (R turns the up axis to Y, and mirrors a left-handed world). Clip space:
+  // Vulkan's, y down, depth 0..1.
   glm::dmat4 S(1.0), R(1.0), C(1.0);
   if (c.leftHanded) S[2][2] = -1.0;
   R = glm::dmat4(worldFromLayoutWorld(c));
@@ -343,41 +426,57 @@ bool importCamera(const LayoutCamera& c, uint32_t width, uint32_t height, Camera
     error = "camera: clip_from_view: singular after conversion";
     return false;
   }
+  // One scale for clip space (w = -z, or w = 1): the same image, and the formulas of camera.h hold.
+  glm::dmat4& p = out.clipFromEye;
+  if (p[3][3] == 0.0 && p[2][3] < 0.0 && p[2][3] != -1.0) p /= -p[2][3];
+  if (p[2][3] == 0.0 && p[3][3] != 0.0 && p[3][3] != 1.0) p /= p[3][3];
+  const Projection kind = projectionOf(p);
+  if (kind == Projection::Other) {
+    error = p[2][3] > 0.0 && p[3][3] == 0.0
+                ? std::string("camera: clip_from_view: a perspective looking down ") + (c.leftHanded ? "-Z" : "+Z") +
+                      " of the view: view_handedness is \"" + (c.leftHanded ? "right" : "left") + "\", not \"" +
+                      (c.leftHanded ? "left" : "right") + "\""
+                : "camera: clip_from_view: neither a perspective nor an orthographic projection (clip w mixes x, y "
+                  "or z with a constant, or x and y are mixed); gblens cannot reconstruct positions through it";
+    return false;
+  }
+  if (c.statedOrthographic && *c.statedOrthographic != (kind == Projection::Orthographic)) {
+    error = std::string("camera: projection: \"") + (*c.statedOrthographic ? "orthographic" : "perspective") +
+            "\", but clip_from_view is " + name(kind);
+    return false;
+  }
   out.eyeFromClip = glm::inverse(out.clipFromEye);
   out.clipFromWorld = out.clipFromEye * out.eyeFromWorld;
-  const glm::dmat4& p = out.clipFromEye;
-  out.yfov = 2.0 * std::atan(1.0 / std::abs(p[1][1]));
+  out.yfov = kind == Projection::Orthographic ? 0.0 : 2.0 * std::atan(1.0 / std::abs(p[1][1]));
   out.aspect = std::abs(p[1][1] / p[0][0]);
-  // Where the far plane lands: 0 for reversed Z (a perspective's depth at infinity is -p22 / p23 ...).
-  const double farDepth = hardwareDepth(out, {0.0, 0.0, -1e12});
-  out.reversedZ = farDepth < 0.5;
-  auto depthAt = [&](double target) {  // eye depth where the hardware depth is `target` (bisection)
-    double lo = 1e-9, hi = 1e12;
-    for (int i = 0; i < 200; ++i) {
-      double mid = std::sqrt(lo * hi);
-      (hardwareDepth(out, {0.0, 0.0, -mid}) < target) != out.reversedZ ? lo = mid : hi = mid;
-    }
-    return lo;
-  };
-  out.znear = depthAt(out.reversedZ ? 1.0 : 0.0);
-  out.zfar = depthAt(out.reversedZ ? 0.0 : 1.0);
+  depthRange(out);
   return true;
+}
+
+std::string builtinLayoutNames() {
+  std::string names;
+  for (const auto& [path, unused] : assets())
+    if (path.rfind("layouts/", 0) == 0 && fs::path(path).extension() == ".json")
+      names += (names.empty() ? "builtin:" : ", builtin:") + fs::path(path).stem().string();
+  return names;
 }
 
 bool loadImportLayout(const std::string& spec, const LayoutParameters& params, Layout& out, std::string& dir,
                       std::string& error) {
   dir.clear();
   if (spec.rfind("builtin:", 0) != 0) {
+    std::error_code ec;
+    const std::string stem = fs::path(spec).stem().string();
+    if (!fs::exists(spec, ec) && assetText("layouts/" + stem + ".json")) {
+      error = spec + ": no such layout file; the layout gblens carries is --layout builtin:" + stem;
+      return false;
+    }
     dir = fs::path(spec).parent_path().string();
     return loadLayoutFile(spec, params, out, error);
   }
   const std::string* text = assetText("layouts/" + spec.substr(8) + ".json");
   if (!text) {
-    std::string names;
-    for (const auto& [path, unused] : assets())
-      if (path.rfind("layouts/", 0) == 0 && fs::path(path).extension() == ".json")
-        names += (names.empty() ? "builtin:" : ", builtin:") + fs::path(path).stem().string();
-    error = spec + ": no such built-in layout (built in: " + names + ")";
+    error = spec + ": no such built-in layout (built in: " + builtinLayoutNames() + ")";
     return false;
   }
   nlohmann::json j = nlohmann::json::parse(*text);
@@ -386,8 +485,8 @@ bool loadImportLayout(const std::string& spec, const LayoutParameters& params, L
 
 bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) {
   const Layout& l = in.layout;
+  Layout frameLayout = l;  // with the formats files were found to hold (a target's list of formats)
   out = FrameSnapshot{};
-  out.setLayout(l);
   std::vector<CpuImage> images(l.targets.size());
   uint32_t w = l.width, h = l.height;
   for (uint32_t t = 0; t < l.targets.size(); ++t) {
@@ -415,18 +514,27 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
       return false;
     }
     if (!w) w = tw, h = th;
-    if (!readTarget(in, t, tw, th, images[t], error)) return false;
+    if (!readTarget(in, t, frameLayout.targets[t], tw, th, images[t], error)) return false;
+    frameLayout.targets[t].formatChoices.clear();
     images[t].name = l.targets[t].name;
   }
+  out.setLayout(frameLayout);
   LayoutCamera camera = l.camera;
   if (camera.present || !in.cameraFile.empty()) {
     camera.present = true;
     if (!resolveCamera(in, camera, w, h, error)) return false;
     std::string why;
-    if (!importCamera(camera, w, h, out.camera, why)) {
+    if (!settleWorldHandedness(camera, why) || !importCamera(camera, w, h, out.camera, why)) {
       error = (l.file.empty() ? std::string("layout") : l.file) + ": " + why;
       return false;
     }
+    if (orthographic(out.camera))  // radial distance from an orthographic camera: along the ray, from z = 0
+      for (const Quantity& q : l.quantities)
+        if (q.kind == QuantityKind::Depth && q.depth == DepthEncoding::Radial && !q.ofSun) {
+          error = targetWhere(l, q.target) + ": quantities \"" + q.name +
+                  "\": encoding: radial distance with an orthographic camera is its eye depth; say \"eye\"";
+          return false;
+        }
   } else {
     for (const Quantity& q : l.quantities) {
       const bool needsCamera = (q.kind == QuantityKind::Depth && !q.ofSun && q.depth != DepthEncoding::Eye) ||
@@ -441,8 +549,8 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
   }
   if (camera.bottomOrigin)  // after the camera is resolved: a sidecar may say so
     for (CpuImage& image : images) flipRows(image);
-  // The manifest embeds the camera as imported: its matrices in the layout's conventions (not where
-  // they were read from), and rows top first (the images were flipped just above).
+  // The manifest embeds the camera as imported: its matrices in the layout's conventions, where they
+  // were read from (`from`), and rows top first (the images were flipped just above).
   camera.sidecar.clear();
   camera.renderdoc.reset();
   camera.bottomOrigin = false;
