@@ -28,8 +28,9 @@ struct ImportOptions {
   bool list = false, suggest = false;
 };
 
-// Progress on stderr, as bench and stress print theirs: what import is doing now.
-void progress(const std::string& text) { std::fprintf(stderr, "gblens import: %s\n", text.c_str()); }
+// Progress on stderr, as stress prints its own ("  .. "): what import is doing now. A mistake is
+// still one line of its own ("gblens import: ...").
+void progress(const std::string& text) { std::fprintf(stderr, "  .. %s\n", text.c_str()); }
 
 bool isRenderDocCapture(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
