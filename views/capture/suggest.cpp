@@ -61,10 +61,11 @@ void linearDepthInW(nlohmann::json& draft, const FrameSnapshot& f, const Surface
   std::sort(ratio.begin(), ratio.end());
   const double k = ratio[ratio.size() / 2], spread = (ratio[ratio.size() * 99 / 100] - ratio[ratio.size() / 100]) / k;
   if (!(spread < 1e-4)) return;
+  std::string name = "eye_depth";
+  for (int i = 2; quantityJson(draft, name); ++i) name = "eye_depth" + std::to_string(i);
   nlohmann::json* q = quantityJson(draft, w->name);
-  const std::string name = (*q)["name"];
-  *q = {{"quantity", "depth"}, {"name", name == "scalar" ? "depth" : name}, {"channels", w->channels},
-        {"encoding", "eye"}, {"scale", std::stod(number(k))}};
+  *q = {{"quantity", "depth"}, {"name", name}, {"channels", w->channels}, {"encoding", "eye"},
+        {"scale", std::stod(number(k))}};
   std::string note = "eye depth of the positions / " + number(k) + " at every surface texel (spread " + number(spread) + ")";
   if (!background.empty()) {
     auto most = std::max_element(background.begin(), background.end(), [](auto& a, auto& b) { return a.second < b.second; });

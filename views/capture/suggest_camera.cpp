@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <sstream>
@@ -360,11 +358,6 @@ FoundCamera searchCamera(const std::vector<RdcBinding>& buffers, const CameraEvi
   } else {
     std::stable_sort(pool.begin(), pool.end(), [](const Hypothesis& a, const Hypothesis& b) { return a.prior > b.prior; });
   }
-  if (std::getenv("GBLENS_SUGGEST_DEBUG"))
-    for (size_t i = 0; i < pool.size() && i < 5; ++i)
-      std::fprintf(stderr, "debug %zu: P %s V %s inv %d space %d err %g prior %d checked %zu\n", i,
-                   where(buffers, *pool[i].projection).c_str(), pool[i].view ? where(buffers, *pool[i].view).c_str() : "-",
-                   pool[i].inverseView, int(pool[i].space), pool[i].pixelError, pool[i].prior, pool[i].checked);
   const Hypothesis& best = pool[0];
   double alignment = 0.0;
   const Axis up = guessUpAxis(best.layout, best.camera, alignment);
@@ -389,9 +382,12 @@ FoundCamera searchCamera(const std::vector<RdcBinding>& buffers, const CameraEvi
   else
     why << "; not checked: the G-buffer stores no positions (the stored depth fits its near and far planes)";
   why << "; up " << name(up) << " from the image's up direction (" << alignment << " along it)";
-  if (pool.size() > 1 && (!positions || pool[1].pixelError <= 10 * std::max(best.pixelError, 1e-3))) {
-    why << "; also fitting: " << where(buffers, *pool[1].projection);
-    if (pool[1].view) why << " with " << where(buffers, *pool[1].view);
+  const auto other = std::find_if(pool.begin() + 1, pool.end(), [&](const Hypothesis& h) {
+    return h.projection != best.projection || h.view != best.view;
+  });
+  if (other != pool.end() && (!positions || other->pixelError <= 10 * std::max(best.pixelError, 1e-3))) {
+    why << "; also fitting: " << where(buffers, *other->projection);
+    if (other->view) why << " with " << where(buffers, *other->view);
   }
   out.camera["guess"] = why.str();
   out.summary.push_back("camera: " + why.str());

@@ -157,7 +157,7 @@ std::string quantityName(QuantityKind k, const std::string& encoding, std::set<s
 
 // The kinds the texels suggest for a target whose name says nothing, with why.
 std::vector<QuantityKind> kindsFromTexels(const StorageFormat& f, const CpuImage* img, const SurfaceMask& s,
-                                          std::string& why) {
+                                          bool afterGBuffer, std::string& why) {
   const uint32_t n = f.channels;
   if (f.encoding == Encoding::Uint) {
     why = "integer channels: ids";
@@ -200,7 +200,11 @@ std::vector<QuantityKind> kindsFromTexels(const StorageFormat& f, const CpuImage
     why = w.str();
     return {QuantityKind::Radiance};
   }
-  why = "normalised colour channels, not unit vectors: a colour";
+  if (afterGBuffer) {
+    why = "normalised colour channels written after the G-buffer: the picture shown";
+    return {QuantityKind::Display};
+  }
+  why = "normalised colour channels, not unit vectors, written with the G-buffer: a surface colour";
   return {QuantityKind::Albedo};
 }
 
@@ -234,7 +238,7 @@ std::string targetName(const std::string& text, std::set<std::string>& used) {
 }
 
 nlohmann::json guessQuantities(const std::string& targetText, const StorageFormat& f, const CpuImage* img,
-                               const SurfaceMask& s, std::set<std::string>& used) {
+                               const SurfaceMask& s, std::set<std::string>& used, bool afterGBuffer) {
   nlohmann::json out = nlohmann::json::array();
   auto add = [&](QuantityKind k, std::vector<uint32_t> ch, nlohmann::json fields, const std::string& why) {
     const std::string encoding = fields.is_object() ? fields.value("encoding", "") : "";
@@ -250,7 +254,7 @@ nlohmann::json guessQuantities(const std::string& targetText, const StorageForma
   }
   std::vector<QuantityKind> kinds = namedKinds(targetText);
   std::string why = kinds.empty() ? "" : "the name \"" + targetText + "\"";
-  if (kinds.empty()) kinds = kindsFromTexels(f, img, s, why);
+  if (kinds.empty()) kinds = kindsFromTexels(f, img, s, afterGBuffer, why);
   uint32_t next = 0;
   for (size_t i = 0; i < kinds.size() && next < f.channels; ++i) {
     const QuantityKind k = kinds[i];

@@ -25,9 +25,10 @@ struct SurfaceMask {
 std::string storageFormatName(const std::string& renderDocFormat);
 
 // The quantities of one target (a JSON list for the draft). `name` is the texture's or the EXR
-// layer's name; `image` its texels (may be null); `used` the quantity names taken so far.
+// layer's name; `image` its texels (may be null); `used` the quantity names taken so far;
+// `afterGBuffer`: a later pass writes it (a colour there is the lit or displayed picture, not albedo).
 nlohmann::json guessQuantities(const std::string& name, const StorageFormat& format, const CpuImage* image,
-                               const SurfaceMask& surface, std::set<std::string>& used);
+                               const SurfaceMask& surface, std::set<std::string>& used, bool afterGBuffer = false);
 
 // A layout target name from any text: lower case, a-z 0-9 _, unique among `used`.
 std::string targetName(const std::string& text, std::set<std::string>& used);

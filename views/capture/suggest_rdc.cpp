@@ -20,6 +20,10 @@ const RdcTexture* findTexture(const RdcListing& l, const std::string& name) {
   return nullptr;
 }
 
+// What a texture's name says about it: nothing when RenderDoc made the name up ("2D Color
+// Attachment 127" is no albedo).
+std::string said(const RdcTexture& t) { return t.autoName ? "" : t.name; }
+
 // How a layout names a texture: by name when no other texture has it, else by id.
 std::string sourceName(const RdcListing& l, const RdcTexture& t) {
   const size_t same = size_t(std::count_if(l.textures.begin(), l.textures.end(), [&](const RdcTexture& o) { return o.name == t.name; }));
@@ -142,7 +146,7 @@ bool suggestFromRenderDoc(const SuggestRequest& r, Suggestion& out, std::string&
   SurfaceMask none;
   for (uint32_t t = 0; t < in.layout.targets.size(); ++t) {  // depth first: it says where surfaces are
     const LayoutTarget& lt = in.layout.targets[t];
-    if (lt.format.depth) draft["targets"][t]["quantities"] = guessQuantities(textures[t]->name, lt.format, &raw.images[t].image, none, quantityNames);
+    if (lt.format.depth) draft["targets"][t]["quantities"] = guessQuantities(said(*textures[t]), lt.format, &raw.images[t].image, none, quantityNames);
   }
   FrameSnapshot frame;
   auto reparse = [&]() {
@@ -159,7 +163,10 @@ bool suggestFromRenderDoc(const SuggestRequest& r, Suggestion& out, std::string&
   const SurfaceMask surface = surfaceOf(frame);
   for (uint32_t t = 0; t < in.layout.targets.size(); ++t) {
     const LayoutTarget& lt = in.layout.targets[t];
-    if (!lt.format.depth) draft["targets"][t]["quantities"] = guessQuantities(textures[t]->name, lt.format, &raw.images[t].image, surface, quantityNames);
+    const bool later = std::find(pass->outputs.begin(), pass->outputs.end(), textures[t]->name) == pass->outputs.end();
+    if (!lt.format.depth)
+      draft["targets"][t]["quantities"] =
+          guessQuantities(said(*textures[t]), lt.format, &raw.images[t].image, surface, quantityNames, later);
   }
   // Textures the application did not name: targets named by what they hold ("position", "normal").
   std::set<std::string> renamed;
