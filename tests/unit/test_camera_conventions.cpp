@@ -166,8 +166,10 @@ TEST(CameraConventions, EveryUpAxisHandednessProjectionAndClipSpaceRebuildsHandP
               EXPECT_EQ(cam.reversedZ, c.reversed);
               EXPECT_NEAR(cam.znear, kNear, 1e-9);
               EXPECT_NEAR(cam.zfar, kFar, 1e-6);
-              // gblens's world is right-handed: eye from world is a rotation.
+              // gblens's world is right-handed (eye from world is a rotation) and its +Y is the layout's
+              // up: here the camera's up, the eye's +Y.
               EXPECT_NEAR(glm::determinant(glm::dmat3(cam.eyeFromWorld)), 1.0, 1e-12);
+              EXPECT_NEAR(glm::length(glm::dmat3(cam.eyeFromWorld) * glm::dvec3(0, 1, 0) - glm::dvec3(0, 1, 0)), 0.0, 1e-12);
 
               // The point on pixel (px, py) at forward distance d, by the projection's own terms.
               const double aspect = double(kW) / kH;
