@@ -142,9 +142,12 @@ CameraEvidence evidenceOf(const FrameSnapshot& f, const SurfaceMask& s) {
   return e;
 }
 
-void refineWithCamera(nlohmann::json& draft, const FrameSnapshot& f, const SurfaceMask& s, const LayoutCamera& camera,
+void refineWithCamera(nlohmann::json& draft, const FrameSnapshot& drafted, const SurfaceMask& s, const LayoutCamera& camera,
                       const Camera& converted, bool positionsChecked, Space positionSpace,
                       std::vector<std::string>& summary) {
+  FrameSnapshot f = drafted;  // with the camera found: depths rebuild positions through it
+  f.camera = converted;
+  f.layout.camera = camera;
   const Layout& l = f.layout;
   const glm::dmat3 toWorld = worldFromLayoutWorld(camera);
   auto eyeOf = [&](Space space, const glm::dvec3& v, bool point) {
