@@ -265,6 +265,40 @@ void importLights(const Layout& l, FrameSnapshot& f) {
   f.stencilCount = uint32_t(f.visibleLights.size());
 }
 
+// The frame's camera: the layout's (or --camera's), resolved and converted; without one, only
+// quantities that need none.
+bool frameCamera(const ImportInput& in, uint32_t w, uint32_t h, LayoutCamera& camera, Camera& out, std::string& error) {
+  const Layout& l = in.layout;
+  if (!camera.present && in.cameraFile.empty()) {
+    for (const Quantity& q : l.quantities) {
+      const bool needsCamera = (q.kind == QuantityKind::Depth && !q.ofSun && q.depth != DepthEncoding::Eye) ||
+                               ((q.kind == QuantityKind::Normal || q.kind == QuantityKind::Position) && q.space != Space::View);
+      if (needsCamera) {
+        error = targetWhere(l, q.target) + ": quantities \"" + q.name + "\": needs the layout's camera (\"camera\")";
+        return false;
+      }
+    }
+    out.width = w;
+    out.height = h;
+    return true;
+  }
+  camera.present = true;
+  if (!resolveCamera(in, camera, w, h, error)) return false;
+  std::string why;
+  if (!settleWorldHandedness(camera, why) || !importCamera(camera, w, h, out, why)) {
+    error = (l.file.empty() ? std::string("layout") : l.file) + ": " + why;
+    return false;
+  }
+  if (orthographic(out))  // the distance from an orthographic "eye" says nothing the eye depth does not
+    for (const Quantity& q : l.quantities)
+      if (q.kind == QuantityKind::Depth && q.depth == DepthEncoding::Radial && !q.ofSun) {
+        error = targetWhere(l, q.target) + ": quantities \"" + q.name +
+                "\": encoding: radial distance with an orthographic camera is its eye depth; say \"eye\"";
+        return false;
+      }
+  return true;
+}
+
 }  // namespace
 
 std::string builtinLayoutNames() {
@@ -334,33 +368,7 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
   }
   out.setLayout(frameLayout);
   LayoutCamera camera = l.camera;
-  if (camera.present || !in.cameraFile.empty()) {
-    camera.present = true;
-    if (!resolveCamera(in, camera, w, h, error)) return false;
-    std::string why;
-    if (!settleWorldHandedness(camera, why) || !importCamera(camera, w, h, out.camera, why)) {
-      error = (l.file.empty() ? std::string("layout") : l.file) + ": " + why;
-      return false;
-    }
-    if (orthographic(out.camera))  // radial distance from an orthographic camera: along the ray, from z = 0
-      for (const Quantity& q : l.quantities)
-        if (q.kind == QuantityKind::Depth && q.depth == DepthEncoding::Radial && !q.ofSun) {
-          error = targetWhere(l, q.target) + ": quantities \"" + q.name +
-                  "\": encoding: radial distance with an orthographic camera is its eye depth; say \"eye\"";
-          return false;
-        }
-  } else {
-    for (const Quantity& q : l.quantities) {
-      const bool needsCamera = (q.kind == QuantityKind::Depth && !q.ofSun && q.depth != DepthEncoding::Eye) ||
-                               ((q.kind == QuantityKind::Normal || q.kind == QuantityKind::Position) && q.space != Space::View);
-      if (needsCamera) {
-        error = targetWhere(l, q.target) + ": quantities \"" + q.name + "\": needs the layout's camera (\"camera\")";
-        return false;
-      }
-    }
-    out.camera.width = w;
-    out.camera.height = h;
-  }
+  if (!frameCamera(in, w, h, camera, out.camera, error)) return false;
   if (camera.bottomOrigin)  // after the camera is resolved: a sidecar may say so
     for (CpuImage& image : images) flipRows(image);
   // The manifest embeds the camera as imported: its matrices in the layout's conventions, where they

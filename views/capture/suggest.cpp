@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "renderer/core/decode.h"
+#include "renderer/core/layout_json.h"
 
 namespace gb {
 
@@ -89,6 +90,17 @@ bool suggestLayout(const SuggestRequest& r, Suggestion& out, std::string& error)
     return false;
   }
   return suggestFromImages(r, out, error);
+}
+
+bool draftFrame(const nlohmann::json& draft, const FrameSnapshot& raw, FrameSnapshot& frame, std::string& error) {
+  Layout l;
+  if (!parseLayout(draft, "draft", l, error)) return false;
+  frame = FrameSnapshot{};
+  frame.setLayout(l);
+  frame.images = raw.images;
+  frame.absences = raw.absences;
+  frame.camera = raw.camera;
+  return true;
 }
 
 SurfaceMask surfaceOf(const FrameSnapshot& f) {

@@ -35,6 +35,8 @@ bool suggestLayout(const SuggestRequest& request, Suggestion& out, std::string& 
 // Shared by both sources (suggest.cpp).
 bool suggestFromRenderDoc(const SuggestRequest& request, Suggestion& out, std::string& error);
 bool suggestFromImages(const SuggestRequest& request, Suggestion& out, std::string& error);
+// `raw`'s texels under the draft's layout (parsed; false with its message when it does not parse).
+bool draftFrame(const nlohmann::json& draft, const FrameSnapshot& raw, FrameSnapshot& frame, std::string& error);
 // The surface pixels by a depth quantity of a frame (hardware: not the clear value; eye: finite,
 // positive and not the background); every pixel when the layout has none.
 SurfaceMask surfaceOf(const FrameSnapshot& frame);

@@ -293,20 +293,12 @@ double fitPositions(const LayoutCamera& c, const CameraEvidence& e, Space& space
   return std::min(world.pixelError, h.pixelError);
 }
 
-FoundCamera searchCamera(const std::vector<RdcBinding>& buffers, const CameraEvidence& e) {
-  FoundCamera out;
-  const Candidates cands = findCandidates(buffers);
-  const bool positions = std::any_of(e.samples.begin(), e.samples.end(), [](const auto& s) { return s.hasPosition; });
-  std::ostringstream log;
-  log << cands.projections.size() << " projection-shaped and " << cands.views.size()
-      << " view-shaped matrices in " << buffers.size() << " bound buffers";
-  out.summary.push_back(log.str());
-  if (cands.projections.empty()) {
-    out.summary.push_back("no projection found: give the camera yourself (docs/layout-format.md, \"camera\")");
-    return out;
-  }
+namespace {
 
-  // Every projection, both handednesses where its shape does not tell, the view space first.
+// Every projection, both handednesses where its shape does not tell, then with every view matrix
+// (and its inverse): scored by the stored positions (view space, and world space through the view
+// matrix), or by the depth's fit alone. Sorted, the best first.
+std::vector<Hypothesis> rankHypotheses(const Candidates& cands, const CameraEvidence& e, bool positions) {
   std::vector<Hypothesis> tried;
   for (const Candidate& p : cands.projections) {
     const bool persp = perspectiveShape(p.m);
@@ -320,17 +312,6 @@ FoundCamera searchCamera(const std::vector<RdcBinding>& buffers, const CameraEvi
       if (positions ? score(h, e, 256) : depthsFit(h, e)) tried.push_back(h);
     }
   }
-  if (tried.empty()) {
-    out.summary.push_back("no projection fits the stored depth: give the camera yourself");
-    return out;
-  }
-  // With stored positions: a projection they fit in view space, else a projection and a view
-  // matrix they fit in world space. The best fit wins; the priors break ties.
-  auto better = [](const Hypothesis& a, const Hypothesis& b) {
-    const double ea = a.pixelError, eb = b.pixelError;
-    if (std::abs(ea - eb) > 1e-3 * std::max(1.0, std::min(ea, eb))) return ea < eb;
-    return a.prior > b.prior;
-  };
   std::vector<Hypothesis> withViews;
   for (const Hypothesis& base : tried)
     for (const Candidate& v : cands.views)
@@ -351,12 +332,64 @@ FoundCamera searchCamera(const std::vector<RdcBinding>& buffers, const CameraEvi
         withViews.push_back(h);
       }
   std::vector<Hypothesis>& pool = withViews.empty() ? tried : withViews;
+  // The best fit wins; the priors break ties (and decide alone without positions).
+  auto better = [](const Hypothesis& a, const Hypothesis& b) {
+    const double ea = a.pixelError, eb = b.pixelError;
+    if (std::abs(ea - eb) > 1e-3 * std::max(1.0, std::min(ea, eb))) return ea < eb;
+    return a.prior > b.prior;
+  };
   if (positions) {
     std::sort(pool.begin(), pool.end(), better);
     for (size_t i = 0; i < pool.size() && i < 8; ++i) score(pool[i], e, 100000);  // the best few on every sample
     std::sort(pool.begin(), pool.begin() + long(std::min<size_t>(pool.size(), 8)), better);
   } else {
     std::stable_sort(pool.begin(), pool.end(), [](const Hypothesis& a, const Hypothesis& b) { return a.prior > b.prior; });
+  }
+  return pool;
+}
+
+// The draft's note: what was chosen, what checked it, what else fits.
+std::string guessNote(const std::vector<RdcBinding>& buffers, const std::vector<Hypothesis>& pool, bool positions,
+                      bool checked, Axis up, double alignment) {
+  const Hypothesis& best = pool[0];
+  std::ostringstream why;
+  why << (orthographic(best.camera) ? "orthographic" : "perspective") << " projection at " << where(buffers, *best.projection);
+  if (best.view) why << ", " << (best.inverseView ? "world_from_view" : "view_from_world") << " at " << where(buffers, *best.view);
+  else why << ", no view matrix found (identity)";
+  if (positions)
+    why << "; stored positions in " << (best.space == Space::View ? "view" : "world") << " space land "
+        << best.pixelError << " px (median of " << best.checked << ") from their pixels"
+        << (checked ? "" : ": too far, so the camera is NOT confirmed")
+        << (best.space == Space::View && best.view ? "; the view matrix only turns world space: nothing stored checked it" : "");
+  else
+    why << "; not checked: the G-buffer stores no positions (the stored depth fits its near and far planes)";
+  why << "; up " << name(up) << " from the image's up direction (" << alignment << " along it)";
+  const auto other = std::find_if(pool.begin() + 1, pool.end(), [&](const Hypothesis& h) {
+    return h.projection != best.projection || h.view != best.view;
+  });
+  if (other != pool.end() && (!positions || other->pixelError <= 10 * std::max(best.pixelError, 1e-3))) {
+    why << "; also fitting: " << where(buffers, *other->projection);
+    if (other->view) why << " with " << where(buffers, *other->view);
+  }
+  return why.str();
+}
+
+}  // namespace
+
+FoundCamera searchCamera(const std::vector<RdcBinding>& buffers, const CameraEvidence& e) {
+  FoundCamera out;
+  const Candidates cands = findCandidates(buffers);
+  const bool positions = std::any_of(e.samples.begin(), e.samples.end(), [](const auto& s) { return s.hasPosition; });
+  std::ostringstream log;
+  log << cands.projections.size() << " projection-shaped and " << cands.views.size()
+      << " view-shaped matrices in " << buffers.size() << " bound buffers";
+  out.summary.push_back(log.str());
+  const std::vector<Hypothesis> pool = rankHypotheses(cands, e, positions);
+  if (pool.empty()) {
+    out.summary.push_back(cands.projections.empty()
+                              ? "no projection found: give the camera yourself (docs/layout-format.md, \"camera\")"
+                              : "no projection fits the stored depth: give the camera yourself");
+    return out;
   }
   const Hypothesis& best = pool[0];
   double alignment = 0.0;
@@ -369,28 +402,8 @@ FoundCamera searchCamera(const std::vector<RdcBinding>& buffers, const CameraEvi
   out.positionSpace = best.space;
   out.pixelError = best.pixelError;
   out.camera = cameraJson(buffers, best, up);
-
-  std::ostringstream why;
-  why << (orthographic(best.camera) ? "orthographic" : "perspective") << " projection at " << where(buffers, *best.projection);
-  if (best.view) why << ", " << (best.inverseView ? "world_from_view" : "view_from_world") << " at " << where(buffers, *best.view);
-  else why << ", no view matrix found (identity)";
-  if (positions)
-    why << "; stored positions in " << (best.space == Space::View ? "view" : "world") << " space land "
-        << best.pixelError << " px (median of " << best.checked << ") from their pixels"
-        << (out.positionsChecked ? "" : ": too far, so the camera is NOT confirmed")
-        << (best.space == Space::View && best.view ? "; the view matrix only turns world space: nothing stored checked it" : "");
-  else
-    why << "; not checked: the G-buffer stores no positions (the stored depth fits its near and far planes)";
-  why << "; up " << name(up) << " from the image's up direction (" << alignment << " along it)";
-  const auto other = std::find_if(pool.begin() + 1, pool.end(), [&](const Hypothesis& h) {
-    return h.projection != best.projection || h.view != best.view;
-  });
-  if (other != pool.end() && (!positions || other->pixelError <= 10 * std::max(best.pixelError, 1e-3))) {
-    why << "; also fitting: " << where(buffers, *other->projection);
-    if (other->view) why << " with " << where(buffers, *other->view);
-  }
-  out.camera["guess"] = why.str();
-  out.summary.push_back("camera: " + why.str());
+  out.camera["guess"] = guessNote(buffers, pool, positions, out.positionsChecked, up, alignment);
+  out.summary.push_back("camera: " + out.camera["guess"].get<std::string>());
   return out;
 }
 

@@ -111,13 +111,7 @@ bool draftQuantities(nlohmann::json& draft, const Layout& targetsOnly, const Fra
         }
       draft["targets"][t]["quantities"] = qs;
     }
-    Layout layout;
-    if (!parseLayout(draft, "draft", layout, error)) return false;
-    frame = FrameSnapshot{};
-    frame.setLayout(layout);
-    frame.images = raw.images;
-    frame.absences = raw.absences;
-    frame.camera = raw.camera;
+    if (!draftFrame(draft, raw, frame, error)) return false;
     surface = surfaceOf(frame);
   }
   return true;

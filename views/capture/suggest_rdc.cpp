@@ -56,7 +56,7 @@ const RdcPass* gbufferPass(const RdcListing& l, const SuggestRequest& r, std::st
 }
 
 // The textures to draft: the G-buffer draw's targets, then frame-sized ones later passes write.
-std::vector<const RdcTexture*> draftTextures(const RdcListing& l, const RdcPass& bound, uint32_t after,
+std::vector<const RdcTexture*> draftTextures(const RdcListing& l, const RdcPass& gbuffer, uint32_t after,
                                              std::vector<std::string>& summary) {
   std::vector<const RdcTexture*> out;
   auto add = [&](const std::string& name, const std::string& why) {
@@ -70,8 +70,8 @@ std::vector<const RdcTexture*> draftTextures(const RdcListing& l, const RdcPass&
     out.push_back(t);
     if (!why.empty()) summary.push_back("target " + t->name + ": " + why);
   };
-  for (const std::string& name : bound.outputs) add(name, "");
-  if (!bound.depthTarget.empty()) add(bound.depthTarget, "");
+  for (const std::string& name : gbuffer.outputs) add(name, "");
+  if (!gbuffer.depthTarget.empty()) add(gbuffer.depthTarget, "");
   if (out.empty()) return out;
   for (const RdcPass& p : l.passes)
     if (p.firstEvent > after)
@@ -81,6 +81,61 @@ std::vector<const RdcTexture*> draftTextures(const RdcListing& l, const RdcPass&
           add(name, "written after the G-buffer pass, by " + p.name);
       }
   return out;
+}
+
+}  // namespace
+
+namespace {
+
+// The draft's targets (no quantities yet) and their texels, read as the import will read them:
+// after the pass that last writes each (or at --event / --pass).
+bool readTargets(const SuggestRequest& r, const RdcListing& listing, const RdcPass& pass,
+                 const std::vector<const RdcTexture*>& textures, nlohmann::json& draft, FrameSnapshot& raw,
+                 std::string& error) {
+  const uint32_t readAt = r.event ? r.event : r.pass.empty() ? 0 : pass.lastEvent;
+  std::set<std::string> targetNames;
+  std::vector<std::string> sources;
+  for (const RdcTexture* t : textures) {
+    sources.push_back(sourceName(listing, *t));
+    draft["targets"].push_back({{"name", targetName(t->name, targetNames)}, {"format", storageFormatName(t->format)},
+                                {"source", {{"renderdoc", sources.back()}}}, {"quantities", nlohmann::json::array()}});
+  }
+  r.progress("reading the texels of " + std::to_string(textures.size()) + " targets");
+  std::vector<RdcTexels> texels;
+  if (!readRenderDocTexels(r.inputs[0], readAt, sources, texels, error, r.replay)) return false;
+  ImportInput in;
+  if (!parseLayout(draft, "draft", in.layout, error)) return false;
+  for (size_t k = 0; k < texels.size() && k < in.layout.targets.size(); ++k) {
+    const std::string& target = in.layout.targets[k].name;
+    in.renderdocSizes[target] = {texels[k].texture.width, texels[k].texture.height};
+    in.renderdocTexels[target] = std::move(texels[k].bytes);
+  }
+  return importFrame(in, raw, error);
+}
+
+// What the channels hold: depth targets first (they say where surfaces are), then the rest; unnamed
+// textures' targets named by what they hold ("position", "normal"). `frame` gets the drafted layout.
+bool guessTargets(nlohmann::json& draft, const std::vector<const RdcTexture*>& textures, const RdcPass& pass,
+                  const FrameSnapshot& raw, FrameSnapshot& frame, SurfaceMask& surface, std::string& error) {
+  std::set<std::string> quantityNames;
+  for (bool depthPass : {true, false}) {
+    for (uint32_t t = 0; t < textures.size(); ++t) {
+      const StorageFormat& f = raw.layout.targets[t].format;
+      if (f.depth != depthPass) continue;
+      const bool later = std::find(pass.outputs.begin(), pass.outputs.end(), textures[t]->name) == pass.outputs.end();
+      draft["targets"][t]["quantities"] =
+          guessQuantities(said(*textures[t]), f, &raw.images[t].image, surface, quantityNames, later);
+    }
+    if (!draftFrame(draft, raw, frame, error)) return false;
+    if (depthPass) surface = surfaceOf(frame);
+  }
+  std::set<std::string> renamed;
+  for (size_t t = 0; t < textures.size(); ++t) {
+    const nlohmann::json& qs = draft["targets"][t]["quantities"];
+    const std::string base = textures[t]->autoName && !qs.empty() ? qs[0]["quantity"].get<std::string>() : textures[t]->name;
+    draft["targets"][t]["name"] = targetName(base, renamed);
+  }
+  return draftFrame(draft, raw, frame, error);
 }
 
 }  // namespace
@@ -105,77 +160,21 @@ bool suggestFromRenderDoc(const SuggestRequest& r, Suggestion& out, std::string&
     error = rdc + ": RenderDoc's replay crashed reading the state at event " + skipped + " (give another --event)";
     return false;
   }
-  RdcPass bound = states[event];
-  bound.outputs = pass->outputs;
-  bound.depthTarget = pass->depthTarget;
-
-  const std::vector<const RdcTexture*> textures = draftTextures(listing, bound, pass->lastEvent, out.summary);
+  const RdcPass& bound = states[event];
+  const std::vector<const RdcTexture*> textures = draftTextures(listing, *pass, pass->lastEvent, out.summary);
   if (textures.empty()) {
     error = rdc + ": the G-buffer pass's targets have no format a layout can hold";
     return false;
   }
-  // Read them as the import will: after the pass that last writes each (or at --event / --pass).
-  const uint32_t readAt = r.event ? r.event : r.pass.empty() ? 0 : pass->lastEvent;
-  std::set<std::string> targetNames;
-  nlohmann::json targets = nlohmann::json::array();
-  std::vector<std::string> sources;
-  for (const RdcTexture* t : textures) {
-    sources.push_back(sourceName(listing, *t));
-    targets.push_back({{"name", targetName(t->name, targetNames)}, {"format", storageFormatName(t->format)},
-                       {"source", {{"renderdoc", sources.back()}}}, {"quantities", nlohmann::json::array()}});
-  }
-  r.progress("reading the texels of " + std::to_string(textures.size()) + " targets");
-  std::vector<RdcTexels> texels;
-  if (!readRenderDocTexels(rdc, readAt, sources, texels, error, r.replay)) return false;
-  ImportInput in;
   nlohmann::json draft = {{"format", "gblens-layout"}, {"version", 1},
                           {"name", "draft for " + std::filesystem::path(rdc).filename().string() +
                                        " (gblens import --suggest-layout: check every \"guess\")"},
-                          {"targets", targets}};
-  if (!parseLayout(draft, "draft", in.layout, error)) return false;
-  for (size_t k = 0; k < texels.size() && k < in.layout.targets.size(); ++k) {
-    const std::string& target = in.layout.targets[k].name;
-    in.renderdocSizes[target] = {texels[k].texture.width, texels[k].texture.height};
-    in.renderdocTexels[target] = std::move(texels[k].bytes);
-  }
-  FrameSnapshot raw;
-  if (!importFrame(in, raw, error)) return false;
-
-  // What the channels hold, the surfaces, then the camera that fits them.
-  std::set<std::string> quantityNames;
-  SurfaceMask none;
-  for (uint32_t t = 0; t < in.layout.targets.size(); ++t) {  // depth first: it says where surfaces are
-    const LayoutTarget& lt = in.layout.targets[t];
-    if (lt.format.depth) draft["targets"][t]["quantities"] = guessQuantities(said(*textures[t]), lt.format, &raw.images[t].image, none, quantityNames);
-  }
-  FrameSnapshot frame;
-  auto reparse = [&]() {
-    Layout l;
-    if (!parseLayout(draft, "draft", l, error)) return false;
-    frame = FrameSnapshot{};
-    frame.setLayout(l);
-    frame.images = raw.images;
-    frame.absences = raw.absences;
-    frame.camera = raw.camera;
-    return true;
-  };
-  if (!reparse()) return false;
-  const SurfaceMask surface = surfaceOf(frame);
-  for (uint32_t t = 0; t < in.layout.targets.size(); ++t) {
-    const LayoutTarget& lt = in.layout.targets[t];
-    const bool later = std::find(pass->outputs.begin(), pass->outputs.end(), textures[t]->name) == pass->outputs.end();
-    if (!lt.format.depth)
-      draft["targets"][t]["quantities"] =
-          guessQuantities(said(*textures[t]), lt.format, &raw.images[t].image, surface, quantityNames, later);
-  }
-  // Textures the application did not name: targets named by what they hold ("position", "normal").
-  std::set<std::string> renamed;
-  for (size_t t = 0; t < textures.size(); ++t) {
-    const nlohmann::json& qs = draft["targets"][t]["quantities"];
-    const std::string base = textures[t]->autoName && !qs.empty() ? qs[0]["quantity"].get<std::string>() : textures[t]->name;
-    draft["targets"][t]["name"] = targetName(base, renamed);
-  }
-  if (!reparse()) return false;
+                          {"targets", nlohmann::json::array()}};
+  FrameSnapshot raw, frame;
+  SurfaceMask surface;
+  if (!readTargets(r, listing, *pass, textures, draft, raw, error) ||
+      !guessTargets(draft, textures, *pass, raw, frame, surface, error))
+    return false;
   CameraEvidence evidence = evidenceOf(frame, surface);
   evidence.clipYUp = listing.api != "Vulkan" || bound.viewport[3] < 0.0;
   evidence.clipDepthGl = listing.api == "OpenGL";
