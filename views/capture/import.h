@@ -41,6 +41,9 @@ bool loadImportLayout(const std::string& spec, const LayoutParameters& params, L
 // "builtin:blender-cycles, builtin:gblens, ...": every layout the binary carries.
 std::string builtinLayoutNames();
 
+// The 16 floats at `offset` of a buffer as a matrix (m[column][row]), stored column- or row-major.
+glm::dmat4 matrixFromFloats(const std::vector<uint8_t>& bytes, uint64_t offset, bool rowMajor);
+
 // Reads every target and the camera. False with one line naming the file, the target and the
 // field (a missing channel, a size or format the layout does not match, a singular camera, ...).
 bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error);

@@ -13,8 +13,6 @@ namespace gb {
 
 namespace fs = std::filesystem;
 
-namespace {
-
 glm::dmat4 matrixFromFloats(const std::vector<uint8_t>& bytes, uint64_t offset, bool rowMajor) {
   glm::dmat4 m(1.0);
   for (int i = 0; i < 16; ++i) {
@@ -27,6 +25,9 @@ glm::dmat4 matrixFromFloats(const std::vector<uint8_t>& bytes, uint64_t offset, 
   }
   return m;
 }
+
+namespace {
+
 
 // The camera's size, when it gives one, against the images' (the projection's aspect is for it).
 bool checkCameraSize(const LayoutCamera& c, const std::string& from, uint32_t w, uint32_t h, std::string& error) {

@@ -22,19 +22,6 @@ struct Candidate {
   std::string member;   // the reflected member at that offset ("" : none)
 };
 
-glm::dmat4 readMatrix(const std::vector<uint8_t>& d, size_t o, bool rowMajor) {
-  glm::dmat4 m;
-  for (int i = 0; i < 16; ++i) {
-    float v;
-    std::memcpy(&v, d.data() + o + size_t(i) * 4, 4);
-    if (rowMajor)
-      m[i % 4][i / 4] = v;
-    else
-      m[i / 4][i % 4] = v;
-  }
-  return m;
-}
-
 bool finite(const glm::dmat4& m) {
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
@@ -103,7 +90,7 @@ Candidates findCandidates(const std::vector<RdcBinding>& buffers) {
     for (const RdcBinding::Member& m : buffers[b].members) members[m.offset] = m.name;
     for (size_t o = 0; o + 64 <= d.size(); o += 4)
       for (bool rowMajor : {false, true}) {
-        const glm::dmat4 m = readMatrix(d, o, rowMajor);
+        const glm::dmat4 m = matrixFromFloats(d, o, rowMajor);
         if (!finite(m)) continue;
         auto it = members.find(o);
         Candidate c{b, o, rowMajor, m, it == members.end() || it->second.rfind("_child", 0) == 0 ? "" : it->second};
