@@ -1,6 +1,8 @@
 // Layout types: storage format names, quantity kinds, lookups (see layout.h).
 #include "renderer/core/layout.h"
 
+#include <cctype>
+
 #include <regex>
 
 namespace gb {
@@ -156,5 +158,18 @@ glm::dmat3 worldFromLayoutWorld(const LayoutCamera& c) {
 }
 
 glm::dmat3 layoutWorldFromWorld(const LayoutCamera& c) { return glm::transpose(worldFromLayoutWorld(c)); }
+
+std::string upAxisText(const LayoutCamera& c) {
+  std::string t = name(c.up);  // "-y" -> "-Y"; a left-handed world says so ("Z, left-handed")
+  for (char& ch : t) ch = char(std::toupper(static_cast<unsigned char>(ch)));
+  return c.worldLeftHanded ? t + ", left-handed" : t;
+}
+
+std::string nameKey(const std::string& name) {
+  std::string k;
+  for (char ch : name)
+    if (ch != '_' && ch != '-' && ch != ' ') k += char(std::tolower(static_cast<unsigned char>(ch)));
+  return k;
+}
 
 }  // namespace gb

@@ -66,6 +66,7 @@ struct Quantity {
   std::map<uint32_t, std::string> idNames;      // id: value -> name
   std::map<std::string, uint32_t> stencilBits;  // stencil: name -> mask
   std::string guess;                 // a draft layout's note (import --suggest-layout); for people
+  std::map<std::string, std::string> check;     // `gblens check` policy for this quantity: class -> level
 };
 
 // Where an imported target's texels come from (ignored for gblens's own frames).
@@ -136,6 +137,11 @@ bool settleWorldHandedness(LayoutCamera& c, std::string& error);
 // place the up axis is turned.
 glm::dmat3 worldFromLayoutWorld(const LayoutCamera& c);
 glm::dmat3 layoutWorldFromWorld(const LayoutCamera& c);
+// The layout's up axis as people write it ("y", "z", ...): labels of world-space values.
+std::string upAxisText(const LayoutCamera& c);
+// Names that must not be confused: lower case, without '_', '-' and spaces ("HardwareDepth" and
+// "hardware_depth" are one name; quantities are found and kept unique by it).
+std::string nameKey(const std::string& name);
 
 struct LayoutLights {
   bool present = false;
@@ -154,6 +160,7 @@ struct Layout {
   std::vector<Quantity> quantities;
   LayoutCamera camera;
   LayoutLights lights;
+  std::map<std::string, std::string> check;  // `gblens check` policy of every quantity: class -> level
 
   int findTarget(const std::string& targetName) const;  // -1 when none
   // The first quantity of this kind (and name, when given), or null.
