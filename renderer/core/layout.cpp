@@ -160,9 +160,9 @@ glm::dmat3 worldFromLayoutWorld(const LayoutCamera& c) {
 glm::dmat3 layoutWorldFromWorld(const LayoutCamera& c) { return glm::transpose(worldFromLayoutWorld(c)); }
 
 std::string upAxisText(const LayoutCamera& c) {
-  std::string t = name(c.up);  // "-y" -> "-Y"; a left-handed world says so ("Z, left-handed")
+  std::string t = name(c.up);  // "-y" -> "-Y": "world (layout: -Y-up)"
   for (char& ch : t) ch = char(std::toupper(static_cast<unsigned char>(ch)));
-  return c.worldLeftHanded ? t + ", left-handed" : t;
+  return t;
 }
 
 std::string nameKey(const std::string& name) {
