@@ -117,6 +117,20 @@ TEST(RenderDoc, ListShowsBuffersAndSuggestFindsTheCameraOfGblensOwnFrame) {
       ++compared;
     }
   EXPECT_GT(compared, 1000u);
+
+  // A camera buffer name the capture does not have: the error lists every buffer with its size and
+  // where the draw binds it, so the right one can be picked.
+  nlohmann::json wrong = draft;
+  wrong["camera"]["renderdoc"]["buffer"] = "FrameConstants";
+  std::ofstream(dir + "/wrong.json") << wrong.dump();
+  RunResult refused = runGblens("import '" + rdc + "' --layout '" + dir + "/wrong.json' -o '" + dir + "/wrong'");
+  EXPECT_EQ(refused.exitCode, 2) << refused.output;
+  EXPECT_NE(refused.output.find("no buffer named \"FrameConstants\" (buffers: "), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find(" " + std::to_string(sizeof(gpu::FrameData)) + " bytes (uniform at set 0 binding " +
+                                std::to_string(gpu::kBindingFrame) + ", event "),
+            std::string::npos)
+      << refused.output;
+  EXPECT_FALSE(fs::exists(dir + "/wrong"));
 }
 
 TEST(RenderDoc, TheDocsExampleImportsWithBuiltinGblensAndComparesClean) {

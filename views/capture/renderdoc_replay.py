@@ -149,10 +149,6 @@ class Replay:
             return rid
         ids = [i for i in table if self.names.get(i) == wanted]
         if not ids:
-            if kind == "buffer":  # names alone do not tell buffers apart: sizes and ids (--list: bindings)
-                known = ", ".join("%s #%d %d bytes" % (self.names.get(i, ""), i, table[i].length) for i in sorted(table))
-                raise Failure("%s: no buffer named \"%s\" (buffers: %s; import --list shows where each pass binds them)"
-                              % (self.path, wanted, known))
             raise Failure("%s: no %s named \"%s\" (%ss: %s)" % (self.path, kind, wanted, kind,
                                                              ", ".join(sorted(set(self.names[i] for i in table)))))
         if len(ids) > 1:
@@ -430,9 +426,29 @@ def command_texels(replay, event, outdir, wanted):
     return {"textures": out}
 
 
+def buffers_with_bindings(replay, event):
+    """Every buffer as "name #id N bytes", with where the last draw up to EVENT binds it: what a
+    wrong buffer name is answered with."""
+    bound = {}
+    action = last_work(replay, 1, event or replay.last_event)
+    if action is not None:
+        replay.controller.SetFrameEvent(action.eventId, False)
+        for b in bound_now(replay, bool(action.flags & rd.ActionFlags.Dispatch)):
+            bound.setdefault(b["id"], "%s at set %d binding %d" % (b["kind"], b["set"], b["binding"]))
+    return ", ".join("%s #%d %d bytes%s" % (replay.names.get(i, ""), i, b.length,
+                                             " (%s, event %d)" % (bound[i], action.eventId) if i in bound else "")
+                     for i, b in sorted(replay.buffers.items()))
+
+
 def command_buffer(replay, event, wanted, outpath):
     replay.check_event(event)
-    buf_id = replay.find(replay.buffers, "buffer", wanted)
+    try:
+        buf_id = replay.find(replay.buffers, "buffer", wanted)
+    except Failure:
+        if wanted.startswith("#"):
+            raise
+        raise Failure("%s: no buffer named \"%s\" (buffers: %s)" % (replay.path, wanted,
+                                                                     buffers_with_bindings(replay, event)))
     b = replay.buffers[buf_id]
     at = event
     if not at:
