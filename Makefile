@@ -49,7 +49,8 @@ fixtures:
 	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends blender; \
 	  else echo "make fixtures: needs Blender; run:"; echo "  sudo apt-get install -y --no-install-recommends blender"; exit 1; fi; }
 	$(BLENDER) -b --factory-startup -noaudio -P assets/blender/render_gbuffer.py -- tests/data/blender
-	@ls -l tests/data/blender
+	$(BLENDER) -b --factory-startup -noaudio -P assets/blender/render_gbuffer.py -- tests/data/blender/ortho 96 54 --ortho --full-float
+	@ls -l tests/data/blender tests/data/blender/ortho
 
 # The default sweep on the built-in temple and, when present, the shared VC model (a glTF that
 # does not load is skipped with a message). Budgeted to finish within 15 minutes on 2 cores.

@@ -148,10 +148,17 @@ bool readQuantityFields(Reader& r, const json& j, const Where& w, Quantity& q) {
       q.depth = DepthEncoding(i);
       double bg = NAN;
       int of = -1;
-      if (!r.number(j, w, "background", bg) || !r.choice(j, w, "of", {"camera", "sun"}, of)) return false;
+      if (!r.number(j, w, "background", bg) || !r.choice(j, w, "of", {"camera", "sun"}, of) ||
+          !r.number(j, w, "scale", q.scale) || !r.number(j, w, "bias", q.bias))
+        return false;
       if (!std::isnan(bg)) q.background = bg;
       q.ofSun = of == 1;
-      return r.unknownKeys(j, w, {"quantity", "name", "channels", "encoding", "background", "of", "when"});
+      // Eye and radial distances may be stored as fractions (eye depth / far): distance = stored * scale + bias.
+      if ((j.contains("scale") || j.contains("bias")) && (q.depth == DepthEncoding::Hardware || q.ofSun))
+        return r.fail(w, j.contains("scale") ? "scale" : "bias",
+                      "applies to eye and radial camera depths (hardware depth is decoded by the projection)");
+      if (!(q.scale > 0.0)) return r.fail(w, "scale", "expected a positive number");
+      return r.unknownKeys(j, w, {"quantity", "name", "channels", "encoding", "background", "of", "scale", "bias", "when"});
     }
     case QuantityKind::Position: {
       int s = -1;
@@ -204,6 +211,13 @@ bool readQuantityFields(Reader& r, const json& j, const Where& w, Quantity& q) {
   }
 }
 
+// A draft layout's "guess" notes (import --suggest-layout): kept for people, never interpreted.
+bool takeGuess(Reader& r, json& j, const Where& w, std::string& guess) {
+  if (!r.string(j, w, "guess", guess, false)) return false;
+  j.erase("guess");
+  return true;
+}
+
 // A `gblens check` policy: {"denormal": "warn", ...} (views/analysis/check.h names the classes).
 bool readCheck(Reader& r, const json& j, const Where& w, std::map<std::string, std::string>& out) {
   auto it = j.find("check");
@@ -225,6 +239,7 @@ bool readQuantity(Reader& r, const json& jIn, const Where& w, Layout& l, uint32_
   if (!readCheck(r, jIn, w, q.check)) return false;
   json j = jIn;
   j.erase("check");  // read above; every kind may have it
+  if (!takeGuess(r, j, w, q.guess)) return false;
   std::string kind;
   if (!r.string(j, w, "quantity", kind, true)) return false;
   if (!parseQuantityKind(kind, q.kind)) return r.fail(w, "quantity", "unknown kind \"" + kind + "\"");
@@ -293,17 +308,40 @@ bool readSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
   return r.unknownKeys(j, ws, {"file", "raw", "offset", "part", "channels", "renderdoc"});
 }
 
-bool readTarget(Reader& r, const json& j, const Where& w, Layout& l) {
-  if (!j.is_object()) return r.fail(w, "", "expected an object");
+bool readTarget(Reader& r, const json& given, const Where& w, Layout& l) {
+  if (!given.is_object()) return r.fail(w, "", "expected an object");
+  json j = given;
   LayoutTarget t;
   if (!r.string(j, w, "name", t.name, true)) return false;
   if (!validName(t.name)) return r.fail(w, "name", "\"" + t.name + "\": use a-z, 0-9 and _");
   if (l.findTarget(t.name) >= 0) return r.fail(w, "name", "\"" + t.name + "\" names another target too");
   Where wt = w.at("\"" + t.name + "\"");
-  std::string format;
-  if (!r.string(j, wt, "format", format, true)) return false;
-  if (!parseStorageFormat(format, t.format))
-    return r.fail(wt, "format", "unknown storage format \"" + format + "\" (e.g. rgba8_unorm, rg16_snorm, r32f, d32s8)");
+  if (!takeGuess(r, j, wt, t.guess)) return false;
+  // "format": one storage format, or a list the source's files may hold it in (the file's channel type picks).
+  std::vector<std::string> formats;
+  if (auto it = j.find("format"); it != j.end() && it->is_array() && !it->empty()) {
+    for (const json& f : *it)
+      if (f.is_string()) formats.push_back(f.get<std::string>());
+    if (formats.size() != it->size()) return r.fail(wt, "format", "expected storage format names, got " + it->dump());
+  } else {
+    formats.emplace_back();
+    if (!r.string(j, wt, "format", formats[0], true)) return false;
+  }
+  const std::string& format = formats[0];
+  for (const std::string& f : formats) {
+    StorageFormat parsed;
+    if (!parseStorageFormat(f, parsed))
+      return r.fail(wt, "format", "unknown storage format \"" + f + "\" (e.g. rgba8_unorm, rg16_snorm, r32f, d32s8)");
+    if (formats.size() > 1 && (parsed.depth || parsed.packed10))
+      return r.fail(wt, "format", "a list of formats is for image files: " + f + " is a packed GPU format");
+    if (!t.formatChoices.empty() && parsed.channels != t.formatChoices[0].channels)
+      return r.fail(wt, "format", "the formats of a list must have one channel count: " + f + " has " +
+                                      std::to_string(parsed.channels) + ", " + formats[0] + " " +
+                                      std::to_string(t.formatChoices[0].channels));
+    t.formatChoices.push_back(parsed);
+  }
+  t.format = t.formatChoices[0];
+  if (formats.size() == 1) t.formatChoices.clear();
   if (!r.size(j, wt, "size", t.width, t.height)) return false;
   if (auto it = j.find("channels"); it != j.end()) {
     if (!it->is_array() || it->size() != t.format.channels)
@@ -364,16 +402,23 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
   if (!j.is_object()) return r.fail(w, "camera", "expected an object");
   Where wc = w.at("camera");
   c.present = true;
-  int order = -1, conv = -1, hand = -1, up = -1, origin = -1;
+  int order = -1, conv = -1, hand = -1, worldHand = -1, projection = -1, origin = -1;
+  std::string up;
   if (!r.choice(j, wc, "matrix_order", {"column_major", "row_major"}, order) ||
       !r.choice(j, wc, "convention", {"vulkan", "d3d", "gl"}, conv) ||
-      !r.choice(j, wc, "view_handedness", {"right", "left"}, hand) || !r.choice(j, wc, "up", {"y", "z"}, up) ||
+      !r.choice(j, wc, "view_handedness", {"right", "left"}, hand) ||
+      !r.choice(j, wc, "world_handedness", {"right", "left"}, worldHand) ||
+      !r.choice(j, wc, "projection", {"perspective", "orthographic"}, projection) || !r.string(j, wc, "up", up, false) ||
       !r.choice(j, wc, "image_origin", {"top", "bottom"}, origin) || !r.string(j, wc, "sidecar", c.sidecar, false) ||
+      !r.string(j, wc, "from", c.from, false) || !r.string(j, wc, "guess", c.guess, false) ||
       !r.size(j, wc, "size", c.width, c.height))
     return false;
+  if (!up.empty() && !parseAxis(up, c.up))
+    return r.fail(wc, "up", "\"" + up + "\" is not one of x, -x, y, -y, z, -z");
   if (conv >= 0) c.convention = LayoutCamera::Convention(conv);
   c.leftHanded = hand == 1;
-  c.zUp = up == 1;
+  if (worldHand >= 0) c.statedWorldLeftHanded = worldHand == 1;
+  if (projection >= 0) c.statedOrthographic = projection == 1;
   c.bottomOrigin = origin == 1;
   if (auto it = j.find("renderdoc"); it != j.end()) {
     Where wr = wc.at("renderdoc");
@@ -403,9 +448,16 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
       return false;
     }
     if (!readMatrix(r, j, wc, "clip_from_view", order == 1, c.clipFromView)) return false;
+    std::string error;
+    if (!settleWorldHandedness(c, error)) return r.fail(w, "camera", error.substr(8));
+    if (c.statedOrthographic && *c.statedOrthographic != (c.clipFromView[2][3] == 0.0))
+      return r.fail(wc, "projection", std::string("\"") + (*c.statedOrthographic ? "orthographic" : "perspective") +
+                                          "\", but clip_from_view is " +
+                                          (c.clipFromView[2][3] == 0.0 ? "orthographic" : "not orthographic"));
   }
   return r.unknownKeys(j, wc, {"view_from_world", "world_from_view", "clip_from_view", "matrix_order", "convention",
-                               "view_handedness", "up", "image_origin", "sidecar", "renderdoc", "size"});
+                               "view_handedness", "world_handedness", "projection", "up", "image_origin", "sidecar",
+                               "renderdoc", "size", "from", "guess"});
 }
 
 bool readLights(Reader& r, const json& j, const Where& w, LayoutLights& l) {

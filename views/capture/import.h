@@ -26,6 +26,8 @@ struct ImportInput {
   std::map<std::string, std::vector<uint8_t>> renderdocTexels;
   std::map<std::string, std::array<uint32_t, 2>> renderdocSizes;  // their textures' width and height
   std::vector<uint8_t> renderdocCameraBuffer;
+  std::string renderdocCameraBufferAt;  // where it was read, for people: " (#123) at event 140"
+  std::string capture;                  // the RenderDoc capture imported ("": files): a sidecar may be beside it
   // Targets the source does not hold (e.g. a target without a source whose name no texture of the
   // RenderDoc capture has): absent from the frame ("not captured"), not an error.
   std::set<std::string> leftOut;
@@ -36,13 +38,20 @@ struct ImportInput {
 // start from ("" for a built-in layout: the files given on the command line).
 bool loadImportLayout(const std::string& spec, const LayoutParameters& params, Layout& out, std::string& dir,
                       std::string& error);
+// "builtin:blender-cycles, builtin:gblens, ...": every layout the binary carries.
+std::string builtinLayoutNames();
+
+// The 16 floats at `offset` of a buffer as a matrix (m[column][row]), stored column- or row-major.
+glm::dmat4 matrixFromFloats(const std::vector<uint8_t>& bytes, uint64_t offset, bool rowMajor);
 
 // Reads every target and the camera. False with one line naming the file, the target and the
 // field (a missing channel, a size or format the layout does not match, a singular camera, ...).
 bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error);
 
 // The camera a layout describes (matrices, sidecar or uniform-buffer bytes) in gblens's convention:
-// Vulkan clip space (y down, depth 0..1), right-handed view space, Y-up world.
+// Vulkan clip space (y down, depth 0..1; w = -z for a perspective, 1 for an orthographic
+// projection), right-handed view space, Y-up right-handed world. Any other projection, or a
+// perspective looking the way the view's handedness says it does not, is refused with one line.
 bool importCamera(const LayoutCamera& c, uint32_t width, uint32_t height, Camera& out, std::string& error);
 
 }  // namespace gb

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -168,6 +169,7 @@ RdcTexture textureFromJson(const nlohmann::json& j) {
   RdcTexture t;
   t.name = j.value("name", "");
   t.id = j.value("id", uint64_t(0));
+  t.autoName = j.value("auto", false);
   const nlohmann::json& f = j.at("format");
   RdcFormat format{f.value("name", ""), f.value("type", ""), f.value("compType", ""), f.value("compCount", 0u),
                    f.value("compByteWidth", 0u), f.value("bgra", false)};
@@ -180,6 +182,34 @@ RdcTexture textureFromJson(const nlohmann::json& j) {
   t.layers = j.value("arraysize", 1u);
   t.samples = j.value("samples", 1u);
   return t;
+}
+
+RdcBinding bindingFromJson(const nlohmann::json& j) {
+  RdcBinding b;
+  b.name = j.value("name", "");
+  b.id = j.value("id", uint64_t(0));
+  b.autoName = j.value("auto", false);
+  b.kind = j.value("kind", "");
+  b.bytes = j.value("bytes", uint64_t(0));
+  b.set = j.value("set", 0u);
+  b.binding = j.value("binding", 0u);
+  b.index = j.value("index", 0u);
+  b.stages = j.value("stages", std::vector<std::string>{});
+  b.bound = j.contains("set");
+  b.offset = j.value("offset", uint64_t(0));
+  b.range = j.value("range", uint64_t(0));
+  for (const nlohmann::json& m : j.value("members", nlohmann::json::array()))
+    if (m.is_array() && m.size() == 3 && m[0].is_string() && m[1].is_number_unsigned() && m[2].is_string())
+      b.members.push_back({m[0].get<std::string>(), m[2].get<std::string>(), m[1].get<uint64_t>()});
+  return b;
+}
+
+// A draw's targets and viewport, as the script reports them for a pass or an event.
+void drawStateFromJson(const nlohmann::json& j, RdcPass& p) {
+  p.outputs = j.value("outputs", std::vector<std::string>{});
+  p.depthTarget = j.value("depthTarget", "");
+  const std::vector<double> v = j.value("viewport", std::vector<double>{});
+  for (size_t i = 0; i < 4 && i < v.size(); ++i) p.viewport[i] = v[i];
 }
 
 }  // namespace
@@ -232,8 +262,13 @@ bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& 
     RdcPass pass{p.value("name", ""), p.value("first", 0u), p.value("last", 0u), p.value("depth", 0u), {}};
     for (uint64_t id : p.at("writes").get<std::vector<uint64_t>>())
       pass.writes.push_back(names[id].empty() ? std::string("#") + std::to_string(id) : names[id]);
+    pass.boundAt = p.value("boundAt", 0u);
+    for (const nlohmann::json& b : p.value("buffers", nlohmann::json::array())) pass.buffers.push_back(bindingFromJson(b));
+    drawStateFromJson(p, pass);
     out.passes.push_back(std::move(pass));
   }
+  for (const nlohmann::json& b : j.value("buffers", nlohmann::json::array()))
+    out.buffers.push_back({b.value("name", ""), b.value("id", uint64_t(0)), b.value("bytes", uint64_t(0))});
   return true;
 }
 
@@ -259,7 +294,7 @@ bool readRenderDocTexels(const std::string& rdc, uint32_t event, const std::vect
 }
 
 bool readRenderDocBuffer(const std::string& rdc, uint32_t event, const std::string& buffer, std::vector<uint8_t>& out,
-                         std::string& error, const RdcReplayOptions& o) {
+                         std::string& error, const RdcReplayOptions& o, RdcBufferRead* at) {
   TempFolder tmp;
   const std::string file = (tmp.path / "buffer.bin").string();
   nlohmann::json j;
@@ -268,6 +303,48 @@ bool readRenderDocBuffer(const std::string& rdc, uint32_t event, const std::stri
     error = rdc + ": RenderDoc's replay wrote no bytes for buffer " + buffer;
     return false;
   }
+  if (at) *at = {j.value("id", uint64_t(0)), j.value("event", 0u)};
+  return true;
+}
+
+bool readDrawState(const std::string& rdc, const std::vector<uint32_t>& events, bool bytes,
+                   std::map<uint32_t, RdcPass>& out, std::string& skipped, std::string& error, const RdcReplayOptions& o) {
+  std::vector<uint32_t> todo(events);
+  std::sort(todo.begin(), todo.end());  // forward through the frame: each step replays only what lies between
+  todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+  skipped.clear();
+  while (!todo.empty()) {
+    TempFolder tmp;
+    std::vector<std::string> args = {"state", rdc, tmp.path.string()};
+    if (bytes) args.push_back("--bytes");
+    for (uint32_t e : todo) args.push_back(std::to_string(e));
+    nlohmann::json j;
+    const bool ok = runScript(rdc, args, tmp, o, j, error);
+    size_t done = 0;
+    for (; done < todo.size(); ++done) {
+      const nlohmann::json state =
+          nlohmann::json::parse(readText(tmp.path / ("state_" + std::to_string(todo[done]) + ".json")), nullptr, false);
+      if (state.is_discarded() || !state.is_object()) break;
+      RdcPass& p = out[todo[done]];
+      p.boundAt = state.value("event", 0u);
+      drawStateFromJson(state, p);
+      for (const nlohmann::json& b : state.value("buffers", nlohmann::json::array())) {
+        p.buffers.push_back(bindingFromJson(b));
+        if (bytes && !readBytes(b.value("file", ""), p.buffers.back().data)) {
+          error = rdc + ": RenderDoc's replay wrote no bytes for buffer " + p.buffers.back().name;
+          return false;
+        }
+      }
+    }
+    todo.erase(todo.begin(), todo.begin() + long(done));
+    if (ok || todo.empty()) break;
+    if (error.find("crashed") == std::string::npos) return false;
+    if (done == 0) {  // even a fresh replay crashes there: leave it out
+      skipped += (skipped.empty() ? "" : ", ") + std::to_string(todo.front());
+      todo.erase(todo.begin());
+    }
+  }
+  error.clear();
   return true;
 }
 
