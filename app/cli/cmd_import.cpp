@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "app/cli/cli.h"
+#include "renderer/core/library_output.h"
 #include "views/capture/capture.h"
 #include "views/capture/import_renderdoc.h"
 
@@ -23,6 +24,7 @@ struct ImportOptions {
   std::vector<std::string> params;
   uint32_t event = 0;
   bool list = false;
+  bool verbose = false;  // library messages (libpng, OpenEXR) as printed, not folded into the one line
 };
 
 bool isRenderDocCapture(const std::string& path) {
@@ -94,6 +96,7 @@ std::string sourceText(const LayoutTarget& t, const RenderDocImported& rdc) {
 }
 
 int runImport(const ImportOptions& o) {
+  showLibraryOutput(o.verbose);
   const bool rdc = o.inputs.size() == 1 && isRenderDocCapture(o.inputs[0]);
   if (o.inputs.empty() && o.layout.empty()) return fail("INPUT: give image files and --layout, or a RenderDoc capture");
   for (const std::string& input : o.inputs)
@@ -172,6 +175,7 @@ Command addImportCommand(CLI::App& root) {
                                                   "EID", "event"));
   cmd->add_option("--pass", o->pass, "RenderDoc: read every target at the end of this pass (label region, see --list)")
       ->excludes(event);
+  cmd->add_flag("--verbose", o->verbose, "print what image libraries say about broken files as they say it");
   cmd->add_flag("--list", o->list, "RenderDoc: print the capture's passes, events and textures (name, id, format, size)");
   return {cmd, [o]() -> int { return runImport(*o); }};
 }

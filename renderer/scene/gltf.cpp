@@ -88,7 +88,10 @@ static Scene loadSteps(gltf::Doc& doc, const uint8_t* data, size_t size, const s
   Scene& scene = *doc.scene;
   auto t = Clock::now();
   gltf::parseDocument(doc, data, size, baseDir);
+  gltf::checkSchema(doc, doc.json);
+  gltf::decodeDraco(doc);
   gltf::validateDocument(doc);
+  gltf::checkDataRules(doc);
   gltf::checkUnrenderedParts(doc);
   stats->parseMs += msSince(t);
 
