@@ -91,9 +91,11 @@ struct Reader {
     return fail(w, key, "\"" + v + "\" is not one of " + list);
   }
   bool unknownKeys(const json& j, const Where& w, std::initializer_list<const char*> known) {
-    for (auto& [k, v] : j.items())
+    for (auto& item : j.items()) {
+      const std::string& k = item.key();  // (a named variable: clang-14 cannot capture a structured binding)
       if (std::none_of(known.begin(), known.end(), [&](const char* n) { return k == n; }))
         return fail(w, k, "unknown field");
+    }
     return true;
   }
 };

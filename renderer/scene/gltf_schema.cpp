@@ -248,7 +248,8 @@ struct Checker {
   void checkExtensionsDeclared(const json& v, const std::string& where) {
     if (v.is_object()) {
       if (auto ext = v.find("extensions"); ext != v.end() && ext->is_object())
-        for (auto& [name, unused] : ext->items()) {
+        for (auto& item : ext->items()) {
+          const std::string& name = item.key();  // (clang-14 cannot capture a structured binding)
           if (used.count(name)) continue;
           const bool drawn = std::any_of(std::begin(kDrawn), std::end(kDrawn), [&](const char* d) { return name == d; });
           const std::string what = "extension " + name + " is used but not declared in extensionsUsed";

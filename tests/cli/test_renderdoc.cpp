@@ -109,7 +109,7 @@ void expectTruncatedCapturesRefused(const std::string& rdc, const std::string& d
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
     EXPECT_EQ(r.output.rfind("gblens import: " + cut + ": ", 0), 0u) << r.output;
     EXPECT_LT(seconds, kReplayBaseSeconds + 10.0) << r.output;  // the stated limit, not a speed target
-    EXPECT_EQ(runShell("pgrep -f 'gblens-rdc-.*renderdoc_replay.py'").exitCode, 1) << "a replay process is left";
+    EXPECT_EQ(runShell("pgrep -f 'gblens-rd[c]-.*renderdoc_replay.py'").exitCode, 1) << "a replay process is left";
     EXPECT_EQ(replayFolders().size(), folders) << "a replay folder is left";
   }
 }
@@ -135,9 +135,9 @@ void expectStoppedReplayCleansUp(const std::string& rdc, const std::string& dir)
     int status = 0;
     ASSERT_EQ(waitpid(pid, &status, 0), pid);
     EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "status " << status;
-    for (int i = 0; i < 250 && runShell("pgrep -f 'gblens-rdc-" + std::to_string(pid) + "-'").exitCode == 0; ++i)
+    for (int i = 0; i < 250 && runShell("pgrep -f 'gblens-rd[c]-" + std::to_string(pid) + "-'").exitCode == 0; ++i)
       std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the kernel's SIGKILL of the child
-    EXPECT_EQ(runShell("pgrep -f 'gblens-rdc-" + std::to_string(pid) + "-'").exitCode, 1) << "its replay is still running";
+    EXPECT_EQ(runShell("pgrep -f 'gblens-rd[c]-" + std::to_string(pid) + "-'").exitCode, 1) << "its replay is still running";
     if (sig == SIGKILL) {
       EXPECT_FALSE(replayFolders(pid).empty());  // nothing could remove it yet ...
       runGblens("import '" + dir + "/none.rdc' --list");  // ... the next replay does

@@ -9,14 +9,15 @@
 #include "tests/fuzz/import_entry.h"
 
 namespace {
-std::string workDir() {
-  static const std::string dir = [] {
+// The work folder (held by a pointer that outlives the static destructors: removed at exit).
+const std::string& workDir() {
+  static const std::string* dir = [] {
     const char* d = std::getenv("GBLENS_FUZZ_DIR");
-    std::string path = d ? d : (std::filesystem::temp_directory_path() / ("gblens-fuzz-" + std::to_string(getpid()))).string();
+    auto* path = new std::string(d ? d : (std::filesystem::temp_directory_path() / ("gblens-fuzz-" + std::to_string(getpid()))).string());
     std::atexit([] { std::error_code ec; std::filesystem::remove_all(workDir(), ec); });
     return path;
   }();
-  return dir;
+  return *dir;
 }
 }  // namespace
 

@@ -182,6 +182,12 @@ bool frameFromManifest(const nlohmann::json& mj, const nlohmann::json& lights, c
       if (auto assign = stats->find("cluster_assign"); assign && assign->has("ran"))
         f.clusterGrid = (*assign)["ran"].string() == "cpu";
     }
+    // The scene it was rendered from (probe --reference loads it; the viewer shows it).
+    if (auto scene = m.find("scene")) {
+      scene->object();
+      for (const char* key : {"source", "content_sha256"})
+        if (scene->has(key)) (*scene)[key].string();
+    }
     f.lightClipFromWorld = matrixIn(m["lightClipFromWorld"]);
     const JsonIn sun = m["sun"];
     f.sun.enabled = sun["enabled"].boolean();

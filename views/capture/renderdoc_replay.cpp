@@ -140,6 +140,12 @@ bool runScript(const std::string& rdc, const std::vector<std::string>& args, Tem
   return true;
 }
 
+// A result of another shape than the script writes: named, not a crash.
+bool unexpectedResult(const std::string& rdc, const std::exception& e, std::string& error) {
+  error = rdc + ": RenderDoc's replay printed an unexpected result (" + e.what() + ")";
+  return false;
+}
+
 RdcTexture textureFromJson(const nlohmann::json& j) {
   RdcTexture t;
   t.name = j.value("name", "");
@@ -191,7 +197,7 @@ std::optional<TexelFormat> texelFormatOf(const RdcFormat& f) {
   return std::nullopt;
 }
 
-bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& error, const RdcReplayOptions& o) {
+bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& error, const RdcReplayOptions& o) try {
   TempFolder tmp;
   nlohmann::json j;
   if (!runScript(rdc, {"list", rdc}, tmp, o, j, error)) return false;
@@ -211,10 +217,12 @@ bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& 
     out.passes.push_back(std::move(pass));
   }
   return true;
+} catch (const nlohmann::json::exception& e) {
+  return unexpectedResult(rdc, e, error);
 }
 
 bool readRenderDocTexels(const std::string& rdc, uint32_t event, const std::vector<std::string>& textures,
-                         std::vector<RdcTexels>& out, std::string& error, const RdcReplayOptions& o) {
+                         std::vector<RdcTexels>& out, std::string& error, const RdcReplayOptions& o) try {
   TempFolder tmp;
   std::vector<std::string> args = {"texels", rdc, std::to_string(event), tmp.path.string()};
   args.insert(args.end(), textures.begin(), textures.end());
@@ -232,10 +240,12 @@ bool readRenderDocTexels(const std::string& rdc, uint32_t event, const std::vect
     out.push_back(std::move(texels));
   }
   return true;
+} catch (const nlohmann::json::exception& e) {
+  return unexpectedResult(rdc, e, error);
 }
 
 bool readRenderDocBuffer(const std::string& rdc, uint32_t event, const std::string& buffer, std::vector<uint8_t>& out,
-                         std::string& error, const RdcReplayOptions& o) {
+                         std::string& error, const RdcReplayOptions& o) try {
   TempFolder tmp;
   const std::string file = (tmp.path / "buffer.bin").string();
   nlohmann::json j;
@@ -245,6 +255,8 @@ bool readRenderDocBuffer(const std::string& rdc, uint32_t event, const std::stri
     return false;
   }
   return true;
+} catch (const nlohmann::json::exception& e) {
+  return unexpectedResult(rdc, e, error);
 }
 
 }  // namespace gb
