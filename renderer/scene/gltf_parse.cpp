@@ -184,7 +184,9 @@ void parseDocument(Doc& doc, const uint8_t* data, size_t size, const std::string
   if (err.find("Invalid glTF binary") != std::string::npos)
     fail(doc, "GLB", "the header's length or the JSON chunk's length does not fit the file (truncated or corrupt)");
   if (err.find("[json.exception.") != std::string::npos) fail(doc, "JSON", firstLines(err));
-  fail(doc, glb ? "GLB" : "glTF", firstLines(err));
+  // tinygltf's warnings, when it gave both, folded into the one line.
+  const bool alsoWarned = !warnings.empty() && warnings != err;
+  fail(doc, glb ? "GLB" : "glTF", firstLines(err) + (alsoWarned ? " (tinygltf also warned: " + firstLines(warnings) + ")" : ""));
 }
 
 }  // namespace gb::gltf
