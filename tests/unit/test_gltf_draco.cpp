@@ -18,6 +18,7 @@
 #include "renderer/scene/gltf.h"
 #include "renderer/scene/scene.h"
 #include "tests/support/capture_util.h"
+#include "tests/support/scenes.h"
 
 namespace gb {
 namespace {
@@ -26,21 +27,6 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 constexpr int kPositionBits = 11, kNormalBits = 10;
-
-std::string base64(const std::string& bytes) {
-  static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
-    if (i + 1 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 1])) << 8;
-    if (i + 2 < bytes.size()) v |= uint8_t(bytes[i + 2]);
-    out += t[v >> 18 & 63];
-    out += t[v >> 12 & 63];
-    out += i + 1 < bytes.size() ? t[v >> 6 & 63] : '=';
-    out += i + 2 < bytes.size() ? t[v & 63] : '=';
-  }
-  return out;
-}
 
 // The cube of Khronos's Box sample: 1 x 1 x 1 around the origin, four vertices per face.
 struct Box {
