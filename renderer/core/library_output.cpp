@@ -5,14 +5,36 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
 #include <vector>
 
+// Under AddressSanitizer (make test-asan, make fuzz) its reports must reach the real stderr even
+// when they happen while fd 2 is captured.
+#if defined(__SANITIZE_ADDRESS__)
+#define GBLENS_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define GBLENS_SANITIZED 1
+#endif
+#endif
+#ifdef GBLENS_SANITIZED
+extern "C" void __sanitizer_set_report_fd(void* fd);
+#endif
+
 namespace gb {
 
 namespace {
+
+void reportSanitizerTo(int fd) {
+#ifdef GBLENS_SANITIZED
+  __sanitizer_set_report_fd(reinterpret_cast<void*>(intptr_t(fd)));
+#else
+  (void)fd;
+#endif
+}
 
 std::mutex gMutex;
 int gUsers = 0;       // live captures
@@ -42,6 +64,7 @@ LibraryOutput::LibraryOutput() {
       return;
     }
     gFile = file, gSaved = saved;
+    reportSanitizerTo(saved);
   }
   ++gUsers;
   start_ = long(lseek(gFile, 0, SEEK_CUR));
@@ -61,6 +84,7 @@ std::string LibraryOutput::text() {
   start_ = -1;
   if (--gUsers == 0) {
     dup2(gSaved, 2);
+    reportSanitizerTo(2);
     close(gSaved);
     close(gFile);
     gSaved = gFile = -1;
