@@ -108,9 +108,8 @@ TEST(ImportRobust, NumbersBeyondWhatTheFieldHoldsAreOneLine) {
     writeText(dir + "/case.json", replaced(l, "7777777", "123456789012345678901234567890"));
     if (p.refusal) {
       expectOneLine("import", layout, 2, {"case.json", p.refusal}, out);
-    } else {  // a value the field may hold: imported, and every reader reads the capture
+    } else {  // a value the field may hold: imported (the property test reads such captures back)
       EXPECT_EQ(runGblens("import " + layout + " -o '" + out + "'").exitCode, 0) << p.name;
-      EXPECT_EQ(runGblens("probe '" + out + "' 3 3").exitCode, 0) << p.name;
       fs::remove_all(out);
     }
   }
@@ -157,19 +156,18 @@ TEST(ImportRobust, SourcesThatAreNotFilesAndImagesThatLieAreOneLine) {
   const json good = fullLayout(dir);
   const std::string layout = "--layout '" + dir + "/case.json'", out = dir + "/out";
   ASSERT_EQ(mkfifo((dir + "/fifo").c_str(), 0600), 0);
-  for (auto [source, words] : std::vector<std::pair<std::string, std::string>>{
-           {"/", "is a directory"}, {".", "is a directory"}, {dir + "/fifo", "is a FIFO"}, {"/dev/zero", "is a device"}}) {
-    for (bool raw : {false, true}) {
-      json l = good;
-      l["targets"][2]["source"] = {{"file", source}, {"raw", raw}};
-      writeJson(dir + "/case.json", l);
-      expectOneLine("import", layout, 2, {"case.json", "\"depth\"", words}, out);
-    }
+  const std::vector<std::pair<std::string, std::string>> sources = {
+      {"/", "is a directory"}, {".", "is a directory"}, {dir + "/fifo", "is a FIFO"}, {"/dev/zero", "is a device"}};
+  for (size_t i = 0; i < sources.size(); ++i) {
+    json l = good;  // as an image file and as a raw dump, in turn
+    l["targets"][2]["source"] = {{"file", sources[i].first}, {"raw", i % 2 == 1}};
+    writeJson(dir + "/case.json", l);
+    expectOneLine("import", layout, 2, {"case.json", "\"depth\"", sources[i].second}, out);
   }
   expectOneLine("import", layout.substr(0, 9) + "'" + dir + "/full.json' --camera '" + dir + "'", 2, {"sidecar", "is a directory"}, out);
   expectOneLine("import", "--layout '" + dir + "' ", 2, {"is a directory"}, out);
 
-  // A PNG target: truncated (libpng's own message folded into the one line), and a 169-byte PNG
+  // A PNG target: truncated (libpng's own message folded into the one line), and a 157-byte PNG
   // whose header claims 60000x60000 (refused before its pixels are allocated).
   {
     std::vector<uint8_t> pixels(16 * 8 * 3, 100);
@@ -265,13 +263,13 @@ TEST(ImportRobust, SpoiledCapturesAreRefusedByEveryReader) {
   fs::copy_file(c + "/gbuf.exr", dir + "/outside.exr");
   fs::remove(c + "/gbuf.exr");
   fs::create_symlink(dir + "/outside.exr", c + "/gbuf.exr");
-  readers(c, {"gbuf.exr", "symbolic link leaving the capture folder"}, "link");
-  // The rest through probe and compare only (the four share loadCapture; three cases above show it).
+  // The rest through probe and compare only (the four share loadCapture; two cases above show it).
   auto twoReaders = [&](const std::string& c, const std::vector<std::string>& words, const std::string& what) {
     SCOPED_TRACE(what);
     expectOneLine("probe", "'" + c + "' 3 3", 2, words);
     expectOneLine("compare", "'" + c + "' '" + cap + "' -o '" + dir + "/diff'", 4, words);
   };
+  twoReaders(c, {"gbuf.exr", "symbolic link leaving the capture folder"}, "link");
   // A quantity name with a path, a number that JSON cannot hold, an integer beyond its field.
   for (auto [from, to, words] : std::vector<std::tuple<std::string, std::string, std::string>>{
            {"\"name\": \"Albedo\"", "\"name\": \"x/../../escaped\"", "contains '/'"},
