@@ -336,6 +336,8 @@ bool readTarget(Reader& r, const json& j, const Where& w, Layout& l) {
       std::string why;
       if (!c.is_string()) return r.fail(wt, "channels", "expected names");
       if (!safeFileName(c.get<std::string>(), why)) return r.fail(wt, "channels", jsonBrief(c) + ": " + why);
+      if (std::find(t.channels.begin(), t.channels.end(), c.get<std::string>()) != t.channels.end())
+        return r.fail(wt, "channels", jsonBrief(c) + " named twice");  // one EXR channel would hold both
       t.channels.push_back(c.get<std::string>());
     }
   }
