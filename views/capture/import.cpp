@@ -159,15 +159,17 @@ size_t dumpBytes(const LayoutTarget& t, uint32_t w, uint32_t h) {
   return gpuFormatOf(t, gpu) ? packedImageBytes(gpu, w, h) : size_t(w) * h * t.format.packedBytes();
 }
 
-// A packed dump (raw file or RenderDoc texels) of a target's format; `fileBytes`: the whole file's
-// size when `bytes` holds only its start.
+// A packed dump (raw file or RenderDoc texels) of a target's format, from `offset` in `bytes` (a raw
+// file's bytes from its offset on: offset 0 here, `fileOffset` and `fileBytes` for the message).
 bool unpackDump(const std::vector<uint8_t>& bytes, uint64_t offset, const LayoutTarget& t, uint32_t w, uint32_t h,
-                const std::string& at, CpuImage& img, std::string& error, uint64_t fileBytes = 0) {
+                const std::string& at, CpuImage& img, std::string& error, uint64_t fileOffset = 0, uint64_t fileBytes = 0) {
   TexelFormat gpu{};
   const bool isGpuFormat = gpuFormatOf(t, gpu);
   const size_t need = dumpBytes(t, w, h);
   if (bytes.size() < offset || bytes.size() - offset < need) {
-    const uint64_t size = std::max<uint64_t>(fileBytes, bytes.size());
+    const bool fromFile = fileBytes || fileOffset;
+    const uint64_t size = fromFile ? fileBytes : bytes.size();
+    offset = fromFile ? fileOffset : offset;
     error = at + ": holds " + std::to_string(size - std::min<uint64_t>(offset, size)) + " bytes after offset " +
             std::to_string(offset) + "; " + t.format.name + " " + std::to_string(w) + "x" + std::to_string(h) + " needs " +
             std::to_string(need);
@@ -221,8 +223,8 @@ bool readTarget(const ImportInput& in, uint32_t t, uint32_t w, uint32_t h, CpuIm
     // Only the bytes the layout needs are read (a dump may be followed by more).
     std::vector<uint8_t> bytes;
     uint64_t fileBytes = 0;
-    return readFilePrefix(path, s.offset + dumpBytes(lt, w, h), bytes, fileBytes, where, error) &&
-           unpackDump(bytes, s.offset, lt, w, h, where + ": " + path, img, error, fileBytes);
+    return readFileRange(path, s.offset, dumpBytes(lt, w, h), bytes, fileBytes, where, error) &&
+           unpackDump(bytes, 0, lt, w, h, where + ": " + path, img, error, s.offset, fileBytes);
   }
   return readImageFile(path, s, lt, where, w, h, img, error);
 }

@@ -33,8 +33,8 @@ std::unique_ptr<OIIO::ImageInput> openImportImage(const std::string& path, const
   return in;
 }
 
-bool readFilePrefix(const std::string& path, uint64_t maxBytes, std::vector<uint8_t>& out, uint64_t& fileBytes,
-                    const std::string& at, std::string& error) {
+bool readFileRange(const std::string& path, uint64_t offset, uint64_t maxBytes, std::vector<uint8_t>& out,
+                   uint64_t& fileBytes, const std::string& at, std::string& error) {
   std::string why;
   if (!isRegularFile(path, why)) {
     error = at + ": source.file: " + why;
@@ -47,8 +47,8 @@ bool readFilePrefix(const std::string& path, uint64_t maxBytes, std::vector<uint
     return false;
   }
   fileBytes = uint64_t(size);
-  out.resize(size_t(std::min<uint64_t>(fileBytes, maxBytes)));
-  f.seekg(0);
+  out.resize(size_t(offset >= fileBytes ? 0 : std::min<uint64_t>(fileBytes - offset, maxBytes)));
+  f.seekg(std::streamoff(std::min(offset, fileBytes)));
   if (!out.empty() && !f.read(reinterpret_cast<char*>(out.data()), std::streamsize(out.size()))) {
     error = at + ": source.file: cannot read " + path;
     return false;

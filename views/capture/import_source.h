@@ -23,8 +23,9 @@ bool checkImportSize(const std::string& at, uint64_t w, uint64_t h, std::string&
 // the target and file in the message ("AT: source.file: cannot read the image (...)").
 std::unique_ptr<OIIO::ImageInput> openImportImage(const std::string& path, const std::string& at, std::string& error);
 
-// Reads at most maxBytes from the start of a regular file; `fileBytes` receives its whole size.
-bool readFilePrefix(const std::string& path, uint64_t maxBytes, std::vector<uint8_t>& out, uint64_t& fileBytes,
-                    const std::string& at, std::string& error);
+// Reads at most maxBytes from `offset` in a regular file (nothing before the offset is read or
+// allocated); `fileBytes` receives its whole size.
+bool readFileRange(const std::string& path, uint64_t offset, uint64_t maxBytes, std::vector<uint8_t>& out,
+                   uint64_t& fileBytes, const std::string& at, std::string& error);
 
 }  // namespace gb
