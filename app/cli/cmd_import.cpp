@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "app/cli/cli.h"
+#include "renderer/core/library_output.h"
 #include "views/capture/capture.h"
 #include "views/capture/import_renderdoc.h"
 #include "views/capture/suggest.h"
@@ -26,6 +27,7 @@ struct ImportOptions {
   std::vector<std::string> params;
   uint32_t event = 0;
   bool list = false, suggest = false;
+  bool verbose = false;  // library messages (libpng, OpenEXR) as printed, not folded into the one line
 };
 
 // Progress on stderr, as stress prints its own ("  .. "): what import is doing now. A mistake is
@@ -190,6 +192,7 @@ int runSuggest(const ImportOptions& o) {
 }
 
 int runImport(const ImportOptions& o) {
+  showLibraryOutput(o.verbose);
   const bool rdc = o.inputs.size() == 1 && isRenderDocCapture(o.inputs[0]);
   if (o.inputs.empty() && o.layout.empty()) return fail("INPUT: give image files and --layout, or a RenderDoc capture");
   for (const std::string& input : o.inputs)
@@ -300,6 +303,7 @@ Command addImportCommand(CLI::App& root) {
                 "draft a layout (to -o, else stdout): RenderDoc: the G-buffer pass's targets, a guessed quantity per "
                 "channel and the camera searched for in its buffers; image files: targets from channel names")
       ->excludes(list);
+  cmd->add_flag("--verbose", o->verbose, "print what image libraries say about broken files as they say it");
   return {cmd, [o]() -> int { return runImport(*o); }};
 }
 

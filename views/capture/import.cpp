@@ -9,9 +9,12 @@
 #include <fstream>
 
 #include "renderer/core/assets.h"
+#include "renderer/core/json_read.h"
 #include "renderer/core/layout_json.h"
+#include "renderer/core/library_output.h"
 #include "renderer/core/texels.h"
 #include "views/capture/import_internal.h"
+#include "views/capture/import_source.h"
 
 namespace gb {
 
@@ -62,7 +65,7 @@ bool seekPart(OIIO::ImageInput& in, const std::string& part, const std::string& 
   if (part.empty()) return true;
   char* end = nullptr;
   long index = std::strtol(part.c_str(), &end, 10);
-  if (*end == '\0') {
+  if (*end == '\0' && index >= 0 && index <= 65535) {
     if (in.seek_subimage(int(index), 0)) return true;
     error = where + ": source.part: the file has no part " + part;
     return false;
@@ -77,19 +80,22 @@ bool seekPart(OIIO::ImageInput& in, const std::string& part, const std::string& 
 
 // Reads an image file's channels; a target with a list of formats gets the one the file holds.
 bool readImageFile(const std::string& path, const TargetSource& s, LayoutTarget& t, const std::string& where,
-                   CpuImage& img, std::string& error) {
+                   uint32_t w, uint32_t h, CpuImage& img, std::string& error) {
   const std::string at = where + ": " + path;
   if (t.format.depth || t.format.packed10) {
     error = at + ": format: " + t.format.name + " is a packed GPU format; give it as a raw dump";
     return false;
   }
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    error = at + ": source.file: cannot read the image (" + OIIO::geterror() + ")";
-    return false;
-  }
+  auto in = openImportImage(path, where, error);
+  if (!in) return false;
   if (!seekPart(*in, s.part, at, error)) return false;
   const OIIO::ImageSpec& spec = in->spec();
+  // The size the file declares, against the layout's, before anything is allocated for it.
+  if (uint32_t(spec.width) != w || uint32_t(spec.height) != h || spec.depth > 1) {
+    error = where + ": " + path + ": size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+            ", the layout says " + std::to_string(w) + "x" + std::to_string(h);
+    return false;
+  }
   std::vector<int> index;
   std::vector<std::string> names = s.channels;
   if (names.empty())
@@ -146,8 +152,12 @@ bool readImageFile(const std::string& path, const TargetSource& s, LayoutTarget&
     pixelBytes += spec.channelformat(i).size();
   }
   std::vector<uint8_t> buf(texels * pixelBytes);
+  LibraryOutput library;
   if (!in->read_image(in->current_subimage(), 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, buf.data())) {
-    error = at + ": cannot read pixels (" + in->geterror() + ")";
+    std::string detail = in->geterror();
+    for (char& c : detail)
+      if (c == '\n') c = ' ';
+    error = at + ": cannot read pixels (" + detail + ")" + library.suffix();
     return false;
   }
   img.data.resize(texels * img.texelBytes());
@@ -157,19 +167,34 @@ bool readImageFile(const std::string& path, const TargetSource& s, LayoutTarget&
   return true;
 }
 
-// A packed dump (raw file or RenderDoc texels) of a target's format.
-bool unpackDump(const std::vector<uint8_t>& bytes, uint64_t offset, const LayoutTarget& t, uint32_t w, uint32_t h,
-                const std::string& at, CpuImage& img, std::string& error) {
-  TexelFormat gpu{};
-  bool isGpuFormat = false;
+// The GPU format a layout format names, when it is one (its dumps are packed as texels.h says).
+bool gpuFormatOf(const LayoutTarget& t, TexelFormat& gpu) {
   for (int f = 0; f <= int(TexelFormat::D16); ++f)
     if (t.format.name == texelFormatInfo(TexelFormat(f)).name) {
       gpu = TexelFormat(f);
-      isGpuFormat = true;
+      return true;
     }
-  const size_t need = isGpuFormat ? packedImageBytes(gpu, w, h) : size_t(w) * h * t.format.packedBytes();
+  return false;
+}
+
+// The bytes a packed dump of w x h texels of the target's format takes.
+size_t dumpBytes(const LayoutTarget& t, uint32_t w, uint32_t h) {
+  TexelFormat gpu{};
+  return gpuFormatOf(t, gpu) ? packedImageBytes(gpu, w, h) : size_t(w) * h * t.format.packedBytes();
+}
+
+// A packed dump (raw file or RenderDoc texels) of a target's format, from `offset` in `bytes` (a raw
+// file's bytes from its offset on: offset 0 here, `fileOffset` and `fileBytes` for the message).
+bool unpackDump(const std::vector<uint8_t>& bytes, uint64_t offset, const LayoutTarget& t, uint32_t w, uint32_t h,
+                const std::string& at, CpuImage& img, std::string& error, uint64_t fileOffset = 0, uint64_t fileBytes = 0) {
+  TexelFormat gpu{};
+  const bool isGpuFormat = gpuFormatOf(t, gpu);
+  const size_t need = dumpBytes(t, w, h);
   if (bytes.size() < offset || bytes.size() - offset < need) {
-    error = at + ": holds " + std::to_string(bytes.size() - std::min<size_t>(offset, bytes.size())) + " bytes after offset " +
+    const bool fromFile = fileBytes || fileOffset;
+    const uint64_t size = fromFile ? fileBytes : bytes.size();
+    offset = fromFile ? fileOffset : offset;
+    error = at + ": holds " + std::to_string(size - std::min<uint64_t>(offset, size)) + " bytes after offset " +
             std::to_string(offset) + "; " + t.format.name + " " + std::to_string(w) + "x" + std::to_string(h) + " needs " +
             std::to_string(need);
     return false;
@@ -185,16 +210,6 @@ bool unpackDump(const std::vector<uint8_t>& bytes, uint64_t offset, const Layout
     img.data.assign(src, src + need);
   }
   img.channels = t.channels;
-  return true;
-}
-
-bool readFile(const std::string& path, std::vector<uint8_t>& out, std::string& error, const std::string& at) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) {
-    error = at + ": source.file: cannot read " + path;
-    return false;
-  }
-  out.assign(std::istreambuf_iterator<char>(f), {});
   return true;
 }
 
@@ -230,16 +245,13 @@ bool readTarget(const ImportInput& in, uint32_t t, LayoutTarget& lt, uint32_t w,
     return false;
   }
   if (s.kind == TargetSource::Kind::Raw) {
+    // Only the bytes the layout needs are read (a dump may be followed by more).
     std::vector<uint8_t> bytes;
-    return readFile(path, bytes, error, where) && unpackDump(bytes, s.offset, lt, w, h, where + ": " + path, img, error);
+    uint64_t fileBytes = 0;
+    return readFileRange(path, s.offset, dumpBytes(lt, w, h), bytes, fileBytes, where, error) &&
+           unpackDump(bytes, 0, lt, w, h, where + ": " + path, img, error, s.offset, fileBytes);
   }
-  if (!readImageFile(path, s, lt, where, img, error)) return false;
-  if (img.width != w || img.height != h) {
-    error = where + ": " + path + ": size " + std::to_string(img.width) + "x" + std::to_string(img.height) +
-            ", the layout says " + std::to_string(w) + "x" + std::to_string(h);
-    return false;
-  }
-  return true;
+  return readImageFile(path, s, lt, where, w, h, img, error);
 }
 
 // The layout's lights in gblens's world (Y up) and as the probe reads them (eye space, uploaded form).
@@ -327,7 +339,8 @@ bool loadImportLayout(const std::string& spec, const LayoutParameters& params, L
     error = spec + ": no such built-in layout (built in: " + builtinLayoutNames() + ")";
     return false;
   }
-  nlohmann::json j = nlohmann::json::parse(*text);
+  nlohmann::json j;
+  if (!parseJson(*text, spec, j, error)) return false;
   return resolveLayoutParameters(j, params, spec, error) && parseLayout(j, spec, out, error);
 }
 
@@ -353,14 +366,16 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
       tw = rw, th = rh;
     }
     if (!tw && lt.source.kind != TargetSource::Kind::Raw) {  // no size given: the file's
-      auto inp = OIIO::ImageInput::open(sourcePath(in, lt));
-      if (inp) tw = uint32_t(inp->spec().width), th = uint32_t(inp->spec().height);
+      std::string ignored;  // a file that does not open is reported by readTarget
+      auto inp = openImportImage(sourcePath(in, lt), targetWhere(l, t), ignored);
+      if (inp) tw = uint32_t(std::max(inp->spec().width, 0)), th = uint32_t(std::max(inp->spec().height, 0));
     }
     if (!tw) tw = w, th = h;  // a raw dump without a size: the frame's (the first target's)
     if (!tw) {
       error = targetWhere(l, t) + ": size: unknown (give the layout's or the target's size, or --size)";
       return false;
     }
+    if (!checkImportSize(targetWhere(l, t), tw, th, error)) return false;
     if (!w) w = tw, h = th;
     if (!readTarget(in, t, frameLayout.targets[t], tw, th, images[t], error)) return false;
     frameLayout.targets[t].formatChoices.clear();

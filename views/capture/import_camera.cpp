@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "renderer/core/json_read.h"
 #include "renderer/core/layout_json.h"
 #include "views/capture/import_internal.h"
 
@@ -78,19 +79,26 @@ bool resolveCamera(const ImportInput& in, LayoutCamera& c, uint32_t w, uint32_t 
   std::string sidecar = !in.cameraFile.empty() ? in.cameraFile : c.sidecar;
   if (!sidecar.empty()) {
     if (in.cameraFile.empty() && !findSidecar(in, where, sidecar, error)) return false;
-    std::ifstream f(sidecar);
     // The layout's conventions, the sidecar's matrices (and whatever conventions it gives).
     nlohmann::json j = layoutCameraJson(c), side;
     for (const char* key : {"sidecar", "renderdoc", "view_from_world", "clip_from_view", "world_handedness", "projection"})
       j.erase(key);
-    try {
-      if (!f) throw std::runtime_error("cannot read the file");
-      side = nlohmann::json::parse(f);
-      if (!side.is_object()) throw std::runtime_error("expected a JSON object");
-    } catch (const std::exception& e) {
-      error = where + ": sidecar: " + sidecar + ": " + e.what();
+    std::string why;
+    if (!readJsonFile(sidecar, side, why)) {
+      error = where + ": sidecar: " + why;
       return false;
     }
+    if (!side.is_object()) {
+      error = where + ": sidecar: " + sidecar + ": expected a JSON object";
+      return false;
+    }
+    // A sidecar holds the matrices: one naming another sidecar or a buffer would leave none.
+    for (const char* key : {"sidecar", "renderdoc"})
+      if (side.contains(key)) {
+        error = sidecar + ": camera: " + key + ": a sidecar gives the matrices itself (view_from_world or world_from_view, "
+                "and clip_from_view)";
+        return false;
+      }
     for (auto& [k, v] : side.items()) j[k] = v;
     if (!parseLayoutCamera(j, sidecar, c, error) || !checkCameraSize(c, sidecar, w, h, error)) return false;
     c.from = (in.cameraFile.empty() ? "sidecar " : "--camera ") + fs::absolute(sidecar).lexically_normal().string();
@@ -201,6 +209,12 @@ bool importCamera(const LayoutCamera& given, uint32_t width, uint32_t height, Ca
   }
   out.eyeFromClip = glm::inverse(out.clipFromEye);
   out.clipFromWorld = out.clipFromEye * out.eyeFromWorld;
+  for (const glm::dmat4* m : {&out.eyeFromWorld, &out.worldFromEye, &out.clipFromEye, &out.eyeFromClip, &out.clipFromWorld})
+    for (int i = 0; i < 16; ++i)
+      if (!std::isfinite((*m)[i / 4][i % 4])) {
+        error = "camera: the matrices are not finite after conversion (values too large or nearly singular)";
+        return false;
+      }
   out.yfov = kind == Projection::Orthographic ? 0.0 : 2.0 * std::atan(1.0 / std::abs(p[1][1]));
   out.aspect = std::abs(p[1][1] / p[0][0]);
   depthRange(out);

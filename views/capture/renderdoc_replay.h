@@ -75,10 +75,14 @@ struct RdcListing {
   uint32_t lastEvent = 0;
 };
 
+// The replay's time limit: kReplayBaseSeconds plus one second per 10 MiB of capture (a small
+// capture: 20 s; listing one takes a few seconds), unless set.
+constexpr int kReplayBaseSeconds = 20;
+
 // Where the replay runs. The defaults suit the command line; tests shorten the limit.
 struct RdcReplayOptions {
   std::string python = "/usr/bin/python3";
-  int timeoutSeconds = 300;  // GBLENS_RENDERDOC_TIMEOUT overrides it (seconds)
+  int timeoutSeconds = 0;  // 0: the limit above; GBLENS_RENDERDOC_TIMEOUT overrides both (seconds)
 };
 
 bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& error,
