@@ -134,7 +134,7 @@ bool readImageFile(const std::string& path, const TargetSource& s, const LayoutT
 }
 
 // A packed dump (raw file or RenderDoc texels) of a target's format.
-bool unpackDump(const std::vector<uint8_t>& bytes, uint64_t offset, const LayoutTarget& t, uint32_t w, uint32_t h,
+bool unpackDump(const uint8_t* data, size_t size, uint64_t offset, const LayoutTarget& t, uint32_t w, uint32_t h,
                 const std::string& at, CpuImage& img, std::string& error) {
   TexelFormat gpu{};
   bool isGpuFormat = false;
@@ -144,13 +144,13 @@ bool unpackDump(const std::vector<uint8_t>& bytes, uint64_t offset, const Layout
       isGpuFormat = true;
     }
   const size_t need = isGpuFormat ? packedImageBytes(gpu, w, h) : size_t(w) * h * t.format.packedBytes();
-  if (bytes.size() < offset || bytes.size() - offset < need) {
-    error = at + ": holds " + std::to_string(bytes.size() - std::min<size_t>(offset, bytes.size())) + " bytes after offset " +
+  if (size < offset || size - offset < need) {
+    error = at + ": holds " + std::to_string(size - std::min<size_t>(offset, size)) + " bytes after offset " +
             std::to_string(offset) + "; " + t.format.name + " " + std::to_string(w) + "x" + std::to_string(h) + " needs " +
             std::to_string(need);
     return false;
   }
-  const uint8_t* src = bytes.data() + offset;
+  const uint8_t* src = data + offset;
   if (isGpuFormat) {
     img = unpackTexels(gpu, src, w, h);
   } else {
@@ -196,7 +196,16 @@ bool readTarget(const ImportInput& in, uint32_t t, uint32_t w, uint32_t h, CpuIm
       error = where + ": source.renderdoc: the capture has no texture \"" + s.resource + "\"";
       return false;
     }
-    return unpackDump(it->second, 0, lt, w, h, where + ": source.renderdoc \"" + s.resource + "\"", img, error);
+    return unpackDump(it->second.data(), it->second.size(), 0, lt, w, h, where + ": source.renderdoc \"" + s.resource + "\"",
+                      img, error);
+  }
+  if (s.kind == TargetSource::Kind::Live) {
+    auto it = in.liveTexels.find(lt.name);
+    if (it == in.liveTexels.end()) {
+      error = where + ": source.live: an attachment of a running application: stream it with gblens attach";
+      return false;
+    }
+    return unpackDump(it->second.data, it->second.bytes, 0, lt, w, h, where + ": source.live", img, error);
   }
   const std::string path = sourcePath(in, lt);
   if (path.empty()) {
@@ -206,7 +215,8 @@ bool readTarget(const ImportInput& in, uint32_t t, uint32_t w, uint32_t h, CpuIm
   }
   if (s.kind == TargetSource::Kind::Raw) {
     std::vector<uint8_t> bytes;
-    return readFile(path, bytes, error, where) && unpackDump(bytes, s.offset, lt, w, h, where + ": " + path, img, error);
+    return readFile(path, bytes, error, where) &&
+           unpackDump(bytes.data(), bytes.size(), s.offset, lt, w, h, where + ": " + path, img, error);
   }
   if (!readImageFile(path, s, lt, where, img, error)) return false;
   if (img.width != w || img.height != h) {
@@ -364,6 +374,13 @@ bool importCamera(const LayoutCamera& c, uint32_t width, uint32_t height, Camera
   return true;
 }
 
+void setImportedOptions(FrameSnapshot& frame, const RenderOptions& options) {
+  const RenderOptions imported = frame.options;
+  frame.options = options;
+  frame.options.width = imported.width, frame.options.height = imported.height;
+  frame.options.reversedZ = imported.reversedZ;
+}
+
 bool loadImportLayout(const std::string& spec, const LayoutParameters& params, Layout& out, std::string& dir,
                       std::string& error) {
   dir.clear();
@@ -405,7 +422,16 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
       }
       tw = rw, th = rh;
     }
-    if (!tw && lt.source.kind != TargetSource::Kind::Raw) {  // no size given: the file's
+    if (auto live = in.liveTexels.find(lt.name); live != in.liveTexels.end()) {  // a streamed attachment: the same rule
+      const uint32_t rw = live->second.width, rh = live->second.height;
+      if (tw && (rw != tw || rh != th)) {
+        error = targetWhere(l, t) + ": size: the streamed attachment is " + std::to_string(rw) + "x" + std::to_string(rh) +
+                ", the layout says " + std::to_string(tw) + "x" + std::to_string(th);
+        return false;
+      }
+      tw = rw, th = rh;
+    }
+    if (!tw && (lt.source.kind == TargetSource::Kind::File || lt.source.kind == TargetSource::Kind::None)) {  // the file's
       auto inp = OIIO::ImageInput::open(sourcePath(in, lt));
       if (inp) tw = uint32_t(inp->spec().width), th = uint32_t(inp->spec().height);
     }

@@ -26,6 +26,14 @@ struct ImportInput {
   std::map<std::string, std::vector<uint8_t>> renderdocTexels;
   std::map<std::string, std::array<uint32_t, 2>> renderdocSizes;  // their textures' width and height
   std::vector<uint8_t> renderdocCameraBuffer;
+  // Texels the gblens layer streamed for {"live": ...} targets (`gblens attach`, views/capture/live.h),
+  // by target name: packed as texels.h says, in the stream's shared memory, with the attachment's size.
+  struct LiveTexels {
+    const uint8_t* data = nullptr;
+    size_t bytes = 0;
+    uint32_t width = 0, height = 0;
+  };
+  std::map<std::string, LiveTexels> liveTexels;
   // Targets the source does not hold (e.g. a target without a source whose name no texture of the
   // RenderDoc capture has): absent from the frame ("not captured"), not an error.
   std::set<std::string> leftOut;
@@ -40,6 +48,10 @@ bool loadImportLayout(const std::string& spec, const LayoutParameters& params, L
 // Reads every target and the camera. False with one line naming the file, the target and the
 // field (a missing channel, a size or format the layout does not match, a singular camera, ...).
 bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error);
+
+// The options an imported frame records: `options` (what a parameterised layout was resolved with)
+// with the frame's own size and depth direction.
+void setImportedOptions(FrameSnapshot& frame, const RenderOptions& options);
 
 // The camera a layout describes (matrices, sidecar or uniform-buffer bytes) in gblens's convention:
 // Vulkan clip space (y down, depth 0..1), right-handed view space, Y-up world.

@@ -1,0 +1,124 @@
+// The ring the layer's copies land in: three slots of host-visible memory (cached where the device
+// has it), taken in turn by the command buffers that copy. A slot's buffer is replaced by a larger
+// one when a recording needs more room; the old one lives while a recording or a frame in flight
+// still holds it (shared ownership). Fences for the frames' submissions come from a small pool.
+#include <algorithm>
+
+#include "app/layer/layer.h"
+
+namespace gbl {
+
+namespace {
+
+constexpr VkDeviceSize kAlign = 256;  // copies' buffer offsets (depth/stencil copies need 4)
+constexpr size_t kMaxFences = 16;     // frames the GPU may still run with copies in them
+
+uint32_t memoryType(const DeviceData& d, uint32_t bits, bool& coherent) {
+  // Cached and coherent, then cached (invalidated before reading), then whatever is host-visible.
+  const VkMemoryPropertyFlags wants[] = {
+      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_CACHED_BIT,
+      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT};
+  for (VkMemoryPropertyFlags want : wants)
+    for (uint32_t i = 0; i < d.memory.memoryTypeCount; ++i)
+      if ((bits & (1u << i)) && (d.memory.memoryTypes[i].propertyFlags & want) == want) {
+        coherent = d.memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        return i;
+      }
+  return UINT32_MAX;
+}
+
+RingRef allocate(DeviceData& d, VkDeviceSize size) {
+  auto r = std::make_shared<RingBuffer>();
+  r->device = &d;
+  r->size = size;
+  VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  bi.size = size;
+  bi.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  if (d.vk.CreateBuffer(d.device, &bi, nullptr, &r->buffer) != VK_SUCCESS) return nullptr;
+  VkMemoryRequirements req{};
+  d.vk.GetBufferMemoryRequirements(d.device, r->buffer, &req);
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  ai.allocationSize = req.size;
+  ai.memoryTypeIndex = memoryType(d, req.memoryTypeBits, r->coherent);
+  void* p = nullptr;
+  if (ai.memoryTypeIndex == UINT32_MAX || d.vk.AllocateMemory(d.device, &ai, nullptr, &r->memory) != VK_SUCCESS ||
+      d.vk.BindBufferMemory(d.device, r->buffer, r->memory, 0) != VK_SUCCESS ||
+      d.vk.MapMemory(d.device, r->memory, 0, VK_WHOLE_SIZE, 0, &p) != VK_SUCCESS)
+    return nullptr;  // the destructor frees what was made
+  r->mapped = static_cast<uint8_t*>(p);
+  d.ringBytes += size;
+  return r;
+}
+
+}  // namespace
+
+RingBuffer::~RingBuffer() {
+  if (!device) return;
+  DeviceData& d = *device;
+  if (buffer) d.vk.DestroyBuffer(d.device, buffer, nullptr);
+  if (memory) d.vk.FreeMemory(d.device, memory, nullptr);  // unmaps it
+  if (mapped) d.ringBytes -= size;
+}
+
+int takeSlot(DeviceData& d) {
+  std::lock_guard lock(d.ringLock);
+  return int(d.nextSlot++ % 3);
+}
+
+bool reserve(DeviceData& d, CmdState& s, VkDeviceSize bytes, RingRef& buffer, VkDeviceSize& offset) {
+  const VkDeviceSize need = (bytes + kAlign - 1) / kAlign * kAlign;
+  if (s.slot < 0) s.slot = takeSlot(d);
+  if (s.buffer && s.used + need <= s.buffer->size) {
+    buffer = s.buffer;
+    offset = s.used;
+    s.used += need;
+    return true;
+  }
+  std::lock_guard lock(d.ringLock);
+  RingRef& slot = d.slots[s.slot];
+  if (!slot || slot == s.buffer || slot->size < need) {
+    // A new buffer for the slot: twice the old one at least, so that a recording's whole frame
+    // soon fits one buffer and resizes allocate a few times, not every frame.
+    const VkDeviceSize old = slot ? slot->size : 0;
+    RingRef grown = allocate(d, std::max({need, 2 * old, s.used + need}));
+    if (!grown) return false;
+    slot = grown;
+  }
+  s.buffer = slot;
+  s.used = need;
+  buffer = slot;
+  offset = 0;
+  return true;
+}
+
+VkFence takeFence(DeviceData& d) {
+  std::lock_guard lock(d.ringLock);
+  if (!d.freeFences.empty()) {
+    VkFence f = d.freeFences.back();
+    d.freeFences.pop_back();
+    return f;
+  }
+  if (d.fenceCount >= kMaxFences) return VK_NULL_HANDLE;  // the GPU is far behind: this frame is not streamed
+  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence f = VK_NULL_HANDLE;
+  if (d.vk.CreateFence(d.device, &fi, nullptr, &f) != VK_SUCCESS) return VK_NULL_HANDLE;
+  ++d.fenceCount;
+  return f;
+}
+
+void returnFence(DeviceData& d, VkFence f) {
+  d.vk.ResetFences(d.device, 1, &f);
+  std::lock_guard lock(d.ringLock);
+  d.freeFences.push_back(f);
+}
+
+void destroyRing(DeviceData& d) {
+  std::lock_guard lock(d.ringLock);
+  for (RingRef& s : d.slots) s.reset();
+  for (VkFence f : d.freeFences) d.vk.DestroyFence(d.device, f, nullptr);
+  d.freeFences.clear();
+}
+
+}  // namespace gbl
