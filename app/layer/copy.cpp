@@ -178,8 +178,11 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
     if (earlier != s.copiesMade.end()) {
       c.buffer = earlier->buffer, c.offset = earlier->offset;
     } else if (!reserve(d, s, bytes, c.buffer, c.offset)) {
-      report(d, "memory", "out of host-visible memory for the copies: streaming stops");
-      d.streaming = false;
+      if (s.slot >= 0) {  // a slot, but no memory for it
+        report(d, "memory", "out of host-visible memory for the copies: streaming stops");
+        d.streaming = false;
+      }
+      s.copies = false;  // every slot is held: this recording's frame is dropped
       return;
     }
     c.stencilOffset = c.offset + stencilAt;

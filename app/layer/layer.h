@@ -137,9 +137,32 @@ struct RingBuffer {
   VkDeviceSize size = 0;
   bool coherent = true;
   std::atomic<uint64_t> submissions{0};  // submissions that write it: a read is torn if this moves
+  std::atomic<int> holds{0};             // recordings that copy into it and frames not yet read from it
   ~RingBuffer();
 };
 using RingRef = std::shared_ptr<RingBuffer>;
+
+// A hold on a ring buffer for as long as this lives: a recording that copies into it, or a frame
+// the thread has not read yet. A new recording takes a slot nobody holds, when there is one.
+class HeldRing {
+ public:
+  explicit HeldRing(RingRef b) : buffer_(std::move(b)) { ++buffer_->holds; }
+  HeldRing(HeldRing&& o) noexcept : buffer_(std::move(o.buffer_)) {}
+  HeldRing& operator=(HeldRing&& o) noexcept {
+    release();
+    buffer_ = std::move(o.buffer_);
+    return *this;
+  }
+  HeldRing(const HeldRing&) = delete;
+  HeldRing& operator=(const HeldRing&) = delete;
+  ~HeldRing() { release(); }
+
+ private:
+  void release() {
+    if (buffer_) --buffer_->holds, buffer_.reset();
+  }
+  RingRef buffer_;
+};
 
 // One attachment (or the camera's bytes) copied into a ring buffer by a recorded command buffer.
 struct Copy {
@@ -187,6 +210,7 @@ struct CmdState {
   VkCommandPool pool = VK_NULL_HANDLE;
   bool copies = false;          // this recording copies (streaming, and its frame is due or it may be reused)
   bool suggest = false;         // this recording reports its passes (--suggest)
+  bool reusable = false;        // it may be submitted again (no ONE_TIME_SUBMIT)
   int passes = 0;               // render passes begun so far
   std::vector<std::string> labels;
   OpenPass open;
@@ -194,10 +218,16 @@ struct CmdState {
   VkBuffer cameraBuffer = VK_NULL_HANDLE;  // the last bound buffer of the camera's name
   int slot = -1;                // the ring slot this recording copies into
   RingRef buffer;               // its buffer as this recording found it
+  std::vector<HeldRing> held;   // every buffer this recording copies into
   VkDeviceSize used = 0;        // bytes used of it
+  VkDeviceSize total = 0;       // bytes this recording copies in all
   std::vector<Copy> copiesMade;
   std::vector<PassReport> reports;  // --suggest
-  void reset() { *this = CmdState{pool}; }
+  void reset() {
+    const VkCommandPool p = pool;
+    *this = CmdState{};
+    pool = p;
+  }
 };
 
 // A frame the application submitted with copies in it, waiting for its fences (stream.cpp).
@@ -206,6 +236,7 @@ struct PendingFrame {
   std::vector<Copy> copies;
   std::vector<std::pair<RingRef, uint64_t>> writes;  // each buffer's submission count at submission
   std::vector<VkFence> fences;
+  std::vector<HeldRing> held;
   bool due = false;     // streamed (every N); else only its fences are recycled
   bool broken = false;  // a submission of it got no fence: never streamed
 };
@@ -256,11 +287,18 @@ struct DeviceData {
   uint32_t nextSlot = 0;
   std::vector<VkFence> freeFences;
   size_t fenceCount = 0;
+  VkDeviceSize largestRecording = 0;  // the most bytes one recording copied: a slot's size
+  std::atomic<uint64_t> droppedAtSource{0};  // recordings that found every slot held
   std::atomic<uint64_t> ringBytes{0};
 
   Stream* stream = nullptr;
   std::atomic<uint64_t> hookNs{0};  // time the layer spent in the application's threads (copies, submissions)
 };
+
+// ---- a trace of frames, copies and drops on stderr when GBLENS_LAYER_LOG=1 (layer_main.cpp)
+bool logging();
+void logLine(const char* format, ...) __attribute__((format(printf, 1, 2)));
+#define GBL_LOG(...) (logging() ? logLine(__VA_ARGS__) : void())
 
 // ---- lookups (layer_main.cpp)
 DeviceData* deviceOf(const void* dispatchable);  // VkDevice, VkQueue or VkCommandBuffer
@@ -282,7 +320,7 @@ std::vector<Hook> submitHooks();  // submit.cpp
 // larger buffer when the current one is full; the old one lives on while recordings and frames
 // still hold it). False when memory is short.
 bool reserve(DeviceData& d, CmdState& s, VkDeviceSize bytes, RingRef& buffer, VkDeviceSize& offset);
-int takeSlot(DeviceData& d);
+int takeSlot(DeviceData& d, bool reusable);  // -1: none free for a recording submitted once
 VkFence takeFence(DeviceData& d);
 void returnFence(DeviceData& d, VkFence f);
 void destroyRing(DeviceData& d);

@@ -2,6 +2,9 @@
 // instance and device chains (each keeps the next layer's functions). A device whose process has no
 // receiver listening is passed straight through: vkGetDeviceProcAddr hands out the next layer's
 // functions, so an idle layer costs nothing per call.
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "app/layer/layer.h"
@@ -184,6 +187,23 @@ InstanceData* instanceOf(const void* dispatchable) {
   std::shared_lock lock(globals().lock);
   auto it = globals().instances.find(dispatchKey(dispatchable));
   return it == globals().instances.end() ? nullptr : it->second;
+}
+
+bool logging() {
+  static const bool on = [] {
+    const char* v = std::getenv("GBLENS_LAYER_LOG");
+    return v && *v && std::strcmp(v, "0") != 0;
+  }();
+  return on;
+}
+
+void logLine(const char* format, ...) {
+  char line[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(line, sizeof(line), format, args);
+  va_end(args);
+  std::fprintf(stderr, "gblens layer: %s\n", line);
 }
 
 std::shared_ptr<const Request> currentRequest(DeviceData& d) {

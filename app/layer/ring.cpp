@@ -62,14 +62,36 @@ RingBuffer::~RingBuffer() {
   if (mapped) d.ringBytes -= size;
 }
 
-int takeSlot(DeviceData& d) {
+int takeSlot(DeviceData& d, bool reusable) {
   std::lock_guard lock(d.ringLock);
-  return int(d.nextSlot++ % 3);
+  // The next slot that nobody holds (no recording copies into it, no frame waits to be read from
+  // it). When all three are held, a command buffer submitted once does not copy (its frame is
+  // dropped here, before any work); one that is submitted again and again (recorded once per
+  // swapchain image) shares the next slot: the thread drops a frame whose buffer was submitted
+  // again while it read it.
+  int slot = reusable ? int(d.nextSlot % 3) : -1;
+  for (uint32_t i = 0; i < 3; ++i) {
+    const int k = int((d.nextSlot + i) % 3);
+    if (!d.slots[k] || d.slots[k]->holds == 0) {
+      slot = k;
+      break;
+    }
+  }
+  if (slot < 0) {
+    ++d.droppedAtSource;
+    GBL_LOG("a recording finds every ring slot held: its frame is dropped");
+    return -1;
+  }
+  d.nextSlot = uint32_t(slot) + 1;
+  GBL_LOG("a recording takes ring slot %d (holds %d %d %d)", slot, d.slots[0] ? d.slots[0]->holds.load() : 0,
+          d.slots[1] ? d.slots[1]->holds.load() : 0, d.slots[2] ? d.slots[2]->holds.load() : 0);
+  return slot;
 }
 
 bool reserve(DeviceData& d, CmdState& s, VkDeviceSize bytes, RingRef& buffer, VkDeviceSize& offset) {
   const VkDeviceSize need = (bytes + kAlign - 1) / kAlign * kAlign;
-  if (s.slot < 0) s.slot = takeSlot(d);
+  if (s.slot < 0 && (s.slot = takeSlot(d, s.reusable)) < 0) return false;
+  s.total += need;
   if (s.buffer && s.used + need <= s.buffer->size) {
     buffer = s.buffer;
     offset = s.used;
@@ -77,16 +99,17 @@ bool reserve(DeviceData& d, CmdState& s, VkDeviceSize bytes, RingRef& buffer, Vk
     return true;
   }
   std::lock_guard lock(d.ringLock);
+  d.largestRecording = std::max(d.largestRecording, s.total);
   RingRef& slot = d.slots[s.slot];
   if (!slot || slot == s.buffer || slot->size < need) {
-    // A new buffer for the slot: twice the old one at least, so that a recording's whole frame
-    // soon fits one buffer and resizes allocate a few times, not every frame.
-    const VkDeviceSize old = slot ? slot->size : 0;
-    RingRef grown = allocate(d, std::max({need, 2 * old, s.used + need}));
+    // A new buffer for the slot, sized for the largest recording seen (a quarter more), so that a
+    // recording's whole frame soon fits one buffer and resizes allocate once, not every frame.
+    RingRef grown = allocate(d, std::max(need, d.largestRecording) / 4 * 5 / kAlign * kAlign + kAlign);
     if (!grown) return false;
     slot = grown;
   }
   s.buffer = slot;
+  s.held.emplace_back(slot);
   s.used = need;
   buffer = slot;
   offset = 0;

@@ -141,7 +141,7 @@ json statsJson(Stream& st) {
   DeviceData& d = *st.d;
   std::lock_guard lock(d.frameLock);
   return {{"frames", d.frame.load()},     {"streamed", d.streamed}, {"sent", st.sent},
-          {"dropped", st.dropped},        {"torn", st.torn},        {"ring_bytes", d.ringBytes.load()},
+          {"dropped", st.dropped + d.droppedAtSource.load()}, {"torn", st.torn},        {"ring_bytes", d.ringBytes.load()},
           {"shm_bytes", st.mapSize},
           {"frame_ms", d.frameIntervals ? double(d.frameNsSum) / double(d.frameIntervals) * 1e-6 : 0.0},
           {"layer_ms_per_frame", d.frame ? double(d.hookNs.load()) / double(d.frame) * 1e-6 : 0.0},
@@ -171,6 +171,8 @@ void process(Stream& st, const PendingFrame& f) {
   std::shared_ptr<const Request> req = currentRequest(d);
   if (!d.streaming || st.socket < 0 || !f.due || !req || (req->only && f.stream != req->only)) return;
   if (st.receiverBusy || !unchanged(f)) {
+    GBL_LOG("frame %llu (streamed %llu): dropped, %s", (unsigned long long)f.appFrame, (unsigned long long)f.stream,
+            st.receiverBusy ? "the receiver is busy" : "its ring buffer was submitted again");
     ++st.dropped;
     st.torn += !st.receiverBusy;
     return;
@@ -182,9 +184,12 @@ void process(Stream& st, const PendingFrame& f) {
     return goIdle(st);
   }
   if (!unchanged(f)) {  // the application submitted the ring's buffer again while it was read
+    GBL_LOG("frame %llu: dropped, its ring buffer was submitted again while it was read", (unsigned long long)f.appFrame);
     ++st.dropped, ++st.torn;
     return;
   }
+  GBL_LOG("frame %llu (streamed %llu): sent, %zu copies", (unsigned long long)f.appFrame, (unsigned long long)f.stream,
+          f.copies.size());
   st.copyMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   ++st.sent;
   json m = {{"type", gb::wire::kFrame}, {"stream", f.stream},   {"app_frame", f.appFrame}, {"end_ns", f.endNs},

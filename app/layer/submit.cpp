@@ -33,6 +33,8 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
       if (std::find(counted.begin(), counted.end(), c.buffer.get()) == counted.end()) {
         counted.push_back(c.buffer.get());
         ++c.buffer->submissions;
+        GBL_LOG("frame %llu: submits a recording writing ring buffer %p (submission %llu)", (unsigned long long)d.frame.load(),
+                static_cast<void*>(c.buffer.get()), (unsigned long long)c.buffer->submissions.load());
       }
     if (s->copiesMade.empty() || !d.streaming) continue;
     if (!d.building) d.building = std::make_unique<PendingFrame>();
@@ -41,10 +43,12 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
       std::erase_if(f.copies, [&](const Copy& e) { return e.target == c.target; });
       f.copies.push_back(c);
       auto w = std::find_if(f.writes.begin(), f.writes.end(), [&](const auto& e) { return e.first == c.buffer; });
-      if (w == f.writes.end())
+      if (w == f.writes.end()) {
         f.writes.push_back({c.buffer, c.buffer->submissions.load()});
-      else
+        f.held.emplace_back(c.buffer);  // no new recording takes this buffer until the thread has read it
+      } else {
         w->second = c.buffer->submissions.load();
+      }
     }
     got.copies = true;
   }
@@ -102,9 +106,12 @@ void endFrame(DeviceData& d) {
 
 template <class Call>
 VkResult submit(DeviceData& d, VkQueue queue, const std::vector<VkCommandBuffer>& cmds, Call&& call) {
-  const auto start = std::chrono::steady_clock::now();
+  auto start = std::chrono::steady_clock::now();
   const Submitted got = gather(d, cmds);
+  const auto before = std::chrono::steady_clock::now();
   VkResult r = call();
+  d.hookNs += uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(before - start).count());
+  start = std::chrono::steady_clock::now();  // the application's own submission is not the layer's time
   if (got.copies) {
     // The layer's fence, signalled once everything submitted so far on this queue is done.
     VkFence fence = r == VK_SUCCESS ? takeFence(d) : VK_NULL_HANDLE;
