@@ -216,11 +216,14 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
   }
 
   const DeviceTable& vk = d.vk;
-  VkMemoryBarrier memory{VK_STRUCTURE_TYPE_MEMORY_BARRIER};  // the camera buffer's writes, whoever made them
+  // Every earlier write before these copies: the camera buffer's (whoever made them), and the ring's
+  // own from an earlier pass or an earlier submission of this command buffer (the copies write the
+  // same bytes again).
+  VkMemoryBarrier memory{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   memory.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
-  memory.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-  vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, cam.buffer ? 1 : 0,
-                        &memory, 0, nullptr, uint32_t(there.size()), there.data());
+  memory.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+  vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &memory, 0, nullptr,
+                        uint32_t(there.size()), there.data());
   for (const Region& r : regions) vk.CmdCopyImageToBuffer(cmd, r.image, r.layout, r.buffer, 1, &r.copy);
   if (cam.buffer) {
     VkBufferCopy bc{0, cam.offset, cam.bytes};

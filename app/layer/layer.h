@@ -340,5 +340,6 @@ void streamPasses(DeviceData& d, const std::vector<PassReport>& passes, uint64_t
 void streamNoMatch(DeviceData& d, uint64_t frames);
 // A message for people, sent once per key (a target that never appears, a format mismatch, ...).
 void report(DeviceData& d, const std::string& key, const std::string& text);
+bool wasReported(DeviceData& d, const std::string& key);
 
 }  // namespace gbl

@@ -343,6 +343,13 @@ void streamNoMatch(DeviceData& d, uint64_t frames) {
   sendOnce(d, "nomatch", json{{"type", gb::wire::kNoMatch}, {"frames", frames}}.dump());
 }
 
+bool wasReported(DeviceData& d, const std::string& key) {
+  Stream* st = d.stream;
+  if (!st) return false;
+  std::lock_guard lock(st->lock);
+  return st->reported.count(key) > 0;
+}
+
 void report(DeviceData& d, const std::string& key, const std::string& text) {
   sendOnce(d, key, json{{"type", gb::wire::kReport}, {"key", key}, {"text", text}}.dump());
 }

@@ -93,7 +93,7 @@ void endFrame(DeviceData& d) {
     const Pick& p = req->picks[t];
     const bool got = f && std::any_of(f->copies.begin(), f->copies.end(), [&](const Copy& c) { return c.target == int(t); });
     any |= got;
-    if (!got && p.explicitSource)
+    if (!got && p.explicitSource && !wasReported(d, "refused:" + p.targetName))  // a refusal said more
       report(d, "missing:" + p.targetName,
              "target \"" + p.targetName + "\": frame " + std::to_string(number) + " has no render pass with " + pickText(p));
   }

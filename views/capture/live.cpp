@@ -114,7 +114,15 @@ bool LiveSession::start(const LiveOptions& o, std::string& error) {
   for (const std::string& e : env) envp.push_back(const_cast<char*>(e.c_str()));
   argv.push_back(nullptr);
   envp.push_back(nullptr);
-  if (int err = posix_spawnp(&pid_, argv[0], nullptr, nullptr, argv.data(), envp.data()); err != 0) {
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  if (!o.log.empty()) {
+    posix_spawn_file_actions_addopen(&files, 1, o.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&files, 1, 2);
+  }
+  const int err = posix_spawnp(&pid_, argv[0], &files, nullptr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&files);
+  if (err != 0) {
     pid_ = -1;
     error = o.argv[0] + ": cannot start it (" + std::strerror(err) + ")";
     return false;

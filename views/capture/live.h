@@ -28,6 +28,7 @@ struct LiveOptions {
   uint32_t giveUpFrames = 120;           // frames with render passes and no target before the layer says so
   std::string layerDir;                  // the folder of VkLayer_gblens_live.json ("" : layerFolder())
   std::vector<std::string> environment;  // more NAME=VALUE for the application
+  std::string log;                       // the application's stdout and stderr go here ("" : gblens's own)
 };
 
 struct LiveFrameInfo {
