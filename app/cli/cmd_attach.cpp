@@ -78,6 +78,7 @@ nlohmann::json statsJson(const LiveSession& s) {
           {"dropped", c.dropped},
           {"application_frames", c.appFrames},
           {"latency_ms", {{"mean", c.meanLatencyMs}, {"max", c.maxLatencyMs}}},
+          {"decode_ms", c.meanDecodeMs},
           {"latency_frames", frameMs > 0.0 ? c.meanLatencyMs / frameMs : 0.0},
           {"layer", c.layer}};
 }

@@ -185,7 +185,9 @@ bool LiveSession::receive(FrameSnapshot& out, LiveFrameInfo* info) {
       mapSize_ = map_ ? size_t(st.st_size) : 0;
     }
     std::string error;
+    const auto start = std::chrono::steady_clock::now();
     const bool ok = map_ && decode(m, out, info, error);
+    const double decodeMs = secondsSince(start) * 1e3;
     wire::send(conn_, nlohmann::json{{"type", wire::kAck}}.dump());  // the layer may fill the memory again
     counts_.layer = m.value("stats", nlohmann::json::object());
     counts_.dropped = counts_.layer.value("dropped", uint64_t(0));
@@ -198,6 +200,7 @@ bool LiveSession::receive(FrameSnapshot& out, LiveFrameInfo* info) {
     const double latency = double(wire::monotonicNs() - m.value("end_ns", uint64_t(0))) * 1e-6;
     counts_.meanLatencyMs = (counts_.meanLatencyMs * double(counts_.received) + latency) / double(counts_.received + 1);
     counts_.maxLatencyMs = std::max(counts_.maxLatencyMs, latency);
+    counts_.meanDecodeMs = (counts_.meanDecodeMs * double(counts_.received) + decodeMs) / double(counts_.received + 1);
     ++counts_.received;
     if (info) info->latencyMs = latency;
     return true;

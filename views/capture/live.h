@@ -45,6 +45,7 @@ struct LiveCounts {
   uint64_t dropped = 0;      // frames the layer dropped because this side was still busy (or the ring moved)
   uint64_t appFrames = 0;    // frames the application had ended at the last frame received
   double meanLatencyMs = 0.0, maxLatencyMs = 0.0;
+  double meanDecodeMs = 0.0;  // this side's time to turn a frame into a FrameSnapshot
   nlohmann::json layer;      // the layer's own figures with the last frame (docs/attach.md)
 };
 
