@@ -120,6 +120,11 @@ Command addBenchCommand(CLI::App& root) {
   cmd->add_option("--attach-rounds", s->attach.rounds, "gblens attach's cost: interleaved rounds of its four variants")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
+  cmd->add_option("--attach-size", s->attach.size, "gblens attach's cost: the application's output size")
+      ->capture_default_str();
+  cmd->add_option("--attach-frames", s->attach.frames, "gblens attach's cost: frames per run of the application")
+      ->check(CLI::Range(3, 100000))
+      ->capture_default_str();
   cmd->add_option("--attach-soak", s->attach.soakFrames, "gblens attach's cost: frames of the memory soak")
       ->check(CLI::Range(100, 1000000))
       ->capture_default_str();

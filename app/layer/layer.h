@@ -292,7 +292,8 @@ struct DeviceData {
   std::atomic<uint64_t> ringBytes{0};
 
   Stream* stream = nullptr;
-  std::atomic<uint64_t> hookNs{0};  // time the layer spent in the application's threads (copies, submissions)
+  std::atomic<uint64_t> hookNs{0};   // time the layer spent in the application's threads (copies, submissions)
+  std::atomic<uint64_t> allocNs{0};  // of which allocating ring buffers (the first frames, resizes)
 };
 
 // ---- a trace of frames, copies and drops on stderr when GBLENS_LAYER_LOG=1 (layer_main.cpp)

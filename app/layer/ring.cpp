@@ -3,6 +3,7 @@
 // one when a recording needs more room; the old one lives while a recording or a frame in flight
 // still holds it (shared ownership). Fences for the frames' submissions come from a small pool.
 #include <algorithm>
+#include <chrono>
 
 #include "app/layer/layer.h"
 
@@ -30,6 +31,12 @@ uint32_t memoryType(const DeviceData& d, uint32_t bits, bool& coherent) {
 }
 
 RingRef allocate(DeviceData& d, VkDeviceSize size) {
+  const auto start = std::chrono::steady_clock::now();
+  struct Timed {  // allocations are counted apart from the per-frame time (they happen once, or on a resize)
+    DeviceData& d;
+    std::chrono::steady_clock::time_point start;
+    ~Timed() { d.allocNs += uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count()); }
+  } timed{d, start};
   auto r = std::make_shared<RingBuffer>();
   r->device = &d;
   r->size = size;

@@ -144,7 +144,8 @@ json statsJson(Stream& st) {
           {"dropped", st.dropped + d.droppedAtSource.load()}, {"torn", st.torn},        {"ring_bytes", d.ringBytes.load()},
           {"shm_bytes", st.mapSize},
           {"frame_ms", d.frameIntervals ? double(d.frameNsSum) / double(d.frameIntervals) * 1e-6 : 0.0},
-          {"layer_ms_per_frame", d.frame ? double(d.hookNs.load()) / double(d.frame) * 1e-6 : 0.0},
+          {"layer_ms_per_frame", d.frame ? double(d.hookNs.load() - std::min(d.hookNs.load(), d.allocNs.load())) / double(d.frame) * 1e-6 : 0.0},
+          {"ring_allocation_ms", double(d.allocNs.load()) * 1e-6},
           {"thread_copy_ms", st.sent ? st.copyMs / double(st.sent) : 0.0}};
 }
 
