@@ -34,7 +34,8 @@ namespace gbl {
   X(CmdEndRendering) X(CmdEndRenderingKHR) X(CmdBeginDebugUtilsLabelEXT) X(CmdEndDebugUtilsLabelEXT)                  \
   X(SetDebugUtilsObjectNameEXT) X(QueueSubmit) X(QueueSubmit2) X(QueueSubmit2KHR) X(CmdPipelineBarrier)               \
   X(CmdCopyImageToBuffer) X(CmdCopyBuffer) X(CreateFence) X(DestroyFence) X(ResetFences) X(WaitForFences)              \
-  X(GetFenceStatus) X(AllocateMemory) X(GetBufferMemoryRequirements) X(InvalidateMappedMemoryRanges) X(DeviceWaitIdle)
+  X(GetFenceStatus) X(AllocateMemory) X(GetBufferMemoryRequirements) X(InvalidateMappedMemoryRanges) X(DeviceWaitIdle)     \
+  X(GetMemoryHostPointerPropertiesEXT)
 
 struct DeviceTable {
 #define GBL_MEMBER(name) PFN_vk##name name = nullptr;
@@ -51,7 +52,10 @@ struct InstanceData {
   PFN_vkGetPhysicalDeviceProperties properties = nullptr;
   PFN_vkGetPhysicalDeviceFormatProperties formatProperties = nullptr;
   PFN_vkGetPhysicalDeviceSurfaceCapabilitiesKHR surfaceCapabilities = nullptr;
+  PFN_vkEnumerateDeviceExtensionProperties deviceExtensions = nullptr;
+  PFN_vkGetPhysicalDeviceProperties2 properties2 = nullptr;
   std::string application, engine;
+  uint32_t apiVersion = VK_API_VERSION_1_0;  // the application's (VkApplicationInfo)
 };
 
 // ---- formats (formats.cpp)
@@ -135,8 +139,16 @@ struct RingBuffer {
   VkDeviceMemory memory = VK_NULL_HANDLE;
   uint8_t* mapped = nullptr;
   VkDeviceSize size = 0;
+  VkDeviceSize base = 0;  // the first byte copies may use (a shared buffer starts with its header)
   bool coherent = true;
-  std::atomic<uint64_t> submissions{0};  // submissions that write it: a read is torn if this moves
+  // Shared with the receiver (VK_EXT_external_memory_host): the memory is a file's mapping, which
+  // the receiver maps too and reads in place; `id` names it on the wire.
+  int fd = -1;
+  uint32_t id = 0;
+  size_t mappedBytes = 0;
+  // Submissions that write it (a read is torn if this moves): in the shared header when shared.
+  std::atomic<uint64_t> localSubmissions{0};
+  std::atomic<uint64_t>* submissions = &localSubmissions;
   std::atomic<int> holds{0};             // recordings that copy into it and frames not yet read from it
   ~RingBuffer();
 };
@@ -289,6 +301,9 @@ struct DeviceData {
   size_t fenceCount = 0;
   VkDeviceSize largestRecording = 0;  // the most bytes one recording copied: a slot's size
   std::atomic<uint64_t> droppedAtSource{0};  // recordings that found every slot held
+  bool hostImport = false;          // ring buffers are shared memory (VK_EXT_external_memory_host)
+  VkDeviceSize hostAlignment = 4096;
+  std::atomic<uint32_t> nextRingId{0};
   std::atomic<uint64_t> ringBytes{0};
 
   Stream* stream = nullptr;
@@ -334,7 +349,11 @@ CmdState* cmdState(DeviceData& d, VkCommandBuffer cmd);
 
 
 // ---- the stream (stream.cpp)
-bool connectStream(DeviceData& d);            // at vkCreateDevice: false when no receiver listens
+// At vkCreateDevice: the connection to the receiver and its request, before the device is made
+// (null when no receiver listens: the layer stays idle); the thread once it exists.
+Stream* openStream(InstanceData& instance, VkPhysicalDevice physical);
+void startStream(DeviceData& d, Stream* st);
+void closeStream(Stream* st);                 // the device was not made after all
 void stopStream(DeviceData& d);               // at vkDestroyDevice
 void streamFrame(DeviceData& d, std::unique_ptr<PendingFrame> f);  // hands a submitted frame over
 void streamPasses(DeviceData& d, const std::vector<PassReport>& passes, uint64_t frame);

@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include <algorithm>
+
 #include "app/layer/layer.h"
 
 #define GBL_EXPORT extern "C" __attribute__((visibility("default")))
@@ -65,10 +67,13 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateInstance(const VkInstanceCreateInfo* info, 
   GBL_LOAD(properties, "vkGetPhysicalDeviceProperties");
   GBL_LOAD(formatProperties, "vkGetPhysicalDeviceFormatProperties");
   GBL_LOAD(surfaceCapabilities, "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
+  GBL_LOAD(deviceExtensions, "vkEnumerateDeviceExtensionProperties");
+  GBL_LOAD(properties2, "vkGetPhysicalDeviceProperties2");
 #undef GBL_LOAD
   if (const VkApplicationInfo* a = info->pApplicationInfo) {
     d->application = a->pApplicationName ? a->pApplicationName : "";
     d->engine = a->pEngineName ? a->pEngineName : "";
+    d->apiVersion = a->apiVersion ? a->apiVersion : VK_API_VERSION_1_0;
   }
   std::unique_lock lock(globals().lock);
   globals().instances[dispatchKey(*instance)] = d;
@@ -84,6 +89,26 @@ VKAPI_ATTR void VKAPI_CALL DestroyInstance(VkInstance instance, const VkAllocati
   delete d;
 }
 
+// The host-pointer import alignment when the device has VK_EXT_external_memory_host (a device of
+// any kind: lavapipe has it, so do the GPU drivers), else 0. An application of Vulkan 1.0 has not
+// the instance extensions it needs (external memory capabilities): its frames are copied out.
+VkDeviceSize hostImportAlignment(InstanceData& inst, VkPhysicalDevice physical) {
+  uint32_t n = 0;
+  if (inst.apiVersion < VK_API_VERSION_1_1 || !inst.deviceExtensions || !inst.properties2 ||
+      inst.deviceExtensions(physical, nullptr, &n, nullptr) != VK_SUCCESS)
+    return 0;
+  std::vector<VkExtensionProperties> all(n);
+  inst.deviceExtensions(physical, nullptr, &n, all.data());
+  if (std::none_of(all.begin(), all.end(), [](const VkExtensionProperties& e) {
+        return !std::strcmp(e.extensionName, VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
+      }))
+    return 0;
+  VkPhysicalDeviceExternalMemoryHostPropertiesEXT host{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_MEMORY_HOST_PROPERTIES_EXT};
+  VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &host};
+  inst.properties2(physical, &props);
+  return host.minImportedHostPointerAlignment;
+}
+
 VKAPI_ATTR VkResult VKAPI_CALL CreateDevice(VkPhysicalDevice physical, const VkDeviceCreateInfo* info,
                                             const VkAllocationCallbacks* alloc, VkDevice* device) {
   auto* chain = const_cast<VkLayerDeviceCreateInfo*>(findChain<VkLayerDeviceCreateInfo>(
@@ -95,9 +120,31 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateDevice(VkPhysicalDevice physical, const VkD
   PFN_vkGetInstanceProcAddr gipa = chain->u.pLayerInfo->pfnNextGetInstanceProcAddr;
   PFN_vkGetDeviceProcAddr gdpa = chain->u.pLayerInfo->pfnNextGetDeviceProcAddr;
   chain->u.pLayerInfo = chain->u.pLayerInfo->pNext;
+  // A receiver listening: the connection (and its request) first, so that the device can be made
+  // with VK_EXT_external_memory_host, which lets the ring be memory the receiver reads in place.
+  bool first = false;
+  {
+    std::unique_lock lock(globals().lock);
+    first = !globals().claimed;
+    globals().claimed = true;
+  }
+  Stream* stream = first ? openStream(*inst, physical) : nullptr;
+  VkDeviceCreateInfo patched = *info;
+  std::vector<const char*> extensions(info->ppEnabledExtensionNames, info->ppEnabledExtensionNames + info->enabledExtensionCount);
+  VkDeviceSize hostAlignment = 0;
+  if (stream && (hostAlignment = hostImportAlignment(*inst, physical)) != 0) {
+    if (std::none_of(extensions.begin(), extensions.end(),
+                     [](const char* e) { return !std::strcmp(e, VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME); }))
+      extensions.push_back(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
+    patched.enabledExtensionCount = uint32_t(extensions.size());
+    patched.ppEnabledExtensionNames = extensions.data();
+  }
   auto create = reinterpret_cast<PFN_vkCreateDevice>(gipa(inst->instance, "vkCreateDevice"));
-  VkResult r = create(physical, info, alloc, device);
-  if (r != VK_SUCCESS) return r;
+  VkResult r = create(physical, &patched, alloc, device);
+  if (r != VK_SUCCESS) {
+    if (stream) closeStream(stream);
+    return r;
+  }
   auto* d = new DeviceData;
   d->device = *device;
   d->physical = physical;
@@ -112,14 +159,14 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateDevice(VkPhysicalDevice physical, const VkD
   GBL_LOAD(SetDebugUtilsObjectNameEXT) GBL_LOAD(CmdBeginDebugUtilsLabelEXT) GBL_LOAD(CmdEndDebugUtilsLabelEXT)
 #undef GBL_LOAD
   inst->memoryProperties(physical, &d->memory);
-  bool first = false;
+  d->hostImport = hostAlignment != 0 && d->vk.GetMemoryHostPointerPropertiesEXT;
+  d->hostAlignment = std::max<VkDeviceSize>(hostAlignment, 1);
   {
     std::unique_lock lock(globals().lock);
-    first = !globals().claimed;
-    globals().claimed = true;
     globals().devices[dispatchKey(*device)] = d;
   }
-  d->connected = first && connectStream(*d);
+  d->connected = stream != nullptr;
+  if (stream) startStream(*d, stream);
   return r;
 }
 

@@ -2,10 +2,15 @@
 // has it), taken in turn by the command buffers that copy. A slot's buffer is replaced by a larger
 // one when a recording needs more room; the old one lives while a recording or a frame in flight
 // still holds it (shared ownership). Fences for the frames' submissions come from a small pool.
+#include <sys/mman.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
+#include <nlohmann/json.hpp>
 
-#include "app/layer/layer.h"
+#include "app/layer/stream.h"
+#include "views/capture/live_wire.h"
 
 namespace gbl {
 
@@ -30,6 +35,53 @@ uint32_t memoryType(const DeviceData& d, uint32_t bits, bool& coherent) {
   return UINT32_MAX;
 }
 
+// A buffer whose memory is a shared file's mapping, imported with VK_EXT_external_memory_host:
+// the receiver maps the same file. Its first kHeader bytes hold the submission count.
+constexpr VkDeviceSize kHeader = 256;
+
+RingRef allocateShared(DeviceData& d, VkDeviceSize size) {
+  auto r = std::make_shared<RingBuffer>();
+  r->device = &d;
+  VkExternalMemoryBufferCreateInfo external{VK_STRUCTURE_TYPE_EXTERNAL_MEMORY_BUFFER_CREATE_INFO};
+  external.handleTypes = VK_EXTERNAL_MEMORY_HANDLE_TYPE_HOST_ALLOCATION_BIT_EXT;
+  // The buffer spans the whole file (its size a multiple of the import alignment), header included.
+  const VkDeviceSize align = std::max<VkDeviceSize>(d.hostAlignment, uint64_t(sysconf(_SC_PAGESIZE)));
+  VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, &external};
+  bi.size = (size + kHeader + align - 1) / align * align;
+  bi.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  if (d.vk.CreateBuffer(d.device, &bi, nullptr, &r->buffer) != VK_SUCCESS) return nullptr;
+  r->size = bi.size;
+  VkMemoryRequirements req{};
+  d.vk.GetBufferMemoryRequirements(d.device, r->buffer, &req);
+  const VkDeviceSize bytes = (std::max(req.size, bi.size) + align - 1) / align * align;
+  r->fd = memfd_create("gblens-ring", MFD_CLOEXEC);
+  void* p = r->fd >= 0 && ftruncate(r->fd, off_t(bytes)) == 0
+                ? mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_SHARED, r->fd, 0)
+                : MAP_FAILED;
+  if (p == MAP_FAILED) return nullptr;
+  r->mapped = static_cast<uint8_t*>(p);
+  r->mappedBytes = bytes;  // unmapped by the destructor from here on
+  VkMemoryHostPointerPropertiesEXT host{VK_STRUCTURE_TYPE_MEMORY_HOST_POINTER_PROPERTIES_EXT};
+  if (d.vk.GetMemoryHostPointerPropertiesEXT(d.device, VK_EXTERNAL_MEMORY_HANDLE_TYPE_HOST_ALLOCATION_BIT_EXT, p, &host) !=
+      VK_SUCCESS)
+    return nullptr;
+  bool coherent = false;
+  VkImportMemoryHostPointerInfoEXT import{VK_STRUCTURE_TYPE_IMPORT_MEMORY_HOST_POINTER_INFO_EXT};
+  import.handleType = VK_EXTERNAL_MEMORY_HANDLE_TYPE_HOST_ALLOCATION_BIT_EXT;
+  import.pHostPointer = p;
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, &import};
+  ai.allocationSize = bytes;
+  ai.memoryTypeIndex = memoryType(d, req.memoryTypeBits & host.memoryTypeBits, coherent);
+  // The receiver cannot invalidate caches: only coherent memory is read in place.
+  if (ai.memoryTypeIndex == UINT32_MAX || !coherent || d.vk.AllocateMemory(d.device, &ai, nullptr, &r->memory) != VK_SUCCESS ||
+      d.vk.BindBufferMemory(d.device, r->buffer, r->memory, 0) != VK_SUCCESS)
+    return nullptr;
+  r->base = kHeader;
+  r->submissions = new (p) std::atomic<uint64_t>(0);
+  r->id = ++d.nextRingId;  // (reserve holds the ring's lock)
+  return r;
+}
+
 RingRef allocate(DeviceData& d, VkDeviceSize size) {
   const auto start = std::chrono::steady_clock::now();
   struct Timed {  // allocations are counted apart from the per-frame time (they happen once, or on a resize)
@@ -37,6 +89,14 @@ RingRef allocate(DeviceData& d, VkDeviceSize size) {
     std::chrono::steady_clock::time_point start;
     ~Timed() { d.allocNs += uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count()); }
   } timed{d, start};
+  if (d.hostImport) {
+    if (RingRef shared = allocateShared(d, size)) {
+      d.ringBytes += shared->size;
+      return shared;
+    }
+    d.hostImport = false;  // this device cannot share its host memory after all: frames are copied out
+    GBL_LOG("a shared ring buffer could not be made: frames are copied out of the ring from now on");
+  }
   auto r = std::make_shared<RingBuffer>();
   r->device = &d;
   r->size = size;
@@ -65,8 +125,13 @@ RingBuffer::~RingBuffer() {
   if (!device) return;
   DeviceData& d = *device;
   if (buffer) d.vk.DestroyBuffer(d.device, buffer, nullptr);
-  if (memory) d.vk.FreeMemory(d.device, memory, nullptr);  // unmaps it
-  if (mapped) d.ringBytes -= size;
+  if (memory) d.vk.FreeMemory(d.device, memory, nullptr);  // unmaps it, unless it is a shared file's
+  if (fd >= 0) {
+    if (mapped) munmap(mapped, mappedBytes);
+    close(fd);
+    if (id) sendOnce(d, "retire:" + std::to_string(id), nlohmann::json{{"type", gb::wire::kRetire}, {"id", id}}.dump());
+  }
+  if (mapped && (fd < 0 || base)) d.ringBytes -= size;
 }
 
 int takeSlot(DeviceData& d, bool reusable) {
@@ -99,16 +164,16 @@ bool reserve(DeviceData& d, CmdState& s, VkDeviceSize bytes, RingRef& buffer, Vk
   const VkDeviceSize need = (bytes + kAlign - 1) / kAlign * kAlign;
   if (s.slot < 0 && (s.slot = takeSlot(d, s.reusable)) < 0) return false;
   s.total += need;
-  if (s.buffer && s.used + need <= s.buffer->size) {
+  if (s.buffer && s.used + need <= s.buffer->size - s.buffer->base) {
     buffer = s.buffer;
-    offset = s.used;
+    offset = s.buffer->base + s.used;
     s.used += need;
     return true;
   }
   std::lock_guard lock(d.ringLock);
   d.largestRecording = std::max(d.largestRecording, s.total);
   RingRef& slot = d.slots[s.slot];
-  if (!slot || slot == s.buffer || slot->size < need) {
+  if (!slot || slot == s.buffer || slot->size - slot->base < need) {
     // A new buffer for the slot, sized for the largest recording seen (a quarter more), so that a
     // recording's whole frame soon fits one buffer and resizes allocate once, not every frame.
     RingRef grown = allocate(d, std::max(need, d.largestRecording) / 4 * 5 / kAlign * kAlign + kAlign);
@@ -119,7 +184,7 @@ bool reserve(DeviceData& d, CmdState& s, VkDeviceSize bytes, RingRef& buffer, Vk
   s.held.emplace_back(slot);
   s.used = need;
   buffer = slot;
-  offset = 0;
+  offset = slot->base;
   return true;
 }
 

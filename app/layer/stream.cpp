@@ -1,9 +1,8 @@
 // The layer's thread and its wire to the receiver (views/capture/live_wire.h). At vkCreateDevice the
 // layer connects to the socket gblens attach named, says hello and waits (once, at most 5 s) for the
-// request; from then on its own thread waits for the fences of submitted frames, copies a finished
-// frame from the ring into the shared memory when the receiver has handed it back, and sends it;
-// a frame that finds the receiver busy is dropped and counted, never queued. When the receiver goes
-// away or detaches, the layer stops copying (idle).
+// request; from then on its own thread waits for the fences of submitted frames and hands each
+// finished one to send.cpp, and sends the layer's reports. When the receiver goes away or detaches,
+// the layer stops copying (idle).
 #include <fcntl.h>
 #include <poll.h>
 #include <sys/eventfd.h>
@@ -16,30 +15,13 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
-#include "app/layer/layer.h"
+#include "app/layer/stream.h"
 #include "views/capture/live_wire.h"
 
 namespace gbl {
 
 using json = nlohmann::json;
 
-struct Stream {
-  DeviceData* d = nullptr;
-  int socket = -1, wake = -1;
-  std::thread thread;
-  std::atomic<bool> stop{false};
-  std::mutex lock;  // pending, outbox, reported
-  std::deque<std::unique_ptr<PendingFrame>> pending;
-  std::vector<std::string> outbox;
-  std::set<std::string> reported;
-  // The thread's own:
-  int shm = -1;
-  uint8_t* map = nullptr;
-  size_t mapSize = 0;
-  bool shmSent = false, receiverBusy = false;
-  uint64_t sent = 0, dropped = 0, torn = 0;
-  double copyMs = 0.0;
-};
 
 namespace {
 
@@ -76,80 +58,8 @@ bool parseRequest(const std::string& text, Request& r) {
   return true;
 }
 
-// The frame's copies as one block of shared memory: colour texels as copied (B8G8R8A8 swapped to
-// RGBA), depth/stencil as the depth plane then one stencil byte a texel (renderer/core/texels.h).
-bool fill(Stream& st, const PendingFrame& f, const Request& req, json& targets, json& camera) {
-  DeviceData& d = *st.d;
-  size_t total = 0;
-  std::vector<size_t> at;
-  for (const Copy& c : f.copies) {
-    at.push_back(total);
-    const FormatInfo& fi = formatInfo(c.format);
-    const size_t texels = size_t(c.width) * c.height;
-    total = gb::wire::alignUp(total + (c.target < 0 ? c.bytes : texels * fi.bytes + (fi.stencil && fi.depth ? texels : 0)));
-  }
-  if (total > st.mapSize) {  // a new, larger file: the receiver maps the one that comes with the frame
-    if (st.map) munmap(st.map, st.mapSize), close(st.shm);
-    st.map = nullptr, st.mapSize = 0;
-    st.shm = memfd_create("gblens-live", MFD_CLOEXEC);
-    const size_t size = total + total / 2;
-    if (st.shm < 0 || ftruncate(st.shm, off_t(size)) != 0) return false;
-    void* p = mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_SHARED, st.shm, 0);
-    if (p == MAP_FAILED) return false;
-    st.map = static_cast<uint8_t*>(p), st.mapSize = size, st.shmSent = false;
-  }
-  for (size_t i = 0; i < f.copies.size(); ++i) {
-    const Copy& c = f.copies[i];
-    if (!c.buffer->coherent) {
-      VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, c.buffer->memory, 0, VK_WHOLE_SIZE};
-      d.vk.InvalidateMappedMemoryRanges(d.device, 1, &range);
-    }
-    const uint8_t* src = c.buffer->mapped + c.offset;
-    uint8_t* dst = st.map + at[i];
-    if (c.target < 0) {
-      std::memcpy(dst, src, c.bytes);
-      camera = {{"offset", at[i]}, {"bytes", c.bytes}};
-      continue;
-    }
-    const FormatInfo& fi = formatInfo(c.format);
-    const size_t texels = size_t(c.width) * c.height, plane = texels * fi.bytes;
-    if (fi.bgra) {
-      for (size_t k = 0; k < texels; ++k) {
-        dst[4 * k + 0] = src[4 * k + 2], dst[4 * k + 1] = src[4 * k + 1];
-        dst[4 * k + 2] = src[4 * k + 0], dst[4 * k + 3] = src[4 * k + 3];
-      }
-    } else {
-      std::memcpy(dst, src, plane);
-    }
-    if (fi.stencil && fi.depth) std::memcpy(dst + plane, c.buffer->mapped + c.stencilOffset, texels);
-    const Pick& p = req.picks[size_t(c.target)];
-    targets.push_back({{"index", c.target}, {"name", p.targetName}, {"format", fi.storage}, {"vk_format", fi.vkName},
-                       {"width", c.width}, {"height", c.height}, {"offset", at[i]},
-                       {"bytes", plane + (fi.stencil && fi.depth ? texels : 0)}, {"pass", c.passOrdinal},
-                       {"pass_name", c.pass}});
-  }
-  return true;
-}
+}  // namespace
 
-bool unchanged(const PendingFrame& f) {
-  for (const auto& [buffer, count] : f.writes)
-    if (buffer->submissions.load() != count) return false;
-  return true;
-}
-
-json statsJson(Stream& st) {
-  DeviceData& d = *st.d;
-  std::lock_guard lock(d.frameLock);
-  return {{"frames", d.frame.load()},     {"streamed", d.streamed}, {"sent", st.sent},
-          {"dropped", st.dropped + d.droppedAtSource.load()}, {"torn", st.torn},        {"ring_bytes", d.ringBytes.load()},
-          {"shm_bytes", st.mapSize},
-          {"frame_ms", d.frameIntervals ? double(d.frameNsSum) / double(d.frameIntervals) * 1e-6 : 0.0},
-          {"layer_ms_per_frame", d.frame ? double(d.hookNs.load() - std::min(d.hookNs.load(), d.allocNs.load())) / double(d.frame) * 1e-6 : 0.0},
-          {"ring_allocation_ms", double(d.allocNs.load()) * 1e-6},
-          {"thread_copy_ms", st.sent ? st.copyMs / double(st.sent) : 0.0}};
-}
-
-// Queues a message for the thread to send, once per key.
 void sendOnce(DeviceData& d, const std::string& key, const std::string& message) {
   Stream* st = d.stream;
   if (!st) return;
@@ -164,42 +74,11 @@ void sendOnce(DeviceData& d, const std::string& key, const std::string& message)
 void goIdle(Stream& st) {
   st.d->streaming = false;
   if (st.socket >= 0) close(st.socket), st.socket = -1;
+  st.atReceiver.reset();
+  st.receiverBusy = false;
 }
 
-// A finished frame: sent if the receiver is free and the ring was not written meanwhile, else dropped.
-void process(Stream& st, const PendingFrame& f) {
-  DeviceData& d = *st.d;
-  std::shared_ptr<const Request> req = currentRequest(d);
-  if (!d.streaming || st.socket < 0 || !f.due || !req || (req->only && f.stream != req->only)) return;
-  if (st.receiverBusy || !unchanged(f)) {
-    GBL_LOG("frame %llu (streamed %llu): dropped, %s", (unsigned long long)f.appFrame, (unsigned long long)f.stream,
-            st.receiverBusy ? "the receiver is busy" : "its ring buffer was submitted again");
-    ++st.dropped;
-    st.torn += !st.receiverBusy;
-    return;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  json targets = json::array(), camera = nullptr;
-  if (!fill(st, f, *req, targets, camera)) {
-    report(d, "shm", "cannot make the shared memory for a frame: streaming stops");
-    return goIdle(st);
-  }
-  if (!unchanged(f)) {  // the application submitted the ring's buffer again while it was read
-    GBL_LOG("frame %llu: dropped, its ring buffer was submitted again while it was read", (unsigned long long)f.appFrame);
-    ++st.dropped, ++st.torn;
-    return;
-  }
-  GBL_LOG("frame %llu (streamed %llu): sent, %zu copies", (unsigned long long)f.appFrame, (unsigned long long)f.stream,
-          f.copies.size());
-  st.copyMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  ++st.sent;
-  json m = {{"type", gb::wire::kFrame}, {"stream", f.stream},   {"app_frame", f.appFrame}, {"end_ns", f.endNs},
-            {"sent_ns", gb::wire::monotonicNs()}, {"targets", targets}, {"camera", camera}, {"shm_bytes", st.mapSize},
-            {"stats", statsJson(st)}};
-  if (!gb::wire::send(st.socket, m.dump(), st.shmSent ? -1 : st.shm)) return goIdle(st);
-  st.shmSent = true;
-  st.receiverBusy = true;
-}
+namespace {
 
 void recycle(DeviceData& d, PendingFrame& f) {
   for (VkFence fence : f.fences) returnFence(d, fence);
@@ -214,7 +93,7 @@ void readMessages(Stream& st) {
     if (got == gb::wire::Received::Closed) return goIdle(st);  // the receiver closed or was killed
     json j = json::parse(text, nullptr, false);
     const std::string type = j.is_object() ? j.value("type", "") : "";
-    if (type == gb::wire::kAck) st.receiverBusy = false;
+    if (type == gb::wire::kAck) st.receiverBusy = false, st.atReceiver.reset();  // its buffers are free again
     if (type == gb::wire::kDetach) return goIdle(st);
   }
 }
@@ -241,8 +120,8 @@ void run(Stream& st) {
         st.pending.push_front(std::move(front));
         continue;
       }
-      if (r == VK_SUCCESS) process(st, *front);
       recycle(d, *front);
+      if (r == VK_SUCCESS) process(st, std::move(front));
       continue;
     }
     pollfd fds[2] = {{st.wake, POLLIN, 0}, {st.socket, POLLIN, 0}};
@@ -255,21 +134,21 @@ void run(Stream& st) {
 
 }  // namespace
 
-bool connectStream(DeviceData& d) {
+Stream* openStream(InstanceData& instance, VkPhysicalDevice physical) {
   const char* path = std::getenv(gb::wire::kSocketEnv);
-  if (!path || !*path || std::strlen(path) >= sizeof(sockaddr_un::sun_path)) return false;
+  if (!path || !*path || std::strlen(path) >= sizeof(sockaddr_un::sun_path)) return nullptr;
   int s = socket(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0);
   sockaddr_un addr{};
   addr.sun_family = AF_UNIX;
   std::strcpy(addr.sun_path, path);
   if (s < 0 || connect(s, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0) {
     if (s >= 0) close(s);
-    return false;  // nobody listens: the layer stays out of the way
+    return nullptr;  // nobody listens: the layer stays out of the way
   }
   VkPhysicalDeviceProperties props{};
-  d.instance->properties(d.physical, &props);
-  json hello = {{"type", gb::wire::kHello}, {"version", gb::wire::kVersion},        {"pid", getpid()},
-                {"application", d.instance->application}, {"engine", d.instance->engine}, {"device", props.deviceName}};
+  instance.properties(physical, &props);
+  json hello = {{"type", gb::wire::kHello}, {"version", gb::wire::kVersion},   {"pid", getpid()},
+                {"application", instance.application}, {"engine", instance.engine}, {"device", props.deviceName}};
   // The request comes at once from a receiver that listens; the application waits for it once, here,
   // so that command buffers it records right away (once, e.g. per swapchain image) copy too.
   std::string text;
@@ -277,20 +156,30 @@ bool connectStream(DeviceData& d) {
   if (!gb::wire::send(s, hello.dump()) ||
       gb::wire::receive(s, text, nullptr, 5000) != gb::wire::Received::Message || !parseRequest(text, *request)) {
     close(s);
-    return false;
+    return nullptr;
   }
   auto* st = new Stream;
-  st->d = &d;
   st->socket = s;
   st->wake = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
+  st->request = request;
+  return st;
+}
+
+void closeStream(Stream* st) {
+  close(st->socket);
+  close(st->wake);
+  delete st;
+}
+
+void startStream(DeviceData& d, Stream* st) {
+  st->d = &d;
   d.stream = st;
   {
     std::lock_guard lock(d.requestLock);
-    d.request = request;
+    d.request = st->request;
   }
   d.streaming = true;
   st->thread = std::thread(run, std::ref(*st));
-  return true;
 }
 
 void stopStream(DeviceData& d) {
@@ -304,6 +193,7 @@ void stopStream(DeviceData& d) {
     std::lock_guard lock(d.frameLock);
     if (d.building) st->pending.push_back(std::move(d.building));
   }
+  st->atReceiver.reset();
   for (auto& f : st->pending) {  // the device is about to go: its fences are waited for and recycled
     if (!f->fences.empty()) d.vk.WaitForFences(d.device, uint32_t(f->fences.size()), f->fences.data(), VK_TRUE, UINT64_MAX);
     recycle(d, *f);

@@ -32,9 +32,9 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
     for (const Copy& c : s->copiesMade)
       if (std::find(counted.begin(), counted.end(), c.buffer.get()) == counted.end()) {
         counted.push_back(c.buffer.get());
-        ++c.buffer->submissions;
-        GBL_LOG("frame %llu: submits a recording writing ring buffer %p (submission %llu)", (unsigned long long)d.frame.load(),
-                static_cast<void*>(c.buffer.get()), (unsigned long long)c.buffer->submissions.load());
+        ++*c.buffer->submissions;
+        GBL_LOG("frame %llu: submits a recording writing ring buffer %u (submission %llu)", (unsigned long long)d.frame.load(),
+                c.buffer->id, (unsigned long long)c.buffer->submissions->load());
       }
     if (s->copiesMade.empty() || !d.streaming) continue;
     if (!d.building) d.building = std::make_unique<PendingFrame>();
@@ -44,10 +44,10 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
       f.copies.push_back(c);
       auto w = std::find_if(f.writes.begin(), f.writes.end(), [&](const auto& e) { return e.first == c.buffer; });
       if (w == f.writes.end()) {
-        f.writes.push_back({c.buffer, c.buffer->submissions.load()});
+        f.writes.push_back({c.buffer, c.buffer->submissions->load()});
         f.held.emplace_back(c.buffer);  // no new recording takes this buffer until the thread has read it
       } else {
-        w->second = c.buffer->submissions.load();
+        w->second = c.buffer->submissions->load();
       }
     }
     got.copies = true;

@@ -57,7 +57,7 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 
 LiveSession::~LiveSession() {
   detach();
-  if (map_) munmap(const_cast<uint8_t*>(map_), mapSize_);
+  for (auto& [id, m] : buffers_) munmap(const_cast<uint8_t*>(m.data), m.size);
   if (!dir_.empty()) {
     std::error_code ec;
     fs::remove_all(dir_, ec);
@@ -174,29 +174,39 @@ bool LiveSession::receive(FrameSnapshot& out, LiveFrameInfo* info) {
     if (type == wire::kReport) addReport("layer: " + m.value("text", ""));
     if (type == wire::kPasses) suggestion_ = m;
     if (type == wire::kNoMatch) noMatch_ = true;
-    if (type != wire::kFrame) continue;
-    if (fd >= 0) {  // a new shared-memory file comes with the first frame and when it grows
-      if (map_) munmap(const_cast<uint8_t*>(map_), mapSize_);
+    const uint32_t id = m.is_object() ? m.value("id", 0u) : 0u;
+    if ((type == wire::kBuffer || type == wire::kRetire) && buffers_.count(id)) {  // replaced or gone
+      munmap(const_cast<uint8_t*>(buffers_[id].data), buffers_[id].size);
+      buffers_.erase(id);
+    }
+    if (type == wire::kBuffer && fd >= 0) {
       struct stat st {};
       fstat(fd, &st);
       void* p = mmap(nullptr, size_t(st.st_size), PROT_READ, MAP_SHARED, fd, 0);
-      close(fd);
-      map_ = p == MAP_FAILED ? nullptr : static_cast<const uint8_t*>(p);
-      mapSize_ = map_ ? size_t(st.st_size) : 0;
+      if (p != MAP_FAILED) buffers_[id] = {static_cast<const uint8_t*>(p), size_t(st.st_size)};
     }
+    if (fd >= 0) close(fd);
+    if (type != wire::kFrame) continue;
     std::string error;
     const auto start = std::chrono::steady_clock::now();
-    const bool ok = map_ && decode(m, out, info, error);
+    bool ok = untouched(m) && decode(m, out, info, error) && untouched(m);
     const double decodeMs = secondsSince(start) * 1e3;
+    if (!ok && error.empty()) {  // read in place while the application's GPU wrote it again
+      ++counts_.overwritten;
+      wire::send(conn_, nlohmann::json{{"type", wire::kAck}}.dump());
+      continue;
+    }
     wire::send(conn_, nlohmann::json{{"type", wire::kAck}}.dump());  // the layer may fill the memory again
     counts_.layer = m.value("stats", nlohmann::json::object());
     counts_.dropped = counts_.layer.value("dropped", uint64_t(0));
     counts_.appFrames = counts_.layer.value("frames", uint64_t(0));
     if (!ok) {
       ++counts_.undecodable;
-      addReport(error.empty() ? "a frame came without its shared memory" : error);
+      addReport(error);
       continue;
     }
+    const double ready = double(m.value("ready_ns", uint64_t(0)) - m.value("end_ns", uint64_t(0))) * 1e-6;
+    counts_.meanReadyMs = (counts_.meanReadyMs * double(counts_.received) + ready) / double(counts_.received + 1);
     const double latency = double(wire::monotonicNs() - m.value("end_ns", uint64_t(0))) * 1e-6;
     counts_.meanLatencyMs = (counts_.meanLatencyMs * double(counts_.received) + latency) / double(counts_.received + 1);
     counts_.maxLatencyMs = std::max(counts_.maxLatencyMs, latency);

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -42,10 +43,14 @@ struct LiveFrameInfo {
 struct LiveCounts {
   uint64_t received = 0;     // frames poll() returned
   uint64_t undecodable = 0;  // frames that came but did not decode (the reports say why)
+  uint64_t overwritten = 0;  // frames read in place that the application's GPU wrote again meanwhile
   uint64_t dropped = 0;      // frames the layer dropped because this side was still busy (or the ring moved)
   uint64_t appFrames = 0;    // frames the application had ended at the last frame received
   double meanLatencyMs = 0.0, maxLatencyMs = 0.0;
   double meanDecodeMs = 0.0;  // this side's time to turn a frame into a FrameSnapshot
+  // From the end of the application's frame to its copies being done (the layer saw its fence):
+  // the GPU's own latency, without the transfer to this side and the decoding.
+  double meanReadyMs = 0.0;
   nlohmann::json layer;      // the layer's own figures with the last frame (docs/attach.md)
 };
 
@@ -91,8 +96,18 @@ class LiveSession {
   Layout layout_;                      // its sources as the layer reads them (live_decode.cpp)
   std::string layoutDir_, dir_, socketPath_, request_;
   int listener_ = -1, conn_ = -1, shm_ = -1;
-  const uint8_t* map_ = nullptr;
-  size_t mapSize_ = 0;
+  // The shared-memory files the layer sent, by id (0: its copy of a frame; others: ring buffers read
+  // in place, a submission count in their first bytes).
+  struct Mapping {
+    const uint8_t* data = nullptr;
+    size_t size = 0;
+  };
+  std::map<uint32_t, Mapping> buffers_;
+  // The bytes of a frame's buffer range, or null when it lies outside what was mapped.
+  const uint8_t* bytesAt(const nlohmann::json& where, size_t& bytes) const;
+  // The ring buffers' submission counts are what the frame says (else a reused command buffer wrote
+  // them again: the frame is torn).
+  bool untouched(const nlohmann::json& frame) const;
   pid_t pid_ = -1;
   int status_ = -1;
   bool detached_ = false, noMatch_ = false;

@@ -1,6 +1,7 @@
 // The layout as the gblens layer streams it (which attachment each target is), the request that
 // tells the layer so, and a streamed frame decoded through import's assembly (import.h).
 #include <algorithm>
+#include <atomic>
 
 #include "views/capture/import.h"
 #include "views/capture/live.h"
@@ -77,6 +78,25 @@ nlohmann::json liveRequest(const Layout& original, const LiveOptions& o) {
           {"suggest", o.suggest}, {"give_up", o.giveUpFrames}, {"camera", camera}, {"targets", targets}};
 }
 
+const uint8_t* LiveSession::bytesAt(const nlohmann::json& where, size_t& bytes) const {
+  auto it = buffers_.find(where.value("buffer", 0u));
+  const uint64_t offset = where.value("offset", uint64_t(0));
+  bytes = where.value("bytes", size_t(0));
+  if (it == buffers_.end() || offset > it->second.size || bytes > it->second.size - offset) return nullptr;
+  return it->second.data + offset;
+}
+
+bool LiveSession::untouched(const nlohmann::json& frame) const {
+  for (const nlohmann::json& w : frame.value("writes", nlohmann::json::array())) {
+    auto it = buffers_.find(w[0].get<uint32_t>());
+    if (it == buffers_.end() || it->second.size < sizeof(uint64_t)) return false;
+    // The layer's std::atomic<uint64_t> at the start of the file (lock-free: the same in both processes).
+    const auto* count = reinterpret_cast<const std::atomic<uint64_t>*>(it->second.data);
+    if (count->load() != w[1].get<uint64_t>()) return false;
+  }
+  return true;
+}
+
 bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFrameInfo* info, std::string& error) {
   ImportInput in;
   in.layout = layout_;
@@ -87,16 +107,17 @@ bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFr
     const int index = l.findTarget(t.value("name", ""));
     if (index < 0) continue;
     const LayoutTarget& lt = l.targets[size_t(index)];
-    const uint64_t offset = t.value("offset", uint64_t(0)), bytes = t.value("bytes", uint64_t(0));
     if (t.value("format", "") != lt.format.name) {  // the layer refuses these; never decoded as another format
       absent.push_back(lt.name + ": the attachment is " + t.value("format", "?") + ", the layout says " + lt.format.name);
       continue;
     }
-    if (offset > mapSize_ || bytes > mapSize_ - offset) {
+    size_t bytes = 0;
+    const uint8_t* texels = bytesAt(t, bytes);
+    if (!texels) {
       error = "frame " + std::to_string(frame.value("stream", 0)) + ": target \"" + lt.name + "\" lies outside the shared memory";
       return false;
     }
-    in.liveTexels[lt.name] = {map_ + offset, bytes, t.value("width", 0u), t.value("height", 0u)};
+    in.liveTexels[lt.name] = {texels, bytes, t.value("width", 0u), t.value("height", 0u)};
     const std::string pass = t.value("pass_name", "");
     sources[size_t(index)] = "render pass " + std::to_string(t.value("pass", 0)) + (pass.empty() ? "" : " \"" + pass + "\"") +
                              ", " + t.value("vk_format", "");
@@ -117,15 +138,22 @@ bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFr
       error = "camera: buffer \"" + l.camera.renderdoc->buffer + "\" was not copied with this frame (see the layer's reports)";
       return false;
     }
-    const uint64_t offset = c.value("offset", uint64_t(0)), bytes = c.value("bytes", uint64_t(0));
-    if (offset > mapSize_ || bytes > mapSize_ - offset) {
+    size_t bytes = 0;
+    const uint8_t* camera = bytesAt(c, bytes);
+    if (!camera) {
       error = "camera: its bytes lie outside the shared memory";
       return false;
     }
-    in.renderdocCameraBuffer.assign(map_ + offset, map_ + offset + bytes);  // the matrices at the layout's offsets
+    in.renderdocCameraBuffer.assign(camera, camera + bytes);  // the matrices at the layout's offsets
   }
   if (!importFrame(in, out, error)) return false;
   setImportedOptions(out, options_.options);
+  // B8G8R8A8 attachments come as the GPU stored them: R and B swapped back here (rgba8 in the layout).
+  for (const nlohmann::json& t : frame.value("targets", nlohmann::json::array()))
+    if (t.value("bgra", false) && out.indexOf(t.value("name", "")) >= 0) {
+      CpuImage& image = out.images[size_t(out.indexOf(t.value("name", "")))].image;
+      for (size_t i = 0; i + 3 < image.data.size(); i += 4) std::swap(image.data[i], image.data[i + 2]);
+    }
   if (info) {
     info->stream = frame.value("stream", uint64_t(0));
     info->appFrame = frame.value("app_frame", uint64_t(0));

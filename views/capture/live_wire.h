@@ -16,9 +16,13 @@ constexpr const char* kLayerManifest = "vulkan/implicit_layer.d/VkLayer_gblens_l
 constexpr const char* kEnableEnv = "ENABLE_GBLENS_LIVE";
 constexpr int kVersion = 1;
 
-// Message "type" values. Layer -> receiver: hello, report, passes, frame, nomatch. Receiver ->
-// layer: request, ack (the shared memory is the layer's again), detach (go idle for good).
+// Message "type" values. Layer -> receiver: hello, report, passes, buffer (a shared-memory file to
+// map, sent with its descriptor: id 0 the layer's copy of a frame, others ring buffers read in
+// place), retire (a ring buffer gone), frame, nomatch. Receiver -> layer: request, ack (the frame's
+// memory is the layer's again), detach (go idle for good).
 constexpr const char* kHello = "hello";
+constexpr const char* kBuffer = "buffer";
+constexpr const char* kRetire = "retire";
 constexpr const char* kReport = "report";
 constexpr const char* kPasses = "passes";
 constexpr const char* kFrame = "frame";
