@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "app/bench/bench_report.h"
 #include "renderer/core/layout_json.h"
@@ -43,8 +44,17 @@ nlohmann::json renderStats(const std::string& log) {
   return nlohmann::json::parse(text.substr(open, close - open + 1), nullptr, false);
 }
 
-// The application without a receiver: with or without the layer loaded (idle).
-nlohmann::json runPlain(const std::vector<std::string>& argv, bool layerLoaded, const std::string& log) {
+long rssKb(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
+  return -1;
+}
+
+// The application without a receiver: with or without the layer loaded (idle). With `rss`, its
+// resident memory every 100 ms.
+nlohmann::json runPlain(const std::vector<std::string>& argv, bool layerLoaded, const std::string& log,
+                        std::vector<long>* rss = nullptr) {
   std::vector<std::string> env;
   for (char** e = environ; *e; ++e)
     if (std::string(*e).rfind("GBLENS_LIVE_SOCKET=", 0) != 0) env.push_back(*e);
@@ -65,17 +75,15 @@ nlohmann::json runPlain(const std::vector<std::string>& argv, bool layerLoaded, 
   const bool started = posix_spawn(&pid, args[0], &files, nullptr, args.data(), envp.data()) == 0;
   posix_spawn_file_actions_destroy(&files);
   int status = 0;
-  if (!started || waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return nullptr;
+  if (!started) return nullptr;
+  while (rss && waitpid(pid, &status, WNOHANG) == 0) {
+    rss->push_back(rssKb(pid));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  if ((!rss && waitpid(pid, &status, 0) != pid) || !WIFEXITED(status)) return nullptr;
   // Its statistics count even when it could not write its PNG (a GPU machine without OpenImageIO's
   // plugins, docs/perf-gpu/h27_carry.sh): the frames were rendered and timed.
   return renderStats(log);
-}
-
-long rssKb(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
-  return -1;
 }
 
 struct Attached {
@@ -169,7 +177,8 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
           latencyMs.push_back(a.counts.meanLatencyMs);
           latencyFrames.push_back(a.counts.meanLatencyMs / stats.value("frame_ms", 1.0));
           streaming = {{"received", a.counts.received}, {"dropped", a.counts.dropped}, {"latency_ms_max", a.counts.maxLatencyMs},
-                       {"decode_ms", a.counts.meanDecodeMs}, {"layer", a.counts.layer}};
+                       {"decode_ms", a.counts.meanDecodeMs}, {"ready_ms", a.counts.meanReadyMs},
+                       {"ready_frames", a.counts.meanReadyMs / stats.value("frame_ms", 1.0)}, {"layer", a.counts.layer}};
         }
       }
       ms[v].push_back(stats.is_object() ? stats.value("frame_ms", 0.0) : 0.0);
@@ -194,6 +203,12 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
   soak.soak["dropped"] = soak.counts.dropped;
   soak.soak["frames"] = s.soakFrames;
   soak.soak["size"] = s.soakSize;
+  // The same application without the layer: its own memory over its run, sampled the same way (at a
+  // tenth and at 95 % of its samples), for what its own growth is.
+  std::vector<long> rss;
+  runPlain(soakApp, false, log, &rss);
+  if (rss.size() >= 10)
+    soak.soak["without_layer"] = {{"rss_kb_early", rss[rss.size() / 10]}, {"rss_kb_late", rss[rss.size() * 95 / 100]}};
   std::error_code ec;
   fs::remove_all(dir, ec);
   std::ostringstream application;
@@ -237,13 +252,13 @@ std::string attachMarkdown(const nlohmann::json& a) {
   const nlohmann::json& st = a["streaming"];
   const nlohmann::json layer = st.value("layer", nlohmann::json::object());
   std::snprintf(line, sizeof(line),
-                "\nStreaming every frame (last round): %llu frames received, %llu dropped (the receiver was busy), latency "
-                "from the application's frame end to the receiver having it decoded: median %.2f frames (target <= 2 "
-                "plus the copy), max %.1f ms; the layer's own time in the application's threads %.2f ms a frame, its "
+                "\nStreaming every frame (last round): %llu frames received, %llu dropped (the receiver was busy); from "
+                "the application's frame end to its copies done %.2f frames (target <= 2), to the receiver having it "
+                "decoded: median %.2f frames, max %.1f ms; the layer's own time in the application's threads %.2f ms a frame, its "
                 "thread's copy into shared memory %.2f ms, the receiver's decoding %.1f ms. Ring %.1f MB (three slots), "
                 "shared memory %.1f MB.\n",
                 (unsigned long long)st.value("received", 0ull), (unsigned long long)st.value("dropped", 0ull),
-                st.value("latency_frames_median", 0.0), st.value("latency_ms_max", 0.0), layer.value("layer_ms_per_frame", 0.0),
+                st.value("ready_frames", 0.0), st.value("latency_frames_median", 0.0), st.value("latency_ms_max", 0.0), layer.value("layer_ms_per_frame", 0.0),
                 layer.value("thread_copy_ms", 0.0), st.value("decode_ms", 0.0), double(layer.value("ring_bytes", 0ull)) / 1e6, double(layer.value("shm_bytes", 0ull)) / 1e6);
   md << line;
   const nlohmann::json& soak = a["soak"];
@@ -257,6 +272,11 @@ std::string attachMarkdown(const nlohmann::json& a) {
                   double(soak["early"].value("shm_bytes", 0ull)) / 1e6, (unsigned long long)soak["late"].value("application_frames", 0ull),
                   soak["late"].value("rss_kb", 0L), double(soak["late"].value("ring_bytes", 0ull)) / 1e6,
                   double(soak["late"].value("shm_bytes", 0ull)) / 1e6);
+    md << line;
+  }
+  if (soak.contains("without_layer")) {
+    std::snprintf(line, sizeof(line), "The same soak without the layer: %ld kB at a tenth of its run, %ld kB at 95 %%.\n",
+                  soak["without_layer"].value("rss_kb_early", 0L), soak["without_layer"].value("rss_kb_late", 0L));
     md << line;
   }
   return md.str();

@@ -79,6 +79,8 @@ nlohmann::json statsJson(const LiveSession& s) {
           {"application_frames", c.appFrames},
           {"latency_ms", {{"mean", c.meanLatencyMs}, {"max", c.maxLatencyMs}}},
           {"decode_ms", c.meanDecodeMs},
+          {"copies_done_ms", c.meanReadyMs},
+          {"overwritten", c.overwritten},
           {"latency_frames", frameMs > 0.0 ? c.meanLatencyMs / frameMs : 0.0},
           {"layer", c.layer}};
 }

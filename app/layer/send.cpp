@@ -129,8 +129,11 @@ json statsJson(Stream& st) {
 void process(Stream& st, std::unique_ptr<PendingFrame> f) {
   DeviceData& d = *st.d;
   std::shared_ptr<const Request> req = currentRequest(d);
-  if (!d.streaming || st.socket < 0 || !f->due || !req || (req->only && f->stream != req->only)) return;
-  if (st.receiverBusy || !unchanged(*f)) {
+  if (!d.streaming || st.socket < 0 || !f->due || !req) return;
+  // --capture-frame N: the Nth frame the layer reads whole. A frame whose ring buffer a reused
+  // command buffer wrote again before it was read does not count; the next one is taken.
+  if (req->only && (st.intact >= req->only || !unchanged(*f) || ++st.intact < req->only)) return;
+  if (!req->only && (st.receiverBusy || !unchanged(*f))) {
     GBL_LOG("frame %llu (streamed %llu): dropped, %s", (unsigned long long)f->appFrame, (unsigned long long)f->stream,
             st.receiverBusy ? "the receiver is busy" : "its ring buffer was submitted again");
     ++st.dropped;
@@ -148,13 +151,15 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
   if (!shared && !unchanged(*f)) {  // the application submitted the ring's buffer again while it was read
     GBL_LOG("frame %llu: dropped, its ring buffer was submitted again while it was read", (unsigned long long)f->appFrame);
     ++st.dropped, ++st.torn;
+    if (req->only) --st.intact;  // the next whole frame is the one
     return;
   }
   st.copyMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   ++st.sent;
   GBL_LOG("frame %llu (streamed %llu): sent, %zu copies%s", (unsigned long long)f->appFrame, (unsigned long long)f->stream,
           f->copies.size(), shared ? " (read in place)" : "");
-  json m = {{"type", gb::wire::kFrame}, {"stream", f->stream}, {"app_frame", f->appFrame}, {"end_ns", f->endNs},
+  const uint64_t number = req->only ? st.intact : f->stream;
+  json m = {{"type", gb::wire::kFrame}, {"stream", number}, {"app_frame", f->appFrame}, {"end_ns", f->endNs},
             {"ready_ns", ready},       {"targets", targets},   {"camera", camera},         {"writes", counts},
             {"stats", statsJson(st)}};
   if (!gb::wire::send(st.socket, m.dump())) return goIdle(st);

@@ -24,6 +24,7 @@ struct Stream {
   std::set<uint32_t> sentBuffers;              // shared ring buffers the receiver has mapped
   std::unique_ptr<PendingFrame> atReceiver;    // the frame the receiver reads in place (its buffers held)
   uint64_t sent = 0, dropped = 0, torn = 0;
+  uint64_t intact = 0;  // --capture-frame: due frames found whole so far
   double copyMs = 0.0;
   std::shared_ptr<const Request> request;  // as the receiver sent it (to the device at startStream)
 };

@@ -10,13 +10,12 @@
 
 namespace gb::attach {
 
-std::string layerEnvironment(const std::string& socket, int dumpFrame, const std::string& dumpFile) {
+std::string layerEnvironment(const std::string& socket, const std::string& dumpFile) {
   std::string dirs = std::string(GBLENS_BUILD_DIR) + "/layer";
   std::string env = "ENABLE_GBLENS_LIVE=1 ";
-  if (dumpFrame >= 0) {
+  if (!dumpFile.empty()) {
     dirs = std::string(GBLENS_BUILD_DIR) + "/present_dump:" + dirs;
-    env += "ENABLE_GBLENS_TEST_DUMP=1 GBLENS_TEST_DUMP_FRAME=" + std::to_string(dumpFrame) + " GBLENS_TEST_DUMP_FILE='" +
-           dumpFile + "' ";
+    env += "ENABLE_GBLENS_TEST_DUMP=1 GBLENS_TEST_DUMP_FILE='" + dumpFile + "' ";
   }
   if (!socket.empty()) env += "GBLENS_LIVE_SOCKET='" + socket + "' ";
   return env + "XDG_DATA_DIRS=" + dirs + ":/usr/local/share:/usr/share ";

@@ -14,9 +14,9 @@
 namespace gb::attach {
 
 // The variables that load the gblens layer into an application (what LiveSession sets, minus the
-// socket when `socket` is empty) and, with dumpFrame >= 0, the present-dump layer writing that
-// present to dumpFile.
-std::string layerEnvironment(const std::string& socket, int dumpFrame = -1, const std::string& dumpFile = "");
+// socket when `socket` is empty) and, with a dumpFile, the present-dump layer writing every present
+// to dumpFile.N.
+std::string layerEnvironment(const std::string& socket, const std::string& dumpFile = "");
 // Synchronization validation for an application that enables the validation layer itself.
 constexpr const char* kSyncValidation =
     "VK_LAYER_ENABLES=VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT:"

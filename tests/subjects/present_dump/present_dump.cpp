@@ -1,7 +1,7 @@
 // A test-only Vulkan layer, written apart from gblens's own (app/layer), that writes what an
-// application presents: at present number GBLENS_TEST_DUMP_FRAME (0: the first) it waits for the
-// queue, copies the presented swapchain image to host memory and writes it to GBLENS_TEST_DUMP_FILE
-// as "W H FORMAT\n" followed by the raw texels. The attach tests compare an application's presented
+// application presents: at each present it waits for the queue, copies the presented swapchain
+// image to host memory and writes it to GBLENS_TEST_DUMP_FILE.N (N: the present's number, 0 the
+// first) as "W H FORMAT\n" followed by the raw texels; GBLENS_TEST_DUMP_FRAME=N writes only that one. The attach tests compare an application's presented
 // images with the gblens layer on and off, and with what the gblens layer streamed. Enabled by
 // ENABLE_GBLENS_TEST_DUMP=1 (an implicit layer found through XDG_DATA_DIRS).
 #include <vulkan/vk_layer.h>
@@ -179,8 +179,10 @@ VKAPI_ATTR VkResult VKAPI_CALL QueuePresentKHR(VkQueue queue, const VkPresentInf
   Device* d = deviceOf(queue);
   const char* frame = std::getenv("GBLENS_TEST_DUMP_FRAME");
   const char* file = std::getenv("GBLENS_TEST_DUMP_FILE");
-  if (frame && file && d->presents++ == std::atoi(frame) && info->swapchainCount == 1)
-    dump(*d, queue, d->images[info->pSwapchains[0]][info->pImageIndices[0]], d->info[info->pSwapchains[0]], file);
+  const int n = d->presents++;
+  if (file && (!frame || n == std::atoi(frame)) && info->swapchainCount == 1)
+    dump(*d, queue, d->images[info->pSwapchains[0]][info->pImageIndices[0]], d->info[info->pSwapchains[0]],
+         (std::string(file) + "." + std::to_string(n)).c_str());
   return d->get<PFN_vkQueuePresentKHR>("vkQueuePresentKHR")(queue, info);
 }
 
