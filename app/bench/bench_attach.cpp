@@ -5,6 +5,7 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -51,10 +52,10 @@ long rssKb(pid_t pid) {
   return -1;
 }
 
-// The application without a receiver: with or without the layer loaded (idle). With `rss`, its
-// resident memory every 100 ms.
+// The application without a receiver: with or without the layer loaded (idle). `peakKb`: its peak
+// resident memory.
 nlohmann::json runPlain(const std::vector<std::string>& argv, bool layerLoaded, const std::string& log,
-                        std::vector<long>* rss = nullptr) {
+                        long* peakKb = nullptr) {
   std::vector<std::string> env;
   for (char** e = environ; *e; ++e)
     if (std::string(*e).rfind("GBLENS_LIVE_SOCKET=", 0) != 0) env.push_back(*e);
@@ -75,12 +76,9 @@ nlohmann::json runPlain(const std::vector<std::string>& argv, bool layerLoaded, 
   const bool started = posix_spawn(&pid, args[0], &files, nullptr, args.data(), envp.data()) == 0;
   posix_spawn_file_actions_destroy(&files);
   int status = 0;
-  if (!started) return nullptr;
-  while (rss && waitpid(pid, &status, WNOHANG) == 0) {
-    rss->push_back(rssKb(pid));
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  if ((!rss && waitpid(pid, &status, 0) != pid) || !WIFEXITED(status)) return nullptr;
+  rusage usage{};
+  if (!started || wait4(pid, &status, 0, &usage) != pid || !WIFEXITED(status)) return nullptr;
+  if (peakKb) *peakKb = usage.ru_maxrss;
   // Its statistics count even when it could not write its PNG (a GPU machine without OpenImageIO's
   // plugins, docs/perf-gpu/h27_carry.sh): the frames were rendered and timed.
   return renderStats(log);
@@ -90,6 +88,7 @@ struct Attached {
   nlohmann::json app;   // the application's --stats
   LiveCounts counts;    // the receiver's, with the layer's figures
   nlohmann::json soak;  // memory early and late (soak runs)
+  long peakKb = 0;      // the application's peak resident memory
 };
 
 // The application under the layer, the receiver decoding every frame it gets until the end.
@@ -122,6 +121,7 @@ Attached runAttached(const std::string& layout, int every, const std::vector<std
   }
   a.counts = s.counts();
   a.app = renderStats(log);
+  a.peakKb = s.applicationPeakKb();
   return a;
 }
 
@@ -203,12 +203,12 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
   soak.soak["dropped"] = soak.counts.dropped;
   soak.soak["frames"] = s.soakFrames;
   soak.soak["size"] = s.soakSize;
-  // The same application without the layer: its own memory over its run, sampled the same way (at a
-  // tenth and at 95 % of its samples), for what its own growth is.
-  std::vector<long> rss;
-  runPlain(soakApp, false, log, &rss);
-  if (rss.size() >= 10)
-    soak.soak["without_layer"] = {{"rss_kb_early", rss[rss.size() / 10]}, {"rss_kb_late", rss[rss.size() * 95 / 100]}};
+  // The application's peak memory with the layer streaming and without it (its own grows with its
+  // frames: gblens render keeps every frame's statistics).
+  long without = 0;
+  runPlain(soakApp, false, log, &without);
+  soak.soak["peak_kb"] = soak.peakKb;
+  soak.soak["peak_kb_without_layer"] = without;
   std::error_code ec;
   fs::remove_all(dir, ec);
   std::ostringstream application;
@@ -274,9 +274,9 @@ std::string attachMarkdown(const nlohmann::json& a) {
                   double(soak["late"].value("shm_bytes", 0ull)) / 1e6);
     md << line;
   }
-  if (soak.contains("without_layer")) {
-    std::snprintf(line, sizeof(line), "The same soak without the layer: %ld kB at a tenth of its run, %ld kB at 95 %%.\n",
-                  soak["without_layer"].value("rss_kb_early", 0L), soak["without_layer"].value("rss_kb_late", 0L));
+  if (soak.contains("peak_kb")) {
+    std::snprintf(line, sizeof(line), "The application's peak memory: %ld kB streaming, %ld kB without the layer.\n",
+                  soak.value("peak_kb", 0L), soak.value("peak_kb_without_layer", 0L));
     md << line;
   }
   return md.str();

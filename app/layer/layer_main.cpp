@@ -180,6 +180,10 @@ VKAPI_ATTR void VKAPI_CALL DestroyDevice(VkDevice device, const VkAllocationCall
   DeviceData* d = deviceOf(device);
   if (!d) return;
   if (d->connected) {
+    GBL_LOG("device destroyed: following %zu images, %zu views, %zu framebuffers, %zu render passes, %zu buffers, %zu "
+            "descriptor sets, %zu command buffers, %zu mapped memories",
+            d->images.size(), d->views.size(), d->framebuffers.size(), d->renderPasses.size(), d->buffers.size(),
+            d->setBuffers.size(), d->cmds.size(), d->mapped.size());
     stopStream(*d);
     d->vk.DeviceWaitIdle(device);
     {

@@ -47,12 +47,13 @@ bool parseRequest(const std::string& text, Request& r) {
     p.targetName = t.value("name", "");
     p.format = t.value("format", "");
     p.explicitSource = t.value("explicit", false);
-    if (t.contains("pass") && t["pass"].is_string()) p.pass = t["pass"].get<std::string>();
-    if (t.contains("pass") && t["pass"].is_number_integer()) p.passIndex = t["pass"].get<int>();
-    p.name = t.value("attachment_name", "");
-    p.color = t.value("color", -1);
-    p.depth = t.value("depth", false);
-    p.byFormat = t.value("by_format", "");
+    const json live = t.value("live", json::object());  // as the layout writes a live source
+    if (live.contains("pass") && live["pass"].is_string()) p.pass = live["pass"].get<std::string>();
+    if (live.contains("pass") && live["pass"].is_number_integer()) p.passIndex = live["pass"].get<int>();
+    p.name = live.value("name", "");
+    p.color = live.value("color", -1);
+    p.depth = live.value("depth", false);
+    p.byFormat = live.value("format", "");
     r.picks.push_back(p);
   }
   return true;

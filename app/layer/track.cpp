@@ -18,6 +18,13 @@ bool canCopyFrom(DeviceData& d, VkFormat format, VkImageTiling tiling) {
   return f & VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
 }
 
+// An object the application destroys: forgotten before the call goes down (its handle may be reused).
+template <class Map, class Handle>
+void forget(DeviceData& d, Map& map, Handle handle) {
+  std::unique_lock lock(d.objects);
+  map.erase(handle);
+}
+
 VKAPI_ATTR VkResult VKAPI_CALL CreateImage(VkDevice device, const VkImageCreateInfo* info,
                                            const VkAllocationCallbacks* alloc, VkImage* image) {
   DeviceData& d = *deviceOf(device);
@@ -36,10 +43,7 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateImage(VkDevice device, const VkImageCreateI
 
 VKAPI_ATTR void VKAPI_CALL DestroyImage(VkDevice device, VkImage image, const VkAllocationCallbacks* alloc) {
   DeviceData& d = *deviceOf(device);
-  {
-    std::unique_lock lock(d.objects);
-    d.images.erase(image);
-  }
+  forget(d, d.images, image);
   d.vk.DestroyImage(device, image, alloc);
 }
 
@@ -102,10 +106,7 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateImageView(VkDevice device, const VkImageVie
 
 VKAPI_ATTR void VKAPI_CALL DestroyImageView(VkDevice device, VkImageView view, const VkAllocationCallbacks* alloc) {
   DeviceData& d = *deviceOf(device);
-  {
-    std::unique_lock lock(d.objects);
-    d.views.erase(view);
-  }
+  forget(d, d.views, view);
   d.vk.DestroyImageView(device, view, alloc);
 }
 
@@ -125,10 +126,7 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateFramebuffer(VkDevice device, const VkFrameb
 
 VKAPI_ATTR void VKAPI_CALL DestroyFramebuffer(VkDevice device, VkFramebuffer fb, const VkAllocationCallbacks* alloc) {
   DeviceData& d = *deviceOf(device);
-  {
-    std::unique_lock lock(d.objects);
-    d.framebuffers.erase(fb);
-  }
+  forget(d, d.framebuffers, fb);
   d.vk.DestroyFramebuffer(device, fb, alloc);
 }
 
@@ -236,10 +234,7 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateRenderPass2KHR(VkDevice device, const VkRen
 
 VKAPI_ATTR void VKAPI_CALL DestroyRenderPass(VkDevice device, VkRenderPass rp, const VkAllocationCallbacks* alloc) {
   DeviceData& d = *deviceOf(device);
-  {
-    std::unique_lock lock(d.objects);
-    d.renderPasses.erase(rp);
-  }
+  forget(d, d.renderPasses, rp);
   d.vk.DestroyRenderPass(device, rp, alloc);
 }
 
@@ -259,10 +254,7 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateBuffer(VkDevice device, const VkBufferCreat
 
 VKAPI_ATTR void VKAPI_CALL DestroyBuffer(VkDevice device, VkBuffer buffer, const VkAllocationCallbacks* alloc) {
   DeviceData& d = *deviceOf(device);
-  {
-    std::unique_lock lock(d.objects);
-    d.buffers.erase(buffer);
-  }
+  forget(d, d.buffers, buffer);
   d.vk.DestroyBuffer(device, buffer, alloc);
 }
 
@@ -306,19 +298,13 @@ VKAPI_ATTR VkResult VKAPI_CALL MapMemory(VkDevice device, VkDeviceMemory memory,
 
 VKAPI_ATTR void VKAPI_CALL UnmapMemory(VkDevice device, VkDeviceMemory memory) {
   DeviceData& d = *deviceOf(device);
-  {
-    std::unique_lock lock(d.objects);
-    d.mapped.erase(memory);
-  }
+  forget(d, d.mapped, memory);
   d.vk.UnmapMemory(device, memory);
 }
 
 VKAPI_ATTR void VKAPI_CALL FreeMemory(VkDevice device, VkDeviceMemory memory, const VkAllocationCallbacks* alloc) {
   DeviceData& d = *deviceOf(device);
-  {
-    std::unique_lock lock(d.objects);
-    d.mapped.erase(memory);
-  }
+  forget(d, d.mapped, memory);
   d.vk.FreeMemory(device, memory, alloc);
 }
 

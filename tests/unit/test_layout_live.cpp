@@ -91,12 +91,12 @@ TEST(LayoutLive, TheLayerIsAskedForWhatTheLayoutNames) {
   EXPECT_EQ(r["camera"]["buffer"], "frame");
   EXPECT_EQ(r["camera"]["bytes"], 128);  // the last matrix's offset + 64
   ASSERT_EQ(r["targets"].size(), 2u);
-  EXPECT_EQ(r["targets"][0]["pass"], "GBuffer");
-  EXPECT_EQ(r["targets"][0]["color"], 1);
+  EXPECT_EQ(r["targets"][0]["live"]["pass"], "GBuffer");
+  EXPECT_EQ(r["targets"][0]["live"]["color"], 1);
   EXPECT_EQ(r["targets"][0]["format"], "rgba8_srgb");
   EXPECT_EQ(r["targets"][0]["explicit"], true);
   // No source: the image of the target's name, not reported when the application has none.
-  EXPECT_EQ(r["targets"][1]["attachment_name"], "z");
+  EXPECT_EQ(r["targets"][1]["live"]["name"], "z");
   EXPECT_EQ(r["targets"][1]["explicit"], false);
 
   ASSERT_TRUE(parse(withSource({{"renderdoc", "albedo_tex"}}), l, error)) << error;

@@ -16,12 +16,14 @@ namespace gb {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-std::string targetWhere(const Layout& l, uint32_t t) {
+std::string layoutTargetWhere(const Layout& l, uint32_t t) {
   return (l.file.empty() ? std::string("layout") : l.file) + ": targets[" + std::to_string(t) + "]: \"" +
          l.targets[t].name + "\"";
 }
+
+namespace {
+
+std::string targetWhere(const Layout& l, uint32_t t) { return layoutTargetWhere(l, t); }
 
 // Where a source file is: a file given on the command line of that name, else beside the layout. A
 // target without a file name takes the only file given, or the one named as the target (albedo.exr).

@@ -49,6 +49,9 @@ bool loadImportLayout(const std::string& spec, const LayoutParameters& params, L
 // field (a missing channel, a size or format the layout does not match, a singular camera, ...).
 bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error);
 
+// "FILE: targets[T]: \"NAME\"": where a target is, for messages.
+std::string layoutTargetWhere(const Layout& l, uint32_t t);
+
 // The options an imported frame records: `options` (what a parameterised layout was resolved with)
 // with the frame's own size and depth direction.
 void setImportedOptions(FrameSnapshot& frame, const RenderOptions& options);

@@ -9,6 +9,7 @@
 #include <signal.h>
 #include <spawn.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
@@ -241,7 +242,9 @@ bool LiveSession::wait(FrameSnapshot& out, double seconds, LiveFrameInfo* info) 
 bool LiveSession::running() {
   if (pid_ <= 0 || status_ >= 0) return false;
   int s = 0;
-  if (waitpid(pid_, &s, WNOHANG) != pid_) return true;
+  rusage usage{};
+  if (wait4(pid_, &s, WNOHANG, &usage) != pid_) return true;
+  peakKb_ = usage.ru_maxrss;
   status_ = WIFEXITED(s) ? WEXITSTATUS(s) : 128 + WTERMSIG(s);
   return false;
 }

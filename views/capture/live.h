@@ -81,6 +81,7 @@ class LiveSession {
 
   bool running();                      // the application has not exited
   int exitStatus() const { return status_; }  // once it exited: its status (128 + signal if killed)
+  long applicationPeakKb() const { return peakKb_; }  // once it exited: its peak resident memory
   pid_t pid() const { return pid_; }
   void detach();                       // the layer goes idle for good; the application runs on
   void stop();                         // detach and end the application (SIGTERM, SIGKILL after 3 s)
@@ -110,6 +111,7 @@ class LiveSession {
   bool untouched(const nlohmann::json& frame) const;
   pid_t pid_ = -1;
   int status_ = -1;
+  long peakKb_ = 0;
   bool detached_ = false, noMatch_ = false;
   nlohmann::json hello_, suggestion_;
   std::vector<std::string> reports_;

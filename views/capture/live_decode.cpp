@@ -11,11 +11,6 @@ namespace gb {
 
 namespace {
 
-std::string targetWhere(const Layout& l, uint32_t t) {
-  return (l.file.empty() ? std::string("layout") : l.file) + ": targets[" + std::to_string(t) + "]: \"" +
-         l.targets[t].name + "\"";
-}
-
 // Targets the layout gives a source (else: the image of the target's own name, if the application
 // has one), told apart in the request so that the layer reports only those when they never come.
 std::vector<bool> explicitSources(const Layout& original) {
@@ -37,7 +32,7 @@ bool liveLayout(Layout& layout, std::string& error) {
         break;
       case TargetSource::Kind::RenderDoc:
         if (!s.resource.empty() && s.resource[0] == '#') {
-          error = targetWhere(layout, t) + ": source.renderdoc: \"" + s.resource +
+          error = layoutTargetWhere(layout, t) + ": source.renderdoc: \"" + s.resource +
                   "\" is a RenderDoc resource id; a running application's image is named by {\"live\": ...}";
           return false;
         }
@@ -45,7 +40,7 @@ bool liveLayout(Layout& layout, std::string& error) {
         s.live.name = s.resource;  // a RenderDoc texture name is the image's debug name
         break;
       default:
-        error = targetWhere(layout, t) + ": source.file: gblens attach streams render-pass attachments; give "
+        error = layoutTargetWhere(layout, t) + ": source.file: gblens attach streams render-pass attachments; give "
                 "{\"live\": ...} (docs/layout-format.md) or no source (the image of the target's name)";
         return false;
     }
@@ -61,15 +56,8 @@ nlohmann::json liveRequest(const Layout& original, const LiveOptions& o) {
   nlohmann::json targets = nlohmann::json::array();
   for (uint32_t t = 0; t < live.targets.size(); ++t) {
     const LayoutTarget& lt = live.targets[t];
-    const TargetSource::LivePick& p = lt.source.live;
-    nlohmann::json j = {{"name", lt.name}, {"format", lt.format.name}, {"explicit", bool(given[t])}};
-    if (!p.pass.empty()) j["pass"] = p.pass;
-    if (p.passIndex >= 0) j["pass"] = p.passIndex;
-    if (!p.name.empty()) j["attachment_name"] = p.name;
-    if (p.color >= 0) j["color"] = p.color;
-    if (p.depth) j["depth"] = true;
-    if (!p.format.empty()) j["by_format"] = p.format;
-    targets.push_back(j);
+    targets.push_back({{"name", lt.name}, {"format", lt.format.name}, {"explicit", bool(given[t])},
+                       {"live", livePickJson(lt.source.live)}});
   }
   nlohmann::json camera = nullptr;
   if (const auto& b = original.camera.renderdoc)
