@@ -162,7 +162,7 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
                                         std::to_string(s.frames), "--stats", "-o", (dir / "frame.png").string()};
   const std::vector<std::string> names = {"without", "idle", "every frame", "every " + std::to_string(s.every) + "th frame"};
   std::vector<std::vector<double>> ms(names.size());
-  std::vector<double> latencyMs, latencyFrames;
+  std::vector<double> latencyMs, latencyFrames, readyFrames;
   nlohmann::json streaming;
   for (int r = 0; r < s.rounds; ++r)
     for (size_t k = 0; k < names.size(); ++k) {
@@ -176,9 +176,9 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
         if (v == 2 && stats.is_object()) {
           latencyMs.push_back(a.counts.meanLatencyMs);
           latencyFrames.push_back(a.counts.meanLatencyMs / stats.value("frame_ms", 1.0));
+          readyFrames.push_back(a.counts.meanReadyMs / stats.value("frame_ms", 1.0));
           streaming = {{"received", a.counts.received}, {"dropped", a.counts.dropped}, {"latency_ms_max", a.counts.maxLatencyMs},
-                       {"decode_ms", a.counts.meanDecodeMs}, {"ready_ms", a.counts.meanReadyMs},
-                       {"ready_frames", a.counts.meanReadyMs / stats.value("frame_ms", 1.0)}, {"layer", a.counts.layer}};
+                       {"decode_ms", a.counts.meanDecodeMs}, {"ready_ms", a.counts.meanReadyMs}, {"layer", a.counts.layer}};
         }
       }
       ms[v].push_back(stats.is_object() ? stats.value("frame_ms", 0.0) : 0.0);
@@ -192,9 +192,13 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
     if (v > 0 && !ratios.empty()) row["ratio"] = ratioJson(ratios);
     variants.push_back(row);
   }
-  std::sort(latencyFrames.begin(), latencyFrames.end());
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  };
   streaming["latency_ms_mean"] = latencyMs;
-  streaming["latency_frames_median"] = latencyFrames.empty() ? 0.0 : latencyFrames[latencyFrames.size() / 2];
+  streaming["latency_frames_median"] = median(latencyFrames);
+  streaming["ready_frames"] = median(readyFrames);
   // The soak: many small frames streamed, memory early and late.
   const std::vector<std::string> soakApp = {self(), "render", "builtin:temple", "--size", s.soakSize, "--frames",
                                             std::to_string(s.soakFrames), "--stats", "-o", (dir / "soak.png").string()};
@@ -252,9 +256,9 @@ std::string attachMarkdown(const nlohmann::json& a) {
   const nlohmann::json& st = a["streaming"];
   const nlohmann::json layer = st.value("layer", nlohmann::json::object());
   std::snprintf(line, sizeof(line),
-                "\nStreaming every frame (last round): %llu frames received, %llu dropped (the receiver was busy); from "
-                "the application's frame end to its copies done %.2f frames (target <= 2), to the receiver having it "
-                "decoded: median %.2f frames, max %.1f ms; the layer's own time in the application's threads %.2f ms a frame, its "
+                "\nStreaming every frame: %llu frames received, %llu dropped (the receiver was busy) in the last round; "
+                "from the application's frame end to its copies done %.2f frames (median of the rounds' means; target "
+                "<= 2), to the receiver having it decoded %.2f frames, max %.1f ms; the layer's own time in the application's threads %.2f ms a frame, its "
                 "thread's copy into shared memory %.2f ms, the receiver's decoding %.1f ms. Ring %.1f MB (three slots), "
                 "shared memory %.1f MB.\n",
                 (unsigned long long)st.value("received", 0ull), (unsigned long long)st.value("dropped", 0ull),

@@ -28,6 +28,7 @@ namespace gbl {
   X(DestroyRenderPass) X(CreateSwapchainKHR) X(DestroySwapchainKHR) X(GetSwapchainImagesKHR) X(QueuePresentKHR)        \
   X(CreateBuffer) X(DestroyBuffer) X(BindBufferMemory) X(BindBufferMemory2) X(BindBufferMemory2KHR) X(MapMemory)       \
   X(UnmapMemory) X(FreeMemory) X(AllocateDescriptorSets) X(UpdateDescriptorSets) X(CmdBindDescriptorSets)              \
+  X(FreeDescriptorSets) X(ResetDescriptorPool) X(DestroyDescriptorPool)                                                \
   X(AllocateCommandBuffers) X(FreeCommandBuffers) X(BeginCommandBuffer) X(EndCommandBuffer) X(ResetCommandBuffer)     \
   X(ResetCommandPool) X(DestroyCommandPool) X(CmdBeginRenderPass) X(CmdBeginRenderPass2) X(CmdBeginRenderPass2KHR)    \
   X(CmdEndRenderPass) X(CmdEndRenderPass2) X(CmdEndRenderPass2KHR) X(CmdBeginRendering) X(CmdBeginRenderingKHR)       \
@@ -274,6 +275,7 @@ struct DeviceData {
   std::unordered_map<VkDeviceMemory, uint8_t*> mapped;  // memory -> pointer to its byte 0
   std::unordered_map<VkSwapchainKHR, ImageInfo> swapchains;  // their images' description
   std::unordered_map<VkDescriptorSet, std::vector<VkBuffer>> setBuffers;
+  std::unordered_map<VkDescriptorPool, std::vector<VkDescriptorSet>> poolSets;
 
   std::mutex cmdLock;
   std::unordered_map<VkCommandBuffer, std::unique_ptr<CmdState>> cmds;
@@ -329,6 +331,7 @@ struct Hook {
 #define GBL_HOOK(name) Hook{"vk" #name, reinterpret_cast<PFN_vkVoidFunction>(name)}
 std::vector<Hook> trackHooks();   // track.cpp
 std::vector<Hook> recordHooks();  // record.cpp
+std::vector<Hook> descriptorHooks();  // descriptors.cpp
 std::vector<Hook> submitHooks();  // submit.cpp
 
 // ---- the ring (ring.cpp)

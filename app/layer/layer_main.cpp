@@ -40,7 +40,7 @@ const T* findChain(const void* next, VkStructureType type, VkLayerFunction funct
 const std::unordered_map<std::string, PFN_vkVoidFunction>& hookTable() {
   static auto* table = [] {
     auto* t = new std::unordered_map<std::string, PFN_vkVoidFunction>;
-    for (auto hooks : {trackHooks(), recordHooks(), submitHooks()})
+    for (auto hooks : {trackHooks(), recordHooks(), descriptorHooks(), submitHooks()})
       for (const Hook& h : hooks) (*t)[h.name] = h.function;
     return t;
   }();

@@ -1,5 +1,5 @@
 // Following the application's objects: images (and swapchain images), views, framebuffers, render
-// passes, buffers and their memory, descriptor sets' buffers, debug names. Three changes, none
+// passes, buffers and their memory, debug names (descriptor sets: descriptors.cpp). Three changes, none
 // visible in the application's output: attachment images and swapchains get TRANSFER_SRC usage and
 // uniform/storage buffers too (so the layer can copy them), and an attachment a render pass writes
 // but does not store (DONT_CARE) is stored.
@@ -308,45 +308,6 @@ VKAPI_ATTR void VKAPI_CALL FreeMemory(VkDevice device, VkDeviceMemory memory, co
   d.vk.FreeMemory(device, memory, alloc);
 }
 
-VKAPI_ATTR VkResult VKAPI_CALL AllocateDescriptorSets(VkDevice device, const VkDescriptorSetAllocateInfo* info,
-                                                      VkDescriptorSet* sets) {
-  DeviceData& d = *deviceOf(device);
-  VkResult r = d.vk.AllocateDescriptorSets(device, info, sets);
-  if (r == VK_SUCCESS) {
-    std::unique_lock lock(d.objects);
-    for (uint32_t i = 0; i < info->descriptorSetCount; ++i) d.setBuffers.erase(sets[i]);  // a reused handle
-  }
-  return r;
-}
-
-bool bufferDescriptor(VkDescriptorType t) {
-  return t == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER || t == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC ||
-         t == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER || t == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC;
-}
-
-// Which buffers each descriptor set holds: the camera's buffer is the one bound where the pass runs.
-VKAPI_ATTR void VKAPI_CALL UpdateDescriptorSets(VkDevice device, uint32_t writeCount, const VkWriteDescriptorSet* writes,
-                                                uint32_t copyCount, const VkCopyDescriptorSet* copies) {
-  DeviceData& d = *deviceOf(device);
-  d.vk.UpdateDescriptorSets(device, writeCount, writes, copyCount, copies);
-  std::unique_lock lock(d.objects);
-  for (uint32_t i = 0; i < writeCount; ++i) {
-    if (!bufferDescriptor(writes[i].descriptorType) || !writes[i].pBufferInfo) continue;
-    std::vector<VkBuffer>& held = d.setBuffers[writes[i].dstSet];
-    for (uint32_t k = 0; k < writes[i].descriptorCount; ++k)
-      if (std::find(held.begin(), held.end(), writes[i].pBufferInfo[k].buffer) == held.end() && held.size() < 64)
-        held.push_back(writes[i].pBufferInfo[k].buffer);
-  }
-  for (uint32_t i = 0; i < copyCount; ++i) {
-    auto src = d.setBuffers.find(copies[i].srcSet);
-    if (src == d.setBuffers.end()) continue;
-    const std::vector<VkBuffer> from = src->second;
-    std::vector<VkBuffer>& held = d.setBuffers[copies[i].dstSet];
-    for (VkBuffer b : from)
-      if (std::find(held.begin(), held.end(), b) == held.end() && held.size() < 64) held.push_back(b);
-  }
-}
-
 VKAPI_ATTR VkResult VKAPI_CALL SetDebugUtilsObjectNameEXT(VkDevice device, const VkDebugUtilsObjectNameInfoEXT* info) {
   DeviceData& d = *deviceOf(device);
   VkResult r = d.vk.SetDebugUtilsObjectNameEXT(device, info);
@@ -378,7 +339,7 @@ std::vector<Hook> trackHooks() {
           GBL_HOOK(DestroyRenderPass),    GBL_HOOK(CreateBuffer),          GBL_HOOK(DestroyBuffer),
           GBL_HOOK(BindBufferMemory),     GBL_HOOK(BindBufferMemory2),     GBL_HOOK(BindBufferMemory2KHR),
           GBL_HOOK(MapMemory),            GBL_HOOK(UnmapMemory),           GBL_HOOK(FreeMemory),
-          GBL_HOOK(AllocateDescriptorSets), GBL_HOOK(UpdateDescriptorSets), GBL_HOOK(SetDebugUtilsObjectNameEXT)};
+          GBL_HOOK(SetDebugUtilsObjectNameEXT)};
 }
 
 }  // namespace gbl
