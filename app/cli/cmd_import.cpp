@@ -124,26 +124,6 @@ int fail(std::string message) {
   return 2;
 }
 
-// --param NAME=VALUE... (option names as in the option table, or as flags) -> option values; --size.
-bool parseParameters(const ImportOptions& o, RenderOptions& options, std::string& error) {
-  for (const std::string& p : o.params) {
-    const size_t eq = p.find('=');
-    std::string name = eq == std::string::npos ? "" : p.substr(0, eq);
-    if (name.rfind("--", 0) == 0) name = name.substr(2);
-    std::replace(name.begin(), name.end(), '-', '_');
-    if (name.empty() || !findOption(name)) {
-      error = "--param " + p + ": expected NAME=VALUE with NAME an option of gblens --help (e.g. normal_format=oct-rg16)";
-      return false;
-    }
-    if (!setOption(options, name, p.substr(eq + 1), error)) {
-      error = "--param " + p + ": " + error;
-      return false;
-    }
-  }
-  if (!o.size.empty() && !setOption(options, "size", o.size, error)) return false;
-  return true;
-}
-
 // The texts the summary shows for where a target came from.
 std::string sourceText(const LayoutTarget& t, const RenderDocImported& rdc) {
   for (const RenderDocImported::Read& r : rdc.reads)
@@ -215,7 +195,8 @@ int runImport(const ImportOptions& o) {
 
   RenderOptions options;
   std::string error;
-  if (!parseParameters(o, options, error)) return fail(error);
+  if (!parseLayoutParameters(o.params, options, error) || (!o.size.empty() && !setOption(options, "size", o.size, error)))
+    return fail(error);
   ImportInput in;
   if (!loadImportLayout(o.layout, layoutParameters(options), in.layout, in.layoutDir, error)) return fail(error);
   if (!o.size.empty()) in.layout.width = options.width, in.layout.height = options.height;
@@ -233,10 +214,7 @@ int runImport(const ImportOptions& o) {
   progress("decoding " + std::to_string(in.layout.targets.size()) + " targets with layout " + o.layout);
   if (!importFrame(in, frame, error)) return fail(error);
   // The options the layout was resolved with are the frame's (gblens's own frames: how it was rendered).
-  const RenderOptions imported = frame.options;
-  frame.options = options;
-  frame.options.width = imported.width, frame.options.height = imported.height;
-  frame.options.reversedZ = imported.reversedZ;
+  setImportedOptions(frame, options);
   // gblens's own layout: a target the capture does not hold says why, as gblens's captures do (a
   // 1x1 stand-in of coverage left out: "not computed: coverage off", by the options given).
   if (frame.layout.name == nativeLayout(options).name)

@@ -71,12 +71,22 @@ struct Quantity {
 
 // Where an imported target's texels come from (ignored for gblens's own frames).
 struct TargetSource {
-  enum class Kind : uint8_t { None, File, Raw, RenderDoc } kind = Kind::None;
+  enum class Kind : uint8_t { None, File, Raw, RenderDoc, Live } kind = Kind::None;
   std::string path;                  // File / Raw: as written (relative to the layout file)
   std::string part;                  // File: EXR part (index or name; "" the first)
   std::vector<std::string> channels; // File: the file's channel names in target channel order
   uint64_t offset = 0;               // Raw: bytes skipped at the start
   std::string resource;              // RenderDoc: texture name or "#id"
+  // Live (`gblens attach`): the attachment the gblens layer copies at the end of a render pass.
+  // One of name, color, depth, format picks the attachment; pass (a label) or passIndex the pass.
+  struct LivePick {
+    std::string pass;                // a debug label around the render pass, or the render pass's name
+    int passIndex = -1;              // or the render pass's ordinal in its command buffer (0: the first)
+    std::string name;                // the attachment's image (or image view) debug name
+    int color = -1;                  // colour attachment N (of the pass's last subpass)
+    bool depth = false;              // the depth/stencil attachment
+    std::string format;              // the one attachment of this storage format
+  } live;
 };
 
 struct LayoutTarget {

@@ -299,9 +299,46 @@ bool readQuantity(Reader& r, const json& jIn, const Where& w, Layout& l, uint32_
   return true;
 }
 
+// {"live": "NAME"} or {"live": {"pass": LABEL | N, "name" | "color" | "depth" | "format": ...}}.
+bool readLiveSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
+  s.kind = TargetSource::Kind::Live;
+  TargetSource::LivePick& p = s.live;
+  if (j.is_string()) {
+    p.name = j.get<std::string>();
+    return !p.name.empty() || r.fail(w, "live", "expected an attachment's debug name");
+  }
+  Where wl = w.at("live");
+  if (!j.is_object()) return r.fail(w, "live", "expected a debug name or {\"pass\": ..., \"name\" | \"color\" | \"depth\" | \"format\": ...}");
+  if (auto it = j.find("pass"); it != j.end()) {
+    if (it->is_number_integer() && it->get<int64_t>() >= 0 && it->get<int64_t>() < 1 << 20)
+      p.passIndex = int(it->get<int64_t>());
+    else if (it->is_string() && !it->get<std::string>().empty())
+      p.pass = it->get<std::string>();
+    else
+      return r.fail(wl, "pass", "expected a label (text) or the render pass's ordinal in its command buffer (0, 1, ...)");
+  }
+  double color = -1.0;
+  if (!r.string(j, wl, "name", p.name, false) || !r.number(j, wl, "color", color) || !r.boolean(j, wl, "depth", p.depth) ||
+      !r.string(j, wl, "format", p.format, false))
+    return false;
+  if (j.contains("color") && (color < 0.0 || color > 7.0 || color != std::floor(color)))
+    return r.fail(wl, "color", "expected a colour attachment index 0..7");
+  p.color = int(color);
+  StorageFormat f;
+  if (!p.format.empty() && !parseStorageFormat(p.format, f))
+    return r.fail(wl, "format", "unknown storage format \"" + p.format + "\"");
+  const int picks = int(!p.name.empty()) + int(p.color >= 0) + int(p.depth) + int(!p.format.empty());
+  if (picks != 1) return r.fail(wl, "name", "give exactly one of \"name\", \"color\", \"depth\": true and \"format\"");
+  return r.unknownKeys(j, wl, {"pass", "name", "color", "depth", "format"});
+}
+
 bool readSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
   if (!j.is_object()) return r.fail(w, "source", "expected an object");
   Where ws = w.at("source");
+  if (auto it = j.find("live"); it != j.end()) {
+    if (j.size() != 1) return r.fail(ws, "live", "a live source has no other fields");
+    return readLiveSource(r, *it, ws, s);
+  }
   bool raw = false;
   int64_t offset = 0, part = 0;
   if (!r.string(j, ws, "file", s.path, false) || !r.boolean(j, ws, "raw", raw) ||

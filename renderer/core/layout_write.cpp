@@ -75,9 +75,21 @@ static json quantityJson(const Quantity& q) {
   return j;
 }
 
+json livePickJson(const TargetSource::LivePick& p) {
+  json l = json::object();
+  if (!p.pass.empty()) l["pass"] = p.pass;
+  if (p.passIndex >= 0) l["pass"] = p.passIndex;
+  if (!p.name.empty()) l["name"] = p.name;
+  if (p.color >= 0) l["color"] = p.color;
+  if (p.depth) l["depth"] = true;
+  if (!p.format.empty()) l["format"] = p.format;
+  return l;
+}
+
 static json sourceJson(const TargetSource& s) {
   json j = json::object();
   if (s.kind == TargetSource::Kind::RenderDoc) return {{"renderdoc", s.resource}};
+  if (s.kind == TargetSource::Kind::Live) return {{"live", livePickJson(s.live)}};
   if (!s.path.empty()) j["file"] = s.path;
   if (s.kind == TargetSource::Kind::Raw) j["raw"] = true;
   if (s.offset) j["offset"] = s.offset;

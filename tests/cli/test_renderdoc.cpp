@@ -109,7 +109,8 @@ void expectTruncatedCapturesRefused(const std::string& rdc, const std::string& d
     const size_t eol = r.output.find('\n');
     ASSERT_NE(eol, std::string::npos) << r.output;
     const long pid = std::stol(r.output.substr(0, eol));
-    const std::string message = r.output.substr(eol + 1);
+    std::string message = r.output.substr(eol + 1);
+    while (message.rfind("  .. ", 0) == 0) message.erase(0, message.find('\n') + 1);  // progress lines first
     EXPECT_EQ(r.exitCode, 2) << message;
     EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << message;
     EXPECT_EQ(message.rfind("gblens import: " + cut + ": ", 0), 0u) << message;

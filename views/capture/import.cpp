@@ -20,12 +20,14 @@ namespace gb {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-std::string targetWhere(const Layout& l, uint32_t t) {
+std::string layoutTargetWhere(const Layout& l, uint32_t t) {
   return (l.file.empty() ? std::string("layout") : l.file) + ": targets[" + std::to_string(t) + "]: \"" +
          l.targets[t].name + "\"";
 }
+
+namespace {
+
+std::string targetWhere(const Layout& l, uint32_t t) { return layoutTargetWhere(l, t); }
 
 }  // namespace
 
@@ -183,23 +185,23 @@ size_t dumpBytes(const LayoutTarget& t, uint32_t w, uint32_t h) {
   return gpuFormatOf(t, gpu) ? packedImageBytes(gpu, w, h) : size_t(w) * h * t.format.packedBytes();
 }
 
-// A packed dump (raw file or RenderDoc texels) of a target's format, from `offset` in `bytes` (a raw
+// A packed dump (raw file or RenderDoc texels) of a target's format, from `offset` in `data` (`bytesSize` bytes) (a raw
 // file's bytes from its offset on: offset 0 here, `fileOffset` and `fileBytes` for the message).
-bool unpackDump(const std::vector<uint8_t>& bytes, uint64_t offset, const LayoutTarget& t, uint32_t w, uint32_t h,
+bool unpackDump(const uint8_t* data, size_t bytesSize, uint64_t offset, const LayoutTarget& t, uint32_t w, uint32_t h,
                 const std::string& at, CpuImage& img, std::string& error, uint64_t fileOffset = 0, uint64_t fileBytes = 0) {
   TexelFormat gpu{};
   const bool isGpuFormat = gpuFormatOf(t, gpu);
   const size_t need = dumpBytes(t, w, h);
-  if (bytes.size() < offset || bytes.size() - offset < need) {
+  if (bytesSize < offset || bytesSize - offset < need) {
     const bool fromFile = fileBytes || fileOffset;
-    const uint64_t size = fromFile ? fileBytes : bytes.size();
+    const uint64_t size = fromFile ? fileBytes : bytesSize;
     offset = fromFile ? fileOffset : offset;
     error = at + ": holds " + std::to_string(size - std::min<uint64_t>(offset, size)) + " bytes after offset " +
             std::to_string(offset) + "; " + t.format.name + " " + std::to_string(w) + "x" + std::to_string(h) + " needs " +
             std::to_string(need);
     return false;
   }
-  const uint8_t* src = bytes.data() + offset;
+  const uint8_t* src = data + offset;
   if (isGpuFormat) {
     img = unpackTexels(gpu, src, w, h);
   } else {
@@ -236,7 +238,16 @@ bool readTarget(const ImportInput& in, uint32_t t, LayoutTarget& lt, uint32_t w,
       error = where + ": source.renderdoc: the capture has no texture \"" + s.resource + "\"";
       return false;
     }
-    return unpackDump(it->second, 0, lt, w, h, where + ": source.renderdoc \"" + s.resource + "\"", img, error);
+    return unpackDump(it->second.data(), it->second.size(), 0, lt, w, h, where + ": source.renderdoc \"" + s.resource + "\"",
+                      img, error);
+  }
+  if (s.kind == TargetSource::Kind::Live) {
+    auto it = in.liveTexels.find(lt.name);
+    if (it == in.liveTexels.end()) {
+      error = where + ": source.live: an attachment of a running application: stream it with gblens attach";
+      return false;
+    }
+    return unpackDump(it->second.data, it->second.bytes, 0, lt, w, h, where + ": source.live", img, error);
   }
   const std::string path = sourcePath(in, lt);
   if (path.empty()) {
@@ -249,7 +260,7 @@ bool readTarget(const ImportInput& in, uint32_t t, LayoutTarget& lt, uint32_t w,
     std::vector<uint8_t> bytes;
     uint64_t fileBytes = 0;
     return readFileRange(path, s.offset, dumpBytes(lt, w, h), bytes, fileBytes, where, error) &&
-           unpackDump(bytes, 0, lt, w, h, where + ": " + path, img, error, s.offset, fileBytes);
+           unpackDump(bytes.data(), bytes.size(), 0, lt, w, h, where + ": " + path, img, error, s.offset, fileBytes);
   }
   return readImageFile(path, s, lt, where, w, h, img, error);
 }
@@ -321,6 +332,13 @@ std::string builtinLayoutNames() {
   return names;
 }
 
+void setImportedOptions(FrameSnapshot& frame, const RenderOptions& options) {
+  const RenderOptions imported = frame.options;
+  frame.options = options;
+  frame.options.width = imported.width, frame.options.height = imported.height;
+  frame.options.reversedZ = imported.reversedZ;
+}
+
 bool loadImportLayout(const std::string& spec, const LayoutParameters& params, Layout& out, std::string& dir,
                       std::string& error) {
   dir.clear();
@@ -365,7 +383,16 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
       }
       tw = rw, th = rh;
     }
-    if (!tw && lt.source.kind != TargetSource::Kind::Raw) {  // no size given: the file's
+    if (auto live = in.liveTexels.find(lt.name); live != in.liveTexels.end()) {  // a streamed attachment: the same rule
+      const uint32_t rw = live->second.width, rh = live->second.height;
+      if (tw && (rw != tw || rh != th)) {
+        error = targetWhere(l, t) + ": size: the streamed attachment is " + std::to_string(rw) + "x" + std::to_string(rh) +
+                ", the layout says " + std::to_string(tw) + "x" + std::to_string(th);
+        return false;
+      }
+      tw = rw, th = rh;
+    }
+    if (!tw && (lt.source.kind == TargetSource::Kind::File || lt.source.kind == TargetSource::Kind::None)) {  // the file's
       std::string ignored;  // a file that does not open is reported by readTarget
       auto inp = openImportImage(sourcePath(in, lt), targetWhere(l, t), ignored);
       if (inp) tw = uint32_t(std::max(inp->spec().width, 0)), th = uint32_t(std::max(inp->spec().height, 0));
