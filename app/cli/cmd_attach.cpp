@@ -2,15 +2,17 @@
 //   gblens attach --layout L.json --capture-frame N -o DIR [--every E] [--stats] -- APP ARGS...
 //   gblens attach --layout L.json --frames K [--every E] [--stats] -- APP ARGS...
 //   gblens attach --suggest -- APP ARGS...
-// The application is started with the layer, runs to its own end (the layer detaches), and the
-// command exits 0 when it got what it was asked for, 2 when nothing matched the layout (with why).
-// Without --capture-frame, --frames or --suggest it would open the live viewer, which is not wired
-// yet. docs/attach.md.
+//   gblens attach --layout L.json [--suggest] [--every E] -- APP ARGS...   (the viewer on the stream)
+// Headless, the application is started with the layer, runs to its own end (the layer detaches), and
+// the command exits 0 when it got what it was asked for, 2 when nothing matched the layout (with why).
+// With a layout and none of --capture-frame, --frames: the viewer opens on the stream's first frame;
+// closing it detaches and the application runs on. docs/attach.md.
 #include <chrono>
 #include <cstdio>
 #include <memory>
 
 #include "app/cli/cli.h"
+#include "app/viewer/viewer.h"
 #include "views/capture/capture.h"
 #include "views/capture/live.h"
 
@@ -25,6 +27,8 @@ struct AttachOptions {
   uint64_t captureFrame = 0, frames = 0;
   bool suggest = false, stats = false;
   double timeout = 300.0;
+  std::string window = "1280x800", eventLog;  // the viewer's
+  bool paused = false;
 };
 
 int fail(const std::string& message) {
@@ -34,38 +38,6 @@ int fail(const std::string& message) {
 
 void printReports(LiveSession& s) {
   for (const std::string& r : s.takeReports()) std::fprintf(stderr, "gblens attach: %s\n", r.c_str());
-}
-
-// The layer's --suggest report, printed as import --list prints a capture, with the source that
-// names each attachment in a layout.
-void printSuggestion(const nlohmann::json& hello, const nlohmann::json& s) {
-  std::printf("application  %s (%s)\n", hello.value("application", "").c_str(), hello.value("device", "").c_str());
-  std::printf("frame        %llu\n", (unsigned long long)s.value("frame", 0ull));
-  const nlohmann::json& passes = s["passes"];
-  std::printf("passes       %zu (ordinal in its command buffer, labels or render pass name; attachments)\n", passes.size());
-  for (const nlohmann::json& p : passes) {
-    std::string names;
-    for (const nlohmann::json& l : p["labels"]) names += (names.empty() ? "" : " > ") + l.get<std::string>();
-    if (!p.value("render_pass", "").empty()) names += (names.empty() ? "" : "  ") + ("render pass \"" + p.value("render_pass", "") + "\"");
-    std::printf("  #%-3d %s%s\n", p.value("ordinal", 0), p.value("dynamic", false) ? "(dynamic rendering) " : "", names.c_str());
-    for (const nlohmann::json& a : p["attachments"]) {
-      const std::string role = a.value("role", ""), image = a.value("image", "");
-      nlohmann::json source = {{"pass", p.value("ordinal", 0)}};
-      if (!image.empty())
-        source = {{"name", image}};
-      else if (role == "depth")
-        source["depth"] = true;
-      else if (role.rfind("color ", 0) == 0)
-        source["color"] = std::stoi(role.substr(6));
-      const std::string format = a.value("format", "");
-      std::printf("       %-8s %-20s %-32s %-14s %ux%u%s%s\n", role.c_str(), image.empty() ? "(unnamed)" : image.c_str(),
-                  a.value("vk_format", "").c_str(), format.empty() ? "-" : format.c_str(), a.value("width", 0u),
-                  a.value("height", 0u), a.value("store_patched", false) ? "  (not stored by the application: gblens stores it)" : "",
-                  a.value("why", "").empty() ? "" : ("  * " + a.value("why", "")).c_str());
-      if (format.size() && a.value("why", "").empty() && role != "other")
-        std::printf("                source: {\"live\": %s}\n", source.dump().c_str());
-    }
-  }
 }
 
 nlohmann::json statsJson(const LiveSession& s) {
@@ -85,12 +57,16 @@ nlohmann::json statsJson(const LiveSession& s) {
           {"layer", c.layer}};
 }
 
+std::string appText(const AttachOptions& o) {
+  std::string text;
+  for (const std::string& a : o.app) text += (text.empty() ? "" : " ") + a;
+  return text;
+}
+
 int writeFrame(const AttachOptions& o, const LiveSession& s, const FrameSnapshot& frame, const LiveFrameInfo& info) {
   CaptureMeta meta;
   meta.device = s.hello().value("device", "");
-  meta.scene = "attach:";
-  for (const std::string& a : o.app) meta.scene += " " + a;
-  meta.scene += " (application frame " + std::to_string(info.appFrame) + ")";
+  meta.scene = "attach: " + appText(o) + " (application frame " + std::to_string(info.appFrame) + ")";
   meta.commandLine = commandLine();
   std::string error;
   if (!writeCapture(o.output, frame, meta, error)) return fail(error);
@@ -105,10 +81,56 @@ int writeFrame(const AttachOptions& o, const LiveSession& s, const FrameSnapshot
   return 0;
 }
 
+// The viewer on the stream: the window opens on the first frame (nothing to show before it); closing
+// it detaches, and the application runs on.
+int runViewerOnStream(const AttachOptions& o, LiveSession& s) {
+  FrameSnapshot first;
+  LiveFrameInfo info;
+  std::fprintf(stderr, "gblens attach: waiting for the first frame of %s\n", o.app[0].c_str());
+  const auto start = std::chrono::steady_clock::now();
+  std::string why;
+  while (!s.wait(first, 0.2, &info)) {
+    printReports(s);
+    if (s.noMatch())
+      why = "nothing matched the layout in the application's first frames (the layer's reports above say why)";
+    else if (!s.running() && !s.attached())
+      why = s.hello().is_null() ? "the application ended without creating a Vulkan device under the layer"
+                                : "the application ended before a frame matched the layout";
+    else if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > o.timeout)
+      why = "--timeout " + std::to_string(int(o.timeout)) + " s: no frame came";
+    if (!why.empty()) {
+      s.detach();
+      return fail(why);
+    }
+  }
+  printReports(s);
+  ViewerArgs a;
+  a.scene = "attach: " + appText(o);
+  a.commandLine = commandLine();
+  a.window = o.window;
+  a.windowGiven = true;
+  a.paused = o.paused;
+  a.eventLog = o.eventLog;
+  a.render = first.options;
+  a.attach = &s;
+  a.attachFirst = &first;
+  a.attachFirstInfo = info;
+  const int status = runViewer(a, Scene{});
+  s.detach();
+  printReports(s);
+  if (s.running())
+    std::fprintf(stderr, "gblens attach: detached; %s (pid %d) runs on\n", o.app[0].c_str(), int(s.pid()));
+  else
+    std::fprintf(stderr, "gblens attach: %s exited with status %d\n", o.app[0].c_str(), s.exitStatus());
+  return status;
+}
+
 int runAttach(const AttachOptions& o) {
-  if (!o.captureFrame && !o.frames && !o.suggest)
-    return fail("the live viewer is not wired yet: give --capture-frame N -o DIR (write a frame), --frames K (stream K "
-                "frames) or --suggest (list the render passes)");
+  const bool viewer = !o.captureFrame && !o.frames && !(o.suggest && o.layout.empty());
+  if (viewer && o.layout.empty())
+    return fail("--layout: required for the viewer (a layout file, docs/layout-format.md, or builtin:NAME); --suggest "
+                "alone prints the render passes");
+  if (!viewer && (!o.eventLog.empty() || o.paused)) return fail("--event-log and --paused are the viewer's");
   if (o.captureFrame && o.output.empty()) return fail("-o: required with --capture-frame (the capture folder to write)");
   if (!o.captureFrame && !o.output.empty()) return fail("-o: writes the frame --capture-frame names");
   if ((o.captureFrame || o.frames) && o.layout.empty())
@@ -123,6 +145,7 @@ int runAttach(const AttachOptions& o) {
   if (!parseLayoutParameters(o.params, lo.options, error)) return fail(error);
   LiveSession s;
   if (!s.start(lo, error)) return fail(error);
+  if (viewer) return runViewerOnStream(o, s);
 
   int status = 2;
   std::string why;
@@ -142,7 +165,11 @@ int runAttach(const AttachOptions& o) {
       break;
     }
     if (o.suggest && s.suggestion()) {
-      printSuggestion(s.hello(), *s.suggestion());
+      std::fputs(describeLivePasses(s.hello(), *s.suggestion()).c_str(), stdout);
+      std::vector<std::string> summary;
+      const nlohmann::json draft = draftLiveLayout(*s.suggestion(), summary);
+      for (const std::string& line : summary) std::printf("%s\n", line.c_str());
+      std::printf("draft layout (check every \"guess\"):\n%s\n", draft.dump(2).c_str());
       status = 0;
       break;
     }
@@ -190,6 +217,9 @@ Command addAttachCommand(CLI::App& root) {
   cmd->add_flag("--suggest", o->suggest, "print the render passes and attachments the layer sees in one frame");
   cmd->add_flag("--stats", o->stats, "print the layer's costs (frame time, memory, drops, latency) as JSON");
   cmd->add_option("--timeout", o->timeout, "give up when no frame came within this many seconds")->capture_default_str();
+  cmd->add_option("--window", o->window, "the viewer's window size WxH")->capture_default_str();
+  cmd->add_option("--event-log", o->eventLog, "the viewer: append its events (frames received, layout, hover, capture) as JSON lines");
+  cmd->add_flag("--paused", o->paused, "the viewer: start paused on the first frame (Space resumes)");
   cmd->add_option("APP", o->app, "the application and its arguments (after --)")->required();
   return {cmd, [o]() -> int { return runAttach(*o); }};
 }

@@ -23,6 +23,7 @@
 namespace gb {
 
 bool captureLiveFrame(Viewer& v, std::string& written, std::string& error, std::string* rdc) {
+  if (v.args.attach) return captureAttachedFrame(v, written, error);  // the streamed frame shown
   Renderer& r = v.renderer;
   std::vector<Target> targets = readableTargets(r, r.options);
   FrameRequest request;
@@ -105,7 +106,7 @@ static double largestDifference(const CpuImage& a, const CpuImage& b, uint32_t c
 }
 
 // What the views can show: A's layout's views, B's of the same names beside them.
-static void setCaptureViews(Viewer& v) {
+void setCaptureViews(Viewer& v) {
   ViewerModel& m = v.model;
   const FrameSnapshot& a = v.captureA.frame;
   m.frameLayout = a.layout;

@@ -68,6 +68,8 @@ static bool openFrameSource(Viewer& v, bool live) {
     resetRig(v.rig, v.scene.cameras[size_t(v.args.render.camera)], v.scene.bounds);
     v.scene.cameras.push_back(v.rig.desc);
     initRenderer(v.renderer, v.ctx, v.scene);
+  } else if (v.args.attach) {
+    openAttached(v);  // gblens attach: the stream's frames, shown as captures are
   } else if (!openCaptures(v)) {
     shutdownImGui(v);
     destroyRenderer(v.renderer);
@@ -93,7 +95,7 @@ static void initModel(Viewer& v, bool live) {
   m.referenceError.open = !args.referenceErrorDir.empty();
   m.reduceWhileMoving = args.reduceWhileMoving;
   m.deviceName = v.ctx.deviceName;
-  m.sceneName = live ? args.scene : args.capture + (args.compare.empty() ? "" : " vs " + args.compare);
+  m.sceneName = live || args.attach ? args.scene : args.capture + (args.compare.empty() ? "" : " vs " + args.compare);
   if (live) {
     m.rendered = m.wanted;  // until the first frame: the views of the layout it will have
     updateLiveViews(v);
@@ -110,7 +112,7 @@ bool startViewer(Viewer& v) {
   unsigned width = 0, height = 0;
   if (!checkArgs(v.args, width, height) || !openLogs(v) || !openWindow(v, width, height)) return false;
   openContext(v);
-  const bool live = v.args.capture.empty();
+  const bool live = v.args.capture.empty() && !v.args.attach;
   if (!openFrameSource(v, live)) return false;
   initModel(v, live);
   // The first view: --view (a view of this frame's layout), else the layout's first colour view.

@@ -300,7 +300,8 @@ static bool awaitWork(Viewer& v, LoopState& s, int& fbw, int& fbh) {
   if (!s.minimised && (s.animating || s.keysHeld || v.uiFramesLeft > 0))
     glfwPollEvents();
   else
-    glfwWaitEventsTimeout(std::clamp(refineIn / 1000.0, 0.001, 0.5));  // idle: until an event (or SIGTERM, or the refinement)
+    // idle: until an event (or SIGTERM, or the refinement; an attached stream is polled every 10 ms)
+    glfwWaitEventsTimeout(std::clamp(refineIn / 1000.0, 0.001, v.args.attach ? 0.01 : 0.5));
   glfwGetFramebufferSize(v.window, &fbw, &fbh);
   s.minimised = fbw == 0 || fbh == 0 || glfwGetWindowAttrib(v.window, GLFW_ICONIFIED);
   if (s.minimised) {
@@ -441,9 +442,10 @@ int runViewer(const ViewerArgs& args, Scene scene) {
   std::signal(SIGTERM, [](int) { g_quit = true; });
   v.lastTick = std::chrono::steady_clock::now();
   LoopState s;
-  s.live = args.capture.empty();
+  s.live = args.capture.empty() && !args.attach;
   while (!glfwWindowShouldClose(v.window) && !g_quit) {
     int fbw = 0, fbh = 0;
+    if (args.attach && pollAttached(v)) v.uiFramesLeft = std::max(v.uiFramesLeft, 1);  // a new frame or status
     if (awaitWork(v, s, fbw, fbh)) iterate(v, s, fbw, fbh);
   }
   return finishViewer(v);

@@ -21,6 +21,7 @@
 #include "views/analysis/decompose.h"
 #include "views/analysis/error.h"
 #include "views/capture/capture.h"
+#include "views/capture/live.h"
 #include "views/ui/view_map.h"
 #include "views/ui/viewer_model.h"
 
@@ -45,6 +46,11 @@ struct ViewerArgs {
   std::string eventLog;            // --event-log: layout/probe/exit events as JSON lines (tests)
   std::string capture, compare;    // --capture DIR / --compare B (Capture issue)
   int reduceWhileMoving = 0;       // --reduce-while-moving: ViewerModel::kReduceAuto, kReduceOff or n
+  // gblens attach (live_source.cpp): the attached application's stream and its first frame (the
+  // command waited for it); the viewer shows the latest frame polled like an opened capture.
+  LiveSession* attach = nullptr;
+  const FrameSnapshot* attachFirst = nullptr;
+  LiveFrameInfo attachFirstInfo;
 };
 
 // The camera the viewer renders: starts as an exact copy of a scene camera; moving it derives
@@ -117,6 +123,12 @@ struct Viewer {
   bool referenceBusy = false;   // the worker runs: keep iterating to show progress and pick it up
   Scene sceneB;
   bool hasB = false;
+  // gblens attach: captureA.frame is the frame shown (the latest polled, frozen while paused).
+  LiveFrameInfo attachInfo;
+  std::chrono::steady_clock::time_point attachLastStatus;
+  bool attachExitLogged = false;
+  bool attachPlaying = true;     // m.playing as last seen (pause and resume are logged)
+  std::vector<int> attachShown;  // the views decoded from the frame shown (those on screen)
   ViewerModel model;
   CameraRig rig;
   uint64_t cameraVersion = 1, lightsVersion = 1;
@@ -218,6 +230,17 @@ void updateCaptureRanges(Viewer& v);
 // The live frame's views (gblens's layout under the frame's options): set when the layout's views
 // change, their GPU sources and why a view cannot show now.
 void updateLiveViews(Viewer& v);
+
+// live_source.cpp (gblens attach)
+// The attached stream's first frame as the frame shown (openCaptures' work for a stream).
+void openAttached(Viewer& v);
+// Takes the newest streamed frame unless paused, the layer's reports and the application's state;
+// true when the frame shown changed or the status did (another interface frame is due).
+bool pollAttached(Viewer& v);
+// Writes the frame shown as a capture (the folder ./gblens-attach-<date>-<time>/).
+bool captureAttachedFrame(Viewer& v, std::string& written, std::string& error);
+// The views of capture A's layout decoded and uploaded again (captures.cpp; a new frame of a stream).
+void setCaptureViews(Viewer& v);
 
 // Appends one JSON line to a log file (no-op when the file is not open).
 void logLine(std::ofstream& f, const nlohmann::json& j);

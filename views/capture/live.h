@@ -128,4 +128,10 @@ std::string layerFolder();
 bool liveLayout(Layout& layout, std::string& error);
 nlohmann::json liveRequest(const Layout& live, const LiveOptions& o);
 
+// A draft layout from the layer's report of one frame's render passes (LiveSession::suggestion), with
+// what was found and what to check in `summary` (suggest_live.cpp).
+nlohmann::json draftLiveLayout(const nlohmann::json& report, std::vector<std::string>& summary);
+// The same report for people, as `import --list` prints a capture, with the source naming each attachment.
+std::string describeLivePasses(const nlohmann::json& hello, const nlohmann::json& report);
+
 }  // namespace gb

@@ -13,6 +13,10 @@ void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, s
 void drawDossier(ViewerModel& m);  // probe_panel.cpp
 void referenceErrorWindow(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDraw>& draws);  // reference_error_panel.cpp
 void drawRegion(ViewerModel& m);   // region_panel.cpp
+void attachMenu(ViewerModel& m);   // attach_panel.cpp (gblens attach)
+void attachSection(ViewerModel& m);
+std::string attachStatusLine(const ViewerModel& m);
+void attachSuggestionWindow(ViewerModel& m);
 
 static constexpr double kMenuHeight = 20.0, kStatusHeight = 22.0, kControlsWidth = 310.0, kPixelWidth = 450.0;
 
@@ -109,6 +113,7 @@ static void menuBar(ViewerModel& m) {
       if (ImGui::MenuItem(m.cameraNames[i].c_str())) m.gltfCamera = int(i);
     ImGui::EndMenu();
   }
+  attachMenu(m);
   if (ImGui::BeginMenu("Help")) {
     ImGui::TextUnformatted(helpText(m).c_str());
     ImGui::EndMenu();
@@ -361,7 +366,9 @@ static void controlsPanel(ViewerModel& m, const Rect& at) {
     ImGui::TextDisabled("single view: A, B and |A - B|; keys pick the view");
     ImGui::TextWrapped("%s", m.compareSummary.c_str());
   }
-  if (m.source != FrameSource::Live) {
+  if (m.attach.on) {
+    attachSection(m);
+  } else if (m.source != FrameSource::Live) {
     if (ImGui::CollapsingHeader(m.source == FrameSource::Compare ? "Captures" : "Capture", ImGuiTreeNodeFlags_DefaultOpen))
       ImGui::TextWrapped("%s", m.captureInfo.c_str());
   } else {
@@ -404,7 +411,9 @@ static void statusBar(ViewerModel& m, double w, double h) {
   ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
                                          ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImGui::PopStyleVar();
-  if (m.source == FrameSource::Live && m.reducedBy > 1)
+  if (m.attach.on)
+    ImGui::TextUnformatted(attachStatusLine(m).c_str());
+  else if (m.source == FrameSource::Live && m.reducedBy > 1)
     ImGui::Text("%s | %s | %ux%u: reduced 1/%d while moving (full %ux%u when input stops) | %s | %.1f ms",
                 m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height, m.reducedBy,
                 m.fullSize.x, m.fullSize.y, m.stats.methodReason.c_str(), m.stats.frameMs);
@@ -430,6 +439,7 @@ void drawViewerUi(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDra
   if (m.showPixel) pixelPanel(m, {w - pixelWidth(m, w), kMenuHeight, pixelWidth(m, w), area.h});
   statusBar(m, w, h);
   referenceErrorWindow(m, callback, draws);
+  attachSuggestionWindow(m);
 }
 
 }  // namespace gb

@@ -157,6 +157,17 @@ struct ViewerModel {
   bool renderDocAvailable = false;          // gblens runs under RenderDoc
   std::string captureStatus;
 
+  // ---- gblens attach: the frame is the latest one streamed from an application (app/viewer/live_source.cpp) ----
+  struct AttachUi {
+    bool on = false;             // the frames come from an attached application (source is Capture)
+    bool detachRequested = false;  // the menu's "Detach": the layer goes idle, the last frame stays
+    std::string application;     // its name and device, as the layer said hello
+    std::string status;          // frames received, dropped, the application's state (the status bar)
+    std::string frame;           // which application frame is shown, its latency
+    std::vector<std::string> reports;  // what the layer said (a target never drawn, a format mismatch)
+    std::string passes, draft;   // --suggest: the layer's report of one frame's passes, the layout drafted from it
+  } attach;
+
   // Set by the panels when anything changed that needs another interface frame.
   bool uiChanged = false;
 };

@@ -1,0 +1,198 @@
+// The viewer on an attached application's stream (gblens attach, docs/attach.md): the latest frame
+// polled from the LiveSession is shown exactly as an opened capture is (capture A: every view of the
+// layout decoded and uploaded, hover, probe and region statistics on its snapshot). Paused, nothing is
+// polled (the layer drops the frames nobody takes; the application runs on); "Capture" writes the
+// frame shown with writeCapture, the format `import` and `attach --capture-frame` write.
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+
+#include "app/viewer/viewer.h"
+#include "renderer/core/decode.h"
+#include "views/analysis/probe.h"
+#include "views/analysis/visualize.h"
+
+namespace gb {
+
+namespace {
+
+// What the status bar says: the frame shown, frames received and dropped, the application's state.
+std::string statusText(Viewer& v) {
+  LiveSession& s = *v.args.attach;
+  const LiveCounts& c = s.counts();
+  const ViewerModel& m = v.model;
+  char text[256];
+  std::snprintf(text, sizeof text, "application frame %llu | received %llu, dropped %llu | latency %.0f ms | ",
+                (unsigned long long)v.attachInfo.appFrame, (unsigned long long)c.received,
+                (unsigned long long)(c.dropped + c.overwritten), v.attachInfo.latencyMs);
+  std::string state = s.running() ? (m.attach.detachRequested ? "detached (the application runs on)"
+                                     : m.playing                ? "running"
+                                                                : "paused (the application runs on)")
+                                  : "application exited (code " + std::to_string(s.exitStatus()) + ")";
+  return text + state;
+}
+
+// The dossier of the probed pixel again on a new frame, quietly (only a user's probe is logged).
+void refreshDossier(Viewer& v) {
+  ViewerModel& m = v.model;
+  if (!m.probePixel || !m.dossier) return;
+  const FrameSnapshot& f = v.captureA.frame;
+  const glm::ivec2 p = glm::clamp(*m.probePixel, glm::ivec2(0), glm::ivec2(int(f.options.width) - 1, int(f.options.height) - 1));
+  m.dossier = probePixel(f, uint32_t(p.x), uint32_t(p.y));
+  m.dossierJson = dossierJson(*m.dossier);
+  m.probeError = m.dossier->error;
+}
+
+// The views on screen decoded from the frame shown and uploaded; the others are decoded when they
+// come on screen (a stream's frame is shown once: decoding every view of it would halve the frames
+// the viewer keeps up with).
+void decodeShown(Viewer& v) {
+  ViewerModel& m = v.model;
+  const FrameSnapshot& f = v.captureA.frame;
+  v.attachShown = visibleViews(m);
+  v.decodedA.assign(m.views.size(), CpuImage{});
+  for (int k : v.attachShown)
+    if (m.unavailable[size_t(k)].empty() && m.views[size_t(k)].quantity >= 0) v.decodedA[size_t(k)] = viewImage(f, m.views[size_t(k)]);
+  uploadViewImages(v.imagesA, v.ctx, v.decodedA);
+  v.rangeKeys.assign(m.views.size(), "");
+}
+
+bool sameViews(const std::vector<ViewDef>& a, const std::vector<ViewDef>& b) {
+  bool same = a.size() == b.size();
+  for (size_t k = 0; same && k < a.size(); ++k) same = a[k].name == b[k].name && a[k].visual == b[k].visual;
+  return same;
+}
+
+// The frame shown becomes `frame`: the views of a new layout set up as for a capture, else the
+// shown views decoded again.
+void showFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info) {
+  ViewerModel& m = v.model;
+  const auto start = std::chrono::steady_clock::now();
+  v.captureA.frame = std::move(frame);
+  v.attachInfo = info;
+  const FrameSnapshot& f = v.captureA.frame;
+  v.renderer.camera = f.camera;
+  m.rendered = f.options;
+  if (!sameViews(layoutViews(f.layout), m.views) || v.decodedA.empty()) {
+    setCaptureViews(v);  // every view decoded, the unavailable ones named
+    v.attachShown = visibleViews(m);
+  } else {
+    m.frameLayout = f.layout;
+    for (size_t k = 0; k < m.views.size(); ++k) {
+      const uint32_t t = m.views[k].target;
+      const Absent why = f.absences[t];
+      m.unavailable[k] = f.images[t].present() ? "" : f.layout.targets[t].name + ": " + absentText(why == Absent::No ? Absent::NotCaptured : why);
+    }
+    decodeShown(v);
+  }
+  refreshDossier(v);
+  m.regionDirty = m.region.has_value();
+  char text[160];
+  std::snprintf(text, sizeof text, "application frame %llu (streamed frame %llu), %.0f ms after its end",
+                (unsigned long long)info.appFrame, (unsigned long long)info.stream, info.latencyMs);
+  m.attach.frame = text;
+  for (const std::string& a : info.absent) m.attach.frame += "\nabsent: " + a;
+  const LiveCounts& c = v.args.attach->counts();
+  logLine(v.eventLog, {{"event", "attach_frame"},
+                       {"stream", info.stream},
+                       {"app_frame", info.appFrame},
+                       {"latency_ms", info.latencyMs},
+                       {"received", c.received},
+                       {"dropped", c.dropped + c.overwritten},
+                       {"decode_ms", c.meanDecodeMs},
+                       {"show_ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()}});
+}
+
+}  // namespace
+
+void openAttached(Viewer& v) {
+  ViewerModel& m = v.model;
+  LiveSession& s = *v.args.attach;
+  v.captureA = Capture{};
+  v.captureA.dir = v.args.scene;
+  v.captureA.frame = *v.args.attachFirst;
+  v.attachInfo = v.args.attachFirstInfo;
+  m.source = FrameSource::Capture;
+  m.attach.on = true;
+  m.attach.application = s.hello().value("application", "?") + " (" + s.hello().value("device", "?") + "), pid " +
+                         std::to_string(s.pid()) + ", layout " + v.captureA.frame.layout.name;
+  m.captureInfo = m.attach.application;
+  v.scene = emptyScene(v.captureA.frame.camera);
+  initRenderer(v.renderer, v.ctx, v.scene);
+  FrameSnapshot first = v.captureA.frame;
+  showFrame(v, std::move(first), v.args.attachFirstInfo);
+  m.captureAvailable = true;
+  m.captureHint = "Writes the frame shown (paused: the frozen one) as a gblens capture to ./gblens-attach-<date>-<time>/\n"
+                  "(the format gblens import and attach --capture-frame write; key C)";
+  m.attach.status = statusText(v);
+  v.frameValid = true;
+  v.attachPlaying = m.playing;
+  logLine(v.eventLog, {{"event", "attach_open"}, {"pid", s.pid()}, {"hello", s.hello()}});
+}
+
+bool pollAttached(Viewer& v) {
+  ViewerModel& m = v.model;
+  LiveSession& s = *v.args.attach;
+  bool changed = false;
+  if (m.attach.detachRequested && s.attached()) {
+    s.detach();
+    logLine(v.eventLog, {{"event", "attach_state"}, {"state", "detached"}});
+  }
+  if (m.playing != v.attachPlaying) {  // Space, the menu or the button
+    v.attachPlaying = m.playing;
+    logLine(v.eventLog, {{"event", "attach_state"}, {"state", m.playing ? "resumed" : "paused"}, {"app_frame", v.attachInfo.appFrame}});
+  }
+  FrameSnapshot frame;
+  LiveFrameInfo info;
+  if (m.playing && !m.attach.detachRequested && s.poll(frame, &info)) {
+    showFrame(v, std::move(frame), info);
+    changed = true;
+  } else if (visibleViews(m) != v.attachShown) {  // other views came on screen
+    decodeShown(v);
+    changed = true;
+  }
+  for (std::string& r : s.takeReports()) {
+    logLine(v.eventLog, {{"event", "attach_report"}, {"text", r}});
+    m.attach.reports.push_back(std::move(r));
+    changed = true;
+  }
+  if (m.attach.passes.empty() && s.suggestion()) {
+    m.attach.passes = describeLivePasses(s.hello(), *s.suggestion());
+    std::vector<std::string> summary;
+    const nlohmann::json draft = draftLiveLayout(*s.suggestion(), summary);
+    m.attach.draft = draft.dump(2);
+    for (const std::string& line : summary) m.attach.passes += "\n" + line;
+    logLine(v.eventLog, {{"event", "attach_suggestion"}, {"draft", draft}});
+    changed = true;
+  }
+  // The status at most ten times a second (it asks whether the application still runs).
+  const auto now = std::chrono::steady_clock::now();
+  if (changed || now - v.attachLastStatus > std::chrono::milliseconds(100)) {
+    v.attachLastStatus = now;
+    std::string status = statusText(v);
+    if (!s.running() && !v.attachExitLogged) {
+      v.attachExitLogged = true;
+      logLine(v.eventLog, {{"event", "attach_state"}, {"state", "exited"}, {"code", s.exitStatus()}, {"status", status}});
+    }
+    if (status != m.attach.status) m.attach.status = std::move(status), changed = true;
+  }
+  return changed;
+}
+
+bool captureAttachedFrame(Viewer& v, std::string& written, std::string& error) {
+  char stamp[32];
+  std::time_t now = std::time(nullptr);
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+  written = std::string("gblens-attach-") + stamp;
+  for (int n = 2; std::filesystem::exists(written); ++n)  // two captures in one second
+    written = std::string("gblens-attach-") + stamp + "-" + std::to_string(n);
+  const LiveSession& s = *v.args.attach;
+  CaptureMeta meta;
+  meta.device = s.hello().value("device", "");
+  meta.scene = v.args.scene + " (application frame " + std::to_string(v.attachInfo.appFrame) + ")";
+  meta.commandLine = v.args.commandLine + " (capture button)";
+  return writeCapture(written, v.captureA.frame, meta, error);
+}
+
+}  // namespace gb

@@ -1,0 +1,55 @@
+// The viewer's parts for an attached application (gblens attach, ImGui only): the "Application" menu
+// (pause, capture, detach), the controls panel's section (what is attached, the frame shown, the
+// layer's reports), the status bar's line and, with --suggest, the layer's passes and the drafted layout.
+#include <imgui.h>
+
+#include "views/ui/viewer_model.h"
+
+namespace gb {
+
+void attachMenu(ViewerModel& m) {
+  if (!m.attach.on || !ImGui::BeginMenu("Application")) return;
+  if (ImGui::MenuItem(m.playing ? "Pause (freeze this frame)" : "Resume", "Space", false, !m.attach.detachRequested))
+    m.playing = !m.playing;
+  if (ImGui::MenuItem("Capture frame", "C")) m.captureRequested = true;
+  if (ImGui::MenuItem("Detach (the application runs on)", nullptr, false, !m.attach.detachRequested)) m.attach.detachRequested = true;
+  ImGui::EndMenu();
+}
+
+void attachSection(ViewerModel& m) {
+  if (!ImGui::CollapsingHeader("Application", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::TextWrapped("%s", m.attach.application.c_str());
+  ImGui::TextWrapped("%s", m.attach.frame.c_str());
+  ImGui::TextWrapped("%s", m.attach.status.c_str());
+  if (!m.attach.detachRequested) {
+    if (ImGui::Button(m.playing ? "pause" : "resume")) m.playing = !m.playing;
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Space. Paused, the frame shown stays and nothing is taken from the application: it runs on, "
+                        "its layer drops the frames");
+    ImGui::SameLine();
+    if (ImGui::Button("detach")) m.attach.detachRequested = true;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("The layer goes idle for good; the last frame stays; the application runs on");
+  }
+  for (const std::string& r : m.attach.reports) ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "%s", r.c_str());
+}
+
+std::string attachStatusLine(const ViewerModel& m) {
+  return m.sceneName + " | " + m.attach.status + (m.captureStatus.empty() ? "" : " | " + m.captureStatus);
+}
+
+// --suggest: the layer's report of one frame's passes and the layout drafted from it.
+void attachSuggestionWindow(ViewerModel& m) {
+  if (!m.attach.on || m.attach.passes.empty()) return;
+  ImGui::SetNextWindowSize(ImVec2(640, 420), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Suggested layout (gblens attach --suggest)")) return ImGui::End();
+  ImGui::TextUnformatted("What the layer saw in one frame:");
+  ImGui::TextUnformatted(m.attach.passes.c_str());
+  ImGui::Separator();
+  ImGui::TextUnformatted("A draft layout (every \"guess\" to be checked; save it and attach with --layout):");
+  if (ImGui::SmallButton("copy the draft")) ImGui::SetClipboardText(m.attach.draft.c_str());
+  ImGui::InputTextMultiline("##draft", m.attach.draft.data(), m.attach.draft.size() + 1, ImVec2(-1, -1),
+                            ImGuiInputTextFlags_ReadOnly);
+  ImGui::End();
+}
+
+}  // namespace gb
