@@ -9,6 +9,7 @@
 // closing it detaches and the application runs on. docs/attach.md.
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "app/cli/cli.h"
@@ -105,7 +106,8 @@ int runViewerOnStream(const AttachOptions& o, LiveSession& s) {
   }
   printReports(s);
   ViewerArgs a;
-  a.scene = "attach: " + appText(o);
+  a.scene = "attach: " + std::filesystem::path(o.app[0]).filename().string();  // titles and the status bar
+  for (size_t i = 1; i < o.app.size(); ++i) a.scene += " " + o.app[i];
   a.commandLine = commandLine();
   a.window = o.window;
   a.windowGiven = true;

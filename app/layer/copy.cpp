@@ -183,6 +183,7 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
         d.streaming = false;
       }
       s.copies = false;  // every slot is held: this recording's frame is dropped
+      s.skipped = true;
       return;
     }
     c.stencilOffset = c.offset + stencilAt;

@@ -222,6 +222,9 @@ struct OpenPass {
 struct CmdState {
   VkCommandPool pool = VK_NULL_HANDLE;
   bool copies = false;          // this recording copies (streaming, and its frame is due or it may be reused)
+  // It did not copy though streaming: its frame is not due (every N), or every ring slot was held.
+  // Its frame's missing targets are no news (not reported, not counted towards giving up).
+  bool skipped = false;
   bool suggest = false;         // this recording reports its passes (--suggest)
   bool reusable = false;        // it may be submitted again (no ONE_TIME_SUBMIT)
   int passes = 0;               // render passes begun so far
@@ -292,6 +295,7 @@ struct DeviceData {
   std::unique_ptr<PendingFrame> building;
   std::vector<PassReport> frameReports;
   bool passesThisFrame = false, suggestSent = false;
+  bool skippedThisFrame = false;  // a recording of this frame skipped its copies (CmdState::skipped)
   uint32_t framesWithoutMatch = 0;
   uint64_t lastFrameEndNs = 0, frameNsSum = 0, frameIntervals = 0;
 

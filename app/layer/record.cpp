@@ -62,6 +62,7 @@ VKAPI_ATTR VkResult VKAPI_CALL BeginCommandBuffer(VkCommandBuffer cmd, const VkC
     // submitted again (recorded once, e.g. per swapchain image) copies whenever it runs.
     const bool reusable = !(info->flags & VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT);
     s->copies = d.streaming && req && !req->picks.empty() && (reusable || d.frame % req->every == 0);
+    s->skipped = d.streaming && req && !req->picks.empty() && !s->copies;
     s->reusable = reusable;
     s->suggest = req && req->suggest;
   }

@@ -15,7 +15,7 @@ namespace gbl {
 namespace {
 
 struct Submitted {
-  bool pass = false, copies = false;
+  bool pass = false, copies = false, skipped = false;
 };
 
 // Gathers what the submitted command buffers recorded. Every buffer they copy into counts one more
@@ -27,6 +27,7 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
     CmdState* s = cmdState(d, cb);
     if (!s) continue;
     got.pass |= s->passes > 0;
+    got.skipped |= s->skipped && s->passes > 0;
     d.frameReports.insert(d.frameReports.end(), s->reports.begin(), s->reports.end());
     std::vector<RingBuffer*> counted;
     for (const Copy& c : s->copiesMade)
@@ -53,6 +54,7 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
     got.copies = true;
   }
   d.passesThisFrame |= got.pass;
+  d.skippedThisFrame |= got.skipped;
   return got;
 }
 
@@ -60,7 +62,7 @@ void endFrame(DeviceData& d) {
   std::shared_ptr<const Request> req = currentRequest(d);
   std::unique_ptr<PendingFrame> f;
   std::vector<PassReport> reports;
-  bool passes = false, suggest = false;
+  bool passes = false, suggest = false, skipped = false;
   uint64_t number = 0;
   {
     std::lock_guard lock(d.frameLock);
@@ -73,6 +75,8 @@ void endFrame(DeviceData& d) {
     d.frameReports.clear();
     passes = d.passesThisFrame;
     d.passesThisFrame = false;
+    skipped = d.skippedThisFrame;
+    d.skippedThisFrame = false;
     suggest = req && req->suggest && !d.suggestSent && !reports.empty();
     d.suggestSent |= suggest;
     if (f) {
@@ -83,7 +87,7 @@ void endFrame(DeviceData& d) {
     }
   }
   if (suggest) streamPasses(d, reports, number);
-  if (!req || !d.streaming || !passes) {
+  if (!req || !d.streaming || !passes || skipped) {  // a frame that did not copy says nothing of the targets
     if (f) streamFrame(d, std::move(f));
     return;
   }

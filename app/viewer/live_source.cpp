@@ -100,6 +100,7 @@ void showFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info) {
                        {"latency_ms", info.latencyMs},
                        {"received", c.received},
                        {"dropped", c.dropped + c.overwritten},
+                       {"time_s", std::chrono::duration<double>(start - v.attachOpened).count()},
                        {"decode_ms", c.meanDecodeMs},
                        {"show_ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()}});
 }
@@ -112,6 +113,7 @@ void openAttached(Viewer& v) {
   v.captureA = Capture{};
   v.captureA.dir = v.args.scene;
   v.captureA.frame = *v.args.attachFirst;
+  v.attachOpened = std::chrono::steady_clock::now();
   v.attachInfo = v.args.attachFirstInfo;
   m.source = FrameSource::Capture;
   m.attach.on = true;

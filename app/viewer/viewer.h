@@ -125,7 +125,7 @@ struct Viewer {
   bool hasB = false;
   // gblens attach: captureA.frame is the frame shown (the latest polled, frozen while paused).
   LiveFrameInfo attachInfo;
-  std::chrono::steady_clock::time_point attachLastStatus;
+  std::chrono::steady_clock::time_point attachLastStatus, attachOpened;
   bool attachExitLogged = false;
   bool attachPlaying = true;     // m.playing as last seen (pause and resume are logged)
   std::vector<int> attachShown;  // the views decoded from the frame shown (those on screen)

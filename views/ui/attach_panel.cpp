@@ -34,7 +34,7 @@ void attachSection(ViewerModel& m) {
 }
 
 std::string attachStatusLine(const ViewerModel& m) {
-  return m.sceneName + " | " + m.attach.status + (m.captureStatus.empty() ? "" : " | " + m.captureStatus);
+  return m.attach.status + (m.captureStatus.empty() ? "" : " | " + m.captureStatus) + " | " + m.sceneName;
 }
 
 // --suggest: the layer's report of one frame's passes and the layout drafted from it.

@@ -1,0 +1,75 @@
+// `gblens attach --suggest`'s draft layout (views/capture/suggest_live.cpp) from a report of one
+// frame's passes written here by hand as the layer reports them: for foreign_deferred's four passes
+// (its README's table: pass 0 writes position, normal, albedo and depth; passes 1-3 occlusion, hdr,
+// final), and for vkcube's one named pass. The G-buffer pass, the targets, their formats and live
+// sources are the ones the README names; the draft parses, and becomes a layer request as it is.
+#include <gtest/gtest.h>
+
+#include "renderer/core/layout_json.h"
+#include "views/capture/live.h"
+
+namespace gb {
+namespace {
+
+using json = nlohmann::json;
+
+json attachment(const std::string& role, const std::string& format, const std::string& image = "", uint32_t w = 320) {
+  return {{"role", role}, {"image", image}, {"format", format}, {"vk_format", "VK_FORMAT_X"}, {"width", w}, {"height", 180},
+          {"why", ""}};
+}
+
+json pass(int ordinal, json attachments) {
+  return {{"ordinal", ordinal}, {"labels", json::array()}, {"render_pass", ""}, {"attachments", attachments}};
+}
+
+TEST(SuggestLive, ForeignDeferredsGBufferPassAndLaterTargets) {
+  json report = {{"frame", 0},
+                 {"passes", {pass(0, {attachment("color 0", "rgba32f"), attachment("color 1", "rgba8_unorm"),
+                                      attachment("color 2", "rgba8_srgb"), attachment("depth", "d32f")}),
+                             pass(1, {attachment("color 0", "r8_unorm")}), pass(2, {attachment("color 0", "rgba16f")}),
+                             pass(3, {attachment("color 0", "rgba8_unorm")}),
+                             pass(4, {attachment("color 0", "rgba8_unorm", "", 64)})}}};  // another size: left out
+  std::vector<std::string> summary;
+  const json draft = draftLiveLayout(report, summary);
+  ASSERT_EQ(draft["targets"].size(), 7u) << draft.dump(2);
+  const std::vector<std::pair<std::string, json>> expected = {
+      {"rgba32f", {{"pass", 0}, {"color", 0}}}, {"rgba8_unorm", {{"pass", 0}, {"color", 1}}},
+      {"rgba8_srgb", {{"pass", 0}, {"color", 2}}}, {"d32f", {{"pass", 0}, {"depth", true}}},
+      {"r8_unorm", {{"pass", 1}, {"color", 0}}}, {"rgba16f", {{"pass", 2}, {"color", 0}}},
+      {"rgba8_unorm", {{"pass", 3}, {"color", 0}}}};
+  for (size_t t = 0; t < expected.size(); ++t) {
+    EXPECT_EQ(draft["targets"][t]["format"], expected[t].first) << t;
+    EXPECT_EQ(draft["targets"][t]["source"]["live"], expected[t].second) << t;
+  }
+  EXPECT_EQ(summary.front(), "G-buffer pass: #0 (the most colour attachments)");
+  Layout layout;
+  std::string error;
+  ASSERT_TRUE(parseLayout(draft, "draft", layout, error)) << error;
+  EXPECT_TRUE(liveLayout(layout, error)) << error;  // every source streams
+}
+
+TEST(SuggestLive, NamedImagesArePickedByName) {
+  json p = pass(0, {attachment("color 0", "rgba8_unorm", "SwapchainImage(0)", 500), attachment("depth", "d16", "DepthImage", 500)});
+  p["labels"] = {"DrawBegin", "InsideRenderPass"};
+  std::vector<std::string> summary;
+  const json draft = draftLiveLayout({{"frame", 0}, {"passes", {p}}}, summary);
+  ASSERT_EQ(draft["targets"].size(), 2u);
+  EXPECT_EQ(draft["targets"][0]["source"]["live"], json({{"name", "SwapchainImage(0)"}}));
+  EXPECT_EQ(draft["targets"][1]["source"]["live"], json({{"name", "DepthImage"}}));
+  EXPECT_EQ(draft["targets"][1]["format"], "d16");
+  const std::string text = describeLivePasses({{"application", "vkcube"}, {"device", "llvmpipe"}}, {{"frame", 0}, {"passes", {p}}});
+  EXPECT_NE(text.find("#0   DrawBegin > InsideRenderPass"), std::string::npos) << text;
+  EXPECT_NE(text.find("source: {\"live\":{\"name\":\"DepthImage\"}}"), std::string::npos) << text;
+}
+
+TEST(SuggestLive, NothingALayoutCanHold) {
+  json bad = attachment("color 0", "");
+  bad["why"] = "BGRA packed";
+  std::vector<std::string> summary;
+  const json draft = draftLiveLayout({{"frame", 0}, {"passes", {pass(0, {bad})}}}, summary);
+  EXPECT_TRUE(draft["targets"].empty());
+  EXPECT_EQ(summary.front(), "no render pass writes an attachment a layout can hold");
+}
+
+}  // namespace
+}  // namespace gb
