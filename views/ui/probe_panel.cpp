@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 
+#include "renderer/core/layout_json.h"
 #include "views/ui/viewer_model.h"
 
 namespace gb {
@@ -316,8 +317,13 @@ void drawDossier(ViewerModel& m) {
   }
   ImGui::Separator();
   if (!m.probePixel || !m.dossier) {
-    ImGui::TextWrapped("Click a pixel (or use the arrow keys) for its dossier: stored values of every target, "
-                       "reconstructed positions, the shadow-map texels, the point lights that reach it.");
+    // Another renderer's frame has only its layout's quantities: no shadow map or lights to promise.
+    if (gblensLayout(m.frameLayout))
+      ImGui::TextWrapped("Click a pixel (or use the arrow keys) for its dossier: stored values of every target, "
+                         "reconstructed positions, the shadow-map texels, the point lights that reach it.");
+    else
+      ImGui::TextWrapped("Click a pixel (or use the arrow keys) for its dossier: the stored texels of every target, "
+                         "each quantity of the layout decoded, positions reconstructed from depth.");
     return;
   }
   const PixelDossier& d = *m.dossier;
@@ -337,7 +343,7 @@ void drawDossier(ViewerModel& m) {
   }
   if (!m.dossierB) {
     ImGui::BeginChild("dossier");
-    referenceSection(m);
+    if (gblensLayout(m.frameLayout)) referenceSection(m);  // another renderer's frame has no scene to trace
     dossierSections(d);
     ImGui::EndChild();
     return;
