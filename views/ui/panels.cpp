@@ -11,7 +11,9 @@ namespace gb {
 
 void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, std::vector<ViewDraw>& draws);
 void drawDossier(ViewerModel& m);  // probe_panel.cpp
-void referenceErrorWindow(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDraw>& draws);  // reference_error_panel.cpp
+void referenceErrorSection(ViewerModel& m);  // reference_error_panel.cpp
+void compareControls(ViewerModel& m);        // compare_panel.cpp
+void compareTabs(ViewerModel& m);
 void drawRegion(ViewerModel& m);   // region_panel.cpp
 
 static constexpr double kMenuHeight = 20.0, kStatusHeight = 22.0, kControlsWidth = 310.0, kPixelWidth = 450.0;
@@ -70,7 +72,9 @@ static std::string helpText(const ViewerModel& m) {
             "Right drag: orbit (fly mode: look); WASD/QE: move; ctrl+wheel: dolly\n"
             "Space: play/pause; , and .: step; Home: reset camera";
   else if (m.source == FrameSource::Compare)
-    text += "Compare: A, B and |A - B| side by side, or split A | B (drag the handle)";
+    text += "Compare: Space flips A and B in place; the Compare section picks A / B, swipe (drag the handle),\n"
+            "|A - B| or FLIP, for every view shown";
+  if (m.source == FrameSource::Live) text += "\nEscape: cancel the reference error's computation";
   return text;
 }
 
@@ -100,7 +104,9 @@ static void menuBar(ViewerModel& m) {
     if (ImGui::MenuItem("Fit", "Z")) m.transform = ViewTransform{};
     ImGui::MenuItem("Controls panel", nullptr, &m.showControls);
     ImGui::MenuItem("Pixel panel", nullptr, &m.showPixel);
-    ImGui::MenuItem("Reference error (live frame)", nullptr, &m.referenceError.open);
+    if (m.source == FrameSource::Live &&
+        ImGui::MenuItem("Compute the reference error", nullptr, false, !m.referenceError.computing))
+      m.referenceError.computeRequested = true;
     ImGui::EndMenu();
   }
   if (m.source == FrameSource::Live && ImGui::BeginMenu("Camera")) {
@@ -133,8 +139,8 @@ static void visualControls(ViewerModel& m, const ViewDef& d, ViewSettings& s) {
     tooltip("logarithmic between black and white (both must be positive)");
   }
   if (d.visual == Visual::Position) ImGui::Checkbox("distance to the eye", &s.distance);
-  const auto& bits = m.frameLayout.quantities[size_t(d.quantity)].stencilBits;
-  if (d.visual == Visual::Stencil && !bits.empty()) {
+  if (d.visual == Visual::Stencil && d.quantity >= 0 && !m.frameLayout.quantities[size_t(d.quantity)].stencilBits.empty()) {
+    const auto& bits = m.frameLayout.quantities[size_t(d.quantity)].stencilBits;
     ImGui::TextUnformatted("bits");
     for (const auto& [bitName, mask] : bits) {
       bool on = (s.stencilBits & mask) != 0;
@@ -343,12 +349,10 @@ static void controlsPanel(ViewerModel& m, const Rect& at) {
   ImGui::Begin("Controls", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                                         ImGuiWindowFlags_NoSavedSettings);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) viewSettings(m);
-  if (m.source == FrameSource::Compare && ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::Checkbox("split A | B", &m.split);
-    if (m.split) ImGui::SliderFloat("split at", &m.splitAt, 0.0f, 1.0f, "%.2f");
-    ImGui::TextDisabled("single view: A, B and |A - B|; keys pick the view");
-    ImGui::TextWrapped("%s", m.compareSummary.c_str());
-  }
+  if (m.source == FrameSource::Compare && ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen))
+    compareControls(m);
+  if (m.source == FrameSource::Live && ImGui::CollapsingHeader("Reference error", ImGuiTreeNodeFlags_DefaultOpen))
+    referenceErrorSection(m);
   if (m.source != FrameSource::Live) {
     if (ImGui::CollapsingHeader(m.source == FrameSource::Compare ? "Captures" : "Capture", ImGuiTreeNodeFlags_DefaultOpen))
       ImGui::TextWrapped("%s", m.captureInfo.c_str());
@@ -381,7 +385,10 @@ static void pixelPanel(ViewerModel& m, const Rect& at) {
   ImGui::Begin("Pixel", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                                      ImGuiWindowFlags_NoSavedSettings);
   if (m.region && ImGui::CollapsingHeader("Region statistics", ImGuiTreeNodeFlags_DefaultOpen)) drawRegion(m);
-  drawDossier(m);
+  if (m.source == FrameSource::Compare)
+    compareTabs(m);  // the report and the pixel's dossiers
+  else
+    drawDossier(m);
   ImGui::End();
 }
 
@@ -417,7 +424,6 @@ void drawViewerUi(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDra
   if (m.showControls) controlsPanel(m, {0, kMenuHeight, controlsWidth(m, w), area.h});
   if (m.showPixel) pixelPanel(m, {w - pixelWidth(m, w), kMenuHeight, pixelWidth(m, w), area.h});
   statusBar(m, w, h);
-  referenceErrorWindow(m, callback, draws);
 }
 
 }  // namespace gb

@@ -276,6 +276,7 @@ static void dossierSections(const PixelDossier& d) {
 }
 
 void referenceSection(ViewerModel& m);  // reference_panel.cpp
+void compareDossiers(ViewerModel& m);   // compare_panel.cpp
 
 void drawDossier(ViewerModel& m) {
   if (m.hover)
@@ -312,21 +313,7 @@ void drawDossier(ViewerModel& m) {
     ImGui::EndChild();
     return;
   }
-  // Compare: both dossiers side by side, section for section.
-  float half = ImGui::GetContentRegionAvail().x * 0.5f - 4.0f;
-  ImGui::BeginChild("dossierA", ImVec2(half, 0), true);
-  ImGui::TextColored(ImVec4(0.6f, 0.8f, 1, 1), "A  %s", m.captureA.c_str());
-  ImGui::PushID("A");
-  dossierSections(d);
-  ImGui::PopID();
-  ImGui::EndChild();
-  ImGui::SameLine();
-  ImGui::BeginChild("dossierB", ImVec2(half, 0), true);
-  ImGui::TextColored(ImVec4(1, 0.8f, 0.6f, 1), "B  %s", m.captureB.c_str());
-  ImGui::PushID("B");
-  dossierSections(*m.dossierB);
-  ImGui::PopID();
-  ImGui::EndChild();
+  compareDossiers(m);  // compare: one table, A beside B, the values that differ marked
 }
 
 }  // namespace gb
