@@ -260,6 +260,7 @@ static void finish(Viewer& v, double seconds) {
   auto& e = m.referenceError;
   Viewer::ReferenceResult result = v.referenceJob.get();
   e.computing = false;
+  m.uiChanged = true;
   const WorkProgress& p = *v.referenceProgress;
   if (result.cancelled) {
     const double afterCancel = std::chrono::duration<double>(std::chrono::steady_clock::now() - v.referenceCancelAt).count();
@@ -288,7 +289,6 @@ static void finish(Viewer& v, double seconds) {
   }
   makeViews(v);
   updateLiveViews(v);  // the maps join the frame's views
-  m.uiChanged = true;
 }
 
 bool updateReferenceError(Viewer& v) {

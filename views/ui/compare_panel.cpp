@@ -41,10 +41,10 @@ bool shortNumberArray(const nlohmann::json& j) {
   return true;
 }
 
-// A value as people read it: numbers to `digits` significant digits, integers whole, short number
-// arrays as one list, strings without quotes.
+// A value as people read it: numbers to `digits` significant digits (0: every digit that tells it
+// apart, JSON's shortest form), integers whole, short number arrays as one list, strings unquoted.
 std::string valueText(const nlohmann::json& j, int digits) {
-  if (j.is_number_float()) {
+  if (j.is_number_float() && digits > 0) {
     char buf[40];
     std::snprintf(buf, sizeof buf, "%.*g", digits, j.get<double>());
     return buf;
@@ -111,7 +111,7 @@ std::vector<DossierRow> dossierRows(const nlohmann::json& a, const nlohmann::jso
   for (const Entry& e : entries) {
     DossierRow r{sections[e.section], e.field, e.a ? valueText(*e.a, 7) : "", e.b ? valueText(*e.b, 7) : ""};
     r.differs = !e.a || !e.b || *e.a != *e.b;
-    if (r.differs && r.a == r.b) r.a = valueText(*e.a, 17), r.b = valueText(*e.b, 17);  // beyond 7 digits
+    if (r.differs && r.a == r.b) r.a = valueText(*e.a, 0), r.b = valueText(*e.b, 0);  // beyond 7 digits
     rows.push_back(std::move(r));
   }
   return rows;
