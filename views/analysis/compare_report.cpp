@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "renderer/core/file_name.h"
 #include "views/analysis/compare.h"
 #include "views/analysis/visualize.h"
 #include "views/capture/image_io.h"
@@ -138,6 +139,12 @@ bool writeHeatmaps(CompareReport& report, const std::string& dir, std::string& e
         heatColor(top > 0.0 ? g.errors[i] / top * 1000.0 : 0.0, 1000.0, p);  // heatColor's max is >= 1
       else
         p[0] = p[1] = p[2] = 255;
+    }
+    // The name comes from the captures' layouts: never a path out of DIR (x/../../escaped).
+    std::string why;
+    if (!safeFileName(g.group.key + ".png", why)) {
+      error = "heat map of \"" + g.group.key.substr(0, 80) + "\": not a file name (" + why + ")";
+      return false;
     }
     std::string file = (std::filesystem::path(dir) / (g.group.key + ".png")).string();
     if (!writePng(file, img, error)) return false;

@@ -14,6 +14,7 @@
 #include "views/capture/capture.h"
 #include "views/capture/exr.h"
 #include "views/capture/image_io.h"
+#include "views/capture/manifest_check.h"
 #include "views/capture/report.h"
 
 namespace gb {
@@ -173,7 +174,11 @@ bool writeCapture(const std::string& dirText, const FrameSnapshot& f, const Capt
     error = tmp.string() + ": cannot create (" + ec.message() + ")";
     return false;
   }
-  if (!writeContents(tmp, f, meta, error)) {
+  // The capture as the readers will read it, before it is moved into place: what they would refuse
+  // (a value JSON cannot hold, written as null; a name OpenEXR would merge) is not written at all.
+  if (!writeContents(tmp, f, meta, error) || !checkWrittenManifest(tmp.string(), error)) {
+    if (error.rfind("manifest.json", 0) == 0 || error.rfind("lights.json", 0) == 0)
+      error = dirText + ": not written, it would not read back: " + error;
     fs::remove_all(tmp, ec);
     return false;
   }
