@@ -143,7 +143,7 @@ static void makeViews(Viewer& v) {
   e.legends.clear();
   for (const ErrorMapDef& map : errorMaps()) {
     ViewDef d = mapView(std::string("error/") + map.name, Visual::Color);
-    d.space = "error map of gblens error (colours: see the legend)";
+    d.space = "error map of gblens error (its legend: at the bottom of the view)";
     e.legends[d.name] = map.legend;
     v.referenceDecoded.push_back(decodedErrorMap(map.make(r.error), d.name));
     v.referenceViews.push_back(d);

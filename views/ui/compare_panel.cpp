@@ -1,13 +1,12 @@
 // The compare viewer's panels (--capture A --compare B): the mode of the view pane (A/B flipped in
 // place, swipe, |A - B|, FLIP, a row of three), `gblens compare`'s report as tables (a row per
-// quantity, a column per figure, never wrapped), and the two dossiers of the probed pixel as one
-// table, A beside B, the values that differ marked.
+// quantity, a column per figure, never wrapped), and the tabs of the report and of the probed
+// pixel's two dossiers (compare_dossier.cpp).
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 
 #include "views/analysis/compare.h"
 #include "views/ui/compare_view.h"
@@ -20,101 +19,6 @@ void flipCompareSide(ViewerModel& m) {
   }
   m.compareSide = m.compareSide == FrameSide::A ? FrameSide::B : FrameSide::A;
   m.uiChanged = true;
-}
-
-// ---- the dossiers as rows ---------------------------------------------------------------------
-
-namespace {
-
-// An array element's name: the first of these keys it holds.
-std::string elementName(const nlohmann::json& e, size_t index) {
-  if (e.is_object())
-    for (const char* key : {"name", "target", "index", "light", "quantity", "method"})
-      if (auto it = e.find(key); it != e.end()) return it->is_string() ? it->get<std::string>() : it->dump();
-  return std::to_string(index);
-}
-
-bool shortNumberArray(const nlohmann::json& j) {
-  if (!j.is_array() || j.size() > 4) return false;
-  for (const nlohmann::json& e : j)
-    if (!e.is_number()) return false;
-  return true;
-}
-
-// A value as people read it: numbers to `digits` significant digits (0: every digit that tells it
-// apart, JSON's shortest form), integers whole, short number arrays as one list, strings unquoted.
-std::string valueText(const nlohmann::json& j, int digits) {
-  if (j.is_number_float() && digits > 0) {
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.*g", digits, j.get<double>());
-    return buf;
-  }
-  if (j.is_string()) return j.get<std::string>();
-  if (j.is_array()) {
-    std::string out = "[";
-    for (size_t i = 0; i < j.size(); ++i) out += (i ? ", " : "") + valueText(j[i], digits);
-    return out + "]";
-  }
-  return j.dump();
-}
-
-// path -> value, in the order met.
-using Flat = std::vector<std::pair<std::string, nlohmann::json>>;
-
-void flatten(const nlohmann::json& j, const std::string& path, Flat& out) {
-  if (j.is_object() && !j.empty()) {
-    for (auto it = j.begin(); it != j.end(); ++it) flatten(it.value(), path.empty() ? it.key() : path + "." + it.key(), out);
-  } else if (j.is_array() && !j.empty() && !shortNumberArray(j)) {
-    std::map<std::string, int> seen;  // two elements of one name: the second is name#2
-    for (size_t i = 0; i < j.size(); ++i) {
-      std::string name = elementName(j[i], i);
-      if (int n = ++seen[name]; n > 1) name += "#" + std::to_string(n);
-      flatten(j[i], path + "[" + name + "]", out);
-    }
-  } else {
-    out.push_back({path, j});
-  }
-}
-
-}  // namespace
-
-std::vector<DossierRow> dossierRows(const nlohmann::json& a, const nlohmann::json& b) {
-  struct Entry {
-    size_t section;  // order of the section's first appearance
-    std::string field;
-    const nlohmann::json *a = nullptr, *b = nullptr;
-  };
-  std::vector<std::string> sections;
-  std::vector<Entry> entries;
-  std::map<std::string, size_t> at;  // section + path -> entry
-  std::vector<Flat> flats;           // keeps the flattened values alive
-  flats.reserve(2 * (a.size() + b.size()));
-  auto add = [&](const nlohmann::json& side, bool isA) {
-    if (!side.is_object()) return;
-    for (auto it = side.begin(); it != side.end(); ++it) {
-      size_t section = std::find(sections.begin(), sections.end(), it.key()) - sections.begin();
-      if (section == sections.size()) sections.push_back(it.key());
-      flats.emplace_back();
-      flatten(it.value(), "", flats.back());
-      for (auto& [field, value] : flats.back()) {
-        auto found = at.emplace(it.key() + "\n" + field, entries.size()).first;
-        if (found->second == entries.size()) entries.push_back({section, field});
-        (isA ? entries[found->second].a : entries[found->second].b) = &value;
-      }
-    }
-  };
-  add(a, true);
-  add(b, false);
-  // B's extra fields join their section (A's order, then B's).
-  std::stable_sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) { return x.section < y.section; });
-  std::vector<DossierRow> rows;
-  for (const Entry& e : entries) {
-    DossierRow r{sections[e.section], e.field, e.a ? valueText(*e.a, 7) : "", e.b ? valueText(*e.b, 7) : ""};
-    r.differs = !e.a || !e.b || *e.a != *e.b;
-    if (r.differs && r.a == r.b) r.a = valueText(*e.a, 0), r.b = valueText(*e.b, 0);  // beyond 7 digits
-    rows.push_back(std::move(r));
-  }
-  return rows;
 }
 
 // ---- the mode ---------------------------------------------------------------------------------
@@ -200,8 +104,12 @@ KindColumns kindColumns(MetricKind k) {
 constexpr ImGuiTableFlags kTableFlags = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit |
                                         ImGuiTableFlags_ScrollX | ImGuiTableFlags_NoHostExtendY;
 
-// Height of a table of `rows` rows (one header), with room for its horizontal scroll bar.
-float tableHeight(size_t rows) { return ImGui::GetFrameHeight() * float(rows + 1) + ImGui::GetStyle().ScrollbarSize + 4.0f; }
+// Height of a table of `rows` rows (one header), with room for its horizontal scroll bar: a row is
+// a line of text and the cell padding above and below it.
+float tableHeight(size_t rows) {
+  const ImGuiStyle& s = ImGui::GetStyle();
+  return (ImGui::GetTextLineHeight() + 2.0f * s.CellPadding.y) * float(rows + 1) + s.ScrollbarSize + 3.0f;
+}
 
 void groupTable(const CompareReport& r, MetricKind kind) {
   std::vector<const GroupResult*> groups;
@@ -330,7 +238,8 @@ static void compareReportSection(ViewerModel& m) {
   notesTable(r);
 }
 
-void drawDossier(ViewerModel& m);  // probe_panel.cpp: the hover and the dossier (compare: compareDossiers)
+void drawDossier(ViewerModel& m);  // probe_panel.cpp: the hover and the dossier (compare: compareDossiers,
+                                   // compare_dossier.cpp)
 
 // The Pixel panel of a compare: the report, and the pixel's dossiers (brought to the front by a
 // new probe).
@@ -350,67 +259,6 @@ void compareTabs(ViewerModel& m) {
     ImGui::EndTabItem();
   }
   ImGui::EndTabBar();
-}
-
-// ---- the dossiers -----------------------------------------------------------------------------
-
-void compareDossiers(ViewerModel& m) {
-  if (!m.dossierJson.contains("a") || !m.dossierJson.contains("b")) return;
-  const std::vector<DossierRow> rows = dossierRows(m.dossierJson["a"], m.dossierJson["b"]);
-  size_t differing = 0;
-  for (const DossierRow& r : rows) differing += r.differs;
-  ImGui::Text("A and B at this pixel: %zu of %zu values differ", differing, rows.size());
-  ImGui::SameLine();
-  ImGui::Checkbox("only those", &m.dossierDifferencesOnly);
-  const ImVec4 differs(1.0f, 0.7f, 0.25f, 1.0f);
-  ImGui::BeginChild("dossiers");
-  for (size_t i = 0; i < rows.size();) {
-    // One section: a tree node saying how many of its values differ, open where any does.
-    size_t end = i, sectionDiffers = 0;
-    while (end < rows.size() && rows[end].section == rows[i].section) sectionDiffers += rows[end++].differs;
-    if (m.dossierDifferencesOnly && sectionDiffers == 0) {
-      i = end;
-      continue;
-    }
-    char title[160];
-    std::snprintf(title, sizeof title, "%s  (%zu of %zu differ)###%s", rows[i].section.c_str(), sectionDiffers, end - i,
-                  rows[i].section.c_str());
-    if (sectionDiffers) ImGui::PushStyleColor(ImGuiCol_Text, differs);
-    const bool open = ImGui::TreeNodeEx(title, sectionDiffers ? ImGuiTreeNodeFlags_DefaultOpen : 0);
-    if (sectionDiffers) ImGui::PopStyleColor();
-    if (open) {
-      // Two columns, so that a narrow panel shows every value: a value both share once, one that
-      // differs as an A line over a B line, marked.
-      if (ImGui::BeginTable(rows[i].section.c_str(), 2, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
-        ImGui::TableSetupColumn("field", ImGuiTableColumnFlags_WidthFixed);
-        ImGui::TableSetupColumn("A = B, or A over B", ImGuiTableColumnFlags_WidthStretch);
-        ImGui::TableHeadersRow();
-        for (size_t k = i; k < end; ++k) {
-          const DossierRow& r = rows[k];
-          if (m.dossierDifferencesOnly && !r.differs) continue;
-          ImGui::TableNextRow();
-          ImGui::TableNextColumn();
-          if (!r.differs) {
-            ImGui::TextUnformatted(r.field.c_str());
-            ImGui::TableNextColumn();
-            ImGui::TextUnformatted(r.a.c_str());
-            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", r.a.c_str());
-            continue;
-          }
-          ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg1, ImGui::GetColorU32(ImVec4(0.45f, 0.25f, 0.05f, 0.6f)));
-          ImGui::TextColored(differs, "%s", r.field.c_str());
-          ImGui::TableNextColumn();
-          ImGui::TextColored(ImVec4(0.6f, 0.8f, 1.0f, 1), "A %s", r.a.empty() ? "(none)" : r.a.c_str());
-          ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.45f, 1), "B %s", r.b.empty() ? "(none)" : r.b.c_str());
-          if (ImGui::IsItemHovered()) ImGui::SetTooltip("A %s\nB %s", r.a.c_str(), r.b.c_str());
-        }
-        ImGui::EndTable();
-      }
-      ImGui::TreePop();
-    }
-    i = end;
-  }
-  ImGui::EndChild();
 }
 
 }  // namespace gb

@@ -17,6 +17,11 @@ void compareTabs(ViewerModel& m);
 void drawRegion(ViewerModel& m);   // region_panel.cpp
 
 static constexpr double kMenuHeight = 20.0, kStatusHeight = 22.0, kControlsWidth = 310.0, kPixelWidth = 450.0;
+static constexpr double kTextLine = 13.0;  // the default font's line
+
+// A compare's status bar has room for its hover's three lines (A, B, their difference) at all times,
+// so the views do not move as the mouse enters them.
+static double statusHeight(const ViewerModel& m) { return kStatusHeight + (m.source == FrameSource::Compare ? 2 * kTextLine : 0.0); }
 
 // Panels keep their width until the window gets narrow; then they give way to the views.
 static double controlsWidth(const ViewerModel& m, double w) { return m.showControls ? std::min(kControlsWidth, 0.25 * w) : 0.0; }
@@ -27,7 +32,7 @@ static double pixelWidth(const ViewerModel& m, double w) {
 
 Rect viewArea(const ViewerModel& m, double w, double h) {
   double left = controlsWidth(m, w), right = pixelWidth(m, w);
-  return {left, kMenuHeight, std::max(1.0, w - left - right), std::max(1.0, h - kMenuHeight - kStatusHeight)};
+  return {left, kMenuHeight, std::max(1.0, w - left - right), std::max(1.0, h - kMenuHeight - statusHeight(m))};
 }
 
 static void tooltip(const char* text) {
@@ -169,7 +174,11 @@ static void viewSettings(ViewerModel& m) {
   viewCombo(m, "settings of", m.edited);
   const ViewDef& d = m.views[size_t(m.edited)];
   ViewSettings& s = m.settings[size_t(m.edited)];
-  if (!d.space.empty()) ImGui::TextDisabled("%s", d.space.c_str());
+  if (!d.space.empty()) {  // wrapped: a map's space can be a sentence
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+    ImGui::TextWrapped("%s", d.space.c_str());
+    ImGui::PopStyleColor();
+  }
   for (int c = 0; c < int(d.componentNames.size()) && d.components > 1; ++c) {
     bool on = s.channels & (1u << c);
     if (c) ImGui::SameLine();
@@ -405,8 +414,8 @@ static void pixelPanel(ViewerModel& m, const Rect& at) {
 }
 
 static void statusBar(ViewerModel& m, double w, double h) {
-  ImGui::SetNextWindowPos(ImVec2(0, float(h - kStatusHeight)));
-  ImGui::SetNextWindowSize(ImVec2(float(w), float(kStatusHeight)));
+  ImGui::SetNextWindowPos(ImVec2(0, float(h - statusHeight(m))));
+  ImGui::SetNextWindowSize(ImVec2(float(w), float(statusHeight(m))));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(6, 3));
   ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
                                          ImGuiWindowFlags_NoBringToFrontOnFocus);

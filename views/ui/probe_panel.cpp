@@ -297,7 +297,9 @@ void compareDossiers(ViewerModel& m);   // compare_panel.cpp
 void drawDossier(ViewerModel& m) {
   // The readout under the mouse keeps a fixed height, so what follows (the dossier, its buttons)
   // does not move as the mouse goes from pixel to pixel.
-  ImGui::BeginChild("hover", ImVec2(0, ImGui::GetTextLineHeightWithSpacing() * 4.5f), false, ImGuiWindowFlags_NoScrollbar);
+  // A compare's readout holds A's line, B's and their difference, each wrapped to two lines.
+  const float lines = m.source == FrameSource::Compare ? 7.5f : 4.5f;
+  ImGui::BeginChild("hover", ImVec2(0, ImGui::GetTextLineHeightWithSpacing() * lines), false, ImGuiWindowFlags_NoScrollbar);
   if (m.hover)
     ImGui::Text("mouse (%d, %d)", m.hover->x, m.hover->y);
   else if (m.hoverShadowTexel)

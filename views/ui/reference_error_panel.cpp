@@ -12,6 +12,32 @@
 
 namespace gb {
 
+// A button for each map view, showing it alone (its hover, probe and legend are those of a view),
+// and one for the grid of every view: where the maps went, said where they were asked for.
+static void mapButtons(ViewerModel& m) {
+  float x = 0.0f;
+  const float right = ImGui::GetContentRegionAvail().x;
+  for (size_t k = 0; k < m.views.size(); ++k) {
+    const std::string& n = m.views[k].name;
+    if (n.rfind("error/", 0) != 0 && n.rfind("decompose/", 0) != 0) continue;
+    const float w = ImGui::CalcTextSize(n.c_str()).x + 2.0f * ImGui::GetStyle().FramePadding.x;
+    if (x > 0.0f && x + ImGui::GetStyle().ItemSpacing.x + w <= right)
+      ImGui::SameLine(), x += ImGui::GetStyle().ItemSpacing.x;
+    else
+      x = 0.0f;
+    x += w;
+    const bool shown = m.layout != LayoutMode::Grid && m.primary == int(k);
+    if (shown) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyle().Colors[ImGuiCol_ButtonActive]);
+    if (ImGui::SmallButton(n.c_str())) {
+      m.primary = m.edited = int(k);
+      if (m.layout == LayoutMode::Grid) m.layout = LayoutMode::Single;
+      m.uiChanged = true;
+    }
+    if (shown) ImGui::PopStyleColor();
+  }
+  if (ImGui::SmallButton("every view in the grid (1)")) m.layout = LayoutMode::Grid, m.uiChanged = true;
+}
+
 void referenceErrorSection(ViewerModel& m) {
   auto& e = m.referenceError;
   if (e.computing) {
@@ -33,7 +59,10 @@ void referenceErrorSection(ViewerModel& m) {
                         "device; the viewer stays usable meanwhile.");
     return;
   }
-  ImGui::TextDisabled("%s (%.1f s)", e.summary.c_str(), e.seconds);
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  ImGui::TextWrapped("%s (%.1f s)", e.summary.c_str(), e.seconds);
+  ImGui::PopStyleColor();
+  mapButtons(m);
   if (e.stale) ImGui::TextColored(ImVec4(1, 0.7f, 0.3f, 1), "stale: the frame changed since (recompute)");
   if (!e.decomposeNote.empty()) ImGui::TextWrapped("%s", e.decomposeNote.c_str());
   if (m.edited >= 0 && size_t(m.edited) < m.views.size())
