@@ -8,8 +8,8 @@
 #include <filesystem>
 
 #include "app/viewer/viewer.h"
-#include "renderer/session.h"
-#include "renderer/upload_targets.h"
+#include "renderer/frame/session.h"
+#include "renderer/gpu/upload_targets.h"
 #include "views/analysis/accuracy.h"
 #include "views/capture/exr.h"
 #include "views/capture/image_io.h"

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/renderer.h"
+#include "renderer/frame/renderer.h"
 #include "views/analysis/probe.h"
 #include "views/analysis/probe_reference.h"
 #include "views/analysis/region_stats.h"
