@@ -12,6 +12,28 @@
 namespace gb {
 
 namespace {
+
+// Two imports replayed on different drivers (or RenderDoc versions) may differ in texels the
+// application never changed: said before the figures, not after a user has chased them.
+std::string replayDriverWarning(const Capture& a, const Capture& b) {
+  auto replay = [](const Capture& c) -> nlohmann::json {
+    if (!c.manifest.contains("source") || !c.manifest["source"].is_object()) return nullptr;
+    const nlohmann::json& r = c.manifest["source"].value("replay", nlohmann::json());
+    return r.is_object() ? r : nlohmann::json();
+  };
+  const nlohmann::json ra = replay(a), rb = replay(b);
+  if (ra.is_null() || rb.is_null()) return "";
+  auto text = [](const nlohmann::json& r) {
+    return r.value("device", std::string("?")) + " (RenderDoc " + r.value("renderdoc", std::string("?")) + ")";
+  };
+  if (ra.value("device", "") == rb.value("device", "") && ra.value("renderdoc", "") == rb.value("renderdoc", "")) return "";
+  return a.dir + " was replayed on " + text(ra) + ", " + b.dir + " on " + text(rb) +
+         ": differences may come from the replay drivers, not the application";
+}
+
+}  // namespace
+
+namespace {
 struct CompareArgs {
   std::string a, b, diffDir, json, mask;
   std::vector<std::string> fail, failPercent, hardFail, warn, warnPercent, failFlip, warnFlip;
@@ -80,6 +102,8 @@ Command addCompareCommand(CLI::App& root) {
                   return kCompareFileError;
                 }
               }
+              const std::string drivers = replayDriverWarning(a, b);
+              if (!drivers.empty()) std::fprintf(stderr, "gblens compare: warning: %s\n", drivers.c_str());
               CompareReport report;
               if (!compareCaptures(a, b, settings, report, error)) {
                 std::fprintf(stderr, "gblens compare: %s\n", error.c_str());

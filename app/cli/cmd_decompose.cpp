@@ -1,11 +1,15 @@
 // gblens decompose CAPTURE -o DIR: the capture's lighting split by term and light (views/analysis/
 // decompose.h) as EXR images lighting, diffuse, specular, sun, point_lights, light_count, written
-// into a temporary folder renamed to DIR at the end (nothing half-written). Exit 0, or 2.
+// into a temporary folder renamed to DIR at the end (nothing half-written), with progress lines on
+// stderr. Exit 0, or 2.
+#include <chrono>
 #include <cstdio>
+#include <future>
 #include <filesystem>
 #include <memory>
 
 #include "app/cli/cli.h"
+#include "renderer/core/progress.h"
 #include "views/analysis/decompose.h"
 #include "views/capture/capture.h"
 #include "views/capture/exr.h"
@@ -35,6 +39,35 @@ bool writeAll(const Decomposition& d, const std::string& out, std::string& error
   if (ec) error = out + ": " + ec.message();
   return !ec;
 }
+
+// The decomposition in a worker while this thread prints a progress line on stderr at every tenth
+// of the rows (as bench and stress report theirs), the first as soon as it starts.
+bool decomposeWithProgress(const FrameSnapshot& frame, Decomposition& d, std::string& error) {
+  WorkProgress progress;
+  progress.total = frame.camera.height;
+  const auto start = std::chrono::steady_clock::now();
+  std::fprintf(stderr, "gblens decompose: %ux%u, %zu point lights in view\n", frame.camera.width, frame.camera.height,
+               frame.visibleLights.size());
+  std::future<bool> job = std::async(std::launch::async, [&] {
+    ProgressScope scope(&progress);
+    return decomposeLighting(frame, d, error);
+  });
+  int printed = -1;
+  auto report = [&](int tenth) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "gblens decompose: %3d%% (%llu of %llu rows, %.1f s)\n", tenth * 10,
+                 (unsigned long long)progress.done.load(), (unsigned long long)progress.total.load(), seconds);
+    printed = tenth;
+  };
+  for (;;) {
+    const bool finished = job.wait_for(std::chrono::milliseconds(100)) == std::future_status::ready;
+    const int tenth = int(progress.fraction() * 10.0);
+    if (tenth > printed && (tenth < 10 || finished)) report(tenth);
+    if (finished) break;
+  }
+  return job.get();
+}
+
 }  // namespace
 
 Command addDecomposeCommand(CLI::App& root) {
@@ -52,7 +85,7 @@ Command addDecomposeCommand(CLI::App& root) {
               return 2;
             }
             Decomposition d;
-            if (!decomposeLighting(c.frame, d, error)) {
+            if (!decomposeWithProgress(c.frame, d, error)) {
               std::fprintf(stderr, "gblens decompose: %s: %s\n", o->capture.c_str(), error.c_str());
               return 2;
             }

@@ -227,6 +227,13 @@ int runImport(const ImportOptions& o) {
   meta.scene = "import:";
   for (const std::string& input : o.inputs) meta.scene += " " + input;
   meta.driver = read.listing.driverNote;
+  // Where the frame came from, as data: compare warns when two imports were replayed differently.
+  meta.source = {{"inputs", o.inputs}};
+  if (rdc) {
+    meta.source["tool"] = "RenderDoc";
+    for (const char* key : {"recorded", "replay"})
+      if (read.listing.provenance.contains(key)) meta.source[key] = read.listing.provenance[key];
+  }
   meta.commandLine = commandLine();
   progress("writing " + o.output);
   if (!writeCapture(o.output, frame, meta, error)) return fail(error);

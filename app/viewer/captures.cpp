@@ -66,7 +66,8 @@ static std::string describe(const Capture& c) {
       if (c.frame.images[i].present()) o << " " << c.frame.layout.targets[i].name;
     return o.str();
   }
-  o << c.dir << "\n  " << m.value("scene", nlohmann::json("?")).dump() << ", " << opt.width << "x" << opt.height << ", time "
+  const nlohmann::json scene = m.value("scene", nlohmann::json("?"));
+  o << c.dir << "\n  " << (scene.is_object() ? scene.value("source", scene.dump()) : scene.dump()) << ", " << opt.width << "x" << opt.height << ", time "
     << opt.time << "\n  " << name(opt.path) << ", eye depth " << (opt.eyeDepth ? "on" : "off") << ", stencil culling "
     << (opt.stencilCulling ? "on" : "off") << "\n  device " << m.value("device", nlohmann::json("?")).dump() << "\n  targets:";
   for (size_t i = 0; i < c.frame.images.size(); ++i)
@@ -104,6 +105,104 @@ static double largestDifference(const CpuImage& a, const CpuImage& b, uint32_t c
   return worst;
 }
 
+// ---- FLIP of the colour views (A the reference, B the test) ------------------------------------
+
+// A decoded colour view as FLIP's input: linear RGB, empty texels and non-finite values 0.
+static FlipImage flipInput(const CpuImage& decoded) {
+  FlipImage out;
+  out.width = decoded.width, out.height = decoded.height;
+  out.rgb.resize(size_t(out.width) * out.height * 3);
+  for (uint32_t y = 0; y < out.height; ++y)
+    for (uint32_t x = 0; x < out.width; ++x)
+      for (uint32_t c = 0; c < 3; ++c) {
+        const bool empty = decoded.raw(x, y, 0) == gpu::kEmptyTexel;
+        const double v = empty ? 0.0 : decoded.value(x, y, c);
+        out.rgb[(size_t(y) * out.width + x) * 3 + c] = std::isfinite(v) ? float(v) : 0.0f;
+      }
+  return out;
+}
+
+// A FLIP map in magma (flip.h magmaColor, as the FLIP tool draws it) as a decoded colour image.
+static CpuImage flipImage(const std::vector<float>& errors, uint32_t width, uint32_t height) {
+  CpuImage img;
+  img.name = "flip";
+  img.width = width, img.height = height;
+  img.channels = {"0", "1", "2", "3"};
+  img.data.resize(size_t(width) * height * 16);
+  float* out = reinterpret_cast<float*>(img.data.data());
+  for (size_t i = 0; i < errors.size(); ++i) {
+    uint8_t c[3];
+    magmaColor(std::clamp(double(errors[i]), 0.0, 1.0), c);
+    for (int k = 0; k < 3; ++k) out[i * 4 + k] = float(srgbToLinear(c[k] / 255.0));
+    out[i * 4 + 3] = 1.0f;
+  }
+  return img;
+}
+
+// Starts the worker: LDR-FLIP of each colour view (HDR-FLIP of radiance) that A and B both hold,
+// as `gblens compare` computes FLIP of final and hdr, at FLIP's default observer.
+static void startFlip(Viewer& v) {
+  ViewerModel& m = v.model;
+  struct Input {
+    size_t view;
+    bool hdr;
+    FlipImage a, b;
+  };
+  std::vector<Input> inputs;
+  for (size_t k = 0; k < m.views.size(); ++k)
+    if (m.views[k].visual == Visual::Color && m.unavailable[k].empty())
+      inputs.push_back({k, m.views[k].hdr, flipInput(v.decodedA[k]), flipInput(v.decodedB[k])});
+  auto progress = std::make_shared<WorkProgress>();
+  progress->total = inputs.size();
+  v.flipProgress = progress;
+  m.flipStatus = "computing FLIP: 0 of " + std::to_string(inputs.size()) + " colour views";
+  v.flipJob = std::async(std::launch::async, [inputs = std::move(inputs), n = m.views.size(), progress]() {
+    Viewer::FlipMaps out;
+    out.errors.resize(n);
+    out.images.resize(n);
+    out.pools.resize(n);
+    for (const Input& in : inputs) {
+      if (progress->cancelled()) break;
+      const double ppd = flipDefaultPpd();
+      std::vector<float> e = in.hdr ? hdrFlip(in.a, in.b, ppd, hdrFlipExposures(in.a)) : ldrFlip(in.a, in.b, ppd);
+      out.images[in.view] = flipImage(e, in.a.width, in.a.height);
+      out.pools[in.view] = poolFlip(e);
+      out.errors[in.view] = std::move(e);
+      progress->done++;
+    }
+    return out;
+  });
+}
+
+bool updateCompareFlip(Viewer& v) {
+  if (!v.flipJob.valid()) return false;
+  ViewerModel& m = v.model;
+  const WorkProgress& p = *v.flipProgress;
+  if (v.flipJob.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+    const std::string status = "computing FLIP: " + std::to_string(p.done.load()) + " of " + std::to_string(p.total.load()) +
+                               " colour views";
+    if (status != m.flipStatus) m.flipStatus = status, m.uiChanged = true;
+    return true;
+  }
+  Viewer::FlipMaps maps = v.flipJob.get();
+  v.flipErrors = std::move(maps.errors);
+  uploadViewImages(v.imagesFlip, v.ctx, maps.images);
+  m.flipPools = maps.pools;
+  m.flipStatus.clear();
+  m.uiChanged = true;
+  nlohmann::json means = nlohmann::json::object();
+  for (size_t k = 0; k < m.views.size(); ++k)
+    if (m.flipPools[k]) means[m.views[k].name] = m.flipPools[k]->mean;
+  logLine(v.eventLog, {{"event", "flip"}, {"mean", means}});
+  return false;
+}
+
+void stopCompareFlip(Viewer& v) {
+  if (v.flipProgress) v.flipProgress->cancel = true;
+  if (v.flipJob.valid()) v.flipJob.wait();
+  destroyViewImages(v.imagesFlip, v.ctx);
+}
+
 // What the views can show: A's layout's views, B's of the same names beside them.
 static void setCaptureViews(Viewer& v) {
   ViewerModel& m = v.model;
@@ -130,6 +229,7 @@ static void setCaptureViews(Viewer& v) {
   }
   uploadViewImages(v.imagesA, v.ctx, v.decodedA);
   if (v.hasB) uploadViewImages(v.imagesB, v.ctx, v.decodedB);
+  if (v.hasB) startFlip(v);
   v.rangeKeys.assign(m.views.size(), "");
   const TargetImage* sm = nullptr;
   for (const ViewDef& d : m.views)
@@ -176,11 +276,14 @@ bool openCaptures(Viewer& v) {
     m.source = FrameSource::Compare;
     m.captureB = v.args.compare;
     m.captureInfo = "A: " + describe(v.captureA) + "\nB: " + describe(v.captureB);
-    CompareReport report;
-    if (compareCaptures(v.captureA, v.captureB, ThresholdSettings{}, report, error))
-      m.compareSummary = report.text();
-    else
+    auto report = std::make_shared<CompareReport>();
+    if (compareCaptures(v.captureA, v.captureB, ThresholdSettings{}, *report, error)) {
+      m.compareSummary = report->text();
+      for (GroupResult& g : report->groups) std::vector<float>().swap(g.errors);  // the tables show figures only
+      m.compareReport = report;
+    } else {
       m.compareSummary = error;
+    }
   }
   // A renderer that holds no frame: the view pipelines' context (sampler, scene set).
   v.scene = emptyScene(v.captureA.frame.camera);
@@ -229,7 +332,16 @@ std::string captureHoverText(const Viewer& v, int view, glm::ivec2 texel) {
   std::string a = viewValueText(v.captureA.frame, m.views[size_t(view)], uint32_t(texel.x), uint32_t(texel.y));
   if (!v.hasB) return a;
   const ViewDef& b = v.viewsB[size_t(view)];
-  return "A: " + a + (b.quantity >= 0 ? "\nB: " + viewValueText(v.captureB.frame, b, uint32_t(texel.x), uint32_t(texel.y)) : "");
+  std::string text =
+      "A: " + a + (b.quantity >= 0 ? "\nB: " + viewValueText(v.captureB.frame, b, uint32_t(texel.x), uint32_t(texel.y)) : "");
+  if (size_t(view) < v.flipErrors.size() && !v.flipErrors[size_t(view)].empty()) {
+    const std::vector<float>& e = v.flipErrors[size_t(view)];
+    const size_t i = size_t(texel.y) * v.decodedA[size_t(view)].width + size_t(texel.x);
+    char flip[48];
+    std::snprintf(flip, sizeof flip, "\nFLIP %.4f", i < e.size() ? double(e[i]) : 0.0);
+    text += flip;
+  }
+  return text;
 }
 
 }  // namespace gb

@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include "app/viewer/viewer.h"
+#include "views/ui/compare_view.h"
 
 namespace gb {
 
@@ -25,7 +26,9 @@ void handleKeys(Viewer& v) {
     if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) applyViewKey(m, key - GLFW_KEY_0);
     if (key >= GLFW_KEY_KP_0 && key <= GLFW_KEY_KP_9) applyViewKey(m, key - GLFW_KEY_KP_0);
     if (key == GLFW_KEY_ENTER || key == GLFW_KEY_KP_ENTER) applyViewKey(m, 0);
-    if (key == GLFW_KEY_SPACE) m.playing = !m.playing;
+    if (key == GLFW_KEY_SPACE && m.source == FrameSource::Compare) flipCompareSide(m);  // A <-> B in place
+    if (key == GLFW_KEY_SPACE && m.source != FrameSource::Compare) m.playing = !m.playing;
+    if (key == GLFW_KEY_ESCAPE) m.referenceError.cancelRequested = true;
     if (key == GLFW_KEY_PERIOD) m.stepForward = true;
     if (key == GLFW_KEY_COMMA) m.stepBack = true;
     if (key == GLFW_KEY_HOME) m.resetCamera = true;

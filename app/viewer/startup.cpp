@@ -90,7 +90,6 @@ static void initModel(Viewer& v, bool live) {
   m.lightCount = int(v.scene.generatedLights ? args.render.lights : int(v.scene.lights.size()));
   m.playing = !args.paused;
   m.probeReference = args.probeReference;
-  m.referenceError.open = !args.referenceErrorDir.empty();
   m.reduceWhileMoving = args.reduceWhileMoving;
   m.deviceName = v.ctx.deviceName;
   m.sceneName = live ? args.scene : args.capture + (args.compare.empty() ? "" : " vs " + args.compare);
@@ -149,9 +148,9 @@ int finishViewer(Viewer& v) {
   destroyViewMapper(v.mapper, v.renderer);
   destroyViewImages(v.imagesA, v.ctx);
   destroyViewImages(v.imagesB, v.ctx);
+  stopCompareFlip(v);
+  stopReferenceError(v);
   destroyRenderer(v.renderer);
-  if (v.referenceJob.valid()) v.referenceJob.wait();
-  destroyRenderer(v.rendererRef);
   closeWindow(v);
   int messages = reportValidation(v.ctx);
   destroyContext(v.ctx);

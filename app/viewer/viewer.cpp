@@ -160,6 +160,7 @@ void updateLiveViews(Viewer& v) {
   ViewerModel& m = v.model;
   Layout layout = nativeLayout(m.rendered);
   std::vector<ViewDef> views = layoutViews(layout);
+  appendReferenceViews(v, views);  // the reference error's maps, once computed
   bool same = views.size() == m.views.size();
   for (size_t k = 0; same && k < views.size(); ++k) same = views[k].name == m.views[k].name && views[k].visual == m.views[k].visual;
   if (same)
@@ -170,6 +171,10 @@ void updateLiveViews(Viewer& v) {
   for (size_t k = 0; k < m.views.size(); ++k) {
     std::string& why = m.unavailable[k];
     why.clear();
+    if (m.views[k].quantity < 0) {  // a reference map
+      why = referenceViewStatus(v, int(k));
+      continue;
+    }
     std::optional<ViewSource> src = nativeSource(m.frameLayout, m.views[k], &m.gpuSources[k]);
     if (!src) {
       why = "not one of gblens's targets";
@@ -233,7 +238,7 @@ static void logLayout(Viewer& v, int windowW, int windowH) {
   Rect area = viewArea(m, windowW, windowH);
   nlohmann::json j = {{"event", "layout"}, {"window", {windowW, windowH}}, {"size", {m.rendered.width, m.rendered.height}}};
   nlohmann::json list = nlohmann::json::array();
-  static const char* const kSides[] = {"a", "b", "difference"};
+  static const char* const kSides[] = {"a", "b", "difference", "flip"};
   for (const ViewSlot& slot : viewSlots(m, area)) {
     glm::uvec2 size = viewImageSize(m, slot.view);
     Placement p = placeImage(slot.rect, size.x, size.y, m.transform);
@@ -333,11 +338,14 @@ static void updateFrame(Viewer& v, const LoopState& s, int fbw, int fbh, double 
   m.stepForward = m.stepBack = false;
   updateRanges(v);
   v.referenceBusy = updateReferenceError(v);
+  v.referenceBusy |= updateCompareFlip(v);
   if (m.probeRequest) answerProbe(v);
   updateRegion(v);
   countMarkedPixels(v);
   if (s.live) {
     readHover(v);
+    if (m.hoverView && m.hover && m.views[size_t(*m.hoverView)].quantity < 0)  // a reference map: its value
+      m.hoverText = referenceHoverText(v, *m.hoverView, *m.hover);
   } else {
     std::optional<glm::ivec2> texel = m.hoverView && m.views[size_t(*m.hoverView)].sun ? m.hoverShadowTexel : m.hover;
     m.hoverText = texel && m.hoverView ? captureHoverText(v, *m.hoverView, *texel) : "";

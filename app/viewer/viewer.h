@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "renderer/core/options.h"
+#include "renderer/core/progress.h"
 #include "renderer/frame/region_readback.h"
 #include "renderer/reference/reference.h"
 #include "renderer/scene/scene.h"
@@ -99,22 +100,38 @@ struct Viewer {
   std::vector<ViewDef> viewsB;
   ViewImages imagesA, imagesB;
   std::vector<std::string> rangeKeys;  // per view: the settings its CPU range was computed for
-  // The reference error, live (reference_error.cpp): the worker computing it, the frame it was
-  // computed for, its result, and a renderer that only holds the map shown (as its `final`).
+  // --compare: FLIP of each colour view (A the reference, B the test), computed by a worker at open
+  // (captures.cpp): per view its per-pixel FLIP (hover) and magma image (imagesFlip); empty: none.
+  struct FlipMaps {
+    std::vector<std::vector<float>> errors;
+    std::vector<CpuImage> images;
+    std::vector<std::optional<FlipPool>> pools;
+  };
+  std::future<FlipMaps> flipJob;
+  std::shared_ptr<WorkProgress> flipProgress;  // views done of those FLIP applies to
+  std::vector<std::vector<float>> flipErrors;
+  ViewImages imagesFlip;
+  // The reference error, live (reference_error.cpp): the worker computing it and its progress, the
+  // frame it was computed for, its result, and its maps as views of the live frame (quantity -1).
   struct ReferenceResult {
     FrameError error;
     Decomposition decomposition;
     std::string decomposeError;  // why there is none
+    bool cancelled = false;
   };
   std::future<ReferenceResult> referenceJob;
-  std::chrono::steady_clock::time_point referenceStart;
+  std::shared_ptr<WorkProgress> referenceProgress;
+  std::chrono::steady_clock::time_point referenceStart, referenceCancelAt;
+  int referenceLoggedTenth = 0;   // progress logged to --event-log up to this tenth
+  bool referenceStarted = false;  // --reference-error DIR: started once
   RenderOptions referenceOptions;
   uint64_t referenceCamera = 0, referenceLights = 0;
   std::optional<ReferenceResult> referenceResult;
-  Renderer rendererRef;
-  Scene sceneRef;
-  bool referenceShown = false;  // rendererRef holds the selected map
-  bool referenceBusy = false;   // the worker runs: keep iterating to show progress and pick it up
+  std::vector<ViewDef> referenceViews;     // "error/<map>", "decompose/<term>"
+  std::vector<CpuImage> referenceDecoded;  // their values, as decoded view images
+  std::vector<std::optional<std::pair<uint32_t, RangeStats>>> referenceRanges;  // automatic range (component mask, stats)
+  ViewImages referenceImages;
+  bool referenceBusy = false;   // a worker runs (reference, FLIP): keep iterating to show progress and pick it up
   Scene sceneB;
   bool hasB = false;
   ViewerModel model;
@@ -208,11 +225,25 @@ bool openCaptures(Viewer& v);  // false: a message was printed (exit 2)
 void probeCapturePixel(Viewer& v, glm::ivec2 pixel);
 // A scene holding only a camera (renderers that hold uploaded frames).
 Scene emptyScene(const Camera& camera);
-// The "Reference error" window's work: starts the worker on request, picks up its result, uploads
-// the map shown, marks it stale when the frame changes, and with --reference-error DIR writes
-// every map there (reference_error.cpp). True while the worker runs (the loop keeps polling).
-bool updateReferenceError(Viewer& v);
+// FLIP of the compare views: picks up the worker's maps (true while it runs).
+bool updateCompareFlip(Viewer& v);
+void stopCompareFlip(Viewer& v);  // teardown
 std::string captureHoverText(const Viewer& v, int view, glm::ivec2 texel);
+
+// reference_error.cpp
+// The reference error's work: starts the worker on request, cancels it on request, picks up its
+// result and makes its maps views, marks it stale when the frame changes, and with
+// --reference-error DIR writes every map there. True while the worker runs (the loop keeps polling).
+bool updateReferenceError(Viewer& v);
+// Cancels a running worker, waits for it and frees the maps (teardown).
+void stopReferenceError(Viewer& v);
+// The computed maps appended to the live frame's views (updateLiveViews).
+void appendReferenceViews(const Viewer& v, std::vector<ViewDef>& views);
+// Why a map's view cannot show now ("" it can); sets its GPU source (a decoded image).
+std::string referenceViewStatus(Viewer& v, int view);
+ViewImage referenceViewImage(const Viewer& v, int view);
+// The hovered map's value at a pixel ("" when `view` is not a map).
+std::string referenceHoverText(const Viewer& v, int view, glm::ivec2 texel);
 // The automatic ranges of the shown views of a capture (CPU, from the decoded images).
 void updateCaptureRanges(Viewer& v);
 // The live frame's views (gblens's layout under the frame's options): set when the layout's views

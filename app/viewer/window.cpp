@@ -138,13 +138,11 @@ static void drawViewCallback(const ImDrawList*, const ImDrawCmd* cmd) {
     drawView(v.mapper, r, v.swapchain.cmd, v.swapchain.renderPass, v.swapchain.format.format, image, d.params, viewport,
              scissor, b);
   };
-  if (d.side == FrameSide::Reference) {
-    if (v.referenceShown) draw(v.rendererRef, targetImage(v.rendererRef, {d.referenceTarget}), x0, x1, nullptr);
-    return;
-  }
   const ViewerModel& m = v.model;
   if (m.source == FrameSource::Live) {
-    if (std::optional<ViewSource> src = nativeSource(m.frameLayout, m.views[size_t(d.view)]))
+    if (m.views[size_t(d.view)].quantity < 0)  // a reference map (reference_error.cpp)
+      draw(v.renderer, referenceViewImage(v, d.view), x0, x1, nullptr);
+    else if (std::optional<ViewSource> src = nativeSource(m.frameLayout, m.views[size_t(d.view)]))
       draw(v.renderer, targetImage(v.renderer, *src), x0, x1, nullptr);
     return;
   }
@@ -156,6 +154,8 @@ static void drawViewCallback(const ImDrawList*, const ImDrawCmd* cmd) {
     draw(v.renderer, b, x0, x1, nullptr);
   } else if (d.side == FrameSide::Difference && v.hasB) {
     draw(v.renderer, a, x0, x1, &b);
+  } else if (d.side == FrameSide::Flip) {
+    draw(v.renderer, viewImageOf(v.imagesFlip, size_t(d.view)), x0, x1, nullptr);
   } else {
     draw(v.renderer, a, x0, x1, nullptr);
   }

@@ -160,9 +160,11 @@ glm::dmat3 worldFromLayoutWorld(const LayoutCamera& c) {
 glm::dmat3 layoutWorldFromWorld(const LayoutCamera& c) { return glm::transpose(worldFromLayoutWorld(c)); }
 
 std::string upAxisText(const LayoutCamera& c) {
-  std::string t = name(c.up);  // "-y" -> "-Y": "world (layout: -Y-up)"
+  std::string t = name(c.up);  // "y" -> "Y-up", "-y" -> "Y-down": "world (layout: Y-down)"
+  const bool down = !t.empty() && t[0] == '-';
+  if (down) t.erase(0, 1);
   for (char& ch : t) ch = char(std::toupper(static_cast<unsigned char>(ch)));
-  return t;
+  return t + (down ? "-down" : "-up");
 }
 
 std::string nameKey(const std::string& name) {

@@ -147,7 +147,7 @@ bool settleWorldHandedness(LayoutCamera& c, std::string& error);
 // place the up axis is turned.
 glm::dmat3 worldFromLayoutWorld(const LayoutCamera& c);
 glm::dmat3 layoutWorldFromWorld(const LayoutCamera& c);
-// The layout's up axis as people write it ("y", "z", ...): labels of world-space values.
+// The layout's up axis as a label of world-space values: "Y-up", "Z-up", "Y-down" (up "-y").
 std::string upAxisText(const LayoutCamera& c);
 // Names that must not be confused: lower case, without '_', '-' and spaces ("HardwareDepth" and
 // "hardware_depth" are one name; quantities are found and kept unique by it).

@@ -79,7 +79,7 @@ struct PipelineKey {
   auto operator<=>(const PipelineKey&) const = default;
 };
 
-// Clustered shading's buffers (renderer/cluster_buffers.cpp): device-local, sized for the frame;
+// Clustered shading's buffers (renderer/gpu/cluster_buffers.cpp): device-local, sized for the frame;
 // capacities in clusters and light-list entries grow when a frame runs out of room. (The header's
 // copy for the CPU is per frame slot: FrameSlot::clusterHeader.) With --cluster-assign cpu: the
 // CPU's cluster grid (renderer/core/cluster_grid.h); its copies for the GPU are per frame slot.
@@ -90,7 +90,7 @@ struct ClusterBuffers {
   ClusterGrid grid;
 };
 
-// Light setup on the GPU (renderer/gpu_lights.cpp): the scene's lights as uploaded, and scratch.
+// Light setup on the GPU (renderer/gpu/gpu_lights.cpp): the scene's lights as uploaded, and scratch.
 // `descs` holds the lights of `scene` at lights generation `generation` (LightList).
 struct GpuLights {
   Buffer descs, scratch;
@@ -103,7 +103,7 @@ struct GpuLights {
 
 // Frames in flight: the renderer records a frame into one slot while the GPU may still run the
 // frame of the other (submitFrame; renderFrame waits for its own). A slot holds what a frame
-// writes from the CPU and what the CPU reads after it (renderer/frame_slots.cpp).
+// writes from the CPU and what the CPU reads after it (renderer/frame/frame_slots.cpp).
 inline constexpr uint32_t kFrameSlots = 2;
 
 struct FrameSlot {

@@ -8,14 +8,21 @@
 #include <cmath>
 #include <thread>
 
+#include "renderer/core/progress.h"
 #include "renderer/reference/sampler.h"
 
 namespace gb::reference {
 
 void parallelRows(uint32_t height, unsigned threads, const std::function<void(uint32_t)>& f) {
   std::atomic<uint32_t> next{0};
+  // The caller's progress (core/progress.h): rows counted as they finish; once cancelled, no row
+  // is started (the result is then incomplete, and the caller throws it away).
+  WorkProgress* progress = currentProgress();
   auto work = [&] {
-    for (uint32_t y; (y = next.fetch_add(1)) < height;) f(y);
+    for (uint32_t y; (!progress || !progress->cancelled()) && (y = next.fetch_add(1)) < height;) {
+      f(y);
+      if (progress) progress->done.fetch_add(progress->weight, std::memory_order_relaxed);
+    }
   };
   std::vector<std::thread> pool;
   for (unsigned i = 1; i < std::max(threads, 1u); ++i) pool.emplace_back(work);

@@ -4,10 +4,11 @@
 // before the view matrix in its uniform buffer, an orthographic variant). Its RenderDoc captures
 // (the foreign_captures fixture) are imported with its hand-written layout.json and checked against
 // the app's own read-back of the same frame (--dump): every stored texel bit for bit, and positions
-// rebuilt from its depth against its stored positions within a derived bound. Checks that need a
-// gblens feature not there yet stay in place and are skipped naming the feature.
+// rebuilt from its depth against its stored positions within a derived bound; the manifest's
+// provenance; what the viewer and probe offer for it (only the layout's quantities).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -19,6 +20,7 @@
 
 #include "renderer/core/decode.h"
 #include "tests/support/capture_util.h"
+#include "views/analysis/view_table.h"
 #include "views/capture/capture.h"
 
 namespace gb {
@@ -62,64 +64,25 @@ AppDump loadDump(const std::string& dir) {
   return d;
 }
 
-// The refusals of today's gblens that name a convention the app uses and gblens cannot yet say, and
-// how the layout is reduced so that the rest can still be checked. Only decoding is reduced — no target,
-// source or storage format changes — so the stored texels read are the same.
-struct MissingFeature {
-  const char* refusal;  // in gblens's one-line error
-  const char* feature;  // the skip reason
-  void (*reduce)(json& layout);
-};
-const MissingFeature kMissing[] = {
-    {"\"LinearDepth\": scale: unknown field",
-     "depth scale: the position target's w is eye depth / far (\"scale\": 32 on the LinearDepth quantity)",
-     [](json& l) { l["targets"][0]["quantities"][1].erase("scale"); }},
-    {"up: \"-y\" is not one of",
-     "Y-down worlds (camera \"up\": \"-y\"); view-space checks do not depend on it, so they run with the up axis left out",
-     [](json& l) { l["camera"].erase("up"); }},
-};
-
 struct Imported {
   bool ok = false;
   Capture capture;
-  std::vector<std::string> awaiting;  // features the import had to do without
-  std::string skip;                   // set when a feature in `needed` is missing: the check cannot run
 };
 
-// `gblens import RDC --layout layout.json` (the G-buffer targets are read after render pass 1, the
-// pass that last writes them; the camera at the first use of the uniform buffer). Refusals listed in
-// kMissing are reduced away and retried, unless the feature is one the caller needs (`needed`, a part
-// of the refusal).
-Imported importCapture(const Variant& v, const std::string& dir, const std::string& needed = "") {
+// `gblens import RDC --layout layout.json`, the layout as written (the G-buffer targets are read
+// after render pass 1, the pass that last writes them; the camera at the first use of the uniform
+// buffer).
+Imported importCapture(const Variant& v, const std::string& dir) {
   Imported r;
-  json layout = json::parse(std::ifstream(kLayout));
-  std::string path = kLayout;
-  for (int attempt = 0; attempt <= int(std::size(kMissing)); ++attempt) {
-    const std::string out = dir + "/imported" + std::to_string(attempt);
-    RunResult run = runGblens("import '" + v.rdc + "' --layout '" + path + "' -o '" + out + "'");
-    if (run.exitCode == 0) {
-      std::string error;
-      r.ok = loadCapture(out, r.capture, error);
-      EXPECT_TRUE(r.ok) << error;
-      return r;
-    }
-    const MissingFeature* missing = nullptr;
-    for (const MissingFeature& m : kMissing)
-      if (run.output.find(m.refusal) != std::string::npos) missing = &m;
-    if (!missing) {
-      ADD_FAILURE() << "gblens import of the " << v.name << " capture failed:\n" << run.output;
-      return r;
-    }
-    if (!needed.empty() && std::string(missing->refusal).find(needed) != std::string::npos) {
-      r.skip = std::string("gblens lacks ") + missing->feature;
-      return r;
-    }
-    r.awaiting.push_back(missing->feature);
-    missing->reduce(layout);
-    path = dir + "/reduced" + std::to_string(attempt) + ".json";
-    std::ofstream(path) << layout.dump(2);
+  const std::string out = dir + "/imported";
+  RunResult run = runGblens("import '" + v.rdc + "' --layout '" + kLayout + "' -o '" + out + "'");
+  if (run.exitCode != 0) {
+    ADD_FAILURE() << "gblens import of the " << v.name << " capture failed:\n" << run.output;
+    return r;
   }
-  ADD_FAILURE() << "the layout was still refused after every known reduction";
+  std::string error;
+  r.ok = loadCapture(out, r.capture, error);
+  EXPECT_TRUE(r.ok) << error;
   return r;
 }
 
@@ -227,12 +190,6 @@ void importAndCheck(const Variant& v, const std::string& dir) {
   expectTexelsEqual(imp.capture, d, v.name);
   expectProjection(imp.capture, d);
   expectPositions(imp.capture, d, "Depth", v.name);
-  // The checks above ran on a reduced layout where gblens refused the real one: say so.
-  if (!imp.awaiting.empty()) {
-    std::string reasons;
-    for (const std::string& a : imp.awaiting) reasons += "\n  - " + a;
-    std::cout << "the " << v.name << " import reduced the layout; awaiting:" << reasons << "\n";
-  }
 }
 
 TEST(Foreign, PerspectiveCaptureImportsEveryTexelAndPositionsFromHardwareDepth) {
@@ -243,14 +200,12 @@ TEST(Foreign, OrthographicCaptureImportsEveryTexelAndPositionsFromHardwareDepth)
   importAndCheck(kOrthographic, freshDir("foreign-orthographic"));
 }
 
-// Positions from the linear depth in w (eye depth = w * 32, exact: w = eye * 2^-5 is exact in fp32).
-// MISSING FEATURE: depth "scale" (and, for the orthographic camera, positions from eye depth under an
-// orthographic projection: x and y do not grow with depth). Skipped while gblens refuses the scale.
+// Positions from the linear depth in w (eye depth = w * 32, exact: w = eye * 2^-5 is exact in fp32;
+// the layout says "scale": 32); for the orthographic camera x and y do not grow with depth.
 void linearDepth(const Variant& v, const std::string& dir) {
   const AppDump d = loadDump(v.dump);
   ASSERT_FALSE(d.bytes.empty());
-  const Imported imp = importCapture(v, dir, "scale");
-  if (!imp.skip.empty()) GTEST_SKIP() << imp.skip;
+  const Imported imp = importCapture(v, dir);
   ASSERT_TRUE(imp.ok);
   expectPositions(imp.capture, d, "LinearDepth", v.name);
 }
@@ -258,17 +213,13 @@ void linearDepth(const Variant& v, const std::string& dir) {
 TEST(Foreign, PerspectivePositionsFromLinearDepth) { linearDepth(kPerspective, freshDir("foreign-linear")); }
 TEST(Foreign, OrthographicPositionsFromLinearDepth) { linearDepth(kOrthographic, freshDir("foreign-linear-ortho")); }
 
-// The layout as written, not reduced, and what only it can show: the world's up direction seen from the
-// eye is the app's (its world up is -Y, gblens's +Y). MISSING FEATURE while gblens refuses the layout
-// (depth scale, Y-down world): skipped with the refusal.
+// What only the layout's camera can show: the world's up direction seen from the eye is the app's (its
+// world up is -Y, gblens's +Y).
 TEST(Foreign, LayoutIsReadAsWrittenAndTheWorldIsYDown) {
   const AppDump d = loadDump(kPerspective.dump);
   ASSERT_FALSE(d.bytes.empty());
   const std::string dir = freshDir("foreign-layout");
   RunResult r = runGblens("import '" + kPerspective.rdc + "' --layout '" + kLayout + "' -o '" + dir + "/out'");
-  for (const MissingFeature& m : kMissing)
-    if (r.exitCode == 2 && r.output.find(m.refusal) != std::string::npos)
-      GTEST_SKIP() << "gblens lacks " << m.feature << ":\n" << r.output;
   ASSERT_EQ(r.exitCode, 0) << r.output;
   Capture c;
   std::string error;
@@ -280,6 +231,88 @@ TEST(Foreign, LayoutIsReadAsWrittenAndTheWorldIsYDown) {
   const glm::dvec3 gblensUp = glm::dvec3(c.frame.camera.eyeFromWorld * glm::dvec4(0, 1, 0, 0));
   EXPECT_LT(glm::length(appUp - gblensUp), 1e-6) << "app (" << appUp.x << ", " << appUp.y << ", " << appUp.z
                                                   << "), gblens (" << gblensUp.x << ", " << gblensUp.y << ", " << gblensUp.z << ")";
+}
+
+// What gblens offers for the imported frame is the layout's, nothing of gblens's own: a view per
+// quantity the layout declares (position and occlusion among them; no shadow, specular or stencil
+// view), and a probe whose quantities are exactly the layout's, with the stored texel as the app
+// wrote it (its own dump).
+TEST(Foreign, ViewsAndProbeShowOnlyTheLayoutsQuantities) {
+  const AppDump d = loadDump(kPerspective.dump);
+  ASSERT_FALSE(d.bytes.empty());
+  const Imported imp = importCapture(kPerspective, freshDir("foreign-views"));
+  ASSERT_TRUE(imp.ok);
+  const json layout = json::parse(std::ifstream(kLayout));
+  std::vector<std::string> declared, kinds;
+  for (const json& t : layout["targets"])
+    for (const json& q : t["quantities"]) declared.push_back(q["name"]), kinds.push_back(q["quantity"]);
+  std::sort(declared.begin(), declared.end());
+  std::vector<std::string> views;
+  for (const ViewDef& v : layoutViews(imp.capture.frame.layout)) views.push_back(v.name);
+  std::sort(views.begin(), views.end());
+  EXPECT_EQ(views, declared);
+  for (const char* kind : {"position", "occlusion"})
+    EXPECT_NE(std::find(kinds.begin(), kinds.end(), kind), kinds.end()) << kind << " is not in the layout";
+  for (const char* gblensOnly : {"Shadow", "Specular", "Stencil", "ShadowMap"})
+    EXPECT_EQ(std::find(views.begin(), views.end(), gblensOnly), views.end()) << gblensOnly;
+
+  // A pixel the occlusion pass darkened (first one under 250 from the centre row).
+  const std::string& ao = d.bytes.at("occlusion");
+  uint32_t px = d.width / 2, py = d.height / 2;
+  for (uint32_t x = 0; x < d.width; ++x)
+    if (uint8_t(ao[size_t(py) * d.width + x]) < 250 && d.position(x, py).w < 1.0f) {
+      px = x;
+      break;
+    }
+  RunResult r = runGblens("probe '" + imp.capture.dir + "' " + std::to_string(px) + " " + std::to_string(py) + " --json");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const json dossier = json::parse(r.output.substr(r.output.find('{')));
+  std::vector<std::string> probed;
+  std::map<std::string, json> byName;
+  for (const json& q : dossier["quantities"]) probed.push_back(q["name"]), byName[q["name"]] = q;
+  std::sort(probed.begin(), probed.end());
+  EXPECT_EQ(probed, declared);
+  for (const char* gblensOnly : {"decoded", "position", "shadow_map", "hdr", "final", "lights"})
+    EXPECT_FALSE(dossier.contains(gblensOnly)) << gblensOnly << " in a foreign frame's dossier";
+  // Occlusion: r8_unorm, the app's byte / 255; the stored position and the linear depth as written.
+  const uint8_t code = uint8_t(ao[size_t(py) * d.width + px]);
+  EXPECT_NEAR(byName["AO"]["values"][0].get<double>(), code / 255.0, 1e-9) << byName["AO"].dump();
+  const glm::vec4 p = d.position(px, py);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(byName["P"]["values"][k].get<double>(), double(p[k])) << k;
+  EXPECT_DOUBLE_EQ(byName["LinearDepth"]["values"][0].get<double>(), double(p.w) * 32.0);
+}
+
+// Provenance: the manifest names the device the application recorded on (as the app itself reports
+// it) and the replay's; compare warns when two imports were replayed on different drivers.
+TEST(Foreign, TheManifestSaysWhereTheFrameWasRecordedAndReplayed) {
+  const AppDump d = loadDump(kPerspective.dump);
+  ASSERT_FALSE(d.bytes.empty());
+  const std::string dir = freshDir("foreign-provenance");
+  RunResult r = runGblens("import '" + kPerspective.rdc + "' --layout '" + kLayout + "' -o '" + dir + "/a'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  Capture c;
+  std::string error;
+  ASSERT_TRUE(loadCapture(dir + "/a", c, error)) << error;
+  ASSERT_TRUE(c.manifest.contains("source")) << c.manifest.dump(2);
+  const json& source = c.manifest["source"];
+  EXPECT_EQ(source.value("tool", ""), "RenderDoc");
+  EXPECT_EQ(source["recorded"].value("api", ""), "Vulkan");
+  EXPECT_EQ(source["recorded"].value("device", ""), d.camera.at("gpu").get<std::string>());
+  EXPECT_FALSE(source["replay"].value("device", "").empty());
+  EXPECT_FALSE(c.manifest.contains("options")) << "gblens render options written for a foreign frame";
+
+  // The same frame "replayed elsewhere": the warning names both devices; the same replay: none.
+  fs::copy(dir + "/a", dir + "/b", fs::copy_options::recursive);
+  json m = json::parse(std::ifstream(dir + "/b/manifest.json"));
+  m["source"]["replay"]["device"] = "Another GPU (another driver 1.0)";
+  std::ofstream(dir + "/b/manifest.json") << m.dump(2) << "\n";
+  RunResult same = runGblens("compare '" + dir + "/a' '" + dir + "/a'");
+  EXPECT_EQ(same.output.find("replay drivers"), std::string::npos) << same.output;
+  RunResult other = runGblens("compare '" + dir + "/a' '" + dir + "/b'");
+  EXPECT_EQ(other.exitCode, 0) << other.output;
+  EXPECT_NE(other.output.find("gblens compare: warning: "), std::string::npos) << other.output;
+  EXPECT_NE(other.output.find("Another GPU (another driver 1.0)"), std::string::npos) << other.output;
+  EXPECT_NE(other.output.find(source["replay"].value("device", "?")), std::string::npos) << other.output;
 }
 
 

@@ -19,8 +19,12 @@ double depthRounding(const FrameSnapshot& f, const Quantity& q, uint32_t x, uint
   const double stored = storedValues(f, q, x, y)[0];
   const double half = 0.5 * storageUlp(t.format.type, t.format.encoding, stored);
   if (q.depth == DepthEncoding::Hardware) {
-    const glm::dvec3 a = eyeFromHardwareDepth(f.camera, x, y, stored - half);
-    const glm::dvec3 b = eyeFromHardwareDepth(f.camera, x, y, stored + half);
+    // The rasterizer interpolates z / w itself (fp32, its own order of operations) before the depth
+    // is stored: a few ulps, not the half ulp of storage alone. Four: a healthy lavapipe frame's
+    // d32f depth reached 2.2 ulps (tests/subjects/foreign_deferred); a wrong camera is metres off.
+    const double ulps = 4.0 * storageUlp(t.format.type, t.format.encoding, stored);
+    const glm::dvec3 a = eyeFromHardwareDepth(f.camera, x, y, stored - ulps);
+    const glm::dvec3 b = eyeFromHardwareDepth(f.camera, x, y, stored + ulps);
     return std::max(glm::length(a - eye), glm::length(b - eye));
   }
   // Eye and radial depths scale the point along its ray: the move is |P| times the relative error.

@@ -7,9 +7,11 @@
 #include "views/analysis/decompose.h"
 
 #include <algorithm>
+#include <atomic>
 #include <thread>
 #include <vector>
 
+#include "renderer/core/progress.h"
 #include "shaders/shading.h"
 #include "views/analysis/probe_internal.h"
 
@@ -85,12 +87,22 @@ bool decomposeLighting(const FrameSnapshot& f, Decomposition& out, std::string& 
     img.data.assign(size_t(w) * h * img.texelBytes(), 0);
   }
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  // The caller's progress (core/progress.h): a row counted as it finishes; cancelled, no row starts.
+  WorkProgress* progress = currentProgress();
+  std::atomic<uint32_t> next{0};
   std::vector<std::thread> pool;
   for (unsigned k = 0; k < threads; ++k)
-    pool.emplace_back([&, k] {
-      for (uint32_t y = k; y < h; y += threads) shadeRow(f, y, out);
+    pool.emplace_back([&] {
+      for (uint32_t y; (!progress || !progress->cancelled()) && (y = next.fetch_add(1)) < h;) {
+        shadeRow(f, y, out);
+        if (progress) progress->done.fetch_add(progress->weight, std::memory_order_relaxed);
+      }
     });
   for (std::thread& t : pool) t.join();
+  if (progress && progress->cancelled()) {
+    error = "cancelled";
+    return false;
+  }
   return true;
 }
 

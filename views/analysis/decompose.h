@@ -23,7 +23,9 @@ struct Decomposition {
 };
 
 // False with `error` when the frame's lights cannot be evaluated (the layout gives none in gblens's
-// model) or it has no albedo and normal. Pixels without a surface are 0 in every term.
+// model) or it has no albedo and normal. Pixels without a surface are 0 in every term. Rows are
+// counted into the calling thread's WorkProgress (core/progress.h), one per row of the frame;
+// cancelled, it stops and returns false ("cancelled").
 bool decomposeLighting(const FrameSnapshot& f, Decomposition& out, std::string& error, unsigned threads = 0);
 
 }  // namespace gb

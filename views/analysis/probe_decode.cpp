@@ -94,7 +94,7 @@ void reconstructAll(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDossier
   const Quantity* stored = f.layout.find(QuantityKind::Position);
   std::optional<glm::dvec3> storedEye;
   if (stored && holds(f, *stored, x, y)) storedEye = decodePosition(f, *stored, x, y);
-  const std::string worldSpace = "world (layout: " + upAxisText(f.layout.camera) + "-up)";
+  const std::string worldSpace = "world (layout: " + upAxisText(f.layout.camera) + ")";
   for (const Quantity& q : f.layout.quantities) {
     const bool depth = q.kind == QuantityKind::Depth && !q.ofSun;
     if (!depth && q.kind != QuantityKind::Position) continue;

@@ -17,8 +17,8 @@ namespace {
 std::string spaceText(const Layout& l, Space s) {
   switch (s) {
     case Space::View: return l.camera.leftHanded ? "view (left-handed, looks down +Z)" : "view";
-    case Space::World: return "world (layout: " + upAxisText(l.camera) + "-up)";
-    case Space::CameraRelative: return "camera-relative world (layout: " + upAxisText(l.camera) + "-up)";
+    case Space::World: return "world (layout: " + upAxisText(l.camera) + ")";
+    case Space::CameraRelative: return "camera-relative world (layout: " + upAxisText(l.camera) + ")";
   }
   return "";
 }

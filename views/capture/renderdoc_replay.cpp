@@ -234,6 +234,7 @@ bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& 
   out = RdcListing{};
   out.api = j.value("api", "");
   out.driverNote = j.value("driver", "");
+  out.provenance = j.value("provenance", nlohmann::json::object());
   out.lastEvent = j.value("lastEvent", 0u);
   std::map<uint64_t, std::string> names;
   for (const nlohmann::json& t : j.at("textures")) {

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "renderer/core/targets.h"
 
 namespace gb {
@@ -69,6 +71,9 @@ struct RdcBuffer {
 struct RdcListing {
   std::string api;         // the capture's API, e.g. "Vulkan"
   std::string driverNote;  // where it was recorded and what replays it here
+  // The same as data (a manifest's "source"): "recorded" {api, machine, device, driver, driver_info}
+  // as far as the capture says, "replay" {renderdoc, device, degraded} of this machine.
+  nlohmann::json provenance;
   std::vector<RdcPass> passes;
   std::vector<RdcTexture> textures;
   std::vector<RdcBuffer> buffers;  // every buffer of the capture

@@ -11,10 +11,17 @@ namespace gb {
 
 void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, std::vector<ViewDraw>& draws);
 void drawDossier(ViewerModel& m);  // probe_panel.cpp
-void referenceErrorWindow(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDraw>& draws);  // reference_error_panel.cpp
+void referenceErrorSection(ViewerModel& m);  // reference_error_panel.cpp
+void compareControls(ViewerModel& m);        // compare_panel.cpp
+void compareTabs(ViewerModel& m);
 void drawRegion(ViewerModel& m);   // region_panel.cpp
 
 static constexpr double kMenuHeight = 20.0, kStatusHeight = 22.0, kControlsWidth = 310.0, kPixelWidth = 450.0;
+static constexpr double kTextLine = 13.0;  // the default font's line
+
+// A compare's status bar has room for its hover's three lines (A, B, their difference) at all times,
+// so the views do not move as the mouse enters them.
+static double statusHeight(const ViewerModel& m) { return kStatusHeight + (m.source == FrameSource::Compare ? 2 * kTextLine : 0.0); }
 
 // Panels keep their width until the window gets narrow; then they give way to the views.
 static double controlsWidth(const ViewerModel& m, double w) { return m.showControls ? std::min(kControlsWidth, 0.25 * w) : 0.0; }
@@ -25,7 +32,7 @@ static double pixelWidth(const ViewerModel& m, double w) {
 
 Rect viewArea(const ViewerModel& m, double w, double h) {
   double left = controlsWidth(m, w), right = pixelWidth(m, w);
-  return {left, kMenuHeight, std::max(1.0, w - left - right), std::max(1.0, h - kMenuHeight - kStatusHeight)};
+  return {left, kMenuHeight, std::max(1.0, w - left - right), std::max(1.0, h - kMenuHeight - statusHeight(m))};
 }
 
 static void tooltip(const char* text) {
@@ -70,7 +77,9 @@ static std::string helpText(const ViewerModel& m) {
             "Right drag: orbit (fly mode: look); WASD/QE: move; ctrl+wheel: dolly\n"
             "Space: play/pause; , and .: step; Home: reset camera";
   else if (m.source == FrameSource::Compare)
-    text += "Compare: A, B and |A - B| side by side, or split A | B (drag the handle)";
+    text += "Compare: Space flips A and B in place; the Compare section picks A / B, swipe (drag the handle),\n"
+            "|A - B| or FLIP, for every view shown";
+  if (m.source == FrameSource::Live) text += "\nEscape: cancel the reference error's computation";
   return text;
 }
 
@@ -100,7 +109,9 @@ static void menuBar(ViewerModel& m) {
     if (ImGui::MenuItem("Fit", "Z")) m.transform = ViewTransform{};
     ImGui::MenuItem("Controls panel", nullptr, &m.showControls);
     ImGui::MenuItem("Pixel panel", nullptr, &m.showPixel);
-    ImGui::MenuItem("Reference error (live frame)", nullptr, &m.referenceError.open);
+    if (m.source == FrameSource::Live &&
+        ImGui::MenuItem("Compute the reference error", nullptr, false, !m.referenceError.computing))
+      m.referenceError.computeRequested = true;
     ImGui::EndMenu();
   }
   if (m.source == FrameSource::Live && ImGui::BeginMenu("Camera")) {
@@ -133,8 +144,8 @@ static void visualControls(ViewerModel& m, const ViewDef& d, ViewSettings& s) {
     tooltip("logarithmic between black and white (both must be positive)");
   }
   if (d.visual == Visual::Position) ImGui::Checkbox("distance to the eye", &s.distance);
-  const auto& bits = m.frameLayout.quantities[size_t(d.quantity)].stencilBits;
-  if (d.visual == Visual::Stencil && !bits.empty()) {
+  if (d.visual == Visual::Stencil && d.quantity >= 0 && !m.frameLayout.quantities[size_t(d.quantity)].stencilBits.empty()) {
+    const auto& bits = m.frameLayout.quantities[size_t(d.quantity)].stencilBits;
     ImGui::TextUnformatted("bits");
     for (const auto& [bitName, mask] : bits) {
       bool on = (s.stencilBits & mask) != 0;
@@ -163,7 +174,11 @@ static void viewSettings(ViewerModel& m) {
   viewCombo(m, "settings of", m.edited);
   const ViewDef& d = m.views[size_t(m.edited)];
   ViewSettings& s = m.settings[size_t(m.edited)];
-  if (!d.space.empty()) ImGui::TextDisabled("%s", d.space.c_str());
+  if (!d.space.empty()) {  // wrapped: a map's space can be a sentence
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+    ImGui::TextWrapped("%s", d.space.c_str());
+    ImGui::PopStyleColor();
+  }
   for (int c = 0; c < int(d.componentNames.size()) && d.components > 1; ++c) {
     bool on = s.channels & (1u << c);
     if (c) ImGui::SameLine();
@@ -355,12 +370,10 @@ static void controlsPanel(ViewerModel& m, const Rect& at) {
   ImGui::Begin("Controls", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                                         ImGuiWindowFlags_NoSavedSettings);
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) viewSettings(m);
-  if (m.source == FrameSource::Compare && ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::Checkbox("split A | B", &m.split);
-    if (m.split) ImGui::SliderFloat("split at", &m.splitAt, 0.0f, 1.0f, "%.2f");
-    ImGui::TextDisabled("single view: A, B and |A - B|; keys pick the view");
-    ImGui::TextWrapped("%s", m.compareSummary.c_str());
-  }
+  if (m.source == FrameSource::Compare && ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen))
+    compareControls(m);
+  if (m.source == FrameSource::Live && ImGui::CollapsingHeader("Reference error", ImGuiTreeNodeFlags_DefaultOpen))
+    referenceErrorSection(m);
   if (m.source != FrameSource::Live) {
     if (ImGui::CollapsingHeader(m.source == FrameSource::Compare ? "Captures" : "Capture", ImGuiTreeNodeFlags_DefaultOpen))
       ImGui::TextWrapped("%s", m.captureInfo.c_str());
@@ -393,13 +406,16 @@ static void pixelPanel(ViewerModel& m, const Rect& at) {
   ImGui::Begin("Pixel", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                                      ImGuiWindowFlags_NoSavedSettings);
   if (m.region && ImGui::CollapsingHeader("Region statistics", ImGuiTreeNodeFlags_DefaultOpen)) drawRegion(m);
-  drawDossier(m);
+  if (m.source == FrameSource::Compare)
+    compareTabs(m);  // the report and the pixel's dossiers
+  else
+    drawDossier(m);
   ImGui::End();
 }
 
 static void statusBar(ViewerModel& m, double w, double h) {
-  ImGui::SetNextWindowPos(ImVec2(0, float(h - kStatusHeight)));
-  ImGui::SetNextWindowSize(ImVec2(float(w), float(kStatusHeight)));
+  ImGui::SetNextWindowPos(ImVec2(0, float(h - statusHeight(m))));
+  ImGui::SetNextWindowSize(ImVec2(float(w), float(statusHeight(m))));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(6, 3));
   ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
                                          ImGuiWindowFlags_NoBringToFrontOnFocus);
@@ -429,7 +445,6 @@ void drawViewerUi(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDra
   if (m.showControls) controlsPanel(m, {0, kMenuHeight, controlsWidth(m, w), area.h});
   if (m.showPixel) pixelPanel(m, {w - pixelWidth(m, w), kMenuHeight, pixelWidth(m, w), area.h});
   statusBar(m, w, h);
-  referenceErrorWindow(m, callback, draws);
 }
 
 }  // namespace gb

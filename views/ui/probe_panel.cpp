@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 
+#include "renderer/core/layout_json.h"
 #include "views/ui/viewer_model.h"
 
 namespace gb {
@@ -292,11 +293,14 @@ static void dossierSections(const PixelDossier& d) {
 }
 
 void referenceSection(ViewerModel& m);  // reference_panel.cpp
+void compareDossiers(ViewerModel& m);   // compare_panel.cpp
 
 void drawDossier(ViewerModel& m) {
   // The readout under the mouse keeps a fixed height, so what follows (the dossier, its buttons)
   // does not move as the mouse goes from pixel to pixel.
-  ImGui::BeginChild("hover", ImVec2(0, ImGui::GetTextLineHeightWithSpacing() * 4.5f), false, ImGuiWindowFlags_NoScrollbar);
+  // A compare's readout holds A's line, B's and their difference, each wrapped to two lines.
+  const float lines = m.source == FrameSource::Compare ? 7.5f : 4.5f;
+  ImGui::BeginChild("hover", ImVec2(0, ImGui::GetTextLineHeightWithSpacing() * lines), false, ImGuiWindowFlags_NoScrollbar);
   if (m.hover)
     ImGui::Text("mouse (%d, %d)", m.hover->x, m.hover->y);
   else if (m.hoverShadowTexel)
@@ -316,8 +320,13 @@ void drawDossier(ViewerModel& m) {
   }
   ImGui::Separator();
   if (!m.probePixel || !m.dossier) {
-    ImGui::TextWrapped("Click a pixel (or use the arrow keys) for its dossier: stored values of every target, "
-                       "reconstructed positions, the shadow-map texels, the point lights that reach it.");
+    // Another renderer's frame has only its layout's quantities: no shadow map or lights to promise.
+    if (gblensLayout(m.frameLayout))
+      ImGui::TextWrapped("Click a pixel (or use the arrow keys) for its dossier: stored values of every target, "
+                         "reconstructed positions, the shadow-map texels, the point lights that reach it.");
+    else
+      ImGui::TextWrapped("Click a pixel (or use the arrow keys) for its dossier: the stored texels of every target, "
+                         "each quantity of the layout decoded, positions reconstructed from depth.");
     return;
   }
   const PixelDossier& d = *m.dossier;
@@ -337,26 +346,12 @@ void drawDossier(ViewerModel& m) {
   }
   if (!m.dossierB) {
     ImGui::BeginChild("dossier");
-    referenceSection(m);
+    if (gblensLayout(m.frameLayout)) referenceSection(m);  // another renderer's frame has no scene to trace
     dossierSections(d);
     ImGui::EndChild();
     return;
   }
-  // Compare: both dossiers side by side, section for section.
-  float half = ImGui::GetContentRegionAvail().x * 0.5f - 4.0f;
-  ImGui::BeginChild("dossierA", ImVec2(half, 0), true);
-  ImGui::TextColored(ImVec4(0.6f, 0.8f, 1, 1), "A  %s", m.captureA.c_str());
-  ImGui::PushID("A");
-  dossierSections(d);
-  ImGui::PopID();
-  ImGui::EndChild();
-  ImGui::SameLine();
-  ImGui::BeginChild("dossierB", ImVec2(half, 0), true);
-  ImGui::TextColored(ImVec4(1, 0.8f, 0.6f, 1), "B  %s", m.captureB.c_str());
-  ImGui::PushID("B");
-  dossierSections(*m.dossierB);
-  ImGui::PopID();
-  ImGui::EndChild();
+  compareDossiers(m);  // compare: one table, A beside B, the values that differ marked
 }
 
 }  // namespace gb

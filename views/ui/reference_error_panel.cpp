@@ -1,101 +1,73 @@
-// The "Reference error" window: the maps `gblens error -o` writes (views/analysis/error.h
-// errorMaps), computed for the live frame on request while the viewer stays responsive; the map
-// is drawn through the view pipeline from the app's reference renderer (FrameSide::Reference).
+// The "Reference error" section of the controls: computes, for the live frame on request, the maps
+// `gblens error -o` writes and the lighting decomposition of `gblens decompose` (app/viewer/
+// reference_error.cpp, a worker thread) with its progress and a cancel; the maps then are views of
+// the frame ("error/<map>", "decompose/<term>": the grid, the View menu, hover and probe), and the
+// legend of the one last used is here.
 #include <imgui.h>
 
 #include <algorithm>
+#include <cstdio>
 
-#include "views/analysis/decompose.h"
-#include "views/analysis/error.h"
-#include "views/ui/view_params.h"
 #include "views/ui/viewer_model.h"
 
 namespace gb {
 
-static void queueMap(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDraw>& draws) {
-  const auto& e = m.referenceError;
-  const ImVec2 avail = ImGui::GetContentRegionAvail(), at = ImGui::GetCursorScreenPos();
-  if (avail.x < 8 || avail.y < 8 || e.width == 0) return;
-  const double scale = std::min(avail.x / double(e.width), avail.y / double(e.height));
-  const ImGuiIO& io = ImGui::GetIO();
-  Placement fb{at.x * io.DisplayFramebufferScale.x, at.y * io.DisplayFramebufferScale.y, scale * io.DisplayFramebufferScale.x};
-  // Error maps are sRGB colour images held as `final`; decomposition terms linear colour in `hdr`
-  // drawn from 0 to their largest value; the light count as a heat map in `coverage_full`.
-  ViewDef def;
-  def.name = "reference";
-  def.visual = e.mapping;
-  def.components = e.mapping == Visual::Count ? 1 : 3;
-  def.integer = e.mapping == Visual::Count;
-  def.channels = e.mapping == Visual::Count ? 0x1 : 0x7;
-  ResolvedRange range;
-  if (e.mapping != Visual::Color || !e.srgbMap) range.black = 0.0f, range.white = std::max(e.white, 1e-30f);
-  ViewGpuSource src;
-  src.decoded = false;
-  ViewDraw vd;
-  vd.referenceTarget = e.mapping == Visual::Count ? Target::CoverageFull : e.srgbMap ? Target::Final : Target::Hdr;
-  vd.side = FrameSide::Reference;
-  vd.params = viewParams(def, defaultSettings(def), src, range, fb, false, std::nullopt, {1, 1});
-  const float w = float(e.width * scale), h = float(e.height * scale);
-  vd.rect = {fb.originX, fb.originY, w * io.DisplayFramebufferScale.x, h * io.DisplayFramebufferScale.y};
-  draws.push_back(vd);
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  dl->PushClipRect(at, ImVec2(at.x + w, at.y + h), true);
-  dl->AddCallback(callback, reinterpret_cast<void*>(intptr_t(draws.size() - 1)));
-  dl->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
-  dl->PopClipRect();
-  ImGui::Dummy(ImVec2(w, h));
+// A button for each map view, showing it alone (its hover, probe and legend are those of a view),
+// and one for the grid of every view: where the maps went, said where they were asked for.
+static void mapButtons(ViewerModel& m) {
+  float x = 0.0f;
+  const float right = ImGui::GetContentRegionAvail().x;
+  for (size_t k = 0; k < m.views.size(); ++k) {
+    const std::string& n = m.views[k].name;
+    if (n.rfind("error/", 0) != 0 && n.rfind("decompose/", 0) != 0) continue;
+    const float w = ImGui::CalcTextSize(n.c_str()).x + 2.0f * ImGui::GetStyle().FramePadding.x;
+    if (x > 0.0f && x + ImGui::GetStyle().ItemSpacing.x + w <= right)
+      ImGui::SameLine(), x += ImGui::GetStyle().ItemSpacing.x;
+    else
+      x = 0.0f;
+    x += w;
+    const bool shown = m.layout != LayoutMode::Grid && m.primary == int(k);
+    if (shown) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyle().Colors[ImGuiCol_ButtonActive]);
+    if (ImGui::SmallButton(n.c_str())) {
+      m.primary = m.edited = int(k);
+      if (m.layout == LayoutMode::Grid) m.layout = LayoutMode::Single;
+      m.uiChanged = true;
+    }
+    if (shown) ImGui::PopStyleColor();
+  }
+  if (ImGui::SmallButton("every view in the grid (1)")) m.layout = LayoutMode::Grid, m.uiChanged = true;
 }
 
-void referenceErrorWindow(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDraw>& draws) {
+void referenceErrorSection(ViewerModel& m) {
   auto& e = m.referenceError;
-  if (!e.open) return;
-  ImGui::SetNextWindowSize(ImVec2(560, 420), ImGuiCond_FirstUseEver);
-  if (!ImGui::Begin("Reference error", &e.open)) {
-    ImGui::End();
-    return;
-  }
-  if (m.source != FrameSource::Live) {
-    ImGui::TextWrapped("The reference needs the scene: live frames only (gblens error SCENE -o DIR for others).");
-    ImGui::End();
-    return;
-  }
-  const std::vector<ErrorMapDef>& maps = errorMaps();
-  auto label = [&](size_t i) {
-    return i < maps.size() ? std::string("error: ") + maps[i].name
-                           : std::string("decomposition: ") + name(LightingTerm(i - maps.size()));
-  };
-  ImGui::SetNextItemWidth(220);
-  if (ImGui::BeginCombo("map", label(size_t(e.map)).c_str())) {
-    for (size_t i = 0; i < maps.size() + kLightingTermCount; ++i)
-      if (ImGui::Selectable(label(i).c_str(), int(i) == e.map)) e.map = int(i), e.mapChanged = true;
-    ImGui::EndCombo();
-  }
-  ImGui::SameLine();
   if (e.computing) {
-    ImGui::Text("computing the reference... %.1f s", e.seconds);
+    char overlay[64];
+    std::snprintf(overlay, sizeof overlay, "%.0f%%  (%.1f s)", e.progress * 100.0, e.seconds);
+    ImGui::ProgressBar(float(e.progress), ImVec2(-80.0f, 0.0f), overlay);
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) e.cancelRequested = true;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Escape cancels too");
   } else if (ImGui::Button(e.ready ? "Recompute for this frame" : "Compute for this frame")) {
     e.computeRequested = true;
   }
   if (!e.error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", e.error.c_str());
   if (!e.ready) {
-    ImGui::TextWrapped("The maps of gblens error -o for the frame on screen (fairy sprites off, primitive_id on, as "
-                       "gblens error renders it), against the double-precision ray-traced reference, and the lighting "
-                       "decomposition of gblens decompose. It takes seconds on a CPU device; the viewer stays usable "
-                       "meanwhile.");
-    ImGui::End();
+    if (!e.computing && ImGui::IsItemHovered())
+      ImGui::SetTooltip("The maps of gblens error -o for the frame on screen (fairy sprites off, primitive_id on, as\n"
+                        "gblens error renders it) against the double-precision ray-traced reference, and the lighting\n"
+                        "terms of gblens decompose, as views of the frame (the grid, the View menu). Seconds on a CPU\n"
+                        "device; the viewer stays usable meanwhile.");
     return;
   }
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  ImGui::TextWrapped("%s (%.1f s)", e.summary.c_str(), e.seconds);
+  ImGui::PopStyleColor();
+  mapButtons(m);
   if (e.stale) ImGui::TextColored(ImVec4(1, 0.7f, 0.3f, 1), "stale: the frame changed since (recompute)");
-  if (size_t(e.map) < maps.size())
-    ImGui::TextWrapped("%s", maps[size_t(e.map)].legend);
-  else if (!e.decomposeNote.empty())
-    ImGui::TextWrapped("%s", e.decomposeNote.c_str());
-  else
-    ImGui::TextWrapped("%s from the G-buffer with shading.h in double (gblens decompose), drawn 0 .. %.4g",
-                       name(LightingTerm(size_t(e.map) - maps.size())), e.white);
-  ImGui::TextDisabled("%s (%.1f s)", e.summary.c_str(), e.seconds);
-  queueMap(m, callback, draws);
-  ImGui::End();
+  if (!e.decomposeNote.empty()) ImGui::TextWrapped("%s", e.decomposeNote.c_str());
+  if (m.edited >= 0 && size_t(m.edited) < m.views.size())
+    if (auto it = e.legends.find(m.views[size_t(m.edited)].name); it != e.legends.end())
+      ImGui::TextWrapped("%s: %s", it->first.c_str(), it->second.c_str());
 }
 
 }  // namespace gb

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "shaders/view_colors.h"
+#include "views/ui/view_legends.h"
 #include "views/ui/viewer_model.h"
 
 namespace gb {
@@ -32,6 +32,7 @@ void setViews(ViewerModel& m, std::vector<ViewDef> views) {
   m.gpuSources.assign(n, ViewGpuSource{});
   m.unavailable.resize(n);
   m.differenceMax.resize(n, 0.0);
+  m.flipPools.resize(n);
   m.hoverView.reset();
 }
 
@@ -58,12 +59,22 @@ std::vector<int> visibleViews(const ViewerModel& m) {
   return {};
 }
 
+// What a compare slot of view `view` shows in the compare mode: FLIP is of colour views (others
+// show |A - B| instead, labelled so).
+static FrameSide compareSide(const ViewerModel& m, int view) {
+  switch (m.compareMode) {
+    case CompareMode::Difference: return FrameSide::Difference;
+    case CompareMode::Flip:
+      return m.views[size_t(view)].visual == Visual::Color ? FrameSide::Flip : FrameSide::Difference;
+    default: return m.compareSide;
+  }
+}
+
 std::vector<ViewSlot> viewSlots(const ViewerModel& m, const Rect& area) {
   std::vector<int> views = visibleViews(m);
   if (views.empty()) return {};
   std::vector<ViewSlot> out;
-  if (m.source == FrameSource::Compare && m.layout == LayoutMode::Single) {
-    if (m.split) return {{views[0], FrameSide::A, area, true}};
+  if (m.source == FrameSource::Compare && m.layout == LayoutMode::Single && m.compareMode == CompareMode::Row) {
     // A, B and |A - B| in a row (a column when the area is taller than wide).
     const double gap = 4.0;
     const bool row = area.w >= area.h;
@@ -75,7 +86,11 @@ std::vector<ViewSlot> viewSlots(const ViewerModel& m, const Rect& area) {
   }
   const glm::uvec2 size = viewImageSize(m, views[0]);
   std::vector<Rect> rects = layoutViews(area, m.layout, views.size(), double(size.x) / double(std::max(size.y, 1u)));
-  for (size_t i = 0; i < views.size() && i < rects.size(); ++i) out.push_back({views[i], FrameSide::A, rects[i]});
+  // Compare: every view in the same mode (the grid flips, swipes or differs as a whole).
+  const bool compare = m.source == FrameSource::Compare;
+  for (size_t i = 0; i < views.size() && i < rects.size(); ++i)
+    out.push_back({views[i], compare ? compareSide(m, views[i]) : FrameSide::A, rects[i],
+                   compare && m.compareMode == CompareMode::Swipe});
   return out;
 }
 
@@ -96,54 +111,6 @@ bool applyViewKey(ViewerModel& m, int digit) {
 }
 
 static ImU32 rgb(float r, float g, float b, float a = 1.0f) { return ImGui::ColorConvertFloat4ToU32(ImVec4(r, g, b, a)); }
-
-// The heat map's legend: the colour ramp of views/visualize.cpp from 0 to the white point.
-static void heatLegend(ImDrawList* dl, ImVec2 at, float width, float maxCount, const char* unit) {
-  const ImVec4 stops[5] = {{0, 0, 1, 1}, {0, 1, 1, 1}, {0, 1, 0, 1}, {1, 1, 0, 1}, {1, 0, 0, 1}};
-  const float h = 10.0f;
-  dl->AddRectFilled(ImVec2(at.x - 4, at.y - 4), ImVec2(at.x + width + 4, at.y + h + 18), rgb(0, 0, 0, 0.6f));
-  for (int i = 0; i < 4; ++i) {
-    float x0 = at.x + width * i / 4, x1 = at.x + width * (i + 1) / 4;
-    ImU32 a = ImGui::ColorConvertFloat4ToU32(stops[i]), b = ImGui::ColorConvertFloat4ToU32(stops[i + 1]);
-    dl->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + h), a, b, b, a);
-  }
-  char text[64];
-  for (int i = 0; i <= 4; ++i) {
-    std::snprintf(text, sizeof text, "%.3g", maxCount * i / 4.0);
-    float x = at.x + width * i / 4 - ImGui::CalcTextSize(text).x * (i == 0 ? 0.0f : i == 4 ? 1.0f : 0.5f);
-    dl->AddText(ImVec2(x, at.y + h + 2), rgb(1, 1, 1), text);
-  }
-  dl->AddText(ImVec2(at.x, at.y - 16), rgb(1, 1, 1), unit);  // black: none
-}
-
-// The legend of a grey or false-colour mapping: its ramp from the black to the white point (depths:
-// near is bright), the values at five places (log: spaced as the mapping spaces them) and the unit.
-static void rampLegend(ImDrawList* dl, ImVec2 at, float width, const ViewMapping& mapping, const ResolvedRange& r,
-                       const std::string& unit) {
-  const float h = 10.0f;
-  const bool depth = mapping.mapping == gpu::kViewMapDepth, falseColour = mapping.flags & gpu::kViewFlagFalseColor;
-  const bool log = (mapping.flags & gpu::kViewFlagLog) && r.black > 0.0f && r.white > r.black;
-  dl->AddRectFilled(ImVec2(at.x - 4, at.y - 18), ImVec2(at.x + width + 4, at.y + h + 18), rgb(0, 0, 0, 0.6f));
-  auto colour = [&](float t) {
-    glm::vec3 c = falseColour ? colors::viridis(depth ? 1.0f - t : t) : glm::vec3(depth ? 1.0f - 0.9f * t : t);
-    return rgb(c.r, c.g, c.b);
-  };
-  const int steps = 32;
-  for (int i = 0; i < steps; ++i) {
-    float x0 = at.x + width * i / steps, x1 = at.x + width * (i + 1) / steps;
-    dl->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + h), colour(float(i) / steps), colour(float(i + 1) / steps),
-                                colour(float(i + 1) / steps), colour(float(i) / steps));
-  }
-  char text[64];
-  for (int i = 0; i <= 4; ++i) {
-    const double t = i / 4.0;
-    const double v = log ? r.black * std::pow(double(r.white) / r.black, t) : r.black + (r.white - r.black) * t;
-    std::snprintf(text, sizeof text, "%.4g", v);
-    float x = at.x + float(width * t) - ImGui::CalcTextSize(text).x * (i == 0 ? 0.0f : i == 4 ? 1.0f : 0.5f);
-    dl->AddText(ImVec2(x, at.y + h + 2), rgb(1, 1, 1), text);
-  }
-  dl->AddText(ImVec2(at.x, at.y - 16), rgb(1, 1, 1), (unit + (log ? " (log)" : "")).c_str());
-}
 
 // Outline of one texel (or a crosshair where a texel is smaller than a few pixels).
 static void markTexel(ImDrawList* dl, const Placement& pl, glm::ivec2 t, ImU32 colour, const Rect& clip) {
@@ -213,6 +180,13 @@ static void queueViewDraw(ViewerModel& m, const SlotDraw& v, const Placement& pl
     vd.params.mode.z &= gpu::kViewFlagGrid;
     vd.params.range = glm::vec4(0.0f, float(std::max(m.differenceMax[size_t(v.view)], 1e-30)), vd.params.range.z, 1.0f);
     if (def.visual == Visual::Normal || def.visual == Visual::Color || def.visual == Visual::Position) vd.params.mode.y &= 0x7u;
+  } else if (v.side == FrameSide::Flip) {
+    // The FLIP map: magma colours (linear, decoded like a capture's view), drawn as they are.
+    ViewDef map;
+    map.visual = Visual::Color;
+    map.components = 3;
+    map.negativeSuspicious = false;
+    vd.params = viewParams(map, defaultSettings(map), ViewGpuSource{}, ResolvedRange{}, fb, m.grid, std::nullopt, m.shadowMapSize);
   }
   if (v.split) vd.splitX = (r.x + r.w * m.splitAt) * io.DisplayFramebufferScale.x;
   vd.rect = {r.x * io.DisplayFramebufferScale.x, r.y * io.DisplayFramebufferScale.y, r.w * io.DisplayFramebufferScale.x,
@@ -252,7 +226,11 @@ static void drawMarks(const ViewerModel& m, const SlotDraw& v, const Placement& 
 static std::string rangeLine(const ViewerModel& m, const SlotDraw& v, const ResolvedRange& range) {
   std::string line;
   char buf[128];
-  if (v.side == FrameSide::Difference) {
+  if (v.side == FrameSide::Flip) {
+    const FlipPool& p = *m.flipPools[size_t(v.view)];
+    std::snprintf(buf, sizeof buf, "mean %.4g, weighted median %.4g, max %.4g", p.mean, p.weightedMedian, p.max);
+    line = buf;
+  } else if (v.side == FrameSide::Difference) {
     double worst = m.differenceMax[size_t(v.view)];
     if (worst > 0.0)
       std::snprintf(buf, sizeof buf, "largest |A - B| %.6g", worst);
@@ -274,35 +252,64 @@ static std::string rangeLine(const ViewerModel& m, const SlotDraw& v, const Reso
   return line;
 }
 
+// The last part of a capture's path (labels stay short).
+static std::string shortName(const std::string& dir) {
+  std::string d = dir;
+  while (d.size() > 1 && d.back() == '/') d.pop_back();
+  const size_t slash = d.find_last_of('/');
+  return slash == std::string::npos ? d : d.substr(slash + 1);
+}
+
+// A compare slot's side: "A  capA", "B  capB", "A | B", "|A-B|", "FLIP".
+static std::string compareLabel(const ViewerModel& m, const SlotDraw& v) {
+  if (v.split) return "A | B";
+  switch (v.side) {
+    case FrameSide::A: return "A  " + shortName(m.captureA);
+    case FrameSide::B: return "B  " + shortName(m.captureB);
+    case FrameSide::Difference:
+      return m.compareMode == CompareMode::Flip && !v.showKey ? "|A-B| (FLIP is of colour views)" : "|A-B|";
+    case FrameSide::Flip: return "FLIP";
+  }
+  return "";
+}
+
 // The label box (side, key, name; the range line), the heat legend and the split handle.
 static void drawLabels(const ViewerModel& m, const SlotDraw& v, const ResolvedRange& range) {
   const ViewDef& def = m.views[size_t(v.view)];
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const Rect& r = v.rect;
-  char label[200];
-  const char* prefix = m.source != FrameSource::Compare ? ""
-                       : v.split                         ? "A | B  "
-                       : v.side == FrameSide::A          ? "A  "
-                       : v.side == FrameSide::B          ? "B  "
-                                                         : "|A-B|  ";
-  std::snprintf(label, sizeof label, "%s%s%s%s", prefix, v.showKey && !def.key.empty() ? def.key.c_str() : "",
+  char label[400];
+  const std::string prefix = m.source == FrameSource::Compare ? compareLabel(m, v) + "  " : "";
+  std::snprintf(label, sizeof label, "%s%s%s%s", prefix.c_str(), v.showKey && !def.key.empty() ? def.key.c_str() : "",
                 v.showKey && !def.key.empty() ? "  " : "", def.name.c_str());
   std::string line2 = rangeLine(m, v, range);
   ImVec2 ls = ImGui::CalcTextSize(label);
   float boxW = std::max(ls.x, ImGui::CalcTextSize(line2.c_str()).x) + 10;
   float boxH = ls.y * (line2.empty() ? 1 : 2) + 6;
-  dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x) + boxW, float(r.y) + boxH), rgb(0, 0, 0, 0.6f));
+  // Compare: the box is coloured by the side shown (A blue, B orange), so a flip is seen at once.
+  const ImU32 box = m.source != FrameSource::Compare || v.split ? rgb(0, 0, 0, 0.6f)
+                    : v.side == FrameSide::A                    ? rgb(0.1f, 0.25f, 0.6f, 0.85f)
+                    : v.side == FrameSide::B                    ? rgb(0.6f, 0.3f, 0.05f, 0.85f)
+                                                                : rgb(0, 0, 0, 0.6f);
+  dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x) + boxW, float(r.y) + boxH), box);
   dl->AddText(ImVec2(float(r.x) + 5, float(r.y) + 3), rgb(1, 1, 1), label);
   if (!line2.empty())
     dl->AddText(ImVec2(float(r.x) + 5, float(r.y) + 3 + ls.y),
                 range.stats.nan || range.stats.inf ? rgb(1, 0.4f, 1) : rgb(0.8f, 0.8f, 0.8f), line2.c_str());
-  if (v.side == FrameSide::Difference && r.w > 120 && r.h > 80)
+  // Legends where there is room for them beside the image (not over a grid tile, where they would
+  // cover the label and the picture and their ticks would run together).
+  const bool room = r.w > 200 && r.h > 200;
+  if (v.side == FrameSide::Flip && room)
+    magmaLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)));
+  else if (v.side == FrameSide::Difference && room)
     heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)),
                float(m.differenceMax[size_t(v.view)]), "|A - B|, max over the selected channels");
-  else if (def.visual == Visual::Count && r.w > 120 && r.h > 80)
+  else if (def.visual == Visual::Count && room)
     heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), range.white,
                viewUnit(def, m.stats.method).c_str());
-  else if (r.w > 120 && r.h > 80) {
+  else if (auto legend = m.referenceError.legends.find(def.name); legend != m.referenceError.legends.end() && room)
+    textLegend(dl, r, float(std::min(r.w - 24, 420.0)), def.name + ": " + legend->second);
+  else if (room) {
     const ViewMapping mapping = viewMapping(def, m.settings[size_t(v.view)]);
     if (mapping.mapping == gpu::kViewMapDepth || (mapping.mapping == gpu::kViewMapGrey && (mapping.flags & gpu::kViewFlagFalseColor)))
       rampLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), mapping, range,
@@ -398,7 +405,8 @@ static void drawOneView(ViewerModel& m, const SlotDraw& v) {
   ImGui::PopID();
 
   Placement pl = placeImage(r, size.x, size.y, m.transform);
-  const std::string& why = m.unavailable[size_t(v.view)];
+  std::string why = m.unavailable[size_t(v.view)];
+  if (why.empty() && v.side == FrameSide::Flip && !m.flipPools[size_t(v.view)]) why = m.flipStatus;
   if (!why.empty()) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), rgb(0.12f, 0.12f, 0.12f));

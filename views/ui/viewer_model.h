@@ -6,11 +6,13 @@
 
 #include <array>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "renderer/frame/renderer.h"
+#include "views/analysis/flip.h"
 #include "views/analysis/probe.h"
 #include "views/analysis/probe_reference.h"
 #include "views/analysis/region_stats.h"
@@ -21,15 +23,20 @@ struct ImDrawCmd;
 
 namespace gb {
 
-// Which frame a view shows: the live one (or capture A), capture B, or |A - B|.
-// Reference: the live frame's reference-error map (app/viewer/reference_error.cpp's renderer).
-enum class FrameSide { A, B, Difference, Reference };
+struct CompareReport;  // views/analysis/compare.h
+
+// Which frame a view shows: the live one (or capture A), capture B, |A - B|, or the FLIP map of A
+// against B (views/analysis/flip.h; colour views).
+enum class FrameSide { A, B, Difference, Flip };
+
+// How --compare shows a view (views/ui/compare_panel.cpp): A or B in place (Space flips them, the
+// same zoom and pan), swiped (A left of a handle, B right), |A - B|, FLIP, or A, B and |A - B| in a row.
+enum class CompareMode { Alternate, Swipe, Difference, Flip, Row };
 
 // A view to draw inside the ImGui draw data: the app's callback records it (views/ui/view_map),
-// reading view `view` of the side's frame (Reference: the reference renderer's `referenceTarget`).
+// reading view `view` of the side's frame.
 struct ViewDraw {
   int view = 0;
-  Target referenceTarget = Target::Final;
   gpu::ViewParams params;
   Rect rect;  // framebuffer pixels: the view's rectangle (the draw command's clip rect clips it)
   FrameSide side = FrameSide::A;
@@ -46,11 +53,16 @@ struct ViewerModel {
   FrameSource source = FrameSource::Live;
   std::string captureA, captureB;    // directories (capture modes)
   std::string captureInfo;           // what the capture(s) hold, for the panel
-  std::string compareSummary;        // `gblens compare`'s report of A vs B
-  bool split = false;                // compare: one view split A | B, else A, B, |A - B| in a row
+  std::string compareSummary;        // `gblens compare`'s report of A vs B (text), or why there is none
+  std::shared_ptr<const CompareReport> compareReport;  // the same, shown as tables
+  CompareMode compareMode = CompareMode::Alternate;
+  FrameSide compareSide = FrameSide::A;  // Alternate: the capture shown
   float splitAt = 0.5f;              // split position, fraction of the view's width
   bool draggingSplit = false;
   std::vector<double> differenceMax;  // compare: largest |A - B| of each view (white point)
+  std::vector<std::optional<FlipPool>> flipPools;  // compare: FLIP of each colour view, once computed
+  std::string flipStatus;            // why a view has no FLIP map yet ("computing FLIP: 1 of 3 views")
+  bool dossierDifferencesOnly = false;  // compare dossiers: only the rows that differ
 
   // ---- what is shown: the views of the frame's layout (views/analysis/view_table.h) ----
   std::vector<ViewDef> views;          // setViews(): every per-view vector below has one entry a view
@@ -120,19 +132,17 @@ struct ViewerModel {
   bool probeReference = false;
   // The reference error, live: the maps of `gblens error -o` for the frame on screen, computed on
   // request in a worker thread (views/ui/reference_error_panel.cpp, app/viewer/reference_error.cpp).
+  // The maps are views of the live frame (quantity -1, named "error/<map>" and "decompose/<term>"),
+  // appended to its layout's views once computed.
   struct ReferenceErrorUi {
-    bool open = false;
-    bool computeRequested = false;  // the panel's button
+    bool computeRequested = false;  // the panel's button, the View menu
+    bool cancelRequested = false;   // the panel's Cancel, Escape
     bool computing = false, ready = false;
     bool stale = false;             // the frame changed since it was computed
     double seconds = 0.0;           // computing: so far; ready: what it took
-    int map = 0;                    // shown: errorMaps() index, then the lighting decomposition's terms
-    bool mapChanged = false;
-    uint32_t width = 0, height = 0;
-    Visual mapping = Visual::Color;  // how the map is drawn: colour (sRGB maps: display, else linear), or a count
-    bool srgbMap = true;             // colour maps: the map is display colour already (error maps)
-    float white = 1.0f;             // HDR and heat maps: the value drawn white (their largest)
+    double progress = 0.0;          // computing: fraction of the work done
     std::string summary, error, decomposeNote;
+    std::map<std::string, std::string> legends;  // a map's view name -> what its colours mean
   } referenceError;
   std::optional<ReferencePixel> reference;
   std::string referenceNote;
