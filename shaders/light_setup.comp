@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Light setup on the GPU, step 1: one invocation per scene light does what classifyLights does on
-// the CPU (renderer/light_culling.cpp), in double with the same formulas: the light's position at
+// the CPU (renderer/frame/light_culling.cpp), in double with the same formulas: the light's position at
 // this frame's time (lights.h), eye space, and whether it is culled (nothing to add, outside the
 // frustum, or covering no pixel centre). It writes the eye-space light and its place among the
 // visible lights of its workgroup; light_compact turns those into the visible list.

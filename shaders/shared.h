@@ -42,14 +42,14 @@ GB_CONST(uint, kBindingTileLights, 6);  // a storage buffer for compute passes (
 GB_CONST(uint, kBindingBaseColorTexture, 7);
 GB_CONST(uint, kBindingNormalTexture, 8);
 GB_CONST(uint, kBindingHdrStorage, 9);  // hdr as a storage image (tiled lighting writes it)
-// Clustered shading's buffers (renderer/cluster_buffers.h), pushed to the compute passes.
+// Clustered shading's buffers (renderer/gpu/cluster_buffers.h), pushed to the compute passes.
 GB_CONST(uint, kBindingClusterHeader, 10);  // ClusterHeader
 GB_CONST(uint, kBindingClusters, 11);       // Cluster[]: the occupied clusters
 GB_CONST(uint, kBindingPixelClusters, 12);  // uint per pixel: its cluster (kNoCluster: sky or no room)
 GB_CONST(uint, kBindingLightLists, 13);     // uint[]: visible-list positions, each cluster's in order
 GB_CONST(uint, kBindingBinBits, 14);        // uint[]: per light bin, a bit per visible-list position
 GB_CONST(uint, kBindingBinBoxes, 15);       // uvec4[2] per light bin: the box of its surface points
-// Light setup on the GPU (renderer/gpu_lights.h): the scene's lights and per-light scratch.
+// Light setup on the GPU (renderer/gpu/gpu_lights.h): the scene's lights and per-light scratch.
 GB_CONST(uint, kBindingLightDescs, 16);     // LightDesc[]: world space, doubles
 GB_CONST(uint, kBindingLightScratch, 17);   // uint per light (its place among its group's visible), then uvec4 per group
 GB_CONST(uint, kBindingGridCells, 20);      // uvec2 per grid cell: offset, count in kBindingGridLights (cluster grid)

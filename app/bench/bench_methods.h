@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "app/bench/bench_report.h"
-#include "renderer/renderer.h"
+#include "renderer/frame/renderer.h"
 
 namespace gb {
 

@@ -5,8 +5,8 @@
 #include <cstdio>
 
 #include "renderer/core/statistics.h"
+#include "renderer/frame/session.h"
 #include "renderer/scene/builtin.h"
-#include "renderer/session.h"
 #include "views/analysis/accuracy.h"
 
 namespace gb {

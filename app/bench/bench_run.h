@@ -7,7 +7,7 @@
 #include "app/bench/bench_attach.h"
 #include "app/bench/bench_methods.h"
 #include "app/bench/bench_report.h"
-#include "renderer/renderer.h"
+#include "renderer/frame/renderer.h"
 
 namespace gb {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "renderer/core/options.h"
-#include "renderer/renderer.h"
+#include "renderer/frame/renderer.h"
 #include "renderer/scene/scene.h"
 #include "renderer/vk/renderdoc_capture.h"
 

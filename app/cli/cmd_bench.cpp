@@ -8,7 +8,7 @@
 
 #include "app/bench/bench_sweep.h"
 #include "app/cli/cli.h"
-#include "renderer/session.h"
+#include "renderer/frame/session.h"
 
 namespace gb {
 

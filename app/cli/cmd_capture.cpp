@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "app/cli/cli.h"
-#include "renderer/render_targets.h"
-#include "renderer/session.h"
+#include "renderer/frame/session.h"
+#include "renderer/gpu/render_targets.h"
 #include "views/capture/capture.h"
 #include "views/capture/report.h"
 

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "app/cli/cli.h"
-#include "renderer/session.h"
+#include "renderer/frame/session.h"
 #include "views/analysis/accuracy.h"
 #include "views/capture/report.h"
 

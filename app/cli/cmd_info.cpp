@@ -7,8 +7,8 @@
 #include <memory>
 
 #include "app/cli/cli.h"
+#include "renderer/frame/session.h"
 #include "renderer/scene/builtin.h"
-#include "renderer/session.h"
 
 namespace gb {
 

@@ -6,9 +6,9 @@
 #include <optional>
 
 #include "app/cli/cli.h"
-#include "renderer/session.h"
 #include "renderer/core/assert.h"
 #include "renderer/core/layout_json.h"
+#include "renderer/frame/session.h"
 #include "views/analysis/visualize.h"
 #include "views/capture/report.h"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "renderer/render_targets.h"
+#include "renderer/gpu/render_targets.h"
 
 namespace gb::stress {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "renderer/frame/session.h"
 #include "renderer/scene/scene.h"
-#include "renderer/session.h"
 #include "views/analysis/accuracy.h"
 
 namespace gb::stress {

@@ -12,7 +12,7 @@
 #include <filesystem>
 
 #include "app/viewer/viewer.h"
-#include "renderer/session.h"
+#include "renderer/frame/session.h"
 #include "views/analysis/accuracy.h"
 #include "views/capture/exr.h"
 #include "views/capture/image_io.h"

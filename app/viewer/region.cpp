@@ -4,9 +4,9 @@
 #include <chrono>
 
 #include "app/viewer/viewer.h"
-#include "renderer/region_readback.h"
-#include "renderer/render_targets.h"
-#include "renderer/session.h"
+#include "renderer/frame/region_readback.h"
+#include "renderer/frame/session.h"
+#include "renderer/gpu/render_targets.h"
 #include "views/analysis/region_stats.h"
 
 namespace gb {

@@ -16,7 +16,7 @@
 #include <csignal>
 
 #include "renderer/core/layout_json.h"
-#include "renderer/render_targets.h"
+#include "renderer/gpu/render_targets.h"
 
 namespace gb {
 

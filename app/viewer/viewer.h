@@ -15,10 +15,10 @@
 
 #include "renderer/core/options.h"
 #include "renderer/core/progress.h"
-#include "renderer/region_readback.h"
+#include "renderer/frame/region_readback.h"
+#include "renderer/reference/reference.h"
 #include "renderer/scene/scene.h"
 #include "renderer/vk/swapchain.h"
-#include "renderer/reference/reference.h"
 #include "views/analysis/decompose.h"
 #include "views/analysis/error.h"
 #include "views/capture/capture.h"

@@ -1,6 +1,6 @@
 // Scene::lights: the point lights, with a generation number that every non-const access changes,
 // so the renderer can tell in O(1) whether the lights may differ from what it uploaded (light
-// setup on the GPU, renderer/gpu_lights.cpp) instead of comparing every light each frame.
+// setup on the GPU, renderer/gpu/gpu_lights.cpp) instead of comparing every light each frame.
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -27,7 +27,7 @@ struct PixelRect {
 // when it lies behind it. The near plane is not applied (clipping only removes pixels).
 PixelRect sphereScreenRect(const Camera& camera, const glm::dvec3& c, double r, double margin);
 
-// Why a point light is drawn or not: the one rule of light culling (renderer/light_culling.cpp)
+// Why a point light is drawn or not: the one rule of light culling (renderer/frame/light_culling.cpp)
 // and of the probe's light ledger ("why is this pixel lit").
 enum class LightCull : uint8_t {
   Empty,     // zero radius, intensity or colour (or not finite): lights nothing

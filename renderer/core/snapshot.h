@@ -1,6 +1,6 @@
 // A frame snapshot: everything the probe, captures, compare and error analysis need to know about
 // one frame, on the CPU, with no Vulkan in sight. Filled from a live Renderer (HeadlessSession,
-// renderer/session.h) or from a capture directory (views/capture/capture.h); analysis reads only this.
+// renderer/frame/session.h) or from a capture directory (views/capture/capture.h); analysis reads only this.
 #pragma once
 #include <array>
 #include <string>
@@ -51,7 +51,7 @@ struct FrameSnapshot {
   std::vector<uint32_t> visibleLights;
   uint32_t stencilCount = 0;
   // The per-light mask's layers: [layerStarts[k], layerStarts[k + 1]) of the visible list share a
-  // stencil bit (renderer/light_culling.cpp). Empty: each stencil-class light has its own bit.
+  // stencil bit (renderer/frame/light_culling.cpp). Empty: each stencil-class light has its own bit.
   std::vector<uint32_t> layerStarts;
   // One image and one reason per layout target, in layout order.
   std::vector<TargetImage> images;

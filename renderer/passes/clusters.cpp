@@ -4,7 +4,7 @@
 // into the 64x64-pixel bins it reaches) and cluster_lists (each cluster's lights, in order).
 #include "renderer/passes/passes.h"
 
-#include "renderer/cluster_buffers.h"
+#include "renderer/gpu/cluster_buffers.h"
 
 namespace gb {
 

@@ -2,7 +2,7 @@
 // that evaluates the material, the sun and every visible point light, writing hdr directly.
 // No G-buffer: albedo_specular, normal_shadow, depth (and position, primitive_id) are not
 // produced, and captures and views list them as unavailable (targetUnavailable).
-#include "renderer/gpu_scene.h"
+#include "renderer/gpu/gpu_scene.h"
 #include "renderer/passes/passes.h"
 
 namespace gb {
@@ -35,7 +35,7 @@ void addForwardPass(FrameGraph& g, Renderer& r) {
                       pc.layouts[size_t(Target::ShadowMap)], r.samplerShadow},
                      {gpu::kBindingCoverage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, coverage.image.view, VK_IMAGE_LAYOUT_GENERAL}});
     // The G-buffer's draw order: opaque before alpha-tested, by material within a variant.
-    for (uint32_t v = 0; v < kDrawVariants; ++v) {  // drawVariant() (renderer/gpu_scene.h)
+    for (uint32_t v = 0; v < kDrawVariants; ++v) {  // drawVariant() (renderer/gpu/gpu_scene.h)
       if (r.drawVariants[v] == r.drawVariants[v + 1]) continue;
       const std::string id = std::string("forward") + drawVariantName(v);
       bindPipeline(pc, graphicsPipeline(r, pc, id, describe(drawVariantBits(v))));

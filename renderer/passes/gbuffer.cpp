@@ -1,6 +1,6 @@
 // G-buffer: albedo_specular, normal_shadow (with the shadow-map compare), eye depth, and the
 // depth/stencil target where geometry writes stencil 128.
-#include "renderer/gpu_scene.h"
+#include "renderer/gpu/gpu_scene.h"
 #include "renderer/passes/passes.h"
 
 namespace gb {
@@ -50,7 +50,7 @@ void addGBufferPass(FrameGraph& g, Renderer& r) {
     bindDescriptors(r, pc.cmd, r.pipelineLayout,
                     {{gpu::kBindingShadowMap, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, shadow.image.depthView,
                       pc.layouts[size_t(Target::ShadowMap)], r.samplerShadow}});
-    for (uint32_t v = 0; v < kDrawVariants; ++v) {  // drawVariant() (renderer/gpu_scene.h)
+    for (uint32_t v = 0; v < kDrawVariants; ++v) {  // drawVariant() (renderer/gpu/gpu_scene.h)
       if (r.drawVariants[v] == r.drawVariants[v + 1]) continue;
       const std::string id = std::string(shaderName(fragment)) + drawVariantName(v);
       bindPipeline(pc, graphicsPipeline(r, pc, id, describe(drawVariantBits(v))));

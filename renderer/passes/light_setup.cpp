@@ -1,4 +1,4 @@
-// Light setup on the GPU (--light-setup; renderer/gpu_lights.h): light_upload copies new light
+// Light setup on the GPU (--light-setup; renderer/gpu/gpu_lights.h): light_upload copies new light
 // descriptions from the frame slot into the buffer light_setup reads; light_setup animates, moves to
 // eye space and culls every scene light in double (shaders/light_setup.comp), light_compact
 // writes the visible list in scene-light order and the counts (shaders/light_compact.comp).

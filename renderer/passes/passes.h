@@ -1,9 +1,9 @@
 // One function per pass: each declares what it reads and writes (its Uses) and records its
-// commands. The frame function (renderer/frame.cpp) decides which run and in what order.
+// commands. The frame function (renderer/frame/frame.cpp) decides which run and in what order.
 #pragma once
+#include "renderer/gpu/pipelines.h"
+#include "renderer/gpu/render_targets.h"
 #include "renderer/graph/graph.h"
-#include "renderer/pipelines.h"
-#include "renderer/render_targets.h"
 
 namespace gb {
 

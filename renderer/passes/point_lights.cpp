@@ -1,7 +1,7 @@
 // Point lights: each light volume shades the pixels it may light, adding into hdr.
 //  - per-light mask (default): Z-fail marks a stencil bit per light, then the light shades where
 //    its bit says the surface is inside the volume and clears it. Lights in front of the near
-//    plane come in layers whose volumes cover disjoint pixels (light_culling.cpp), so a layer
+//    plane come in layers whose volumes cover disjoint pixels (renderer/frame/light_culling.cpp), so a layer
 //    shares one bit and is drawn instanced: back faces mark where they lie behind the geometry,
 //    front faces in front of the geometry shade where marked (two rasterizations, two draws per
 //    layer). A light touching the near plane (front faces may be clipped, the camera may be

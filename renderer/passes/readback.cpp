@@ -1,7 +1,7 @@
 // Read-back: copy the requested targets to host memory (only those). Sample-after: leave
 // targets readable by the viewer's own fragment shaders.
 #include "renderer/passes/passes.h"
-#include "renderer/target_readback.h"
+#include "renderer/readback/target_readback.h"
 
 namespace gb {
 

@@ -1,6 +1,6 @@
 // Shadow map: depth only from the sun's orthographic view, with depth bias. Opaque casters have
 // no fragment stage; alpha-tested ones cut out the same texels as in the G-buffer.
-#include "renderer/gpu_scene.h"
+#include "renderer/gpu/gpu_scene.h"
 #include "renderer/passes/passes.h"
 
 namespace gb {

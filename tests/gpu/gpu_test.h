@@ -7,9 +7,9 @@
 #include <functional>
 #include <memory>
 
-#include "renderer/renderer.h"
+#include "renderer/frame/renderer.h"
+#include "renderer/frame/session.h"
 #include "renderer/scene/scene.h"
-#include "renderer/session.h"
 #include "renderer/vk/context.h"
 #include "tests/support/scenes.h"
 
@@ -28,7 +28,7 @@ class GpuTest : public ::testing::Test {
   const FrameStats& render(const Scene& scene, const RenderOptions& options, const FrameRequest& request = {});
   // The renderer used for `scene` by render().
   Renderer& renderer(const Scene& scene);
-  // One frame of `scene` with `targets` read back, as a snapshot (renderer/session.h).
+  // One frame of `scene` with `targets` read back, as a snapshot (renderer/frame/session.h).
   FrameSnapshot snapshot(const Scene& scene, const RenderOptions& options, const std::vector<Target>& targets);
   // That renderer as a frame source for analysis (views/analysis/accuracy.h).
   std::function<FrameSnapshot(const RenderOptions&, const std::vector<Target>&)> source(const Scene& scene);

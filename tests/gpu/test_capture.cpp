@@ -7,7 +7,7 @@
 #include <map>
 #include <set>
 
-#include "renderer/render_targets.h"
+#include "renderer/gpu/render_targets.h"
 #include "renderer/scene/builtin.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/support/capture_util.h"

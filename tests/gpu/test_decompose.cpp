@@ -5,9 +5,9 @@
 // "lighting only" equals the hdr of the same frame rendered with white materials.
 #include <cmath>
 
+#include "renderer/frame/session.h"
+#include "renderer/gpu/render_targets.h"
 #include "renderer/scene/builtin.h"
-#include "renderer/session.h"
-#include "renderer/render_targets.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/support/capture_util.h"
 #include "views/analysis/decompose.h"

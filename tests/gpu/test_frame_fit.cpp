@@ -1,7 +1,7 @@
 // The frame-fit check that keeps an output the device cannot hold from reaching an allocation.
 #include <gtest/gtest.h>
 
-#include "renderer/frame_memory.h"
+#include "renderer/gpu/frame_memory.h"
 #include "tests/gpu/gpu_test.h"
 
 namespace gb {

@@ -1,12 +1,12 @@
-// Frames in flight (submitFrame / finishFrames, renderer/frame_slots.cpp): a burst whose camera,
+// Frames in flight (submitFrame / finishFrames, renderer/frame/frame_slots.cpp): a burst whose camera,
 // lights and time change every frame ends on the image a synchronous renderer draws for its last
 // frame alone, bit for bit; every frame's statistics are complete and its light and cluster counts
 // are the synchronous frame's; the skybox is skipped only on the count of a retired frame.
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "renderer/passes/passes.h"
+#include "renderer/readback/target_readback.h"
 #include "renderer/scene/builtin.h"
-#include "renderer/target_readback.h"
 #include "tests/gpu/gpu_test.h"
 
 namespace gb {

@@ -1,5 +1,5 @@
 // Light setup on the GPU uploads the scene's lights only when their generation changed
-// (renderer/gpu_lights.cpp, LightList): an edit through each mutable path of Scene::lights shows
+// (renderer/gpu/gpu_lights.cpp, LightList): an edit through each mutable path of Scene::lights shows
 // in the next frame exactly as a fresh renderer of the edited scene draws it, an unchanged scene
 // uploads nothing, and the renderer's reads never change the generation.
 #include <functional>

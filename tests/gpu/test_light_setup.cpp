@@ -7,8 +7,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "renderer/frame/session.h"
 #include "renderer/scene/builtin.h"
-#include "renderer/session.h"
 #include "tests/gpu/gpu_test.h"
 
 namespace gb {

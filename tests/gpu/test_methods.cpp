@@ -16,9 +16,9 @@
 
 #include "renderer/core/camera.h"
 #include "renderer/core/codec.h"
-#include "renderer/light_culling.h"
+#include "renderer/frame/light_culling.h"
+#include "renderer/readback/srgb_probe.h"
 #include "renderer/scene/builtin.h"
-#include "renderer/srgb_probe.h"
 #include "tests/gpu/gpu_test.h"
 
 namespace gb {

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <random>
 
-#include "renderer/codec_probe.h"
 #include "renderer/core/codec.h"
+#include "renderer/readback/codec_probe.h"
 #include "renderer/scene/builtin.h"
 #include "tests/gpu/gpu_test.h"
 #include "views/analysis/accuracy.h"

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "renderer/core/camera.h"
-#include "renderer/light_culling.h"
+#include "renderer/frame/light_culling.h"
 #include "renderer/scene/builtin.h"
 #include "renderer/scene/mesh_builder.h"
 #include "shaders/shading.h"

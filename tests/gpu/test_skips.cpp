@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "renderer/core/camera.h"
-#include "renderer/light_culling.h"
+#include "renderer/frame/light_culling.h"
 #include "renderer/scene/builtin.h"
 #include "tests/gpu/gpu_test.h"
 

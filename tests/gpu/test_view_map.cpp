@@ -6,9 +6,9 @@
 #include <cstring>
 
 #include "renderer/core/layout_json.h"
-#include "renderer/region_readback.h"
+#include "renderer/frame/region_readback.h"
+#include "renderer/gpu/upload_targets.h"
 #include "renderer/scene/builtin.h"
-#include "renderer/upload_targets.h"
 #include "renderer/vk/check.h"
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/view_canvas.h"

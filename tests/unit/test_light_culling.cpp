@@ -7,7 +7,7 @@
 
 #include "renderer/core/camera.h"
 #include "renderer/core/light_rect.h"
-#include "renderer/light_culling.h"
+#include "renderer/frame/light_culling.h"
 #include "renderer/scene/builtin.h"
 #include "tests/support/scenes.h"
 

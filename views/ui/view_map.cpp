@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "renderer/pipelines.h"
+#include "renderer/gpu/pipelines.h"
 #include "renderer/vk/check.h"
 
 namespace gb {

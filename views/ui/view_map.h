@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/renderer.h"
+#include "renderer/frame/renderer.h"
 #include "views/analysis/visualize.h"
 #include "views/ui/view_params.h"
 

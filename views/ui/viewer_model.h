@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/renderer.h"
+#include "renderer/frame/renderer.h"
 #include "views/analysis/flip.h"
 #include "views/analysis/probe.h"
 #include "views/analysis/probe_reference.h"

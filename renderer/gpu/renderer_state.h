@@ -1,0 +1,196 @@
+// The renderer's state (renderer/gpu/): the Renderer and what it holds on the GPU (scene, targets,
+// cluster buffers, lights, frame slots, cached pipelines) and this frame as the passes see it.
+// The code that fills it lives beside it in gpu/; the frame function and its API in renderer/frame/.
+#pragma once
+#include <array>
+#include <chrono>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "renderer/core/camera.h"
+#include "renderer/core/cluster_grid.h"
+#include "renderer/core/frame_stats.h"
+#include "renderer/core/image.h"
+#include "renderer/core/options.h"
+#include "renderer/graph/graph.h"
+#include "renderer/scene/scene.h"
+#include "renderer/vk/formats.h"
+#include "renderer/vk/pipeline.h"
+#include "renderer/vk/resources.h"
+#include "shaders/shared.h"
+
+namespace gb {
+
+// Lights of this frame after CPU culling. Drawn instanced from `visible`:
+// [0, stencilCount) use the stencil mask; [stencilCount, visible.size()) contain or touch the
+// near plane and are drawn as back faces with the depth test reversed (no stencil).
+// The stencil class is ordered in layers: [layerStarts[k], layerStarts[k + 1]) are lights whose
+// volumes cover disjoint pixels, so the per-light mask marks and shades a layer in one draw each.
+struct FrameLights {
+  std::vector<gpu::PointLight> eye;  // every light, eye space (index = Scene::lights index)
+  std::vector<uint32_t> visible;
+  uint32_t stencilCount = 0;
+  std::vector<uint32_t> layerStarts;  // size layers + 1; the last is stencilCount
+  uint32_t culledFrustum = 0;  // outside the view frustum
+  uint32_t culledEmpty = 0;    // zero radius, intensity or colour: nothing to add
+  uint32_t culledSubpixel = 0; // its screen rectangle holds no pixel centre (see renderer/frame/light_culling.h)
+};
+
+
+
+// What cached GPU state was made for: when the key of a new frame equals the stored one, the
+// state is reused (targets kept, shadow map not re-rendered, skybox skipped when it drew nothing).
+struct TargetsKey {
+  uint32_t width = 0, height = 0, shadowMapSize = 0;
+  NormalFormat normalFormat{};
+  DepthFormat depthFormat{};
+  AccumFormat accumFormat{};
+  ShadowFormat shadowFormat{};
+  PositionSource position{};
+  bool coverage = false, transientGBuffer = false, primitiveId = false, clearViews = false, finalStorage = false;
+  bool operator==(const TargetsKey&) const = default;
+};
+struct ShadowMapKey {
+  size_t instances = 0;
+  glm::dvec3 toSun{0.0};
+  uint32_t size = 0;
+  ShadowFormat format{};
+  float biasConstant = 0.0f, biasSlope = 0.0f, biasClamp = 0.0f;
+  bool operator==(const ShadowMapKey&) const = default;
+};
+struct SkyKey {
+  size_t instances = 0;
+  uint32_t width = 0, height = 0;
+  bool reversedZ = false;
+  DepthFormat depthFormat{};
+  glm::dmat4 clipFromWorld{1.0};
+  bool operator==(const SkyKey&) const = default;
+};
+
+// A cached pipeline: its id (shader variant and state), the render-pass compatibility class and
+// subpass it is used in (graphics), and the values of the common specialization constants.
+struct PipelineKey {
+  std::string id;
+  bool compute = false;
+  uint32_t compatClass = 0, subpass = 0;
+  std::vector<uint32_t> spec;
+  auto operator<=>(const PipelineKey&) const = default;
+};
+
+// Clustered shading's buffers (renderer/gpu/cluster_buffers.cpp): device-local, sized for the frame;
+// capacities in clusters and light-list entries grow when a frame runs out of room. (The header's
+// copy for the CPU is per frame slot: FrameSlot::clusterHeader.) With --cluster-assign cpu: the
+// CPU's cluster grid (renderer/core/cluster_grid.h); its copies for the GPU are per frame slot.
+struct ClusterBuffers {
+  Buffer header, clusters, pixelClusters, lists, binBits, binBoxes;
+  uint32_t clusterCapacity = 0, listCapacity = 0;
+  VkDeviceSize binBitsBytes = 0, binBoxBytes = 0;  // this frame's parts to clear
+  ClusterGrid grid;
+};
+
+// Light setup on the GPU (renderer/gpu/gpu_lights.cpp): the scene's lights as uploaded, and scratch.
+// `descs` holds the lights of `scene` at lights generation `generation` (LightList).
+struct GpuLights {
+  Buffer descs, scratch;
+  VkDeviceSize uploadBytes = 0;  // this frame copies this many bytes of new descriptions (light_upload)
+  const Scene* scene = nullptr;
+  uint64_t generation = 0;
+  uint64_t uploads = 0;  // how many times `descs` was written (tests: an unchanged scene uploads nothing)
+  std::vector<PointLightDesc> checkCopy;  // with validation on: what `descs` holds, to catch a missed edit
+};
+
+// Frames in flight: the renderer records a frame into one slot while the GPU may still run the
+// frame of the other (submitFrame; renderFrame waits for its own). A slot holds what a frame
+// writes from the CPU and what the CPU reads after it (renderer/frame/frame_slots.cpp).
+inline constexpr uint32_t kFrameSlots = 2;
+
+struct FrameSlot {
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VkFence fence = VK_NULL_HANDLE;
+  // Set 0's per-frame buffers (written by the CPU before submission, or by light setup on the
+  // GPU) and set 0 naming them: the other slot's frame may still read its own.
+  Buffer frameBuffer, drawBuffer, lightBuffer, visibleBuffer, lightCountBuffer;
+  VkDescriptorSet sceneSet = VK_NULL_HANDLE;
+  Buffer lightDescStaging;  // new light descriptions, copied into GpuLights::descs by light_upload
+  Buffer clusterHeader;     // the cluster counters copied for the CPU (clustered frames)
+  Buffer gridCells, gridLights;  // the cluster grid's cells and lights as the CPU wrote them (--cluster-assign cpu)
+  VkQueryPool timestampPool = VK_NULL_HANDLE, occlusionPool = VK_NULL_HANDLE;
+  uint32_t timestampCapacity = 0;
+
+  // The frame in the slot, from its submission until it is retired (fence waited, stats complete).
+  bool pending = false;
+  FrameStats stats;        // what the CPU knew at submission; the GPU's figures when retired
+  bool skyQuery = false;   // its skybox counted sky pixels ...
+  SkyKey skyKey;           // ... for this camera, size and geometry
+  bool gpuLightCounts = false, clusterCounts = false;  // counts to read from the GPU when retired
+  std::chrono::steady_clock::time_point start;        // when its CPU work began
+};
+
+struct Renderer {
+  GpuContext* ctx = nullptr;
+  const Scene* scene = nullptr;
+
+  // The scene on the GPU (gpu_scene.cpp).
+  Buffer vertexBuffer, indexBuffer, icosahedronBuffer, materialBuffer;
+  std::vector<Image> textures;      // the scene's, then white and flat-normal stand-ins
+  std::vector<uint32_t> drawOrder;  // instance indices grouped by drawVariant()
+  std::array<uint32_t, 9> drawVariants{};  // drawOrder[drawVariants[v], drawVariants[v+1]) has variant v (gpu_scene.h)
+  VkSampler samplerRepeat = VK_NULL_HANDLE, samplerClamp = VK_NULL_HANDLE;
+  VkSampler samplerShadow = VK_NULL_HANDLE, samplerPoint = VK_NULL_HANDLE;
+  VkDescriptorSetLayout sceneSetLayout = VK_NULL_HANDLE, passSetLayout = VK_NULL_HANDLE;
+  VkDescriptorSetLayout passSetLayoutInput = VK_NULL_HANDLE;  // set 1 with subpass inputs
+  VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
+  VkPipelineLayout pipelineLayoutInput = VK_NULL_HANDLE;      // single-pass lighting pipelines
+  VkDescriptorPool descriptorPool = VK_NULL_HANDLE;  // set 0 of each frame slot
+
+  // Frame resources.
+  RenderOptions options;  // the options the targets were created for (as asked: method may be auto)
+  Method method = Method::Deferred;  // the method this frame runs (options.method resolved by chooseMethod)
+  std::string methodReason;
+  ClusterBuffers clusters;
+  GpuLights gpuLights;
+  Buffer fairyBits;                 // fairy_bins' masks (--fairy-splat compute), the light bins' layout
+  VkDeviceSize fairyBitsBytes = 0;  // this frame's part
+  bool fairyCompute = false;        // this frame splats the fairies in compute
+  bool clusterGrid = false;         // method clustered with the lights assigned on the CPU (--cluster-assign)
+  std::string clusterAssignReason;
+  bool computeClear = false;        // clear_gbuffer clears the G-buffer (not the render pass)
+  std::string clearReason;
+  bool computeToneMap = false;      // tonemap_compute writes final (not the raster tonemap pass)
+  std::string toneMapReason;
+  std::string fairyReason;
+  bool lightsOnGpu = false;    // this frame's lights are set up on the GPU (r.lights is empty then)
+  std::string lightSetupReason;
+  uint32_t visibleBound = 0;   // visible lights this frame: exact on the CPU path, the scene's lights on the GPU's
+  bool targetsValid = false;
+  std::optional<TargetsKey> targetsKey;  // what the targets were created for (none: uploaded ones)
+  GraphTargets targets;
+  GraphCache graphCache;
+  std::map<PipelineKey, VkPipeline> pipelines;
+  std::array<FrameSlot, kFrameSlots> slots;
+  uint32_t slot = 0;                  // the slot of the frame being recorded, or of the last one submitted
+  std::vector<FrameStats> retired;    // frames in flight retired since finishFrames last returned them
+  VkQueryPool statisticsPool = VK_NULL_HANDLE;  // culling frames only (synchronous)
+  bool statisticsActive = false;  // this frame counts fragment invocations of the point-light pass
+  bool skyQueryActive = false;    // this frame's skybox counts sky pixels (the slot's occlusion query)
+  std::optional<SkyKey> skyKey;   // skyVisibilityKey() of the last count of a retired frame
+  uint64_t skyPixels = UINT64_MAX;  // that count (UINT64_MAX: none yet); never a pending frame's
+  std::array<Buffer, kTargetCount> readbackBuffers;
+  std::array<CpuImage, kTargetCount> readback;  // filled for the targets a request named
+
+  // This frame, as the frame function and the passes see it.
+  Camera camera;
+  FrameLights lights;
+  glm::dmat4 lightClipFromWorld{1.0};
+  gpu::FrameData frameData{};  // this frame's uniform data, as the shaders saw it
+  std::vector<float> srgbDecode;  // probeSrgbDecode's table (empty until probed)
+  std::optional<ShadowMapKey> shadowKey;  // what the shadow map was rendered for (reuse when unchanged)
+  FrameStats stats;  // of the last synchronous frame (renderFrame)
+};
+
+inline FrameSlot& frameSlot(Renderer& r) { return r.slots[r.slot]; }
+inline const FrameSlot& frameSlot(const Renderer& r) { return r.slots[r.slot]; }
+
+}  // namespace gb
