@@ -121,10 +121,17 @@ double absDiff(double a, double b) {
   return std::abs(a - b);
 }
 
-// Running sums over a group's compared pixels (colour/exact: per component; others: per pixel).
+// Running sums over a group's compared pixels (colour/exact: per component; others: per pixel);
+// one per pixel set, so every figure of a set covers the same pixels.
 struct ErrorSums {
-  double sumAbs = 0.0, sumSq = 0.0, sumRel = 0.0, maxAbs = 0.0, maxRel = 0.0, sumErr = 0.0;
-  uint64_t samples = 0, differing = 0, compared = 0, coverage = 0;
+  double sumAbs = 0.0, sumSq = 0.0, sumRel = 0.0, maxAbs = 0.0, maxRel = 0.0, sumErr = 0.0, maxErr = 0.0;
+  uint64_t samples = 0, differing = 0, compared = 0, coverage = 0, overWarn = 0, overFail = 0;
+  void add(const ErrorSums& o) {
+    sumAbs += o.sumAbs, sumSq += o.sumSq, sumRel += o.sumRel, sumErr += o.sumErr;
+    maxAbs = std::max(maxAbs, o.maxAbs), maxRel = std::max(maxRel, o.maxRel), maxErr = std::max(maxErr, o.maxErr);
+    samples += o.samples, differing += o.differing, compared += o.compared, coverage += o.coverage;
+    overWarn += o.overWarn, overFail += o.overFail;
+  }
 };
 
 // Largest component difference (colours, scalars, integers).
@@ -163,6 +170,12 @@ double distanceError(const std::array<double, 4>& va, const std::array<double, 4
 
 std::array<double, 4> vec(const glm::dvec3& v) { return {v.x, v.y, v.z, 0.0}; }
 
+// Whether pixel i belongs to a set (without a mask every pixel is in All).
+bool inSet(PixelSet set, const CompareMask* mask, size_t i) {
+  if (set == PixelSet::All || !mask) return true;
+  return (mask->bits[i] != 0) == (set == PixelSet::Masked);
+}
+
 // The error of one pixel by the group's metric; nullopt where the pixel is not compared (normals
 // where neither frame has a surface).
 std::optional<double> pixelError(MetricKind kind, const Side& a, const Side& b, bool stored, uint32_t x, uint32_t y,
@@ -199,65 +212,84 @@ std::optional<double> pixelError(MetricKind kind, const Side& a, const Side& b, 
   return 0.0;
 }
 
-// The group's metrics under its kind's names, the fractions over the thresholds.
-nlohmann::json groupMetrics(const GroupResult& r, const ErrorSums& s) {
-  const double n = double(std::max<uint64_t>(r.pixels, 1));
+// The figures of one pixel set: the kind's metrics under its names, the fractions over the thresholds.
+GroupFigures figuresOf(const GroupResult& r, const ErrorSums& s, PixelSet set, const CompareMask* mask) {
+  GroupFigures f;
+  f.covers = set;
+  f.pixels = s.compared;
+  f.overWarn = s.overWarn;
+  f.overFail = s.overFail;
+  f.coverageDiffers = s.coverage;
+  f.maxError = s.maxErr;
+  const double n = double(std::max<uint64_t>(s.compared, 1));
+  f.meanError = s.sumErr / n;
   const double samples = double(std::max<uint64_t>(s.samples, 1));
-  nlohmann::json m;
+  nlohmann::json& m = f.metrics;
   switch (r.group.kind) {
     case MetricKind::Colour: {
       double rmse = std::sqrt(s.sumSq / samples);
-      m = {{"max_abs", r.maxError}, {"mean_abs", s.sumAbs / samples}, {"rmse", rmse},
+      m = {{"max_abs", s.maxErr}, {"mean_abs", s.sumAbs / samples}, {"rmse", rmse},
            {"psnr_db", rmse > 0.0 ? 20.0 * std::log10(1.0 / rmse) : INFINITY}};
       break;
     }
     case MetricKind::Normal: {
       std::vector<double> compared;
-      for (float e : r.errors)
-        if (!std::isnan(e)) compared.push_back(e);
-      m = {{"max_degrees", r.maxError}, {"mean_degrees", r.meanError}, {"p99_degrees", percentile(compared, 0.99)}};
+      for (size_t i = 0; i < r.errors.size(); ++i)
+        if (!std::isnan(r.errors[i]) && inSet(set, mask, i)) compared.push_back(r.errors[i]);
+      m = {{"max_degrees", s.maxErr}, {"mean_degrees", f.meanError}, {"p99_degrees", percentile(compared, 0.99)}};
       break;
     }
     case MetricKind::Depth:
     case MetricKind::Position:
       m = {{"max_abs", s.maxAbs}, {"mean_abs", s.sumAbs / n}, {"max_rel", s.maxRel}, {"mean_rel", s.sumRel / n}};
       break;
-    case MetricKind::Exact: m = {{"max_abs", r.maxError}}; break;
+    case MetricKind::Exact: m = {{"max_abs", s.maxErr}}; break;
   }
   m["differing_pixels"] = s.differing;
   if (r.group.kind == MetricKind::Normal || r.group.kind == MetricKind::Depth || r.group.kind == MetricKind::Position)
     m["coverage_differs"] = s.coverage;
-  m["fraction_over_fail"] = double(r.overFail) / n;
-  m["fraction_over_warn"] = double(r.overWarn) / n;
-  return m;
+  m["fraction_over_fail"] = double(s.overFail) / n;
+  m["fraction_over_warn"] = double(s.overWarn) / n;
+  return f;
 }
 
-void compareGroup(const Side& a, const Side& b, GroupResult& r) {
+// Compares one group at every pixel; with a mask of the group's size, sums the unmasked and the
+// masked pixels apart (the unmasked ones decide) as well as all of them.
+void compareGroup(const Side& a, const Side& b, const CompareMask* mask, GroupResult& r) {
   const TargetImage& ta = a.f.images[a.q.target];
   r.width = ta.image.width;
   r.height = ta.image.height;
   r.errors.assign(size_t(r.width) * r.height, 0.0f);
+  if (mask && (mask->empty() || mask->width != r.width || mask->height != r.height)) mask = nullptr;
   const bool stored = sameStorage(a, b);
-  ErrorSums s;
+  ErrorSums sums[3];  // by PixelSet
   for (uint32_t y = 0; y < r.height; ++y)
     for (uint32_t x = 0; x < r.width; ++x) {
-      std::optional<double> e = pixelError(r.group.kind, a, b, stored, x + ta.x0, y + ta.y0, s);
+      const size_t i = size_t(y) * r.width + x;
+      ErrorSums px;
+      std::optional<double> e = pixelError(r.group.kind, a, b, stored, x + ta.x0, y + ta.y0, px);
       if (!e) {
-        r.errors[size_t(y) * r.width + x] = NAN;  // not compared (heat map: black; percentiles skip it)
+        r.errors[i] = NAN;  // not compared (heat map: black; percentiles skip it)
         continue;
       }
-      r.errors[size_t(y) * r.width + x] = float(*e);
-      ++r.pixels;
-      r.maxError = std::max(r.maxError, *e);
-      s.sumErr += *e;
-      s.differing += *e > 0.0;
-      r.overWarn += *e > r.thresholds.warn;
-      r.overFail += *e > r.thresholds.fail;
+      r.errors[i] = float(*e);
+      px.compared = 1;
+      px.sumErr = px.maxErr = *e;
+      px.differing = *e > 0.0;
+      px.overWarn = *e > r.thresholds.warn;
+      px.overFail = *e > r.thresholds.fail;
+      sums[int(PixelSet::All)].add(px);
+      if (mask) sums[int(mask->bits[i] ? PixelSet::Masked : PixelSet::Unmasked)].add(px);
     }
-  r.coverageDiffers = s.coverage;
-  r.meanError = s.sumErr / double(std::max<uint64_t>(r.pixels, 1));
-  r.metrics = groupMetrics(r, s);
-  r.verdict = decide(r.thresholds, r.pixels, r.overWarn, r.overFail, r.maxError);
+  if (mask) {
+    r.figures = figuresOf(r, sums[int(PixelSet::Unmasked)], PixelSet::Unmasked, mask);
+    r.apart = {figuresOf(r, sums[int(PixelSet::Masked)], PixelSet::Masked, mask),
+               figuresOf(r, sums[int(PixelSet::All)], PixelSet::All, mask)};
+  } else {
+    r.figures = figuresOf(r, sums[int(PixelSet::All)], PixelSet::All, nullptr);
+  }
+  const GroupFigures& d = r.figures;
+  r.verdict = decide(r.thresholds, d.pixels, d.overWarn, d.overFail, d.maxError);
 }
 
 // Manifest fields whose difference a reader should know about: every option, the scene, the
@@ -310,66 +342,144 @@ std::string targetMismatch(const FrameSnapshot& fa, int ia, const FrameSnapshot&
   return "";
 }
 
+
+// What happens to each target of the two layouts: compared, skipped (why) or a mismatch (why).
+struct TargetPlan {
+  std::string name;
+  int ia = -1, ib = -1;
+  enum class Do { Compare, Skip, Mismatch } what = Do::Compare;
+  std::string why;
+};
+
+std::vector<TargetPlan> planTargets(const FrameSnapshot& fa, const FrameSnapshot& fb, const std::vector<std::string>& exclude) {
+  std::vector<TargetPlan> plans;
+  for (const std::string& tn : targetNames(fa.layout, fb.layout)) {
+    TargetPlan p{tn, fa.indexOf(tn), fb.indexOf(tn)};
+    const bool pa = p.ia >= 0 && fa.images[size_t(p.ia)].present(), pb = p.ib >= 0 && fb.images[size_t(p.ib)].present();
+    if (std::find(exclude.begin(), exclude.end(), tn) != exclude.end())
+      p.what = TargetPlan::Do::Skip, p.why = "excluded (--exclude)";
+    else if (!pa && !pb)
+      p.what = TargetPlan::Do::Skip, p.why = "absent in both (A: " + whyAbsent(fa, p.ia) + "; B: " + whyAbsent(fb, p.ib) + ")";
+    else if (pa != pb)
+      p.what = TargetPlan::Do::Mismatch,
+      p.why = std::string("only in ") + (pa ? "A" : "B") + " (" + (pa ? whyAbsent(fb, p.ib) : whyAbsent(fa, p.ia)) + ")";
+    else if (std::string why = targetMismatch(fa, p.ia, fb, p.ib); !why.empty())
+      p.what = TargetPlan::Do::Mismatch, p.why = why;
+    plans.push_back(p);
+  }
+  return plans;
+}
+
+// Threshold keys and --exclude names must name a target of either layout (or of gblens's own, so
+// one threshold file serves several configurations); a key for a compared target must name it or
+// one of its quantities. Checked before any work.
+bool checkNames(const CompareSettings& settings, const std::vector<TargetPlan>& plans, const FrameSnapshot& fa,
+                std::string& error) {
+  std::vector<std::string> knownTargets, knownKeys, groups;
+  for (const TargetPlan& p : plans) {
+    knownTargets.push_back(p.name);
+    if (p.what != TargetPlan::Do::Compare) continue;
+    knownKeys.push_back(p.name);
+    for (const ChannelGroup& g : channelGroups(fa.layout, uint32_t(p.ia))) knownKeys.push_back(g.key), groups.push_back(g.key);
+  }
+  auto known = [](const std::vector<std::string>& list, const std::string& s) {
+    return std::find(list.begin(), list.end(), s) != list.end();
+  };
+  for (const std::string& tn : settings.exclude)
+    if (!known(knownTargets, tn)) {
+      error = "--exclude " + tn + ": no target \"" + tn + "\" in either capture (targets:";
+      for (const std::string& t : knownTargets) error += " " + t;
+      error += ")";
+      return false;
+    }
+  for (auto& [key, params] : settings.thresholds.byKey) {
+    if (key.empty()) continue;
+    const std::string target = key.substr(0, key.find('.'));
+    Target native;
+    if (!known(knownTargets, target) && !parseTarget(target, native)) {
+      error = "threshold for \"" + key + "\": no target \"" + target + "\" in either capture";
+      return false;
+    }
+    if (known(knownKeys, target) && !known(knownKeys, key)) {
+      error = "threshold for \"" + key + "\": no such group (groups:";
+      for (const std::string& g : groups) error += " " + g;
+      error += ")";
+      return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
-bool compareCaptures(const Capture& ca, const Capture& cb, const ThresholdSettings& settings, CompareReport& report,
-                     std::string& error) {
+const char* name(PixelSet s) {
+  static const char* n[] = {"all", "unmasked", "masked"};
+  return n[int(s)];
+}
+
+const GroupFigures* GroupResult::figuresOver(PixelSet s) const {
+  if (figures.covers == s) return &figures;
+  for (const GroupFigures& f : apart)
+    if (f.covers == s) return &f;
+  return nullptr;
+}
+
+bool compare(const Capture& ca, const Capture& cb, const CompareSettings& settings, CompareReport& report,
+             std::string& error) {
   report = CompareReport{};
   report.a = ca.dir;
   report.b = cb.dir;
   manifestDifferences(ca.manifest, cb.manifest, report.differences);
   const FrameSnapshot &fa = ca.frame, &fb = cb.frame;
-  std::vector<std::string> knownTargets, knownKeys = {""};
+  const std::vector<TargetPlan> plans = planTargets(fa, fb, settings.exclude);
+  if (!checkNames(settings, plans, fa, error)) return false;
+  if (!settings.mask.empty() && !buildCompareMask(ca, cb, settings.mask, report.mask, error)) return false;
+
+  // Progress by pixels (FLIP's filters cost about eight group comparisons a pixel).
+  constexpr double kFlipWeight = 8.0;
+  double total = 0.0, done = 0.0;
+  for (const TargetPlan& p : plans)
+    if (p.what == TargetPlan::Do::Compare)
+      total += double(fa.images[size_t(p.ia)].image.width) * fa.images[size_t(p.ia)].image.height *
+               double(fa.layout.quantitiesOf(uint32_t(p.ia)).size());
+  if (settings.flipOn) total += kFlipWeight * 2.0 * fa.camera.width * fa.camera.height;
+  auto progress = [&](const std::string& what, double work) {
+    if (settings.progress) settings.progress(total > 0.0 ? done / total : 1.0, what);
+    done += work;
+  };
+
   Verdict worst = Verdict::Pass;
-  for (const std::string& tn : targetNames(fa.layout, fb.layout)) {
-    knownTargets.push_back(tn);
-    const int ia = fa.indexOf(tn), ib = fb.indexOf(tn);
-    const bool pa = ia >= 0 && fa.images[size_t(ia)].present(), pb = ib >= 0 && fb.images[size_t(ib)].present();
-    if (!pa && !pb) {
-      report.skipped.push_back({tn, "absent in both (A: " + whyAbsent(fa, ia) + "; B: " + whyAbsent(fb, ib) + ")"});
-      continue;
-    }
-    if (pa != pb) {
-      report.mismatches.push_back(
-          {tn, std::string("only in ") + (pa ? "A" : "B") + " (" + (pa ? whyAbsent(fb, ib) : whyAbsent(fa, ia)) + ")"});
-      continue;
-    }
-    if (std::string why = targetMismatch(fa, ia, fb, ib); !why.empty()) {
-      report.mismatches.push_back({tn, why});
-      continue;
-    }
-    knownKeys.push_back(tn);
-    for (const ChannelGroup& g : channelGroups(fa.layout, uint32_t(ia))) {
-      knownKeys.push_back(g.key);
+  for (const TargetPlan& p : plans) {
+    if (p.what == TargetPlan::Do::Skip) report.skipped.push_back({p.name, p.why});
+    if (p.what == TargetPlan::Do::Mismatch) report.mismatches.push_back({p.name, p.why});
+    if (p.what != TargetPlan::Do::Compare) continue;
+    for (const ChannelGroup& g : channelGroups(fa.layout, uint32_t(p.ia))) {
       GroupResult r;
       r.group = g;
-      r.target = tn;
-      r.thresholds = settings.resolve(tn, g.key);
-      compareGroup({fa, *fa.layout.findByName(g.group)}, {fb, *fb.layout.findByName(g.group)}, r);
+      r.target = p.name;
+      r.thresholds = settings.thresholds.resolve(p.name, g.key);
+      const CpuImage& image = fa.images[size_t(p.ia)].image;
+      progress(g.key, double(image.width) * image.height);
+      compareGroup({fa, *fa.layout.findByName(g.group)}, {fb, *fb.layout.findByName(g.group)}, &report.mask, r);
       worst = std::max(worst, r.verdict);
       report.groups.push_back(std::move(r));
     }
   }
-  // A key must name a target of either layout (or of gblens's own, so one threshold file serves
-  // several configurations); a key for a compared target must name it or one of its quantities.
-  for (auto& [key, params] : settings.byKey) {
-    if (key.empty()) continue;
-    const std::string target = key.substr(0, key.find('.'));
-    Target native;
-    if (std::find(knownTargets.begin(), knownTargets.end(), target) == knownTargets.end() && !parseTarget(target, native)) {
-      error = "threshold for \"" + key + "\": no target \"" + target + "\" in either capture";
-      return false;
-    }
-    if (std::find(knownKeys.begin(), knownKeys.end(), target) != knownKeys.end() &&
-        std::find(knownKeys.begin(), knownKeys.end(), key) == knownKeys.end()) {
-      error = "threshold for \"" + key + "\": no such group (groups:";
-      for (const GroupResult& g : report.groups) error += " " + g.group.key;
-      error += ")";
-      return false;
-    }
-  }
   report.exitCode = report.mismatches.empty() ? int(worst) : kCompareMismatch;
+  if (settings.flipOn) {
+    progress("FLIP", 0.0);
+    compareFlip(ca, cb, settings.flip, report);
+  }
+  if (settings.progress) settings.progress(1.0, "done");
   return true;
+}
+
+bool compareCaptures(const Capture& a, const Capture& b, const ThresholdSettings& thresholds, CompareReport& report,
+                     std::string& error) {
+  CompareSettings settings;
+  settings.thresholds = thresholds;
+  settings.flipOn = false;
+  return compare(a, b, settings, report, error);
 }
 
 }  // namespace gb

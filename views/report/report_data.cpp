@@ -1,0 +1,95 @@
+// The report's data files (report_page.cpp writes them beside the page): per compared group, both
+// sides' stored channel values and decoded values (decoded_image.h, as the probe shows them) and the
+// per-pixel error, as float32 arrays, deflated (zlib) and base64-encoded inside a script the page loads
+// when the group is shown (a page opened from disk may load scripts, not read files). A side whose
+// decoded values equal its stored ones bit for bit writes them once.
+#include <openssl/evp.h>
+#include <zlib.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+#include "renderer/core/assert.h"
+#include "views/analysis/decoded_image.h"
+#include "views/capture/image_io.h"
+#include "views/report/report_internal.h"
+
+namespace gb {
+
+namespace {
+
+// float32 array -> zlib-deflated bytes -> base64 (EVP_EncodeBlock: no line breaks).
+std::string pack(const std::vector<float>& values) {
+  const uLong bytes = uLong(values.size() * sizeof(float));
+  uLongf size = compressBound(bytes);
+  std::vector<unsigned char> deflated(size);
+  const int z = compress2(deflated.data(), &size, reinterpret_cast<const Bytef*>(values.data()), bytes, 6);
+  GB_ASSERT(z == Z_OK);
+  std::string b64(4 * ((size + 2) / 3) + 1, '\0');
+  const int n = EVP_EncodeBlock(reinterpret_cast<unsigned char*>(b64.data()), deflated.data(), int(size));
+  b64.resize(size_t(n));
+  return b64;
+}
+
+// Finite minimum and maximum of each component (the page's display ranges).
+nlohmann::json ranges(const std::vector<float>& v, uint32_t components) {
+  nlohmann::json out = nlohmann::json::array();
+  for (uint32_t k = 0; k < components; ++k) {
+    float lo = INFINITY, hi = -INFINITY;
+    for (size_t i = k; i < v.size(); i += components)
+      if (std::isfinite(v[i])) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
+    out.push_back(lo <= hi ? nlohmann::json::array({lo, hi}) : nlohmann::json(nullptr));
+  }
+  return out;
+}
+
+// One side of a group: what the page shows about it, and its packed arrays.
+nlohmann::json side(const FrameSnapshot& f, const Quantity& q) {
+  const TargetImage& ti = f.images[q.target];
+  const CpuImage& image = ti.image;
+  const uint32_t channels = uint32_t(q.channels.size());
+  std::vector<float> stored(size_t(image.width) * image.height * channels);
+  for (uint32_t y = 0; y < image.height; ++y)
+    for (uint32_t x = 0; x < image.width; ++x)
+      for (uint32_t k = 0; k < channels; ++k)
+        stored[(size_t(y) * image.width + x) * channels + k] = float(ti.value(x + ti.x0, y + ti.y0, q.channels[k]));
+  const std::vector<float> decoded = decodeImage<float>(f, q, VectorSpace::Eye);
+  const bool same = decoded.size() == stored.size() && std::memcmp(decoded.data(), stored.data(), stored.size() * sizeof(float)) == 0;
+  nlohmann::json names = nlohmann::json::array();
+  for (uint32_t c : q.channels) names.push_back(image.channels[c]);
+  return {{"target", f.layout.targets[q.target].name},
+          {"quantity", q.name},
+          {"kind", name(q.kind)},
+          {"channels", names},
+          {"components", decodedComponentNames(q)},
+          {"stored", pack(stored)},
+          {"decoded", same ? nlohmann::json(nullptr) : nlohmann::json(pack(decoded))},
+          {"ranges", ranges(decoded, decodedComponents(q))}};
+}
+
+}  // namespace
+
+bool writeText(const std::string& path, const std::string& text, std::string& error) {
+  const bool ok = writeAtomically(path, ".tmp", [&](const std::string& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    return bool(out.flush());
+  });
+  if (!ok) error = path + ": cannot write";
+  return ok;
+}
+
+bool writeGroupData(const Capture& a, const Capture& b, const GroupResult& g, const std::string& file,
+                    std::string& error) {
+  const Quantity &qa = *a.frame.layout.findByName(g.group.group), &qb = *b.frame.layout.findByName(g.group.group);
+  nlohmann::json data = {{"key", g.group.key},
+                         {"width", g.width},
+                         {"height", g.height},
+                         {"a", side(a.frame, qa)},
+                         {"b", side(b.frame, qb)},
+                         {"error", pack(g.errors)}};
+  return writeText(file, "gblensData(" + data.dump() + ");\n", error);
+}
+
+}  // namespace gb
