@@ -2,6 +2,7 @@
 // settings as keyword arguments; the figures as Python values, the per-pixel errors as numpy arrays,
 // the report page, JUnit and the images.
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include "app/python/python.h"
 #include "views/analysis/compare.h"
@@ -87,7 +88,8 @@ void bindCompare(py::module_& m) {
       .def_property_readonly("json", [](const ResultPtr& r) { return toPython(r->report.json()); })
       .def_property_readonly("groups", [](const ResultPtr& r) {
         py::dict out;
-        for (const nlohmann::json& g : r->report.json()["groups"]) out[py::str(g["key"].get<std::string>())] = toPython(g);
+        const nlohmann::json j = r->report.json();
+        for (const nlohmann::json& g : j["groups"]) out[py::str(g["key"].get<std::string>())] = toPython(g);
         return out;
       })
       .def_property_readonly("flip", [](const ResultPtr& r) { return toPython(r->report.json()["flip"]); })
@@ -98,22 +100,22 @@ void bindCompare(py::module_& m) {
         return view(py::dtype("uint8"), {py::ssize_t(m.height), py::ssize_t(m.width)}, m.bits.data(), r);
       })
       .def("errors", &errors, "key"_a)
-      .def("report", [](const ResultPtr& r, const std::string& dir) {
+      .def("report", [](const ResultPtr& r, const std::filesystem::path& dir) {
         std::string error;
         bool ok;
         {
           py::gil_scoped_release release;
-          ok = writeReport(r->a->capture, r->b->capture, r->report, dir, error);
+          ok = writeReport(r->a->capture, r->b->capture, r->report, dir.string(), error);
         }
         if (!ok) fail(error);
       }, "dir"_a)
-      .def("junit", [](const ResultPtr& r, const std::string& file, const std::string& name) {
+      .def("junit", [](const ResultPtr& r, const std::filesystem::path& file, const std::string& name) {
         std::string error;
-        if (!writeJunit({{name, &r->report}}, file, error)) fail(error);
+        if (!writeJunit({{name, &r->report}}, file.string(), error)) fail(error);
       }, "file"_a, "name"_a = "")
-      .def("write_images", [](const ResultPtr& r, const std::string& dir) {
+      .def("write_images", [](const ResultPtr& r, const std::filesystem::path& dir) {
         std::string error;
-        if (!writeCompareImages(r->report, dir, error)) fail(error);
+        if (!writeCompareImages(r->report, dir.string(), error)) fail(error);
       }, "dir"_a)
       .def("__repr__", [](const ResultPtr& r) {
         return "<gblens.Result " + r->report.json()["result"].get<std::string>() + " (exit " + std::to_string(r->report.exitCode) + ")>";

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include "renderer/core/decode.h"
 #include "renderer/core/layout_json.h"
@@ -255,9 +256,9 @@ void bindFrame(py::module_& m) {
         if (!policy.is_none()) fail("check: policy: this build's check has no policy yet");
         return toPython(checkJson(checkFrame(h->capture.frame)));
       }, "policy"_a = py::none())
-      .def("save", [](const FramePtr& h, const std::string& dir) {
+      .def("save", [](const FramePtr& h, const std::filesystem::path& dir) {
         std::string error;
-        if (!writeCapture(dir, h->capture.frame, h->meta, error)) fail(error);
+        if (!writeCapture(dir.string(), h->capture.frame, h->meta, error)) fail(error);
       }, "dir"_a)
       .def("__repr__", [](const FramePtr& h) {
         const FrameSnapshot& f = h->capture.frame;

@@ -22,8 +22,9 @@ RenderOptions optionsFrom(const py::kwargs& kwargs) {
     const std::string name = py::str(key);
     std::string text = py::str(value);
     if (py::isinstance<py::bool_>(value)) text = value.cast<bool>() ? "on" : "off";
-    else if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
-      const auto v = value.cast<std::vector<std::string>>();
+    else if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {  // size=(w, h)
+      std::vector<std::string> v;
+      for (const py::handle& item : value) v.push_back(py::str(item));
       text = v.size() == 2 ? v[0] + "x" + v[1] : text;
     }
     if (!findOption(name)) fail(name + ": no option of that name (gblens --help lists them; - as _)");

@@ -48,7 +48,10 @@ def test_targets_are_the_exr_contents_without_a_copy(captures):
         arr = f.targets[t["name"]]
         exr = exr_channels(os.path.join(captures["a"], t["file"]))
         assert arr.shape == (t["height"], t["width"], len(t["channels"])), t["name"]
-        assert arr.dtype == {"u8": np.uint8, "f16": np.float16, "f32": np.float32, "u32": np.uint32, "u16": np.uint16}[t["type"]]
+        assert arr.dtype == {"u8": np.uint8, "i8": np.int8, "u16": np.uint16, "i16": np.int16, "f16": np.float16, "f32": np.float32,
+                             "u32": np.uint32}[t["type"]]
+        if arr.dtype.kind == "i":  # signed integers: the EXR's raw channel holds their bits as unsigned
+            arr = arr.view(arr.dtype.str.replace("i", "u"))
         for c, channel in enumerate(t["channels"]):
             raw = exr.get(f"{t['name']}.raw.{channel}")  # 8/16-bit integers: the stored integers
             kind, values = raw if raw else exr[f"{t['name']}.{channel}"]
@@ -75,8 +78,10 @@ def test_decoded_quantities_equal_probe_and_a_numpy_reconstruction(captures):
     assert np.array_equal(np.isnan(pos_eye[..., 0]), z <= 0)
     np.testing.assert_allclose(pos_eye, eye, rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(pos_world, world[..., :3], rtol=1e-9, atol=1e-9)
-    # The stored world positions (rgba32f) against the same reconstruction: float32 storage.
-    np.testing.assert_allclose(f.position("stored", "world"), world[..., :3], rtol=0, atol=2e-3)
+    # The stored world positions (rgba32f) against the same reconstruction where a surface was drawn
+    # (the position target has no background value: the sky holds what was cleared).
+    surface = z > 0
+    np.testing.assert_allclose(f.position("stored", "world")[surface], world[..., :3][surface], rtol=0, atol=2e-3)
     # Hardware depth through eye_from_clip.
     d = exr_channels(os.path.join(captures["a"], "depth_stencil.exr"))["depth_stencil.Depth"][1].astype(np.float64)
     xs, ys = np.meshgrid((np.arange(w) + 0.5) / w * 2 - 1, (np.arange(h) + 0.5) / h * 2 - 1)
@@ -84,10 +89,18 @@ def test_decoded_quantities_equal_probe_and_a_numpy_reconstruction(captures):
     far = 0.0 if cam["reversed_z"] else 1.0
     hw = np.where(d != far, -e[..., 2] / e[..., 3], np.nan)
     np.testing.assert_allclose(f["Depth"][..., 0], hw, rtol=1e-9)
-    # Normals: view space, unit; the stored halves normalised by numpy.
-    n = np.stack([exr_channels(os.path.join(captures["a"], "normal_shadow.exr"))[f"normal_shadow.N.{c}"][1] for c in "XYZ"], -1).astype(np.float64)
-    length = np.linalg.norm(n, axis=-1, keepdims=True)
-    np.testing.assert_allclose(f["N"], np.where(length > 0, n / np.where(length > 0, length, 1), 0), atol=1e-12)
+    # Normals: view space, unit; the stored values decoded by numpy (the default is octahedral in
+    # rgba16_snorm: Meyer et al. 2010, sign(0) = +1).
+    assert f.manifest["options"]["normal_format"] == "oct-rg16"
+    ch = exr_channels(os.path.join(captures["a"], "normal_shadow.exr"))
+    o = np.stack([ch[f"normal_shadow.raw.N.{c}"][1].astype(np.uint16).view(np.int16) for c in "XY"], -1)
+    o = np.maximum(o.astype(np.float64) / 32767.0, -1.0)
+    n = np.concatenate([o, 1.0 - np.abs(o).sum(-1, keepdims=True)], -1)
+    fold = n[..., 2] < 0
+    xy = n[fold, :2]
+    n[fold, :2] = (1.0 - np.abs(xy[:, ::-1])) * np.where(xy >= 0, 1.0, -1.0)
+    n /= np.linalg.norm(n, axis=-1, keepdims=True)
+    np.testing.assert_allclose(f["N"], n, atol=1e-12)
     # The probe at sampled pixels: the same decoded values (eye space; view space is eye space here).
     for x, y in PIXELS:
         probe = run_json("probe", captures["a"], x, y, "--json")
@@ -117,8 +130,8 @@ def test_blender_import_comes_back_in_blenders_axes(captures):
     surface = depth < 1e9
     # Stored quantities in the layout's own (Blender, Z-up world) axes: what Cycles wrote.
     np.testing.assert_allclose(f["Position"][surface], position[surface], rtol=1e-9, atol=1e-9)
-    n = normal / np.linalg.norm(normal, axis=-1, keepdims=True)
-    np.testing.assert_allclose(f["Normal"][surface], n[surface], atol=1e-9)
+    n = normal[surface] / np.linalg.norm(normal[surface], axis=-1, keepdims=True)
+    np.testing.assert_allclose(f["Normal"][surface], n, atol=1e-9)
     # Positions from Depth and the camera, in Blender's axes, against the Position pass (Cycles traced
     # each ray within 0.005 px of the pixel centre: millimetres at these depths).
     from_depth = f.position("depth", "world")

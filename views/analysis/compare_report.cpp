@@ -204,7 +204,7 @@ Rgba8Image heatmapImage(const GroupResult& g, std::string& error) {
     else p[0] = p[1] = p[2] = 255;
   };
   auto bar = [&](double t, uint8_t* p) { heatColor(t * 1000.0, 1000.0, p); };
-  const std::string centre = errorUnit(g) + (top > 0.0 ? "" : ": no difference") + (infinite ? ", white: inf" : "");
+  const std::string centre = errorUnit(g) + (top > 0.0 ? ", black: equal" : ": no difference") + (infinite ? ", white: inf" : "");
   return withLegend(g.width, g.height, pixel, bar, "0", centre, fmt(top), error);
 }
 

@@ -42,8 +42,9 @@ std::vector<std::string> decodedComponentNames(const Quantity& q) {
     default: break;
   }
   static const char* rgba[] = {"r", "g", "b", "a"};
+  static const char* plain[] = {"c0", "c1", "c2", "c3"};
   std::vector<std::string> names;
-  for (uint32_t k = 0; k < channelsOf(q); ++k) names.push_back(isColour(q.kind) ? rgba[k] : "c" + std::to_string(k));
+  for (uint32_t k = 0; k < channelsOf(q); ++k) names.push_back(isColour(q.kind) ? rgba[k] : plain[k]);
   return names;
 }
 

@@ -273,12 +273,23 @@ function swipe(c, d) {
   $('pane-view-label').textContent = `swipe: A left of x = ${x}, B right`;
 }
 
+// A box around the hovered pixel in every pane, so the readout's pixel is seen in A, B and the maps.
+function mark(x, y, w, h) {
+  for (const c of document.querySelectorAll('#panes .pane > canvas:not(.legend)')) {
+    let m = c.parentNode.querySelector('.mark');
+    if (!m) c.parentNode.append(m = el('div', { class: 'mark' }));
+    const s = c.clientWidth / w;
+    Object.assign(m.style, { left: c.offsetLeft + x * s - 1 + 'px', top: c.offsetTop + y * s - 1 + 'px', width: s + 'px', height: s + 'px' });
+  }
+}
+
 // The readout: both sides' stored channels and decoded components at the pixel under the mouse.
 function hover(e, node, w, h) {
   const r = node.getBoundingClientRect();
   const x = Math.floor(((e.clientX - r.left) * w) / r.width), y = Math.floor(((e.clientY - r.top) * h) / r.height);
   if (x < 0 || y < 0 || x >= w || y >= h) return;
   const d = G.data[G.key], i = y * w + x;
+  mark(x, y, w, h);
   const t = el('table', { id: 'readout-table', data: { x, y } }, el('tr', {}, el('th', {}, `pixel ${x}, ${y}`), el('th', {}, 'A ' + d.a.target), el('th', {}, 'B ' + d.b.target)));
   const value = (side, s, k) => d[side][s][i * d[side][s === 'stored' ? 'channels' : 'components'].length + k];
   const rows = (what, names, s) => names.forEach((name, k) => {
