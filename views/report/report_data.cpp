@@ -24,7 +24,7 @@ std::string pack(const std::vector<float>& values) {
   const uLong bytes = uLong(values.size() * sizeof(float));
   uLongf size = compressBound(bytes);
   std::vector<unsigned char> deflated(size);
-  const int z = compress2(deflated.data(), &size, reinterpret_cast<const Bytef*>(values.data()), bytes, 6);
+  const int z = compress2(deflated.data(), &size, reinterpret_cast<const Bytef*>(values.data()), bytes, Z_BEST_SPEED);
   GB_ASSERT(z == Z_OK);
   std::string b64(4 * ((size + 2) / 3) + 1, '\0');
   const int n = EVP_EncodeBlock(reinterpret_cast<unsigned char*>(b64.data()), deflated.data(), int(size));
