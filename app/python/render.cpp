@@ -2,6 +2,8 @@
 // their option-table names (the CLI's flags with _ for -), and one frame's error against the reference.
 #include <pybind11/stl.h>
 
+#include <functional>
+
 #include "app/python/python.h"
 #include "renderer/render_targets.h"
 #include "renderer/scene/builtin.h"
@@ -60,6 +62,25 @@ std::vector<Target> targetsFrom(const py::object& names, const RenderOptions& o,
   return out;
 }
 
+// A headless session on `scene` for `work` (without the GIL); an output too large for the device and
+// any validation message (a gblens bug) raise.
+void withSession(const Scene& scene, const std::string& device, const RenderOptions& o,
+                 const std::function<void(HeadlessSession&)>& work) {
+  std::string tooLarge;
+  int validation = 0;
+  {
+    py::gil_scoped_release release;
+    HeadlessSession session(scene, {device, false, true});
+    tooLarge = session.tooLarge(o);
+    if (tooLarge.empty()) {
+      work(session);
+      validation = session.reportValidation();
+    }
+  }
+  if (!tooLarge.empty()) fail(tooLarge);
+  if (validation) fail(std::to_string(validation) + " Vulkan validation message(s) while rendering (a gblens bug)");
+}
+
 FramePtr render(const std::string& source, const py::object& targetNames, const std::string& device, bool coverage,
                 const py::kwargs& kwargs) {
   RenderOptions o = optionsFrom(kwargs);
@@ -67,24 +88,14 @@ FramePtr render(const std::string& source, const py::object& targetNames, const 
   const Scene scene = sceneFrom(source, o);
   const std::vector<Target> wanted = targetsFrom(targetNames, o, scene);
   auto h = std::make_shared<FrameHandle>();
-  std::string error;
-  int validation = 0;
-  {
-    py::gil_scoped_release release;
-    HeadlessSession session(scene, {device, false, true});
-    error = session.tooLarge(o);
-    if (error.empty()) {
-      h->meta.stats = session.render(o, captureRequest(wanted, o));
-      h->capture.frame = session.snapshot(wanted);
-      for (Absent& a : h->capture.frame.absences)
-        if (a == Absent::NotReadBack) a = Absent::NotRequested;
-      h->meta.device = session.deviceName();
-      h->meta.driver = session.driverName();
-      validation = session.reportValidation();
-    }
-  }
-  if (!error.empty()) fail(error);
-  if (validation) fail(std::to_string(validation) + " Vulkan validation message(s) while rendering (a gblens bug)");
+  withSession(scene, device, o, [&](HeadlessSession& session) {
+    h->meta.stats = session.render(o, captureRequest(wanted, o));
+    h->capture.frame = session.snapshot(wanted);
+    for (Absent& a : h->capture.frame.absences)
+      if (a == Absent::NotReadBack) a = Absent::NotRequested;
+    h->meta.device = session.deviceName();
+    h->meta.driver = session.driverName();
+  });
   h->meta.scene = source;
   h->meta.sceneSha256 = sceneContentSha256(scene);
   h->meta.commandLine = "python: gblens.render(" + source + ")";
@@ -99,23 +110,13 @@ py::object error(const std::string& source, const std::string& device, double ba
   const RenderOptions o = optionsFrom(kwargs);
   const Scene scene = sceneFrom(source, o);
   nlohmann::json j;
-  std::string tooLarge;
-  int validation = 0;
-  {
-    py::gil_scoped_release release;
-    HeadlessSession session(scene, {device, false, true});
-    tooLarge = session.tooLarge(o);
-    if (tooLarge.empty()) {
-      ReferenceCache cache(scene);
-      auto frames = [&](const RenderOptions& ro, const std::vector<Target>& t) { return session.renderSnapshot(ro, t); };
-      const FrameError e = measureFrame(frames, o, cache, band).error;
-      j = {{"scene", scene.source}, {"device", session.deviceName()}, {"options", optionsJson(o)},
-           {"shadow_band_texels", band}, {"error", errorJson(e)}};
-      validation = session.reportValidation();
-    }
-  }
-  if (!tooLarge.empty()) fail(tooLarge);
-  if (validation) fail(std::to_string(validation) + " Vulkan validation message(s) while rendering (a gblens bug)");
+  withSession(scene, device, o, [&](HeadlessSession& session) {
+    ReferenceCache cache(scene);
+    auto frames = [&](const RenderOptions& ro, const std::vector<Target>& t) { return session.renderSnapshot(ro, t); };
+    const FrameError e = measureFrame(frames, o, cache, band).error;
+    j = {{"scene", scene.source}, {"device", session.deviceName()}, {"options", optionsJson(o)},
+         {"shadow_band_texels", band}, {"error", errorJson(e)}};
+  });
   return toPython(j);
 }
 
