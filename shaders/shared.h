@@ -192,24 +192,36 @@ GB_STRUCT(Cluster) {
 };
 
 // ---- the viewer's view mapping (renderer/view_map.cpp draws, views/view_params.cpp decides) ----
-// How a view turns a target's texel into a display colour.
-GB_CONST(uint, kViewMapColor, 0);   // selected channels as colour (others 0), range -> [0, 1]
-GB_CONST(uint, kViewMapGrey, 1);    // the lowest selected channel as grey, range -> [0, 1]
-GB_CONST(uint, kViewMapNormal, 2);  // the decoded unit normal's selected components, range -> [0, 1]
-GB_CONST(uint, kViewMapDepth, 3);   // one channel, near bright (1 - 0.9 t); invalid texels black
-GB_CONST(uint, kViewMapHeat, 4);    // one channel as a count, heat map over [0, white point]
-GB_CONST(uint, kViewMapDiff, 5);    // |A - B|: max over selected channels, heat map over [0, white point]
+// How a view turns a target's texel into a display colour (views/analysis/view_table.h: one
+// visualisation per quantity kind; the colour maps are shaders/view_colors.h).
+GB_CONST(uint, kViewMapColor, 0);     // selected channels as colour (others 0), range -> [0, 1] (colour, position, vector)
+GB_CONST(uint, kViewMapGrey, 1);      // the lowest selected channel as grey (or false colour), range -> [0, 1]
+GB_CONST(uint, kViewMapNormal, 2);    // the unit normal's selected components, range -> [0, 1]
+GB_CONST(uint, kViewMapDepth, 3);     // one channel, near bright (1 - 0.9 t) or false colour; invalid texels black
+GB_CONST(uint, kViewMapHeat, 4);      // one channel as a count, heat map over [0, white point]
+GB_CONST(uint, kViewMapDiff, 5);      // |A - B|: max over selected channels, heat map over [0, white point]
+GB_CONST(uint, kViewMapId, 6);        // integer ids, a hashed colour each (view_colors.h idColor)
+GB_CONST(uint, kViewMapStencil, 7);   // stencil values (masked by extra.x), a colour each (stencilColor)
+GB_CONST(uint, kViewMapMotion, 8);    // a 2D vector: direction as hue, length / white point as saturation
 // ViewParams.mode.z flags.
 GB_CONST(uint, kViewFlagSrgb, 1);      // the data is linear colour: display it sRGB-encoded
 GB_CONST(uint, kViewFlagSpecials, 2);  // NaN and +-Inf in a selected channel get their own colours
 GB_CONST(uint, kViewFlagNegative, 4);  // negative values (where none belong) get their own colour
 GB_CONST(uint, kViewFlagGrid, 8);      // texel grid (high zoom)
 GB_CONST(uint, kViewFlagMark, 16);     // mark texels whose shadow lookup uses shadow-map texel mark.xy
+GB_CONST(uint, kViewFlagFalseColor, 32);  // grey and depth mappings use viridis instead of grey
+GB_CONST(uint, kViewFlagLog, 64);         // grey and depth mappings: log of the value over log of the range
+GB_CONST(uint, kViewFlagNativeNormal, 128);  // gblens's live normal target: decode NORMAL_ENCODING
+GB_CONST(uint, kViewFlagDecoded, 256);    // a decoded view image: texels holding kEmptyTexel are empty (black)
 // Which texels count for an automatic range (and which a depth view paints black).
 GB_CONST(uint, kRangeAll, 0);
 GB_CONST(uint, kRangePositive, 1);  // eye depth: > 0 where geometry was drawn
 GB_CONST(uint, kRangeBelowOne, 2);  // shadow map: cleared to 1
 GB_CONST(uint, kRangeNotFar, 3);    // hardware depth: not the far-plane value
+GB_CONST(uint, kRangeNotValue, 4);  // not the layout's background value (extra.y: its float bits)
+// The bits of a decoded view image's texel where the view has no value (no surface, not held): a
+// quiet NaN whose payload no decoding produces (decoded NaNs are stored as 0x7FC00000).
+GB_CONST(uint, kEmptyTexel, 0x7FC0DEADu);
 // Highlight colours (the legend in views/ names the same ones).
 #define GB_COLOR_NAN vec4(1.0, 0.0, 1.0, 1.0)
 #define GB_COLOR_INF vec4(0.0, 1.0, 1.0, 1.0)
@@ -219,14 +231,15 @@ GB_CONST(uint, kRangeNotFar, 3);    // hardware depth: not the far-plane value
 // Push constants of the view pipeline: one view drawn into a rectangle of the window.
 GB_STRUCT(ViewParams) {
   vec4 transform;  // xy framebuffer position of texel (0,0)'s top-left corner, z framebuffer pixels per texel
-  vec4 range;      // x black point, y white point, z grid opacity
+  vec4 range;      // x black point, y white point, z grid opacity, w exposure multiplier (2^EV, colour)
   uvec4 mode;      // x kViewMap*, y channel mask (bit c = channel c), z kViewFlag*, w kRange* (valid texels)
   ivec4 mark;      // xy shadow-map texel (kViewFlagMark), zw shadow-map size
+  uvec4 extra;     // x stencil bits shown (kViewMapStencil; 0 all), y background bits (kRangeNotValue), z, w unused
 };
 
 // Push constants of the range reduction (view_range.comp).
 GB_STRUCT(RangeParams) {
-  uvec4 select;  // x channel, y kRange* predicate, z result slot, w unused
+  uvec4 select;  // x channel, y kRange* predicate, z result slot, w background bits (kRangeNotValue)
 };
 // One result slot: ordered-uint min/max of valid finite values (see orderedFromFloat), counts.
 GB_STRUCT(RangeResult) {
@@ -242,7 +255,7 @@ static_assert(sizeof(Cluster) == 48);
 static_assert(sizeof(DrawData) == 3 * 64 + 16);
 static_assert(sizeof(Material) == 8 * 16);
 static_assert(sizeof(PointLight) == 32);
-static_assert(sizeof(ViewParams) == 64);
+static_assert(sizeof(ViewParams) == 80);
 }  // namespace gb::gpu
 #endif
 

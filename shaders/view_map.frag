@@ -5,6 +5,7 @@
 // GB_VIEW_UINT: the target holds integers (coverage counts).
 #include "common.glsl"
 #include "gbuffer_codec.glsl"
+#include "view_colors.h"
 
 layout(push_constant) uniform Push { ViewParams p; };
 #ifdef GB_VIEW_UINT
@@ -36,17 +37,15 @@ bool validTexel(float v) {
   if (predicate == kRangePositive) return v > 0.0;
   if (predicate == kRangeBelowOne) return v < 1.0;
   if (predicate == kRangeNotFar) return v != farDepth();
+  if (predicate == kRangeNotValue) return v != uintBitsToFloat(p.extra.y);
   return true;
 }
 
-// Heat colour of a count (views/visualize.cpp heatColor): 0 black, blue -> cyan -> green -> yellow -> red.
-vec3 heat(float count, float maxCount) {
-  if (count <= 0.0) return vec3(0.0);
-  float t = clamp(count / max(maxCount, 1.0), 0.0, 1.0) * 4.0;
-  int i = min(int(t), 3);
-  float a = t - float(i);
-  vec3 stops[5] = vec3[](vec3(0, 0, 1), vec3(0, 1, 1), vec3(0, 1, 0), vec3(1, 1, 0), vec3(1, 0, 0));
-  return mix(stops[i], stops[i + 1], a);
+// A value's place in [black, white]: linear, or (log) log(v / black) / log(white / black), where
+// both ends must be positive (else the linear place).
+float rangePlace(float x, float lo, float hi, uint flags) {
+  if ((flags & kViewFlagLog) != 0 && lo > 0.0 && hi > lo && x > 0.0) return log(x / lo) / log(hi / lo);
+  return (x - lo) / (hi != lo ? hi - lo : 1.0);
 }
 
 // Shadow-map texels the lookup of screen texel `t` reads (2x2 linear compare footprint).
@@ -88,6 +87,11 @@ void main() {
         infFound = infFound || isinf(v[c]);
         negFound = negFound || v[c] < 0.0;
       }
+#ifndef GB_VIEW_UINT
+    bool empty = (flags & kViewFlagDecoded) != 0 && floatBitsToUint(v.x) == kEmptyTexel;
+#else
+    bool empty = false;
+#endif
 #ifdef GB_VIEW_DIFF
     if (mapping == kViewMapDiff) {
       // Largest |A - B| over the selected channels; a NaN on one side only counts as infinite.
@@ -100,29 +104,45 @@ void main() {
           d = max(d, e);
         }
       nanFound = infFound = negFound = false;
-      display = d > 0.0 ? heat(max(d, hi * 1e-3), hi) : vec3(0.0);
+      display = d > 0.0 ? heatColor(max(d, hi * 1e-3) / max(hi, 1e-30)) : vec3(0.0);
     } else
 #endif
-    if (mapping == kViewMapNormal) {
-      // Raw encodings may hold a zero normal; octahedral (0, 0) is +Z and rgb10a2 0 is (-1, -1, -1).
-      bool raw = NORMAL_ENCODING != kNormalRgb10a2 && NORMAL_ENCODING != kNormalOctRg16;
-      vec3 n = raw && v.xyz == vec3(0.0) ? vec3(0.0) : decodeNormal(v);
-      bool empty = v == vec4(0.0);  // nothing drawn (the G-buffer clears to 0)
-      display = empty ? vec3(0.0) : (n - lo) / span;
+    if (empty) {
+      nanFound = infFound = negFound = false;
+      display = vec3(0.0);
+    } else if (mapping == kViewMapNormal) {
+      vec3 n = v.xyz;
+      bool blank = false;
+      if ((flags & kViewFlagNativeNormal) != 0) {
+        // Raw encodings may hold a zero normal; octahedral (0, 0) is +Z and rgb10a2 0 is (-1, -1, -1).
+        bool raw = NORMAL_ENCODING != kNormalRgb10a2 && NORMAL_ENCODING != kNormalOctRg16;
+        n = raw && v.xyz == vec3(0.0) ? vec3(0.0) : decodeNormal(v);
+        blank = v == vec4(0.0);  // nothing drawn (the G-buffer clears to 0)
+      }
+      display = blank ? vec3(0.0) : (n - lo) / span;
       for (int c = 0; c < 3; ++c)
         if ((mask & (1u << c)) == 0) display[c] = 0.0;
     } else if (mapping == kViewMapColor) {
-      display = (v.rgb - lo) / span;
+      display = (v.rgb * p.range.w - lo) / span;
       for (int c = 0; c < 3; ++c)
         if ((mask & (1u << c)) == 0) display[c] = 0.0;
     } else {
       float x = v[max(first, 0)];
       if (mapping == kViewMapGrey) {
-        display = vec3((x - lo) / span);
+        float place = rangePlace(x, lo, hi, flags);
+        display = (flags & kViewFlagFalseColor) != 0 ? viridis(place) : vec3(place);
       } else if (mapping == kViewMapDepth) {
-        display = validTexel(x) ? vec3(1.0 - 0.9 * (x - lo) / span) : vec3(0.0);
+        float place = clamp(rangePlace(x, lo, hi, flags), 0.0, 1.0);
+        display = !validTexel(x) ? vec3(0.0) : (flags & kViewFlagFalseColor) != 0 ? viridis(1.0 - place) : vec3(1.0 - 0.9 * place);
+      } else if (mapping == kViewMapId) {
+        display = idColor(uint(x));
+      } else if (mapping == kViewMapStencil) {
+        uint s = uint(x), bits = p.extra.x;
+        display = stencilColor(bits != 0u ? s & bits : s);
+      } else if (mapping == kViewMapMotion) {
+        display = motionColor(vec2(v.x, v.y), hi);
       } else {
-        display = heat(x, hi);
+        display = heatColor(x / max(hi, 1.0));
       }
     }
     display = clamp(display, 0.0, 1.0);

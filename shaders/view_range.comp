@@ -37,6 +37,7 @@ void main() {
     if (p.select.y == kRangePositive) valid = v > 0.0;
     else if (p.select.y == kRangeBelowOne) valid = v < 1.0;
     else if (p.select.y == kRangeNotFar) valid = v != farDepth();
+    else if (p.select.y == kRangeNotValue) valid = v != uintBitsToFloat(p.select.w);
     if (isnan(v)) atomicAdd(sNan, 1u);
     else if (isinf(v)) atomicAdd(sInf, 1u);
     else if (valid) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "renderer/core/layout_json.h"
 #include "renderer/scene/builtin.h"
 #include "views/analysis/view_table.h"
 
@@ -71,10 +72,10 @@ std::string& commandLine() {
 }
 
 void addViewOption(CLI::App* cmd, const std::string& flag, std::string& value, const std::string& help) {
-  std::vector<std::string> names = viewNames();
-  std::string list;
-  for (const std::string& n : names) list += (list.empty() ? "" : " | ") + n;
-  cmd->add_option(flag, value, help + ": " + list)->check(CLI::IsMember(names))->capture_default_str();
+  // A frame's views are its layout's quantities: gblens's own here; a capture's layout may have others.
+  const std::string list = viewNameList(layoutViews(nativeLayout(RenderOptions{})));
+  cmd->add_option(flag, value, help + " (a quantity of the frame's layout; gblens's: " + list + "; case and _ ignored)")
+      ->capture_default_str();
 }
 
 }  // namespace gb

@@ -1,6 +1,7 @@
-// gblens check CAPTURE [--json]: every target and quantity of a capture (gblens's own or imported)
-// scanned for NaN, ±Inf, denormals and out-of-range decoded values (views/analysis/check.h).
-// Exit 0 clean, 1 when anything was found, 2 when the capture cannot be read.
+// gblens check CAPTURE [--json] [--policy RULE]...: every target and quantity of a capture (gblens's own
+// or imported) scanned for NaN, ±Inf, denormals and out-of-range decoded values, and positions rebuilt
+// from depth checked against a stored position (views/analysis/check.h). What is a fault comes from the
+// policy (default, the layout's "check" fields, --policy). Exit 0 no fault, 1 faults, 2 unreadable.
 #include <cstdio>
 #include <memory>
 
@@ -14,6 +15,7 @@ namespace {
 struct CheckArgs {
   std::string capture;
   bool json = false;
+  std::vector<std::string> policy;
 };
 }  // namespace
 
@@ -23,6 +25,10 @@ Command addCheckCommand(CLI::App& root) {
       "check", "scan every target of a capture for NaN, Inf, denormals and out-of-range values (exit 1 when found)");
   cmd->add_option("CAPTURE", o->capture, "capture directory (gblens capture or gblens import)")->required();
   cmd->add_flag("--json", o->json, "print the report as JSON");
+  cmd->add_option("--policy", o->policy,
+                  "[QUANTITY.]CLASS=LEVEL: what a finding means (CLASS nan, inf, denormal, out_of_range, position; LEVEL "
+                  "fault, warn, ignore); default: denormal=warn, the rest fault; the layout's \"check\" fields apply first")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   return {cmd, [o]() -> int {
             Capture c;
             std::string error;
@@ -30,7 +36,12 @@ Command addCheckCommand(CLI::App& root) {
               std::fprintf(stderr, "gblens check: %s\n", error.c_str());
               return 2;
             }
-            const CheckReport report = checkFrame(c.frame);
+            CheckPolicy policy;
+            if (!checkPolicy(c.frame.layout, o->policy, policy, error)) {
+              std::fprintf(stderr, "gblens check: %s\n", error.c_str());
+              return 2;
+            }
+            const CheckReport report = checkFrame(c.frame, policy);
             if (o->json)
               std::printf("%s\n", checkJson(report).dump(2).c_str());
             else

@@ -7,30 +7,42 @@
 
 #include "app/cli/cli.h"
 #include "renderer/session.h"
+#include "renderer/core/assert.h"
+#include "renderer/core/layout_json.h"
 #include "views/analysis/visualize.h"
 #include "views/capture/report.h"
 
 namespace gb {
 
 // The view's target must be computed under these options: a one-line refusal otherwise.
-static bool viewAvailable(ViewKind view, const RenderOptions& ro, const Scene& scene) {
-  Target t = viewDef(view).source.target;
+static bool viewAvailable(const ViewDef& view, Target t, const RenderOptions& ro, const Scene& scene) {
   Absent why = targetAbsence(t, ro, scene.sun.enabled);
   if (why == Absent::No) return true;
-  std::fprintf(stderr, "gblens render: --target %s needs %s, which is %s\n", viewName(view), targetName(t),
+  std::fprintf(stderr, "gblens render: --target %s needs %s, which is %s\n", view.name.c_str(), targetName(t),
                absentText(why));
   return false;
 }
 
-static int render(const CommonOptions& o, ViewKind view) {
+static int render(const CommonOptions& o, const std::string& viewName) {
   Scene scene;
   if (!loadSceneOrReport(o, scene)) return 2;
   RenderOptions ro = o.render;
-  const Target target = viewDef(view).source.target;
+  const Layout layout = nativeLayout(ro);
+  const std::vector<ViewDef> views = layoutViews(layout);
+  const int k = findView(views, viewName);
+  if (k < 0) {
+    std::fprintf(stderr, "gblens render: --target %s: not a view of gblens's frame (%s)\n", viewName.c_str(),
+                 viewNameList(views).c_str());
+    return 2;
+  }
+  const ViewDef& view = views[size_t(k)];
+  Target target = Target::Final;
+  const bool known = parseTarget(layout.targets[view.target].name, target);  // gblens's layout names its targets
+  GB_ASSERT(known);
   ro.coverage = target == Target::CoverageMasked || target == Target::CoverageFull;
   // Single pass: the G-buffer stays in tile memory (transient) unless this view reads it.
-  ro.keepGBuffer = targetInfo(target).role == TargetRole::GBuffer;
-  if (!viewAvailable(view, ro, scene)) return 2;
+  ro.keepGBuffer = targetInfo(target).role == TargetRole::GBuffer || view.surfaceOnly;
+  if (!viewAvailable(view, target, ro, scene)) return 2;
   HeadlessSession session(scene, {o.device, o.validate});
   // An output the device cannot hold is refused here, before any target is allocated.
   if (std::string why = session.tooLarge(ro); !why.empty()) {
@@ -39,6 +51,9 @@ static int render(const CommonOptions& o, ViewKind view) {
   }
   FrameRequest request;
   request.readback = {target};
+  // Normals and positions are drawn where a surface is: the eye depth says where.
+  if (view.surfaceOnly && target != Target::Depth && targetAbsence(Target::Depth, ro, scene.sun.enabled) == Absent::No)
+    request.readback.push_back(Target::Depth);
   std::vector<FrameStats> frames;
   // Frames before the last in flight (the CPU records one while the GPU runs the one before),
   // when there are enough for a burst and none counts coverage; the last one is read back.
@@ -58,11 +73,12 @@ static int render(const CommonOptions& o, ViewKind view) {
   if (o.stats) counted = session.renderCounting(ro, request);
   int status = 0;
   std::string error;
-  if (!writePng(o.output, visualize(view, frame), error)) {
+  const std::vector<ViewDef> frameViews = layoutViews(frame.layout);
+  if (!writePng(o.output, visualize(frame, frameViews[size_t(findView(frameViews, view.name))], defaultSettings(view)), error)) {
     std::fprintf(stderr, "gblens render: %s\n", error.c_str());
     status = 2;
   } else {
-    std::fprintf(stderr, "gblens: wrote %s (%s, %ux%u)\n", o.output.c_str(), viewName(view), ro.width, ro.height);
+    std::fprintf(stderr, "gblens: wrote %s (%s, %ux%u)\n", o.output.c_str(), view.name.c_str(), ro.width, ro.height);
   }
   if (o.stats)
     std::printf("%s\n",
@@ -88,9 +104,7 @@ Command addRenderCommand(CLI::App& root) {
               std::fprintf(stderr, "gblens render: %s\n", error.c_str());
               return 2;
             }
-            ViewKind view = ViewKind::Final;
-            parseView(*target, view);
-            return render(*o, view);
+            return render(*o, *target);
           }};
 }
 

@@ -13,6 +13,7 @@
 #include "views/analysis/compare.h"
 #include "views/analysis/decoded_image.h"
 #include "views/analysis/probe.h"
+#include "views/analysis/view_table.h"
 #include "views/analysis/region_stats.h"
 #include "views/capture/import_renderdoc.h"
 #include "app/python/python.h"
@@ -36,37 +37,38 @@ py::dtype dtypeOf(PixelType t) {
 
 const FrameSnapshot& frameOfHandle(const FramePtr& h) { return h->capture.frame; }
 
-// A quantity by its name, or by the name of a target that holds exactly one quantity.
-const Quantity& findQuantity(const FrameSnapshot& f, const std::string& name) {
-  if (const Quantity* q = f.layout.findByName(name)) return *q;
-  if (const int t = f.layout.findTarget(name); t >= 0) {
-    const std::vector<const Quantity*> qs = f.layout.quantitiesOf(uint32_t(t));
-    if (qs.size() == 1) return *qs[0];
-  }
-  std::string names;
-  for (const Quantity& q : f.layout.quantities) names += (names.empty() ? "" : ", ") + q.name;
-  throw py::key_error("\"" + name + "\": no quantity of that name, nor a target holding one (quantities: " + names + ")");
+// A quantity's view by name (case, '_', '-' and spaces ignored, as --target and --view find them).
+ViewDef findQuantity(const FrameSnapshot& f, const std::string& name) {
+  const std::vector<ViewDef> views = layoutViews(f.layout);
+  const int i = findView(views, name);
+  if (i < 0) throw py::key_error("\"" + name + "\": no quantity of that name (quantities: " + viewNameList(views) + ")");
+  return views[size_t(i)];
 }
 
 py::array quantityArray(const FramePtr& h, const std::string& name) {
   const FrameSnapshot& f = frameOfHandle(h);
-  const Quantity& q = findQuantity(f, name);
-  const TargetImage* ti = layoutImage(f, q.target);
-  if (!ti) fail(name + ": the frame does not hold target " + f.layout.targets[q.target].name + " (" +
-                absentText(f.absences[q.target]) + ")");
+  const ViewDef v = findQuantity(f, name);
+  const TargetImage* ti = layoutImage(f, v.target);
+  if (!ti) fail(name + ": the frame does not hold target " + f.layout.targets[v.target].name + " (" +
+                absentText(f.absences[v.target]) + ")");
   std::vector<double> values;
   {
     py::gil_scoped_release release;
-    values = decodeImage<double>(f, q, VectorSpace::Layout);
+    values = decodedImage<double>(f, v);
   }
-  return adopt(std::move(values), {py::ssize_t(ti->image.height), py::ssize_t(ti->image.width), py::ssize_t(decodedComponents(q))});
+  return adopt(std::move(values), {py::ssize_t(ti->image.height), py::ssize_t(ti->image.width), py::ssize_t(decodedComponents(f, v))});
 }
 
+// Positions from the first camera depth ("depth"), the stored position ("stored") or a depth quantity
+// named, in eye space or the layout's world axes.
 py::array position(const FramePtr& h, const std::string& source, const std::string& space) {
   const FrameSnapshot& f = frameOfHandle(h);
   if (space != "world" && space != "eye") fail("position: space \"" + space + "\": world or eye");
   const Quantity* q = source == "depth" ? surfaceDepth(f.layout) : source == "stored" ? f.layout.find(QuantityKind::Position) : nullptr;
-  if (source != "depth" && source != "stored") fail("position: source \"" + source + "\": depth or stored");
+  if (source != "depth" && source != "stored") {
+    q = &f.layout.quantities[size_t(findQuantity(f, source).quantity)];
+    if (q->kind != QuantityKind::Depth || q->ofSun) fail("position: source \"" + source + "\": depth, stored or a camera depth's name");
+  }
   if (!q) fail("position: the layout has no " + std::string(source == "depth" ? "camera depth" : "stored position"));
   if (!layoutImage(f, q->target)) fail("position: the frame does not hold target " + f.layout.targets[q->target].name);
   const TargetImage& ti = *layoutImage(f, q->target);
@@ -222,7 +224,7 @@ void bindFrame(py::module_& m) {
       .def_property_readonly("targets", &targets)
       .def_property_readonly("quantities", [](const FramePtr& h) {
         std::vector<std::string> names;
-        for (const Quantity& q : h->capture.frame.layout.quantities) names.push_back(q.name);
+        for (const ViewDef& v : layoutViews(h->capture.frame.layout)) names.push_back(v.name);
         return names;
       })
       .def("quantity", &quantityArray, "name"_a)
@@ -250,11 +252,17 @@ void bindFrame(py::module_& m) {
         }
         return toPython(regionStatsJson(regionStats(h->capture.frame, r, target, bins)));
       }, "rect"_a, "target"_a = "", "bins"_a = 32)
-      .def("check", [](const FramePtr& h, const py::object& policy) {
-        // Issue 25 gives check a policy (what counts as a fault per class and quantity); until the
-        // engine takes one, a policy is refused rather than ignored.
-        if (!policy.is_none()) fail("check: policy: this build's check has no policy yet");
-        return toPython(checkJson(checkFrame(h->capture.frame)));
+      .def("check", [](const FramePtr& h, const py::object& rules) {
+        // The policy as `check --policy RULE`: ["denormal=fault", ...] or {"Normal.out_of_range": "warn"}.
+        std::vector<std::string> texts;
+        if (py::isinstance<py::dict>(rules))
+          for (auto [k, v] : rules.cast<py::dict>()) texts.push_back(std::string(py::str(k)) + "=" + std::string(py::str(v)));
+        else if (!rules.is_none())
+          for (const py::handle& r : rules) texts.push_back(py::str(r));
+        CheckPolicy policy;
+        std::string error;
+        if (!checkPolicy(h->capture.frame.layout, texts, policy, error)) fail(error);
+        return toPython(checkJson(checkFrame(h->capture.frame, policy)));
       }, "policy"_a = py::none())
       .def("save", [](const FramePtr& h, const std::filesystem::path& dir) {
         std::string error;

@@ -1,6 +1,7 @@
 // Captures in the viewer: the capture button (the live frame, whole, through the capture
-// writer), and --capture A [--compare B]: captured targets uploaded so every view works on
-// them, the probe run on the captures' own snapshots, and A vs B with `gblens compare`'s report.
+// writer), and --capture A [--compare B]: each view of the capture's layout decoded and uploaded,
+// the probe run on the captures' own snapshots, and A vs B with `gblens compare`'s report.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -8,13 +9,15 @@
 #include <sstream>
 
 #include "app/viewer/viewer.h"
+#include "renderer/core/decode.h"
+#include "renderer/core/layout_json.h"
 #include "renderer/render_targets.h"
 #include "renderer/session.h"
-#include "renderer/upload_targets.h"
 #include "renderer/vk/renderdoc_capture.h"
 #include "views/analysis/compare.h"
 #include "views/analysis/probe.h"
-#include "views/analysis/viewable.h"
+#include "views/analysis/view_text.h"
+#include "views/analysis/visualize.h"
 #include "views/capture/capture.h"
 
 namespace gb {
@@ -50,14 +53,15 @@ bool captureLiveFrame(Viewer& v, std::string& written, std::string& error, std::
   return writeCapture(written, snapshot, meta, error);
 }
 
+static bool nativeFrame(const FrameSnapshot& f) { return f.layout.name == nativeLayout(f.options).name; }
+
 static std::string describe(const Capture& c) {
   const nlohmann::json& m = c.manifest;
   std::ostringstream o;
   const RenderOptions& opt = c.frame.options;
   if (!nativeFrame(c.frame)) {
-    // An imported G-buffer: its own layout; the views show its quantities decoded.
-    o << c.dir << "\n  layout " << c.frame.layout.name << ", " << opt.width << "x" << opt.height
-      << " (imported: the views show its quantities decoded)\n  targets:";
+    // An imported G-buffer: its own layout; the views are its quantities.
+    o << c.dir << "\n  layout " << c.frame.layout.name << ", " << opt.width << "x" << opt.height << " (imported)\n  targets:";
     for (size_t i = 0; i < c.frame.images.size(); ++i)
       if (c.frame.images[i].present()) o << " " << c.frame.layout.targets[i].name;
     return o.str();
@@ -80,14 +84,71 @@ Scene emptyScene(const Camera& camera) {
   return s;
 }
 
-static void upload(Renderer& r, GpuContext& ctx, Scene& scene, const FrameSnapshot& shown) {
-  scene = emptyScene(shown.camera);
-  initRenderer(r, ctx, scene);
-  std::array<const CpuImage*, kTargetCount> images{};
-  for (const TargetInfo& t : targetTable())
-    if (shown.target(t.target).present()) images[size_t(t.target)] = &shown.target(t.target).image;
-  uploadTargets(r, shown.options, images);
-  r.camera = shown.camera;
+// Each view of `views` decoded from `f` (an empty image where f does not hold its target).
+static std::vector<CpuImage> decodeViews(const FrameSnapshot& f, const std::vector<ViewDef>& views) {
+  std::vector<CpuImage> out;
+  for (const ViewDef& d : views) out.push_back(d.quantity >= 0 ? viewImage(f, d) : CpuImage{});
+  return out;
+}
+
+// The largest |A - B| over a view's components, where both hold a value.
+static double largestDifference(const CpuImage& a, const CpuImage& b, uint32_t components) {
+  double worst = 0.0;
+  if (a.empty() || b.empty() || a.width != b.width || a.height != b.height) return worst;
+  for (uint32_t y = 0; y < a.height; ++y)
+    for (uint32_t x = 0; x < a.width; ++x)
+      for (uint32_t c = 0; c < components && c < a.channelCount(); ++c) {
+        double e = std::abs(a.value(x, y, c) - b.value(x, y, c));
+        if (std::isfinite(e)) worst = std::max(worst, e);
+      }
+  return worst;
+}
+
+// What the views can show: A's layout's views, B's of the same names beside them.
+static void setCaptureViews(Viewer& v) {
+  ViewerModel& m = v.model;
+  const FrameSnapshot& a = v.captureA.frame;
+  m.frameLayout = a.layout;
+  setViews(m, layoutViews(a.layout));
+  v.decodedA = decodeViews(a, m.views);
+  v.viewsB.clear();
+  if (v.hasB) {
+    const std::vector<ViewDef> all = layoutViews(v.captureB.frame.layout);
+    for (const ViewDef& d : m.views) {
+      int i = findView(all, d.name);
+      v.viewsB.push_back(i >= 0 && all[size_t(i)].visual == d.visual ? all[size_t(i)] : ViewDef{});
+    }
+    v.decodedB = decodeViews(v.captureB.frame, v.viewsB);
+  }
+  for (size_t k = 0; k < m.views.size(); ++k) {
+    const ViewDef& d = m.views[k];
+    m.unavailable[k].clear();
+    Absent why = a.absences[d.target];
+    if (v.decodedA[k].empty()) m.unavailable[k] = a.layout.targets[d.target].name + ": " + absentText(why == Absent::No ? Absent::NotCaptured : why);
+    else if (v.hasB && v.decodedB[k].empty()) m.unavailable[k] = d.name + " is not in B";
+    if (v.hasB) m.differenceMax[k] = largestDifference(v.decodedA[k], v.decodedB[k], d.components);
+  }
+  uploadViewImages(v.imagesA, v.ctx, v.decodedA);
+  if (v.hasB) uploadViewImages(v.imagesB, v.ctx, v.decodedB);
+  v.rangeKeys.assign(m.views.size(), "");
+  const TargetImage* sm = nullptr;
+  for (const ViewDef& d : m.views)
+    if (d.sun) sm = layoutImage(a, d.target);
+  m.shadowMapSize = sm && sm->present() ? glm::uvec2(sm->image.width, sm->image.height) : glm::uvec2(1, 1);
+}
+
+void updateCaptureRanges(Viewer& v) {
+  ViewerModel& m = v.model;
+  for (int k : visibleViews(m)) {
+    const ViewDef& d = m.views[size_t(k)];
+    const ViewSettings& s = m.settings[size_t(k)];
+    const ViewMapping mapping = viewMapping(d, s);
+    const std::string key = std::to_string(mapping.mask) + (s.autoRange ? "a" : "m");
+    if (v.rangeKeys[size_t(k)] == key || v.decodedA[size_t(k)].empty()) continue;
+    v.rangeKeys[size_t(k)] = key;
+    m.ranges[size_t(k)] = {imageRange(v.decodedA[size_t(k)], d, mapping.mask)};
+    m.uiChanged = true;
+  }
 }
 
 bool openCaptures(Viewer& v) {
@@ -97,8 +158,6 @@ bool openCaptures(Viewer& v) {
     std::fprintf(stderr, "gblens view: --capture %s\n", error.c_str());
     return false;
   }
-  v.shownA = viewableFrame(v.captureA.frame);
-  upload(v.renderer, v.ctx, v.scene, v.shownA);
   m.source = FrameSource::Capture;
   m.captureA = v.args.capture;
   m.captureInfo = describe(v.captureA);
@@ -113,8 +172,6 @@ bool openCaptures(Viewer& v) {
                    v.args.capture.c_str(), a.width, a.height, v.args.compare.c_str(), b.width, b.height);
       return false;
     }
-    v.shownB = viewableFrame(v.captureB.frame);
-    upload(v.rendererB, v.ctx, v.sceneB, v.shownB);
     v.hasB = true;
     m.source = FrameSource::Compare;
     m.captureB = v.args.compare;
@@ -124,36 +181,13 @@ bool openCaptures(Viewer& v) {
       m.compareSummary = report.text();
     else
       m.compareSummary = error;
-    // The white point of each |A - B| view: the largest difference over its channels.
-    for (int k = 0; k < kViewKindCount; ++k) {
-      const ViewDef& d = viewDef(ViewKind(k));
-      const TargetImage &ta = v.shownA.target(d.source.target), &tb = v.shownB.target(d.source.target);
-      double worst = 0.0;
-      if (ta.present() && tb.present() && ta.image.width == tb.image.width && ta.image.height == tb.image.height) {
-        uint32_t mask = d.source.stencil ? 0x2u : d.channels;
-        for (uint32_t y = 0; y < ta.image.height; ++y)
-          for (uint32_t x = 0; x < ta.image.width; ++x)
-            for (uint32_t c = 0; c < ta.image.channelCount(); ++c)
-              if (mask & (1u << c)) {
-                double e = std::abs(ta.image.value(x, y, c) - tb.image.value(x, y, c));
-                if (std::isfinite(e)) worst = std::max(worst, e);
-              }
-      }
-      m.differenceMax[k] = worst;
-    }
   }
-  // What the views can show.
-  const FrameSnapshot& f = v.shownA;
-  m.rendered = f.options;
-  const TargetImage& sm = f.target(Target::ShadowMap);
-  m.shadowMapSize = sm.present() ? glm::uvec2(sm.image.width, sm.image.height) : glm::uvec2(1, 1);
-  for (int k = 0; k < kViewKindCount; ++k) {
-    Target t = viewDef(ViewKind(k)).source.target;
-    m.unavailable[k].clear();
-    if (!f.target(t).present()) m.unavailable[k] = std::string(targetName(t)) + ": " + absentText(f.absence(t));
-    else if (v.hasB && !v.shownB.target(t).present())
-      m.unavailable[k] = std::string(targetName(t)) + " is not in B: " + absentText(v.shownB.absence(t));
-  }
+  // A renderer that holds no frame: the view pipelines' context (sampler, scene set).
+  v.scene = emptyScene(v.captureA.frame.camera);
+  initRenderer(v.renderer, v.ctx, v.scene);
+  v.renderer.camera = v.captureA.frame.camera;
+  m.rendered = v.captureA.frame.options;
+  setCaptureViews(v);
   m.captureAvailable = false;
   m.captureHint = "This is a capture already";
   v.frameValid = true;
@@ -189,23 +223,13 @@ void probeCapturePixel(Viewer& v, glm::ivec2 p) {
   logLine(v.eventLog, {{"event", "probe"}, {"pixel", {p.x, p.y}}, {"latency_ms", ms}});
 }
 
-std::string captureHoverText(const Viewer& v, ViewKind view, glm::ivec2 texel) {
-  const ViewDef& d = viewDef(view);
-  std::string out;
-  for (const FrameSnapshot* c : {&v.shownA, v.hasB ? &v.shownB : nullptr}) {
-    if (!c) continue;
-    const TargetImage& ti = c->target(d.source.target);
-    if (!ti.contains(uint32_t(texel.x), uint32_t(texel.y))) continue;
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "%s%s (%d, %d):", out.empty() ? "" : " | ", v.hasB ? (c == &v.shownA ? "A" : "B") : targetName(d.source.target),
-                  texel.x, texel.y);
-    out += buf;
-    for (uint32_t ch = 0; ch < ti.image.channelCount(); ++ch) {
-      std::snprintf(buf, sizeof buf, " %s %.7g", ti.image.channels[ch].c_str(), ti.value(uint32_t(texel.x), uint32_t(texel.y), ch));
-      out += buf;
-    }
-  }
-  return out;
+std::string captureHoverText(const Viewer& v, int view, glm::ivec2 texel) {
+  const ViewerModel& m = v.model;
+  if (view < 0 || size_t(view) >= m.views.size()) return "";
+  std::string a = viewValueText(v.captureA.frame, m.views[size_t(view)], uint32_t(texel.x), uint32_t(texel.y));
+  if (!v.hasB) return a;
+  const ViewDef& b = v.viewsB[size_t(view)];
+  return "A: " + a + (b.quantity >= 0 ? "\nB: " + viewValueText(v.captureB.frame, b, uint32_t(texel.x), uint32_t(texel.y)) : "");
 }
 
 }  // namespace gb

@@ -34,7 +34,7 @@ void handleKeys(Viewer& v) {
     glm::ivec2 step(key == GLFW_KEY_RIGHT ? 1 : key == GLFW_KEY_LEFT ? -1 : 0,
                     key == GLFW_KEY_DOWN ? 1 : key == GLFW_KEY_UP ? -1 : 0);
     if (step != glm::ivec2(0)) {
-      glm::ivec2 from = m.probePixel ? *m.probePixel : glm::ivec2(viewImageSize(m, ViewKind::Final) / 2u);
+      glm::ivec2 from = m.probePixel ? *m.probePixel : glm::ivec2(viewImageSize(m, m.primary) / 2u);
       m.probeRequest = from + step;
     }
   }

@@ -10,6 +10,7 @@
 #include "renderer/render_targets.h"
 #include "renderer/session.h"
 #include "views/analysis/probe.h"
+#include "views/analysis/view_text.h"
 
 namespace gb {
 
@@ -17,16 +18,6 @@ void logLine(std::ofstream& f, const nlohmann::json& j) {
   if (!f.is_open()) return;
   f << j.dump() << '\n';
   f.flush();
-}
-
-static std::string valuesText(const CpuImage& img) {
-  std::string s;
-  char buf[64];
-  for (uint32_t c = 0; c < img.channelCount(); ++c) {
-    std::snprintf(buf, sizeof buf, "%s%s %.7g", c ? ", " : "", img.channels[c].c_str(), img.value(0, 0, c));
-    s += buf;
-  }
-  return s;
 }
 
 // The frame as the probe sees it: matrices, lights and options of the live renderer, and the
@@ -99,28 +90,34 @@ void probeViewerPixel(Viewer& v, glm::ivec2 p, bool logged) {
 
 void readHover(Viewer& v) {
   ViewerModel& m = v.model;
-  std::optional<glm::ivec2> texel = m.hover;
-  std::optional<ViewKind> view = m.hoverView;
-  if (view && viewDef(*view).source.target == Target::ShadowMap) texel = m.hoverShadowTexel;
+  std::optional<int> view = m.hoverView;
+  std::optional<glm::ivec2> texel = view && m.views[size_t(*view)].sun ? m.hoverShadowTexel : m.hover;
   if (texel == v.hoverRead && view == v.hoverReadView) return;
   v.hoverRead = texel;
   v.hoverReadView = view;
   m.hoverText.clear();
-  if (!texel || !view || !v.frameValid || !m.unavailable[int(*view)].empty()) return;
-  const ViewDef& d = viewDef(*view);
+  if (!texel || !view || !v.frameValid || !m.unavailable[size_t(*view)].empty()) return;
+  const ViewDef& d = m.views[size_t(*view)];
+  std::optional<ViewSource> source = nativeSource(m.frameLayout, d);
+  if (!source) return;
   // A reduced frame: the texel of it that covers the full-resolution texel (the probe refines first).
   glm::ivec2 at = *texel;
-  const bool reduced = m.reducedBy > 1 && screenSpaceTarget(d.source.target);
+  const bool reduced = m.reducedBy > 1 && !d.sun;
   if (reduced)
     at = glm::min(glm::ivec2(glm::dvec2(at) * glm::dvec2(m.rendered.width, m.rendered.height) / glm::dvec2(m.fullSize)),
                   glm::ivec2(int(m.rendered.width) - 1, int(m.rendered.height) - 1));
-  std::vector<RegionImage> regions =
-      readbackRegions(v.renderer, {{d.source.target, at.x, at.y, 1, 1}}, readableTargets(v.renderer, v.renderer.options));
-  if (regions[0].image.empty()) return;
-  char head[128];
-  std::snprintf(head, sizeof head, "%s (%d, %d)%s: ", targetName(d.source.target), texel->x, texel->y,
-                reduced ? " of the reduced frame" : "");
-  m.hoverText = head + valuesText(regions[0].image);
+  // The view's target and the depth that says whether a surface is there, read back at the texel,
+  // decoded through the frame's layout as a capture's would be.
+  Renderer& r = v.renderer;
+  std::vector<RegionRequest> requests = {{source->target, at.x, at.y, 1, 1}};
+  if (!d.sun && source->target != Target::Depth) requests.push_back({Target::Depth, at.x, at.y, 1, 1});
+  FrameSnapshot snapshot = snapshotFromRenderer(r, {});
+  addRegions(snapshot, readbackRegions(r, requests, readableTargets(r, r.options)));
+  const std::vector<ViewDef> views = layoutViews(snapshot.layout);
+  const int k = findView(views, d.name);
+  if (k < 0) return;
+  m.hoverText = viewValueText(snapshot, views[size_t(k)], uint32_t(at.x), uint32_t(at.y));
+  if (reduced && !m.hoverText.empty()) m.hoverText += "  (of the reduced frame)";
 }
 
 }  // namespace gb

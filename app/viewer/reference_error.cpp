@@ -65,7 +65,7 @@ static bool writeMaps(const Viewer::ReferenceResult& r, const std::string& dir, 
 
 // The selected map as a target of the window's renderer: an error map (sRGB) as `final`, a
 // decomposition term (linear) as `hdr`, the light count as `coverage_full` (a heat map).
-static CpuImage selectedMap(Viewer& v, ViewKind& mapping, float& white) {
+static CpuImage selectedMap(Viewer& v, Visual& mapping, bool& srgbMap, float& white) {
   const auto& e = v.model.referenceError;
   const Viewer::ReferenceResult& r = *v.referenceResult;
   CpuImage image;
@@ -78,7 +78,8 @@ static CpuImage selectedMap(Viewer& v, ViewKind& mapping, float& white) {
     image.type = PixelType::U8;
     image.encoding = Encoding::Srgb;
     image.data = map.pixels;
-    mapping = ViewKind::Final;
+    mapping = Visual::Color;
+    srgbMap = true;
     return image;
   }
   const LightingTerm term = LightingTerm(size_t(e.map) - errorMaps().size());
@@ -98,14 +99,15 @@ static CpuImage selectedMap(Viewer& v, ViewKind& mapping, float& white) {
         std::memcpy(image.data.data() + (size_t(y) * src.width + x) * 4, &n, 4);
         largest = std::max(largest, float(n));
       }
-    mapping = ViewKind::CoverageFull;
+    mapping = Visual::Count;
   } else {
     image = src;
     image.name = "hdr";
     for (uint32_t y = 0; y < src.height; ++y)
       for (uint32_t x = 0; x < src.width; ++x)
         for (int c = 0; c < 3; ++c) largest = std::max(largest, float(src.value(x, y, uint32_t(c))));
-    mapping = ViewKind::Hdr;
+    mapping = Visual::Color;
+    srgbMap = false;
   }
   white = largest;
   return image;
@@ -113,7 +115,7 @@ static CpuImage selectedMap(Viewer& v, ViewKind& mapping, float& white) {
 
 static void show(Viewer& v) {
   auto& e = v.model.referenceError;
-  const CpuImage image = selectedMap(v, e.mapping, e.white);
+  const CpuImage image = selectedMap(v, e.mapping, e.srgbMap, e.white);
   e.mapChanged = false;
   e.decomposeNote = v.referenceResult->decomposeError.empty() ? "" : "decomposition: " + v.referenceResult->decomposeError;
   if (image.empty()) return;
@@ -129,8 +131,7 @@ static void show(Viewer& v) {
     initRenderer(v.rendererRef, v.ctx, v.sceneRef);
   }
   std::array<const CpuImage*, kTargetCount> images{};
-  images[size_t(e.mapping == ViewKind::Final ? Target::Final : e.mapping == ViewKind::Hdr ? Target::Hdr : Target::CoverageFull)] =
-      &image;
+  images[size_t(e.mapping == Visual::Count ? Target::CoverageFull : e.srgbMap ? Target::Final : Target::Hdr)] = &image;
   uploadTargets(v.rendererRef, o, images);
   e.width = image.width;
   e.height = image.height;

@@ -8,7 +8,6 @@
 #include "renderer/render_targets.h"
 #include "renderer/session.h"
 #include "views/analysis/region_stats.h"
-#include "views/analysis/viewable.h"
 
 namespace gb {
 
@@ -26,7 +25,6 @@ void updateRegion(Viewer& v) {
     if (r.x + r.width > rd.options.width || r.y + r.height > rd.options.height) {
       m.region.reset();
       m.regionStats.reset();
-      m.regionViewStats.reset();
       return;
     }
     const std::vector<Target> readable = readableTargets(rd, rd.options);
@@ -36,21 +34,13 @@ void updateRegion(Viewer& v) {
     FrameSnapshot snapshot = snapshotFromRenderer(rd, {});
     addRegions(snapshot, readbackRegions(rd, requests, readable));
     m.regionStats = regionStats(snapshot, r);
-    m.regionViewStats.reset();
   } else {
     m.regionStats = regionStats(v.captureA.frame, r);
-    // An imported capture's views show it decoded into gblens's targets (views/analysis/viewable.h):
-    // the auto range reads those, the numbers shown stay the layout's (those of gblens stats).
-    if (nativeFrame(v.captureA.frame))
-      m.regionViewStats.reset();
-    else
-      m.regionViewStats = regionStats(v.shownA, r);
   }
   m.regionDirty = false;
   m.regionNote.clear();
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json line = {{"event", "region"}, {"ms", ms}, {"stats", regionStatsJson(*m.regionStats)}};
-  if (m.regionViewStats) line["view_stats"] = regionStatsJson(*m.regionViewStats);
   logLine(v.eventLog, line);
 }
 

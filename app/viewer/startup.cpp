@@ -97,7 +97,6 @@ static bool openFrameSource(Viewer& v, bool live) {
   } else if (!openCaptures(v)) {
     shutdownImGui(v);
     destroyRenderer(v.renderer);
-    destroyRenderer(v.rendererB);
     closeWindow(v);
     destroyContext(v.ctx);
     return false;
@@ -110,7 +109,6 @@ static bool openFrameSource(Viewer& v, bool live) {
 static void initModel(Viewer& v, bool live) {
   ViewerModel& m = v.model;
   const ViewerArgs& args = v.args;
-  for (int k = 0; k < kViewKindCount; ++k) m.settings[k] = defaultSettings(ViewKind(k));
   m.wanted = args.render;
   m.fixedSize = args.sizeGiven;
   m.lightCount = int(v.scene.generatedLights ? args.render.lights : int(v.scene.lights.size()));
@@ -118,11 +116,11 @@ static void initModel(Viewer& v, bool live) {
   m.probeReference = args.probeReference;
   m.referenceError.open = !args.referenceErrorDir.empty();
   m.reduceWhileMoving = args.reduceWhileMoving;
-  parseView(args.initialView, m.primary);
-  m.edited = m.primary;
   m.deviceName = v.ctx.deviceName;
   m.sceneName = live ? args.scene : args.capture + (args.compare.empty() ? "" : " vs " + args.compare);
   if (live) {
+    m.rendered = m.wanted;  // until the first frame: the views of the layout it will have
+    updateLiveViews(v);
     for (size_t i = 0; i + 1 < v.scene.cameras.size(); ++i)
       m.cameraNames.push_back(v.scene.cameras[i].name.empty() ? "camera " + std::to_string(i) : v.scene.cameras[i].name);
     m.captureAvailable = true;
@@ -139,6 +137,19 @@ bool startViewer(Viewer& v) {
   const bool live = v.args.capture.empty();
   if (!openFrameSource(v, live)) return false;
   initModel(v, live);
+  // The first view: --view (a view of this frame's layout), else the layout's first colour view.
+  ViewerModel& m = v.model;
+  if (!v.args.initialView.empty()) {
+    const int k = findView(m.views, v.args.initialView);
+    if (k < 0) {
+      std::fprintf(stderr, "gblens view: --view %s: not a view of this frame (its views: %s)\n", v.args.initialView.c_str(),
+                   viewNameList(m.views).c_str());
+      finishViewer(v);
+      return false;
+    }
+    m.primary = m.edited = k;
+    m.layout = LayoutMode::Single;
+  }
   return true;
 }
 
@@ -160,8 +171,9 @@ int finishViewer(Viewer& v) {
   vkDeviceWaitIdle(v.ctx.device);
   shutdownImGui(v);
   destroyViewMapper(v.mapper, v.renderer);
+  destroyViewImages(v.imagesA, v.ctx);
+  destroyViewImages(v.imagesB, v.ctx);
   destroyRenderer(v.renderer);
-  destroyRenderer(v.rendererB);
   if (v.referenceJob.valid()) v.referenceJob.wait();
   destroyRenderer(v.rendererRef);
   closeWindow(v);

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <csignal>
 
+#include "renderer/core/layout_json.h"
 #include "renderer/render_targets.h"
 
 namespace gb {
@@ -78,8 +79,10 @@ static RenderOptions wantedOptions(Viewer& v, int fbWidth, int fbHeight) {
   o.camera = int(v.scene.cameras.size()) - 1;  // the viewer's camera (a copy of a scene camera)
   o.lights = m.lightCount;
   o.coverage = m.cullingStats;
-  for (ViewKind k : visibleViews(m))
-    o.coverage |= k == ViewKind::CoverageMasked || k == ViewKind::CoverageFull;
+  // A coverage view on screen needs the coverage targets rendered.
+  for (int k : visibleViews(m))
+    if (std::optional<ViewSource> src = nativeSource(m.frameLayout, m.views[size_t(k)]))
+      o.coverage |= src->target == Target::CoverageMasked || src->target == Target::CoverageFull;
   o.keepGBuffer = true;  // views and the probe read the G-buffer in the single-pass path too
   return o;
 }
@@ -127,12 +130,7 @@ static void renderIfNeeded(Viewer& v, const RenderOptions& full, bool animating,
   v.renderMs.push_back(stats.frameMs);
   const ImageDesc& sm = v.renderer.targets[size_t(Target::ShadowMap)].image.desc;
   m.shadowMapSize = {sm.width, sm.height};
-  for (int k = 0; k < kViewKindCount; ++k) {
-    const ViewDef& d = viewDef(ViewKind(k));
-    std::string& why = m.unavailable[k];
-    why.clear();
-    if (d.source.target == Target::ShadowMap && !v.scene.sun.enabled) why = "no sun: no shadow map";
-  }
+  updateLiveViews(v);
   // A pinned probe follows the frame (not logged: only clicks and arrow keys are).
   if (m.probePixel && !m.probeRequest) probeViewerPixel(v, *m.probePixel, false);
   m.regionDirty = m.regionDirty || m.region.has_value();  // the region's numbers follow the frame too
@@ -140,15 +138,58 @@ static void renderIfNeeded(Viewer& v, const RenderOptions& full, bool animating,
   v.hoverReadView.reset();
 }
 
+void updateLiveViews(Viewer& v) {
+  ViewerModel& m = v.model;
+  Layout layout = nativeLayout(m.rendered);
+  std::vector<ViewDef> views = layoutViews(layout);
+  bool same = views.size() == m.views.size();
+  for (size_t k = 0; same && k < views.size(); ++k) same = views[k].name == m.views[k].name && views[k].visual == m.views[k].visual;
+  if (same)
+    m.views = views;  // the same views; their encodings may differ
+  else
+    setViews(m, views);
+  m.frameLayout = std::move(layout);
+  for (size_t k = 0; k < m.views.size(); ++k) {
+    std::string& why = m.unavailable[k];
+    why.clear();
+    std::optional<ViewSource> src = nativeSource(m.frameLayout, m.views[k], &m.gpuSources[k]);
+    if (!src) {
+      why = "not one of gblens's targets";
+      continue;
+    }
+    Absent absent = targetAbsence(src->target, m.rendered, v.scene.sun.enabled);
+    if (absent != Absent::No)
+      why = m.frameLayout.targets[m.views[k].target].name + ": " + absentText(absent);
+    else if (!v.frameValid || !v.renderer.targets[size_t(src->target)].image.image)
+      why = "not rendered yet";
+  }
+}
+
+// The live range requests of a view: one per selected component, on the channel holding it.
+static std::vector<RangeRequest> rangeRequests(const ViewerModel& m, int k) {
+  std::vector<RangeRequest> out;
+  const ViewDef& d = m.views[size_t(k)];
+  const ViewSettings& s = m.settings[size_t(k)];
+  std::optional<ViewSource> src = nativeSource(m.frameLayout, d);
+  if (!s.autoRange || !src) return out;
+  const ViewGpuSource& g = m.gpuSources[size_t(k)];
+  const uint32_t mask = viewMapping(d, s).mask;
+  for (uint32_t c = 0; c < 4; ++c)
+    if ((mask & (1u << c)) && c < g.channelOf.size())
+      out.push_back({*src, src->stencil ? 0u : g.channelOf[c], d.predicate, float(d.background.value_or(0.0))});
+  return out;
+}
+
 static void updateRanges(Viewer& v) {
   ViewerModel& m = v.model;
+  if (m.source != FrameSource::Live) return updateCaptureRanges(v);
   std::vector<RangeRequest> all;
-  std::vector<std::pair<ViewKind, size_t>> owners;  // view, count of its requests
+  std::vector<std::pair<int, size_t>> owners;  // view, count of its requests
   std::string key;
-  for (ViewKind k : visibleViews(m)) {
-    if (!m.unavailable[int(k)].empty()) continue;  // no target to measure (e.g. not in an imported layout)
-    std::vector<RangeRequest> q = rangeRequests(viewDef(k), m.settings[int(k)]);
-    key += std::to_string(int(k)) + ":" + std::to_string(m.settings[int(k)].channels) + (q.empty() ? "m;" : "a;");
+  for (int k : visibleViews(m)) {
+    if (!m.unavailable[size_t(k)].empty()) continue;  // no target to measure
+    std::vector<RangeRequest> q = rangeRequests(m, k);
+    key += std::to_string(k) + ":" + std::to_string(m.settings[size_t(k)].channels) + (q.empty() ? "m;" : "a;");
     if (std::any_of(owners.begin(), owners.end(), [&](auto& o) { return o.first == k; })) continue;
     owners.push_back({k, q.size()});
     all.insert(all.end(), q.begin(), q.end());
@@ -163,7 +204,7 @@ static void updateRanges(Viewer& v) {
   std::vector<RangeStats> stats = computeRanges(v.mapper, v.renderer, all, targets);
   size_t at = 0;
   for (auto& [k, n] : owners) {
-    m.ranges[int(k)].assign(stats.begin() + long(at), stats.begin() + long(at + n));
+    m.ranges[size_t(k)].assign(stats.begin() + long(at), stats.begin() + long(at + n));
     at += n;
   }
   m.uiChanged = true;
@@ -176,16 +217,16 @@ static void logLayout(Viewer& v, int windowW, int windowH) {
   nlohmann::json list = nlohmann::json::array();
   static const char* const kSides[] = {"a", "b", "difference"};
   for (const ViewSlot& slot : viewSlots(m, area)) {
-    glm::uvec2 size = viewImageSize(m, slot.kind);
+    glm::uvec2 size = viewImageSize(m, slot.view);
     Placement p = placeImage(slot.rect, size.x, size.y, m.transform);
-    list.push_back({{"view", viewName(slot.kind)},
+    list.push_back({{"view", m.views[size_t(slot.view)].name},
                     {"side", slot.split ? "split" : kSides[int(slot.side)]},
                     {"rect", {slot.rect.x, slot.rect.y, slot.rect.w, slot.rect.h}},
                     {"origin", {p.originX, p.originY}},
                     {"scale", p.scale},
                     {"image", {size.x, size.y}}});
     // A view the frame cannot show (e.g. an imported layout without a shadow map) says why.
-    if (!m.unavailable[int(slot.kind)].empty()) list.back()["unavailable"] = m.unavailable[int(slot.kind)];
+    if (!m.unavailable[size_t(slot.view)].empty()) list.back()["unavailable"] = m.unavailable[size_t(slot.view)];
   }
   j["views"] = list;
   std::string key = j.dump();
@@ -275,9 +316,7 @@ static void updateFrame(Viewer& v, const LoopState& s, int fbw, int fbh, double 
   if (s.live) {
     readHover(v);
   } else {
-    std::optional<glm::ivec2> texel = m.hoverView && viewDef(*m.hoverView).source.target == Target::ShadowMap
-                                          ? m.hoverShadowTexel
-                                          : m.hover;
+    std::optional<glm::ivec2> texel = m.hoverView && m.views[size_t(*m.hoverView)].sun ? m.hoverShadowTexel : m.hover;
     m.hoverText = texel && m.hoverView ? captureHoverText(v, *m.hoverView, *texel) : "";
   }
   if (m.captureRequested || m.renderDocRequested) {

@@ -38,7 +38,7 @@ struct ViewerArgs {
   bool paused = false;
   bool probeReference = false;     // --probe-reference: the Pixel panel's reference starts on
   std::string referenceErrorDir;   // --reference-error DIR: compute the reference error at start, write its maps
-  std::string initialView = "final";
+  std::string initialView;          // --view NAME (default: the layout's first colour view)
   std::string probeLog;            // --probe-log: each dossier as one JSON line
   std::string eventLog;            // --event-log: layout/probe/exit events as JSON lines (tests)
   std::string capture, compare;    // --capture DIR / --compare B (Capture issue)
@@ -76,12 +76,13 @@ struct Viewer {
   Renderer renderer;
   bool rendererReady = false;
   ViewMapper mapper;
-  // --capture A / --compare B: the captures, their targets uploaded (A into `renderer`).
+  // --capture A / --compare B: the captures, and each view of A's layout decoded (visualize.h
+  // viewImage) on the CPU and uploaded; B's view of the same name beside it (quantity -1: none).
   Capture captureA, captureB;
-  // What the views show of each: the capture's own targets, or an imported G-buffer's quantities
-  // decoded into gblens's targets (views/analysis/viewable.h). The probe reads the captures.
-  FrameSnapshot shownA, shownB;
-  Renderer rendererB;
+  std::vector<CpuImage> decodedA, decodedB;
+  std::vector<ViewDef> viewsB;
+  ViewImages imagesA, imagesB;
+  std::vector<std::string> rangeKeys;  // per view: the settings its CPU range was computed for
   // The reference error, live (reference_error.cpp): the worker computing it, the frame it was
   // computed for, its result, and a renderer that only holds the map shown (as its `final`).
   struct ReferenceResult {
@@ -115,7 +116,7 @@ struct Viewer {
   bool probeShownPending = false;  // log when the dossier of a click is first on screen
   std::chrono::steady_clock::time_point probeStart;
   std::optional<glm::ivec2> hoverRead;
-  std::optional<ViewKind> hoverReadView;
+  std::optional<int> hoverReadView;
   std::string layoutKey;           // logged layout, to log changes only
   std::ofstream probeLog, eventLog;
   std::vector<double> renderMs, presentMs;
@@ -177,7 +178,12 @@ Scene emptyScene(const Camera& camera);
 // the map shown, marks it stale when the frame changes, and with --reference-error DIR writes
 // every map there (reference_error.cpp). True while the worker runs (the loop keeps polling).
 bool updateReferenceError(Viewer& v);
-std::string captureHoverText(const Viewer& v, ViewKind view, glm::ivec2 texel);
+std::string captureHoverText(const Viewer& v, int view, glm::ivec2 texel);
+// The automatic ranges of the shown views of a capture (CPU, from the decoded images).
+void updateCaptureRanges(Viewer& v);
+// The live frame's views (gblens's layout under the frame's options): set when the layout's views
+// change, their GPU sources and why a view cannot show now.
+void updateLiveViews(Viewer& v);
 
 // Appends one JSON line to a log file (no-op when the file is not open).
 void logLine(std::ofstream& f, const nlohmann::json& j);

@@ -129,26 +129,35 @@ static void drawViewCallback(const ImDrawList*, const ImDrawCmd* cmd) {
   float y1 = std::min(float(ext.height), (cmd->ClipRect.w - pos.y) * scale.y);
   if (x1 <= x0 || y1 <= y0 || d.rect.w < 1 || d.rect.h < 1) return;
   VkRect2D viewport{{int32_t(d.rect.x), int32_t(d.rect.y)}, {uint32_t(d.rect.w), uint32_t(d.rect.h)}};
-  auto draw = [&](Renderer& r, float from, float to, Renderer* b) {
+  auto draw = [&](Renderer& r, const ViewImage& image, float from, float to, const ViewImage* b) {
     from = std::max(from, x0);
     to = std::min(to, x1);
-    if (to <= from) return;
+    if (to <= from || !image.valid() || (b && !b->valid())) return;
     VkRect2D scissor{{int32_t(from), int32_t(y0)}, {uint32_t(int32_t(to) - int32_t(from)), uint32_t(y1 - int32_t(y0))}};
     if (scissor.extent.width == 0 || scissor.extent.height == 0) return;
-    drawView(v.mapper, r, v.swapchain.cmd, v.swapchain.renderPass, v.swapchain.format.format, d.source, d.params, viewport,
+    drawView(v.mapper, r, v.swapchain.cmd, v.swapchain.renderPass, v.swapchain.format.format, image, d.params, viewport,
              scissor, b);
   };
   if (d.side == FrameSide::Reference) {
-    if (v.referenceShown) draw(v.rendererRef, x0, x1, nullptr);
-  } else if (d.splitX >= 0.0 && v.hasB) {  // compare split: A on the left, B on the right
-    draw(v.renderer, x0, float(d.splitX), nullptr);
-    draw(v.rendererB, float(d.splitX), x1, nullptr);
+    if (v.referenceShown) draw(v.rendererRef, targetImage(v.rendererRef, {d.referenceTarget}), x0, x1, nullptr);
+    return;
+  }
+  const ViewerModel& m = v.model;
+  if (m.source == FrameSource::Live) {
+    if (std::optional<ViewSource> src = nativeSource(m.frameLayout, m.views[size_t(d.view)]))
+      draw(v.renderer, targetImage(v.renderer, *src), x0, x1, nullptr);
+    return;
+  }
+  const ViewImage a = viewImageOf(v.imagesA, size_t(d.view)), b = viewImageOf(v.imagesB, size_t(d.view));
+  if (d.splitX >= 0.0 && v.hasB) {  // compare split: A on the left, B on the right
+    draw(v.renderer, a, x0, float(d.splitX), nullptr);
+    draw(v.renderer, b, float(d.splitX), x1, nullptr);
   } else if (d.side == FrameSide::B && v.hasB) {
-    draw(v.rendererB, x0, x1, nullptr);
+    draw(v.renderer, b, x0, x1, nullptr);
   } else if (d.side == FrameSide::Difference && v.hasB) {
-    draw(v.renderer, x0, x1, &v.rendererB);
+    draw(v.renderer, a, x0, x1, &b);
   } else {
-    draw(v.renderer, x0, x1, nullptr);
+    draw(v.renderer, a, x0, x1, nullptr);
   }
 }
 

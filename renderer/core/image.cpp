@@ -1,6 +1,7 @@
 // CpuImage decoding: the one place that knows how each stored format maps to values.
 #include "renderer/core/image.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gb {
@@ -121,6 +122,26 @@ int CpuImage::channel(const std::string& n) const {
   for (size_t i = 0; i < channels.size(); ++i)
     if (channels[i] == n) return int(i);
   return -1;
+}
+
+double storageUlp(PixelType t, Encoding e, double v) {
+  const double a = std::abs(v);
+  switch (t) {
+    case PixelType::F16: {
+      const int exponent = a > 0.0 ? int(std::floor(std::log2(a))) : -14;
+      return std::ldexp(1.0, std::max(exponent, -14) - 10);
+    }
+    case PixelType::F32: {
+      const float f = float(a);
+      return double(std::nextafter(f, INFINITY)) - double(f);
+    }
+    case PixelType::U8: return 1.0 / 255.0;
+    case PixelType::I8: return 1.0 / 127.0;
+    case PixelType::U16: return e == Encoding::Unorm10 ? 1.0 / 1023.0 : 1.0 / 65535.0;
+    case PixelType::I16: return 1.0 / 32767.0;
+    case PixelType::U32: return e == Encoding::Unorm24 ? 1.0 / 16777215.0 : 1.0;
+  }
+  return 0.0;
 }
 
 }  // namespace gb

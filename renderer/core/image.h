@@ -34,6 +34,10 @@ struct CpuImage {
 };
 
 size_t pixelTypeSize(PixelType t);
+// One unit in the last place of `v` stored in a channel of this type and encoding: half and float
+// ulps at |v| (half subnormals share the smallest exponent), one code step of normalised integers
+// (their [0, 1] or [-1, 1] range), 1 for plain integers.
+double storageUlp(PixelType t, Encoding e, double v);
 float halfToFloat(uint16_t h);
 uint16_t floatToHalf(float f);
 double srgbToLinear(double v);

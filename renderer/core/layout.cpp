@@ -1,6 +1,8 @@
 // Layout types: storage format names, quantity kinds, lookups (see layout.h).
 #include "renderer/core/layout.h"
 
+#include <cctype>
+
 #include <regex>
 
 namespace gb {
@@ -117,5 +119,14 @@ glm::dmat3 worldFromLayoutWorld(const LayoutCamera& c) {
 }
 
 glm::dmat3 layoutWorldFromWorld(const LayoutCamera& c) { return glm::transpose(worldFromLayoutWorld(c)); }
+
+std::string upAxisText(const LayoutCamera& c) { return c.zUp ? "Z" : "Y"; }
+
+std::string nameKey(const std::string& name) {
+  std::string k;
+  for (char ch : name)
+    if (ch != '_' && ch != '-' && ch != ' ') k += char(std::tolower(static_cast<unsigned char>(ch)));
+  return k;
+}
 
 }  // namespace gb

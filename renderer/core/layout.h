@@ -65,6 +65,7 @@ struct Quantity {
   std::string unit;                  // scalar/vector: for people
   std::map<uint32_t, std::string> idNames;      // id: value -> name
   std::map<std::string, uint32_t> stencilBits;  // stencil: name -> mask
+  std::map<std::string, std::string> check;     // `gblens check` policy for this quantity: class -> level
 };
 
 // Where an imported target's texels come from (ignored for gblens's own frames).
@@ -112,6 +113,11 @@ struct LayoutCamera {
 // world-space vectors when decoded), and back (what people and scripts see: the layout's own axes).
 glm::dmat3 worldFromLayoutWorld(const LayoutCamera& c);
 glm::dmat3 layoutWorldFromWorld(const LayoutCamera& c);
+// The layout's up axis as people write it ("y", "z", ...): labels of world-space values.
+std::string upAxisText(const LayoutCamera& c);
+// Names that must not be confused: lower case, without '_', '-' and spaces ("HardwareDepth" and
+// "hardware_depth" are one name; quantities are found and kept unique by it).
+std::string nameKey(const std::string& name);
 
 struct LayoutLights {
   bool present = false;
@@ -130,6 +136,7 @@ struct Layout {
   std::vector<Quantity> quantities;
   LayoutCamera camera;
   LayoutLights lights;
+  std::map<std::string, std::string> check;  // `gblens check` policy of every quantity: class -> level
 
   int findTarget(const std::string& targetName) const;  // -1 when none
   // The first quantity of this kind (and name, when given), or null.

@@ -204,8 +204,27 @@ bool readQuantityFields(Reader& r, const json& j, const Where& w, Quantity& q) {
   }
 }
 
-bool readQuantity(Reader& r, const json& j, const Where& w, Layout& l, uint32_t target, Quantity& q) {
-  if (!j.is_object()) return r.fail(w, "quantity", "expected an object");
+// A `gblens check` policy: {"denormal": "warn", ...} (views/analysis/check.h names the classes).
+bool readCheck(Reader& r, const json& j, const Where& w, std::map<std::string, std::string>& out) {
+  auto it = j.find("check");
+  if (it == j.end()) return true;
+  static const std::set<std::string> classes = {"nan", "inf", "denormal", "out_of_range", "position"};
+  static const std::set<std::string> levels = {"fault", "warn", "ignore"};
+  if (!it->is_object()) return r.fail(w, "check", "expected {\"CLASS\": \"fault|warn|ignore\", ...}");
+  for (auto& [k, v] : it->items()) {
+    if (!classes.count(k)) return r.fail(w, "check", "\"" + k + "\": expected nan, inf, denormal, out_of_range or position");
+    if (!v.is_string() || !levels.count(v.get<std::string>()))
+      return r.fail(w, "check", "\"" + k + "\": expected \"fault\", \"warn\" or \"ignore\", got " + v.dump());
+    out[k] = v.get<std::string>();
+  }
+  return true;
+}
+
+bool readQuantity(Reader& r, const json& jIn, const Where& w, Layout& l, uint32_t target, Quantity& q) {
+  if (!jIn.is_object()) return r.fail(w, "quantity", "expected an object");
+  if (!readCheck(r, jIn, w, q.check)) return false;
+  json j = jIn;
+  j.erase("check");  // read above; every kind may have it
   std::string kind;
   if (!r.string(j, w, "quantity", kind, true)) return false;
   if (!parseQuantityKind(kind, q.kind)) return r.fail(w, "quantity", "unknown kind \"" + kind + "\"");
@@ -244,7 +263,9 @@ bool readQuantity(Reader& r, const json& j, const Where& w, Layout& l, uint32_t 
     return r.fail(w, "encoding", "hardware depth cannot be held by the integer format " + t.format.name);
   if (integral && t.format.encoding == Encoding::Snorm)
     return r.fail(w, "quantity", std::string(name(q.kind)) + " is an integer; the format " + t.format.name + " holds fractions");
-  if (l.findByName(q.name)) return r.fail(w, "name", "\"" + q.name + "\" names another quantity too");
+  for (const Quantity& other : l.quantities)
+    if (nameKey(other.name) == nameKey(q.name))
+      return r.fail(w, "name", "\"" + q.name + "\" names another quantity too (\"" + other.name + "\": case, _ and - do not tell names apart)");
   return true;
 }
 
@@ -483,7 +504,8 @@ bool parseLayout(const json& j, const std::string& file, Layout& out, std::strin
   if (format != "gblens-layout") return r.fail(w, "format", "expected \"gblens-layout\", got \"" + format + "\"");
   if (version != 1.0) return r.fail(w, "version", "this gblens reads version 1");
   if (!r.string(j, w, "name", out.name, false) || !r.size(j, w, "size", out.width, out.height)) return false;
-  if (!r.unknownKeys(j, w, {"format", "version", "name", "size", "parameters", "targets", "camera", "lights"}))
+  if (!r.unknownKeys(j, w, {"format", "version", "name", "size", "parameters", "targets", "camera", "lights", "check"}) ||
+      !readCheck(r, j, w, out.check))
     return false;
   auto ts = j.find("targets");
   if (ts == j.end() || !ts->is_array() || ts->empty()) return r.fail(w, "targets", "expected a list of targets");

@@ -36,5 +36,8 @@ nlohmann::json layoutCameraJson(const LayoutCamera& camera);
 
 // gblens's own frame under these options: assets/layouts/gblens.json resolved with them.
 const Layout& nativeLayout(const RenderOptions& options);
+// Whether a layout is gblens's own (any options; also an import through builtin:gblens): only then do
+// its targets mean gblens's targets (FrameSnapshot::target, the probe's sections on gblens's frame).
+bool gblensLayout(const Layout& layout);
 
 }  // namespace gb

@@ -68,6 +68,7 @@ static json quantityJson(const Quantity& q) {
       if (!q.unit.empty()) j["unit"] = q.unit;
       break;
   }
+  if (!q.check.empty()) j["check"] = q.check;
   return j;
 }
 
@@ -134,6 +135,7 @@ json layoutJson(const Layout& l) {
   if (l.width) j["size"] = {l.width, l.height};
   if (l.camera.present) j["camera"] = layoutCameraJson(l.camera);
   if (l.lights.present) j["lights"] = lightsJson(l.lights);
+  if (!l.check.empty()) j["check"] = l.check;
   return j;
 }
 
@@ -156,5 +158,7 @@ const Layout& nativeLayout(const RenderOptions& o) {
   }
   return cache.emplace(params, std::move(l)).first->second;
 }
+
+bool gblensLayout(const Layout& layout) { return layout.name == nativeLayout(RenderOptions{}).name; }
 
 }  // namespace gb

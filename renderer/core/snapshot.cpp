@@ -2,6 +2,7 @@
 #include "renderer/core/snapshot.h"
 
 #include "renderer/core/assert.h"
+#include "renderer/core/layout_json.h"
 
 namespace gb {
 
@@ -26,7 +27,9 @@ void FrameSnapshot::setLayout(Layout l) {
   layout = std::move(l);
   images.assign(layout.targets.size(), TargetImage{});
   absences.assign(layout.targets.size(), Absent::NotCaptured);
-  for (const TargetInfo& t : targetTable()) native_[size_t(t.target)] = layout.findTarget(t.name);
+  // Another renderer's target that happens to be named like one of gblens's is not gblens's target.
+  const bool gblens = gblensLayout(layout);
+  for (const TargetInfo& t : targetTable()) native_[size_t(t.target)] = gblens ? layout.findTarget(t.name) : -1;
 }
 
 const TargetImage& FrameSnapshot::target(Target t) const {

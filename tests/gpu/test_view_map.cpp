@@ -5,11 +5,13 @@
 #include <cmath>
 #include <cstring>
 
+#include "renderer/core/layout_json.h"
 #include "renderer/region_readback.h"
 #include "renderer/scene/builtin.h"
 #include "renderer/upload_targets.h"
 #include "renderer/vk/check.h"
 #include "tests/gpu/gpu_test.h"
+#include "tests/gpu/view_canvas.h"
 #include "views/analysis/probe.h"
 #include "views/analysis/visualize.h"
 #include "views/ui/view_params.h"
@@ -17,92 +19,6 @@
 namespace gb {
 
 namespace {
-
-// An offscreen RGBA8 attachment the views are drawn into, 1:1, then read back.
-struct Canvas {
-  Image image;
-  VkRenderPass pass = VK_NULL_HANDLE;
-  VkFramebuffer framebuffer = VK_NULL_HANDLE;
-  Buffer readback;
-
-  Canvas(GpuContext& ctx, uint32_t w, uint32_t h) {
-    ImageDesc d;
-    d.format = VK_FORMAT_R8G8B8A8_UNORM;
-    d.width = w;
-    d.height = h;
-    d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    image = createImage(ctx, d);
-    VkAttachmentDescription a{};
-    a.format = d.format;
-    a.samples = VK_SAMPLE_COUNT_1_BIT;
-    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    a.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-    VkSubpassDescription sub{};
-    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    sub.colorAttachmentCount = 1;
-    sub.pColorAttachments = &ref;
-    VkSubpassDependency dep{};  // the copy after the pass waits for the colour writes
-    dep.srcSubpass = 0;
-    dep.dstSubpass = VK_SUBPASS_EXTERNAL;
-    dep.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    dep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    dep.dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
-    dep.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-    VkRenderPassCreateInfo ci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    ci.attachmentCount = 1;
-    ci.pAttachments = &a;
-    ci.subpassCount = 1;
-    ci.pSubpasses = &sub;
-    ci.dependencyCount = 1;
-    ci.pDependencies = &dep;
-    VK_CHECK(vkCreateRenderPass(ctx.device, &ci, nullptr, &pass));
-    VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    fi.renderPass = pass;
-    fi.attachmentCount = 1;
-    fi.pAttachments = &image.view;
-    fi.width = w;
-    fi.height = h;
-    fi.layers = 1;
-    VK_CHECK(vkCreateFramebuffer(ctx.device, &fi, nullptr, &framebuffer));
-    readback = createBuffer(ctx, VkDeviceSize(w) * h * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
-  }
-  void destroy(GpuContext& ctx) {
-    vkDestroyFramebuffer(ctx.device, framebuffer, nullptr);
-    vkDestroyRenderPass(ctx.device, pass, nullptr);
-    destroyImage(ctx, image);
-    destroyBuffer(ctx, readback);
-  }
-
-  // Draws one view at 1:1 (texel (x, y) -> canvas pixel (x, y)) and returns the canvas bytes.
-  std::vector<uint8_t> draw(ViewMapper& m, Renderer& r, const ViewSource& source, const gpu::ViewParams& params) {
-    GpuContext& ctx = *r.ctx;
-    const uint32_t w = image.desc.width, h = image.desc.height;
-    submitOnce(ctx, [&](VkCommandBuffer cmd) {
-      VkClearValue clear{};
-      VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-      bi.renderPass = pass;
-      bi.framebuffer = framebuffer;
-      bi.renderArea = {{0, 0}, {w, h}};
-      bi.clearValueCount = 1;
-      bi.pClearValues = &clear;
-      vkCmdBeginRenderPass(cmd, &bi, VK_SUBPASS_CONTENTS_INLINE);
-      drawView(m, r, cmd, pass, image.desc.format, source, params, {{0, 0}, {w, h}}, {{0, 0}, {w, h}});
-      vkCmdEndRenderPass(cmd);
-      VkBufferImageCopy copy{};
-      copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-      copy.imageExtent = {w, h, 1};
-      vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.buffer, 1, &copy);
-      hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    });
-    const uint8_t* p = static_cast<const uint8_t*>(readback.mapped);
-    return std::vector<uint8_t>(p, p + size_t(w) * h * 4);
-  }
-};
 
 const std::vector<Target> kAll = {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth, Target::DepthStencil,
                                   Target::ShadowMap,      Target::Hdr,          Target::Final, Target::CoverageMasked,
@@ -120,9 +36,31 @@ RenderOptions smallFrame() {
 
 }  // namespace
 
+namespace {
+
+// The GPU params of a view of gblens's live frame (the views of its layout, read from its targets).
+struct LiveView {
+  ViewDef def;
+  ViewSource source;
+  ViewGpuSource gpu;
+};
+LiveView liveView(const RenderOptions& o, const char* name) {
+  const Layout& l = nativeLayout(o);
+  std::vector<ViewDef> views = layoutViews(l);
+  LiveView v{views[size_t(findView(views, name))], {}, {}};
+  v.source = *nativeSource(l, v.def, &v.gpu);
+  return v;
+}
+
+}  // namespace
+
+// Every view of gblens's layout drawn on the GPU two ways, as the viewer draws them: from the live
+// target (encodings decoded in the shader) and from the decoded view image (a capture's path); both
+// against the CPU mapping within one 8-bit step.
 TEST_F(GpuTest, EveryViewOnTheGpuMatchesTheCpuMapping) {
   Scene scene = builtinTemple(48);
   RenderOptions o = smallFrame();
+  o.normalFormat = NormalFormat::OctRg16;  // an encoding the shader decodes
   FrameRequest request;
   request.readback = kAll;
   request.sampleAfter = kAll;
@@ -132,26 +70,41 @@ TEST_F(GpuTest, EveryViewOnTheGpuMatchesTheCpuMapping) {
   initViewMapper(mapper, r);
   FrameSnapshot frame = snapshotFromRenderer(r, kAll);
   Canvas screen(ctx(), o.width, o.height), shadow(ctx(), o.shadowMapSize, o.shadowMapSize);
-  for (int k = 0; k < kViewKindCount; ++k) {
-    ViewKind kind = ViewKind(k);
-    const ViewDef& def = viewDef(kind);
-    ViewSettings s = defaultSettings(kind);
-    std::vector<RangeStats> stats = computeRanges(mapper, r, rangeRequests(def, s), kAll);
+  const std::vector<ViewDef> views = layoutViews(frame.layout);
+  std::vector<CpuImage> decoded;
+  for (const ViewDef& d : views) decoded.push_back(viewImage(frame, d));
+  ViewImages uploaded;
+  uploadViewImages(uploaded, ctx(), decoded);
+  int drawn = 0;
+  for (size_t k = 0; k < views.size(); ++k) {
+    const ViewDef& def = views[k];
+    if (decoded[k].empty()) continue;  // not rendered under these options (position, primitive id)
+    ViewSettings s = defaultSettings(def);
+    // The range both draws use: the CPU's over the decoded image (the GPU reduction is tested below).
+    std::vector<RangeStats> stats = {imageRange(decoded[k], def, viewMapping(def, s).mask)};
     ResolvedRange range = resolveRange(def, s, &stats);
-    gpu::ViewParams params = viewParams(def, s, range, Placement{0, 0, 1}, false, std::nullopt, {1, 1});
-    Canvas& canvas = def.source.target == Target::ShadowMap ? shadow : screen;
-    std::vector<uint8_t> gpu = canvas.draw(mapper, r, def.source, params);
-    Rgba8Image cpu = visualize(kind, frame);
-    ASSERT_EQ(cpu.width, canvas.image.desc.width) << viewName(kind);
-    int worst = 0, differing = 0;
-    for (size_t i = 0; i < gpu.size(); ++i) {
-      if (i % 4 == 3) continue;
-      int d = std::abs(int(gpu[i]) - int(cpu.pixels[i]));
-      worst = std::max(worst, d);
-      differing += d > 0;
+    Canvas& canvas = def.sun ? shadow : screen;
+    Rgba8Image cpu = visualize(frame, def, s);
+    ASSERT_EQ(cpu.width, canvas.image.desc.width) << def.name;
+    ViewGpuSource live;
+    ViewSource source = *nativeSource(frame.layout, def, &live);
+    for (bool fromDecoded : {false, true}) {
+      const ViewImage image = fromDecoded ? viewImageOf(uploaded, k) : targetImage(r, source);
+      std::vector<uint8_t> gpu = canvas.draw(mapper, r, image, viewParams(def, s, fromDecoded ? ViewGpuSource{} : live, range,
+                                                                           Placement{0, 0, 1}, false, std::nullopt, {1, 1}));
+      int worst = 0, differing = 0;
+      for (size_t i = 0; i < gpu.size(); ++i) {
+        if (i % 4 == 3) continue;
+        int d = std::abs(int(gpu[i]) - int(cpu.pixels[i]));
+        worst = std::max(worst, d);
+        differing += d > 0;
+      }
+      EXPECT_LE(worst, 1) << def.name << (fromDecoded ? " (decoded)" : " (live)") << ": " << differing << " channel values differ";
     }
-    EXPECT_LE(worst, 1) << viewName(kind) << ": " << differing << " channel values differ";
+    ++drawn;
   }
+  EXPECT_GE(drawn, 12);
+  destroyViewImages(uploaded, ctx());
   screen.destroy(ctx());
   shadow.destroy(ctx());
   destroyViewMapper(mapper, r);
@@ -190,7 +143,7 @@ TEST_F(GpuTest, AutomaticRangesEqualTheCpuMinMaxOverValidTexels) {
         ++count;
         negative += v < 0.0;
       }
-    RangeStats s = computeRanges(mapper, r, {{{c.t}, c.channel, c.predicate}}, kAll)[0];
+    RangeStats s = computeRanges(mapper, r, {{{c.t}, c.channel, c.predicate, 0.0f}}, kAll)[0];
     EXPECT_EQ(s.count, count) << targetName(c.t);
     // Float equality within 4 ulps: the GPU converts SNORM16 (oct-rg16 normals) to float with its own
     // rounding of c / 32767, the CPU in double.
@@ -237,17 +190,18 @@ TEST_F(GpuTest, NanInfAndNegativeValuesAreHighlightedAndCounted) {
 
   ViewMapper mapper;
   initViewMapper(mapper, r);
-  RangeStats s = computeRanges(mapper, r, {{{Target::Hdr}, 0, gpu::kRangeAll}}, kAll)[0];
+  RangeStats s = computeRanges(mapper, r, {{{Target::Hdr}, 0, gpu::kRangeAll, 0.0f}}, kAll)[0];
   EXPECT_EQ(s.nan, nan);
   EXPECT_EQ(s.inf, inf);
   EXPECT_EQ(s.negative, negative);
 
-  const ViewDef& def = viewDef(ViewKind::Hdr);
-  ViewSettings settings = defaultSettings(ViewKind::Hdr);
+  const LiveView hdrView = liveView(o, "HDR");
+  const ViewDef& def = hdrView.def;
+  ViewSettings settings = defaultSettings(def);
   Canvas canvas(ctx(), o.width, o.height);
   auto drawHdr = [&] {
-    return canvas.draw(mapper, r, def.source,
-                       viewParams(def, settings, resolveRange(def, settings, nullptr), Placement{0, 0, 1}, false,
+    return canvas.draw(mapper, r, targetImage(r, hdrView.source),
+                       viewParams(def, settings, hdrView.gpu, resolveRange(def, settings, nullptr), Placement{0, 0, 1}, false,
                                   std::nullopt, {1, 1}));
   };
   std::vector<uint8_t> out = drawHdr();
@@ -373,12 +327,13 @@ TEST_F(GpuTest, ShadowTexelMarksThePixelsThatSampleIt) {
   ASSERT_TRUE(d.shadowMap.valid) << d.shadowMap.note;
   ViewMapper mapper;
   initViewMapper(mapper, r);
-  const ViewDef& def = viewDef(ViewKind::Normal);
-  ViewSettings s = defaultSettings(ViewKind::Normal);
+  const LiveView normal = liveView(o, "Normal");
+  const ViewDef& def = normal.def;
+  ViewSettings s = defaultSettings(def);
   Canvas canvas(ctx(), o.width, o.height);
   auto draw = [&](std::optional<glm::ivec2> mark) {
-    return canvas.draw(mapper, r, def.source,
-                       viewParams(def, s, resolveRange(def, s, nullptr), Placement{0, 0, 1}, false, mark,
+    return canvas.draw(mapper, r, targetImage(r, normal.source),
+                       viewParams(def, s, normal.gpu, resolveRange(def, s, nullptr), Placement{0, 0, 1}, false, mark,
                                   {o.shadowMapSize, o.shadowMapSize}));
   };
   std::vector<uint8_t> plain = draw(std::nullopt), marked = draw(glm::ivec2(d.shadowMap.x0, d.shadowMap.y0));

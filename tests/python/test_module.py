@@ -82,15 +82,18 @@ def test_decoded_quantities_equal_probe_and_a_numpy_reconstruction(captures):
     # (the position target has no background value: the sky holds what was cleared).
     surface = z > 0
     np.testing.assert_allclose(f.position("stored", "world")[surface], world[..., :3][surface], rtol=0, atol=2e-3)
-    # Hardware depth through eye_from_clip.
+    np.testing.assert_allclose(f["Position"][surface], world[..., :3][surface], rtol=0, atol=2e-3)
+    # Hardware depth through eye_from_clip: the stored value as the quantity's value, positions from it.
     d = exr_channels(os.path.join(captures["a"], "depth_stencil.exr"))["depth_stencil.Depth"][1].astype(np.float64)
     xs, ys = np.meshgrid((np.arange(w) + 0.5) / w * 2 - 1, (np.arange(h) + 0.5) / h * 2 - 1)
     e = np.stack([xs, ys, d, np.ones_like(d)], axis=-1) @ cam["eye_from_clip"].T
     far = 0.0 if cam["reversed_z"] else 1.0
-    hw = np.where(d != far, -e[..., 2] / e[..., 3], np.nan)
-    np.testing.assert_allclose(f["Depth"][..., 0], hw, rtol=1e-9)
-    # Normals: view space, unit; the stored values decoded by numpy (the default is octahedral in
-    # rgba16_snorm: Meyer et al. 2010, sign(0) = +1).
+    hw = np.where((d != far)[..., None], e[..., :3] / e[..., 3:4], np.nan)
+    np.testing.assert_allclose(f.position("HardwareDepth", "eye"), hw, rtol=1e-9, atol=1e-9)
+    np.testing.assert_array_equal(f["HardwareDepth"][..., 0], np.where(d != far, d, np.nan))
+    np.testing.assert_array_equal(f["Depth"][..., 0], np.where(surface, z, np.nan))  # eye depth, as stored
+    # Normals: view space, unit, where a surface was drawn; the stored values decoded by numpy (the
+    # default is octahedral in rgba16_snorm: Meyer et al. 2010, sign(0) = +1).
     assert f.manifest["options"]["normal_format"] == "oct-rg16"
     ch = exr_channels(os.path.join(captures["a"], "normal_shadow.exr"))
     o = np.stack([ch[f"normal_shadow.raw.N.{c}"][1].astype(np.uint16).view(np.int16) for c in "XY"], -1)
@@ -100,24 +103,23 @@ def test_decoded_quantities_equal_probe_and_a_numpy_reconstruction(captures):
     xy = n[fold, :2]
     n[fold, :2] = (1.0 - np.abs(xy[:, ::-1])) * np.where(xy >= 0, 1.0, -1.0)
     n /= np.linalg.norm(n, axis=-1, keepdims=True)
-    np.testing.assert_allclose(f["N"], n, atol=1e-12)
-    # The probe at sampled pixels: the same decoded values (eye space; view space is eye space here).
+    np.testing.assert_allclose(f["Normal"], np.where(surface[..., None], n, np.nan), atol=1e-12)
+    # The probe at sampled pixels: the same decoded values (the layout's space: view for normals, world
+    # for the stored positions), the same reconstructions.
     for x, y in PIXELS:
         probe = run_json("probe", captures["a"], x, y, "--json")
         assert f.probe(x, y) == probe
         q = {e["name"]: e for e in probe["quantities"]}
-        for name, ours in [("N", f["N"][y, x]), ("Z", f["Z"][y, x]), ("Depth", f["Depth"][y, x]), ("Albedo", f["Albedo"][y, x]),
-                           ("HDR", f["HDR"][y, x]), ("ID", f["ID"][y, x])]:
+        for name in ("Normal", "Depth", "HardwareDepth", "Albedo", "HDR", "PrimitiveId", "Position"):
+            ours = f[name][y, x]
             if q[name]["values"]:
                 np.testing.assert_allclose(ours, q[name]["values"], rtol=1e-12, atol=1e-12, err_msg=f"{name} at {x},{y}")
             else:
                 assert np.isnan(ours).all(), f"{name} at {x},{y}"
-        if q["P"]["values"]:  # the probe's positions are eye space: ours are the layout's (world)
-            p = np.append(f["P"][y, x], 1.0) @ cam["eye_from_world"].T
-            np.testing.assert_allclose(p[:3], q["P"]["values"], rtol=1e-9, atol=1e-9)
         recon = {r["quantity"]: r for r in probe["reconstructions"]}
-        if recon["Z"]["valid"]:
-            np.testing.assert_allclose(pos_world[y, x], recon["Z"]["world"], rtol=1e-12, atol=1e-12)
+        if recon["Depth"]["valid"]:
+            np.testing.assert_allclose(pos_world[y, x], recon["Depth"]["world"], rtol=1e-12, atol=1e-12)
+            np.testing.assert_allclose(pos_eye[y, x], recon["Depth"]["eye"], rtol=1e-12, atol=1e-12)
     assert f.mask("surface").dtype == bool and np.array_equal(f.mask("surface"), z > 0)
 
 
@@ -137,12 +139,15 @@ def test_blender_import_comes_back_in_blenders_axes(captures):
     from_depth = f.position("depth", "world")
     assert np.array_equal(~np.isnan(from_depth[..., 0]), surface)
     np.testing.assert_allclose(from_depth[surface], position[surface], atol=2e-3)
-    # The probe's world is gblens's Y-up world: Blender's (x, y, z) is gblens's (x, -z ... ) rotated back.
+    # The probe agrees (its world is the layout's too); gblens's own Y-up world is Blender's (x, z, -y).
     for x, y in [(10, 80), (80, 45), (120, 60)]:
         probe = f.probe(x, y)
         assert probe == run_json("probe", captures["blender"], x, y, "--json")
-        g = next(r for r in probe["reconstructions"] if r["quantity"] == "Depth")["world"]
-        np.testing.assert_allclose(from_depth[y, x], [g[0], -g[2], g[1]], rtol=1e-12, atol=1e-12)
+        recon = next(r for r in probe["reconstructions"] if r["quantity"] == "Depth")
+        np.testing.assert_allclose(from_depth[y, x], recon["world"], rtol=1e-12, atol=1e-12)
+        p = from_depth[y, x]
+        gblens_world = np.append([p[0], p[2], -p[1]], 1.0) @ f.camera["eye_from_world"].T
+        np.testing.assert_allclose(gblens_world[:3], recon["eye"], rtol=1e-9, atol=1e-9)
 
 
 def test_stats_check_and_save_equal_the_cli(captures, tmp_path):
@@ -151,8 +156,12 @@ def test_stats_check_and_save_equal_the_cli(captures, tmp_path):
     assert f.stats("0,0,64,36", target="hdr") == run_json("stats", captures["a"], "--rect", "0,0,64,36", "--target", "hdr", "--json")
     code, out, _ = run("check", captures["a"], "--json", check=False)
     assert f.check() == json.loads(out)
-    with pytest.raises(gblens.Error, match="policy"):
-        f.check(policy={"nan": "fault"})
+    code, out, _ = run("check", captures["a"], "--json", "--policy", "denormal=fault", "--policy", "Normal.out_of_range=warn", check=False)
+    assert f.check(["denormal=fault", "Normal.out_of_range=warn"]) == json.loads(out)
+    assert f.check({"denormal": "fault", "Normal.out_of_range": "warn"}) == json.loads(out)
+    with pytest.raises(gblens.Error) as e:
+        f.check(["denormal=sometimes"])
+    assert str(e.value) == cli_message(run("check", captures["a"], "--policy", "denormal=sometimes", check=False)[2], "check")
     f.save(tmp_path / "saved")
     assert gblens.compare(captures["a"], str(tmp_path / "saved"), flip=False).exit_code == 0
 

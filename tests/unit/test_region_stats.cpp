@@ -95,9 +95,9 @@ TEST(RegionStats, ChannelsAndQuantitiesOfARectangleOfAFrame) {
     }
   expect(s.channel("hdr", "G"), green, 1, 1);
   expect(s.channel("depth", "Z"), allDepth, 0, 0);        // the stored channel: every pixel
-  expect(s.quantity("depth", "Z.eye_depth"), eyeDepth, 0, 0);  // decoded: surfaces
-  expect(s.quantity("normal_shadow", "N.angle_to_view_deg"), angle, 0, 0);
-  EXPECT_TRUE(s.quantity("normal_shadow", "N.angle_to_view_deg")->surfacesOnly);
+  expect(s.quantity("depth", "Depth"), eyeDepth, 0, 0);  // decoded (an eye depth as it is): surfaces
+  expect(s.quantity("normal_shadow", "Normal.angle_to_view_deg"), angle, 0, 0);
+  EXPECT_TRUE(s.quantity("normal_shadow", "Normal.angle_to_view_deg")->surfacesOnly);
   // Stencil is an id: a histogram of values (the synthetic frame stores 128 everywhere).
   const SeriesStats* stencil = s.quantity("depth_stencil", "Stencil");
   ASSERT_TRUE(stencil);

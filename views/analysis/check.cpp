@@ -94,6 +94,7 @@ std::string rangeText(const Layout& l, const Quantity& q) {
 struct Outside {
   uint32_t component = 0;
   double value = 0.0;
+  std::string what;  // what was measured when it is not a stored channel ("|Normal|")
 };
 
 // The first component of a quantity outside its range at (x, y), if any (stored values all finite).
@@ -127,7 +128,7 @@ std::optional<Outside> outOfRange(const FrameSnapshot& f, const Quantity& q, uin
         case NormalEncoding::XyzUnorm: {
           const double length = glm::length(decodeNormal(f, q, x, y).stored);
           const bool bad = q.normalized ? !(std::abs(length - 1.0) <= tolerance) : !(length > 0.0);
-          return bad ? std::optional(Outside{0, length}) : std::nullopt;
+          return bad ? std::optional(Outside{0, length, "|" + q.name + "|"}) : std::nullopt;
         }
         case NormalEncoding::Octahedral:
         case NormalEncoding::OctahedralUnorm:
@@ -136,11 +137,11 @@ std::optional<Outside> outOfRange(const FrameSnapshot& f, const Quantity& q, uin
           return std::nullopt;
         case NormalEncoding::Spheremap: {
           const double r = glm::length(glm::dvec2(s[0], s[1]) * 4.0 - 2.0);
-          return r > 2.0 ? std::optional(Outside{0, r}) : std::nullopt;
+          return r > 2.0 ? std::optional(Outside{0, r, "|4c - 2| of " + q.name}) : std::nullopt;
         }
         case NormalEncoding::Lambert: {
           const double r = glm::length(glm::dvec2(s[0], s[1]));
-          return r > 1.0 ? std::optional(Outside{0, r}) : std::nullopt;
+          return r > 1.0 ? std::optional(Outside{0, r, "|p| of " + q.name}) : std::nullopt;
         }
         case NormalEncoding::Octahedral12: return std::nullopt;
       }
@@ -191,9 +192,9 @@ struct SurfaceMask {
   bool at(uint32_t x, uint32_t y) const { return surface[size_t(y) * width + x]; }
 };
 
-// Scans `channels` of a target (and, for a quantity, its range).
+// Scans `channels` of a target (and, for a quantity, its range), as the policy says.
 CheckRow scan(const FrameSnapshot& f, uint32_t t, const std::vector<uint32_t>& channels, const Quantity* q,
-              const SurfaceMask& mask) {
+              const SurfaceMask& mask, const CheckPolicy& policy) {
   const TargetImage& ti = f.images[t];
   const LayoutTarget& lt = f.layout.targets[t];
   CheckRow row;
@@ -203,6 +204,8 @@ CheckRow scan(const FrameSnapshot& f, uint32_t t, const std::vector<uint32_t>& c
   row.range = q ? rangeText(f.layout, *q) : "";
   row.surfacesOnly = q && surfaceQuantity(q->kind) && mask.applies(ti);
   const double tolerance = q && q->kind == QuantityKind::Normal ? normalLengthTolerance(f.layout, *q) : 0.0;
+  for (size_t a = 0; a < kAnomalyCount; ++a) row.severity[a] = policy.at(row.quantity, anomalyClass(Anomaly(a)));
+  auto reported = [&](Anomaly a) { return row.severity[size_t(a)] != Severity::Ignore; };
   for (uint32_t y = ti.y0; y < ti.y0 + ti.image.height; ++y)
     for (uint32_t x = ti.x0; x < ti.x0 + ti.image.width; ++x) {
       if (row.surfacesOnly && !mask.at(x, y)) continue;
@@ -210,22 +213,15 @@ CheckRow scan(const FrameSnapshot& f, uint32_t t, const std::vector<uint32_t>& c
       bool finite = true;
       for (uint32_t c : channels)
         if (std::optional<Anomaly> a = classify(ti.image.type, ti.raw(x, y, c))) {
-          note(row.found[size_t(*a)], x, y, lt.channels[c], ti.value(x, y, c));
+          if (reported(*a)) note(row.found[size_t(*a)], x, y, lt.channels[c], ti.value(x, y, c));
           finite = finite && *a == Anomaly::Denormal;
         }
-      if (!finite || !q || row.range.empty()) continue;
+      if (!finite || !q || row.range.empty() || !reported(Anomaly::OutOfRange)) continue;
       if (std::optional<Outside> o = outOfRange(f, *q, x, y, tolerance))
-        note(row.found[size_t(Anomaly::OutOfRange)], x, y, lt.channels[q->channels[o->component]], o->value);
+        note(row.found[size_t(Anomaly::OutOfRange)], x, y, o->what.empty() ? lt.channels[q->channels[o->component]] : o->what,
+             o->value);
     }
   return row;
-}
-
-std::string valueText(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.9g", v);
-  return buf;
 }
 
 }  // namespace
@@ -259,9 +255,15 @@ uint64_t CheckRow::total() const {
   return n;
 }
 
-uint64_t CheckReport::total() const {
+uint64_t CheckReport::total() const { return count(Severity::Fault) + count(Severity::Warn); }
+
+uint64_t CheckReport::count(Severity s) const {
   uint64_t n = 0;
-  for (const CheckRow& r : rows) n += r.total();
+  for (const CheckRow& r : rows)
+    for (size_t a = 0; a < kAnomalyCount; ++a)
+      if (r.severity[a] == s) n += r.found[a].count;
+  for (const PositionCheck& p : positions)
+    if (p.severity == s) n += p.overBound;
   return n;
 }
 
@@ -271,7 +273,7 @@ uint64_t CheckReport::count(Anomaly a) const {
   return n;
 }
 
-CheckReport checkFrame(const FrameSnapshot& f) {
+CheckReport checkFrame(const FrameSnapshot& f, const CheckPolicy& policy) {
   CheckReport report;
   const SurfaceMask mask(f);
   for (uint32_t t = 0; t < f.layout.targets.size(); ++t) {
@@ -282,67 +284,13 @@ CheckReport checkFrame(const FrameSnapshot& f) {
     std::vector<bool> claimed(f.layout.targets[t].format.channels, false);
     for (const Quantity* q : f.layout.quantitiesOf(t)) {
       for (uint32_t c : q->channels) claimed[c] = true;
-      report.rows.push_back(scan(f, t, q->channels, q, mask));
+      report.rows.push_back(scan(f, t, q->channels, q, mask, policy));
     }
     for (uint32_t c = 0; c < claimed.size(); ++c)
-      if (!claimed[c]) report.rows.push_back(scan(f, t, {c}, nullptr, mask));
+      if (!claimed[c]) report.rows.push_back(scan(f, t, {c}, nullptr, mask, policy));
   }
+  report.positions = checkPositions(f, policy);
   return report;
-}
-
-std::string checkText(const CheckReport& r) {
-  std::string out;
-  char line[512];
-  std::snprintf(line, sizeof(line), "%-18s %-14s %-9s %8s  %-16s %-16s %-16s %-16s %-16s %s\n", "target", "quantity", "kind",
-                "texels", "NaN", "+Inf", "-Inf", "denormal", "out of range", "range");
-  out += line;
-  for (const CheckRow& row : r.rows) {
-    std::string cells[kAnomalyCount];
-    for (size_t a = 0; a < kAnomalyCount; ++a) {
-      const AnomalyCount& c = row.found[a];
-      cells[a] = c.count ? std::to_string(c.count) + " @" + std::to_string(c.x) + "," + std::to_string(c.y) : "0";
-    }
-    std::string range = row.range + (row.surfacesOnly ? (row.range.empty() ? "" : ", ") + std::string("surfaces only") : "");
-    std::snprintf(line, sizeof(line), "%-18s %-14s %-9s %8llu  %-16s %-16s %-16s %-16s %-16s %s\n", row.target.c_str(),
-                  row.quantity.c_str(), row.kind.c_str(), (unsigned long long)row.texels, cells[0].c_str(),
-                  cells[1].c_str(), cells[2].c_str(), cells[3].c_str(), cells[4].c_str(), range.c_str());
-    out += line;
-  }
-  for (const auto& [target, why] : r.absent) out += "absent: " + target + " (" + why + ")\n";
-  if (r.clean()) {
-    out += "clean: no NaN, Inf, denormal or out-of-range value in " + std::to_string(r.rows.size()) + " quantities\n";
-    return out;
-  }
-  out += "found " + std::to_string(r.total()) + ":";
-  for (size_t a = 0; a < kAnomalyCount; ++a) out += std::string(a ? "," : "") + " " + name(Anomaly(a)) + " " + std::to_string(r.count(Anomaly(a)));
-  out += "\nfirst of each (target quantity: x,y channel = value):\n";
-  for (const CheckRow& row : r.rows)
-    for (size_t a = 0; a < kAnomalyCount; ++a)
-      if (const AnomalyCount& c = row.found[a]; c.count)
-        out += "  " + std::string(name(Anomaly(a))) + "  " + row.target + " " + row.quantity + ": " + std::to_string(c.x) + "," +
-               std::to_string(c.y) + " " + c.channel + " = " + valueText(c.value) + "\n";
-  return out;
-}
-
-nlohmann::json checkJson(const CheckReport& r) {
-  nlohmann::json rows = nlohmann::json::array(), counts = nlohmann::json::object(), absent = nlohmann::json::array();
-  for (size_t a = 0; a < kAnomalyCount; ++a) counts[name(Anomaly(a))] = r.count(Anomaly(a));
-  for (const CheckRow& row : r.rows) {
-    nlohmann::json j = {{"target", row.target}, {"quantity", row.quantity},     {"kind", row.kind},
-                        {"range", row.range},   {"surfaces_only", row.surfacesOnly}, {"texels", row.texels}};
-    for (size_t a = 0; a < kAnomalyCount; ++a) {
-      const AnomalyCount& c = row.found[a];
-      nlohmann::json e = {{"count", c.count}};
-      if (c.count) {
-        nlohmann::json value = std::isfinite(c.value) ? nlohmann::json(c.value) : nlohmann::json(valueText(c.value));
-        e["first"] = {{"x", c.x}, {"y", c.y}, {"channel", c.channel}, {"value", value}};
-      }
-      j[name(Anomaly(a))] = e;
-    }
-    rows.push_back(j);
-  }
-  for (const auto& [target, why] : r.absent) absent.push_back({{"target", target}, {"reason", why}});
-  return {{"format", "gblens-check"}, {"clean", r.clean()}, {"counts", counts}, {"rows", rows}, {"absent", absent}};
 }
 
 }  // namespace gb

@@ -4,6 +4,7 @@
 // they are unit, negative or out-of-[0, 1] depth, ...). `gblens check` prints it.
 #pragma once
 #include <array>
+#include <map>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -28,6 +29,38 @@ struct AnomalyCount {
   double value = 0.0;
 };
 
+// What a kind of finding means: a fault (exit 1), a warning (reported, exit 0), or nothing (not
+// reported). Classes: "nan", "inf" (+Inf and -Inf), "denormal", "out_of_range", "position" (positions
+// rebuilt from depth vs a stored position target).
+enum class Severity : uint8_t { Fault, Warn, Ignore };
+const char* name(Severity s);
+struct CheckPolicy {
+  std::map<std::string, Severity> classes;                               // every quantity
+  std::map<std::string, std::map<std::string, Severity>> quantities;     // nameKey(quantity) -> class -> level
+  Severity at(const std::string& quantity, const std::string& cls) const;
+};
+// The documented default: NaN, Inf, out of range and position mismatches are faults; denormals are
+// warnings (a half-float G-buffer holds true subnormals: small normal components, dark albedo).
+CheckPolicy defaultCheckPolicy();
+// The policy of a frame: the default, then the layout's "check" fields (whole layout, then each
+// quantity), then the command line's rules ("denormal=fault", "Normal.out_of_range=warn").
+bool checkPolicy(const Layout& layout, const std::vector<std::string>& rules, CheckPolicy& out, std::string& error);
+const char* anomalyClass(Anomaly a);  // "nan", "inf", "inf", "denormal", "out_of_range"
+
+// Positions rebuilt from a camera depth against the layout's stored position, at every surface pixel:
+// how many are farther apart than the bound of what both storages and fp32 arithmetic allow there
+// (the stored format's rounding at the stored coordinates, the depth's rounding carried through the
+// camera, 16 fp32 ulps of both), and whether the camera itself looks wrong (most pixels far off).
+struct PositionCheck {
+  std::string depth, stored, storedFormat;  // quantity names; the stored target's format
+  uint64_t pixels = 0, overBound = 0;
+  double maxDistance = 0.0, maxRatio = 0.0, medianRatio = 0.0;  // distance / bound
+  uint32_t x = 0, y = 0;                                       // the worst pixel
+  bool cameraSuspect = false;
+  Severity severity = Severity::Fault;
+};
+std::vector<PositionCheck> checkPositions(const FrameSnapshot& frame, const CheckPolicy& policy);
+
 // One quantity of one target (or a channel no quantity of the layout claims).
 struct CheckRow {
   std::string target, quantity;  // the layout's names; an unclaimed channel: its channel name
@@ -36,23 +69,26 @@ struct CheckRow {
   bool surfacesOnly = false;     // scanned only where the frame holds a surface (docs/layout-format.md)
   uint64_t texels = 0;           // texels scanned
   std::array<AnomalyCount, kAnomalyCount> found{};
+  std::array<Severity, kAnomalyCount> severity{};  // the policy's level of each class here
   uint64_t total() const;
 };
 
 struct CheckReport {
   std::vector<CheckRow> rows;
+  std::vector<PositionCheck> positions;
   std::vector<std::pair<std::string, std::string>> absent;  // targets the frame does not hold, and why
-  uint64_t total() const;
+  uint64_t total() const;                 // findings the policy reports (faults and warnings)
   uint64_t count(Anomaly a) const;
-  bool clean() const { return total() == 0; }
+  uint64_t count(Severity s) const;       // findings at that level (positions: pixels over the bound)
+  bool clean() const { return count(Severity::Fault) == 0; }
 };
 
 // Quantities that mean something only where a surface was drawn (albedo, normal, ...): scanned, and
 // summarised by `gblens stats`, over the surface pixels only.
 bool surfaceQuantity(QuantityKind k);
 
-// Scans every texel of every target the frame holds.
-CheckReport checkFrame(const FrameSnapshot& frame);
+// Scans every texel of every target the frame holds, and cross-checks positions, under `policy`.
+CheckReport checkFrame(const FrameSnapshot& frame, const CheckPolicy& policy = defaultCheckPolicy());
 
 // The report as a table for people, and as JSON (non-finite values as the strings "nan", "inf", "-inf").
 std::string checkText(const CheckReport& report);

@@ -290,7 +290,7 @@ static void readOutputs(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDos
 // Lights are evaluated with shaders/shading.h for gblens's own G-buffer and for layouts whose
 // lights say they use its model; "" when they are, else why not.
 static std::string lightingNote(const FrameSnapshot& f) {
-  if (f.layout.name == nativeLayout(f.options).name) return "";
+  if (gblensLayout(f.layout)) return "";
   if (!f.layout.lights.present) return "this layout gives no lights: lighting not evaluated";
   if (!f.layout.lights.gblensModel)
     return "this layout's lights use the model \"" + f.layout.lights.model +
@@ -320,6 +320,7 @@ PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
               std::to_string(f.camera.width) + "x" + std::to_string(f.camera.height) + " frame";
     return d;
   }
+  d.native = gblensLayout(f.layout);
   for (uint32_t t = 0; t < f.layout.targets.size(); ++t)
     if (!sunDepthTarget(f.layout, t)) d.targets.push_back(rawTarget(f, t, x, y));
   decodeGBuffer(f, x, y, d);

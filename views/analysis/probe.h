@@ -12,6 +12,7 @@
 #pragma once
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,21 +35,29 @@ struct ProbeTarget {
 // One quantity of the frame's layout at the pixel, decoded (renderer/core/decode.h): what the
 // probe shows for any G-buffer, gblens's own or imported.
 struct ProbeQuantity {
-  std::string name, kind, target;  // "N", "normal", "normal_shadow"
+  std::string name, kind, target;  // "Normal", "normal", "normal_shadow"
   std::string encoding;            // "octahedral (view space)", "hardware", "srgb", ...
+  std::string space;               // what the values are: "linear", "view", "world (layout: Z-up)", "eye depth", ...
   bool present = false;            // the frame holds the texel
-  std::vector<double> values;      // decoded: colours linear, normals unit eye space, depth as eye depth, ...
+  // Decoded as the views show them (visualize.h viewValue): colours linear, normals unit in their own
+  // space, depths as stored (hardware) or in their units (eye, radial), positions in their own space,
+  // integers; empty where nothing was drawn (note says so).
+  std::vector<double> values;
+  std::optional<double> eyeDepth;  // depths: the eye depth they give
   std::string note;                // an id's name, stencil bits set, "no surface", a normal's length error
 };
 
 // A position the layout lets the probe reconstruct (from each depth quantity) or read (stored).
 struct ProbeReconstruction {
-  std::string quantity, method;    // "Z", "eye depth" | "hardware depth" | "radial distance" | "stored"
+  std::string quantity, method;    // "Depth", "eye depth" | "hardware depth" | "radial distance" | "stored"
   bool valid = false;
-  glm::dvec3 eye{0.0}, world{0.0};
+  glm::dvec3 eye{0.0};
+  glm::dvec3 world{0.0};           // in the layout's own world axes (worldSpace says which is up)
+  std::string worldSpace;          // "world (layout: Z-up)"
   bool hasStored = false;          // the layout stores a position: the difference to it
   double toStored = 0.0;           // scene units
-  double toStoredUlps = 0.0;       // in float ulps of the stored position's largest coordinate
+  double toStoredUlps = 0.0;       // in ulps of the stored position's format at its largest coordinate
+  std::string ulpOf;               // that format's channel type ("f16", "f32", ...)
 };
 
 struct ProbePosition {
@@ -107,6 +116,9 @@ struct LightLedger {
 
 struct PixelDossier {
   uint32_t x = 0, y = 0, width = 0, height = 0;
+  // The frame's layout is gblens's own: the sections about gblens's frame (its decoded G-buffer, both
+  // reconstructions, shadow map, hdr and final) mean something. Other layouts get their quantities only.
+  bool native = false;
   std::string error;  // non-empty: the pixel could not be probed (outside the frame)
   std::vector<std::string> missing;  // data the probe needed but the snapshot lacks
   std::vector<ProbeTarget> targets;  // raw values, every target (shadow map: see `shadow`)

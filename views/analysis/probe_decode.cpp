@@ -1,12 +1,14 @@
 // The probe's layout-driven part: every quantity of the frame's layout decoded at the pixel, and
 // every position the layout allows (from each camera depth, and stored), with the difference to
 // the stored one. Works the same for gblens's frames and imported G-buffers.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "renderer/core/decode.h"
 #include "views/analysis/probe.h"
 #include "views/analysis/probe_internal.h"
+#include "views/analysis/visualize.h"
 
 namespace gb {
 
@@ -55,73 +57,35 @@ std::string integerNote(const Quantity& q, uint32_t v) {
   return bits;
 }
 
-void decodeOne(const FrameSnapshot& f, const Quantity& q, uint32_t x, uint32_t y, ProbeQuantity& p) {
-  switch (q.kind) {
-    case QuantityKind::Normal: {
-      NormalSample n = decodeNormal(f, q, x, y);
-      p.values = {n.unit.x, n.unit.y, n.unit.z};
-      const double length = glm::length(n.stored);
-      if (length > 0.0) p.note = "stored length error " + std::to_string(std::abs(length - 1.0));
-      return;
-    }
-    case QuantityKind::Depth: {
-      std::optional<double> z = decodeEyeDepth(f, q, x, y);
-      if (z) p.values = {*z};
-      else p.note = "no surface (background)";
-      return;
-    }
-    case QuantityKind::Position: {
-      std::optional<glm::dvec3> e = decodePosition(f, q, x, y);
-      if (e) p.values = {e->x, e->y, e->z};
-      else p.note = "no surface";
-      return;
-    }
-    case QuantityKind::Motion: {
-      glm::dvec2 m = decodeMotion(f, q, x, y);
-      p.values = {m.x, m.y};
-      return;
-    }
-    case QuantityKind::Id:
-    case QuantityKind::Stencil:
-    case QuantityKind::Count: {
-      const uint32_t v = decodeInteger(f, q, x, y);
-      p.values = {double(v)};
-      p.note = integerNote(q, v);
-      return;
-    }
-    case QuantityKind::Albedo:
-    case QuantityKind::BaseColor:
-    case QuantityKind::Emission:
-    case QuantityKind::Radiance:
-    case QuantityKind::Display: {
-      glm::dvec4 c = decodeColor(f, q, x, y);
-      for (size_t k = 0; k < q.channels.size() && k < 4; ++k) p.values.push_back(c[int(k)]);
-      return;
-    }
-    default: {
-      std::array<double, 4> v = storedValues(f, q, x, y);
-      for (size_t k = 0; k < q.channels.size() && k < 4; ++k) p.values.push_back(v[k] * q.scale + q.bias);
-    }
+// The quantity as its view decodes it (values in the layout's units and space), with notes.
+void decodeOne(const FrameSnapshot& f, const ViewDef& v, uint32_t x, uint32_t y, ProbeQuantity& p) {
+  const Quantity& q = f.layout.quantities[size_t(v.quantity)];
+  std::optional<std::array<double, 4>> value = viewValue(f, v, x, y);
+  if (!value) {
+    p.note = v.visual == Visual::Depth ? "no surface (background)" : "no surface";
+    return;
   }
-}
-
-double floatUlp(double v) {
-  float fv = std::abs(float(v));
-  return double(std::nextafter(fv, INFINITY)) - double(fv);
+  const uint32_t n = v.visual == Visual::Color ? uint32_t(std::min<size_t>(q.channels.size(), 4)) : v.components;
+  p.values.assign(value->begin(), value->begin() + n);
+  if (v.visual == Visual::Normal && (*value)[3] > 0.0) p.note = "stored length error " + std::to_string(std::abs((*value)[3] - 1.0));
+  if (v.visual == Visual::Depth && !q.ofSun) p.eyeDepth = decodeEyeDepth(f, q, x, y);
+  if (v.integer) p.note = integerNote(q, uint32_t((*value)[0]));
 }
 
 }  // namespace
 
 void decodeQuantities(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDossier& d) {
-  for (const Quantity& q : f.layout.quantities) {
+  for (const ViewDef& v : layoutViews(f.layout)) {
+    const Quantity& q = f.layout.quantities[size_t(v.quantity)];
     if (q.kind == QuantityKind::Depth && q.ofSun) continue;  // the shadow-map lookup shows it
     ProbeQuantity p;
     p.name = q.name;
     p.kind = name(q.kind);
     p.target = f.layout.targets[q.target].name;
     p.encoding = encodingText(q);
+    p.space = !v.space.empty() ? v.space : !v.unit.empty() ? v.unit : p.kind;
     p.present = holds(f, q, x, y);
-    if (p.present) decodeOne(f, q, x, y, p);
+    if (p.present) decodeOne(f, v, x, y, p);
     d.quantities.push_back(p);
   }
 }
@@ -130,6 +94,7 @@ void reconstructAll(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDossier
   const Quantity* stored = f.layout.find(QuantityKind::Position);
   std::optional<glm::dvec3> storedEye;
   if (stored && holds(f, *stored, x, y)) storedEye = decodePosition(f, *stored, x, y);
+  const std::string worldSpace = "world (layout: " + upAxisText(f.layout.camera) + "-up)";
   for (const Quantity& q : f.layout.quantities) {
     const bool depth = q.kind == QuantityKind::Depth && !q.ofSun;
     if (!depth && q.kind != QuantityKind::Position) continue;
@@ -138,18 +103,21 @@ void reconstructAll(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDossier
     r.method = q.kind == QuantityKind::Position ? "stored"
                : q.depth == DepthEncoding::Eye  ? "eye depth"
                : q.depth == DepthEncoding::Hardware ? "hardware depth" : "radial distance";
+    r.worldSpace = worldSpace;
     std::optional<glm::dvec3> eye;
     if (holds(f, q, x, y)) eye = decodePosition(f, q, x, y);
     if (eye) {
       r.valid = true;
       r.eye = *eye;
-      r.world = glm::dvec3(f.camera.worldFromEye * glm::dvec4(*eye, 1.0));
+      r.world = spaceFromEye(f, Space::World, *eye, true);
       if (storedEye && &q != stored) {
         r.hasStored = true;
         r.toStored = glm::length(*eye - *storedEye);
-        const glm::dvec3 w = glm::dvec3(f.camera.worldFromEye * glm::dvec4(*storedEye, 1.0));
-        const glm::dvec3 s = stored->space == Space::View ? *storedEye : w;
-        r.toStoredUlps = r.toStored / floatUlp(std::max({std::abs(s.x), std::abs(s.y), std::abs(s.z)}));
+        // In ulps of the stored format, at the largest coordinate it stores (in its own space).
+        const glm::dvec3 s = spaceFromEye(f, stored->space, *storedEye, true);
+        const LayoutTarget& st = f.layout.targets[stored->target];
+        r.toStoredUlps = r.toStored / storageUlp(st.format.type, st.format.encoding, std::max({std::abs(s.x), std::abs(s.y), std::abs(s.z)}));
+        r.ulpOf = name(st.format.type);
       }
     }
     d.reconstructions.push_back(r);

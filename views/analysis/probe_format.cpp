@@ -105,7 +105,8 @@ static nlohmann::json quantitiesJson(const PixelDossier& d) {
   nlohmann::json qs = nlohmann::json::array();
   for (const ProbeQuantity& q : d.quantities) {
     nlohmann::json e = {{"name", q.name}, {"kind", q.kind}, {"target", q.target}, {"encoding", q.encoding},
-                        {"present", q.present}, {"values", q.values}};
+                        {"space", q.space}, {"present", q.present}, {"values", q.values}};
+    if (q.eyeDepth) e["eye_depth"] = *q.eyeDepth;
     if (!q.note.empty()) e["note"] = q.note;
     qs.push_back(e);
   }
@@ -118,8 +119,9 @@ static nlohmann::json reconstructionsJson(const PixelDossier& d) {
     if (r.valid) {
       e["eye"] = v3(r.eye);
       e["world"] = v3(r.world);
+      e["world_space"] = r.worldSpace;
     }
-    if (r.hasStored) e["to_stored"] = {{"distance", r.toStored}, {"ulps", r.toStoredUlps}};
+    if (r.hasStored) e["to_stored"] = {{"distance", r.toStored}, {"ulps", r.toStoredUlps}, {"ulp_of", r.ulpOf}};
     rs.push_back(e);
   }
   return rs;
@@ -133,6 +135,14 @@ nlohmann::json dossierJson(const PixelDossier& d) {
   }
   j["missing"] = d.missing;
   j["targets"] = targetsJson(d);
+  j["quantities"] = quantitiesJson(d);
+  j["reconstructions"] = reconstructionsJson(d);
+  if (!d.native) {
+    // Another renderer's G-buffer: its quantities only, and its lights when gblens can evaluate them.
+    if (d.lightingNote.empty()) j["lighting"] = lightingJson(d);
+    else j["lighting"] = {{"note", d.lightingNote}};
+    return j;
+  }
   j["decoded"] = {{"geometry", d.geometry},
                   {"albedo", opt(d.hasAlbedo, v3(d.albedo))},
                   {"specular", opt(d.hasAlbedo, d.specular)},
@@ -144,8 +154,6 @@ nlohmann::json dossierJson(const PixelDossier& d) {
                   {"eye_depth", opt(d.hasEyeDepth, d.eyeDepth)},
                   {"hardware_depth", opt(d.hasHardwareDepth, d.hardwareDepth)},
                   {"stencil", opt(d.hasHardwareDepth, d.stencil)}};
-  j["quantities"] = quantitiesJson(d);
-  j["reconstructions"] = reconstructionsJson(d);
   j["position"] = {{"source", d.positionSource},
                    {"from_eye_depth", position(d.fromEyeDepth)},
                    {"from_hardware_depth", position(d.fromHardwareDepth)},
@@ -203,7 +211,31 @@ static std::string targetsText(const PixelDossier& d) {
   return o;
 }
 
-// The decoded G-buffer and both reconstructed positions.
+// Every quantity of the layout, decoded as its view shows it, and every position it allows.
+static std::string quantitiesText(const PixelDossier& d) {
+  std::string o = "\nquantities (as the layout declares them)\n";
+  for (const ProbeQuantity& q : d.quantities) {
+    std::string v;
+    for (double x : q.values) v += (v.empty() ? "" : ", ") + f9(x);
+    o += "  " + q.target + "." + q.name + " (" + q.kind + (q.encoding.empty() ? "" : ", " + q.encoding) + ")  " +
+         (q.present ? (v.empty() ? "" : q.space + " (" + v + ")") + (q.eyeDepth ? "  eye depth " + f9(*q.eyeDepth) : "") +
+                          (q.note.empty() ? "" : "  " + q.note)
+                    : std::string("-")) +
+         "\n";
+  }
+  bool any = false;
+  for (const ProbeReconstruction& r : d.reconstructions) {
+    if (!r.valid) continue;
+    if (!any) o += "\npositions (eye space | " + r.worldSpace + ")\n";
+    any = true;
+    o += "  " + r.quantity + " (" + r.method + ")  " + t3(r.eye) + " | " + t3(r.world);
+    if (r.hasStored) o += "   to the stored position " + f9(r.toStored) + " (" + f9(r.toStoredUlps) + " " + r.ulpOf + " ulps)";
+    o += "\n";
+  }
+  return o;
+}
+
+// gblens's frame: its decoded G-buffer and both reconstructed positions.
 static std::string decodedText(const PixelDossier& d) {
   std::string o = "\ndecoded\n";
   o += "  geometry        " + std::string(d.geometry ? "yes" : "no (sky)") + "\n";
@@ -218,24 +250,11 @@ static std::string decodedText(const PixelDossier& d) {
   if (d.hasHardwareDepth)
     o += "  stencil         " + std::to_string(d.stencil) + " (bit 7 geometry: " + ((d.stencil & 0x80) ? "set" : "clear") +
          ", low bits " + std::to_string(d.stencil & 0x7F) + ")\n";
-  o += "\nlayout quantities (decoded: colours linear, vectors in eye space, depths as eye depth)\n";
-  for (const ProbeQuantity& q : d.quantities) {
-    std::string v;
-    for (double x : q.values) v += (v.empty() ? "" : ", ") + f9(x);
-    o += "  " + q.target + "." + q.name + " (" + q.kind + (q.encoding.empty() ? "" : ", " + q.encoding) + ")  " +
-         (q.present ? (v.empty() ? "" : "(" + v + ")") + (q.note.empty() ? "" : "  " + q.note) : std::string("-")) + "\n";
-  }
   o += "\npositions (eye space | world space); the lighting used " + d.positionSource + "\n";
   for (auto [label, p] : {std::pair{"from eye depth     ", &d.fromEyeDepth}, {"from hardware depth", &d.fromHardwareDepth}})
     o += std::string("  ") + label + " " + (p->valid ? t3(p->eye) + " | " + t3(p->world) : std::string("-")) + "\n";
   o += "  difference          " + f9(d.positionDifference) + " scene units; eye depth " + f9(d.eyeDepthUlps) +
        " ulps, hardware depth " + f9(d.hardwareDepthUlps) + " ulps\n";
-  for (const ProbeReconstruction& r : d.reconstructions)
-    if (r.hasStored)
-      o += "  " + r.quantity + " (" + r.method + ") to the stored position: " + f9(r.toStored) + " scene units, " +
-           f9(r.toStoredUlps) + " ulps\n";
-    else if (r.valid && r.method == "radial distance")
-      o += "  from radial distance " + t3(r.eye) + " | " + t3(r.world) + "\n";
   return o;
 }
 
@@ -310,7 +329,8 @@ std::string dossierText(const PixelDossier& d) {
   std::snprintf(line, sizeof(line), "pixel %u,%u of %ux%u\n", d.x, d.y, d.width, d.height);
   std::string o = line;
   if (!d.error.empty()) return o + "error: " + d.error + "\n";
-  return o + targetsText(d) + decodedText(d) + lightingText(d) + outputsText(d);
+  if (!d.native) return o + targetsText(d) + quantitiesText(d) + (d.lightingNote.empty() ? lightingText(d) : "\nlighting: " + d.lightingNote + "\n");
+  return o + targetsText(d) + quantitiesText(d) + decodedText(d) + lightingText(d) + outputsText(d);
 }
 
 }  // namespace gb

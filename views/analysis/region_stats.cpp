@@ -2,6 +2,8 @@
 // computation (seriesStats) for every series, stored or decoded.
 #include "views/analysis/region_stats.h"
 
+#include "views/analysis/visualize.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -92,54 +94,27 @@ struct Gatherer {
   }
 };
 
-// A quantity's decoded components at one pixel, as named series.
-void decodeAt(const FrameSnapshot& f, const Quantity& q, uint32_t x, uint32_t y, bool surfaceOnly, Gatherer& out) {
+// A quantity's decoded components at one pixel, as named series: the view's values (in the layout's
+// own space and units, visualize.h), and for normals their angle to the view direction, for depths
+// stored otherwise their eye depth.
+void decodeAt(const FrameSnapshot& f, const ViewDef& v, uint32_t x, uint32_t y, bool surfaceOnly, Gatherer& out) {
+  const Quantity& q = f.layout.quantities[size_t(v.quantity)];
   const std::string& t = f.layout.targets[q.target].name;
-  auto put = [&](const std::string& component, const std::string& unit, double v, bool integer = false) {
-    out.at(t, q.name + (component.empty() ? "" : "." + component), unit, surfaceOnly, integer).values.push_back(v);
+  auto put = [&](const std::string& series, const std::string& unit, double value, bool integer = false) {
+    out.at(t, series, unit, surfaceOnly, integer).values.push_back(value);
   };
-  switch (q.kind) {
-    case QuantityKind::Albedo: case QuantityKind::BaseColor: case QuantityKind::Emission:
-    case QuantityKind::Radiance: case QuantityKind::Display: {
-      const glm::dvec4 c = decodeColor(f, q, x, y);
-      put("R", "linear", c.r), put("G", "linear", c.g), put("B", "linear", c.b);
-      break;
-    }
-    case QuantityKind::Normal: {
-      const NormalSample n = decodeNormal(f, q, x, y);
-      if (n.unit == glm::dvec3(0.0)) break;  // nothing stored
-      const glm::dvec3 toViewer = -glm::normalize(eyeFromEyeDepth(f.camera, x, y, 1.0));
-      put("angle_to_view_deg", "deg", glm::degrees(std::acos(std::clamp(glm::dot(n.unit, toViewer), -1.0, 1.0))));
-      break;
-    }
-    case QuantityKind::Depth: {
-      if (q.ofSun) {
-        put("stored", "", storedValues(f, q, x, y)[0]);
-        break;
-      }
-      if (std::optional<double> z = decodeEyeDepth(f, q, x, y)) put("eye_depth", "scene units", *z);
-      if (std::optional<glm::dvec3> p = decodePosition(f, q, x, y))
-        put("X", "eye space", p->x), put("Y", "eye space", p->y), put("Z", "eye space", p->z);
-      break;
-    }
-    case QuantityKind::Position:
-      if (std::optional<glm::dvec3> p = decodePosition(f, q, x, y))
-        put("X", "eye space", p->x), put("Y", "eye space", p->y), put("Z", "eye space", p->z);
-      break;
-    case QuantityKind::Motion: {
-      const glm::dvec2 m = decodeMotion(f, q, x, y);
-      put("X", "px", m.x), put("Y", "px", m.y);
-      break;
-    }
-    case QuantityKind::Id: case QuantityKind::Stencil: put("", "", decodeInteger(f, q, x, y), true); break;
-    case QuantityKind::Count: put("", q.unit.empty() ? "count" : q.unit, decodeInteger(f, q, x, y)); break;
-    case QuantityKind::Vector: {
-      const std::array<double, 4> v = storedValues(f, q, x, y);
-      for (size_t c = 0; c < q.channels.size(); ++c) put(std::string(1, "XYZW"[c]), q.unit, v[c]);
-      break;
-    }
-    default: put("", q.unit, decodeScalar(f, q, x, y)); break;
+  std::optional<std::array<double, 4>> value = viewValue(f, v, x, y);
+  if (!value) return;
+  const std::string unit = !v.unit.empty() ? v.unit : v.space;
+  const uint32_t n = v.visual == Visual::Color ? std::min(v.components, 3u) : v.components;
+  for (uint32_t c = 0; c < n; ++c) put(componentLabel(v, int(c)), unit, (*value)[c], v.integer);
+  if (v.visual == Visual::Normal) {
+    const glm::dvec3 unitEye = decodeNormal(f, q, x, y).unit;
+    const glm::dvec3 toViewer = -glm::normalize(eyeFromEyeDepth(f.camera, x, y, 1.0));
+    put(q.name + ".angle_to_view_deg", "deg", glm::degrees(std::acos(std::clamp(glm::dot(unitEye, toViewer), -1.0, 1.0))));
   }
+  if (v.visual == Visual::Depth && !q.ofSun && q.depth != DepthEncoding::Eye)
+    if (std::optional<double> z = decodeEyeDepth(f, q, x, y)) put(q.name + ".eye_depth", "eye depth", *z);
 }
 
 }  // namespace
@@ -149,6 +124,7 @@ RegionStats regionStats(const FrameSnapshot& f, const RegionRect& r, const std::
   s.rect = r;
   Gatherer channels, quantities;
   const bool surfaceKnown = surfaceDepth(f.layout) != nullptr;
+  const std::vector<ViewDef> views = layoutViews(f.layout);
   for (uint32_t y = r.y; y < r.y + r.height; ++y)
     for (uint32_t x = r.x; x < r.x + r.width; ++x) {
       ++s.pixels;
@@ -161,11 +137,12 @@ RegionStats regionStats(const FrameSnapshot& f, const RegionRect& r, const std::
         if (!ti || !ti->contains(x, y) || ti->targetWidth != f.camera.width) continue;  // the shadow map: not this frame's pixels
         for (uint32_t c = 0; c < ti->image.channelCount() && c < lt.channels.size(); ++c)
           channels.at(lt.name, lt.channels[c], "stored", false).values.push_back(ti->value(x, y, c));
-        for (const Quantity& q : f.layout.quantities) {
+        for (const ViewDef& v : views) {
+          const Quantity& q = f.layout.quantities[size_t(v.quantity)];
           if (q.target != t || !holds(f, q, x, y)) continue;
           const bool surfaceOnly = surfaceKnown && surfaceQuantity(q.kind);
           if (surfaceOnly && !surface) continue;
-          decodeAt(f, q, x, y, surfaceOnly, quantities);
+          decodeAt(f, v, x, y, surfaceOnly, quantities);
         }
       }
     }

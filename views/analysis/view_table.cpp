@@ -1,101 +1,191 @@
-// The view table (see view_table.h).
+// The views of a layout (see view_table.h): each quantity kind's visualisation and defaults.
 #include "views/analysis/view_table.h"
 
-#include "renderer/core/assert.h"
+#include <algorithm>
 
 namespace gb {
 
 using namespace gpu;
 
-static const ViewDef kViews[kViewKindCount] = {
-    {.kind = ViewKind::Final, .name = "final", .label = "Final", .key = "0", .source = {Target::Final},
-     .mapping = kViewMapColor, .channels = 0x7, .available = 0xF, .predicate = kRangeAll, .colour = true,
-     .negativeSuspicious = true, .autoRange = false, .black = 0, .white = 1, .unit = ""},
-    {.kind = ViewKind::Albedo, .name = "albedo", .label = "Albedo", .key = "2", .source = {Target::AlbedoSpecular},
-     .mapping = kViewMapColor, .channels = 0x7, .available = 0xF, .predicate = kRangeAll, .colour = true,
-     .negativeSuspicious = true, .autoRange = false, .black = 0, .white = 1, .unit = ""},
-    {.kind = ViewKind::Normal, .name = "normal", .label = "Normal", .key = "3", .source = {Target::NormalShadow},
-     .mapping = kViewMapNormal, .channels = 0x7, .available = 0xF, .predicate = kRangeAll, .colour = false,
-     .negativeSuspicious = false, .autoRange = false, .black = -1, .white = 1, .unit = ""},
-    {.kind = ViewKind::Depth, .name = "depth", .label = "Depth", .key = "4", .source = {Target::Depth},
-     .mapping = kViewMapDepth, .channels = 0x1, .available = 0x1, .predicate = kRangePositive, .colour = false,
-     .negativeSuspicious = true, .autoRange = true, .black = 0, .white = 1, .unit = "eye depth"},
-    {.kind = ViewKind::Specular, .name = "specular", .label = "Specular", .key = "5",
-     .source = {Target::AlbedoSpecular}, .mapping = kViewMapGrey, .channels = 0x8, .available = 0xF,
-     .predicate = kRangeAll, .colour = false, .negativeSuspicious = true, .autoRange = false, .black = 0, .white = 1,
-     .unit = ""},
-    {.kind = ViewKind::Shadow, .name = "shadow", .label = "Shadow", .key = "6", .source = {Target::NormalShadow},
-     .mapping = kViewMapGrey, .channels = 0x8, .available = 0xF, .predicate = kRangeAll, .colour = false,
-     .negativeSuspicious = true, .autoRange = false, .black = 0, .white = 1, .unit = ""},
-    {.kind = ViewKind::ShadowMap, .name = "shadowmap", .label = "Shadow map", .key = "7", .source = {Target::ShadowMap},
-     .mapping = kViewMapDepth, .channels = 0x1, .available = 0x1, .predicate = kRangeBelowOne, .colour = false,
-     .negativeSuspicious = true, .autoRange = true, .black = 0, .white = 1, .unit = "light depth"},
-    {.kind = ViewKind::CoverageMasked, .name = "coverage_masked", .label = "Masked coverage", .key = "8",
-     .source = {Target::CoverageMasked}, .mapping = kViewMapHeat, .channels = 0x1, .available = 0x1,
-     .predicate = kRangeAll, .colour = false, .negativeSuspicious = false, .autoRange = true, .black = 0, .white = 1,
-     .unit = "shader runs"},
-    {.kind = ViewKind::CoverageFull, .name = "coverage_full", .label = "Full coverage", .key = "9",
-     .source = {Target::CoverageFull}, .mapping = kViewMapHeat, .channels = 0x1, .available = 0x1,
-     .predicate = kRangeAll, .colour = false, .negativeSuspicious = false, .autoRange = true, .black = 0, .white = 1,
-     .unit = "lights"},
-    {.kind = ViewKind::Hdr, .name = "hdr", .label = "HDR", .key = "", .source = {Target::Hdr}, .mapping = kViewMapColor,
-     .channels = 0x7, .available = 0xF, .predicate = kRangeAll, .colour = true, .negativeSuspicious = true,
-     .autoRange = false, .black = 0, .white = 1, .unit = ""},
-    {.kind = ViewKind::HardwareDepth, .name = "hardware_depth", .label = "Hardware depth", .key = "",
-     .source = {Target::DepthStencil}, .mapping = kViewMapDepth, .channels = 0x1, .available = 0x1,
-     .predicate = kRangeNotFar, .colour = false, .negativeSuspicious = true, .autoRange = true, .black = 0, .white = 1,
-     .unit = "depth"},
-    {.kind = ViewKind::Stencil, .name = "stencil", .label = "Stencil", .key = "",
-     .source = {Target::DepthStencil, true}, .mapping = kViewMapGrey, .channels = 0x1, .available = 0x1,
-     .predicate = kRangeAll, .colour = false, .negativeSuspicious = false, .autoRange = false, .black = 0,
-     .white = 255, .unit = ""},
-};
+const char* name(Visual v) {
+  static const char* const names[] = {"color", "normal", "depth", "position", "scalar", "vector", "id", "stencil", "motion", "count"};
+  return names[int(v)];
+}
 
-const ViewDef& viewDef(ViewKind kind) {
-  const ViewDef& d = kViews[int(kind)];
-  GB_ASSERT(d.kind == kind);
+namespace {
+
+std::string spaceText(const Layout& l, Space s) {
+  switch (s) {
+    case Space::View: return l.camera.leftHanded ? "view (left-handed, looks down +Z)" : "view";
+    case Space::World: return "world (layout: " + upAxisText(l.camera) + "-up)";
+    case Space::CameraRelative: return "camera-relative world (layout: " + upAxisText(l.camera) + "-up)";
+  }
+  return "";
+}
+
+std::string depthText(const Quantity& q) {
+  if (q.ofSun) return "light depth (the sun's shadow map)";
+  switch (q.depth) {
+    case DepthEncoding::Hardware: return "hardware depth";
+    case DepthEncoding::Eye: return "eye depth";
+    case DepthEncoding::Radial: return "radial distance";
+  }
+  return "";
+}
+
+// The visualisation and defaults of one quantity.
+ViewDef viewOf(const Layout& l, const Quantity& q, int index) {
+  ViewDef d;
+  d.name = q.name;
+  d.quantity = index;
+  d.kind = q.kind;
+  d.target = q.target;
+  const uint32_t n = uint32_t(q.channels.size());
+  auto names = [&](std::initializer_list<const char*> c) {
+    d.componentNames.clear();
+    for (const char* s : c)
+      if (d.componentNames.size() < d.components) d.componentNames.push_back(s);
+  };
+  switch (q.kind) {
+    case QuantityKind::Albedo:
+    case QuantityKind::BaseColor:
+    case QuantityKind::Emission:
+    case QuantityKind::Radiance:
+    case QuantityKind::Display:
+      d.visual = Visual::Color;
+      d.components = std::min(n, 4u);
+      d.hdr = q.kind == QuantityKind::Radiance || q.kind == QuantityKind::Emission;
+      d.space = q.color == ColorEncoding::Srgb ? "linear (stored sRGB-encoded)" : "linear";
+      names({"R", "G", "B", "A"});
+      break;
+    case QuantityKind::Specular:
+    case QuantityKind::Roughness:
+    case QuantityKind::Metallic:
+    case QuantityKind::Occlusion:
+    case QuantityKind::Shadow:
+      d.visual = Visual::Scalar;
+      d.channels = 0x1;
+      break;
+    case QuantityKind::Scalar:
+      d.visual = Visual::Scalar;
+      d.channels = 0x1;
+      d.autoRange = true;
+      d.negativeSuspicious = false;
+      d.unit = q.unit;
+      break;
+    case QuantityKind::Vector:
+      d.visual = Visual::Vector;
+      d.components = std::min(n, 4u);
+      d.channels = d.components >= 3 ? 0x7 : (1u << d.components) - 1;
+      d.autoRange = true;
+      d.negativeSuspicious = false;
+      d.unit = q.unit;
+      names({"X", "Y", "Z", "W"});
+      break;
+    case QuantityKind::Normal:
+      d.visual = Visual::Normal;
+      d.components = 3;
+      d.black = -1.0f;
+      d.negativeSuspicious = false;
+      d.surfaceOnly = true;
+      d.space = spaceText(l, q.space);
+      names({"X", "Y", "Z"});
+      break;
+    case QuantityKind::Depth:
+      d.visual = Visual::Depth;
+      d.channels = 0x1;
+      d.autoRange = true;
+      d.sun = q.ofSun;
+      d.space = d.unit = depthText(q);
+      d.background = q.background;
+      d.predicate = q.background                       ? kRangeNotValue
+                    : q.ofSun                            ? kRangeBelowOne
+                    : q.depth == DepthEncoding::Hardware ? kRangeNotFar
+                                                         : kRangePositive;
+      break;
+    case QuantityKind::Position:
+      d.visual = Visual::Position;
+      d.components = 3;
+      d.autoRange = true;
+      d.negativeSuspicious = false;
+      d.surfaceOnly = true;
+      d.space = spaceText(l, q.space);
+      names({"X", "Y", "Z"});
+      break;
+    case QuantityKind::Motion:
+      d.visual = Visual::Motion;
+      d.components = 2;
+      d.channels = 0x3;
+      d.autoRange = true;
+      d.negativeSuspicious = false;
+      d.unit = q.units == MotionUnits::Pixels ? "pixels" : q.units == MotionUnits::Ndc ? "ndc" : "uv";
+      d.space = q.toPrevious ? "toward the previous frame" : "toward the next frame";
+      names({"X", "Y"});
+      break;
+    case QuantityKind::Id:
+    case QuantityKind::Stencil:
+    case QuantityKind::Count:
+      d.visual = q.kind == QuantityKind::Id ? Visual::Id : q.kind == QuantityKind::Stencil ? Visual::Stencil : Visual::Count;
+      d.channels = 0x1;
+      d.integer = true;
+      d.negativeSuspicious = false;
+      d.autoRange = q.kind == QuantityKind::Count;
+      d.black = 0.0f;
+      d.white = q.kind == QuantityKind::Stencil ? 255.0f : 1.0f;
+      break;
+  }
+  if (d.componentNames.empty()) d.componentNames = {q.name};
   return d;
 }
 
-const char* viewName(ViewKind v) { return viewDef(v).name; }
+// The view shown first: display colour, else radiance, else the first colour quantity, else the first.
+size_t firstView(const std::vector<ViewDef>& views) {
+  for (QuantityKind k : {QuantityKind::Display, QuantityKind::Radiance})
+    for (size_t i = 0; i < views.size(); ++i)
+      if (views[i].kind == k) return i;
+  for (size_t i = 0; i < views.size(); ++i)
+    if (views[i].visual == Visual::Color) return i;
+  return 0;
+}
 
-const char* viewUnit(const ViewDef& def, const std::string& method) {
-  if (def.kind == ViewKind::CoverageMasked) {
+}  // namespace
+
+std::vector<ViewDef> layoutViews(const Layout& l) {
+  std::vector<ViewDef> views;
+  for (size_t i = 0; i < l.quantities.size(); ++i) views.push_back(viewOf(l, l.quantities[i], int(i)));
+  if (views.empty()) return views;
+  std::rotate(views.begin(), views.begin() + long(firstView(views)), views.begin() + long(firstView(views)) + 1);
+  for (size_t i = 0; i < views.size() && i < 9; ++i) views[i].key = i == 0 ? "0" : std::to_string(i + 1);
+  return views;
+}
+
+int findView(const std::vector<ViewDef>& views, const std::string& name) {
+  const std::string key = nameKey(name);
+  for (size_t i = 0; i < views.size(); ++i)
+    if (nameKey(views[i].name) == key) return int(i);
+  return -1;
+}
+
+std::string viewNameList(const std::vector<ViewDef>& views) {
+  std::string out;
+  for (const ViewDef& v : views) out += (out.empty() ? "" : ", ") + v.name;
+  return out;
+}
+
+std::string viewUnit(const ViewDef& def, const std::string& method) {
+  if (def.kind == QuantityKind::Count && def.name == "CoverageMasked") {
     if (method == "deferred") return "point-light fragment shader runs";
     if (method == "tiled") return "lights in the pixel's 16x16 tile list";
     if (method == "clustered") return "lights in the pixel's cluster list";
     if (method == "forward") return "lights looped over per fragment";
   }
-  if (def.kind == ViewKind::CoverageFull) return "light volumes over the pixel (no depth or stencil test)";
+  if (def.kind == QuantityKind::Count && def.name == "CoverageFull") return "light volumes over the pixel (no depth or stencil test)";
   return def.unit;
 }
 
-bool parseView(const std::string& name, ViewKind& out) {
-  for (const ViewDef& d : kViews)
-    if (name == d.name) {
-      out = d.kind;
-      return true;
-    }
-  return false;
-}
-
-std::vector<std::string> viewNames() {
-  std::vector<std::string> n;
-  for (const ViewDef& d : kViews) n.push_back(d.name);
-  return n;
-}
-
-const std::vector<ViewKind>& gridViews() {
-  static const std::vector<ViewKind> v = {ViewKind::Final,  ViewKind::Albedo,    ViewKind::Normal,
-                                          ViewKind::Depth,  ViewKind::Specular,  ViewKind::Shadow,
-                                          ViewKind::ShadowMap, ViewKind::CoverageMasked, ViewKind::CoverageFull};
-  return v;
-}
-
-std::string channelLabel(const ViewDef& def, int c) {
-  if (def.source.stencil) return c == 0 ? "Stencil" : "";
-  const std::vector<std::string>& names = channelNames(def.source.target);
-  return size_t(c) < names.size() ? names[c] : "";
+std::string componentLabel(const ViewDef& def, int c) {
+  if (c < 0 || size_t(c) >= def.componentNames.size()) return "";
+  return def.components == 1 ? def.name : def.name + "." + def.componentNames[size_t(c)];
 }
 
 }  // namespace gb

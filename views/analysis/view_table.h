@@ -1,55 +1,61 @@
-// The view table: every examination view under its one name (render --target, the viewer's keys
-// and menus, docs), the target it reads and how it maps it for people. The CPU mapping
-// (visualize.h), the viewer's GPU mapping (views/ui) and the command line all read this table.
+// The views of a frame, generated from its layout: one view per quantity the layout declares, with the
+// visualisation its kind calls for. Nothing else: a quantity the layout lacks has no view, so no view
+// ever shows a stand-in. The CPU mapping (visualize.h), the viewer (views/ui) and `render --target`
+// all read this list; a view's name is its quantity's name (docs/analysis.md, "Views").
 #pragma once
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "renderer/core/targets.h"
+#include "renderer/core/layout.h"
 #include "shaders/shared.h"
 
 namespace gb {
 
-enum class ViewKind {
-  Final, Albedo, Normal, Depth, Specular, Shadow, ShadowMap, CoverageMasked, CoverageFull,
-  Hdr, HardwareDepth, Stencil
-};
-constexpr int kViewKindCount = 12;
-
-// What a view shows of a target: its colour/depth aspect, or the stencil aspect of depth_stencil.
-struct ViewSource {
-  Target target = Target::Final;
-  bool stencil = false;
-};
+// How a quantity's decoded values become a picture (one per quantity kind family).
+enum class Visual : uint8_t { Color, Normal, Depth, Position, Scalar, Vector, Id, Stencil, Motion, Count };
+const char* name(Visual v);
 
 struct ViewDef {
-  ViewKind kind;
-  const char* name;          // "albedo": render --target, --view, JSON
-  const char* label;         // for people: "Albedo"
-  const char* key;           // keyboard shortcut ("2") or "" (menu only)
-  ViewSource source;
-  uint32_t mapping;          // gpu::kViewMap*
-  uint32_t channels;         // default channel mask (bit c = channel c of the target)
-  uint32_t available;        // channels the target has
-  uint32_t predicate;        // gpu::kRange*: texels that count for the automatic range
-  bool colour;               // the RGB channels are linear colour (displayed sRGB-encoded)
-  bool negativeSuspicious;   // negative values cannot be right here (highlighted)
-  bool autoRange;            // default: the range comes from the data
-  float black, white;        // default manual range
-  const char* unit;          // of the mapped values, for the legend ("", "m", "lights")
+  std::string name;         // the quantity's name ("Albedo", "Combined"): --target, --view, keys, JSON
+  int quantity = -1;        // index into the layout's quantities
+  QuantityKind kind = QuantityKind::Scalar;
+  Visual visual = Visual::Scalar;
+  uint32_t target = 0;      // the layout target holding it
+  uint32_t components = 1;  // of the decoded value (viewValue): colour 3-4, normal 3 (+ |stored|), ...
+  std::vector<std::string> componentNames;  // "R", "G", "B" / "X", "Y", "Z" / the quantity's name
+  std::string space;        // what its vectors or depths are: "view", "world (layout: Z-up)", "eye depth", ...
+  std::string unit;         // of the mapped values, for the legend ("", "m", "shader runs")
+  bool sun = false;         // the sun's depth (a shadow map): its own size and texel grid
+  bool hdr = false;         // linear light that may exceed 1 (radiance, emission): exposure applies
+  bool integer = false;     // id, stencil, count: uint texels, never filtered
+  bool surfaceOnly = false; // a value only where a surface was drawn (normals, positions)
+  // Defaults of the viewer's per-view settings.
+  uint32_t channels = 0x7;  // components shown (bit c = component c)
+  bool autoRange = false;
+  float black = 0.0f, white = 1.0f;
+  bool negativeSuspicious = true;  // negative values cannot be right here (highlighted)
+  uint32_t predicate = gpu::kRangeAll;  // which texels count for the automatic range (and are drawn)
+  std::optional<double> background;     // depth: the stored value where nothing was drawn
+  std::string key;          // keyboard shortcut: "0" the first view, "2".."9" the next ones; "" none
 };
-const ViewDef& viewDef(ViewKind kind);
-const char* viewName(ViewKind v);
-// What a view's values count in a frame of lighting method `method` (FrameStats::method; empty:
-// not known): views 8 and 9 count each method's own lighting work.
-const char* viewUnit(const ViewDef& def, const std::string& method);
-bool parseView(const std::string& name, ViewKind& out);
-// Every view name, in table order ("final", "albedo", ...): the accepted values of --target / --view.
-std::vector<std::string> viewNames();
-// The nine views of the grid (key 1), in key order 0, 2..9.
-const std::vector<ViewKind>& gridViews();
-// Channel names of a view's target ("Albedo.R", ...), empty where the target has fewer.
-std::string channelLabel(const ViewDef& def, int channel);
+
+// Every view of the layout, in layout order, the first colour view first (display, else radiance,
+// else the first colour quantity): what the grid shows and the keys follow.
+std::vector<ViewDef> layoutViews(const Layout& layout);
+
+// A view by name: case, '_', '-' and spaces ignored ("hardware_depth" finds "HardwareDepth"); -1 none.
+int findView(const std::vector<ViewDef>& views, const std::string& name);
+// Every view's name, for messages ("Albedo, Normal, ...").
+std::string viewNameList(const std::vector<ViewDef>& views);
+
+// What a view's values count for gblens's coverage targets in a frame of lighting method `method`
+// (FrameStats::method); other views: their unit.
+std::string viewUnit(const ViewDef& def, const std::string& method);
+
+// The label of component `c` of a view ("Normal.X"); "" beyond its components.
+std::string componentLabel(const ViewDef& def, int c);
 
 }  // namespace gb

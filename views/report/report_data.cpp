@@ -1,5 +1,5 @@
 // The report's data files (report_page.cpp writes them beside the page): per compared group, both
-// sides' stored channel values and decoded values (decoded_image.h, as the probe shows them) and the
+// sides' stored channel values and decoded values (decoded_image.h: the view values the probe shows) and the
 // per-pixel error, as float32 arrays, deflated (zlib) and base64-encoded inside a script the page loads
 // when the group is shown (a page opened from disk may load scripts, not read files). A side whose
 // decoded values equal its stored ones bit for bit writes them once.
@@ -54,18 +54,26 @@ nlohmann::json side(const FrameSnapshot& f, const Quantity& q) {
     for (uint32_t x = 0; x < image.width; ++x)
       for (uint32_t k = 0; k < channels; ++k)
         stored[(size_t(y) * image.width + x) * channels + k] = float(ti.value(x + ti.x0, y + ti.y0, q.channels[k]));
-  const std::vector<float> decoded = decodeImage<float>(f, q, VectorSpace::Eye);
+  const std::vector<ViewDef> views = layoutViews(f.layout);
+  const int index = findView(views, q.name);
+  GB_ASSERT(index >= 0);  // every quantity has its view
+  const ViewDef& view = views[size_t(index)];
+  const std::vector<float> decoded = decodedImage<float>(f, view);
+  const uint32_t n = decodedComponents(f, view);
   const bool same = decoded.size() == stored.size() && std::memcmp(decoded.data(), stored.data(), stored.size() * sizeof(float)) == 0;
-  nlohmann::json names = nlohmann::json::array();
+  nlohmann::json names = nlohmann::json::array(), components = nlohmann::json::array();
   for (uint32_t c : q.channels) names.push_back(image.channels[c]);
+  for (uint32_t k = 0; k < n; ++k) components.push_back(k < view.componentNames.size() ? view.componentNames[k] : std::to_string(k));
   return {{"target", f.layout.targets[q.target].name},
           {"quantity", q.name},
           {"kind", name(q.kind)},
+          {"visual", name(view.visual)},
+          {"space", view.space},
           {"channels", names},
-          {"components", decodedComponentNames(q)},
+          {"components", components},
           {"stored", pack(stored)},
           {"decoded", same ? nlohmann::json(nullptr) : nlohmann::json(pack(decoded))},
-          {"ranges", ranges(decoded, decodedComponents(q))}};
+          {"ranges", ranges(decoded, n)}};
 }
 
 }  // namespace

@@ -32,15 +32,22 @@ static void tooltip(const char* text) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
 }
 
-static bool viewCombo(const char* label, ViewKind& v) {
+// A view's entry in menus and lists: its key (if any) and name, with why it is unavailable.
+static std::string viewItem(const ViewerModel& m, size_t k) {
+  const ViewDef& d = m.views[k];
+  std::string item = d.name + "  (" + name(d.kind) + ")";
+  if (!m.unavailable[k].empty()) item += "  - " + m.unavailable[k];
+  return item;
+}
+
+static bool viewCombo(const ViewerModel& m, const char* label, int& v) {
   bool changed = false;
-  if (ImGui::BeginCombo(label, viewDef(v).label)) {
-    for (int k = 0; k < kViewKindCount; ++k) {
-      const ViewDef& d = viewDef(ViewKind(k));
-      char item[64];
-      std::snprintf(item, sizeof item, "%s%s%s", d.label, d.key[0] ? "  " : "", d.key);
-      if (ImGui::Selectable(item, v == ViewKind(k))) {
-        v = ViewKind(k);
+  if (m.views.empty()) return false;
+  if (ImGui::BeginCombo(label, m.views[size_t(v)].name.c_str())) {
+    for (size_t k = 0; k < m.views.size(); ++k) {
+      std::string item = viewItem(m, k) + (m.views[k].key.empty() ? "" : "  " + m.views[k].key);
+      if (ImGui::Selectable(item.c_str(), v == int(k))) {
+        v = int(k);
         changed = true;
       }
     }
@@ -49,22 +56,40 @@ static bool viewCombo(const char* label, ViewKind& v) {
   return changed;
 }
 
+// Help: the keys of this frame's views (from its layout) and the mouse.
+static std::string helpText(const ViewerModel& m) {
+  std::string keys = "1 grid of the frame's views";
+  for (const ViewDef& d : m.views)
+    if (!d.key.empty()) keys += (d.key == "0" ? ", 0 / Return " : ", " + d.key + " ") + d.name;
+  std::string text = keys + "\n"
+      "Left click: probe a pixel (dossier on the right); arrows move it\n"
+      "Ctrl + left drag: statistics of a region\n"
+      "Wheel: zoom (all views); middle drag or shift+drag: pan; Z: fit; G: texel grid\n";
+  if (m.source == FrameSource::Live)
+    text += "Click the shadow map: mark the pixels that sample that texel\n"
+            "Right drag: orbit (fly mode: look); WASD/QE: move; ctrl+wheel: dolly\n"
+            "Space: play/pause; , and .: step; Home: reset camera";
+  else if (m.source == FrameSource::Compare)
+    text += "Compare: A, B and |A - B| side by side, or split A | B (drag the handle)";
+  return text;
+}
+
 static void menuBar(ViewerModel& m) {
   if (!ImGui::BeginMainMenuBar()) return;
   if (ImGui::BeginMenu("View")) {
     if (ImGui::MenuItem("All views (grid)", "1", m.layout == LayoutMode::Grid)) m.layout = LayoutMode::Grid;
-    for (int k = 0; k < kViewKindCount; ++k) {
-      const ViewDef& d = viewDef(ViewKind(k));
-      if (ImGui::MenuItem(d.label, d.key, m.layout != LayoutMode::Grid && m.primary == ViewKind(k))) {
-        m.primary = m.edited = ViewKind(k);
+    for (size_t k = 0; k < m.views.size(); ++k) {
+      const ViewDef& d = m.views[k];
+      if (ImGui::MenuItem(viewItem(m, k).c_str(), d.key.c_str(), m.layout != LayoutMode::Grid && m.primary == int(k))) {
+        m.primary = m.edited = int(k);
         if (m.layout == LayoutMode::Grid) m.layout = LayoutMode::Single;
       }
     }
     ImGui::Separator();
     if (ImGui::BeginMenu("Side by side with")) {
-      for (int k = 0; k < kViewKindCount; ++k)
-        if (ImGui::MenuItem(viewDef(ViewKind(k)).label, nullptr, m.layout == LayoutMode::SideBySide && m.secondary == ViewKind(k))) {
-          m.secondary = ViewKind(k);
+      for (size_t k = 0; k < m.views.size(); ++k)
+        if (ImGui::MenuItem(viewItem(m, k).c_str(), nullptr, m.layout == LayoutMode::SideBySide && m.secondary == int(k))) {
+          m.secondary = int(k);
           m.layout = LayoutMode::SideBySide;
         }
       ImGui::EndMenu();
@@ -78,27 +103,51 @@ static void menuBar(ViewerModel& m) {
     ImGui::MenuItem("Reference error (live frame)", nullptr, &m.referenceError.open);
     ImGui::EndMenu();
   }
-  if (ImGui::BeginMenu("Camera")) {
+  if (m.source == FrameSource::Live && ImGui::BeginMenu("Camera")) {
     if (ImGui::MenuItem("Reset", "Home")) m.resetCamera = true;
     for (size_t i = 0; i < m.cameraNames.size(); ++i)
       if (ImGui::MenuItem(m.cameraNames[i].c_str())) m.gltfCamera = int(i);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Help")) {
-    ImGui::TextUnformatted(
-        "1 grid of all views, 2 albedo, 3 normal, 4 depth, 5 specular, 6 shadow,\n"
-        "7 shadow map, 8 masked coverage, 9 full coverage, 0 / Return final\n"
-        "Left click: probe a pixel (dossier on the right); arrows move it\n"
-        "Click the shadow map: mark the pixels that sample that texel\n"
-        "Wheel: zoom (all views); middle drag or shift+drag: pan; Z: fit\n"
-        "Right drag: orbit (fly mode: look); WASD/QE: move; ctrl+wheel: dolly\n"
-        "Space: play/pause; , and .: step; Home: reset camera; G: grid");
+    ImGui::TextUnformatted(helpText(m).c_str());
     ImGui::EndMenu();
   }
   ImGui::EndMainMenuBar();
 }
 
+// The visualisation's own controls: exposure (HDR colour), false colour and log (depth, scalars),
+// the stencil bits (named by the layout), the distance to the eye (positions).
+static void visualControls(ViewerModel& m, const ViewDef& d, ViewSettings& s) {
+  if (d.visual == Visual::Color) {
+    ImGui::SetNextItemWidth(160);
+    ImGui::SliderFloat("exposure (EV)", &s.exposure, -10.0f, 10.0f, "%+.1f");
+    tooltip("colour shown = stored linear colour x 2^EV, then sRGB-encoded");
+  }
+  const ViewMapping mapping = viewMapping(d, s);
+  if (mapping.mapping == gpu::kViewMapGrey || mapping.mapping == gpu::kViewMapDepth) {
+    ImGui::Checkbox("false colour", &s.falseColor);
+    tooltip("viridis (perceptually uniform) instead of grey");
+    ImGui::SameLine();
+    ImGui::Checkbox("log", &s.log);
+    tooltip("logarithmic between black and white (both must be positive)");
+  }
+  if (d.visual == Visual::Position) ImGui::Checkbox("distance to the eye", &s.distance);
+  const auto& bits = m.frameLayout.quantities[size_t(d.quantity)].stencilBits;
+  if (d.visual == Visual::Stencil && !bits.empty()) {
+    ImGui::TextUnformatted("bits");
+    for (const auto& [bitName, mask] : bits) {
+      bool on = (s.stencilBits & mask) != 0;
+      ImGui::SameLine();
+      if (ImGui::Checkbox(bitName.c_str(), &on)) s.stencilBits = on ? s.stencilBits | mask : s.stencilBits & ~mask;
+    }
+    ImGui::SameLine();
+    if (ImGui::SmallButton("all")) s.stencilBits = 0;
+  }
+}
+
 static void viewSettings(ViewerModel& m) {
+  if (m.views.empty()) return;
   ImGui::TextUnformatted("Layout");
   ImGui::SameLine();
   int layout = int(m.layout);
@@ -108,43 +157,44 @@ static void viewSettings(ViewerModel& m) {
   ImGui::SameLine();
   ImGui::RadioButton("grid", &layout, int(LayoutMode::Grid));
   m.layout = LayoutMode(layout);
-  if (viewCombo("view", m.primary)) m.edited = m.primary;
-  if (m.layout == LayoutMode::SideBySide && viewCombo("beside", m.secondary)) m.edited = m.secondary;
+  if (viewCombo(m, "view", m.primary)) m.edited = m.primary;
+  if (m.layout == LayoutMode::SideBySide && viewCombo(m, "beside", m.secondary)) m.edited = m.secondary;
   ImGui::Separator();
-  viewCombo("settings of", m.edited);
-  const ViewDef& d = viewDef(m.edited);
-  ViewSettings& s = m.settings[int(m.edited)];
-  for (int c = 0; c < 4; ++c) {
-    if (!(d.available & (1u << c))) continue;
+  viewCombo(m, "settings of", m.edited);
+  const ViewDef& d = m.views[size_t(m.edited)];
+  ViewSettings& s = m.settings[size_t(m.edited)];
+  if (!d.space.empty()) ImGui::TextDisabled("%s", d.space.c_str());
+  for (int c = 0; c < int(d.componentNames.size()) && d.components > 1; ++c) {
     bool on = s.channels & (1u << c);
-    const char* rgba[] = {"R", "G", "B", "A"};
     if (c) ImGui::SameLine();
-    if (ImGui::Checkbox(rgba[c], &on)) s.channels = on ? s.channels | (1u << c) : s.channels & ~(1u << c);
-    tooltip(channelLabel(d, c).c_str());
+    if (ImGui::Checkbox(d.componentNames[size_t(c)].c_str(), &on)) s.channels = on ? s.channels | (1u << c) : s.channels & ~(1u << c);
+    tooltip(componentLabel(d, c).c_str());
   }
-  ImGui::Checkbox("auto range", &s.autoRange);
-  tooltip("black and white point from the data: min/max over valid texels (depth: drawn geometry)");
-  if (s.autoRange) ImGui::BeginDisabled();
-  float range[2] = {s.black, s.white};
-  if (ImGui::DragFloat2("black/white", range, std::max(1e-4f, (s.white - s.black) * 0.005f), 0, 0, "%.5g")) {
-    s.black = range[0];
-    s.white = range[1];
-  }
-  if (s.autoRange) {
-    ImGui::EndDisabled();
-    const std::vector<RangeStats>& st = m.ranges[int(m.edited)];
-    ResolvedRange r = resolveRange(d, s, &st);
-    if (r.fromData) {
-      ImGui::Text("data: %.7g .. %.7g", r.stats.lo, r.stats.hi);
-      ImGui::SameLine();
-      if (ImGui::SmallButton("keep")) {  // start a manual range from the data's
-        s.autoRange = false;
-        s.black = r.black;
-        s.white = r.white;
+  visualControls(m, d, s);
+  if (d.visual != Visual::Id && d.visual != Visual::Stencil) {
+    ImGui::Checkbox("auto range", &s.autoRange);
+    tooltip("black and white point from the data: min/max over the texels that hold a value");
+    if (s.autoRange) ImGui::BeginDisabled();
+    float range[2] = {s.black, s.white};
+    if (ImGui::DragFloat2("black/white", range, std::max(1e-4f, (s.white - s.black) * 0.005f), 0, 0, "%.5g")) {
+      s.black = range[0];
+      s.white = range[1];
+    }
+    if (s.autoRange) {
+      ImGui::EndDisabled();
+      ResolvedRange r = resolveRange(d, s, &m.ranges[size_t(m.edited)]);
+      if (r.fromData) {
+        ImGui::Text("data: %.7g .. %.7g", r.stats.lo, r.stats.hi);
+        ImGui::SameLine();
+        if (ImGui::SmallButton("keep")) {  // start a manual range from the data's
+          s.autoRange = false;
+          s.black = r.black;
+          s.white = r.white;
+        }
       }
     }
   }
-  if (ImGui::SmallButton("reset view settings")) s = defaultSettings(m.edited);
+  if (ImGui::SmallButton("reset view settings")) s = defaultSettings(d);
   ImGui::Checkbox("NaN/Inf", &s.specials);
   ImGui::SameLine();
   ImGui::Checkbox("negative", &s.negative);

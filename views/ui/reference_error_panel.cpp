@@ -20,14 +20,21 @@ static void queueMap(ViewerModel& m, ViewDrawCallback callback, std::vector<View
   const ImGuiIO& io = ImGui::GetIO();
   Placement fb{at.x * io.DisplayFramebufferScale.x, at.y * io.DisplayFramebufferScale.y, scale * io.DisplayFramebufferScale.x};
   // Error maps are sRGB colour images held as `final`; decomposition terms linear colour in `hdr`
-  // drawn from 0 to their largest value; the light count as a heat map.
-  const ViewDef& def = viewDef(e.mapping);
-  ResolvedRange range = resolveRange(def, defaultSettings(e.mapping), nullptr);
-  if (e.mapping != ViewKind::Final) range.black = 0.0f, range.white = std::max(e.white, 1e-30f);
+  // drawn from 0 to their largest value; the light count as a heat map in `coverage_full`.
+  ViewDef def;
+  def.name = "reference";
+  def.visual = e.mapping;
+  def.components = e.mapping == Visual::Count ? 1 : 3;
+  def.integer = e.mapping == Visual::Count;
+  def.channels = e.mapping == Visual::Count ? 0x1 : 0x7;
+  ResolvedRange range;
+  if (e.mapping != Visual::Color || !e.srgbMap) range.black = 0.0f, range.white = std::max(e.white, 1e-30f);
+  ViewGpuSource src;
+  src.decoded = false;
   ViewDraw vd;
-  vd.source = def.source;
+  vd.referenceTarget = e.mapping == Visual::Count ? Target::CoverageFull : e.srgbMap ? Target::Final : Target::Hdr;
   vd.side = FrameSide::Reference;
-  vd.params = viewParams(def, defaultSettings(e.mapping), range, fb, false, std::nullopt, {1, 1});
+  vd.params = viewParams(def, defaultSettings(def), src, range, fb, false, std::nullopt, {1, 1});
   const float w = float(e.width * scale), h = float(e.height * scale);
   vd.rect = {fb.originX, fb.originY, w * io.DisplayFramebufferScale.x, h * io.DisplayFramebufferScale.y};
   draws.push_back(vd);

@@ -38,27 +38,30 @@ void histogram(const SeriesStats& s) {
   }
 }
 
-// The view's stored channels in the region: p1 of the lowest to p99 of the highest selected one.
+// The view's decoded components in the region: p1 of the lowest to p99 of the highest selected one.
 void autoRangeButton(ViewerModel& m) {
-  const ViewDef& d = viewDef(m.edited);
-  ViewSettings& s = m.settings[int(m.edited)];
-  if (!m.regionStats || d.source.stencil) return;
+  if (m.views.empty()) return;
+  const ViewDef& d = m.views[size_t(m.edited)];
+  ViewSettings& s = m.settings[size_t(m.edited)];
+  if (!m.regionStats || d.visual == Visual::Id || d.visual == Visual::Stencil) return;
+  const std::string& target = m.frameLayout.targets[d.target].name;
   double lo = 0.0, hi = 0.0;
   bool any = false;
-  for (int c = 0; c < 4; ++c) {
-    if (!(d.available & s.channels & (1u << c)) || size_t(c) >= channelNames(d.source.target).size()) continue;
-    const SeriesStats* st = (m.regionViewStats ? *m.regionViewStats : *m.regionStats).channel(targetName(d.source.target), channelNames(d.source.target)[c]);
+  const uint32_t mask = viewMapping(d, s).mask;
+  for (int c = 0; c < int(d.components); ++c) {
+    if (!(mask & (1u << c))) continue;
+    const SeriesStats* st = m.regionStats->quantity(target, componentLabel(d, c));
     if (!st || st->count == 0) continue;
     lo = any ? std::min(lo, st->p1) : st->p1;
     hi = any ? std::max(hi, st->p99) : st->p99;
     any = true;
   }
   if (!any) {
-    ImGui::TextDisabled("auto range: no values of %s in the region", targetName(d.source.target));
+    ImGui::TextDisabled("auto range: no values of %s in the region", d.name.c_str());
     return;
   }
   char label[128];
-  std::snprintf(label, sizeof label, "Auto range from this region (%s: %.4g .. %.4g)", viewName(m.edited), lo, hi);
+  std::snprintf(label, sizeof label, "Auto range from this region (%s: %.4g .. %.4g)", d.name.c_str(), lo, hi);
   if (ImGui::Button(label)) {
     s.autoRange = false;
     s.black = float(lo);
@@ -78,7 +81,6 @@ void drawRegion(ViewerModel& m) {
   if (ImGui::SmallButton("clear")) {
     m.region.reset();
     m.regionStats.reset();
-    m.regionViewStats.reset();
     m.uiChanged = true;
     return;
   }

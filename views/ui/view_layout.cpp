@@ -6,24 +6,27 @@
 
 namespace gb {
 
-std::vector<Rect> layoutViews(const Rect& a, LayoutMode mode, double gap) {
+std::vector<Rect> layoutViews(const Rect& a, LayoutMode mode, size_t count, double aspect, double gap) {
   std::vector<Rect> out;
-  if (mode == LayoutMode::Single) return {a};
-  if (mode == LayoutMode::SideBySide) {
-    if (a.w >= a.h) {
-      double w = std::floor((a.w - gap) / 2);
-      out.push_back({a.x, a.y, w, a.h});
-      out.push_back({a.x + w + gap, a.y, a.w - w - gap, a.h});
-    } else {
-      double h = std::floor((a.h - gap) / 2);
-      out.push_back({a.x, a.y, a.w, h});
-      out.push_back({a.x, a.y + h + gap, a.w, a.h - h - gap});
-    }
-    return out;
+  if (mode == LayoutMode::Single || count <= 1) return {a};
+  if (mode == LayoutMode::SideBySide) count = 2;
+  aspect = aspect > 0.0 ? aspect : 1.0;
+  // The grid whose cells show the image largest (ties: fewer rows, so views read left to right).
+  int bestCols = 1;
+  double bestScale = -1.0;
+  for (int cols = 1; cols <= int(count); ++cols) {
+    const int rows = int((count + size_t(cols) - 1) / size_t(cols));
+    const double w = (a.w - gap * (cols - 1)) / cols, h = (a.h - gap * (rows - 1)) / rows;
+    const double scale = std::min(w / aspect, h);
+    if (w > 0 && h > 0 && scale > bestScale * 1.0001) bestScale = scale, bestCols = cols;
   }
-  double w = std::floor((a.w - 2 * gap) / 3), h = std::floor((a.h - 2 * gap) / 3);
-  for (int row = 0; row < 3; ++row)
-    for (int col = 0; col < 3; ++col) out.push_back({a.x + col * (w + gap), a.y + row * (h + gap), w, h});
+  if (mode == LayoutMode::SideBySide) bestCols = 2;  // "two": side by side, as people compare
+  const int cols = bestCols, rows = int((count + size_t(cols) - 1) / size_t(cols));
+  const double w = std::floor((a.w - gap * (cols - 1)) / cols), h = std::floor((a.h - gap * (rows - 1)) / rows);
+  for (size_t i = 0; i < count; ++i) {
+    const int row = int(i) / cols, col = int(i) % cols;
+    out.push_back({a.x + col * (w + gap), a.y + row * (h + gap), w, h});
+  }
   return out;
 }
 

@@ -17,9 +17,10 @@ struct Rect {
 
 enum class LayoutMode { Single, SideBySide, Grid };
 
-// Rectangles for `count` views (1, 2 or 9) in `area`, `gap` pixels apart: one, two side by side
-// (one above the other when the area is taller than wide), or a 3x3 grid.
-std::vector<Rect> layoutViews(const Rect& area, LayoutMode mode, double gap = 4.0);
+// Rectangles for `count` views in `area`, `gap` pixels apart: one; two side by side; or a grid of
+// as many cells, its columns and rows chosen so that images of aspect `aspect` (width / height) show
+// largest (cells keep that aspect: a 16:9 target fills its cell's width or height).
+std::vector<Rect> layoutViews(const Rect& area, LayoutMode mode, size_t count, double aspect, double gap = 4.0);
 
 struct ViewTransform {
   double zoom = 1.0;                // 1: the whole image fits the rectangle

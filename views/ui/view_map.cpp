@@ -67,6 +67,77 @@ static VkImageView sourceView(const Renderer& r, const ViewSource& s) {
   return isDepthFormat(img.desc.format) ? img.depthView : img.view;
 }
 
+ViewImage targetImage(const Renderer& r, const ViewSource& s) {
+  const GraphTarget& t = r.targets[size_t(s.target)];
+  if (!t.image.image) return {};
+  return {sourceView(r, s), t.layout, isUintSource(r, s)};
+}
+
+std::optional<ViewSource> nativeSource(const Layout& layout, const ViewDef& view, ViewGpuSource* gpu) {
+  const LayoutTarget& lt = layout.targets[view.target];
+  Target t;
+  if (!parseTarget(lt.name, t)) return std::nullopt;
+  const Quantity& q = layout.quantities[size_t(view.quantity)];
+  ViewSource s{t, q.kind == QuantityKind::Stencil && lt.format.depth};
+  if (gpu) {
+    *gpu = ViewGpuSource{};
+    gpu->decoded = false;
+    gpu->nativeNormal = q.kind == QuantityKind::Normal;
+    // The stencil aspect is an image of its own (channel 0); an encoded normal decodes to x, y, z.
+    if (s.stencil || gpu->nativeNormal)
+      gpu->channelOf = {0, 1, 2, 3};
+    else
+      gpu->channelOf.assign(q.channels.begin(), q.channels.end());
+    gpu->background = view.background;
+  }
+  return s;
+}
+
+void uploadViewImages(ViewImages& out, GpuContext& ctx, const std::vector<CpuImage>& decoded) {
+  destroyViewImages(out, ctx);
+  out.images.resize(decoded.size());
+  for (size_t i = 0; i < decoded.size(); ++i) {
+    const CpuImage& img = decoded[i];
+    if (img.empty()) continue;
+    ImageDesc d;
+    d.format = img.type == PixelType::U32 ? VK_FORMAT_R32_UINT : VK_FORMAT_R32G32B32A32_SFLOAT;
+    d.width = img.width;
+    d.height = img.height;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    const std::string label = "view " + img.name;  // RenderDoc / Nsight name it
+    d.name = label.c_str();
+    Image& gi = out.images[i];
+    gi = createImage(ctx, d);
+    Buffer staging = createBuffer(ctx, img.data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload, "view staging");
+    std::memcpy(staging.mapped, img.data.data(), img.data.size());
+    submitOnce(ctx, [&](VkCommandBuffer cmd) {
+      const VkImageSubresourceRange all = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      imageBarrier(cmd, gi.image, all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
+                   0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+      VkBufferImageCopy copy{};
+      copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      copy.imageExtent = {img.width, img.height, 1};
+      vkCmdCopyBufferToImage(cmd, staging.buffer, gi.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+      imageBarrier(cmd, gi.image, all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    });
+    destroyBuffer(ctx, staging);
+  }
+}
+
+void destroyViewImages(ViewImages& images, GpuContext& ctx) {
+  if (!images.images.empty()) vkDeviceWaitIdle(ctx.device);
+  for (Image& i : images.images) destroyImage(ctx, i);
+  images.images.clear();
+}
+
+ViewImage viewImageOf(const ViewImages& images, size_t view) {
+  if (view >= images.images.size() || !images.images[view].image) return {};
+  const Image& i = images.images[view];
+  return {i.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, i.desc.format == VK_FORMAT_R32_UINT};
+}
+
 static void pushImages(Renderer& r, VkCommandBuffer cmd, VkPipelineBindPoint bindPoint, VkPipelineLayout layout,
                        std::initializer_list<std::pair<uint32_t, VkDescriptorImageInfo>> images, const Buffer* results) {
   std::vector<VkDescriptorImageInfo> infos;
@@ -125,7 +196,9 @@ std::vector<RangeStats> computeRanges(ViewMapper& m, Renderer& r, const std::vec
                        &m.results);
             gpu::ViewParams params{};  // RangeParams is the first 16 bytes of the push range
             gpu::RangeParams rp{};
-            rp.select = glm::uvec4(q.channel, q.predicate, uint32_t(i), 0u);
+            uint32_t background = 0;
+            std::memcpy(&background, &q.background, 4);
+            rp.select = glm::uvec4(q.channel, q.predicate, uint32_t(i), background);
             std::memcpy(&params, &rp, sizeof(rp));
             vkCmdPushConstants(pc.cmd, m.layout, VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0,
                                sizeof(params), &params);
@@ -152,10 +225,10 @@ std::vector<RangeStats> computeRanges(ViewMapper& m, Renderer& r, const std::vec
 }
 
 void drawView(ViewMapper& m, Renderer& r, VkCommandBuffer cmd, VkRenderPass renderPass, VkFormat attachmentFormat,
-              const ViewSource& source, const gpu::ViewParams& params, VkRect2D viewport, VkRect2D scissor, Renderer* b) {
-  const bool uintSource = isUintSource(r, source);
+              const ViewImage& source, const gpu::ViewParams& params, VkRect2D viewport, VkRect2D scissor, const ViewImage* b) {
+  const bool uintSource = source.uint;
   const bool diff = params.mode.x == gpu::kViewMapDiff;
-  GB_ASSERT(!diff || (b && b->targets[size_t(source.target)].image.image));
+  GB_ASSERT(source.valid() && (!diff || (b && b->valid())));
   const bool mark = (params.mode.z & gpu::kViewFlagMark) && !uintSource && !diff;
   const bool srgbOut = attachmentFormat == VK_FORMAT_B8G8R8A8_SRGB || attachmentFormat == VK_FORMAT_R8G8B8A8_SRGB;
   const Shader shader = diff ? (uintSource ? Shader::view_map_diff_uint_frag : Shader::view_map_diff_frag)
@@ -176,26 +249,18 @@ void drawView(ViewMapper& m, Renderer& r, VkCommandBuffer cmd, VkRenderPass rend
     p = createGraphicsPipeline(*r.ctx, d);
   }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
-  const VkImageLayout readLayout = r.targets[size_t(source.target)].layout;
   if (diff) {
-    const GraphTarget& other = b->targets[size_t(source.target)];
     pushImages(r, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.layout,
-               {{0u, {r.samplerPoint, sourceView(r, source), readLayout}},
-                {1u, {r.samplerPoint, sourceView(*b, source), other.layout}}},
-               nullptr);
+               {{0u, {r.samplerPoint, source.view, source.layout}}, {1u, {r.samplerPoint, b->view, b->layout}}}, nullptr);
   } else if (mark) {
     const GraphTarget& depth = r.targets[size_t(Target::Depth)];
     pushImages(r, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.layout,
-               {{0u, {r.samplerPoint, sourceView(r, source), readLayout}},
-                {1u, {r.samplerPoint, depth.image.view, depth.layout}}},
+               {{0u, {r.samplerPoint, source.view, source.layout}}, {1u, {r.samplerPoint, depth.image.view, depth.layout}}},
                nullptr);
   } else {
-    pushImages(r, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.layout, {{0u, {r.samplerPoint, sourceView(r, source), readLayout}}},
-               nullptr);
+    pushImages(r, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m.layout, {{0u, {r.samplerPoint, source.view, source.layout}}}, nullptr);
   }
-  gpu::ViewParams pushed = params;
-  if (source.stencil) pushed.mode.y = 1;  // the stencil view holds one channel
-  vkCmdPushConstants(cmd, m.layout, VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pushed), &pushed);
+  vkCmdPushConstants(cmd, m.layout, VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(params), &params);
   VkViewport vp{float(viewport.offset.x), float(viewport.offset.y), float(viewport.extent.width),
                 float(viewport.extent.height), 0.0f, 1.0f};
   vkCmdSetViewport(cmd, 0, 1, &vp);

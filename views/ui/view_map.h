@@ -4,11 +4,13 @@
 // is computed for a view that is not shown.
 #pragma once
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "renderer/renderer.h"
-#include "views/analysis/view_table.h"
+#include "views/analysis/visualize.h"
+#include "views/ui/view_params.h"
 
 namespace gb {
 
@@ -30,14 +32,37 @@ struct ViewMapper {
 void initViewMapper(ViewMapper& m, Renderer& r);
 void destroyViewMapper(ViewMapper& m, Renderer& r);
 
+// A live view's source: one of gblens's targets (its stencil aspect for a stencil quantity).
+struct ViewSource {
+  Target target = Target::Final;
+  bool stencil = false;
+};
+// The live target holding a view of gblens's own layout (its layout target's name is the target's),
+// with the channels its components are in; nothing when the view's target is not one of gblens's.
+std::optional<ViewSource> nativeSource(const Layout& layout, const ViewDef& view, ViewGpuSource* gpu = nullptr);
+
+// What the GPU samples for a view: an image view in a layout readable by fragment shaders.
+struct ViewImage {
+  VkImageView view = VK_NULL_HANDLE;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  bool uint = false;  // integer texels (usampler2D)
+  bool valid() const { return view != VK_NULL_HANDLE; }
+};
+ViewImage targetImage(const Renderer& r, const ViewSource& source);
+
+// Decoded view images (a capture's views, views/analysis/visualize.h viewImage) on the GPU.
+struct ViewImages {
+  std::vector<Image> images;  // one per view; empty where the frame has nothing to show
+};
+void uploadViewImages(ViewImages& out, GpuContext& ctx, const std::vector<CpuImage>& decoded);
+void destroyViewImages(ViewImages& images, GpuContext& ctx);
+ViewImage viewImageOf(const ViewImages& images, size_t view);
+
 struct RangeRequest {
   ViewSource source;
   uint32_t channel = 0;
   uint32_t predicate = gpu::kRangeAll;  // kRange*: which texels count
-};
-struct RangeStats {
-  uint64_t count = 0, nan = 0, inf = 0, negative = 0;  // count: valid finite texels
-  double lo = 0.0, hi = 0.0;                            // meaningful when count > 0
+  float background = 0.0f;              // kRangeNotValue
 };
 
 // One compute pass after the frame; `handOff` targets are left readable by fragment shaders.
@@ -46,11 +71,11 @@ std::vector<RangeStats> computeRanges(ViewMapper& m, Renderer& r, const std::vec
 
 // Records one view into the current render pass: `viewport` is the view's rectangle in
 // framebuffer pixels (params.transform places the image in it), `scissor` its visible part.
-// The source target must be readable by fragment shaders (FrameRequest::sampleAfter).
-// With params.mode.x == kViewMapDiff, `b` holds the frame compared with (the same target is read).
+// `r` gives the pipelines' specialisation (normal encoding) and the scene set (marks); `source` must
+// be readable by fragment shaders. With params.mode.x == kViewMapDiff, `b` is the frame compared with.
 void drawView(ViewMapper& m, Renderer& r, VkCommandBuffer cmd, VkRenderPass renderPass, VkFormat attachmentFormat,
-              const ViewSource& source, const gpu::ViewParams& params, VkRect2D viewport, VkRect2D scissor,
-              Renderer* b = nullptr);
+              const ViewImage& source, const gpu::ViewParams& params, VkRect2D viewport, VkRect2D scissor,
+              const ViewImage* b = nullptr);
 
 // Inverse of the shaders' orderedFromFloat (view_range.comp).
 float floatFromOrdered(uint32_t ordered);

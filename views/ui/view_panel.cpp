@@ -11,23 +11,55 @@
 
 namespace gb {
 
-glm::uvec2 viewImageSize(const ViewerModel& m, ViewKind v) {
-  if (viewDef(v).source.target == Target::ShadowMap) return m.shadowMapSize;
+void setViews(ViewerModel& m, std::vector<ViewDef> views) {
+  std::vector<ViewSettings> settings;
+  for (const ViewDef& v : views) {
+    int before = findView(m.views, v.name);
+    settings.push_back(before >= 0 && m.views[size_t(before)].visual == v.visual ? m.settings[size_t(before)] : defaultSettings(v));
+  }
+  auto keep = [&](int index, int fallback) {
+    int i = index >= 0 && size_t(index) < m.views.size() ? findView(views, m.views[size_t(index)].name) : -1;
+    return i >= 0 ? i : std::min(fallback, int(views.size()) - 1);
+  };
+  m.primary = keep(m.primary, 0);
+  m.secondary = keep(m.secondary, 1);
+  m.edited = keep(m.edited, 0);
+  m.views = std::move(views);
+  m.settings = std::move(settings);
+  const size_t n = m.views.size();
+  m.ranges.assign(n, {});
+  m.gpuSources.assign(n, ViewGpuSource{});
+  m.unavailable.resize(n);
+  m.differenceMax.resize(n, 0.0);
+  m.hoverView.reset();
+}
+
+glm::uvec2 viewImageSize(const ViewerModel& m, int v) {
+  if (v >= 0 && size_t(v) < m.views.size() && m.views[size_t(v)].sun) return m.shadowMapSize;
   if (m.reducedBy > 1) return m.fullSize;
   return {m.rendered.width, m.rendered.height};
 }
 
-std::vector<ViewKind> visibleViews(const ViewerModel& m) {
+std::vector<int> gridViews(const ViewerModel& m) {
+  std::vector<int> out;
+  for (size_t i = 0; i < m.views.size(); ++i)
+    if (m.unavailable[i].empty()) out.push_back(int(i));
+  return out;
+}
+
+std::vector<int> visibleViews(const ViewerModel& m) {
+  if (m.views.empty()) return {};
   switch (m.layout) {
     case LayoutMode::Single: return {m.primary};
     case LayoutMode::SideBySide: return {m.primary, m.secondary};
-    case LayoutMode::Grid: return gridViews();
+    case LayoutMode::Grid: return gridViews(m);
   }
   return {};
 }
 
 std::vector<ViewSlot> viewSlots(const ViewerModel& m, const Rect& area) {
-  std::vector<ViewKind> views = visibleViews(m);
+  std::vector<int> views = visibleViews(m);
+  if (views.empty()) return {};
   std::vector<ViewSlot> out;
   if (m.source == FrameSource::Compare && m.layout == LayoutMode::Single) {
     if (m.split) return {{views[0], FrameSide::A, area, true}};
@@ -40,7 +72,8 @@ std::vector<ViewSlot> viewSlots(const ViewerModel& m, const Rect& area) {
                      row ? Rect{area.x + i * (len + gap), area.y, len, area.h} : Rect{area.x, area.y + i * (len + gap), area.w, len}});
     return out;
   }
-  std::vector<Rect> rects = layoutViews(area, m.layout);
+  const glm::uvec2 size = viewImageSize(m, views[0]);
+  std::vector<Rect> rects = layoutViews(area, m.layout, views.size(), double(size.x) / double(std::max(size.y, 1u)));
   for (size_t i = 0; i < views.size() && i < rects.size(); ++i) out.push_back({views[i], FrameSide::A, rects[i]});
   return out;
 }
@@ -50,11 +83,10 @@ bool applyViewKey(ViewerModel& m, int digit) {
     m.layout = LayoutMode::Grid;
     return true;
   }
-  for (int k = 0; k < kViewKindCount; ++k) {
-    const ViewDef& d = viewDef(ViewKind(k));
-    if (d.key[0] && d.key[0] - '0' == digit) {
-      m.primary = ViewKind(k);
-      m.edited = ViewKind(k);
+  for (size_t k = 0; k < m.views.size(); ++k) {
+    const ViewDef& d = m.views[k];
+    if (!d.key.empty() && d.key[0] - '0' == digit) {
+      m.primary = m.edited = int(k);
       if (m.layout == LayoutMode::Grid) m.layout = LayoutMode::Single;
       return true;
     }
@@ -114,7 +146,7 @@ struct HoverMarks {
 // One view slot of this interface frame, and what drawing it needs from around it.
 namespace {
 struct SlotDraw {
-  ViewKind kind = ViewKind::Final;
+  int view = 0;
   Rect rect;
   int index = 0;                 // the ImGui id of the slot's button
   FrameSide side = FrameSide::A;
@@ -129,28 +161,28 @@ struct SlotDraw {
 // The view's GPU draw (mapping parameters in framebuffer pixels), queued as an ImDrawList
 // callback clipped to the slot.
 static void queueViewDraw(ViewerModel& m, const SlotDraw& v, const Placement& pl, const ResolvedRange& range) {
-  const ViewDef& def = viewDef(v.kind);
+  const ViewDef& def = m.views[size_t(v.view)];
   const ImGuiIO& io = ImGui::GetIO();
   const Rect& r = v.rect;
   std::optional<glm::ivec2> mark = m.shadowMark;
   ViewDraw vd;
-  vd.source = def.source;
+  vd.view = v.view;
   vd.side = v.side;
   Placement fb = pl;  // framebuffer pixels (the same as window pixels unless the display scales)
   fb.originX *= io.DisplayFramebufferScale.x;
   fb.originY *= io.DisplayFramebufferScale.y;
   fb.scale *= io.DisplayFramebufferScale.x;
   // A reduced frame covers the full frame's placement: its texels are fullSize / rendered larger.
-  if (m.reducedBy > 1 && def.source.target != Target::ShadowMap && m.rendered.width > 0)
+  if (m.reducedBy > 1 && !def.sun && m.rendered.width > 0)
     fb.scale *= double(m.fullSize.x) / double(m.rendered.width);
   if (m.source != FrameSource::Live) mark.reset();  // marks need the live frame's matrices on the GPU
-  vd.params = viewParams(def, m.settings[int(v.kind)], range, fb, m.grid, mark, m.shadowMapSize);
+  vd.params = viewParams(def, m.settings[size_t(v.view)], m.gpuSources[size_t(v.view)], range, fb, m.grid, mark, m.shadowMapSize);
   if (v.side == FrameSide::Difference) {
     // |A - B| over the selected channels as a heat map from 0 to the largest difference.
     vd.params.mode.x = gpu::kViewMapDiff;
     vd.params.mode.z &= gpu::kViewFlagGrid;
-    vd.params.range = glm::vec4(0.0f, float(std::max(m.differenceMax[int(v.kind)], 1e-30)), vd.params.range.z, 0.0f);
-    if (def.mapping == gpu::kViewMapNormal || def.mapping == gpu::kViewMapColor) vd.params.mode.y &= 0x7u;
+    vd.params.range = glm::vec4(0.0f, float(std::max(m.differenceMax[size_t(v.view)], 1e-30)), vd.params.range.z, 1.0f);
+    if (def.visual == Visual::Normal || def.visual == Visual::Color || def.visual == Visual::Position) vd.params.mode.y &= 0x7u;
   }
   if (v.split) vd.splitX = (r.x + r.w * m.splitAt) * io.DisplayFramebufferScale.x;
   vd.rect = {r.x * io.DisplayFramebufferScale.x, r.y * io.DisplayFramebufferScale.y, r.w * io.DisplayFramebufferScale.x,
@@ -168,7 +200,7 @@ static void queueViewDraw(ViewerModel& m, const SlotDraw& v, const Placement& pl
 static void drawMarks(const ViewerModel& m, const SlotDraw& v, const Placement& pl) {
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const Rect& r = v.rect;
-  if (viewDef(v.kind).source.target != Target::ShadowMap) {
+  if (!m.views[size_t(v.view)].sun) {
     if (v.hover.texel) markTexel(dl, pl, *v.hover.texel, rgb(1, 1, 1), r);
     if (m.probePixel) markTexel(dl, pl, *m.probePixel, rgb(0.2f, 1.0f, 0.4f), r);
     if (m.region) {  // the region statistics' rectangle, in every screen view
@@ -191,13 +223,13 @@ static std::string rangeLine(const ViewerModel& m, const SlotDraw& v, const Reso
   std::string line;
   char buf[128];
   if (v.side == FrameSide::Difference) {
-    double worst = m.differenceMax[int(v.kind)];
+    double worst = m.differenceMax[size_t(v.view)];
     if (worst > 0.0)
       std::snprintf(buf, sizeof buf, "largest |A - B| %.6g", worst);
     else
       std::snprintf(buf, sizeof buf, "identical (every texel, selected channels)");
     line = buf;
-  } else if (m.settings[int(v.kind)].autoRange) {
+  } else if (m.settings[size_t(v.view)].autoRange) {
     if (range.fromData)
       std::snprintf(buf, sizeof buf, "auto %.6g .. %.6g", range.black, range.white);
     else
@@ -214,17 +246,17 @@ static std::string rangeLine(const ViewerModel& m, const SlotDraw& v, const Reso
 
 // The label box (side, key, name; the range line), the heat legend and the split handle.
 static void drawLabels(const ViewerModel& m, const SlotDraw& v, const ResolvedRange& range) {
-  const ViewDef& def = viewDef(v.kind);
+  const ViewDef& def = m.views[size_t(v.view)];
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const Rect& r = v.rect;
-  char label[160];
+  char label[200];
   const char* prefix = m.source != FrameSource::Compare ? ""
                        : v.split                         ? "A | B  "
                        : v.side == FrameSide::A          ? "A  "
                        : v.side == FrameSide::B          ? "B  "
                                                          : "|A-B|  ";
-  std::snprintf(label, sizeof label, "%s%s%s%s", prefix, v.showKey && def.key[0] ? def.key : "",
-                v.showKey && def.key[0] ? "  " : "", def.label);
+  std::snprintf(label, sizeof label, "%s%s%s%s", prefix, v.showKey && !def.key.empty() ? def.key.c_str() : "",
+                v.showKey && !def.key.empty() ? "  " : "", def.name.c_str());
   std::string line2 = rangeLine(m, v, range);
   ImVec2 ls = ImGui::CalcTextSize(label);
   float boxW = std::max(ls.x, ImGui::CalcTextSize(line2.c_str()).x) + 10;
@@ -236,10 +268,10 @@ static void drawLabels(const ViewerModel& m, const SlotDraw& v, const ResolvedRa
                 range.stats.nan || range.stats.inf ? rgb(1, 0.4f, 1) : rgb(0.8f, 0.8f, 0.8f), line2.c_str());
   if (v.side == FrameSide::Difference && r.w > 120 && r.h > 80)
     heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)),
-               float(m.differenceMax[int(v.kind)]), "|A - B|, max over the selected channels");
-  else if (def.mapping == gpu::kViewMapHeat && r.w > 120 && r.h > 80)
+               float(m.differenceMax[size_t(v.view)]), "|A - B|, max over the selected channels");
+  else if (def.visual == Visual::Count && r.w > 120 && r.h > 80)
     heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), range.white,
-               viewUnit(def, m.stats.method));
+               viewUnit(def, m.stats.method).c_str());
   if (v.split) {  // the split line and its handle
     float x = float(r.x + r.w * m.splitAt);
     dl->AddLine(ImVec2(x, float(r.y)), ImVec2(x, float(r.y + r.h)), rgb(1, 1, 1), 2.0f);
@@ -267,14 +299,14 @@ static void selectRegion(ViewerModel& m, glm::uvec2 size, glm::ivec2 texel) {
 static void handleMouse(ViewerModel& m, const SlotDraw& v, const Placement& pl, bool hovered, bool active) {
   ImGuiIO& io = ImGui::GetIO();
   const Rect& r = v.rect;
-  const glm::uvec2 size = viewImageSize(m, v.kind);
-  const bool shadowMap = viewDef(v.kind).source.target == Target::ShadowMap;
+  const glm::uvec2 size = viewImageSize(m, v.view);
+  const bool shadowMap = m.views[size_t(v.view)].sun;
   glm::dvec2 mouse(io.MousePos.x, io.MousePos.y);
   glm::dvec2 t = texelAt(pl, mouse);
   bool inside = t.x >= 0 && t.y >= 0 && t.x < size.x && t.y < size.y;
   glm::ivec2 texel(int(std::floor(t.x)), int(std::floor(t.y)));
   if (hovered) {
-    m.hoverView = v.kind;
+    m.hoverView = v.view;
     if (inside && !shadowMap) m.hover = texel;
     if (inside && shadowMap) m.hoverShadowTexel = texel;
     if (io.MouseWheel != 0.0f) {
@@ -297,7 +329,7 @@ static void handleMouse(ViewerModel& m, const SlotDraw& v, const Placement& pl, 
     selectRegion(m, size, texel);
   } else if (ImGui::IsItemClicked(ImGuiMouseButton_Left) || (active && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f) &&
                                                        io.MouseDelta.x + io.MouseDelta.y != 0.0f && !io.KeyShift)) {
-    m.edited = v.kind;
+    m.edited = v.view;
     if (inside && shadowMap) {
       if (ImGui::IsItemClicked(ImGuiMouseButton_Left))
         m.shadowMark = m.shadowMark && *m.shadowMark == texel ? std::nullopt : std::optional<glm::ivec2>(texel);
@@ -317,9 +349,9 @@ static void handleMouse(ViewerModel& m, const SlotDraw& v, const Placement& pl, 
 
 // One view slot: its button (for the mouse), the view or why it is unavailable, marks, labels.
 static void drawOneView(ViewerModel& m, const SlotDraw& v) {
-  const ViewDef& def = viewDef(v.kind);
+  const ViewDef& def = m.views[size_t(v.view)];
   const Rect& r = v.rect;
-  const glm::uvec2 size = viewImageSize(m, v.kind);
+  const glm::uvec2 size = viewImageSize(m, v.view);
 
   ImGui::SetCursorScreenPos(ImVec2(float(r.x), float(r.y)));
   ImGui::PushID(v.index);
@@ -330,7 +362,7 @@ static void drawOneView(ViewerModel& m, const SlotDraw& v) {
   ImGui::PopID();
 
   Placement pl = placeImage(r, size.x, size.y, m.transform);
-  const std::string& why = m.unavailable[int(v.kind)];
+  const std::string& why = m.unavailable[size_t(v.view)];
   if (!why.empty()) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), rgb(0.12f, 0.12f, 0.12f));
@@ -338,7 +370,7 @@ static void drawOneView(ViewerModel& m, const SlotDraw& v) {
     dl->AddText(ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(float(r.x) + 8, float(r.y + r.h * 0.4)),
                 rgb(0.8f, 0.8f, 0.8f), why.c_str(), nullptr, float(r.w) - 16.0f);
   } else {
-    ResolvedRange range = resolveRange(def, m.settings[int(v.kind)], &m.ranges[int(v.kind)]);
+    ResolvedRange range = resolveRange(def, m.settings[size_t(v.view)], &m.ranges[size_t(v.view)]);
     queueViewDraw(m, v, pl, range);
     drawMarks(m, v, pl);
     drawLabels(m, v, range);
@@ -362,7 +394,7 @@ void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, s
   m.hoverShadowTexel.reset();
   std::vector<ViewSlot> slots = viewSlots(m, area);
   for (size_t i = 0; i < slots.size(); ++i)
-    drawOneView(m, {.kind = slots[i].kind,
+    drawOneView(m, {.view = slots[i].view,
                     .rect = slots[i].rect,
                     .index = int(i),
                     .side = slots[i].side,

@@ -1,37 +1,14 @@
-// The viewer's views as data: which target each reads and how it maps it for people (normals as
-// colour, depth near-bright over its automatic range, coverage as a heat map, ...), the user's
-// per-view settings (channels, black/white point, highlights), and the GPU parameters that
-// follow from them. No ImGui and no Vulkan here: the choices are testable on their own.
+// The GPU parameters of a view: its mapping (views/analysis/visualize.h: the same choices the CPU
+// mapping makes), range, placement, texel grid and marks. No ImGui and no Vulkan here: the choices
+// are testable on their own.
 #pragma once
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "views/analysis/view_table.h"
-#include "views/ui/view_map.h"
+#include "views/analysis/visualize.h"
 
 namespace gb {
-
-struct ViewSettings {
-  uint32_t channels = 0xF;
-  bool autoRange = false;
-  float black = 0.0f, white = 1.0f;
-  bool specials = true;  // NaN / Inf highlighted
-  bool negative = true;  // negative highlighted (where the view calls them suspicious)
-};
-ViewSettings defaultSettings(ViewKind kind);
-
-// The automatic range requests a view needs (one per selected channel), empty when manual.
-std::vector<RangeRequest> rangeRequests(const ViewDef& def, const ViewSettings& s);
-
-// The range a view maps, from the data (auto) or the settings; `stats` are the results of
-// rangeRequests() in order (null: not computed yet).
-struct ResolvedRange {
-  float black = 0.0f, white = 1.0f;
-  bool fromData = false;  // auto and there was valid data
-  RangeStats stats;       // combined over the selected channels (auto only)
-};
-ResolvedRange resolveRange(const ViewDef& def, const ViewSettings& s, const std::vector<RangeStats>* stats);
 
 // Where an image lies in a view's rectangle: framebuffer position of texel (0,0)'s corner and
 // framebuffer pixels per texel.
@@ -39,8 +16,18 @@ struct Placement {
   double originX = 0.0, originY = 0.0, scale = 1.0;
 };
 
+// Where the GPU reads a view's values: a decoded view image (captures: components in channels 0..3,
+// empty texels marked), or gblens's live target, whose channels the quantity names.
+struct ViewGpuSource {
+  bool decoded = true;
+  bool nativeNormal = false;          // live normal target: decoded with the frame's NORMAL_ENCODING
+  std::vector<uint32_t> channelOf;    // component -> channel of the source (identity when decoded)
+  std::optional<double> background;   // live: the stored value where nothing was drawn (kRangeNotValue)
+};
+
 // Push constants for drawing a view. `markTexel`: shadow-map texel whose screen samples are marked.
-gpu::ViewParams viewParams(const ViewDef& def, const ViewSettings& s, const ResolvedRange& range, const Placement& placement,
-                           bool grid, std::optional<glm::ivec2> markTexel, glm::uvec2 shadowMapSize);
+gpu::ViewParams viewParams(const ViewDef& def, const ViewSettings& s, const ViewGpuSource& src, const ResolvedRange& range,
+                           const Placement& placement, bool grid, std::optional<glm::ivec2> markTexel,
+                           glm::uvec2 shadowMapSize);
 
 }  // namespace gb

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,9 +25,11 @@ namespace gb {
 // Reference: the live frame's reference-error map (app/viewer/reference_error.cpp's renderer).
 enum class FrameSide { A, B, Difference, Reference };
 
-// A view to draw inside the ImGui draw data: the app's callback records it (renderer/view_map).
+// A view to draw inside the ImGui draw data: the app's callback records it (views/ui/view_map),
+// reading view `view` of the side's frame (Reference: the reference renderer's `referenceTarget`).
 struct ViewDraw {
-  ViewSource source;
+  int view = 0;
+  Target referenceTarget = Target::Final;
   gpu::ViewParams params;
   Rect rect;  // framebuffer pixels: the view's rectangle (the draw command's clip rect clips it)
   FrameSide side = FrameSide::A;
@@ -47,13 +50,16 @@ struct ViewerModel {
   bool split = false;                // compare: one view split A | B, else A, B, |A - B| in a row
   float splitAt = 0.5f;              // split position, fraction of the view's width
   bool draggingSplit = false;
-  std::array<double, kViewKindCount> differenceMax{};  // compare: largest |A - B| of each view (white point)
+  std::vector<double> differenceMax;  // compare: largest |A - B| of each view (white point)
 
-  // ---- what is shown ----
+  // ---- what is shown: the views of the frame's layout (views/analysis/view_table.h) ----
+  std::vector<ViewDef> views;          // setViews(): every per-view vector below has one entry a view
   LayoutMode layout = LayoutMode::Single;
-  ViewKind primary = ViewKind::Final, secondary = ViewKind::Normal;
-  std::array<ViewSettings, kViewKindCount> settings;
-  ViewKind edited = ViewKind::Final;  // the view whose settings the panel shows (last used)
+  int primary = 0, secondary = 1;      // indices into views
+  std::vector<ViewSettings> settings;
+  std::vector<ViewGpuSource> gpuSources;  // how the GPU reads each view (the app sets them)
+  Layout frameLayout;                     // the layout the views come from (bit names, ids' names, ...)
+  int edited = 0;                      // the view whose settings the panel shows (last used)
   ViewTransform transform;
   bool grid = true;
   bool showControls = true, showPixel = true;
@@ -64,8 +70,8 @@ struct ViewerModel {
   FrameStats stats;
   double presentMs = 0.0;                       // views + interface, last presented frame
   uint64_t framesRendered = 0, framesPresented = 0;
-  std::array<std::vector<RangeStats>, kViewKindCount> ranges;  // automatic ranges (rangeRequests order)
-  std::array<std::string, kViewKindCount> unavailable;          // why a view has nothing to show
+  std::vector<std::vector<RangeStats>> ranges;  // automatic ranges (one per selected component)
+  std::vector<std::string> unavailable;         // why a view has nothing to show now ("": it has)
   std::string deviceName, sceneName;
   std::vector<std::string> cameraNames;         // the scene's (glTF) cameras
 
@@ -95,7 +101,7 @@ struct ViewerModel {
 
   // ---- hover and probe ----
   std::optional<glm::ivec2> hover;          // screen texel under the mouse (every view marks it)
-  std::optional<ViewKind> hoverView;        // the view under the mouse
+  std::optional<int> hoverView;             // the view under the mouse
   std::optional<glm::ivec2> hoverShadowTexel;
   std::string hoverText;                    // values under the mouse (app fills)
   std::optional<glm::ivec2> probeRequest;   // a click or an arrow key: the app probes it
@@ -121,7 +127,8 @@ struct ViewerModel {
     int map = 0;                    // shown: errorMaps() index, then the lighting decomposition's terms
     bool mapChanged = false;
     uint32_t width = 0, height = 0;
-    ViewKind mapping = ViewKind::Final;  // how the map is drawn: sRGB colour, HDR colour, heat (light count)
+    Visual mapping = Visual::Color;  // how the map is drawn: colour (sRGB maps: display, else linear), or a count
+    bool srgbMap = true;             // colour maps: the map is display colour already (error maps)
     float white = 1.0f;             // HDR and heat maps: the value drawn white (their largest)
     std::string summary, error, decomposeNote;
   } referenceError;
@@ -135,7 +142,6 @@ struct ViewerModel {
   std::optional<RegionRect> region;            // the selected rectangle (frame pixels)
   bool regionDirty = false;                    // selection finished or frame changed: the app recomputes
   std::optional<RegionStats> regionStats;      // of capture A or of the live frame's read-back
-  std::optional<RegionStats> regionViewStats;  // imported capture A: of the frame its views show (auto range)
   std::string regionNote;                      // why there are no numbers yet (a reduced frame, ...)
   int regionSeries = -1;                       // the series whose histogram is drawn (-1: the first)
 
@@ -155,9 +161,12 @@ struct ViewerModel {
 // wants now differ in anything (every member of RenderOptions).
 inline bool frameOutdated(const RenderOptions& rendered, const RenderOptions& wanted) { return !(rendered == wanted); }
 
+// Sets the views of the frame shown; settings of views of the same name are kept, the rest default.
+void setViews(ViewerModel& m, std::vector<ViewDef> views);
+
 // Image size a view shows (the shadow map has its own): the full frame's size, also while a
 // reduced frame stands in for it (texel coordinates, marks and probes stay full-resolution).
-glm::uvec2 viewImageSize(const ViewerModel& m, ViewKind v);
+glm::uvec2 viewImageSize(const ViewerModel& m, int view);
 
 // The whole interface for one ImGui frame: menu bar, panels, and the view area, whose views are
 // emitted as ImDrawList callbacks to `callback` with `draws[i]` as user data index i.
@@ -166,19 +175,22 @@ void drawViewerUi(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDra
 // The view area's rectangle for the current window size and panels (the app renders at its size).
 Rect viewArea(const ViewerModel& m, double windowWidth, double windowHeight);
 
+// The views of the grid: every view the frame can show now (none unavailable), in table order.
+std::vector<int> gridViews(const ViewerModel& m);
 // Which views are on screen now.
-std::vector<ViewKind> visibleViews(const ViewerModel& m);
+std::vector<int> visibleViews(const ViewerModel& m);
 
 // Each view on screen with its rectangle and which frame it shows (compare: A, B, |A - B|).
 struct ViewSlot {
-  ViewKind kind;
+  int view = 0;
   FrameSide side = FrameSide::A;
   Rect rect;
   bool split = false;
 };
 std::vector<ViewSlot> viewSlots(const ViewerModel& m, const Rect& area);
 
-// Keyboard shortcuts of the seed: 1 grid, 2..9 views, 0 / Return final. Returns true if handled.
+// Keyboard shortcuts: 1 grid, 0 / Return the first view, 2..9 the next ones (view_table.h keys).
+// Returns true if handled.
 bool applyViewKey(ViewerModel& m, int digit);
 
 }  // namespace gb

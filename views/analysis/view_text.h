@@ -1,0 +1,20 @@
+// What hover and the status bar say about a view at a pixel: the stored channels exactly as the
+// target holds them (integer codes, float bits' values) and the decoded value under the layout's names,
+// units and spaces (visualize.h viewValue), for any layout.
+#pragma once
+#include <string>
+
+#include "renderer/core/snapshot.h"
+#include "views/analysis/view_table.h"
+
+namespace gb {
+
+// "Albedo (330, 540)  stored albedo_specular (rgba8_srgb) Albedo.R 29 Albedo.G 40 Albedo.B 12  ->
+// linear R 0.01161 G 0.02122 B 0.003677"; "" when the frame does not hold the texel.
+std::string viewValueText(const FrameSnapshot& f, const ViewDef& view, uint32_t x, uint32_t y);
+
+// One stored channel as the target holds it: the integer code of integer and normalised formats,
+// the value of half and float channels (every digit a float needs).
+std::string storedText(const CpuImage& image, uint32_t x, uint32_t y, uint32_t channel);
+
+}  // namespace gb
