@@ -102,7 +102,7 @@ TEST(Compare, NormalAngleMatchesAHandComputedCase) {
   ASSERT_TRUE(compareCaptures(a, b, ThresholdSettings{}, report, error)) << error;
   const GroupResult* g = nullptr;
   for (const GroupResult& r : report.groups)
-    if (r.group.key == "normal_shadow.N") g = &r;
+    if (r.group.key == "normal_shadow.Normal") g = &r;
   ASSERT_NE(g, nullptr);
   EXPECT_EQ(g->group.kind, MetricKind::Normal);
   EXPECT_NEAR(g->figures.metrics["max_degrees"].get<double>(), 180.0, 1e-12);

@@ -57,7 +57,7 @@ TEST(CompareFormats, TwoNormalFormatsCompareWithinTheirQuantisation) {
   for (auto [other, bound] : {std::pair{&half, kRgba16fWorst + kOct16Worst}, {&snorm8, kRgba8SnormWorst + kOct16Worst}}) {
     CompareReport r = compared(oct, *other);
     EXPECT_TRUE(r.mismatches.empty()) << r.text();
-    const GroupResult* n = group(r, "normal_shadow.N");
+    const GroupResult* n = group(r, "normal_shadow.Normal");
     ASSERT_NE(n, nullptr) << r.text();
     EXPECT_EQ(n->group.kind, MetricKind::Normal);
     EXPECT_GT(n->figures.pixels, 0u);
@@ -77,7 +77,7 @@ TEST(CompareFormats, StandardAndReversedDepthCompareAsEyeDepthWithinTheirRoundin
   Capture standard = captured(dir, "standard", "--reversed-z off");
   Capture reversed = captured(dir, "reversed", "--reversed-z on");
   CompareReport r = compared(standard, reversed);
-  const GroupResult* g = group(r, "depth_stencil.Depth");
+  const GroupResult* g = group(r, "depth_stencil.HardwareDepth");
   ASSERT_NE(g, nullptr) << r.text();
   EXPECT_EQ(g->figures.coverageDiffers, 0u) << r.text();
   EXPECT_GT(g->figures.pixels, 0u);
