@@ -76,9 +76,10 @@ class Browser:
         return r["result"].get("value")
 
     def wait_for(self, expression, timeout=60):
+        """Until `expression` is true (an exception, e.g. while the page is still loading, counts as false)."""
         end = time.time() + timeout
         while time.time() < end:
-            if self.evaluate(expression):
+            if self.evaluate(f"(() => {{ try {{ return !!({expression}); }} catch (e) {{ return false; }} }})()"):
                 return
             time.sleep(0.05)
         raise TimeoutError(f"waited {timeout} s for {expression}")

@@ -100,8 +100,8 @@ def test_page_summary_views_and_hover(report, browser):
     x0, y0, w0, h0 = rect(b, "#summary tr[data-key='hdr'].pick")
     b.click(x0 + 10, y0 + h0 / 2)
     b.wait_for("document.body.dataset.shown === 'hdr|side|a'")
-    left, top, width, height = rect(b, "#pane-a")
     for x, y in report["hover"]:
+        left, top, width, height = rect(b, "#pane-a")  # again: a full-page screenshot may scroll the page
         b.mouse(left + (x + 0.5) * width / 64, top + (y + 0.5) * height / 36)
         b.wait_for(f"(t => t && t.dataset.x === '{x}' && t.dataset.y === '{y}')(document.getElementById('readout-table'))")
         cells = b.evaluate("""Object.fromEntries([...document.querySelectorAll('#readout-table td[data-side]')].map(
