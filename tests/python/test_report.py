@@ -96,25 +96,29 @@ def test_page_summary_views_and_hover(report, browser):
             assert close(number(row["metrics"][name]), f[name])
     assert {x["key"] for x in rows} >= {s["target"] for s in r["skipped"]}
 
-    # The hdr group: A and B side by side; hovering a pixel shows both sides' stored and decoded values.
-    x0, y0, w0, h0 = rect(b, "#summary tr[data-key='hdr'].pick")
-    b.click(x0 + 10, y0 + h0 / 2)
-    b.wait_for("document.body.dataset.shown === 'hdr|side|a'")
-    for x, y in report["hover"]:
-        left, top, width, height = rect(b, "#pane-a")  # again: a full-page screenshot may scroll the page
-        b.mouse(left + (x + 0.5) * width / 64, top + (y + 0.5) * height / 36)
-        b.wait_for(f"(t => t && t.dataset.x === '{x}' && t.dataset.y === '{y}')(document.getElementById('readout-table'))")
-        cells = b.evaluate("""Object.fromEntries([...document.querySelectorAll('#readout-table td[data-side]')].map(
-          td => [td.dataset.side + '.' + td.dataset.what + '.' + td.dataset.index, td.textContent]))""")
-        for side in ("a", "b"):
-            probe = run_json("probe", report[side], x, y, "--json")
-            decoded = next(q for q in probe["quantities"] if q["name"] == "HDR")["values"]
-            stored = [c["value"] for c in next(t for t in probe["targets"] if t["target"] == "hdr")["channels"]]
-            for k in range(4):  # float32 in the data file: six digits shown
-                assert close(float(cells[f"{side}.decoded.{k}"]), decoded[k]), (side, x, y, k)
-                assert close(float(cells[f"{side}.stored.{k}"]), stored[k]), (side, x, y, k)
-        if (x, y) == report["hover"][0]:
-            b.screenshot(report["dir"] / "hover.png")
+    # Albedo (8-bit sRGB) and hdr (float): A and B side by side; hovering a pixel shows both sides'
+    # stored and decoded values, as `gblens probe` gives them.
+    for key, quantity, target, pixels in [("albedo_specular.Albedo", "Albedo", "albedo_specular", HOVER[:1]),
+                                          ("hdr", "HDR", "hdr", report["hover"])]:
+        x0, y0, w0, h0 = rect(b, f"#summary tr[data-key='{key}'].pick")
+        b.click(x0 + 10, y0 + h0 / 2)
+        b.wait_for(f"document.body.dataset.shown === '{key}|side|a'")
+        for x, y in pixels:
+            left, top, width, height = rect(b, "#pane-a")  # again: a full-page screenshot may scroll the page
+            b.mouse(left + (x + 0.5) * width / 64, top + (y + 0.5) * height / 36)
+            b.wait_for(f"(t => t && t.dataset.x === '{x}' && t.dataset.y === '{y}')(document.getElementById('readout-table'))")
+            cells = b.evaluate("""Object.fromEntries([...document.querySelectorAll('#readout-table td[data-side]')].map(
+              td => [td.dataset.side + '.' + td.dataset.what + '.' + td.dataset.index, td.textContent]))""")
+            for side in ("a", "b"):
+                probe = run_json("probe", report[side], x, y, "--json")
+                decoded = next(q for q in probe["quantities"] if q["name"] == quantity)["values"]
+                channels = next(t for t in probe["targets"] if t["target"] == target)["channels"]
+                stored = [c["value"] for c in channels[:len(decoded)]]
+                for k in range(len(decoded)):  # float32 in the data file: six digits shown
+                    assert close(float(cells[f"{side}.decoded.{k}"]), decoded[k]), (key, side, x, y, k)
+                    assert close(float(cells[f"{side}.stored.{k}"]), stored[k]), (key, side, x, y, k)
+            if (x, y) == report["hover"][0]:
+                b.screenshot(report["dir"] / "hover.png")
 
     # Swipe: A left of the mouse, B right; moving the mouse moves the split.
     a_cols, b_cols = b.evaluate(COLUMNS + "('pane-a')"), b.evaluate(COLUMNS + "('pane-b')")

@@ -133,19 +133,27 @@ function show(key) {
   document.body.append(el('script', { src: G.groups[key].data }));
 }
 
-async function unpack(b64) {
+// report_data.cpp's packing undone: base64 -> inflate -> unshuffle the floats' bytes (when shuffled)
+// -> planes back to `n` components interleaved per pixel.
+async function unpack(b64, n, shuffled) {
   const bin = atob(b64), bytes = new Uint8Array(bin.length);
   for (let i = 0; i < bin.length; ++i) bytes[i] = bin.charCodeAt(i);
   const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('deflate'));
-  return new Float32Array(await new Response(stream).arrayBuffer());
+  const inflated = new Uint8Array(await new Response(stream).arrayBuffer()), count = inflated.length / 4;
+  const planar = new Uint8Array(inflated.length);
+  if (shuffled) for (let j = 0; j < count; ++j) for (let b = 0; b < 4; ++b) planar[j * 4 + b] = inflated[b * count + j];
+  else planar.set(inflated);
+  const p = new Float32Array(planar.buffer), pixels = count / n, out = new Float32Array(count);
+  for (let k = 0; k < n; ++k) for (let i = 0; i < pixels; ++i) out[i * n + k] = p[k * pixels + i];
+  return out;
 }
 
 async function gblensData(d) {
   for (const s of ['a', 'b']) {
-    d[s].stored = await unpack(d[s].stored);
-    d[s].decoded = d[s].decoded === null ? d[s].stored : await unpack(d[s].decoded);
+    d[s].stored = await unpack(d[s].stored, d[s].channels.length, d.shuffled);
+    d[s].decoded = d[s].decoded === null ? d[s].stored : await unpack(d[s].decoded, d[s].components.length, d.shuffled);
   }
-  d.error = await unpack(d.error);
+  d.error = await unpack(d.error, 1, d.shuffled);
   G.data[d.key] = d;
   if (G.key === d.key) draw();
 }

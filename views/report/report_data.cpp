@@ -19,16 +19,28 @@ namespace gb {
 
 namespace {
 
-// float32 array -> zlib-deflated bytes -> base64 (EVP_EncodeBlock: no line breaks).
-std::string pack(const std::vector<float>& values) {
-  const uLong bytes = uLong(values.size() * sizeof(float));
-  uLongf size = compressBound(bytes);
+// float32 array of `components` interleaved per pixel -> planes (one per component) -> with `shuffle`
+// the bytes of the floats shuffled (every float's first byte, then every second byte, ...: OpenEXR's
+// and Blosc's shuffle, so deflate sees the slowly varying high bytes together; it helps floats of a
+// float target and hurts values of an 8-bit one, whose few distinct floats deflate finds whole) ->
+// zlib deflate -> base64 (EVP_EncodeBlock: no line breaks). page.js undoes it in reverse.
+std::string pack(const std::vector<float>& values, uint32_t components, bool shuffle) {
+  const size_t n = values.size(), pixels = n / components;
+  std::vector<unsigned char> shuffled(n * sizeof(float));
+  for (size_t i = 0; i < pixels; ++i)
+    for (uint32_t k = 0; k < components; ++k) {
+      unsigned char bytes[sizeof(float)];
+      std::memcpy(bytes, &values[i * components + k], sizeof(float));
+      const size_t j = size_t(k) * pixels + i;  // the float's place in its plane
+      for (size_t b = 0; b < sizeof(float); ++b) shuffled[shuffle ? b * n + j : j * sizeof(float) + b] = bytes[b];
+    }
+  uLongf size = compressBound(uLong(shuffled.size()));
   std::vector<unsigned char> deflated(size);
-  const int z = compress2(deflated.data(), &size, reinterpret_cast<const Bytef*>(values.data()), bytes, Z_BEST_SPEED);
+  const int z = compress2(deflated.data(), &size, shuffled.data(), uLong(shuffled.size()), Z_BEST_SPEED);
   GB_ASSERT(z == Z_OK);
   std::string b64(4 * ((size + 2) / 3) + 1, '\0');
-  const int n = EVP_EncodeBlock(reinterpret_cast<unsigned char*>(b64.data()), deflated.data(), int(size));
-  b64.resize(size_t(n));
+  const int written = EVP_EncodeBlock(reinterpret_cast<unsigned char*>(b64.data()), deflated.data(), int(size));
+  b64.resize(size_t(written));
   return b64;
 }
 
@@ -45,7 +57,7 @@ nlohmann::json ranges(const std::vector<float>& v, uint32_t components) {
 }
 
 // One side of a group: what the page shows about it, and its packed arrays.
-nlohmann::json side(const FrameSnapshot& f, const Quantity& q) {
+nlohmann::json side(const FrameSnapshot& f, const Quantity& q, bool shuffle) {
   const TargetImage& ti = f.images[q.target];
   const CpuImage& image = ti.image;
   const uint32_t channels = uint32_t(q.channels.size());
@@ -71,8 +83,8 @@ nlohmann::json side(const FrameSnapshot& f, const Quantity& q) {
           {"space", view.space},
           {"channels", names},
           {"components", components},
-          {"stored", pack(stored)},
-          {"decoded", same ? nlohmann::json(nullptr) : nlohmann::json(pack(decoded))},
+          {"stored", pack(stored, channels, shuffle)},
+          {"decoded", same ? nlohmann::json(nullptr) : nlohmann::json(pack(decoded, n, shuffle))},
           {"ranges", ranges(decoded, n)}};
 }
 
@@ -91,12 +103,15 @@ bool writeText(const std::string& path, const std::string& text, std::string& er
 bool writeGroupData(const Capture& a, const Capture& b, const GroupResult& g, const std::string& file,
                     std::string& error) {
   const Quantity &qa = *a.frame.layout.findByName(g.group.group), &qb = *b.frame.layout.findByName(g.group.group);
+  const PixelType type = a.frame.images[qa.target].image.type;
+  const bool shuffle = type == PixelType::F16 || type == PixelType::F32;
   nlohmann::json data = {{"key", g.group.key},
                          {"width", g.width},
                          {"height", g.height},
-                         {"a", side(a.frame, qa)},
-                         {"b", side(b.frame, qb)},
-                         {"error", pack(g.errors)}};
+                         {"shuffled", shuffle},
+                         {"a", side(a.frame, qa, shuffle)},
+                         {"b", side(b.frame, qb, shuffle)},
+                         {"error", pack(g.errors, 1, shuffle)}};
   return writeText(file, "gblensData(" + data.dump() + ");\n", error);
 }
 
