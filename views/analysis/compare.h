@@ -177,9 +177,10 @@ Verdict decide(const Thresholds& t, uint64_t pixels, uint64_t overWarn, uint64_t
 
 // A group's heat map with its legend below (black = equal or not compared, blue -> red = 0 -> the
 // largest finite error, white = infinite), and a FLIP map (magma, 0 to 1) with its legend. The map
-// is the image's top-left width x height pixels; the legend strip makes the image at least
-// kLegendMinWidth wide. Empty with `error` when the legend cannot be drawn (no font).
-constexpr uint32_t kLegendMinWidth = 360, kLegendHeight = 34;
+// is the image's top-left width x height pixels; the legend strip below it makes the image at least
+// kLegendMinWidth wide, and its bar and labels span at most kLegendMaxWidth from the left. Empty with
+// `error` when the legend cannot be drawn (no font).
+constexpr uint32_t kLegendMinWidth = 360, kLegendMaxWidth = 720, kLegendHeight = 34;
 Rgba8Image heatmapImage(const GroupResult& g, std::string& error);
 Rgba8Image flipMapImage(const FlipResult& r, std::string& error);
 

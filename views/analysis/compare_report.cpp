@@ -94,14 +94,14 @@ Rgba8Image withLegend(uint32_t w, uint32_t h, const std::function<void(size_t, u
       pixel(size_t(y) * w + x, p);
       p[3] = 255;
     }
-  const uint32_t x0 = 8, x1 = width - 8;
+  const uint32_t x0 = 8, x1 = std::min(width, kLegendMaxWidth) - 8;  // a wide map's legend stays readable at 1:1
   for (uint32_t y = h + 4; y < h + 14; ++y)
     for (uint32_t x = x0; x < x1; ++x) bar(double(x - x0) / double(x1 - 1 - x0), &img.pixels[(size_t(y) * width + x) * 4]);
   OIIO::ImageBuf buf(OIIO::ImageSpec(int(width), int(height), 4, OIIO::TypeDesc::UINT8), img.pixels.data());
   const float white[4] = {0.92f, 0.92f, 0.92f, 1.0f};
   const int baseline = int(h) + 29;
   using Align = OIIO::ImageBufAlgo::TextAlignX;
-  for (auto [text, x, align] : {std::tuple{left, int(x0), Align::Left}, {centre, int(width / 2), Align::Center},
+  for (auto [text, x, align] : {std::tuple{left, int(x0), Align::Left}, {centre, int(x0 + x1) / 2, Align::Center},
                                 {right, int(x1), Align::Right}})
     if (!text.empty() && !OIIO::ImageBufAlgo::render_text(buf, x, baseline, text, 13, "DejaVuSans", white, align)) {
       error = "cannot draw a legend (" + buf.geterror() + "; the font DejaVuSans is in fonts-dejavu-core: make deps)";

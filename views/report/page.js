@@ -4,7 +4,7 @@
 // stored and decoded values at the pixel. No framework, no network: everything is beside the page.
 'use strict';
 const G = { report: null, groups: {}, data: {}, waiting: {}, key: null, mode: 'side', side: 'a', mult: 1, exposure: 0,
-            split: 0.5, images: null };
+            split: 0.5, zoom: 'fit', images: null };
 const COLOUR = ['albedo', 'base_color', 'emission', 'radiance', 'display'];
 const $ = (id) => document.getElementById(id);
 
@@ -118,6 +118,8 @@ function controls() {
   const range = (id, min, max, step, value, on) => el('input', { id, type: 'range', min, max, step, value, oninput: (e) => { on(Number(e.target.value)); draw(); } });
   return el('div', { id: 'controls' }, mode('side', 'side by side'), mode('swipe', 'swipe'), mode('flip', 'flip A/B (F)'),
     el('label', {}, 'difference x', range('mult', 1, 100, 1, 1, (v) => { G.mult = v; $('mult-value').textContent = v; }), el('span', { id: 'mult-value' }, '1')),
+    el('label', {}, 'zoom ', el('select', { id: 'zoom', onchange: (e) => { G.zoom = e.target.value; draw(); } },
+      ...['fit', '1', '2', '4', '8'].map((z) => el('option', { value: z }, z === 'fit' ? 'fit' : z + ':1')))),
     el('label', { id: 'exposure-label' }, 'exposure', range('exposure', -8, 8, 0.5, 0, (v) => { G.exposure = v; $('exposure-value').textContent = v; }), el('span', { id: 'exposure-value' }, '0')));
 }
 
@@ -227,7 +229,8 @@ function mapPane(id, label, src, d, zoom) {
   const img = el('img', { src });
   img.addEventListener('load', () => {
     map.getContext('2d').drawImage(img, 0, 0);
-    legend.width = img.naturalWidth, legend.height = img.naturalHeight - d.height;
+    // The legend at 1:1, as wide as its bar and labels (compare.h: 360 to 720 pixels from the left).
+    legend.width = Math.min(img.naturalWidth, 720), legend.height = img.naturalHeight - d.height;
     legend.getContext('2d').drawImage(img, 0, d.height, legend.width, legend.height, 0, 0, legend.width, legend.height);
   });
   const box = pane(id, label, map, d.width, d.height, zoom);
@@ -244,7 +247,8 @@ function draw() {
   $('exposure-label').style.display = COLOUR.includes(d.a.kind) ? '' : 'none';
   const key = `${G.key}|${G.exposure}`;
   if (!G.images || G.images.key !== key) G.images = { key, a: canvasOf(d, 'a'), b: canvasOf(d, 'b') };
-  const zoom = d.width >= 900 ? 900 / d.width : Math.max(1, Math.floor(480 / d.width));
+  // fit: small frames at the largest whole zoom up to 480 pixels wide, large ones scaled to 640.
+  const zoom = G.zoom !== 'fit' ? Number(G.zoom) : d.width >= 640 ? 640 / d.width : Math.max(1, Math.floor(480 / d.width));
   const panes = $('panes');
   panes.textContent = '';
   if (G.mode === 'side') {
