@@ -319,6 +319,10 @@ static void updateFrame(Viewer& v, const LoopState& s, int fbw, int fbh, double 
     std::optional<glm::ivec2> texel = m.hoverView && m.views[size_t(*m.hoverView)].sun ? m.hoverShadowTexel : m.hover;
     m.hoverText = texel && m.hoverView ? captureHoverText(v, *m.hoverView, *texel) : "";
   }
+  if (m.hoverText != v.loggedHover) {  // what the status bar says, for tests and scripts
+    v.loggedHover = m.hoverText;
+    if (!m.hoverText.empty()) logLine(v.eventLog, {{"event", "hover"}, {"view", m.views[size_t(*m.hoverView)].name}, {"text", m.hoverText}});
+  }
   if (m.captureRequested || m.renderDocRequested) {
     if (s.live && m.reducedBy > 1) renderIfNeeded(v, v.fullOptions, false, true);  // captures are full-resolution
     std::string dir, error, rdc;
@@ -393,6 +397,12 @@ static void iterate(Viewer& v, LoopState& s, int fbw, int fbh) {
                  v.referenceBusy || m.referenceError.computeRequested ||
                  (s.live && frameOutdated(v.fullOptions, wantedOptions(v, fbw, fbh)));
   v.uiFramesLeft = pending ? std::max(v.uiFramesLeft, 2) : v.uiFramesLeft - 1;
+  // A new dossier's tables size their columns from what they drew in the frames before (ImGui):
+  // a few more frames let them settle instead of freezing on clipped first-frame widths.
+  if (m.dossier && v.dossierShownFor != m.probePixel) {
+    v.dossierShownFor = m.probePixel;
+    v.uiFramesLeft = std::max(v.uiFramesLeft, 4);
+  }
 }
 
 int runViewer(const ViewerArgs& args, Scene scene) {

@@ -117,6 +117,8 @@ struct Viewer {
   std::chrono::steady_clock::time_point probeStart;
   std::optional<glm::ivec2> hoverRead;
   std::optional<int> hoverReadView;
+  std::string loggedHover;         // the hover text last written to --event-log
+  std::optional<glm::ivec2> dossierShownFor;  // the probed pixel whose dossier the panel has settled on
   std::string layoutKey;           // logged layout, to log changes only
   std::ofstream probeLog, eventLog;
   std::vector<double> renderMs, presentMs;

@@ -66,10 +66,24 @@ TEST(Check, FindsEveryPlantedTexelAtItsPixel) {
   EXPECT_NEAR(first("normal", "N", "out_of_range")["value"].get<double>(), 0.5, 1e-3);
   EXPECT_EQ(first("depth", "Z", "out_of_range")["value"].get<double>(), -1.0);
 
-  // The table names the same pixels.
+  EXPECT_EQ(first("normal", "N", "out_of_range")["channel"], "|N|");  // what was measured, not a component
+
+  // The table names the same pixels. The default policy reports the denormal as a warning (a healthy
+  // half-float G-buffer holds true subnormals); a stricter one makes it a fault, a looser one hides it.
   RunResult text = runGblens("check '" + capture + "'");
   EXPECT_EQ(text.exitCode, 1);
-  EXPECT_NE(text.output.find("found 7:"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("found 6 faults, 1 warnings"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("warn denormal  gbuf Roughness: 9,4"), std::string::npos) << text.output;
+  EXPECT_NE(runGblens("check '" + capture + "' --policy denormal=fault").output.find("found 7 faults"), std::string::npos);
+  RunResult loose = runGblens("check '" + capture + "' --policy denormal=ignore --policy nan=warn --policy inf=warn "
+                              "--policy out_of_range=warn");
+  EXPECT_EQ(loose.exitCode, 0) << loose.output;
+  EXPECT_NE(loose.output.find("clean: no fault in 4 quantities (6 warnings"), std::string::npos) << loose.output;
+  RunResult perQuantity = runGblens("check '" + capture + "' --policy N.out_of_range=ignore --json");
+  EXPECT_EQ(json::parse(perQuantity.output)["faults"].get<uint64_t>(), 5u) << perQuantity.output;
+  RunResult bad = runGblens("check '" + capture + "' --policy Nope.nan=warn");
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.output.find("--policy Nope.nan=warn: the layout has no quantity \"Nope\""), std::string::npos) << bad.output;
   EXPECT_NE(text.output.find("nan  gbuf Albedo: 3,1 Albedo.G = nan"), std::string::npos) << text.output;
   EXPECT_NE(text.output.find("-inf  depth Z: 7,3"), std::string::npos) << text.output;
 }
@@ -79,7 +93,7 @@ TEST(Check, CleanCaptureExitsZeroAndUnreadableExitsTwo) {
   const std::string capture = importFixtureC(dir, false);
   RunResult r = runGblens("check '" + capture + "'");
   EXPECT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NE(r.output.find("clean: no NaN, Inf, denormal or out-of-range value in 4 quantities"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("clean: no fault in 4 quantities"), std::string::npos) << r.output;
   RunResult missing = runGblens("check '" + dir + "/nothing'");
   EXPECT_EQ(missing.exitCode, 2) << missing.output;
   EXPECT_NE(missing.output.find("nothing: no such capture directory"), std::string::npos) << missing.output;

@@ -58,8 +58,9 @@ TEST(Stats, JsonCountsPlantedNonFiniteValuesApartFromTheMoments) {
   uint64_t histogram = 0;
   for (const json& n : (*z)["histogram"]) histogram += n.get<uint64_t>();
   EXPECT_EQ(histogram, 39u);  // the finite values only
-  // The decoded eye depth: the stored one (encoding "eye"), over the pixels with a surface.
-  const json* eye = series(s["quantities"], "depth", "Z.eye_depth");
+  // The decoded eye depth: the stored one (encoding "eye": the series is the quantity itself), over
+  // the pixels with a surface.
+  const json* eye = series(s["quantities"], "depth", "Z");
   ASSERT_NE(eye, nullptr) << r.output;
   EXPECT_EQ((*eye)["max"].get<double>(), 2.0);
 

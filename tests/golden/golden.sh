@@ -13,8 +13,8 @@ HERE=$(cd "$(dirname "$0")" && pwd)
 MODE=$1
 GBLENS=$(cd "$(dirname "$2")" && pwd)/$(basename "$2")
 CAPTURE="capture builtin:temple --size 160x90 --lights 16 --time 2.5 --shadow-map-size 256 --validate"
-THRESHOLDS="--warn 0 --failpercent 0.1 --fail 0.004 --fail hdr=0.01 --fail normal_shadow.N=0.1
-  --fail normal_shadow.Shadow=0.004 --fail depth=1e-6 --fail depth_stencil.Depth=1e-6 --fail shadow_map=1e-6
+THRESHOLDS="--warn 0 --failpercent 0.1 --fail 0.004 --fail hdr=0.01 --fail normal_shadow.Normal=0.1
+  --fail normal_shadow.Shadow=0.004 --fail depth=1e-6 --fail depth_stencil.HardwareDepth=1e-6 --fail shadow_map=1e-6
   --fail depth_stencil.Stencil=0 --fail coverage_masked=0 --fail coverage_full=0"
 
 case "$MODE" in

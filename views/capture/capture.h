@@ -22,6 +22,9 @@ struct CaptureMeta {
   std::string sceneSha256;       // sceneContentSha256() of the loaded scene
   FrameStats stats;              // per-pass ms, light counts, culling statistics
   std::string commandLine;       // how it was made, for the record
+  // Where an imported frame came from (manifest "source"): the recording API and machine, the replay
+  // driver; null for gblens's own frames (device and driver say it).
+  nlohmann::json source;
 };
 
 // Every target that can be read back under these options (targetAbsence() is Absent::No).

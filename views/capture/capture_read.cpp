@@ -250,7 +250,14 @@ bool loadCapture(const std::string& dirText, Capture& out, std::string& error, C
       return fail(CaptureProblem::Corrupt, dirText + ": manifest.json: lights.json has no checksum in the file list");
     // "camera" (earlier manifests: "view").
     const nlohmann::json& camera = m.contains("camera") ? m.at("camera") : m.at("view");
-    if (!optionsFromJson(m.at("options"), f.options, error) || !cameraFromJson(camera, f.camera, error) ||
+    // Another renderer's G-buffer has no gblens render options: the defaults at the frame's size.
+    if (m.contains("options") && !optionsFromJson(m.at("options"), f.options, error))
+      return fail(CaptureProblem::Corrupt, dirText + ": " + error);
+    if (!m.contains("options") && m.contains("size")) {
+      f.options.width = m.at("size").at(0).get<uint32_t>();
+      f.options.height = m.at("size").at(1).get<uint32_t>();
+    }
+    if (!cameraFromJson(camera, f.camera, error) ||
         !layoutFromManifest(m, f, error) ||
         !loadLights(dir, f, error))
       return fail(CaptureProblem::Corrupt, dirText + ": " + error);

@@ -141,6 +141,9 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
       {"targets", targets},
       {"skipped", skipped},
       {"files", files}};
+  // gblens's render options describe gblens's frames; another renderer's G-buffer has none.
+  if (!gblensLayout(f.layout)) m.erase("options");
+  if (!meta.source.is_null()) m["source"] = meta.source;
   // Written last: a directory without it is never a capture.
   return writeText(tmp / "manifest.json", m.dump(2) + "\n", error);
 }

@@ -14,7 +14,16 @@ namespace gb {
 
 void ledgerSection(const PixelDossier& d);  // ledger_panel.cpp
 
-static const ImGuiTableFlags kTable = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit;
+// Tables fill the panel: label columns fit their text, value columns share the rest (no clipped text).
+static const ImGuiTableFlags kTable = ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
+
+// A two-column table whose first column fits its labels and whose second takes the rest.
+static bool labelTable(const char* id) {
+  if (!ImGui::BeginTable(id, 2, kTable)) return false;
+  ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed);
+  ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch);
+  return true;
+}
 
 static std::string f9(double v) {
   char b[40];
@@ -35,7 +44,7 @@ static void row(const char* label, const std::string& value) {
   ImGui::TableNextColumn();
   ImGui::TextDisabled("%s", label);
   ImGui::TableNextColumn();
-  ImGui::TextUnformatted(value.c_str());
+  ImGui::TextWrapped("%s", value.c_str());
 }
 
 // A colour swatch of a linear colour (ImGui colours are sRGB-encoded bytes).
@@ -69,7 +78,7 @@ static void colourSection(const PixelDossier& d) {
 static void gbufferSection(const PixelDossier& d) {
   if (!ImGui::CollapsingHeader("G-buffer", ImGuiTreeNodeFlags_DefaultOpen)) return;
   if (!d.geometry) ImGui::TextColored(ImVec4(0.6f, 0.8f, 1, 1), "no geometry here (sky)");
-  if (!ImGui::BeginTable("gbuffer", 2, kTable)) return;
+  if (!labelTable("gbuffer")) return;
   // What the lighting reads; "-" where the frame's layout has no such quantity (imported frames:
   // the layout quantities above say what they hold).
   row("albedo", d.hasAlbedo ? v3(d.albedo) : "-");
@@ -219,29 +228,29 @@ static void storedSection(const PixelDossier& d) {
   ImGui::EndTable();
 }
 
-// Every quantity of the frame's layout, decoded (what an imported G-buffer shows), and every
-// position the layout allows with its distance to a stored one.
+// Every quantity of the frame's layout, decoded as its views show it (values in its own space and
+// units), and every position the layout allows with its distance to a stored one.
 static void quantitiesSection(const PixelDossier& d) {
-  if (!ImGui::CollapsingHeader("Layout quantities", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  if (ImGui::BeginTable("quantities", 3, kTable)) {
+  if (!ImGui::CollapsingHeader("Quantities (the layout's)", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (labelTable("quantities")) {
     for (const ProbeQuantity& q : d.quantities) {
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::TextDisabled("%s.%s", q.target.c_str(), q.name.c_str());
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s, %s", q.kind.c_str(), q.encoding.c_str());
-      ImGui::TableNextColumn();
       std::string v;
       for (double x : q.values) v += (v.empty() ? "" : ", ") + g5(x);
-      ImGui::TextUnformatted(q.present ? v.c_str() : "-");
-      ImGui::TableNextColumn();
-      ImGui::TextUnformatted(q.note.c_str());
+      std::string text = !q.present ? "-" : v.empty() ? q.note : q.space + "  " + v + (q.note.empty() ? "" : "  (" + q.note + ")");
+      if (q.eyeDepth && q.kind == "depth" && q.encoding != "eye") text += "  eye depth " + g5(*q.eyeDepth);
+      row(q.name.c_str(), text);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s.%s: %s, %s", q.target.c_str(), q.name.c_str(), q.kind.c_str(), q.encoding.c_str());
     }
     ImGui::EndTable();
   }
-  for (const ProbeReconstruction& r : d.reconstructions)
+  for (const ProbeReconstruction& r : d.reconstructions) {
+    if (!r.valid) continue;
+    ImGui::TextWrapped("%s (%s): eye %s | %s %s", r.quantity.c_str(), r.method.c_str(), c3(r.eye).c_str(),
+                       r.worldSpace.c_str(), c3(r.world).c_str());
     if (r.hasStored)
-      ImGui::Text("%s (%s) to the stored position: %s units, %s ulps", r.quantity.c_str(), r.method.c_str(),
-                  g5(r.toStored).c_str(), g5(r.toStoredUlps).c_str());
+      ImGui::TextWrapped("  to the stored position: %s units, %s %s ulps", g5(r.toStored).c_str(), g5(r.toStoredUlps).c_str(),
+                         r.ulpOf.c_str());
+  }
   if (!d.lightingNote.empty()) ImGui::TextWrapped("lighting: %s", d.lightingNote.c_str());
 }
 
@@ -251,13 +260,18 @@ static void dossierSections(const PixelDossier& d) {
     for (const std::string& s : d.missing) missing += (missing.empty() ? "" : ", ") + s;
     ImGui::TextColored(ImVec4(1, 0.6f, 0.3f, 1), "missing: %s", missing.c_str());
   }
-  colourSection(d);
+  // Another renderer's G-buffer: its own quantities; gblens's frame also its lighting's view of it.
+  if (d.native) colourSection(d);
   quantitiesSection(d);
-  gbufferSection(d);
-  positionSection(d);
-  shadowSection(d);
-  ledgerSection(d);
-  lightsSection(d);
+  if (d.native) {
+    gbufferSection(d);
+    positionSection(d);
+    shadowSection(d);
+  }
+  if (d.native || d.lightingNote.empty()) {
+    ledgerSection(d);
+    lightsSection(d);
+  }
   storedSection(d);
 }
 
