@@ -49,7 +49,8 @@ fixtures:
 	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends blender; \
 	  else echo "make fixtures: needs Blender; run:"; echo "  sudo apt-get install -y --no-install-recommends blender"; exit 1; fi; }
 	$(BLENDER) -b --factory-startup -noaudio -P assets/blender/render_gbuffer.py -- tests/data/blender
-	@ls -l tests/data/blender
+	$(BLENDER) -b --factory-startup -noaudio -P assets/blender/render_gbuffer.py -- tests/data/blender/ortho 96 54 --ortho --full-float
+	@ls -l tests/data/blender tests/data/blender/ortho
 
 # The default sweep on the built-in temple and, when present, the shared VC model (a glTF that
 # does not load is skipped with a message). Budgeted to finish within 15 minutes on 2 cores.
@@ -61,18 +62,25 @@ bench: build
 stress: build
 	mkdir -p out && $(GBLENS) stress --json out/stress.json
 
-# The glTF loader under libFuzzer + ASan + UBSan (clang-14, libclang-rt-14-dev), seeded with the
-# test corpus; new inputs go to build-fuzz/corpus, crashes to build-fuzz/crashes. Not run in CI.
+# The glTF loader and the import path under libFuzzer + ASan + UBSan (clang-14, libclang-rt-14-dev),
+# FUZZ_SECONDS each; FUZZ_TARGETS chooses (gltf, import). Seeds: the glTF test corpus and
+# tests/fuzz/import_corpus (the import crash cases, also run by `make test`); new inputs go to
+# build-fuzz/corpus-TARGET, crashes to build-fuzz/crashes. Not run in CI.
 FUZZ_SECONDS ?= 60
+FUZZ_TARGETS ?= gltf import
+FUZZ_SEEDS_gltf := tests/data/gltf/valid tests/data/gltf/invalid -dict=tests/fuzz/gltf.dict -max_len=65536
+FUZZ_SEEDS_import := tests/fuzz/import_corpus -max_len=16384
 fuzz:
 	@command -v clang++-14 >/dev/null && test -e /usr/lib/llvm-14/lib/clang/14.0.6/lib/linux/libclang_rt.fuzzer-x86_64.a || \
 	  { echo "make fuzz: needs clang-14 and libclang-rt-14-dev (sudo apt-get install clang-14 libclang-rt-14-dev)"; exit 1; }
 	cmake -S tests/fuzz -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo
-	cmake --build build-fuzz -j $(JOBS)
-	mkdir -p build-fuzz/corpus build-fuzz/crashes
-	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp build-fuzz/fuzz_gltf build-fuzz/corpus tests/data/gltf/valid tests/data/gltf/invalid -dict=tests/fuzz/gltf.dict \
-	  -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=4096 -max_len=65536 \
-	  -artifact_prefix=build-fuzz/crashes/ -print_final_stats=1
+	cmake --build build-fuzz -j $(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS))
+	mkdir -p build-fuzz/crashes
+	set -e; for t in $(FUZZ_TARGETS); do mkdir -p build-fuzz/corpus-$$t; \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp build-fuzz/fuzz_$$t build-fuzz/corpus-$$t \
+	    $$(case $$t in gltf) echo "$(FUZZ_SEEDS_gltf)";; import) echo "$(FUZZ_SEEDS_import)";; esac) \
+	    -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=4096 \
+	    -artifact_prefix=build-fuzz/crashes/$$t- -print_final_stats=1; done
 
 # The test suite built with -DGBLENS_SANITIZE=ON (AddressSanitizer + UndefinedBehaviorSanitizer)
 # in build-asan. ASAN_TESTS narrows it (a ctest -R regex), e.g. ASAN_TESTS=Gltf.

@@ -1,11 +1,12 @@
-# gblens_layer(NAME FOLDER [VULKAN] [EXECUTABLE] DEPS layers... LINK targets... SOURCES files...)
+# gblens_layer(NAME FOLDER [VULKAN] [EXECUTABLE | SHARED] DEPS layers... LINK targets... SOURCES files...)
 # One folder = one library (gblens_NAME; the executable is `gblens`), with an explicit file list.
-# DEPS are the layers whose headers the folder may include, and whose libraries it links.
+# DEPS are the layers whose headers the folder may include, and whose libraries it links (a SHARED
+# library, the Vulkan layer loaded into other programs, links none: it compiles what it uses).
 # gblens_write_layers() writes the table that cmake/check_includes.py checks every #include against.
 set_property(GLOBAL PROPERTY GBLENS_LAYER_TABLE "")
 
 function(gblens_layer NAME FOLDER)
-  cmake_parse_arguments(L "VULKAN;EXECUTABLE" "" "DEPS;LINK;SOURCES" ${ARGN})
+  cmake_parse_arguments(L "VULKAN;EXECUTABLE;SHARED" "" "DEPS;LINK;SOURCES" ${ARGN})
   set(sources "")
   foreach(f ${L_SOURCES})
     if(IS_ABSOLUTE "${f}")
@@ -17,13 +18,16 @@ function(gblens_layer NAME FOLDER)
   if(L_EXECUTABLE)
     set(target gblens)
     add_executable(${target} ${sources})
+  elseif(L_SHARED)
+    set(target gblens_${NAME})
+    add_library(${target} SHARED ${sources})
   else()
     set(target gblens_${NAME})
     add_library(${target} STATIC ${sources})
   endif()
   set(folders "${FOLDER}")
   foreach(d ${L_DEPS})
-    if(TARGET gblens_${d})
+    if(TARGET gblens_${d} AND NOT L_SHARED)
       target_link_libraries(${target} PUBLIC gblens_${d})
     endif()
     get_property(df GLOBAL PROPERTY GBLENS_LAYER_FOLDER_${d})

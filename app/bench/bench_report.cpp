@@ -1,6 +1,8 @@
 // Bench rows -> frontier, defaults check, bench.json, bench.csv, bench.md (plots: bench_plot.cpp).
 #include "app/bench/bench_report.h"
 
+#include "app/bench/bench_attach.h"
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -196,6 +198,7 @@ nlohmann::json benchJson(const BenchReport& r) {
     dr.push_back({{"far_over_near", d.ratio}, {"znear", d.znear}, {"zfar", d.zfar}, {"source", d.source},
                   {"relative_max", d.relMax}, {"relative_mean", d.relMean}});
   j["depth_range"] = dr;
+  if (!r.attach.is_null()) j["attach"] = r.attach;
   nlohmann::json dt = nlohmann::json::array();
   for (const DepthTestRow& d : r.depthTest)
     dt.push_back({{"source", d.source}, {"gap", d.gap}, {"znear", d.znear}, {"zfar", d.zfar}, {"depth", d.depth},
@@ -357,6 +360,7 @@ std::string benchMarkdown(const BenchReport& r) {
     md << "\n";
   }
   md << depthTestMarkdown(r);
+  md << attachMarkdown(r.attach) << "\n";
   md << "## Targets\n\n| target | scene | measured | bound | met |\n| --- | --- | --- | --- | --- |\n";
   for (const auto& t : targetsJson(r))
     md << "| " << t.value("target", "") << " | " << t.value("scene", "") << " | " << num(t.value("measured", 0.0)) << " | "

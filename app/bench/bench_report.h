@@ -167,6 +167,7 @@ struct BenchReport {
   std::vector<DepthTestRow> depthTest;
   std::vector<DefaultsCheck> defaults;
   BenchTolerances tolerances;
+  nlohmann::json attach;  // the cost of gblens attach (bench_attach.h); null when not run
 };
 
 nlohmann::json benchJson(const BenchReport& r);

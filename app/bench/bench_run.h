@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "app/bench/bench_attach.h"
 #include "app/bench/bench_methods.h"
 #include "app/bench/bench_report.h"
 #include "renderer/renderer.h"
@@ -30,6 +31,8 @@ struct BenchSettings {  // gblens bench's own flags
   MethodSettings methods;
   std::string methodsLights = "16,64,256,1024,4096";
   std::string methodsSizes = "1280x720";
+  // The cost of gblens attach (bench_attach.h); runs unless --only leaves out "attach".
+  AttachBenchSettings attach;
 };
 
 // Warm-up frames, then up to `frames` timed frames within `cap` seconds (at least minFrames):

@@ -265,12 +265,13 @@ bool planBench(BenchPlan& p, std::string& error) {
   if (s.only.empty()) return true;
   std::vector<std::string> only = split(s.only);
   p.runMethods = std::find(only.begin(), only.end(), "methods") != only.end();
+  p.runAttach = std::find(only.begin(), only.end(), "attach") != only.end();
   std::vector<BenchVariant> kept;
   for (const BenchVariant& v : p.variants)
     if (std::find(only.begin(), only.end(), v.name()) != only.end() ||
         std::find(only.begin(), only.end(), v.group) != only.end())
       kept.push_back(v);
-  if (kept.empty() && !p.runMethods) {
+  if (kept.empty() && !p.runMethods && !p.runAttach) {
     error = "--only " + s.only + ": no variant or group of that name";
     return false;
   }
@@ -321,6 +322,10 @@ BenchReport runBench(GpuContext& ctx, const BenchPlan& p) {
   }
   else if (s.depthRange == "on" && !p.variants.empty())
     std::fprintf(stderr, "gblens bench: no time left for the depth-range study (--budget)\n");
+  if (p.runAttach) {
+    report.attach = attachStudy(s.attach);
+    std::fprintf(stderr, "gblens bench: attach done [%s]\n", minutes(since(run.start)).c_str());
+  }
   report.meta["skipped_scenes"] = skippedScenes;
   report.meta["seconds"] = since(run.start);
   markFrontiers(report.rows);

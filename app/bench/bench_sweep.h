@@ -19,6 +19,7 @@ struct BenchPlan {
   std::vector<std::string> sizes;
   std::vector<BenchVariant> variants;  // after --only
   bool runMethods = true;
+  bool runAttach = true;
 };
 
 // Fills lightCounts, sizes, the method lists and the variants from the settings' text lists and

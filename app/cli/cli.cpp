@@ -66,6 +66,24 @@ void reportRenderDocCapture(const char* command, RenderDocCapture& capture) {
     std::fprintf(stderr, "gblens: RenderDoc capture %s\n", path.c_str());
 }
 
+bool parseLayoutParameters(const std::vector<std::string>& params, RenderOptions& options, std::string& error) {
+  for (const std::string& p : params) {
+    const size_t eq = p.find('=');
+    std::string name = eq == std::string::npos ? "" : p.substr(0, eq);
+    if (name.rfind("--", 0) == 0) name = name.substr(2);
+    std::replace(name.begin(), name.end(), '-', '_');
+    if (name.empty() || !findOption(name)) {
+      error = "--param " + p + ": expected NAME=VALUE with NAME an option of gblens --help (e.g. normal_format=oct-rg16)";
+      return false;
+    }
+    if (!setOption(options, name, p.substr(eq + 1), error)) {
+      error = "--param " + p + ": " + error;
+      return false;
+    }
+  }
+  return true;
+}
+
 std::string& commandLine() {
   static std::string line;
   return line;

@@ -63,6 +63,11 @@ Command addImportCommand(CLI::App& root);
 Command addCheckCommand(CLI::App& root);
 Command addStatsCommand(CLI::App& root);
 Command addDecomposeCommand(CLI::App& root);
+Command addAttachCommand(CLI::App& root);
+
+// --param NAME=VALUE... (import, attach: option names as in the option table, or as flags) -> the
+// values a parameterised layout is resolved with. False with a message naming the --param.
+bool parseLayoutParameters(const std::vector<std::string>& params, RenderOptions& options, std::string& error);
 
 // Loads SCENE; on a user mistake prints one line and returns false (caller exits 2).
 bool loadSceneOrReport(const CommonOptions& o, Scene& scene);

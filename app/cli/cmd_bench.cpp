@@ -26,6 +26,7 @@ static bool printSummary(const BenchReport& report, const std::string& out) {
   bool anyMeasured = false;
   for (const BenchRow& row : report.rows) anyMeasured |= row.measured;
   for (const MethodRow& row : report.methods) anyMeasured |= row.measured;
+  anyMeasured |= !report.attach.is_null();
   if (!anyMeasured) std::fprintf(stderr, "gblens bench: no scene could be measured\n");
   return anyMeasured;
 }
@@ -83,7 +84,7 @@ Command addBenchCommand(CLI::App& root) {
   cmd->add_option("--sizes", s->sizes, "output sizes of the size sweep")->capture_default_str();
   cmd->add_option("--only", s->only,
                   "measure only these variants or groups (comma-separated names, e.g. default,normal; \"methods\": the "
-                  "method comparison and skip savings)");
+                  "method comparison and skip savings; \"attach\": the cost of gblens attach)");
   cmd->add_option("--depth-range", s->depthRange, "the depth-precision study on builtin:depth-range")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
@@ -115,6 +116,17 @@ Command addBenchCommand(CLI::App& root) {
   cmd->add_option("--shadow-reuse", s->shadowReuse,
                   "off: timed frames render the shadow map every frame (a moving sun); on: a static scene reuses it")
       ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--attach-rounds", s->attach.rounds, "gblens attach's cost: interleaved rounds of its four variants")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  cmd->add_option("--attach-size", s->attach.size, "gblens attach's cost: the application's output size")
+      ->capture_default_str();
+  cmd->add_option("--attach-frames", s->attach.frames, "gblens attach's cost: frames per run of the application")
+      ->check(CLI::Range(3, 100000))
+      ->capture_default_str();
+  cmd->add_option("--attach-soak", s->attach.soakFrames, "gblens attach's cost: frames of the memory soak")
+      ->check(CLI::Range(100, 1000000))
       ->capture_default_str();
   return {cmd, [o, s]() -> int {
             std::string error;

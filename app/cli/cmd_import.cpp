@@ -2,16 +2,20 @@
 //   gblens import FILES... --layout L.json -o DIR [--camera CAM.json] [--param NAME=VALUE]... [--size WxH]
 //   gblens import APP.rdc --layout L.json [--event EID | --pass NAME] -o DIR [...]
 //   gblens import APP.rdc --list
+//   gblens import APP.rdc|FILES... --suggest-layout [--event EID | --pass NAME] [-o DRAFT.json]
 // The layout says what the files hold (docs/layout-format.md); the capture is written atomically, and
 // nothing at all when anything does not match (one line naming the file, the target and the field; exit 2).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 
 #include "app/cli/cli.h"
+#include "renderer/core/library_output.h"
 #include "views/capture/capture.h"
 #include "views/capture/import_renderdoc.h"
+#include "views/capture/suggest.h"
 
 namespace gb {
 
@@ -22,8 +26,13 @@ struct ImportOptions {
   std::string layout, output, camera, size, pass;
   std::vector<std::string> params;
   uint32_t event = 0;
-  bool list = false;
+  bool list = false, suggest = false;
+  bool verbose = false;  // library messages (libpng, OpenEXR) as printed, not folded into the one line
 };
+
+// Progress on stderr, as stress prints its own ("  .. "): what import is doing now. A mistake is
+// still one line of its own ("gblens import: ...").
+void progress(const std::string& text) { std::fprintf(stderr, "  .. %s\n", text.c_str()); }
 
 bool isRenderDocCapture(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -31,17 +40,65 @@ bool isRenderDocCapture(const std::string& path) {
   return ext == ".rdc";
 }
 
-void printListing(const std::string& rdc, const RdcListing& l) {
+// The buffers bound at a pass's last draw, under the innermost pass that ends with that draw.
+void printBindings(const RdcListing& l, const RdcPass& p) {
+  for (const RdcPass& q : l.passes)
+    if (&q != &p && q.boundAt == p.boundAt && q.firstEvent >= p.firstEvent && q.lastEvent <= p.lastEvent &&
+        q.lastEvent - q.firstEvent < p.lastEvent - p.firstEvent)
+      return;
+  for (const RdcBinding& b : p.buffers) {
+    std::string stages, members, where = "binding not read";
+    for (const std::string& s : b.stages) stages += (stages.empty() ? "" : ",") + s;
+    for (size_t i = 0; i < b.members.size() && i < 8; ++i)
+      members += (members.empty() ? "" : ", ") + b.members[i].name + "@" + std::to_string(b.members[i].offset);
+    if (b.members.size() > 8) members += ", ...";
+    if (b.bound)
+      where = "set " + std::to_string(b.set) + " binding " + std::to_string(b.binding) +
+              (b.index ? "[" + std::to_string(b.index) + "]" : "") + ", bytes " + std::to_string(b.offset) + ".." +
+              std::to_string(b.offset + b.range);
+    std::printf("  %*s  %-7s %-22s #%-6llu %8llu bytes  %s  (%s)%s%s%s\n", int(2 * p.depth), "", b.kind.c_str(),
+                b.name.c_str(), (unsigned long long)b.id, (unsigned long long)b.bytes, where.c_str(), stages.c_str(),
+                members.empty() ? "" : " {", members.c_str(), members.empty() ? "" : "}");
+  }
+}
+
+// Where each pass's buffers are bound (set, binding, range), from the pipeline state at its last draw.
+void addBindings(const std::string& rdc, RdcListing& l, std::string& note) {
+  std::vector<uint32_t> events;
+  for (const RdcPass& p : l.passes)
+    if (p.boundAt) events.push_back(p.boundAt);
+  std::map<uint32_t, RdcPass> states;
+  std::string skipped, error;
+  progress("reading where " + std::to_string(events.size()) + " draws bind their buffers");
+  if (!readDrawState(rdc, events, false, states, skipped, error)) {
+    note = "set and binding not read: " + error;
+    return;
+  }
+  if (!skipped.empty()) note = "set and binding not read at event " + skipped + ": RenderDoc's replay crashed there";
+  for (RdcPass& p : l.passes)
+    for (RdcBinding& b : p.buffers)
+      for (const RdcBinding& s : states[p.boundAt].buffers)
+        if (s.id == b.id && !b.bound) {
+          const std::vector<std::string> stages = b.stages;
+          b = s;  // the usage records' stages are the ones that read it; the descriptor's may say more
+          if (!stages.empty()) b.stages = stages;
+        }
+}
+
+void printListing(const std::string& rdc, const RdcListing& l, const std::string& note) {
   std::printf("capture   %s\n", rdc.c_str());
   std::printf("api       %s\n", l.api.c_str());
   std::printf("replay    %s\n", l.driverNote.c_str());
   std::printf("events    1..%u\n", l.lastEvent);
-  std::printf("passes    %zu (events first..last; the textures bound for writing)\n", l.passes.size());
+  std::printf("passes    %zu (events first..last; the textures bound for writing; below: the buffers bound at\n"
+              "          its last draw or dispatch: name, id, size, bound range, set/binding, stages {members@offset})\n",
+              l.passes.size());
   for (const RdcPass& p : l.passes) {
     std::string writes;
     for (const std::string& w : p.writes) writes += (writes.empty() ? "" : ", ") + w;
     std::printf("  %*s%-*s %5u..%-5u %s\n", int(2 * p.depth), "", int(28 - 2 * std::min(p.depth, 8u)), p.name.c_str(),
                 p.firstEvent, p.lastEvent, writes.c_str());
+    printBindings(l, p);
   }
   std::printf("textures  %zu (name, id, format, size; * : a format gblens cannot hold)\n", l.textures.size());
   for (const RdcTexture& t : l.textures) {
@@ -53,33 +110,18 @@ void printListing(const std::string& rdc, const RdcListing& l) {
     std::printf("  %-28s #%-6llu %-22s %s%s\n", t.name.c_str(), (unsigned long long)t.id, t.format.c_str(), size.c_str(),
                 t.texelFormat ? "" : " *");
   }
+  if (!note.empty()) std::printf("note      %s\n", note.c_str());
+  std::printf("buffers   %zu (name, id, size)\n", l.buffers.size());
+  for (const RdcBuffer& b : l.buffers)
+    std::printf("  %-28s #%-6llu %llu bytes\n", b.name.c_str(), (unsigned long long)b.id, (unsigned long long)b.bytes);
 }
+
 
 int fail(std::string message) {
   // One line, whatever a library's message held.
   for (size_t at; (at = message.find('\n')) != std::string::npos;) message.replace(at, 1, "; ");
   std::fprintf(stderr, "gblens import: %s\n", message.c_str());
   return 2;
-}
-
-// --param NAME=VALUE... (option names as in the option table, or as flags) -> option values; --size.
-bool parseParameters(const ImportOptions& o, RenderOptions& options, std::string& error) {
-  for (const std::string& p : o.params) {
-    const size_t eq = p.find('=');
-    std::string name = eq == std::string::npos ? "" : p.substr(0, eq);
-    if (name.rfind("--", 0) == 0) name = name.substr(2);
-    std::replace(name.begin(), name.end(), '-', '_');
-    if (name.empty() || !findOption(name)) {
-      error = "--param " + p + ": expected NAME=VALUE with NAME an option of gblens --help (e.g. normal_format=oct-rg16)";
-      return false;
-    }
-    if (!setOption(options, name, p.substr(eq + 1), error)) {
-      error = "--param " + p + ": " + error;
-      return false;
-    }
-  }
-  if (!o.size.empty() && !setOption(options, "size", o.size, error)) return false;
-  return true;
 }
 
 // The texts the summary shows for where a target came from.
@@ -93,7 +135,44 @@ std::string sourceText(const LayoutTarget& t, const RenderDocImported& rdc) {
   return text;
 }
 
+// --suggest-layout: the draft to -o (atomically) or stdout, what was found on stderr.
+int runSuggest(const ImportOptions& o) {
+  if (!o.layout.empty()) return fail("--suggest-layout: drafts a layout; give no --layout");
+  SuggestRequest r;
+  r.inputs = o.inputs;
+  r.event = o.event;
+  r.pass = o.pass;
+  r.progress = progress;
+  Suggestion draft;
+  std::string error;
+  if (!suggestLayout(r, draft, error)) return fail(error);
+  const std::string text = draft.layout.dump(2) + "\n";
+  if (o.output.empty()) {
+    std::fputs(text.c_str(), stdout);
+  } else {
+    const std::string tmp = o.output + ".tmp";
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f || std::fwrite(text.data(), 1, text.size(), f) != text.size() || std::fclose(f) != 0) {
+      std::remove(tmp.c_str());
+      return fail(o.output + ": cannot write the draft");
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, o.output, ec);
+    if (ec) return fail(o.output + ": cannot write the draft (" + ec.message() + ")");
+  }
+  for (const std::string& line : draft.summary) std::fprintf(stderr, "  %s\n", line.c_str());
+  std::string args = isRenderDocCapture(o.inputs[0]) ? o.inputs[0] : "";
+  if (args.empty())
+    for (const std::string& i : o.inputs) args += (args.empty() ? "" : " ") + i;
+  std::fprintf(stderr, "gblens import: draft%s%s; check every \"guess\", then: gblens import %s --layout %s%s -o DIR\n",
+               o.output.empty() ? " on stdout" : " written to ", o.output.c_str(), args.c_str(),
+               o.output.empty() ? "DRAFT.json" : o.output.c_str(),
+               o.event ? (" --event " + std::to_string(o.event)).c_str() : o.pass.empty() ? "" : (" --pass " + o.pass).c_str());
+  return 0;
+}
+
 int runImport(const ImportOptions& o) {
+  showLibraryOutput(o.verbose);
   const bool rdc = o.inputs.size() == 1 && isRenderDocCapture(o.inputs[0]);
   if (o.inputs.empty() && o.layout.empty()) return fail("INPUT: give image files and --layout, or a RenderDoc capture");
   for (const std::string& input : o.inputs)
@@ -102,17 +181,22 @@ int runImport(const ImportOptions& o) {
     if (!rdc) return fail("--list: lists a RenderDoc capture (one .rdc)");
     RdcListing listing;
     std::string error;
+    progress("listing " + o.inputs[0] + " (RenderDoc replays it)");
     if (!listRenderDocCapture(o.inputs[0], listing, error)) return fail(error);
-    printListing(o.inputs[0], listing);
+    std::string note;
+    addBindings(o.inputs[0], listing, note);
+    printListing(o.inputs[0], listing, note);
     return 0;
   }
+  if (o.suggest) return runSuggest(o);
   if (o.layout.empty()) return fail("--layout: required (a layout file, docs/layout-format.md, or builtin:gblens)");
   if (o.output.empty()) return fail("-o: required (the capture folder to write)");
   if (!rdc && (o.event || !o.pass.empty())) return fail(std::string(o.event ? "--event" : "--pass") + ": applies to a RenderDoc capture (.rdc)");
 
   RenderOptions options;
   std::string error;
-  if (!parseParameters(o, options, error)) return fail(error);
+  if (!parseLayoutParameters(o.params, options, error) || (!o.size.empty() && !setOption(options, "size", o.size, error)))
+    return fail(error);
   ImportInput in;
   if (!loadImportLayout(o.layout, layoutParameters(options), in.layout, in.layoutDir, error)) return fail(error);
   if (!o.size.empty()) in.layout.width = options.width, in.layout.height = options.height;
@@ -120,23 +204,31 @@ int runImport(const ImportOptions& o) {
   RenderDocImported read;
   if (rdc) {
     RenderDocImport r{o.inputs[0], o.event, o.pass, !o.camera.empty(), {}};
+    progress("reading " + o.inputs[0] + " (RenderDoc replays it: the listing, the texels, the camera's buffer)");
     if (!readRenderDocImport(r, in, read, error)) return fail(error);
   } else {
     in.files = o.inputs;
   }
 
   FrameSnapshot frame;
+  progress("decoding " + std::to_string(in.layout.targets.size()) + " targets with layout " + o.layout);
   if (!importFrame(in, frame, error)) return fail(error);
   // The options the layout was resolved with are the frame's (gblens's own frames: how it was rendered).
-  const RenderOptions imported = frame.options;
-  frame.options = options;
-  frame.options.width = imported.width, frame.options.height = imported.height;
-  frame.options.reversedZ = imported.reversedZ;
+  setImportedOptions(frame, options);
+  // gblens's own layout: a target the capture does not hold says why, as gblens's captures do (a
+  // 1x1 stand-in of coverage left out: "not computed: coverage off", by the options given).
+  if (frame.layout.name == nativeLayout(options).name)
+    for (uint32_t t = 0; t < frame.layout.targets.size(); ++t)
+      for (const TargetInfo& info : targetTable())
+        if (!frame.images[t].present() && info.name == frame.layout.targets[t].name &&
+            targetAbsence(info.target, frame.options) != Absent::No)
+          frame.absences[t] = targetAbsence(info.target, frame.options);
   CaptureMeta meta;
   meta.scene = "import:";
   for (const std::string& input : o.inputs) meta.scene += " " + input;
   meta.driver = read.listing.driverNote;
   meta.commandLine = commandLine();
+  progress("writing " + o.output);
   if (!writeCapture(o.output, frame, meta, error)) return fail(error);
 
   std::printf("imported %s (%ux%u) with layout %s into %s\n", rdc ? o.inputs[0].c_str() : "files", frame.camera.width,
@@ -147,7 +239,15 @@ int runImport(const ImportOptions& o) {
       std::printf("  %-20s %-14s %ux%u  %s\n", lt.name.c_str(), lt.format.name.c_str(), frame.images[t].image.width,
                   frame.images[t].image.height, sourceText(lt, read).c_str());
   }
-  for (const std::string& name : read.leftOut) std::printf("  %-20s absent: no pass of the capture writes a texture of that name\n", name.c_str());
+  for (const RenderDocImported::LeftOut& l : read.leftOut) std::printf("  %-20s absent: %s\n", l.target.c_str(), l.why.c_str());
+  const LayoutCamera& c = frame.layout.camera;
+  if (c.present)
+    std::printf("camera    %s: %s, %s view, world up %s (%s-handed), near %.6g far %.6g%s\n", c.from.c_str(),
+                orthographic(frame.camera) ? "orthographic" : "perspective", c.leftHanded ? "left-handed" : "right-handed",
+                name(c.up), c.worldLeftHanded ? "left" : "right", frame.camera.znear, frame.camera.zfar,
+                frame.camera.reversedZ ? ", reversed Z" : "");
+  else
+    std::printf("camera    none (the layout gives none: positions only as stored, vectors only in view space)\n");
   return 0;
 }
 
@@ -160,8 +260,10 @@ Command addImportCommand(CLI::App& root) {
   cmd->add_option("INPUT", o->inputs,
                   "image files (EXR, PNG, TIFF, HDR, ...) and raw dumps (default: the files the layout names), or one "
                   "RenderDoc capture (.rdc)");
-  cmd->add_option("--layout", o->layout, "what the G-buffer holds: a layout file (docs/layout-format.md) or builtin:gblens");
-  cmd->add_option("-o,--output", o->output, "the capture folder to write (atomically)");
+  cmd->add_option("--layout", o->layout,
+                  "what the G-buffer holds: a layout file (docs/layout-format.md) or a layout gblens carries: " +
+                      builtinLayoutNames());
+  cmd->add_option("-o,--output", o->output, "the capture folder to write (atomically); --suggest-layout: the draft's file");
   cmd->add_option("--camera", o->camera, "a camera sidecar JSON (the layout's camera fields) overriding the layout's camera");
   cmd->add_option("--param", o->params, "NAME=VALUE: an option value for a parameterised layout (e.g. normal_format=oct-rg16)")
       ->allow_extra_args(false)
@@ -172,7 +274,14 @@ Command addImportCommand(CLI::App& root) {
                                                   "EID", "event"));
   cmd->add_option("--pass", o->pass, "RenderDoc: read every target at the end of this pass (label region, see --list)")
       ->excludes(event);
-  cmd->add_flag("--list", o->list, "RenderDoc: print the capture's passes, events and textures (name, id, format, size)");
+  CLI::Option* list = cmd->add_flag("--list", o->list,
+                                     "RenderDoc: print the capture's passes, events, textures (name, id, format, size) and "
+                                     "the buffers each pass binds (name, id, size, set/binding, stages)");
+  cmd->add_flag("--suggest-layout", o->suggest,
+                "draft a layout (to -o, else stdout): RenderDoc: the G-buffer pass's targets, a guessed quantity per "
+                "channel and the camera searched for in its buffers; image files: targets from channel names")
+      ->excludes(list);
+  cmd->add_flag("--verbose", o->verbose, "print what image libraries say about broken files as they say it");
   return {cmd, [o]() -> int { return runImport(*o); }};
 }
 

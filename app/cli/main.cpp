@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
       gb::addCheckCommand(app),
       gb::addStatsCommand(app),
       gb::addDecomposeCommand(app),
+      gb::addAttachCommand(app),
   };
   for (int i = 0; i < argc; ++i) gb::commandLine() += (i ? " " : "") + std::string(i ? argv[i] : "gblens");
   // An unknown first word is a mistyped command: name it and the commands there are.

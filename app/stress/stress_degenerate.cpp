@@ -1,7 +1,8 @@
 // Stress case: degenerate geometry. Zero-area triangles (one point repeated, three collinear
 // points), a sliver 1e-6 wide, duplicate vertices, zero-length normals and opposite normals on one
 // triangle (their interpolation passes through zero), drawn in code and loaded from a glTF file
-// written here, under every lighting variant and normal format: no NaN/Inf in any target.
+// written here (its zero normals made unit, as glTF requires), under every lighting variant and
+// normal format: no NaN/Inf in any target.
 #include <unistd.h>
 
 #include <cstdio>
@@ -139,12 +140,24 @@ void degenerateGeometryCase(Context& c) {
   // From a file: what the loader makes of the same triangles.
   std::filesystem::path dir = std::filesystem::temp_directory_path() / ("gblens-stress-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
+  // glTF requires unit normals (the loader refuses others, docs/gltf.md): the file carries the same
+  // triangles with the zero normals made unit; the zero normals themselves must be refused.
+  Raw unitNormals = raw;
+  for (glm::vec3& n : unitNormals.normals)
+    if (glm::length(n) == 0.0f) n = glm::vec3(0, 1, 0);
   Scene fromFile;
   try {
-    fromFile = loadScene(writeGltf(raw, dir / "degenerate.gltf"), 24);
+    fromFile = loadScene(writeGltf(unitNormals, dir / "degenerate.gltf"), 24);
     c.check("degenerate glTF loads (0 = yes)", 0.0, 0.0);
   } catch (const SceneError& e) {
     c.check("degenerate glTF loads (0 = yes)", 1.0, 0.0, e.message);
+  }
+  try {
+    loadScene(writeGltf(raw, dir / "zero-normals.gltf"), 24);
+    c.check("zero-length glTF normals refused (0 = yes)", 1.0, 0.0, "loaded without a word");
+  } catch (const SceneError& e) {
+    c.check("zero-length glTF normals refused (0 = yes)", e.message.find("NORMAL") == std::string::npos ? 1.0 : 0.0, 0.0,
+            e.message);
   }
   std::error_code ec;
   std::filesystem::remove_all(dir, ec);

@@ -57,7 +57,15 @@ void probeViewerPixel(Viewer& v, glm::ivec2 p, bool logged) {
   }
   Renderer& r = v.renderer;
   ViewerModel& m = v.model;
-  p = glm::clamp(p, glm::ivec2(0), glm::ivec2(int(r.options.width) - 1, int(r.options.height) - 1));
+  m.probeNote.clear();
+  if (p.x < 0 || p.y < 0 || p.x >= int(r.options.width) || p.y >= int(r.options.height)) {
+    // The pixel keeps its coordinates (never moved to another one); the frame does not hold it now.
+    m.probePixel = p;
+    m.dossier.reset();
+    m.probeError = "pixel " + std::to_string(p.x) + "," + std::to_string(p.y) + " is outside the " +
+                   std::to_string(r.options.width) + "x" + std::to_string(r.options.height) + " frame";
+    return;
+  }
   const uint32_t x = uint32_t(p.x), y = uint32_t(p.y);
   std::vector<Target> readable = readableTargets(r, r.options);
   // 1. The pixel in every screen-space target (1x1 windows).
@@ -86,6 +94,53 @@ void probeViewerPixel(Viewer& v, glm::ivec2 p, bool logged) {
   logLine(v.probeLog, m.dossierJson);
   logLine(v.eventLog, {{"event", "probe"}, {"pixel", {p.x, p.y}}, {"latency_ms", ms}});
   std::fprintf(stderr, "gblens view: probe (%d, %d): dossier ready %.2f ms after the click\n", p.x, p.y, ms);
+}
+
+void refreshProbe(Viewer& v) {
+  ViewerModel& m = v.model;
+  const std::optional<PixelDossier> before = m.dossier;
+  probeViewerPixel(v, *m.probePixel, false);
+  if (!before || !m.dossier) return;
+  // Stored bits of every target at the pixel: what "the content changed" means.
+  bool changed = before->targets.size() != m.dossier->targets.size();
+  for (size_t t = 0; !changed && t < before->targets.size(); ++t) {
+    const ProbeTarget &a = before->targets[t], &b = m.dossier->targets[t];
+    changed = a.present != b.present || a.channels.size() != b.channels.size();
+    for (size_t c = 0; !changed && c < a.channels.size(); ++c) changed = a.channels[c].bits != b.channels[c].bits;
+  }
+  if (changed) m.probeNote = "the frame changed since the click: same pixel, new content";
+  logLine(v.eventLog, {{"event", "probe_refreshed"}, {"pixel", {m.probePixel->x, m.probePixel->y}}, {"changed", changed}});
+}
+
+void countMarkedPixels(Viewer& v) {
+  ViewerModel& m = v.model;
+  if (!m.shadowMark || m.source != FrameSource::Live || m.reducedBy > 1) {
+    if (!m.shadowMark) m.shadowMarkCount = -1;
+    return;
+  }
+  const std::string key = std::to_string(m.shadowMark->x) + "," + std::to_string(m.shadowMark->y) + "@" +
+                          std::to_string(m.framesRendered);
+  if (key == v.markCountKey) return;
+  v.markCountKey = key;
+  // Where each pixel's lookup falls, from its depth (the same rule as the shader's mark and the probe).
+  Renderer& r = v.renderer;
+  const std::vector<Target> readable = readableTargets(r, r.options);
+  std::vector<RegionRequest> requests;
+  for (Target t : {Target::Depth, Target::DepthStencil, Target::Position})
+    if (std::find(readable.begin(), readable.end(), t) != readable.end())
+      requests.push_back({t, 0, 0, r.options.width, r.options.height});
+  FrameSnapshot snapshot = snapshotFromRenderer(r, {});
+  addRegions(snapshot, readbackRegions(r, requests, readable));
+  int64_t count = 0;
+  for (uint32_t y = 0; y < r.options.height; ++y)
+    for (uint32_t x = 0; x < r.options.width; ++x) {
+      int32_t x0 = 0, y0 = 0;
+      if (!shadowMapFootprint(snapshot, x, y, x0, y0)) continue;
+      const glm::ivec2 k = *m.shadowMark - glm::ivec2(x0, y0);
+      count += k.x >= 0 && k.x <= 1 && k.y >= 0 && k.y <= 1;
+    }
+  m.shadowMarkCount = count;
+  logLine(v.eventLog, {{"event", "shadow_mark"}, {"texel", {m.shadowMark->x, m.shadowMark->y}}, {"pixels", count}});
 }
 
 void readHover(Viewer& v) {

@@ -30,7 +30,7 @@ void updateRegion(Viewer& v) {
     const std::vector<Target> readable = readableTargets(rd, rd.options);
     std::vector<RegionRequest> requests;
     for (Target t : readable)
-      if (screenSpaceTarget(t)) requests.push_back({t, int32_t(r.x), int32_t(r.y), int32_t(r.width), int32_t(r.height)});
+      if (screenSpaceTarget(t)) requests.push_back({t, int32_t(r.x), int32_t(r.y), r.width, r.height});
     FrameSnapshot snapshot = snapshotFromRenderer(rd, {});
     addRegions(snapshot, readbackRegions(rd, requests, readable));
     m.regionStats = regionStats(snapshot, r);

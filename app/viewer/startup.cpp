@@ -15,32 +15,6 @@
 
 namespace gb {
 
-static Viewer& viewerOf(GLFWwindow* w) { return *static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }
-static void wake(GLFWwindow* w) { viewerOf(w).uiFramesLeft = std::max(viewerOf(w).uiFramesLeft, 3); }
-
-// Every input event wakes the loop for a few interface frames; keys and clicks are also kept.
-static void installCallbacks(Viewer& v) {
-  glfwSetWindowUserPointer(v.window, &v);
-  glfwSetKeyCallback(v.window, [](GLFWwindow* w, int key, int, int action, int mods) {
-    if (action != GLFW_RELEASE) viewerOf(w).pressedKeys.push_back(key | (mods & GLFW_MOD_CONTROL ? 0x10000 : 0));
-    wake(w);
-  });
-  glfwSetMouseButtonCallback(v.window, [](GLFWwindow* w, int button, int action, int) {
-    if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_PRESS) {
-      viewerOf(w).clickTime = std::chrono::steady_clock::now();  // click-to-dossier latency starts here
-      viewerOf(w).clickPending = true;
-    }
-    wake(w);
-  });
-  glfwSetCursorPosCallback(v.window, [](GLFWwindow* w, double, double) { wake(w); });
-  glfwSetScrollCallback(v.window, [](GLFWwindow* w, double, double) { wake(w); });
-  glfwSetCharCallback(v.window, [](GLFWwindow* w, unsigned) { wake(w); });
-  glfwSetWindowRefreshCallback(v.window, [](GLFWwindow* w) { wake(w); });
-  glfwSetFramebufferSizeCallback(v.window, [](GLFWwindow* w, int, int) { wake(w); });
-  glfwSetWindowFocusCallback(v.window, [](GLFWwindow* w, int) { wake(w); });
-  glfwSetCursorEnterCallback(v.window, [](GLFWwindow* w, int) { wake(w); });
-}
-
 // --window WxH and --compare without --capture; a message and false on a mistake.
 static bool checkArgs(const ViewerArgs& args, unsigned& width, unsigned& height) {
   char sep = 0;
@@ -81,7 +55,7 @@ static void openContext(Viewer& v) {
   for (uint32_t i = 0; i < n; ++i) co.instanceExtensions.push_back(exts[i]);
   v.ctx = createContext(co);
   VK_CHECK(glfwCreateWindowSurface(v.ctx.instance, v.window, nullptr, &v.swapchain.surface));
-  installCallbacks(v);
+  installInputCallbacks(v);
   while (!recreateSwapchain(v)) glfwWaitEvents();  // a window may open minimised
   initImGui(v);
 }
@@ -110,7 +84,9 @@ static void initModel(Viewer& v, bool live) {
   ViewerModel& m = v.model;
   const ViewerArgs& args = v.args;
   m.wanted = args.render;
-  m.fixedSize = args.sizeGiven;
+  // A fixed render size (--size, else the options' default), letterboxed in each view: pixel coordinates in
+  // the viewer are those of `gblens render` / `capture` at that size. Following the view area is a choice.
+  m.fixedSize = true;
   m.lightCount = int(v.scene.generatedLights ? args.render.lights : int(v.scene.lights.size()));
   m.playing = !args.paused;
   m.probeReference = args.probeReference;

@@ -87,6 +87,16 @@ static RenderOptions wantedOptions(Viewer& v, int fbWidth, int fbHeight) {
   return o;
 }
 
+// Whether input arrived that will change the frame (a refinement started now would only delay it):
+// events are polled first, so a drag step that came in during the last frame counts.
+static bool inputPending(Viewer& v) {
+  glfwPollEvents();
+  const ViewerModel& m = v.model;
+  // A drag paused for a moment still counts: its next step is likely within a refinement's time.
+  const bool dragging = glfwGetMouseButton(v.window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS && msSince(v.lastInput) < 300.0;
+  return !v.pressedKeys.empty() || m.cameraDrag != glm::dvec2(0.0) || m.cameraDolly != 0.0 || dragging;
+}
+
 // Renders when the frame is outdated (at 1/n of `full` when input changed it and n > 1), or at
 // full size when a reduced frame is on screen and input stopped kRefineAfterMs ago (or `refine`:
 // the probe and captures read full-resolution frames).
@@ -104,6 +114,7 @@ static void renderIfNeeded(Viewer& v, const RenderOptions& full, bool animating,
   } else if (!outdated && (m.reducedBy == 1 || (!refine && msSince(v.lastInput) < kRefineAfterMs))) {
     return;
   }
+  if (!input && n == 1 && m.reducedBy > 1 && !refine && inputPending(v)) return;  // refine when the input stops
   RenderOptions o = full;
   o.width = std::max(16u, (full.width + uint32_t(n) - 1) / uint32_t(n));
   o.height = std::max(16u, (full.height + uint32_t(n) - 1) / uint32_t(n));
@@ -131,8 +142,15 @@ static void renderIfNeeded(Viewer& v, const RenderOptions& full, bool animating,
   const ImageDesc& sm = v.renderer.targets[size_t(Target::ShadowMap)].image.desc;
   m.shadowMapSize = {sm.width, sm.height};
   updateLiveViews(v);
-  // A pinned probe follows the frame (not logged: only clicks and arrow keys are).
-  if (m.probePixel && !m.probeRequest) probeViewerPixel(v, *m.probePixel, false);
+  // The probe stays on its full-resolution pixel (not logged: only clicks and arrow keys are): a
+  // reduced frame leaves the dossier of the last full one, marked; the next full frame probes the same
+  // pixel again and says whether what it holds changed.
+  if (m.probePixel && !m.probeRequest) {
+    if (n > 1)
+      m.probeNote = "the frame is moving: this is the dossier of the last full frame";
+    else
+      refreshProbe(v);
+  }
   m.regionDirty = m.regionDirty || m.region.has_value();  // the region's numbers follow the frame too
   v.hoverRead.reset();  // re-read the value under the mouse
   v.hoverReadView.reset();
@@ -245,9 +263,13 @@ static void answerProbe(Viewer& v) {
   m.probeRequest.reset();
 }
 
-static void buildInterface(Viewer& v) {
+// `fresh`: the iteration's first interface frame takes the next queued input; a rebuild of the same
+// frame (a click answered at once) sees the same input again.
+static void buildInterface(Viewer& v, bool fresh = true) {
+  if (fresh) feedInput(v);
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  applyInputState(v);
   ImGui::NewFrame();
   v.draws.clear();
   drawViewerUi(v.model, viewDrawCallback(), v.draws);
@@ -313,6 +335,7 @@ static void updateFrame(Viewer& v, const LoopState& s, int fbw, int fbh, double 
   v.referenceBusy = updateReferenceError(v);
   if (m.probeRequest) answerProbe(v);
   updateRegion(v);
+  countMarkedPixels(v);
   if (s.live) {
     readHover(v);
   } else {
@@ -345,11 +368,15 @@ static void presentInterface(Viewer& v) {
     ImGui::EndFrame();
     answerProbe(v);
     v.probeShownPending = true;
-    buildInterface(v);
+    buildInterface(v, false);
   }
   if (m.copyJson) {
-    glfwSetClipboardString(v.window, m.dossierJson.dump(2).c_str());
+    const std::string text = m.dossierJson.dump(2);
+    glfwSetClipboardString(v.window, text.c_str());
     m.copyJson = false;
+    m.copiedBytes = text.size();
+    m.copiedAt = ImGui::GetTime();
+    logLine(v.eventLog, {{"event", "copied"}, {"bytes", text.size()}});
   }
   ImGui::Render();
   if (!presentFrame(v)) recreateSwapchain(v);

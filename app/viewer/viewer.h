@@ -4,7 +4,9 @@
 // controls.cpp (keys, camera, lights), camera_rig.cpp (orbit/fly), probe.cpp (region read-back ->
 // the shared dossier), captures.cpp (capture button, --capture / --compare).
 #pragma once
+#include <array>
 #include <chrono>
+#include <deque>
 #include <future>
 #include <memory>
 #include <fstream>
@@ -63,6 +65,20 @@ void dollyRig(CameraRig& rig, double steps);
 
 struct ImGuiVulkan;  // window.cpp
 
+// Input as GLFW reported it, queued for the interface frames (input.cpp).
+struct InputEvent {
+  enum Kind : uint8_t { Key, Button, Move, Scroll, Char } kind = Move;
+  int a = 0, b = 0, c = 0, d = 0;  // key: key, scancode, action, mods; button: button, action, mods; char: a
+  double x = 0.0, y = 0.0;         // the cursor when it happened (window coordinates)
+  double dx = 0.0, dy = 0.0;       // scroll
+};
+struct InputQueue {
+  std::deque<InputEvent> events;
+  double x = -1.0, y = -1.0;       // the cursor as the delivered events left it (-1: none yet)
+  std::array<bool, 5> down{};      // mouse buttons as the delivered events left them
+  double cursorX = -1.0, cursorY = -1.0;  // the last position the cursor callback reported
+};
+
 struct Viewer {
   ViewerArgs args;
   GLFWwindow* window = nullptr;
@@ -118,12 +134,14 @@ struct Viewer {
   std::optional<glm::ivec2> hoverRead;
   std::optional<int> hoverReadView;
   std::string loggedHover;         // the hover text last written to --event-log
+  std::string markCountKey;        // the mark and frame the marked pixels were counted for
   std::optional<glm::ivec2> dossierShownFor;  // the probed pixel whose dossier the panel has settled on
   std::string layoutKey;           // logged layout, to log changes only
   std::ofstream probeLog, eventLog;
   std::vector<double> renderMs, presentMs;
   std::vector<double> renderedLoopMs;  // whole iterations that rendered a frame: render + views + present
   std::vector<int> pressedKeys;    // key presses since the last loop iteration
+  InputQueue input;                // events for Dear ImGui, one button transition a frame
   // Responsive rendering (viewer.cpp): what the frame on screen shows at full size, when input last
   // changed it, and the last rendering iterations' times at full size and reduced.
   RenderOptions fullOptions;
@@ -141,6 +159,15 @@ bool startViewer(Viewer& v);
 // Logs and prints the exit summary and tears everything down; the exit status (1: validation
 // messages).
 int finishViewer(Viewer& v);
+
+// input.cpp
+// GLFW's callbacks: events queued (and the viewer's own key list, click time); focus and cursor enter
+// go to ImGui at once.
+void installInputCallbacks(Viewer& v);
+// Before ImGui's NewFrame: the queued events up to and including the next button or key transition.
+void feedInput(Viewer& v);
+// After it: the cursor and buttons as those events left them (ImGui's backend polls the current ones).
+void applyInputState(Viewer& v);
 
 // controls.cpp
 void handleKeys(Viewer& v);
@@ -161,6 +188,11 @@ bool presentFrame(Viewer& v);
 // shared dossier (views/probe.h). `logged`: a user's probe (written to --probe-log).
 void probeViewerPixel(Viewer& v, glm::ivec2 pixel, bool logged);
 void readHover(Viewer& v);
+// How many screen pixels sample the marked shadow-map texel (a full read-back of the depth, once per
+// mark and frame).
+void countMarkedPixels(Viewer& v);
+// The probed pixel again on a new full frame (the same image coordinates); notes when its content changed.
+void refreshProbe(Viewer& v);
 // Read-back windows (texel (x0, y0) of the target is image texel (0, 0)) placed into a snapshot.
 void addRegions(FrameSnapshot& s, const std::vector<RegionImage>& regions);
 

@@ -68,7 +68,7 @@ void initImGui(Viewer& v) {
   ImGuiStyle& style = ImGui::GetStyle();
   style.WindowRounding = 0.0f;
   style.ScrollbarRounding = 2.0f;
-  ImGui_ImplGlfw_InitForVulkan(v.window, true);  // chains the callbacks installed before it
+  ImGui_ImplGlfw_InitForVulkan(v.window, false);  // input reaches it through the viewer's queue (input.cpp)
 
   VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8}};
   VkDescriptorPoolCreateInfo pci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};

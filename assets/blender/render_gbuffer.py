@@ -1,9 +1,12 @@
 # Renders a G-buffer with Blender's Cycles for gblens (assets/layouts/blender-cycles.json): the
 # view-layer passes as one multilayer EXR (OUT_DIR/cycles.exr) and the camera as a sidecar JSON
 # (OUT_DIR/camera.json). Without --scene it builds a small test scene in code (`make fixtures` writes
-# tests/data/blender/ so); with --scene it renders the .blend Blender opened. docs/import.md explains.
-#   blender -b --factory-startup -P assets/blender/render_gbuffer.py -- OUT_DIR [WIDTH HEIGHT]
-#   blender -b my.blend -P assets/blender/render_gbuffer.py -- OUT_DIR --scene
+# tests/data/blender/ so, and tests/data/blender/ortho with --ortho --full-float); with --scene it
+# renders the .blend Blender opened. docs/import.md explains.
+#   blender -b --factory-startup -P assets/blender/render_gbuffer.py -- OUT_DIR [WIDTH HEIGHT] [--ortho] [--full-float]
+#   blender -b my.blend -P assets/blender/render_gbuffer.py -- OUT_DIR --scene [--full-float]
+# --ortho: the test scene through an orthographic camera; --full-float: colour passes in float32
+# ("Float (Full)") instead of half.
 import json
 import math
 import os
@@ -27,20 +30,22 @@ MATERIALS = {"Grey": (1, (0.5, 0.5, 0.5), 0.0), "Red": (2, (0.8, 0.1, 0.05), 0.0
 CAMERA_LOCATION = (4.5, -5.5, 3.2)
 CAMERA_TARGET = (0.0, 0.3, 0.4)
 CAMERA_LENS_MM = 35.0
+ORTHO_SCALE = 9.0  # --ortho: the view's width in metres
 
 PASSES = ("combined", "z", "normal", "position", "object_index", "material_index", "diffuse_color", "emit")
-USAGE = ("usage: blender -b --factory-startup -P render_gbuffer.py -- OUT_DIR [WIDTH HEIGHT]\n"
-         "       blender -b SCENE.blend -P render_gbuffer.py -- OUT_DIR --scene")
+USAGE = ("usage: blender -b --factory-startup -P render_gbuffer.py -- OUT_DIR [WIDTH HEIGHT] [--ortho] [--full-float]\n"
+         "       blender -b SCENE.blend -P render_gbuffer.py -- OUT_DIR --scene [--full-float]")
 
 
 def parse_args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    own = "--scene" in argv
-    argv = [a for a in argv if a != "--scene"]
-    if len(argv) not in (1, 3) or (own and len(argv) != 1):
+    flags = {f: f in argv for f in ("--scene", "--ortho", "--full-float")}
+    argv = [a for a in argv if a not in flags]
+    own = flags["--scene"]
+    if len(argv) not in (1, 3) or (own and (len(argv) != 1 or flags["--ortho"])):
         raise SystemExit(USAGE)
     size = (int(argv[1]), int(argv[2])) if len(argv) == 3 else (160, 90)
-    return argv[0], size, own
+    return argv[0], size, own, flags["--ortho"], flags["--full-float"]
 
 
 def make_material(name, index, colour, emission):
@@ -74,7 +79,7 @@ def add_object(name, kind, location, size, pass_index, material):
     return obj
 
 
-def build_scene(width, height):
+def build_scene(width, height, ortho):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     materials = {n: make_material(n, *v) for n, v in MATERIALS.items()}
@@ -98,6 +103,9 @@ def build_scene(width, height):
 
     cam = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
     cam.data.lens = CAMERA_LENS_MM
+    if ortho:
+        cam.data.type = "ORTHO"
+        cam.data.ortho_scale = ORTHO_SCALE
     cam.data.clip_start, cam.data.clip_end = 0.1, 100.0
     cam.location = CAMERA_LOCATION
     scene.collection.objects.link(cam)
@@ -128,9 +136,9 @@ def own_scene():
     from a G-buffer's one surface per pixel centre."""
     scene = bpy.context.scene
     cam = scene.camera
-    if cam is None or cam.data.type != "PERSP":
-        raise SystemExit("render_gbuffer.py: the scene needs a perspective camera (gblens reconstructs "
-                         "positions through a perspective projection)")
+    if cam is None or cam.data.type not in ("PERSP", "ORTHO"):
+        raise SystemExit("render_gbuffer.py: the scene needs a perspective or orthographic camera (gblens "
+                         "reconstructs positions through a projection matrix; a panoramic camera has none)")
     scene.render.engine = "CYCLES"
     if scene.cycles.use_denoising:  # it changes only Combined, and Debian's Blender has no OpenImageDenoise
         print("render_gbuffer.py: note: denoising turned off (Combined is rendered without it)")
@@ -147,9 +155,10 @@ def own_scene():
     return scene, cam
 
 
-def configure_output(scene):
+def configure_output(scene, full_float):
     """Every pass the layout reads, on the first view layer, into one multilayer EXR: colour passes
-    in half float; Blender keeps Depth, Normal, Position and the indices in float32 regardless."""
+    in half float (float32 with --full-float); Blender keeps Depth, Normal, Position and the indices
+    in float32 regardless."""
     layer = scene.view_layers[0]
     for p in PASSES:
         setattr(layer, "use_pass_" + p, True)
@@ -161,7 +170,7 @@ def configure_output(scene):
         setattr(r, "use_stamp_" + stamp, False)
     img = r.image_settings
     img.file_format = "OPEN_EXR_MULTILAYER"
-    img.color_depth = "16"
+    img.color_depth = "32" if full_float else "16"
     img.exr_codec = "ZIP"
 
 
@@ -175,7 +184,8 @@ def camera_json(scene, cam, width, height):
                                   scale_y=scene.render.pixel_aspect_y)
     rows = lambda m: ",\n".join("    " + ", ".join(repr(float(m[r][c])) for c in range(4)) for r in range(4))
     fields = {"matrix_order": "row_major", "convention": "gl", "view_handedness": "right", "up": "z",
-              "image_origin": "top", "size": [width, height]}
+              "image_origin": "top", "size": [width, height],
+              "projection": "orthographic" if cam.data.type == "ORTHO" else "perspective"}
     text = "{\n"
     text += "".join("  %s: %s,\n" % (json.dumps(k), json.dumps(v)) for k, v in fields.items())
     text += '  "world_from_view": [\n%s],\n' % rows(cam.matrix_world)
@@ -185,10 +195,10 @@ def camera_json(scene, cam, width, height):
 
 
 def main():
-    out_dir, (width, height), own = parse_args()
+    out_dir, (width, height), own, ortho, full_float = parse_args()
     os.makedirs(out_dir, exist_ok=True)
-    scene, cam = own_scene() if own else build_scene(width, height)
-    configure_output(scene)
+    scene, cam = own_scene() if own else build_scene(width, height, ortho)
+    configure_output(scene, full_float)
     r = scene.render
     width = r.resolution_x * r.resolution_percentage // 100
     height = r.resolution_y * r.resolution_percentage // 100

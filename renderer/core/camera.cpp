@@ -21,6 +21,33 @@ glm::dmat4 perspective(double yfov, double aspect, double n, double f, bool reve
   return p;
 }
 
+glm::dmat4 orthographicProjection(double hw, double hh, double n, double f, bool reversedZ) {
+  glm::dmat4 p(1.0);
+  p[0][0] = 1.0 / hw;
+  p[1][1] = -1.0 / hh;  // Vulkan: clip y points down
+  // depth = (z * p22 + p32): eye depth n -> 0 (1 reversed), f -> 1 (0 reversed); eye depth is -z.
+  const double d0 = reversedZ ? 1.0 : 0.0, d1 = reversedZ ? 0.0 : 1.0;
+  p[2][2] = -(d1 - d0) / (f - n);
+  p[3][2] = d0 + p[2][2] * n;
+  return p;
+}
+
+Projection projectionOf(const glm::dmat4& p) {
+  // Column-major: p[c][r]. w = p[0][3] x + p[1][3] y + p[2][3] z + p[3][3]; x and y unmixed.
+  if (p[0][3] != 0.0 || p[1][3] != 0.0 || p[1][0] != 0.0 || p[0][1] != 0.0 || p[0][0] == 0.0 || p[1][1] == 0.0)
+    return Projection::Other;
+  if (p[2][3] < 0.0 && p[3][3] == 0.0) return Projection::Perspective;
+  if (p[2][3] == 0.0 && p[3][3] != 0.0) return Projection::Orthographic;
+  return Projection::Other;
+}
+
+const char* name(Projection p) {
+  static const char* n[] = {"perspective", "orthographic", "other"};
+  return n[size_t(p)];
+}
+
+bool orthographic(const Camera& v) { return v.clipFromEye[2][3] == 0.0; }
+
 glm::dmat4 lookAt(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up) {
   glm::dvec3 back = glm::normalize(eye - target);
   glm::dvec3 right = glm::normalize(glm::cross(up, back));
@@ -69,7 +96,21 @@ glm::dvec2 pixelNdc(const Camera& v, double px, double py) {
 glm::dvec3 eyeFromEyeDepth(const Camera& v, double px, double py, double d) {
   glm::dvec2 ndc = pixelNdc(v, px, py);
   const glm::dmat4& p = v.clipFromEye;
-  return {d * (ndc.x + p[2][0]) / p[0][0], d * (ndc.y + p[2][1]) / p[1][1], -d};
+  if (!orthographic(v)) return {d * (ndc.x + p[2][0]) / p[0][0], d * (ndc.y + p[2][1]) / p[1][1], -d};
+  // clip = p * (x, y, -d, 1), w = p33: x = (ndc.x w - p30 + p20 d) / p00 (an oblique volume too).
+  const double w = p[3][3];
+  return {(ndc.x * w - p[3][0] + p[2][0] * d) / p[0][0], (ndc.y * w - p[3][1] + p[2][1] * d) / p[1][1], -d};
+}
+
+PixelRay pixelRay(const Camera& v, double px, double py) {
+  PixelRay r;
+  if (orthographic(v)) {
+    r.origin = eyeFromEyeDepth(v, px, py, 0.0);
+    r.direction = glm::normalize(eyeFromEyeDepth(v, px, py, 1.0) - r.origin);
+  } else {
+    r.direction = glm::normalize(eyeFromEyeDepth(v, px, py, 1.0));
+  }
+  return r;
 }
 
 glm::dvec3 eyeFromHardwareDepth(const Camera& v, double px, double py, double depth) {

@@ -114,27 +114,30 @@ NormalSample decodeNormal(const FrameSnapshot& f, const Quantity& q, uint32_t x,
   return n;
 }
 
+namespace {
+// A camera depth's eye or radial distance: the stored value with the quantity's scale and bias (a
+// depth stored as a fraction of the far plane, say); null where it is the background or no distance.
+std::optional<double> storedDistance(const Quantity& q, double v) {
+  if (q.background && v == *q.background) return std::nullopt;
+  const double d = v * q.scale + q.bias;
+  if (!(d > 0.0) || !std::isfinite(d)) return std::nullopt;
+  return d;
+}
+}  // namespace
+
 std::optional<double> decodeEyeDepth(const FrameSnapshot& f, const Quantity& q, uint32_t x, uint32_t y) {
   GB_ASSERT(q.kind == QuantityKind::Depth);
   const double v = storedValues(f, q, x, y)[0];
   if (q.ofSun) return v;
-  if (q.background && v == *q.background) return std::nullopt;
-  switch (q.depth) {
-    case DepthEncoding::Eye:
-      if (!(v > 0.0) || !std::isfinite(v)) return std::nullopt;
-      return v;
-    case DepthEncoding::Hardware: {
-      const double far = f.camera.reversedZ ? 0.0 : 1.0;
-      if (!q.background && v == far) return std::nullopt;
-      return -eyeFromHardwareDepth(f.camera, x, y, v).z;
-    }
-    case DepthEncoding::Radial: {
-      if (!(v > 0.0) || !std::isfinite(v)) return std::nullopt;
-      glm::dvec3 dir = glm::normalize(eyeFromEyeDepth(f.camera, x, y, 1.0));
-      return v * -dir.z;
-    }
+  if (q.depth == DepthEncoding::Hardware) {
+    if (q.background && v == *q.background) return std::nullopt;
+    const double far = f.camera.reversedZ ? 0.0 : 1.0;
+    if (!q.background && v == far) return std::nullopt;
+    return -eyeFromHardwareDepth(f.camera, x, y, v).z;
   }
-  return std::nullopt;
+  const std::optional<double> d = storedDistance(q, v);
+  if (!d || q.depth == DepthEncoding::Eye) return d;
+  return -pixelRay(f.camera, x, y).direction.z * *d;  // radial: along the pixel's ray (from z = 0)
 }
 
 std::optional<glm::dvec3> decodePosition(const FrameSnapshot& f, const Quantity& q, uint32_t x, uint32_t y) {
@@ -143,15 +146,16 @@ std::optional<glm::dvec3> decodePosition(const FrameSnapshot& f, const Quantity&
     return eyeFromSpace(f, q.space, {v[0], v[1], v[2]}, q.space != Space::CameraRelative);
   }
   GB_ASSERT(q.kind == QuantityKind::Depth && !q.ofSun);
-  std::optional<double> d = decodeEyeDepth(f, q, x, y);
-  if (!d) return std::nullopt;
   const double v = storedValues(f, q, x, y)[0];
-  switch (q.depth) {
-    case DepthEncoding::Hardware: return eyeFromHardwareDepth(f.camera, x, y, v);
-    case DepthEncoding::Eye: return eyeFromEyeDepth(f.camera, x, y, v);
-    case DepthEncoding::Radial: return glm::normalize(eyeFromEyeDepth(f.camera, x, y, 1.0)) * v;
+  if (q.depth == DepthEncoding::Hardware) {
+    if (!decodeEyeDepth(f, q, x, y)) return std::nullopt;
+    return eyeFromHardwareDepth(f.camera, x, y, v);
   }
-  return std::nullopt;
+  const std::optional<double> d = storedDistance(q, v);
+  if (!d) return std::nullopt;
+  if (q.depth == DepthEncoding::Eye) return eyeFromEyeDepth(f.camera, x, y, *d);
+  const PixelRay ray = pixelRay(f.camera, x, y);
+  return ray.origin + ray.direction * *d;
 }
 
 glm::dvec2 decodeMotion(const FrameSnapshot& f, const Quantity& q, uint32_t x, uint32_t y) {

@@ -112,15 +112,58 @@ std::vector<const Quantity*> Layout::quantitiesOf(uint32_t target) const {
   return out;
 }
 
+static const char* const kAxisNames[] = {"x", "-x", "y", "-y", "z", "-z"};
+
+const char* name(Axis a) { return kAxisNames[size_t(a)]; }
+
+bool parseAxis(const std::string& text, Axis& out) {
+  for (size_t i = 0; i < std::size(kAxisNames); ++i)
+    if (text == kAxisNames[i] || text == std::string("+") + kAxisNames[i]) {
+      out = Axis(i);
+      return true;
+    }
+  return false;
+}
+
+bool settleWorldHandedness(LayoutCamera& c, std::string& error) {
+  // A view matrix maps the world to the view rigidly: det +1 between frames of one handedness, -1
+  // (a mirror) between a left- and a right-handed one.
+  const bool mirrors = glm::determinant(glm::dmat3(c.viewFromWorld)) < 0.0;
+  c.worldLeftHanded = c.leftHanded != mirrors;
+  if (c.statedWorldLeftHanded && *c.statedWorldLeftHanded != c.worldLeftHanded) {
+    error = std::string("camera: world_handedness: \"") + (*c.statedWorldLeftHanded ? "left" : "right") +
+            "\", but the view matrix " + (mirrors ? "mirrors" : "does not mirror") + " and the view is " +
+            (c.leftHanded ? "left" : "right") + "-handed: the world is " + (c.worldLeftHanded ? "left" : "right") +
+            "-handed (or view_handedness is wrong)";
+    return false;
+  }
+  return true;
+}
+
 glm::dmat3 worldFromLayoutWorld(const LayoutCamera& c) {
-  // Z up (Blender): (x, y, z) -> (x, z, -y); glm matrices are column-major.
-  if (c.zUp) return glm::dmat3(glm::dvec3(1, 0, 0), glm::dvec3(0, 0, -1), glm::dvec3(0, 1, 0));
-  return glm::dmat3(1.0);
+  // The images of the layout's x, y and z axes in gblens's world: a rotation taking `up` to +Y.
+  static const glm::dvec3 kImages[6][3] = {
+      {{0, 1, 0}, {-1, 0, 0}, {0, 0, 1}},  // x: (x, y, z) -> (-y, x, z)
+      {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},  // -x: (y, -x, z)
+      {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},   // y
+      {{1, 0, 0}, {0, -1, 0}, {0, 0, -1}}, // -y: (x, -y, -z), half a turn about X
+      {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}},  // z (Blender): (x, z, -y)
+      {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},  // -z: (x, -z, y)
+  };
+  const glm::dvec3* m = kImages[size_t(c.up)];
+  glm::dmat3 r(m[0], m[1], m[2]);  // glm: columns
+  // A left-handed world: mirror an axis across up first (z, or y when z is up), so gblens's is right-handed.
+  if (c.worldLeftHanded) r[c.up == Axis::PosZ || c.up == Axis::NegZ ? 1 : 2] *= -1.0;
+  return r;
 }
 
 glm::dmat3 layoutWorldFromWorld(const LayoutCamera& c) { return glm::transpose(worldFromLayoutWorld(c)); }
 
-std::string upAxisText(const LayoutCamera& c) { return c.zUp ? "Z" : "Y"; }
+std::string upAxisText(const LayoutCamera& c) {
+  std::string t = name(c.up);  // "-y" -> "-Y": "world (layout: -Y-up)"
+  for (char& ch : t) ch = char(std::toupper(static_cast<unsigned char>(ch)));
+  return t;
+}
 
 std::string nameKey(const std::string& name) {
   std::string k;

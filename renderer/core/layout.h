@@ -65,28 +65,48 @@ struct Quantity {
   std::string unit;                  // scalar/vector: for people
   std::map<uint32_t, std::string> idNames;      // id: value -> name
   std::map<std::string, uint32_t> stencilBits;  // stencil: name -> mask
+  std::string guess;                 // a draft layout's note (import --suggest-layout); for people
   std::map<std::string, std::string> check;     // `gblens check` policy for this quantity: class -> level
 };
 
 // Where an imported target's texels come from (ignored for gblens's own frames).
 struct TargetSource {
-  enum class Kind : uint8_t { None, File, Raw, RenderDoc } kind = Kind::None;
+  enum class Kind : uint8_t { None, File, Raw, RenderDoc, Live } kind = Kind::None;
   std::string path;                  // File / Raw: as written (relative to the layout file)
   std::string part;                  // File: EXR part (index or name; "" the first)
   std::vector<std::string> channels; // File: the file's channel names in target channel order
   uint64_t offset = 0;               // Raw: bytes skipped at the start
   std::string resource;              // RenderDoc: texture name or "#id"
+  // Live (`gblens attach`): the attachment the gblens layer copies at the end of a render pass.
+  // One of name, color, depth, format picks the attachment; pass (a label) or passIndex the pass.
+  struct LivePick {
+    std::string pass;                // a debug label around the render pass, or the render pass's name
+    int passIndex = -1;              // or the render pass's ordinal in its command buffer (0: the first)
+    std::string name;                // the attachment's image (or image view) debug name
+    int color = -1;                  // colour attachment N (of the pass's last subpass)
+    bool depth = false;              // the depth/stencil attachment
+    std::string format;              // the one attachment of this storage format
+  } live;
 };
 
 struct LayoutTarget {
   std::string name;
   StorageFormat format;
+  // Formats a file may hold the target in ("format": ["rgba16f", "rgba32f"]): import takes the one
+  // the file's channel type holds exactly and sets `format` to it. Empty: `format` only.
+  std::vector<StorageFormat> formatChoices;
+  std::string guess;                 // a draft layout's note (import --suggest-layout); for people
   std::vector<std::string> channels;
   uint32_t width = 0, height = 0;    // 0: the layout's size (or the source's)
   TargetSource source;
 };
 // A CpuImage described as the target stores it (name, channel names, type, encoding; no texels).
 void describeImage(const LayoutTarget& t, CpuImage& image);
+
+// A world axis with its sign: which way is up in a layout's world ("up": "-y" for a Y-down world).
+enum class Axis : uint8_t { PosX, NegX, PosY, NegY, PosZ, NegZ };
+const char* name(Axis a);
+bool parseAxis(const std::string& text, Axis& out);
 
 // The camera as the layout gives it (before conversion to gblens's convention, import.h).
 struct LayoutCamera {
@@ -95,7 +115,12 @@ struct LayoutCamera {
   glm::dmat4 viewFromWorld{1.0}, clipFromView{1.0};  // as glm matrices (column-major), already reordered
   Convention convention = Convention::Vulkan;
   bool leftHanded = false;   // the view looks down +Z
-  bool zUp = false;          // world Z is up
+  Axis up = Axis::PosY;      // the world's up axis
+  // The world's axes are left-handed (Unity, Unreal): follows from the view matrix and the view's
+  // handedness (settleWorldHandedness); a layout may state it ("world_handedness"), and is checked.
+  bool worldLeftHanded = false;
+  std::optional<bool> statedWorldLeftHanded;
+  std::optional<bool> statedOrthographic;  // "projection", when the layout states it (checked on import)
   bool bottomOrigin = false; // row 0 of the stored images is the bottom of the picture
   uint32_t width = 0, height = 0;  // the image size the projection was made for (0: not given)
   std::string sidecar;       // the matrices come from this JSON file (resolved at import)
@@ -106,11 +131,20 @@ struct LayoutCamera {
     bool rowMajor = false;
   };
   std::optional<BufferMatrix> renderdoc;  // the matrices come from a capture's uniform buffer
+  std::string from;  // where import read the matrices (a sidecar's path, a buffer and its offsets)
+  std::string guess; // a draft layout's note (import --suggest-layout): why this camera; for people
 };
 
-// gblens's world is Y-up; a layout's world may have another up axis (camera.up). The rotation that
-// takes the layout's world coordinates into gblens's (applied on import to the camera, and to
-// world-space vectors when decoded), and back (what people and scripts see: the layout's own axes).
+// The world's handedness from the view matrix (a mirror, det < 0, between a world and a view of the
+// same handedness is impossible for a camera): sets worldLeftHanded; false with a message naming
+// "world_handedness" when the layout stated the other one.
+bool settleWorldHandedness(LayoutCamera& c, std::string& error);
+
+// gblens's world is Y-up and right-handed; a layout's world may have another up axis and sign
+// (camera.up) and left-handed axes. The rotation (with a mirror for a left-handed world) that takes
+// the layout's world coordinates into gblens's (applied on import to the camera, and to world-space
+// vectors when decoded), and back (what people and scripts see: the layout's own axes). The one
+// place the up axis is turned.
 glm::dmat3 worldFromLayoutWorld(const LayoutCamera& c);
 glm::dmat3 layoutWorldFromWorld(const LayoutCamera& c);
 // The layout's up axis as people write it ("y", "z", ...): labels of world-space values.

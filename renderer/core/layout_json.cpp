@@ -7,11 +7,18 @@
 #include <set>
 #include <sstream>
 
+#include "renderer/core/file_name.h"
+#include "renderer/core/json_read.h"
+
 namespace gb {
 
 using json = nlohmann::json;
 
 namespace {
+
+// Scales, depths and light values beyond this are not a renderer's: refused, so that nothing an
+// import computes from them overflows to Inf (and is written as JSON null).
+constexpr double kMaxLayoutNumber = 1e30;
 
 // Where in the file a value is, for messages: "my.json: targets[1] \"gbuf\": quantities[0] \"N\"".
 struct Where {
@@ -29,42 +36,42 @@ struct Reader {
   bool string(const json& j, const Where& w, const char* key, std::string& out, bool required) {
     auto it = j.find(key);
     if (it == j.end()) return !required || fail(w, key, "missing");
-    if (!it->is_string()) return fail(w, key, "expected a string, got " + it->dump());
+    if (!it->is_string()) return fail(w, key, "expected a string, got " + jsonBrief(*it));
     out = it->get<std::string>();
     return true;
   }
   bool number(const json& j, const Where& w, const char* key, double& out) {
     auto it = j.find(key);
     if (it == j.end()) return true;
-    if (!it->is_number() || !std::isfinite(it->get<double>())) return fail(w, key, "expected a number, got " + it->dump());
-    out = it->get<double>();
+    if (!jsonNumber(*it, out) || std::abs(out) > kMaxLayoutNumber)
+      return fail(w, key, "expected a number (magnitude at most 1e30), got " + jsonBrief(*it));
     return true;
   }
   bool boolean(const json& j, const Where& w, const char* key, bool& out) {
     auto it = j.find(key);
     if (it == j.end()) return true;
-    if (!it->is_boolean()) return fail(w, key, "expected true or false, got " + it->dump());
+    if (!it->is_boolean()) return fail(w, key, "expected true or false, got " + jsonBrief(*it));
     out = it->get<bool>();
     return true;
   }
   bool size(const json& j, const Where& w, const char* key, uint32_t& width, uint32_t& height) {
     auto it = j.find(key);
     if (it == j.end()) return true;
-    auto positive = [](const json& v) { return v.is_number_integer() && v.get<int64_t>() > 0 && v.get<int64_t>() <= 65536; };
-    if (!it->is_array() || it->size() != 2 || !positive((*it)[0]) || !positive((*it)[1]))
-      return fail(w, key, "expected [width, height] (1..65536), got " + it->dump());
-    width = (*it)[0].get<uint32_t>();
-    height = (*it)[1].get<uint32_t>();
+    int64_t wh[2] = {0, 0};
+    if (!it->is_array() || it->size() != 2 || !jsonInteger((*it)[0], 1, 65536, wh[0]) ||
+        !jsonInteger((*it)[1], 1, 65536, wh[1]))
+      return fail(w, key, "expected [width, height] (1..65536), got " + jsonBrief(*it));
+    width = uint32_t(wh[0]);
+    height = uint32_t(wh[1]);
     return true;
   }
   bool vec3(const json& j, const Where& w, const char* key, glm::dvec3& out) {
     auto it = j.find(key);
     if (it == j.end()) return true;
-    if (!it->is_array() || it->size() != 3) return fail(w, key, "expected 3 numbers, got " + it->dump());
-    for (int i = 0; i < 3; ++i) {
-      if (!(*it)[i].is_number()) return fail(w, key, "expected 3 numbers, got " + it->dump());
-      out[i] = (*it)[i].get<double>();
-    }
+    if (!it->is_array() || it->size() != 3) return fail(w, key, "expected 3 numbers, got " + jsonBrief(*it));
+    for (int i = 0; i < 3; ++i)
+      if (!jsonNumber((*it)[i], out[i]) || std::abs(out[i]) > kMaxLayoutNumber)
+        return fail(w, key, "expected 3 numbers (magnitude at most 1e30), got " + jsonBrief(*it));
     return true;
   }
   // One of `choices`; `index` receives its position.
@@ -84,15 +91,17 @@ struct Reader {
     return fail(w, key, "\"" + v + "\" is not one of " + list);
   }
   bool unknownKeys(const json& j, const Where& w, std::initializer_list<const char*> known) {
-    for (auto& [k, v] : j.items())
+    for (auto& item : j.items()) {
+      const std::string& k = item.key();  // (a named variable: clang-14 cannot capture a structured binding)
       if (std::none_of(known.begin(), known.end(), [&](const char* n) { return k == n; }))
         return fail(w, k, "unknown field");
+    }
     return true;
   }
 };
 
 bool validName(const std::string& s) {
-  if (s.empty()) return false;
+  if (s.empty() || s.size() > kMaxNameBytes) return false;
   for (char c : s)
     if (!(std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_'))
       return false;
@@ -148,10 +157,17 @@ bool readQuantityFields(Reader& r, const json& j, const Where& w, Quantity& q) {
       q.depth = DepthEncoding(i);
       double bg = NAN;
       int of = -1;
-      if (!r.number(j, w, "background", bg) || !r.choice(j, w, "of", {"camera", "sun"}, of)) return false;
+      if (!r.number(j, w, "background", bg) || !r.choice(j, w, "of", {"camera", "sun"}, of) ||
+          !r.number(j, w, "scale", q.scale) || !r.number(j, w, "bias", q.bias))
+        return false;
       if (!std::isnan(bg)) q.background = bg;
       q.ofSun = of == 1;
-      return r.unknownKeys(j, w, {"quantity", "name", "channels", "encoding", "background", "of", "when"});
+      // Eye and radial distances may be stored as fractions (eye depth / far): distance = stored * scale + bias.
+      if ((j.contains("scale") || j.contains("bias")) && (q.depth == DepthEncoding::Hardware || q.ofSun))
+        return r.fail(w, j.contains("scale") ? "scale" : "bias",
+                      "applies to eye and radial camera depths (hardware depth is decoded by the projection)");
+      if (!(q.scale > 0.0)) return r.fail(w, "scale", "expected a positive number");
+      return r.unknownKeys(j, w, {"quantity", "name", "channels", "encoding", "background", "of", "scale", "bias", "when"});
     }
     case QuantityKind::Position: {
       int s = -1;
@@ -172,8 +188,9 @@ bool readQuantityFields(Reader& r, const json& j, const Where& w, Quantity& q) {
         if (!it->is_object()) return r.fail(w, "names", "expected {\"value\": \"name\", ...}");
         for (auto& [k, v] : it->items()) {
           char* end = nullptr;
-          unsigned long id = std::strtoul(k.c_str(), &end, 10);
-          if (k.empty() || *end || !v.is_string()) return r.fail(w, "names", "expected {\"value\": \"name\", ...}");
+          unsigned long long id = std::strtoull(k.c_str(), &end, 10);
+          if (k.empty() || *end || !v.is_string() || !std::isdigit(static_cast<unsigned char>(k[0])) || id > 0xFFFFFFFFull)
+            return r.fail(w, "names", "expected {\"value\": \"name\", ...} with values 0..4294967295");
           q.idNames[uint32_t(id)] = v.get<std::string>();
         }
       }
@@ -182,9 +199,9 @@ bool readQuantityFields(Reader& r, const json& j, const Where& w, Quantity& q) {
       if (auto it = j.find("bits"); it != j.end()) {
         if (!it->is_object()) return r.fail(w, "bits", "expected {\"name\": mask, ...}");
         for (auto& [k, v] : it->items()) {
-          if (!v.is_number_unsigned() || v.get<uint64_t>() == 0 || v.get<uint64_t>() > 255)
-            return r.fail(w, "bits", "\"" + k + "\": expected a mask 1..255");
-          q.stencilBits[k] = v.get<uint32_t>();
+          int64_t mask = 0;
+          if (!jsonInteger(v, 1, 255, mask)) return r.fail(w, "bits", "\"" + k + "\": expected a mask 1..255");
+          q.stencilBits[k] = uint32_t(mask);
         }
       }
       return r.unknownKeys(j, w, {"quantity", "name", "channels", "bits", "when"});
@@ -202,6 +219,13 @@ bool readQuantityFields(Reader& r, const json& j, const Where& w, Quantity& q) {
         return false;
       return r.unknownKeys(j, w, {"quantity", "name", "channels", "scale", "bias", "unit", "when"});
   }
+}
+
+// A draft layout's "guess" notes (import --suggest-layout): kept for people, never interpreted.
+bool takeGuess(Reader& r, json& j, const Where& w, std::string& guess) {
+  if (!r.string(j, w, "guess", guess, false)) return false;
+  j.erase("guess");
+  return true;
 }
 
 // A `gblens check` policy: {"denormal": "warn", ...} (views/analysis/check.h names the classes).
@@ -225,25 +249,31 @@ bool readQuantity(Reader& r, const json& jIn, const Where& w, Layout& l, uint32_
   if (!readCheck(r, jIn, w, q.check)) return false;
   json j = jIn;
   j.erase("check");  // read above; every kind may have it
+  if (!takeGuess(r, j, w, q.guess)) return false;
   std::string kind;
   if (!r.string(j, w, "quantity", kind, true)) return false;
   if (!parseQuantityKind(kind, q.kind)) return r.fail(w, "quantity", "unknown kind \"" + kind + "\"");
   if (!r.string(j, w, "name", q.name, false)) return false;
   if (q.name.empty()) q.name = kind;
+  if (std::string why; !safeFileName(q.name, why)) return r.fail(w, "name", "\"" + jsonBrief(q.name) + "\": " + why);
   q.target = target;
   if (!readQuantityFields(r, j, w, q)) return false;
   const LayoutTarget& t = l.targets[target];
   auto it = j.find("channels");
   if (it == j.end() || !it->is_array() || it->empty()) return r.fail(w, "channels", "expected a list of channels");
   for (const json& c : *it) {
-    if (c.is_number_integer() && c.get<int64_t>() >= 0) {
-      q.channels.push_back(uint32_t(c.get<int64_t>()));
+    int64_t index = 0;
+    if (jsonInteger(c, 0, INT64_MAX, index)) {
+      if (index >= int64_t(t.format.channels))
+        return r.fail(w, "channels", "channel " + std::to_string(index) + " is beyond the " +
+                                         std::to_string(t.format.channels) + " channels of format " + t.format.name);
+      q.channels.push_back(uint32_t(index));
     } else if (c.is_string() && !t.channels.empty()) {
       auto pos = std::find(t.channels.begin(), t.channels.end(), c.get<std::string>());
       if (pos == t.channels.end()) return r.fail(w, "channels", "the target has no channel " + c.dump());
       q.channels.push_back(uint32_t(pos - t.channels.begin()));
     } else {
-      return r.fail(w, "channels", "expected channel indices (or names given in the target's \"channels\"), got " + c.dump());
+      return r.fail(w, "channels", "expected channel indices (or names given in the target's \"channels\"), got " + jsonBrief(c));
     }
     if (q.channels.back() >= t.format.channels)
       return r.fail(w, "channels", "channel " + std::to_string(q.channels.back()) + " is beyond the " +
@@ -269,15 +299,62 @@ bool readQuantity(Reader& r, const json& jIn, const Where& w, Layout& l, uint32_
   return true;
 }
 
+// {"live": "NAME"} or {"live": {"pass": LABEL | N, "name" | "color" | "depth" | "format": ...}}.
+bool readLiveSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
+  s.kind = TargetSource::Kind::Live;
+  TargetSource::LivePick& p = s.live;
+  if (j.is_string()) {
+    p.name = j.get<std::string>();
+    return !p.name.empty() || r.fail(w, "live", "expected an attachment's debug name");
+  }
+  Where wl = w.at("live");
+  if (!j.is_object()) return r.fail(w, "live", "expected a debug name or {\"pass\": ..., \"name\" | \"color\" | \"depth\" | \"format\": ...}");
+  if (auto it = j.find("pass"); it != j.end()) {
+    if (it->is_number_integer() && it->get<int64_t>() >= 0 && it->get<int64_t>() < 1 << 20)
+      p.passIndex = int(it->get<int64_t>());
+    else if (it->is_string() && !it->get<std::string>().empty())
+      p.pass = it->get<std::string>();
+    else
+      return r.fail(wl, "pass", "expected a label (text) or the render pass's ordinal in its command buffer (0, 1, ...)");
+  }
+  double color = -1.0;
+  if (!r.string(j, wl, "name", p.name, false) || !r.number(j, wl, "color", color) || !r.boolean(j, wl, "depth", p.depth) ||
+      !r.string(j, wl, "format", p.format, false))
+    return false;
+  if (j.contains("color") && (color < 0.0 || color > 7.0 || color != std::floor(color)))
+    return r.fail(wl, "color", "expected a colour attachment index 0..7");
+  p.color = int(color);
+  StorageFormat f;
+  if (!p.format.empty() && !parseStorageFormat(p.format, f))
+    return r.fail(wl, "format", "unknown storage format \"" + p.format + "\"");
+  const int picks = int(!p.name.empty()) + int(p.color >= 0) + int(p.depth) + int(!p.format.empty());
+  if (picks != 1) return r.fail(wl, "name", "give exactly one of \"name\", \"color\", \"depth\": true and \"format\"");
+  return r.unknownKeys(j, wl, {"pass", "name", "color", "depth", "format"});
+}
+
 bool readSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
   if (!j.is_object()) return r.fail(w, "source", "expected an object");
   Where ws = w.at("source");
+  if (auto it = j.find("live"); it != j.end()) {
+    if (j.size() != 1) return r.fail(ws, "live", "a live source has no other fields");
+    return readLiveSource(r, *it, ws, s);
+  }
   bool raw = false;
-  double offset = 0.0;
-  if (!r.string(j, ws, "file", s.path, false) || !r.boolean(j, ws, "raw", raw) || !r.number(j, ws, "offset", offset) ||
+  int64_t offset = 0, part = 0;
+  if (!r.string(j, ws, "file", s.path, false) || !r.boolean(j, ws, "raw", raw) ||
       !r.string(j, ws, "renderdoc", s.resource, false))
     return false;
-  if (auto it = j.find("part"); it != j.end()) s.part = it->is_string() ? it->get<std::string>() : it->dump();
+  // A byte offset into a file: at most 2^48 (256 TiB), never wrapped.
+  if (auto it = j.find("offset"); it != j.end() && !jsonInteger(*it, 0, int64_t(1) << 48, offset))
+    return r.fail(ws, "offset", "expected a byte count 0..2^48, got " + jsonBrief(*it));
+  if (auto it = j.find("part"); it != j.end()) {
+    if (it->is_string())
+      s.part = it->get<std::string>();
+    else if (jsonInteger(*it, 0, 65535, part))
+      s.part = std::to_string(part);
+    else
+      return r.fail(ws, "part", "expected a part name or index 0..65535, got " + jsonBrief(*it));
+  }
   if (auto it = j.find("channels"); it != j.end()) {
     if (!it->is_array()) return r.fail(ws, "channels", "expected the file's channel names");
     for (const json& c : *it) {
@@ -288,28 +365,54 @@ bool readSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
   // Neither: the file given on the command line (a shipped layout does not know the user's file name).
   if (!s.path.empty() && !s.resource.empty()) return r.fail(ws, "file", "give one of \"file\" and \"renderdoc\", not both");
   s.kind = !s.resource.empty() ? TargetSource::Kind::RenderDoc : raw ? TargetSource::Kind::Raw : TargetSource::Kind::File;
-  if (offset < 0.0 || offset != std::floor(offset)) return r.fail(ws, "offset", "expected a byte count");
   s.offset = uint64_t(offset);
   return r.unknownKeys(j, ws, {"file", "raw", "offset", "part", "channels", "renderdoc"});
 }
 
-bool readTarget(Reader& r, const json& j, const Where& w, Layout& l) {
-  if (!j.is_object()) return r.fail(w, "", "expected an object");
+bool readTarget(Reader& r, const json& given, const Where& w, Layout& l) {
+  if (!given.is_object()) return r.fail(w, "", "expected an object");
+  json j = given;
   LayoutTarget t;
   if (!r.string(j, w, "name", t.name, true)) return false;
-  if (!validName(t.name)) return r.fail(w, "name", "\"" + t.name + "\": use a-z, 0-9 and _");
+  if (!validName(t.name)) return r.fail(w, "name", jsonBrief(t.name) + ": use a-z, 0-9 and _ (at most 100)");
   if (l.findTarget(t.name) >= 0) return r.fail(w, "name", "\"" + t.name + "\" names another target too");
   Where wt = w.at("\"" + t.name + "\"");
-  std::string format;
-  if (!r.string(j, wt, "format", format, true)) return false;
-  if (!parseStorageFormat(format, t.format))
-    return r.fail(wt, "format", "unknown storage format \"" + format + "\" (e.g. rgba8_unorm, rg16_snorm, r32f, d32s8)");
+  if (!takeGuess(r, j, wt, t.guess)) return false;
+  // "format": one storage format, or a list the source's files may hold it in (the file's channel type picks).
+  std::vector<std::string> formats;
+  if (auto it = j.find("format"); it != j.end() && it->is_array() && !it->empty()) {
+    for (const json& f : *it)
+      if (f.is_string()) formats.push_back(f.get<std::string>());
+    if (formats.size() != it->size()) return r.fail(wt, "format", "expected storage format names, got " + it->dump());
+  } else {
+    formats.emplace_back();
+    if (!r.string(j, wt, "format", formats[0], true)) return false;
+  }
+  const std::string& format = formats[0];
+  for (const std::string& f : formats) {
+    StorageFormat parsed;
+    if (!parseStorageFormat(f, parsed))
+      return r.fail(wt, "format", "unknown storage format \"" + f + "\" (e.g. rgba8_unorm, rg16_snorm, r32f, d32s8)");
+    if (formats.size() > 1 && (parsed.depth || parsed.packed10))
+      return r.fail(wt, "format", "a list of formats is for image files: " + f + " is a packed GPU format");
+    if (!t.formatChoices.empty() && parsed.channels != t.formatChoices[0].channels)
+      return r.fail(wt, "format", "the formats of a list must have one channel count: " + f + " has " +
+                                      std::to_string(parsed.channels) + ", " + formats[0] + " " +
+                                      std::to_string(t.formatChoices[0].channels));
+    t.formatChoices.push_back(parsed);
+  }
+  t.format = t.formatChoices[0];
+  if (formats.size() == 1) t.formatChoices.clear();
   if (!r.size(j, wt, "size", t.width, t.height)) return false;
   if (auto it = j.find("channels"); it != j.end()) {
     if (!it->is_array() || it->size() != t.format.channels)
       return r.fail(wt, "channels", "expected " + std::to_string(t.format.channels) + " channel names for format " + format);
     for (const json& c : *it) {
+      std::string why;
       if (!c.is_string()) return r.fail(wt, "channels", "expected names");
+      if (!safeFileName(c.get<std::string>(), why)) return r.fail(wt, "channels", jsonBrief(c) + ": " + why);
+      if (std::find(t.channels.begin(), t.channels.end(), c.get<std::string>()) != t.channels.end())
+        return r.fail(wt, "channels", jsonBrief(c) + " named twice");  // one EXR channel would hold both
       t.channels.push_back(c.get<std::string>());
     }
   }
@@ -348,8 +451,8 @@ bool readMatrix(Reader& r, const json& j, const Where& w, const char* key, bool 
   if (it == j.end()) return r.fail(w, key, "missing");
   if (!it->is_array() || it->size() != 16) return r.fail(w, key, "expected 16 numbers");
   for (int i = 0; i < 16; ++i) {
-    if (!(*it)[i].is_number()) return r.fail(w, key, "expected 16 numbers");
-    const double v = (*it)[i].get<double>();
+    double v = 0.0;
+    if (!jsonNumber((*it)[i], v)) return r.fail(w, key, "expected 16 numbers");
     if (rowMajor)
       m[i % 4][i / 4] = v;
     else
@@ -364,29 +467,38 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
   if (!j.is_object()) return r.fail(w, "camera", "expected an object");
   Where wc = w.at("camera");
   c.present = true;
-  int order = -1, conv = -1, hand = -1, up = -1, origin = -1;
+  int order = -1, conv = -1, hand = -1, worldHand = -1, projection = -1, origin = -1;
+  std::string up;
   if (!r.choice(j, wc, "matrix_order", {"column_major", "row_major"}, order) ||
       !r.choice(j, wc, "convention", {"vulkan", "d3d", "gl"}, conv) ||
-      !r.choice(j, wc, "view_handedness", {"right", "left"}, hand) || !r.choice(j, wc, "up", {"y", "z"}, up) ||
+      !r.choice(j, wc, "view_handedness", {"right", "left"}, hand) ||
+      !r.choice(j, wc, "world_handedness", {"right", "left"}, worldHand) ||
+      !r.choice(j, wc, "projection", {"perspective", "orthographic"}, projection) || !r.string(j, wc, "up", up, false) ||
       !r.choice(j, wc, "image_origin", {"top", "bottom"}, origin) || !r.string(j, wc, "sidecar", c.sidecar, false) ||
+      !r.string(j, wc, "from", c.from, false) || !r.string(j, wc, "guess", c.guess, false) ||
       !r.size(j, wc, "size", c.width, c.height))
     return false;
+  if (!up.empty() && !parseAxis(up, c.up))
+    return r.fail(wc, "up", "\"" + up + "\" is not one of x, -x, y, -y, z, -z");
   if (conv >= 0) c.convention = LayoutCamera::Convention(conv);
   c.leftHanded = hand == 1;
-  c.zUp = up == 1;
+  if (worldHand >= 0) c.statedWorldLeftHanded = worldHand == 1;
+  if (projection >= 0) c.statedOrthographic = projection == 1;
   c.bottomOrigin = origin == 1;
   if (auto it = j.find("renderdoc"); it != j.end()) {
     Where wr = wc.at("renderdoc");
     LayoutCamera::BufferMatrix b;
-    double view = -1.0, clip = -1.0;
+    int64_t view = -1, clip = -1;
     if (!it->is_object() || !r.string(*it, wr, "buffer", b.buffer, true)) return r.fail(wr, "buffer", "missing");
     b.worldFromView = it->contains("world_from_view");
     b.rowMajor = order == 1;
     const char* viewKey = b.worldFromView ? "world_from_view" : "view_from_world";
     for (auto [key, out] : {std::pair{viewKey, &view}, {"clip_from_view", &clip}}) {
       auto m = it->find(key);
-      if (m == it->end() || !m->is_object() || !r.number(*m, wr.at(key), "offset", *out) || *out < 0.0)
-        return r.fail(wr, key, "expected {\"offset\": BYTES}");
+      // A uniform buffer is at most a few kilobytes: an offset past 2^32 is never one.
+      if (m == it->end() || !m->is_object() || !m->contains("offset") ||
+          !jsonInteger((*m)["offset"], 0, 0xFFFFFFFFll, *out))
+        return r.fail(wr, key, "expected {\"offset\": BYTES} (0..4294967295)");
     }
     b.viewOffset = uint64_t(view);
     b.clipOffset = uint64_t(clip);
@@ -403,9 +515,16 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
       return false;
     }
     if (!readMatrix(r, j, wc, "clip_from_view", order == 1, c.clipFromView)) return false;
+    std::string error;
+    if (!settleWorldHandedness(c, error)) return r.fail(w, "camera", error.substr(8));
+    if (c.statedOrthographic && *c.statedOrthographic != (c.clipFromView[2][3] == 0.0))
+      return r.fail(wc, "projection", std::string("\"") + (*c.statedOrthographic ? "orthographic" : "perspective") +
+                                          "\", but clip_from_view is " +
+                                          (c.clipFromView[2][3] == 0.0 ? "orthographic" : "not orthographic"));
   }
   return r.unknownKeys(j, wc, {"view_from_world", "world_from_view", "clip_from_view", "matrix_order", "convention",
-                               "view_handedness", "up", "image_origin", "sidecar", "renderdoc", "size"});
+                               "view_handedness", "world_handedness", "projection", "up", "image_origin", "sidecar",
+                               "renderdoc", "size", "from", "guess"});
 }
 
 bool readLights(Reader& r, const json& j, const Where& w, LayoutLights& l) {
@@ -433,7 +552,8 @@ bool readLights(Reader& r, const json& j, const Where& w, LayoutLights& l) {
   if (auto it = j.find("sun"); it != j.end()) {
     glm::dvec3 dir(0.0), color(l.sun.color);
     if (!r.vec3(*it, wl.at("sun"), "direction", dir) || !r.vec3(*it, wl.at("sun"), "color", color)) return false;
-    if (glm::length(dir) == 0.0) return r.fail(wl.at("sun"), "direction", "expected a non-zero vector");
+    if (!(glm::length(dir) > 0.0) || !std::isfinite(glm::length(dir)))
+      return r.fail(wl.at("sun"), "direction", "expected a non-zero vector");
     l.sun.toSun = glm::normalize(dir);
     l.sun.color = glm::vec3(color);
   } else {
@@ -524,16 +644,10 @@ bool parseLayoutCamera(const json& j, const std::string& where, LayoutCamera& ou
 }
 
 bool loadLayoutFile(const std::string& path, const LayoutParameters& params, Layout& out, std::string& error) {
-  std::ifstream in(path);
-  if (!in) {
-    error = path + ": cannot read the layout file";
-    return false;
-  }
   json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    error = path + ": not valid JSON (" + e.what() + ")";
+  if (!readJsonFile(path, j, error)) {
+    if (size_t at = error.find(": cannot read"); at != std::string::npos)
+      error.replace(at, 13, ": cannot read the layout file");
     return false;
   }
   return resolveLayoutParameters(j, params, path, error) && parseLayout(j, path, out, error);

@@ -33,6 +33,8 @@ bool loadLayoutFile(const std::string& path, const LayoutParameters& params, Lay
 // The layout as JSON (resolved; what capture manifests embed). parseLayout(layoutJson(l)) == l.
 nlohmann::json layoutJson(const Layout& layout);
 nlohmann::json layoutCameraJson(const LayoutCamera& camera);
+// A live source's pick as the layout writes it ({"pass": ..., "name": ...}; gblens attach's request too).
+nlohmann::json livePickJson(const TargetSource::LivePick& pick);
 
 // gblens's own frame under these options: assets/layouts/gblens.json resolved with them.
 const Layout& nativeLayout(const RenderOptions& options);

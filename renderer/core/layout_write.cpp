@@ -37,6 +37,8 @@ static json quantityJson(const Quantity& q) {
       j["encoding"] = name(q.depth);
       if (q.background) j["background"] = *q.background;
       if (q.ofSun) j["of"] = "sun";
+      if (q.scale != 1.0) j["scale"] = q.scale;
+      if (q.bias != 0.0) j["bias"] = q.bias;
       break;
     case QuantityKind::Position:
       j["space"] = q.space == Space::View ? "view" : q.space == Space::World ? "world" : "camera_relative";
@@ -68,13 +70,26 @@ static json quantityJson(const Quantity& q) {
       if (!q.unit.empty()) j["unit"] = q.unit;
       break;
   }
+  if (!q.guess.empty()) j["guess"] = q.guess;
   if (!q.check.empty()) j["check"] = q.check;
   return j;
+}
+
+json livePickJson(const TargetSource::LivePick& p) {
+  json l = json::object();
+  if (!p.pass.empty()) l["pass"] = p.pass;
+  if (p.passIndex >= 0) l["pass"] = p.passIndex;
+  if (!p.name.empty()) l["name"] = p.name;
+  if (p.color >= 0) l["color"] = p.color;
+  if (p.depth) l["depth"] = true;
+  if (!p.format.empty()) l["format"] = p.format;
+  return l;
 }
 
 static json sourceJson(const TargetSource& s) {
   json j = json::object();
   if (s.kind == TargetSource::Kind::RenderDoc) return {{"renderdoc", s.resource}};
+  if (s.kind == TargetSource::Kind::Live) return {{"live", livePickJson(s.live)}};
   if (!s.path.empty()) j["file"] = s.path;
   if (s.kind == TargetSource::Kind::Raw) j["raw"] = true;
   if (s.offset) j["offset"] = s.offset;
@@ -88,9 +103,13 @@ json layoutCameraJson(const LayoutCamera& c) {
   json j = {{"matrix_order", "column_major"},
             {"convention", conventions[size_t(c.convention)]},
             {"view_handedness", c.leftHanded ? "left" : "right"},
-            {"up", c.zUp ? "z" : "y"},
+            {"up", name(c.up)},
             {"image_origin", c.bottomOrigin ? "bottom" : "top"}};
+  if (c.statedWorldLeftHanded) j["world_handedness"] = *c.statedWorldLeftHanded ? "left" : "right";
+  if (c.statedOrthographic) j["projection"] = *c.statedOrthographic ? "orthographic" : "perspective";
   if (!c.sidecar.empty()) j["sidecar"] = c.sidecar;
+  if (!c.from.empty()) j["from"] = c.from;
+  if (!c.guess.empty()) j["guess"] = c.guess;
   if (c.width) j["size"] = {c.width, c.height};
   if (c.renderdoc) {
     j["matrix_order"] = c.renderdoc->rowMajor ? "row_major" : "column_major";
@@ -101,6 +120,9 @@ json layoutCameraJson(const LayoutCamera& c) {
   if (c.sidecar.empty() && !c.renderdoc) {
     j["view_from_world"] = matrix(c.viewFromWorld);
     j["clip_from_view"] = matrix(c.clipFromView);
+    // What the matrices say, for people reading a manifest (parseLayoutCamera checks them again).
+    j["world_handedness"] = c.worldLeftHanded ? "left" : "right";
+    j["projection"] = c.clipFromView[2][3] == 0.0 ? "orthographic" : "perspective";
   }
   return j;
 }
@@ -124,6 +146,11 @@ json layoutJson(const Layout& l) {
   for (uint32_t t = 0; t < l.targets.size(); ++t) {
     const LayoutTarget& lt = l.targets[t];
     json j = {{"name", lt.name}, {"format", lt.format.name}, {"channels", lt.channels}};
+    if (!lt.formatChoices.empty()) {
+      j["format"] = json::array();
+      for (const StorageFormat& f : lt.formatChoices) j["format"].push_back(f.name);
+    }
+    if (!lt.guess.empty()) j["guess"] = lt.guess;
     if (lt.width) j["size"] = {lt.width, lt.height};
     if (lt.source.kind != TargetSource::Kind::None) j["source"] = sourceJson(lt.source);
     json qs = json::array();

@@ -1,6 +1,8 @@
 // The target table, the texel formats and the reasons a target is absent.
 #include "renderer/core/targets.h"
 
+#include "renderer/core/layout_json.h"
+
 #include "renderer/core/assert.h"
 
 namespace gb {
@@ -98,7 +100,10 @@ bool parseTarget(const std::string& name, Target& out) {
 
 void describeReadback(Target t, const RenderOptions& o, CpuImage& img) {
   img.name = targetName(t);
-  img.channels = channelNames(t);
+  // The channels as gblens's layout names them under these options (what captures and views call them).
+  const Layout& l = nativeLayout(o);
+  const int i = l.findTarget(img.name);
+  img.channels = i >= 0 ? l.targets[size_t(i)].channels : channelNames(t);
   const TexelFormatInfo& f = texelFormatInfo(texelFormat(t, o));
   img.type = f.type;
   img.encoding = f.encoding;

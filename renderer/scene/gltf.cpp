@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "renderer/core/json_read.h"
 #include "renderer/scene/gltf_internal.h"
 
 namespace gb {
@@ -88,7 +89,10 @@ static Scene loadSteps(gltf::Doc& doc, const uint8_t* data, size_t size, const s
   Scene& scene = *doc.scene;
   auto t = Clock::now();
   gltf::parseDocument(doc, data, size, baseDir);
+  gltf::checkSchema(doc, doc.json);
+  gltf::decodeDraco(doc);
   gltf::validateDocument(doc);
+  gltf::checkDataRules(doc);
   gltf::checkUnrenderedParts(doc);
   stats->parseMs += msSince(t);
 
@@ -111,6 +115,8 @@ static Scene loadSteps(gltf::Doc& doc, const uint8_t* data, size_t size, const s
 
 Scene loadGltf(const std::string& path, int lightCount, SceneLoadStats* stats) {
   auto t = Clock::now();
+  std::string notAFile;  // a directory, FIFO or device is refused before it is opened (a FIFO would block)
+  if (!isRegularFile(path, notAFile)) throw SceneError{notAFile};
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw SceneError{path + ": cannot open"};
   std::streamoff size = in.tellg();

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <thread>
 
+#include "renderer/core/library_output.h"
 #include "renderer/scene/gltf_internal.h"
 
 namespace gb::gltf {
@@ -98,16 +99,19 @@ std::vector<DecodedImage> decodeImages(const Doc& doc, const std::vector<bool>& 
       }
     }
   };
+  // libpng prints its errors itself: captured, and folded into the message of the image that failed.
+  LibraryOutput library;
   size_t threads = std::min<size_t>(work.size(), std::max(1u, std::thread::hardware_concurrency()));
   std::vector<std::thread> pool;
   for (size_t t = 1; t < threads; ++t) pool.emplace_back(worker);
   worker();
   for (std::thread& t : pool) t.join();
+  const std::string printed = library.suffix();
   for (size_t i = 0; i < images.size(); ++i)
     if (!errors[i].empty()) {
       const tinygltf::Image& img = images[i];
       std::string where = img.uri.empty() || img.uri.rfind("data:", 0) == 0 ? "" : " ('" + img.uri + "')";
-      fail(doc, named("image", i, img.name) + where, errors[i]);
+      fail(doc, named("image", i, img.name) + where, errors[i] + printed);
     }
   return out;
 }

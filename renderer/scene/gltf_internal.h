@@ -7,6 +7,7 @@
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #define TINYGLTF_NO_FS
 #include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <string>
@@ -44,10 +45,12 @@ constexpr int kMaxJsonDepth = 64;                    // nesting of the JSON docu
 struct Doc {
   std::string file;  // as given by the user: the prefix of every message
   tinygltf::Model model;
+  nlohmann::json json;  // the document's JSON as written (the schema step reads it; tinygltf drops mistyped values)
   Scene* scene = nullptr;
   SceneLoadStats* stats = nullptr;
   std::vector<std::vector<uint32_t>> meshPrimitives;  // glTF mesh -> Scene meshes (drawn primitives)
   int defaultMaterial = -1;  // Scene material for primitives without one (added when first needed)
+  std::vector<int> dracoPlaceholders;  // accessors given a buffer view only for tinygltf (gltf_draco.cpp)
 };
 
 // Throws SceneError "<file>: <element>: <what>".
@@ -61,8 +64,26 @@ std::string named(const char* kind, size_t index, const std::string& name);
 // ---- parse (gltf_parse.cpp): bytes -> tinygltf::Model; version and required extensions ----
 void parseDocument(Doc& doc, const uint8_t* data, size_t size, const std::string& baseDir);
 
+// ---- schema (gltf_schema.cpp): the types, ranges, allowed values and required properties of the
+// parts gblens draws, and extensions used without being declared. `parsed`: tinygltf read the
+// document (else this runs to name what tinygltf refused: every element counts as drawn) ----
+void checkSchema(const Doc& doc, const nlohmann::json& j, bool parsed = true);
+
+// ---- KHR_draco_mesh_compression (gltf_draco.cpp): compressed primitives decoded into ordinary
+// buffers, views and accessors, before validation ----
+void decodeDraco(Doc& doc);
+// Before tinygltf parses: when a Draco primitive's index accessor has no buffer view (as the
+// extension says), fills `copy` with the document whose such accessors name the bitstream's view,
+// records them in Doc::dracoPlaceholders and returns true.
+bool prepareDracoIndices(Doc& doc, bool glb, const uint8_t* data, size_t size, std::vector<uint8_t>& copy);
+
 // ---- validate (gltf_validate.cpp): every index and byte range, node graph, sizes ----
 void validateDocument(const Doc& doc);
+
+// ---- data rules (gltf_data_rules.cpp): the validator's data classes for the drawn parts (unit
+// normals, tangent signs, POSITION bounds, restart indices, UV sets, formats, view targets, node
+// matrices, MIME types); after validation ----
+void checkDataRules(const Doc& doc);
 
 // ---- parts gblens does not draw (gltf_unrendered.cpp): errors there are warnings ----
 // What the drawn parts read: accessors of mesh primitives' indices and drawn attributes, and the

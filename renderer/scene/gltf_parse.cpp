@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "renderer/core/json_read.h"
 #include "renderer/scene/gltf_internal.h"
 
 namespace gb::gltf {
@@ -59,25 +60,8 @@ bool keepEncoded(tinygltf::Image* image, const int, std::string*, std::string*, 
 // tinygltf and nlohmann-json recurse over nested values (extras, extensions): refuse documents
 // nested deeper than any real glTF before they get there.
 void checkJsonDepth(const Doc& doc, const uint8_t* json, size_t size) {
-  int depth = 0;
-  bool inString = false, escaped = false;
-  for (size_t i = 0; i < size; ++i) {
-    char c = char(json[i]);
-    if (inString) {
-      if (escaped)
-        escaped = false;
-      else if (c == '\\')
-        escaped = true;
-      else if (c == '"')
-        inString = false;
-    } else if (c == '"') {
-      inString = true;
-    } else if (c == '{' || c == '[') {
-      if (++depth > kMaxJsonDepth) fail(doc, "JSON", "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
-    } else if (c == '}' || c == ']') {
-      --depth;
-    }
-  }
+  if (!jsonDepthWithin(std::string_view(reinterpret_cast<const char*>(json), size), kMaxJsonDepth))
+    fail(doc, "JSON", "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
 }
 
 std::string firstLines(std::string text) {
@@ -111,7 +95,8 @@ void checkVersion(const Doc& doc, bool parsed, const std::string& error) {
 // Extensions gblens draws. A required extension not listed here (Draco, meshopt, KTX2...) makes
 // the file unreadable for us: say which one.
 const char* const kSupported[] = {"KHR_mesh_quantization", "KHR_texture_transform", "KHR_lights_punctual",
-                                  "KHR_materials_unlit", "KHR_materials_emissive_strength"};
+                                  "KHR_materials_unlit", "KHR_materials_emissive_strength",
+                                  "KHR_draco_mesh_compression"};
 
 bool supported(const std::string& name) {
   for (const char* s : kSupported)
@@ -149,6 +134,20 @@ void parseDocument(Doc& doc, const uint8_t* data, size_t size, const std::string
     access.baseDir = std::filesystem::absolute(baseDir, ec).lexically_normal().string();
     while (access.baseDir.size() > 1 && access.baseDir.back() == '/') access.baseDir.pop_back();
   }
+  // The JSON as written, for the schema step (its nesting was bounded above). When tinygltf refuses
+  // the document, the schema names the element and property it stumbled on, if it can.
+  uint32_t jsonLength = 0;
+  if (glb && size >= 20) std::memcpy(&jsonLength, data + 12, 4);
+  if (!glb || uint64_t(jsonLength) + 20 <= size) {
+    const char* text = reinterpret_cast<const char*>(data) + (glb ? 20 : 0);
+    doc.json = nlohmann::json::parse(text, text + (glb ? jsonLength : size), nullptr, false);
+    if (doc.json.is_discarded()) doc.json = nullptr;
+  }
+  // tinygltf refuses the index accessors of Draco primitives (they have no buffer view): it reads
+  // a copy where they name a placeholder view (gltf_draco.cpp puts them back).
+  std::vector<uint8_t> dracoCopy;
+  if (prepareDracoIndices(doc, glb, data, size, dracoCopy)) data = dracoCopy.data(), size = dracoCopy.size();
+
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(keepEncoded, nullptr);
   loader.SetFsCallbacks({fileExists, expandFilePath, readWholeFile, writeWholeFile, &access});
@@ -167,6 +166,7 @@ void parseDocument(Doc& doc, const uint8_t* data, size_t size, const std::string
   checkVersion(doc, ok, err);
   checkExtensions(doc);
   if (ok) return;
+  checkSchema(doc, doc.json, false);
   // tinygltf's messages for the common cases, reworded to name the element.
   const std::string notFound = "File not found : ", mismatch = "File size mismatch : ";
   if (err.rfind(notFound, 0) == 0)
@@ -184,7 +184,9 @@ void parseDocument(Doc& doc, const uint8_t* data, size_t size, const std::string
   if (err.find("Invalid glTF binary") != std::string::npos)
     fail(doc, "GLB", "the header's length or the JSON chunk's length does not fit the file (truncated or corrupt)");
   if (err.find("[json.exception.") != std::string::npos) fail(doc, "JSON", firstLines(err));
-  fail(doc, glb ? "GLB" : "glTF", firstLines(err));
+  // tinygltf's warnings, when it gave both, folded into the one line.
+  const bool alsoWarned = !warnings.empty() && warnings != err;
+  fail(doc, glb ? "GLB" : "glTF", firstLines(err) + (alsoWarned ? " (tinygltf also warned: " + firstLines(warnings) + ")" : ""));
 }
 
 }  // namespace gb::gltf

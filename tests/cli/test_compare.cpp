@@ -44,13 +44,20 @@ TEST(Compare, ExitCodesFollowIdiff) {
   RunResult size = runGblens("compare " + a + " " + write(syntheticFrame(10, 10), root + "/small"));
   EXPECT_EQ(size.exitCode, kCompareMismatch);
   EXPECT_NE(size.output.find("size 20x10 vs 10x10"), std::string::npos) << size.output;
-  FrameSnapshot fewer = base;
+  // A target one side holds and the other did not capture: exit 3. One the other frame did not
+  // compute (a feature off, as gblens render leaves coverage): skipped with its reason, the rest compared.
+  FrameSnapshot fewer = base, off = base;
   fewer.target(Target::CoverageMasked) = TargetImage{};
-  fewer.setAbsence(Target::CoverageMasked, Absent::CoverageOff);
-  Capture ca, cf;
+  fewer.setAbsence(Target::CoverageMasked, Absent::NotCaptured);
+  off.target(Target::CoverageMasked) = TargetImage{};
+  off.setAbsence(Target::CoverageMasked, Absent::CoverageOff);
+  Capture ca, cf, co;
   std::string message;
-  ASSERT_TRUE(loadCapture(a, ca, message) && loadCapture(write(fewer, root + "/fewer"), cf, message)) << message;
+  ASSERT_TRUE(loadCapture(a, ca, message) && loadCapture(write(fewer, root + "/fewer"), cf, message) &&
+              loadCapture(write(off, root + "/off"), co, message))
+      << message;
   EXPECT_EQ(verdict(ca, cf, {}), kCompareMismatch);
+  EXPECT_EQ(verdict(ca, co, {}), kComparePass);
 
   // Broken captures: exit 4 with a message that says what is wrong.
   std::string truncated = root + "/truncated", flipped = root + "/flipped";

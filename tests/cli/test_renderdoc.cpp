@@ -5,6 +5,9 @@
 // .rdc with gblens's own layout (builtin:gblens, the options as --param). Every RenderDoc run has a time
 // limit: a capture that does not replay on this machine's driver fails with a message, not a hang.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -14,11 +17,14 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "renderer/core/texels.h"
 #include "tests/support/capture_util.h"
 #include "views/capture/capture.h"
 #include "views/capture/renderdoc_replay.h"
+
+extern char** environ;
 
 namespace gb {
 namespace {
@@ -78,6 +84,71 @@ c.Shutdown()
 cap.Shutdown()
 )";
 
+// The replay folders (gblens-rdc-PID-*) of a gblens process in the temporary directory.
+std::vector<fs::path> replayFolders(long pid) {
+  std::vector<fs::path> out;
+  const std::string prefix = "gblens-rdc-" + std::to_string(pid) + "-";
+  for (const auto& e : fs::directory_iterator(fs::temp_directory_path()))
+    if (e.path().filename().string().rfind(prefix, 0) == 0) out.push_back(e.path());
+  return out;
+}
+
+// Truncated captures (issue 29: one in 30 replays hung): `import --list` gives one line naming the
+// file and exits 2 within the replay's limit, leaving no replay process and no temporary folder.
+void expectTruncatedCapturesRefused(const std::string& rdc, const std::string& dir) {
+  const std::string bytes = readText(rdc);
+  for (size_t keep : {size_t(64), bytes.size() / 3, 2 * bytes.size() / 3, bytes.size() - 1000}) {
+    SCOPED_TRACE("truncated to " + std::to_string(keep) + " of " + std::to_string(bytes.size()) + " bytes");
+    const std::string cut = dir + "/cut.rdc";
+    std::ofstream(cut, std::ios::binary | std::ios::trunc) << bytes.substr(0, keep);
+    const auto start = std::chrono::steady_clock::now();
+    // gblens in the shell's place, so that its process id (printed first) names its replay's
+    // folder and processes: other programs on the machine may be replaying captures too.
+    RunResult r = runShell("echo $$; exec '" + std::string(GBLENS_BINARY) + "' import '" + cut + "' --list");
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const size_t eol = r.output.find('\n');
+    ASSERT_NE(eol, std::string::npos) << r.output;
+    const long pid = std::stol(r.output.substr(0, eol));
+    std::string message = r.output.substr(eol + 1);
+    while (message.rfind("  .. ", 0) == 0) message.erase(0, message.find('\n') + 1);  // progress lines first
+    EXPECT_EQ(r.exitCode, 2) << message;
+    EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << message;
+    EXPECT_EQ(message.rfind("gblens import: " + cut + ": ", 0), 0u) << message;
+    EXPECT_LT(seconds, kReplayBaseSeconds + 10.0) << message;  // the stated limit, not a speed target
+    EXPECT_EQ(runShell("pgrep -f 'gblens-rd[c]-" + std::to_string(pid) + "-'").exitCode, 1) << "a replay process is left";
+    EXPECT_TRUE(replayFolders(pid).empty()) << "a replay folder is left";
+  }
+}
+
+// gblens stopped while its replay runs: by SIGTERM (the replay's group is killed, its folder removed,
+// gblens ends by the same signal), and by SIGKILL (the kernel ends the replay; the next replay
+// removes the folder of the gblens that is gone).
+void expectStoppedReplayCleansUp(const std::string& rdc, const std::string& dir) {
+  for (int sig : {SIGTERM, SIGKILL}) {
+    SCOPED_TRACE(sig == SIGTERM ? "SIGTERM" : "SIGKILL");
+    std::string binary = GBLENS_BINARY, command = "import", list = "--list", file = rdc;
+    char* argv[] = {binary.data(), command.data(), file.data(), list.data(), nullptr};
+    pid_t pid = 0;
+    ASSERT_EQ(posix_spawn(&pid, binary.c_str(), nullptr, nullptr, argv, environ), 0);
+    std::vector<fs::path> mine;
+    for (int i = 0; i < 500 && mine.empty(); ++i) {  // until its replay has started (at most 10 s)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      mine = replayFolders(pid);
+    }
+    ASSERT_FALSE(mine.empty()) << "the replay did not start";
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the script is running
+    kill(pid, sig);
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "status " << status;
+    for (int i = 0; i < 250 && runShell("pgrep -f 'gblens-rd[c]-" + std::to_string(pid) + "-'").exitCode == 0; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the kernel's SIGKILL of the child
+    EXPECT_EQ(runShell("pgrep -f 'gblens-rd[c]-" + std::to_string(pid) + "-'").exitCode, 1) << "its replay is still running";
+    if (sig == SIGKILL) runGblens("import '" + dir + "/none.rdc' --list");  // its folder: the next replay removes it
+    EXPECT_TRUE(replayFolders(pid).empty()) << "its replay folder is left";
+  }
+}
+
 TEST(RenderDoc, HeadlessRenderIsCapturedWithEveryPassLabelAndTargetName) {
   requireRenderDoc();
   const std::string dir = freshDir("renderdoc-render");
@@ -123,6 +194,9 @@ TEST(RenderDoc, HeadlessRenderIsCapturedWithEveryPassLabelAndTargetName) {
   for (const TargetInfo& t : targetTable())
     EXPECT_NE(r.output.find(std::string("\n  ") + t.name + " "), std::string::npos) << t.name << " in\n" << r.output;
   EXPECT_NE(r.output.find("api       Vulkan"), std::string::npos) << r.output;
+
+  expectTruncatedCapturesRefused(rdc, dir);
+  expectStoppedReplayCleansUp(rdc, dir);
 }
 
 TEST(RenderDoc, MistakesGiveOneLineAndExitTwo) {

@@ -137,6 +137,7 @@ TEST_F(ViewColors, IdsGetHashedColours) {
 
 TEST_F(ViewColors, MotionOnBakersColourWheel) {
   ViewDef motion = viewOfVisual(Visual::Motion, 2);
+  motion.negativeSuspicious = false;  // as the view table defines motion views: negative is a direction
   ViewSettings s;
   // Worked from the wheel's segments (RY 15, YG 6, GC 4, CB 11, BM 13, MR 6; 55 hues; hue =
   // (atan2(-y, -x) / pi + 1) / 2 * 54), white = 1:

@@ -39,7 +39,8 @@ class GuiTest : public GpuTest {
   std::string xdotool(const std::string& args) {
     return gui::run("DISPLAY=" + xvfb_.display + " xdotool " + args + " 2>&1");
   }
-  nlohmann::json waitEvent(const std::function<bool(const nlohmann::json&)>& pred, double seconds = 30.0) {
+  // Generous: lavapipe compiles each new view pipeline at first use (seconds on a loaded machine).
+  nlohmann::json waitEvent(const std::function<bool(const nlohmann::json&)>& pred, double seconds = 90.0) {
     return gui::waitForLine(eventLog(), seconds, pred, eventCursor_);
   }
   std::string eventLog() const { return (dir_ / "events.jsonl").string(); }
@@ -314,6 +315,50 @@ TEST_F(GuiTest, TheLiveReferenceErrorMapsAreThoseOfGblensError) {
     ASSERT_GT(viewer.size(), 1000u) << term << ": missing or empty";  // compressed EXR
     EXPECT_TRUE(viewer == cli) << term << ": the viewer's decomposition differs from gblens decompose's";
   }
+}
+
+// The probe is anchored in the image (issue 26): click a pixel, orbit the camera (reduced frames while
+// moving), and when the full frame returns the dossier is of the same pixel, saying its content changed;
+// region statistics of a ctrl + drag finish while the animation is paused.
+TEST_F(GuiTest, TheProbeKeepsItsPixelAcrossAnOrbitAndRegionsFinishWhilePaused) {
+  const std::string size = std::to_string(kW) + "x" + std::to_string(kH);
+  viewer_ = gui::spawn({GBLENS_BINARY, "view", "builtin:temple", "--validate", "--size", size, "--time", "1.5", "--paused",
+                        "--window", "1280x720", "--reduce-while-moving", "3", "--event-log", eventLog()},
+                       {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
+  nlohmann::json layout = waitLayout("Final");
+  ASSERT_FALSE(layout.is_null()) << "no first frame; see " << (dir_ / "viewer.log");
+  std::string wid = xdotool("search --onlyvisible --name '^gblens'");
+  wid = wid.substr(0, wid.find('\n'));
+  const nlohmann::json& view = layout["views"][0];
+  auto at = [&](int px, int py) {
+    return std::to_string(int(double(view["origin"][0]) + (px + 0.5) * double(view["scale"]))) + " " +
+           std::to_string(int(double(view["origin"][1]) + (py + 0.5) * double(view["scale"])));
+  };
+  const int px = 104, py = 80;
+  xdotool("mousemove --window " + wid + " " + at(px, py) + " click 1");
+  nlohmann::json probe = waitEvent([](const nlohmann::json& j) { return j["event"] == "probe"; });
+  ASSERT_FALSE(probe.is_null());
+  EXPECT_EQ(probe["pixel"], nlohmann::json({px, py}));
+  // Orbit a little (right drag): reduced frames, then the full one.
+  xdotool("mousemove --window " + wid + " " + at(96, 54) + " mousedown 3");
+  for (int i = 0; i < 3; ++i) xdotool("mousemove_relative -- 10 0 sleep 0.15");
+  xdotool("mouseup 3");
+  nlohmann::json refreshed = waitEvent([](const nlohmann::json& j) { return j["event"] == "probe_refreshed"; }, 60.0);
+  ASSERT_FALSE(refreshed.is_null()) << "the probe did not follow the full frame; see " << (dir_ / "viewer.log");
+  EXPECT_EQ(refreshed["pixel"], nlohmann::json({px, py})) << "the probe moved to another pixel";
+  EXPECT_TRUE(refreshed["changed"].get<bool>()) << "the camera moved: the pixel's content changed";
+  shoot("probe_after_orbit");
+  // Paused: a region's statistics arrive (from the full frame on screen).
+  xdotool("mousemove --window " + wid + " " + at(20, 30) + " sleep 0.2 keydown ctrl sleep 0.2 mousedown 1 sleep 0.2 " +
+          "mousemove --window " + wid + " " + at(60, 70) + " sleep 0.3 mouseup 1 sleep 0.2 keyup ctrl");
+  nlohmann::json region = waitEvent([](const nlohmann::json& j) { return j["event"] == "region"; }, 30.0);
+  ASSERT_FALSE(region.is_null()) << "region statistics never finished while paused";
+  EXPECT_EQ(region["stats"]["rect"], nlohmann::json({{"x", 20}, {"y", 30}, {"width", 41}, {"height", 41}}));
+  xdotool("key --window " + wid + " ctrl+q");
+  int status = -1;
+  ASSERT_TRUE(gui::waitExit(viewer_, 30.0, status)) << "the viewer did not quit";
+  viewer_ = -1;
+  EXPECT_EQ(status, 0) << "validation messages or a failure; see " << (dir_ / "viewer.log");
 }
 
 }  // namespace gb

@@ -350,7 +350,7 @@ TEST(Gltf, InvalidFilesRejectedWithClearMessages) {
       {"deep_json.gltf", {"JSON", "nested deeper than 64"}},
       {"truncated.glb", {"GLB", "truncated"}},
       {"bad_magic.glb", {"GLB"}},
-      {"draco_required.gltf", {"extensionsRequired", "KHR_draco_mesh_compression", "not supported"}},
+      {"meshopt_required.gltf", {"extensionsRequired", "EXT_meshopt_compression", "not supported"}},
       {"missing_bin.gltf", {"buffer", "nothere.bin", "not found"}},
       {"short_bin.gltf", {"buffer", "short_bin.bin", "byteLength"}},
       {"short_data_uri.gltf", {"buffer", "data: URI", "byteLength"}},

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <tuple>
 
+#include "renderer/core/file_name.h"
 #include "views/analysis/compare.h"
 #include "views/analysis/visualize.h"
 
@@ -215,8 +216,10 @@ Rgba8Image flipMapImage(const FlipResult& r, std::string& error) {
 }
 
 std::string compareFileName(const std::string& key, const std::string& suffix) {
-  // Target names are [a-z0-9_]; quantity names come from layouts: anything else could leave the folder.
-  const bool safe = !key.empty() && key.front() != '.' &&
+  // Target names are [a-z0-9_]; quantity names come from layouts: anything else could leave the folder
+  // (safeFileName), or need quoting in the report's page and scripts (the character set).
+  std::string why;
+  const bool safe = safeFileName(key + suffix, why) &&
                     key.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") ==
                         std::string::npos;
   return safe ? key + suffix : "";
@@ -229,9 +232,11 @@ bool writeCompareImages(CompareReport& report, const std::string& dir, std::stri
     error = dir + ": cannot create (" + ec.message() + ")";
     return false;
   }
-  auto write = [&](const std::string& name, const Rgba8Image& img, std::string& recorded) {
+  // The names come from the captures' layouts: never a path out of DIR (x/../../escaped).
+  auto write = [&](const std::string& key, const std::string& suffix, const Rgba8Image& img, std::string& recorded) {
+    const std::string name = compareFileName(key, suffix);
     if (name.empty()) {
-      error = "a group key cannot be a file name (use a-z, A-Z, 0-9, _, . and -)";
+      error = "image of \"" + key.substr(0, 80) + "\": not a file name (use a-z, A-Z, 0-9, _, . and -)";
       return false;
     }
     const std::string file = (std::filesystem::path(dir) / name).string();
@@ -240,10 +245,10 @@ bool writeCompareImages(CompareReport& report, const std::string& dir, std::stri
     return true;
   };
   for (GroupResult& g : report.groups)
-    if (!write(compareFileName(g.group.key, ".png"), heatmapImage(g, error), g.heatmap)) return false;
+    if (!write(g.group.key, ".png", heatmapImage(g, error), g.heatmap)) return false;
   for (FlipResult& f : report.flips)
-    if (!write("flip_" + f.target + ".png", flipMapImage(f, error), f.heatmap)) return false;
-  if (!report.mask.empty() && !write("mask.png", maskImage(report.mask), report.maskImage)) return false;
+    if (!write("flip_" + f.target, ".png", flipMapImage(f, error), f.heatmap)) return false;
+  if (!report.mask.empty() && !write("mask", ".png", maskImage(report.mask), report.maskImage)) return false;
   return true;
 }
 

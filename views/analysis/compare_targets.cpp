@@ -78,9 +78,13 @@ std::vector<TargetPlan> planTargets(const FrameSnapshot& fa, const FrameSnapshot
       p.what = TargetPlan::Do::Skip, p.why = "excluded (--exclude)";
     else if (!pa && !pb)
       p.what = TargetPlan::Do::Skip, p.why = "absent in both (A: " + whyAbsent(fa, p.ia) + "; B: " + whyAbsent(fb, p.ib) + ")";
-    else if (pa != pb)
-      p.what = TargetPlan::Do::Mismatch,
-      p.why = std::string("only in ") + (pa ? "A" : "B") + " (" + (pa ? whyAbsent(fb, p.ib) : whyAbsent(fa, p.ia)) + ")";
+    else if (pa != pb) {
+      // A frame made with the feature off (coverage, primitive ids, ...) has nothing to compare: the
+      // options differ (listed in the report), the targets both hold are still compared.
+      const std::string why = pa ? whyAbsent(fb, p.ib) : whyAbsent(fa, p.ia);
+      p.what = why.rfind("not computed", 0) == 0 ? TargetPlan::Do::Skip : TargetPlan::Do::Mismatch;
+      p.why = std::string("only in ") + (pa ? "A" : "B") + " (" + why + ")";
+    }
     else if (std::string why = targetMismatch(fa, p.ia, fb, p.ib); !why.empty())
       p.what = TargetPlan::Do::Mismatch, p.why = why;
     plans.push_back(p);

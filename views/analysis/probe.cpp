@@ -142,7 +142,8 @@ static void probeShadow(const FrameSnapshot& f, const glm::dvec3& eye, PixelDoss
 static bool rayVolume(const FrameSnapshot& f, uint32_t x, uint32_t y, const gpu::PointLight& l, double& enter,
                       double& exit) {
   const Icosahedron& ico = icosahedron();
-  glm::dvec3 dir = eyeFromEyeDepth(f.camera, x, y, 1.0);
+  const glm::dvec3 origin = eyeFromEyeDepth(f.camera, x, y, 0.0);  // the eye (orthographic: on z = 0)
+  const glm::dvec3 dir = eyeFromEyeDepth(f.camera, x, y, 1.0) - origin;
   glm::vec3 v[12];
   float scale = l.eyePositionRadius.w / float(kIcosahedronInradius);
   for (int i = 0; i < 12; ++i) v[i] = glm::vec3(l.eyePositionRadius) + ico.vertices[i] * scale;
@@ -151,7 +152,7 @@ static bool rayVolume(const FrameSnapshot& f, uint32_t x, uint32_t y, const gpu:
   for (int t = 0; t < 20; ++t) {
     glm::dvec3 a(v[ico.indices[3 * t]]), b(v[ico.indices[3 * t + 1]]), c(v[ico.indices[3 * t + 2]]);
     glm::dvec3 n = glm::cross(b - a, c - a);  // outward (counter-clockwise seen from outside)
-    double nd = glm::dot(n, dir), na = glm::dot(n, a);
+    double nd = glm::dot(n, dir), na = glm::dot(n, a - origin);
     if (nd > 0.0)
       exit = std::min(exit, na / nd);
     else if (nd < 0.0)

@@ -110,7 +110,7 @@ void decodeAt(const FrameSnapshot& f, const ViewDef& v, uint32_t x, uint32_t y, 
   for (uint32_t c = 0; c < n; ++c) put(componentLabel(v, int(c)), unit, (*value)[c], v.integer);
   if (v.visual == Visual::Normal) {
     const glm::dvec3 unitEye = decodeNormal(f, q, x, y).unit;
-    const glm::dvec3 toViewer = -glm::normalize(eyeFromEyeDepth(f.camera, x, y, 1.0));
+    const glm::dvec3 toViewer = -pixelRay(f.camera, x, y).direction;
     put(q.name + ".angle_to_view_deg", "deg", glm::degrees(std::acos(std::clamp(glm::dot(unitEye, toViewer), -1.0, 1.0))));
   }
   if (v.visual == Visual::Depth && !q.ofSun && q.depth != DepthEncoding::Eye)

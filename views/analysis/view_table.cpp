@@ -63,8 +63,11 @@ ViewDef viewOf(const Layout& l, const Quantity& q, int index) {
     case QuantityKind::Metallic:
     case QuantityKind::Occlusion:
     case QuantityKind::Shadow:
+      // Their range is [0, 1], but real values often sit in a corner of it (a specular of 0.04): the
+      // data's range by default, labelled as such; [0, 1] is one click away.
       d.visual = Visual::Scalar;
       d.channels = 0x1;
+      d.autoRange = true;
       break;
     case QuantityKind::Scalar:
       d.visual = Visual::Scalar;

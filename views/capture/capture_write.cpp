@@ -12,6 +12,7 @@
 #include "views/capture/capture.h"
 #include "views/capture/exr.h"
 #include "views/capture/image_io.h"
+#include "views/capture/manifest_check.h"
 #include "views/capture/report.h"
 
 namespace gb {
@@ -150,7 +151,12 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
 
 bool writeCapture(const std::string& dirText, const FrameSnapshot& f, const CaptureMeta& meta, std::string& error) {
   return replaceDirectory(dirText, "manifest.json", "capture", [&](const std::string& tmp, std::string& e) {
-    return writeContents(tmp, f, meta, e);
+    // The capture as the readers will read it, before it is moved into place: what they would refuse
+    // (a value JSON cannot hold, written as null; a name OpenEXR would merge) is not written at all.
+    if (writeContents(tmp, f, meta, e) && checkWrittenManifest(tmp, e)) return true;
+    if (e.rfind("manifest.json", 0) == 0 || e.rfind("lights.json", 0) == 0)
+      e = dirText + ": not written, it would not read back: " + e;
+    return false;
   }, error);
 }
 

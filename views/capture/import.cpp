@@ -9,19 +9,27 @@
 #include <fstream>
 
 #include "renderer/core/assets.h"
+#include "renderer/core/json_read.h"
 #include "renderer/core/layout_json.h"
+#include "renderer/core/library_output.h"
 #include "renderer/core/texels.h"
+#include "views/capture/import_internal.h"
+#include "views/capture/import_source.h"
 
 namespace gb {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-std::string targetWhere(const Layout& l, uint32_t t) {
+std::string layoutTargetWhere(const Layout& l, uint32_t t) {
   return (l.file.empty() ? std::string("layout") : l.file) + ": targets[" + std::to_string(t) + "]: \"" +
          l.targets[t].name + "\"";
 }
+
+namespace {
+
+std::string targetWhere(const Layout& l, uint32_t t) { return layoutTargetWhere(l, t); }
+
+}  // namespace
 
 // Where a source file is: a file given on the command line of that name, else beside the layout. A
 // target without a file name takes the only file given, or the one named as the target (albedo.exr).
@@ -38,6 +46,8 @@ std::string sourcePath(const ImportInput& in, const LayoutTarget& t) {
   fs::path p(s.path);
   return p.is_absolute() || in.layoutDir.empty() ? s.path : (fs::path(in.layoutDir) / p).string();
 }
+
+namespace {
 
 OIIO::TypeDesc fileType(PixelType t) {
   switch (t) {
@@ -57,7 +67,7 @@ bool seekPart(OIIO::ImageInput& in, const std::string& part, const std::string& 
   if (part.empty()) return true;
   char* end = nullptr;
   long index = std::strtol(part.c_str(), &end, 10);
-  if (*end == '\0') {
+  if (*end == '\0' && index >= 0 && index <= 65535) {
     if (in.seek_subimage(int(index), 0)) return true;
     error = where + ": source.part: the file has no part " + part;
     return false;
@@ -70,20 +80,24 @@ bool seekPart(OIIO::ImageInput& in, const std::string& part, const std::string& 
   return false;
 }
 
-bool readImageFile(const std::string& path, const TargetSource& s, const LayoutTarget& t, const std::string& where,
-                   CpuImage& img, std::string& error) {
+// Reads an image file's channels; a target with a list of formats gets the one the file holds.
+bool readImageFile(const std::string& path, const TargetSource& s, LayoutTarget& t, const std::string& where,
+                   uint32_t w, uint32_t h, CpuImage& img, std::string& error) {
   const std::string at = where + ": " + path;
   if (t.format.depth || t.format.packed10) {
     error = at + ": format: " + t.format.name + " is a packed GPU format; give it as a raw dump";
     return false;
   }
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    error = at + ": source.file: cannot read the image (" + OIIO::geterror() + ")";
-    return false;
-  }
+  auto in = openImportImage(path, where, error);
+  if (!in) return false;
   if (!seekPart(*in, s.part, at, error)) return false;
   const OIIO::ImageSpec& spec = in->spec();
+  // The size the file declares, against the layout's, before anything is allocated for it.
+  if (uint32_t(spec.width) != w || uint32_t(spec.height) != h || spec.depth > 1) {
+    error = where + ": " + path + ": size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+            ", the layout says " + std::to_string(w) + "x" + std::to_string(h);
+    return false;
+  }
   std::vector<int> index;
   std::vector<std::string> names = s.channels;
   if (names.empty())
@@ -102,10 +116,28 @@ bool readImageFile(const std::string& path, const TargetSource& s, const LayoutT
       return false;
     }
     index.push_back(int(it - spec.channelnames.begin()));
-    const OIIO::TypeDesc type = spec.channelformat(index.back());
+  }
+  // The format: the layout's, or the one of its list the file's channel type is held in exactly.
+  for (size_t k = 0; k < names.size(); ++k) {
+    const OIIO::TypeDesc type = spec.channelformat(index[k]);
+    if (k == 0 && !t.formatChoices.empty()) {
+      std::string list;
+      for (const StorageFormat& f : t.formatChoices) {
+        if (type == fileType(f.type)) t.format = f;
+        list += (list.empty() ? "" : ", ") + f.name;
+      }
+      if (type != fileType(t.format.type)) {
+        error = at + ": format: channel \"" + names[k] + "\" is " + type.c_str() + "; none of " + list + " holds it exactly";
+        return false;
+      }
+    }
     if (type != fileType(t.format.type)) {
-      error = at + ": format: channel \"" + n + "\" is " + type.c_str() + "; " + t.format.name +
-              " holds only " + fileType(t.format.type).c_str() + " exactly";
+      const bool half = type == OIIO::TypeDesc::FLOAT && t.format.type == PixelType::F16;
+      error = at + ": format: channel \"" + names[k] + "\" is " + type.c_str() + "; " + t.format.name + " holds only " +
+              fileType(t.format.type).c_str() + " exactly" +
+              (half ? " (a full-float file: give the target's format as [\"" + t.format.name + "\", \"" +
+                          t.format.name.substr(0, t.format.name.size() - 3) + "32f\"] to accept both)"
+                    : "");
       return false;
     }
   }
@@ -122,8 +154,12 @@ bool readImageFile(const std::string& path, const TargetSource& s, const LayoutT
     pixelBytes += spec.channelformat(i).size();
   }
   std::vector<uint8_t> buf(texels * pixelBytes);
+  LibraryOutput library;
   if (!in->read_image(in->current_subimage(), 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, buf.data())) {
-    error = at + ": cannot read pixels (" + in->geterror() + ")";
+    std::string detail = in->geterror();
+    for (char& c : detail)
+      if (c == '\n') c = ' ';
+    error = at + ": cannot read pixels (" + detail + ")" + library.suffix();
     return false;
   }
   img.data.resize(texels * img.texelBytes());
@@ -133,24 +169,39 @@ bool readImageFile(const std::string& path, const TargetSource& s, const LayoutT
   return true;
 }
 
-// A packed dump (raw file or RenderDoc texels) of a target's format.
-bool unpackDump(const std::vector<uint8_t>& bytes, uint64_t offset, const LayoutTarget& t, uint32_t w, uint32_t h,
-                const std::string& at, CpuImage& img, std::string& error) {
-  TexelFormat gpu{};
-  bool isGpuFormat = false;
+// The GPU format a layout format names, when it is one (its dumps are packed as texels.h says).
+bool gpuFormatOf(const LayoutTarget& t, TexelFormat& gpu) {
   for (int f = 0; f <= int(TexelFormat::D16); ++f)
     if (t.format.name == texelFormatInfo(TexelFormat(f)).name) {
       gpu = TexelFormat(f);
-      isGpuFormat = true;
+      return true;
     }
-  const size_t need = isGpuFormat ? packedImageBytes(gpu, w, h) : size_t(w) * h * t.format.packedBytes();
-  if (bytes.size() < offset || bytes.size() - offset < need) {
-    error = at + ": holds " + std::to_string(bytes.size() - std::min<size_t>(offset, bytes.size())) + " bytes after offset " +
+  return false;
+}
+
+// The bytes a packed dump of w x h texels of the target's format takes.
+size_t dumpBytes(const LayoutTarget& t, uint32_t w, uint32_t h) {
+  TexelFormat gpu{};
+  return gpuFormatOf(t, gpu) ? packedImageBytes(gpu, w, h) : size_t(w) * h * t.format.packedBytes();
+}
+
+// A packed dump (raw file or RenderDoc texels) of a target's format, from `offset` in `data` (`bytesSize` bytes) (a raw
+// file's bytes from its offset on: offset 0 here, `fileOffset` and `fileBytes` for the message).
+bool unpackDump(const uint8_t* data, size_t bytesSize, uint64_t offset, const LayoutTarget& t, uint32_t w, uint32_t h,
+                const std::string& at, CpuImage& img, std::string& error, uint64_t fileOffset = 0, uint64_t fileBytes = 0) {
+  TexelFormat gpu{};
+  const bool isGpuFormat = gpuFormatOf(t, gpu);
+  const size_t need = dumpBytes(t, w, h);
+  if (bytesSize < offset || bytesSize - offset < need) {
+    const bool fromFile = fileBytes || fileOffset;
+    const uint64_t size = fromFile ? fileBytes : bytesSize;
+    offset = fromFile ? fileOffset : offset;
+    error = at + ": holds " + std::to_string(size - std::min<uint64_t>(offset, size)) + " bytes after offset " +
             std::to_string(offset) + "; " + t.format.name + " " + std::to_string(w) + "x" + std::to_string(h) + " needs " +
             std::to_string(need);
     return false;
   }
-  const uint8_t* src = bytes.data() + offset;
+  const uint8_t* src = data + offset;
   if (isGpuFormat) {
     img = unpackTexels(gpu, src, w, h);
   } else {
@@ -164,16 +215,6 @@ bool unpackDump(const std::vector<uint8_t>& bytes, uint64_t offset, const Layout
   return true;
 }
 
-bool readFile(const std::string& path, std::vector<uint8_t>& out, std::string& error, const std::string& at) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) {
-    error = at + ": source.file: cannot read " + path;
-    return false;
-  }
-  out.assign(std::istreambuf_iterator<char>(f), {});
-  return true;
-}
-
 void flipRows(CpuImage& img) {
   const size_t row = size_t(img.width) * img.texelBytes();
   for (uint32_t y = 0; y < img.height / 2; ++y)
@@ -181,9 +222,10 @@ void flipRows(CpuImage& img) {
                      img.data.begin() + long((img.height - 1 - y) * row));
 }
 
-bool readTarget(const ImportInput& in, uint32_t t, uint32_t w, uint32_t h, CpuImage& img, std::string& error) {
+// One target's texels; `lt` (the frame's copy of the layout's target) gets the format a file holds.
+bool readTarget(const ImportInput& in, uint32_t t, LayoutTarget& lt, uint32_t w, uint32_t h, CpuImage& img,
+                std::string& error) {
   const Layout& l = in.layout;
-  const LayoutTarget& lt = l.targets[t];
   const std::string where = targetWhere(l, t);
   const TargetSource& s = lt.source;
   if (s.kind == TargetSource::Kind::RenderDoc) {
@@ -196,7 +238,16 @@ bool readTarget(const ImportInput& in, uint32_t t, uint32_t w, uint32_t h, CpuIm
       error = where + ": source.renderdoc: the capture has no texture \"" + s.resource + "\"";
       return false;
     }
-    return unpackDump(it->second, 0, lt, w, h, where + ": source.renderdoc \"" + s.resource + "\"", img, error);
+    return unpackDump(it->second.data(), it->second.size(), 0, lt, w, h, where + ": source.renderdoc \"" + s.resource + "\"",
+                      img, error);
+  }
+  if (s.kind == TargetSource::Kind::Live) {
+    auto it = in.liveTexels.find(lt.name);
+    if (it == in.liveTexels.end()) {
+      error = where + ": source.live: an attachment of a running application: stream it with gblens attach";
+      return false;
+    }
+    return unpackDump(it->second.data, it->second.bytes, 0, lt, w, h, where + ": source.live", img, error);
   }
   const std::string path = sourcePath(in, lt);
   if (path.empty()) {
@@ -205,95 +256,13 @@ bool readTarget(const ImportInput& in, uint32_t t, uint32_t w, uint32_t h, CpuIm
     return false;
   }
   if (s.kind == TargetSource::Kind::Raw) {
+    // Only the bytes the layout needs are read (a dump may be followed by more).
     std::vector<uint8_t> bytes;
-    return readFile(path, bytes, error, where) && unpackDump(bytes, s.offset, lt, w, h, where + ": " + path, img, error);
+    uint64_t fileBytes = 0;
+    return readFileRange(path, s.offset, dumpBytes(lt, w, h), bytes, fileBytes, where, error) &&
+           unpackDump(bytes.data(), bytes.size(), 0, lt, w, h, where + ": " + path, img, error, s.offset, fileBytes);
   }
-  if (!readImageFile(path, s, lt, where, img, error)) return false;
-  if (img.width != w || img.height != h) {
-    error = where + ": " + path + ": size " + std::to_string(img.width) + "x" + std::to_string(img.height) +
-            ", the layout says " + std::to_string(w) + "x" + std::to_string(h);
-    return false;
-  }
-  return true;
-}
-
-glm::dmat4 matrixFromFloats(const std::vector<uint8_t>& bytes, uint64_t offset, bool rowMajor) {
-  glm::dmat4 m(1.0);
-  for (int i = 0; i < 16; ++i) {
-    float v;
-    std::memcpy(&v, bytes.data() + offset + size_t(i) * 4, 4);
-    if (rowMajor)
-      m[i % 4][i / 4] = v;
-    else
-      m[i / 4][i % 4] = v;
-  }
-  return m;
-}
-
-// The camera's size, when it gives one, against the images' (the projection's aspect is for it).
-bool checkCameraSize(const LayoutCamera& c, const std::string& from, uint32_t w, uint32_t h, std::string& error) {
-  if (!c.width || (c.width == w && c.height == h)) return true;
-  error = from + ": camera: size: the matrices are for " + std::to_string(c.width) + "x" + std::to_string(c.height) +
-          ", the images are " + std::to_string(w) + "x" + std::to_string(h);
-  return false;
-}
-
-// The layout's camera with its matrices filled from the sidecar or the uniform buffer, for images
-// of w x h.
-bool resolveCamera(const ImportInput& in, LayoutCamera& c, uint32_t w, uint32_t h, std::string& error) {
-  const std::string file = in.layout.file.empty() ? std::string("layout") : in.layout.file;
-  const std::string where = file + ": camera";
-  std::string sidecar = !in.cameraFile.empty() ? in.cameraFile : c.sidecar;
-  if (!sidecar.empty()) {
-    if (in.cameraFile.empty() && fs::path(sidecar).is_relative()) {
-      // Beside the imported files first (a renderer writes its camera beside its images; Blender's
-      // script does), then beside the layout.
-      std::string found;
-      std::error_code ec;
-      for (const std::string& input : in.files)
-        if (found.empty() && fs::exists(fs::path(input).parent_path() / sidecar, ec))
-          found = (fs::path(input).parent_path() / sidecar).string();
-      if (found.empty() && !in.layoutDir.empty()) found = (fs::path(in.layoutDir) / sidecar).string();
-      if (!found.empty()) sidecar = found;
-    }
-    std::ifstream f(sidecar);
-    // The layout's conventions, the sidecar's matrices (and whatever conventions it gives).
-    nlohmann::json j = layoutCameraJson(c), side;
-    for (const char* key : {"sidecar", "renderdoc", "view_from_world", "clip_from_view"}) j.erase(key);
-    try {
-      if (!f) throw std::runtime_error("cannot read the file");
-      side = nlohmann::json::parse(f);
-      if (!side.is_object()) throw std::runtime_error("expected a JSON object");
-    } catch (const std::exception& e) {
-      error = where + ": sidecar: " + sidecar + ": " + e.what();
-      return false;
-    }
-    for (auto& [k, v] : side.items()) j[k] = v;
-    return parseLayoutCamera(j, sidecar, c, error) && checkCameraSize(c, sidecar, w, h, error);
-  }
-  if (c.renderdoc) {
-    const LayoutCamera::BufferMatrix& b = *c.renderdoc;
-    const std::vector<uint8_t>& bytes = in.renderdocCameraBuffer;
-    if (bytes.empty()) {
-      error = where + ": renderdoc: the matrices are in buffer \"" + b.buffer +
-              "\" of a RenderDoc capture; import the .rdc, or give the camera with --camera";
-      return false;
-    }
-    if (bytes.size() < std::max(b.viewOffset, b.clipOffset) + 64) {
-      error = where + ": renderdoc: buffer \"" + b.buffer + "\" holds " + std::to_string(bytes.size()) +
-              " bytes, the matrices need " + std::to_string(std::max(b.viewOffset, b.clipOffset) + 64);
-      return false;
-    }
-    glm::dmat4 view = matrixFromFloats(bytes, b.viewOffset, b.rowMajor);
-    c.clipFromView = matrixFromFloats(bytes, b.clipOffset, b.rowMajor);
-    for (auto [m, name] : {std::pair{&view, "view matrix"}, {&c.clipFromView, "clip_from_view"}})
-      if (!(std::abs(glm::determinant(*m)) > 1e-30)) {
-        error = where + ": renderdoc: " + name + " read from \"" + b.buffer + "\" is singular";
-        return false;
-      }
-    c.viewFromWorld = b.worldFromView ? glm::inverse(view) : view;
-  }
-  return checkCameraSize(c, file, w, h, error);
+  return readImageFile(path, s, lt, where, w, h, img, error);
 }
 
 // The layout's lights in gblens's world (Y up) and as the probe reads them (eye space, uploaded form).
@@ -319,75 +288,84 @@ void importLights(const Layout& l, FrameSnapshot& f) {
   f.stencilCount = uint32_t(f.visibleLights.size());
 }
 
-}  // namespace
-
-bool importCamera(const LayoutCamera& c, uint32_t width, uint32_t height, Camera& out, std::string& error) {
-  // gblens eye space = S * source view space (S flips Z for a left-handed view); gblens world =
-  // R * source world (R turns Z up into Y up). Clip space: Vulkan's, y down, depth 0..1.
-  glm::dmat4 S(1.0), R(1.0), C(1.0);
-  if (c.leftHanded) S[2][2] = -1.0;
-  R = glm::dmat4(worldFromLayoutWorld(c));
-  if (c.convention != LayoutCamera::Convention::Vulkan) C[1][1] = -1.0;  // NDC y up -> down (rows are top first)
-  if (c.convention == LayoutCamera::Convention::Gl) {  // z' = (z + w) / 2
-    C[2][2] = 0.5;
-    C[3][2] = 0.5;
+// The frame's camera: the layout's (or --camera's), resolved and converted; without one, only
+// quantities that need none.
+bool frameCamera(const ImportInput& in, uint32_t w, uint32_t h, LayoutCamera& camera, Camera& out, std::string& error) {
+  const Layout& l = in.layout;
+  if (!camera.present && in.cameraFile.empty()) {
+    for (const Quantity& q : l.quantities) {
+      const bool needsCamera = (q.kind == QuantityKind::Depth && !q.ofSun && q.depth != DepthEncoding::Eye) ||
+                               ((q.kind == QuantityKind::Normal || q.kind == QuantityKind::Position) && q.space != Space::View);
+      if (needsCamera) {
+        error = targetWhere(l, q.target) + ": quantities \"" + q.name + "\": needs the layout's camera (\"camera\")";
+        return false;
+      }
+    }
+    out.width = w;
+    out.height = h;
+    return true;
   }
-  out = Camera{};
-  out.width = width;
-  out.height = height;
-  out.eyeFromWorld = S * c.viewFromWorld * glm::inverse(R);
-  out.worldFromEye = glm::inverse(out.eyeFromWorld);
-  out.clipFromEye = C * c.clipFromView * glm::inverse(S);
-  const double det = glm::determinant(out.clipFromEye);
-  if (!std::isfinite(det) || std::abs(det) < 1e-300) {
-    error = "camera: clip_from_view: singular after conversion";
+  camera.present = true;
+  if (!resolveCamera(in, camera, w, h, error)) return false;
+  std::string why;
+  if (!settleWorldHandedness(camera, why) || !importCamera(camera, w, h, out, why)) {
+    error = (l.file.empty() ? std::string("layout") : l.file) + ": " + why;
     return false;
   }
-  out.eyeFromClip = glm::inverse(out.clipFromEye);
-  out.clipFromWorld = out.clipFromEye * out.eyeFromWorld;
-  const glm::dmat4& p = out.clipFromEye;
-  out.yfov = 2.0 * std::atan(1.0 / std::abs(p[1][1]));
-  out.aspect = std::abs(p[1][1] / p[0][0]);
-  // Where the far plane lands: 0 for reversed Z (a perspective's depth at infinity is -p22 / p23 ...).
-  const double farDepth = hardwareDepth(out, {0.0, 0.0, -1e12});
-  out.reversedZ = farDepth < 0.5;
-  auto depthAt = [&](double target) {  // eye depth where the hardware depth is `target` (bisection)
-    double lo = 1e-9, hi = 1e12;
-    for (int i = 0; i < 200; ++i) {
-      double mid = std::sqrt(lo * hi);
-      (hardwareDepth(out, {0.0, 0.0, -mid}) < target) != out.reversedZ ? lo = mid : hi = mid;
-    }
-    return lo;
-  };
-  out.znear = depthAt(out.reversedZ ? 1.0 : 0.0);
-  out.zfar = depthAt(out.reversedZ ? 0.0 : 1.0);
+  if (orthographic(out))  // the distance from an orthographic "eye" says nothing the eye depth does not
+    for (const Quantity& q : l.quantities)
+      if (q.kind == QuantityKind::Depth && q.depth == DepthEncoding::Radial && !q.ofSun) {
+        error = targetWhere(l, q.target) + ": quantities \"" + q.name +
+                "\": encoding: radial distance with an orthographic camera is its eye depth; say \"eye\"";
+        return false;
+      }
   return true;
+}
+
+}  // namespace
+
+std::string builtinLayoutNames() {
+  std::string names;
+  for (const auto& [path, unused] : assets())
+    if (path.rfind("layouts/", 0) == 0 && fs::path(path).extension() == ".json")
+      names += (names.empty() ? "builtin:" : ", builtin:") + fs::path(path).stem().string();
+  return names;
+}
+
+void setImportedOptions(FrameSnapshot& frame, const RenderOptions& options) {
+  const RenderOptions imported = frame.options;
+  frame.options = options;
+  frame.options.width = imported.width, frame.options.height = imported.height;
+  frame.options.reversedZ = imported.reversedZ;
 }
 
 bool loadImportLayout(const std::string& spec, const LayoutParameters& params, Layout& out, std::string& dir,
                       std::string& error) {
   dir.clear();
   if (spec.rfind("builtin:", 0) != 0) {
+    std::error_code ec;
+    const std::string stem = fs::path(spec).stem().string();
+    if (!fs::exists(spec, ec) && assetText("layouts/" + stem + ".json")) {
+      error = spec + ": no such layout file; the layout gblens carries is --layout builtin:" + stem;
+      return false;
+    }
     dir = fs::path(spec).parent_path().string();
     return loadLayoutFile(spec, params, out, error);
   }
   const std::string* text = assetText("layouts/" + spec.substr(8) + ".json");
   if (!text) {
-    std::string names;
-    for (const auto& [path, unused] : assets())
-      if (path.rfind("layouts/", 0) == 0 && fs::path(path).extension() == ".json")
-        names += (names.empty() ? "builtin:" : ", builtin:") + fs::path(path).stem().string();
-    error = spec + ": no such built-in layout (built in: " + names + ")";
+    error = spec + ": no such built-in layout (built in: " + builtinLayoutNames() + ")";
     return false;
   }
-  nlohmann::json j = nlohmann::json::parse(*text);
+  nlohmann::json j;
+  if (!parseJson(*text, spec, j, error)) return false;
   return resolveLayoutParameters(j, params, spec, error) && parseLayout(j, spec, out, error);
 }
 
 bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) {
   const Layout& l = in.layout;
+  Layout frameLayout = l;  // with the formats files were found to hold (a target's list of formats)
   out = FrameSnapshot{};
-  out.setLayout(l);
   std::vector<CpuImage> images(l.targets.size());
   uint32_t w = l.width, h = l.height;
   for (uint32_t t = 0; t < l.targets.size(); ++t) {
@@ -405,44 +383,38 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
       }
       tw = rw, th = rh;
     }
-    if (!tw && lt.source.kind != TargetSource::Kind::Raw) {  // no size given: the file's
-      auto inp = OIIO::ImageInput::open(sourcePath(in, lt));
-      if (inp) tw = uint32_t(inp->spec().width), th = uint32_t(inp->spec().height);
+    if (auto live = in.liveTexels.find(lt.name); live != in.liveTexels.end()) {  // a streamed attachment: the same rule
+      const uint32_t rw = live->second.width, rh = live->second.height;
+      if (tw && (rw != tw || rh != th)) {
+        error = targetWhere(l, t) + ": size: the streamed attachment is " + std::to_string(rw) + "x" + std::to_string(rh) +
+                ", the layout says " + std::to_string(tw) + "x" + std::to_string(th);
+        return false;
+      }
+      tw = rw, th = rh;
+    }
+    if (!tw && (lt.source.kind == TargetSource::Kind::File || lt.source.kind == TargetSource::Kind::None)) {  // the file's
+      std::string ignored;  // a file that does not open is reported by readTarget
+      auto inp = openImportImage(sourcePath(in, lt), targetWhere(l, t), ignored);
+      if (inp) tw = uint32_t(std::max(inp->spec().width, 0)), th = uint32_t(std::max(inp->spec().height, 0));
     }
     if (!tw) tw = w, th = h;  // a raw dump without a size: the frame's (the first target's)
     if (!tw) {
       error = targetWhere(l, t) + ": size: unknown (give the layout's or the target's size, or --size)";
       return false;
     }
+    if (!checkImportSize(targetWhere(l, t), tw, th, error)) return false;
     if (!w) w = tw, h = th;
-    if (!readTarget(in, t, tw, th, images[t], error)) return false;
+    if (!readTarget(in, t, frameLayout.targets[t], tw, th, images[t], error)) return false;
+    frameLayout.targets[t].formatChoices.clear();
     images[t].name = l.targets[t].name;
   }
+  out.setLayout(frameLayout);
   LayoutCamera camera = l.camera;
-  if (camera.present || !in.cameraFile.empty()) {
-    camera.present = true;
-    if (!resolveCamera(in, camera, w, h, error)) return false;
-    std::string why;
-    if (!importCamera(camera, w, h, out.camera, why)) {
-      error = (l.file.empty() ? std::string("layout") : l.file) + ": " + why;
-      return false;
-    }
-  } else {
-    for (const Quantity& q : l.quantities) {
-      const bool needsCamera = (q.kind == QuantityKind::Depth && !q.ofSun && q.depth != DepthEncoding::Eye) ||
-                               ((q.kind == QuantityKind::Normal || q.kind == QuantityKind::Position) && q.space != Space::View);
-      if (needsCamera) {
-        error = targetWhere(l, q.target) + ": quantities \"" + q.name + "\": needs the layout's camera (\"camera\")";
-        return false;
-      }
-    }
-    out.camera.width = w;
-    out.camera.height = h;
-  }
+  if (!frameCamera(in, w, h, camera, out.camera, error)) return false;
   if (camera.bottomOrigin)  // after the camera is resolved: a sidecar may say so
     for (CpuImage& image : images) flipRows(image);
-  // The manifest embeds the camera as imported: its matrices in the layout's conventions (not where
-  // they were read from), and rows top first (the images were flipped just above).
+  // The manifest embeds the camera as imported: its matrices in the layout's conventions, where they
+  // were read from (`from`), and rows top first (the images were flipped just above).
   camera.sidecar.clear();
   camera.renderdoc.reset();
   camera.bottomOrigin = false;

@@ -26,6 +26,16 @@ struct ImportInput {
   std::map<std::string, std::vector<uint8_t>> renderdocTexels;
   std::map<std::string, std::array<uint32_t, 2>> renderdocSizes;  // their textures' width and height
   std::vector<uint8_t> renderdocCameraBuffer;
+  std::string renderdocCameraBufferAt;  // where it was read, for people: " (#123) at event 140"
+  std::string capture;                  // the RenderDoc capture imported ("": files): a sidecar may be beside it
+  // Texels the gblens layer streamed for {"live": ...} targets (`gblens attach`, views/capture/live.h),
+  // by target name: packed as texels.h says, in the stream's shared memory, with the attachment's size.
+  struct LiveTexels {
+    const uint8_t* data = nullptr;
+    size_t bytes = 0;
+    uint32_t width = 0, height = 0;
+  };
+  std::map<std::string, LiveTexels> liveTexels;
   // Targets the source does not hold (e.g. a target without a source whose name no texture of the
   // RenderDoc capture has): absent from the frame ("not captured"), not an error.
   std::set<std::string> leftOut;
@@ -36,13 +46,27 @@ struct ImportInput {
 // start from ("" for a built-in layout: the files given on the command line).
 bool loadImportLayout(const std::string& spec, const LayoutParameters& params, Layout& out, std::string& dir,
                       std::string& error);
+// "builtin:blender-cycles, builtin:gblens, ...": every layout the binary carries.
+std::string builtinLayoutNames();
+
+// The 16 floats at `offset` of a buffer as a matrix (m[column][row]), stored column- or row-major.
+glm::dmat4 matrixFromFloats(const std::vector<uint8_t>& bytes, uint64_t offset, bool rowMajor);
 
 // Reads every target and the camera. False with one line naming the file, the target and the
 // field (a missing channel, a size or format the layout does not match, a singular camera, ...).
 bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error);
 
+// "FILE: targets[T]: \"NAME\"": where a target is, for messages.
+std::string layoutTargetWhere(const Layout& l, uint32_t t);
+
+// The options an imported frame records: `options` (what a parameterised layout was resolved with)
+// with the frame's own size and depth direction.
+void setImportedOptions(FrameSnapshot& frame, const RenderOptions& options);
+
 // The camera a layout describes (matrices, sidecar or uniform-buffer bytes) in gblens's convention:
-// Vulkan clip space (y down, depth 0..1), right-handed view space, Y-up world.
+// Vulkan clip space (y down, depth 0..1; w = -z for a perspective, 1 for an orthographic
+// projection), right-handed view space, Y-up right-handed world. Any other projection, or a
+// perspective looking the way the view's handedness says it does not, is refused with one line.
 bool importCamera(const LayoutCamera& c, uint32_t width, uint32_t height, Camera& out, std::string& error);
 
 }  // namespace gb

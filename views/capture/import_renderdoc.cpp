@@ -66,6 +66,24 @@ bool writtenByAPass(const RdcListing& l, const std::string& texture, uint32_t ev
   return false;
 }
 
+// A texture of this name that is 1x1 while the layout's other targets' textures are larger: a stand-in
+// for a target that a turned-off feature would write (gblens's own frames keep one, `absent` in
+// its captures), not the frame's data.
+bool standIn(const RdcListing& l, const Layout& layout, const std::string& texture) {
+  auto size = [&](const std::string& name) -> const RdcTexture* {
+    for (const RdcTexture& t : l.textures)
+      if (t.name == name) return &t;
+    return nullptr;
+  };
+  const RdcTexture* t = size(texture);
+  if (!t || t->width != 1 || t->height != 1) return false;
+  for (const LayoutTarget& other : layout.targets) {
+    const RdcTexture* o = size(other.source.kind == TargetSource::Kind::RenderDoc ? other.source.resource : other.name);
+    if (o && o->width * o->height > 1) return true;
+  }
+  return false;
+}
+
 // The texels of one target as the capture stores them, checked against the layout's format.
 bool checkTexels(const Layout& layout, uint32_t t, const RdcTexels& got, std::string& error) {
   const LayoutTarget& lt = layout.targets[t];
@@ -98,9 +116,13 @@ bool readRenderDocImport(const RenderDocImport& r, ImportInput& in, RenderDocImp
   for (uint32_t t = 0; t < layout.targets.size(); ++t) {
     LayoutTarget& lt = layout.targets[t];
     if (lt.source.kind == TargetSource::Kind::None) {
-      if (!writtenByAPass(info.listing, lt.name, event)) {
+      const char* why = !writtenByAPass(info.listing, lt.name, event) ? "no pass of the capture writes a texture of that name"
+                        : !lt.width && standIn(info.listing, layout, lt.name)
+                            ? "its texture is a 1x1 stand-in (a feature that writes it is off)"
+                            : nullptr;
+      if (why) {
         in.leftOut.insert(lt.name);
-        info.leftOut.push_back(lt.name);
+        info.leftOut.push_back({lt.name, why});
         continue;
       }
       lt.source.kind = TargetSource::Kind::RenderDoc;
@@ -122,10 +144,15 @@ bool readRenderDocImport(const RenderDocImport& r, ImportInput& in, RenderDocImp
     in.renderdocTexels[target] = std::move(texels[k].bytes);
   }
 
+  in.capture = r.rdc;
   const std::optional<LayoutCamera::BufferMatrix>& buffer = layout.camera.renderdoc;
-  if (buffer && !r.cameraGiven && !readRenderDocBuffer(r.rdc, event, buffer->buffer, in.renderdocCameraBuffer, error, r.replay)) {
-    error = (layout.file.empty() ? std::string("layout") : layout.file) + ": camera: renderdoc: buffer: " + error;
-    return false;
+  if (buffer && !r.cameraGiven) {
+    RdcBufferRead at;
+    if (!readRenderDocBuffer(r.rdc, event, buffer->buffer, in.renderdocCameraBuffer, error, r.replay, &at)) {
+      error = (layout.file.empty() ? std::string("layout") : layout.file) + ": camera: renderdoc: buffer: " + error;
+      return false;
+    }
+    in.renderdocCameraBufferAt = info.camera = " (#" + std::to_string(at.id) + ") at event " + std::to_string(at.event);
   }
   return true;
 }

@@ -26,12 +26,19 @@ struct RenderDocImported {
     uint32_t event = 0;
   };
   std::vector<Read> reads;
-  std::vector<std::string> leftOut;  // targets without a source whose name no written texture has
+  struct LeftOut {
+    std::string target, why;
+  };
+  // Targets without a source whose name no written texture has, or whose texture is a 1x1 stand-in
+  // (gblens keeps one for a target a turned-off feature would write) in a larger frame.
+  std::vector<LeftOut> leftOut;
+  std::string camera;  // where the camera's buffer was read: " (#id) at event N" ("" : not read)
 };
 
 // Fills `in` (whose layout is set) from the capture. A target with {"renderdoc": NAME} reads that
 // texture; a target without a source reads the texture of its own name, and is left out (absent)
-// when the capture has none or no pass up to the event writes it. False with one line naming the capture or the layout's target and field.
+// when the capture has none, no pass up to the event writes it, or it is a 1x1 stand-in while the
+// frame is larger. False with one line naming the capture or the layout's target and field.
 bool readRenderDocImport(const RenderDocImport& r, ImportInput& in, RenderDocImported& info, std::string& error);
 
 }  // namespace gb

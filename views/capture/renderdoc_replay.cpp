@@ -1,13 +1,12 @@
 // RenderDoc replay in a child process (see renderdoc_replay.h): the embedded script is written to a
-// private temporary folder, run by /usr/bin/python3 with a time limit, and the folder removed.
+// private temporary folder, run by /usr/bin/python3 with a time limit (replay_child.h: its own
+// process group, killed with gblens), and the folder removed.
 #include "views/capture/renderdoc_replay.h"
 
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -16,9 +15,9 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <thread>
 
-extern char** environ;
+#include "renderer/core/json_read.h"
+#include "views/capture/replay_child.h"
 
 namespace gb {
 
@@ -28,18 +27,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A private folder for the script, its output and texel files; removed with everything in it.
-struct TempFolder {
-  fs::path path;
-  TempFolder() {
-    std::string pattern = (fs::temp_directory_path() / "gblens-rdc-XXXXXX").string();
-    if (mkdtemp(pattern.data())) path = pattern;
-  }
-  ~TempFolder() {
-    std::error_code ec;
-    if (!path.empty()) fs::remove_all(path, ec);
-  }
-};
+// The private folder for the script, its output and texel files (replay_child.h).
+using TempFolder = ReplayFolder;
 
 std::string readText(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
@@ -55,29 +44,41 @@ bool readBytes(const fs::path& p, std::vector<uint8_t>& out) {
   return true;
 }
 
-// The script's stderr: progress lines ("progress: ...") and, on failure, its one-line message.
+// The script's stderr: progress lines ("progress: ...") and, on failure, its one-line message. RenderDoc
+// prints lines of its own there too (e.g. "More debugging information may be available by enabling
+// API validation on replay", after the script's message): the script's messages name the capture,
+// so the last line that does is preferred.
 struct ScriptLog {
   std::string lastProgress, lastMessage;
-  explicit ScriptLog(const std::string& text) {
+  ScriptLog(const std::string& text, const std::string& rdc) {
     std::stringstream s(text);
-    std::string line;
+    std::string line, lastOther;
     while (std::getline(s, line)) {
       if (line.empty()) continue;
       if (line.rfind("progress: ", 0) == 0)
         lastProgress = line.substr(10);
-      else
+      else if (line.rfind(rdc + ":", 0) == 0 || line.rfind("usage:", 0) == 0)
         lastMessage = line;
+      else
+        lastOther = line;
     }
+    if (lastMessage.empty()) lastMessage = lastOther;
   }
 };
 
-int timeoutSeconds(const RdcReplayOptions& o) {
+// The limit: GBLENS_RENDERDOC_TIMEOUT, the caller's, or kReplayBaseSeconds plus one second per
+// 10 MiB of capture (a small capture lists in a few seconds here: 20 s is ample and well under a
+// minute; a large one takes longer to load).
+int timeoutSeconds(const RdcReplayOptions& o, const std::string& rdc) {
   if (const char* v = std::getenv("GBLENS_RENDERDOC_TIMEOUT"); v && std::atoi(v) > 0) return std::atoi(v);
-  return o.timeoutSeconds;
+  if (o.timeoutSeconds > 0) return o.timeoutSeconds;
+  std::error_code ec;
+  const uintmax_t bytes = fs::file_size(rdc, ec);
+  return kReplayBaseSeconds + int(std::min<uintmax_t>(ec ? 0 : bytes >> 20, 10 * 600) / 10);
 }
 
 // Runs the script with `args`; true with its JSON result, else false with one line in `error`.
-bool runScript(const std::string& rdc, const std::vector<std::string>& args, const TempFolder& tmp,
+bool runScript(const std::string& rdc, const std::vector<std::string>& args, TempFolder& tmp,
                const RdcReplayOptions& o, nlohmann::json& result, std::string& error) {
   if (tmp.path.empty()) {
     error = "cannot create a temporary folder in " + fs::temp_directory_path().string();
@@ -95,42 +96,16 @@ bool runScript(const std::string& rdc, const std::vector<std::string>& args, con
 
   std::vector<std::string> argv = {o.python, script.string()};
   argv.insert(argv.end(), args.begin(), args.end());
-  std::vector<char*> cargv;
-  for (std::string& a : argv) cargv.push_back(a.data());
-  cargv.push_back(nullptr);
-  posix_spawn_file_actions_t files;
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);  // its own group: a time-out ends all of it
-  posix_spawnattr_setpgroup(&attr, 0);
-  pid_t pid = 0;
-  int rc = posix_spawn(&pid, o.python.c_str(), &files, &attr, cargv.data(), environ);
-  posix_spawn_file_actions_destroy(&files);
-  posix_spawnattr_destroy(&attr);
-  if (rc != 0) {
-    error = "cannot run " + o.python + ": " + std::strerror(rc);
+  const int limit = timeoutSeconds(o, rdc);
+  ChildOutcome child;
+  if (!runBoundedChild(argv, out, err, limit, tmp, child, error)) {
+    error = rdc + ": " + error;
     return false;
   }
+  const bool timedOut = child.timedOut;
+  const int status = child.status;
 
-  const int limit = timeoutSeconds(o);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(limit);
-  int status = 0;
-  bool timedOut = false;
-  while (waitpid(pid, &status, WNOHANG) == 0) {
-    if (std::chrono::steady_clock::now() > deadline) {
-      kill(-pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      timedOut = true;
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-
-  const ScriptLog log(readText(err));
+  const ScriptLog log(readText(err), rdc);
   const std::string doing = log.lastProgress.empty() ? "" : " (while " + log.lastProgress + ")";
   if (timedOut) {
     error = rdc + ": RenderDoc's replay did not finish within " + std::to_string(limit) + " s" + doing +
@@ -146,8 +121,10 @@ bool runScript(const std::string& rdc, const std::vector<std::string>& args, con
   if (exitCode != 0) {
     if (log.lastMessage.find("No module named 'renderdoc'") != std::string::npos)
       error = "the Python module renderdoc is not installed for " + o.python + " (apt-get install python3-renderdoc)";
-    else if (exitCode == 2 && !log.lastMessage.empty())
+    else if (exitCode == 2 && log.lastMessage.rfind(rdc + ":", 0) == 0)
       error = log.lastMessage;
+    else if (exitCode == 2 && !log.lastMessage.empty())
+      error = rdc + ": " + log.lastMessage + doing;
     else
       error = rdc + ": RenderDoc's replay failed" + doing + ": " + (log.lastMessage.empty() ? "no message" : log.lastMessage);
     return false;
@@ -156,18 +133,25 @@ bool runScript(const std::string& rdc, const std::vector<std::string>& args, con
   std::string text = readText(out);
   while (!text.empty() && text.back() == '\n') text.pop_back();
   size_t start = text.rfind('\n');
-  result = nlohmann::json::parse(text.substr(start == std::string::npos ? 0 : start + 1), nullptr, false);
-  if (result.is_discarded() || !result.is_object()) {
+  std::string why;
+  if (!parseJson(text.substr(start == std::string::npos ? 0 : start + 1), "result", result, why) || !result.is_object()) {
     error = rdc + ": RenderDoc's replay printed no result" + doing;
     return false;
   }
   return true;
 }
 
+// A result of another shape than the script writes: named, not a crash.
+bool unexpectedResult(const std::string& rdc, const std::exception& e, std::string& error) {
+  error = rdc + ": RenderDoc's replay printed an unexpected result (" + e.what() + ")";
+  return false;
+}
+
 RdcTexture textureFromJson(const nlohmann::json& j) {
   RdcTexture t;
   t.name = j.value("name", "");
   t.id = j.value("id", uint64_t(0));
+  t.autoName = j.value("auto", false);
   const nlohmann::json& f = j.at("format");
   RdcFormat format{f.value("name", ""), f.value("type", ""), f.value("compType", ""), f.value("compCount", 0u),
                    f.value("compByteWidth", 0u), f.value("bgra", false)};
@@ -180,6 +164,34 @@ RdcTexture textureFromJson(const nlohmann::json& j) {
   t.layers = j.value("arraysize", 1u);
   t.samples = j.value("samples", 1u);
   return t;
+}
+
+RdcBinding bindingFromJson(const nlohmann::json& j) {
+  RdcBinding b;
+  b.name = j.value("name", "");
+  b.id = j.value("id", uint64_t(0));
+  b.autoName = j.value("auto", false);
+  b.kind = j.value("kind", "");
+  b.bytes = j.value("bytes", uint64_t(0));
+  b.set = j.value("set", 0u);
+  b.binding = j.value("binding", 0u);
+  b.index = j.value("index", 0u);
+  b.stages = j.value("stages", std::vector<std::string>{});
+  b.bound = j.contains("set");
+  b.offset = j.value("offset", uint64_t(0));
+  b.range = j.value("range", uint64_t(0));
+  for (const nlohmann::json& m : j.value("members", nlohmann::json::array()))
+    if (m.is_array() && m.size() == 3 && m[0].is_string() && m[1].is_number_unsigned() && m[2].is_string())
+      b.members.push_back({m[0].get<std::string>(), m[2].get<std::string>(), m[1].get<uint64_t>()});
+  return b;
+}
+
+// A draw's targets and viewport, as the script reports them for a pass or an event.
+void drawStateFromJson(const nlohmann::json& j, RdcPass& p) {
+  p.outputs = j.value("outputs", std::vector<std::string>{});
+  p.depthTarget = j.value("depthTarget", "");
+  const std::vector<double> v = j.value("viewport", std::vector<double>{});
+  for (size_t i = 0; i < 4 && i < v.size(); ++i) p.viewport[i] = v[i];
 }
 
 }  // namespace
@@ -215,7 +227,7 @@ std::optional<TexelFormat> texelFormatOf(const RdcFormat& f) {
   return std::nullopt;
 }
 
-bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& error, const RdcReplayOptions& o) {
+bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& error, const RdcReplayOptions& o) try {
   TempFolder tmp;
   nlohmann::json j;
   if (!runScript(rdc, {"list", rdc}, tmp, o, j, error)) return false;
@@ -232,13 +244,20 @@ bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& 
     RdcPass pass{p.value("name", ""), p.value("first", 0u), p.value("last", 0u), p.value("depth", 0u), {}};
     for (uint64_t id : p.at("writes").get<std::vector<uint64_t>>())
       pass.writes.push_back(names[id].empty() ? std::string("#") + std::to_string(id) : names[id]);
+    pass.boundAt = p.value("boundAt", 0u);
+    for (const nlohmann::json& b : p.value("buffers", nlohmann::json::array())) pass.buffers.push_back(bindingFromJson(b));
+    drawStateFromJson(p, pass);
     out.passes.push_back(std::move(pass));
   }
+  for (const nlohmann::json& b : j.value("buffers", nlohmann::json::array()))
+    out.buffers.push_back({b.value("name", ""), b.value("id", uint64_t(0)), b.value("bytes", uint64_t(0))});
   return true;
+} catch (const nlohmann::json::exception& e) {
+  return unexpectedResult(rdc, e, error);
 }
 
 bool readRenderDocTexels(const std::string& rdc, uint32_t event, const std::vector<std::string>& textures,
-                         std::vector<RdcTexels>& out, std::string& error, const RdcReplayOptions& o) {
+                         std::vector<RdcTexels>& out, std::string& error, const RdcReplayOptions& o) try {
   TempFolder tmp;
   std::vector<std::string> args = {"texels", rdc, std::to_string(event), tmp.path.string()};
   args.insert(args.end(), textures.begin(), textures.end());
@@ -256,10 +275,12 @@ bool readRenderDocTexels(const std::string& rdc, uint32_t event, const std::vect
     out.push_back(std::move(texels));
   }
   return true;
+} catch (const nlohmann::json::exception& e) {
+  return unexpectedResult(rdc, e, error);
 }
 
 bool readRenderDocBuffer(const std::string& rdc, uint32_t event, const std::string& buffer, std::vector<uint8_t>& out,
-                         std::string& error, const RdcReplayOptions& o) {
+                         std::string& error, const RdcReplayOptions& o, RdcBufferRead* at) try {
   TempFolder tmp;
   const std::string file = (tmp.path / "buffer.bin").string();
   nlohmann::json j;
@@ -268,7 +289,53 @@ bool readRenderDocBuffer(const std::string& rdc, uint32_t event, const std::stri
     error = rdc + ": RenderDoc's replay wrote no bytes for buffer " + buffer;
     return false;
   }
+  if (at) *at = {j.value("id", uint64_t(0)), j.value("event", 0u)};
   return true;
+} catch (const nlohmann::json::exception& e) {
+  return unexpectedResult(rdc, e, error);
+}
+
+bool readDrawState(const std::string& rdc, const std::vector<uint32_t>& events, bool bytes,
+                   std::map<uint32_t, RdcPass>& out, std::string& skipped, std::string& error, const RdcReplayOptions& o) try {
+  std::vector<uint32_t> todo(events);
+  std::sort(todo.begin(), todo.end());  // forward through the frame: each step replays only what lies between
+  todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+  skipped.clear();
+  while (!todo.empty()) {
+    TempFolder tmp;
+    std::vector<std::string> args = {"state", rdc, tmp.path.string()};
+    if (bytes) args.push_back("--bytes");
+    for (uint32_t e : todo) args.push_back(std::to_string(e));
+    nlohmann::json j;
+    const bool ok = runScript(rdc, args, tmp, o, j, error);
+    size_t done = 0;
+    for (; done < todo.size(); ++done) {
+      const nlohmann::json state =
+          nlohmann::json::parse(readText(tmp.path / ("state_" + std::to_string(todo[done]) + ".json")), nullptr, false);
+      if (state.is_discarded() || !state.is_object()) break;
+      RdcPass& p = out[todo[done]];
+      p.boundAt = state.value("event", 0u);
+      drawStateFromJson(state, p);
+      for (const nlohmann::json& b : state.value("buffers", nlohmann::json::array())) {
+        p.buffers.push_back(bindingFromJson(b));
+        if (bytes && !readBytes(b.value("file", ""), p.buffers.back().data)) {
+          error = rdc + ": RenderDoc's replay wrote no bytes for buffer " + p.buffers.back().name;
+          return false;
+        }
+      }
+    }
+    todo.erase(todo.begin(), todo.begin() + long(done));
+    if (ok || todo.empty()) break;
+    if (error.find("crashed") == std::string::npos) return false;
+    if (done == 0) {  // even a fresh replay crashes there: leave it out
+      skipped += (skipped.empty() ? "" : ", ") + std::to_string(todo.front());
+      todo.erase(todo.begin());
+    }
+  }
+  error.clear();
+  return true;
+} catch (const nlohmann::json::exception& e) {
+  return unexpectedResult(rdc, e, error);
 }
 
 }  // namespace gb

@@ -4,7 +4,9 @@
 // (renderdoc_replay.py), under a time limit: a capture that does not replay on this machine's driver
 // gives one line naming the API and the driver, never a hang.
 #pragma once
+#include <array>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,10 +18,33 @@ namespace gb {
 struct RdcTexture {
   std::string name;    // RenderDoc's name: the debug name the application gave, else RenderDoc's own
   uint64_t id = 0;     // RenderDoc's resource id ("#id" names it where names repeat)
+  bool autoName = false;  // the name is RenderDoc's own ("2D Image 127"): the application gave none
   std::string format;  // RenderDoc's format name, e.g. "R16G16B16A16_FLOAT", "D32S8"
   std::optional<TexelFormat> texelFormat;  // when gblens can hold the format
   uint32_t width = 0, height = 0;
   uint32_t depth = 1, mips = 1, layers = 1, samples = 1;
+};
+
+// A uniform or storage buffer used at a draw or dispatch: its kind and the stages that read it (from
+// RenderDoc's usage records, in a listing), and where it is bound (set, binding, array index), the
+// bound byte range and the members the shaders' reflection declares (from the pipeline state,
+// readDrawState; `bound` says whether those are known).
+struct RdcBinding {
+  std::string name;  // RenderDoc's name, "#id" when unnamed
+  uint64_t id = 0;
+  bool autoName = false;  // RenderDoc made the name up
+  std::string kind;  // "uniform" or "storage"
+  uint64_t bytes = 0;                 // the whole buffer
+  uint32_t set = 0, binding = 0, index = 0;
+  std::vector<std::string> stages;    // vertex, fragment, compute, ...
+  uint64_t offset = 0, range = 0;     // the bound range, bytes from the buffer's start
+  struct Member {
+    std::string name, type;
+    uint64_t offset = 0;              // from the start of the bound range
+  };
+  std::vector<Member> members;
+  bool bound = false;                 // set, binding, index, offset, range and members are known
+  std::vector<uint8_t> data;          // the bound range's bytes (readDrawState with bytes)
 };
 
 // A label region (every one, nested ones too), or a render pass no region names by itself.
@@ -29,6 +54,16 @@ struct RdcPass {
   uint32_t depth = 0;                // nesting: 0 for a top-level region
   std::vector<std::string> writes;   // textures bound for writing inside it (targets, storage, copy/clear
                                      // destinations), by name ("#id" when unnamed)
+  uint32_t boundAt = 0;              // its last draw or dispatch (0: none) ...
+  std::vector<RdcBinding> buffers;   // ... the buffers used there,
+  std::vector<std::string> outputs;  // its colour targets, depth target (names; a draw only)
+  std::string depthTarget;
+  std::array<double, 4> viewport{};  // x, y, width, height (readDrawState; Vulkan: a negative height flips y)
+};
+
+struct RdcBuffer {
+  std::string name;
+  uint64_t id = 0, bytes = 0;
 };
 
 struct RdcListing {
@@ -36,13 +71,18 @@ struct RdcListing {
   std::string driverNote;  // where it was recorded and what replays it here
   std::vector<RdcPass> passes;
   std::vector<RdcTexture> textures;
+  std::vector<RdcBuffer> buffers;  // every buffer of the capture
   uint32_t lastEvent = 0;
 };
+
+// The replay's time limit: kReplayBaseSeconds plus one second per 10 MiB of capture (a small
+// capture: 20 s; listing one takes a few seconds), unless set.
+constexpr int kReplayBaseSeconds = 20;
 
 // Where the replay runs. The defaults suit the command line; tests shorten the limit.
 struct RdcReplayOptions {
   std::string python = "/usr/bin/python3";
-  int timeoutSeconds = 300;  // GBLENS_RENDERDOC_TIMEOUT overrides it (seconds)
+  int timeoutSeconds = 0;  // 0: the limit above; GBLENS_RENDERDOC_TIMEOUT overrides both (seconds)
 };
 
 bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& error,
@@ -60,9 +100,23 @@ bool readRenderDocTexels(const std::string& rdc, uint32_t event, const std::vect
                          std::vector<RdcTexels>& out, std::string& error, const RdcReplayOptions& options = {});
 
 // The bytes of a buffer (by name or "#id") at `event` (0: its first use), e.g. a uniform buffer
-// holding the camera matrices.
+// holding the camera matrices. `at` (optional) receives the buffer's id and the event it was read at.
+struct RdcBufferRead {
+  uint64_t id = 0;
+  uint32_t event = 0;
+};
 bool readRenderDocBuffer(const std::string& rdc, uint32_t event, const std::string& buffer, std::vector<uint8_t>& out,
-                         std::string& error, const RdcReplayOptions& options = {});
+                         std::string& error, const RdcReplayOptions& options = {}, RdcBufferRead* at = nullptr);
+
+// The buffers bound at the last draw or dispatch up to each event (0: the frame's last) with where
+// they are bound, and the viewport (out[event].boundAt: that draw's event); with `bytes`, each bound
+// range's bytes. RenderDoc 1.24 can crash moving from some events to others (seen on llvmpipe: a
+// heap corruption replaying from gblens's point_lights draws to light_coverage's): the replay
+// starts again at the event it stopped at, and an event that crashes a fresh replay too is left out,
+// named in `skipped`. False only when the replay cannot run at all.
+bool readDrawState(const std::string& rdc, const std::vector<uint32_t>& events, bool bytes,
+                   std::map<uint32_t, RdcPass>& out, std::string& skipped, std::string& error,
+                   const RdcReplayOptions& options = {});
 
 // RenderDoc's format description -> the TexelFormat gblens holds it in (rgba8 sRGB/unorm/snorm,
 // rgba16 snorm, rgb10a2, rgba16f, rgba32f, r32f, r32 uint, d32s8, d24s8, d32f, d16); none otherwise.

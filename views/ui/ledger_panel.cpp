@@ -29,9 +29,9 @@ void ledgerSection(const PixelDossier& d) {
   ImGui::SetNextItemWidth(-1.0f);
   ImGui::InputTextWithHint("##ledger filter", "filter (fate, light index, rule)", filter, sizeof filter);
   ImGui::TextDisabled("%s%s", l.rule.c_str(), l.notListed ? (", " + std::to_string(l.notListed) + " farther not listed").c_str() : "");
-  const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV;
-  if (!ImGui::BeginTable("ledger", 4, flags, ImVec2(0.0f, 220.0f))) return;
-  ImGui::TableSetupScrollFreeze(0, 1);
+  // No scroll area of its own: the wheel scrolls the pixel panel, not a box inside it.
+  const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV;
+  if (!ImGui::BeginTable("ledger", 4, flags)) return;
   ImGui::TableSetupColumn("light", ImGuiTableColumnFlags_WidthFixed, 60.0f);
   ImGui::TableSetupColumn("fate", ImGuiTableColumnFlags_WidthFixed, 110.0f);
   ImGui::TableSetupColumn("d / r", ImGuiTableColumnFlags_WidthFixed, 50.0f);
@@ -39,7 +39,7 @@ void ledgerSection(const PixelDossier& d) {
   ImGui::TableHeadersRow();
   for (const LedgerEntry& e : l.entries) {
     if ((show == 1 && !contributes(e)) || (show == 2 && contributes(e)) || (show == 3 && !culled(e))) continue;
-    const std::string name = e.light == "sun" ? "sun" : "#" + std::to_string(e.index);
+    const std::string name = e.light == "sun" ? "sun" : std::to_string(e.index);  // as the point-lights table names it
     if (filter[0] && (name + " " + e.fate + " " + e.why + " " + e.drawnAs).find(filter) == std::string::npos) continue;
     ImGui::TableNextRow();
     ImGui::TableNextColumn();

@@ -225,8 +225,15 @@ static void frameOptions(ViewerModel& m) {
   o.path = Path(path);
   ImGui::Checkbox("USE_EYE_DEPTH", &o.eyeDepth);
   tooltip("positions from the eye-depth target (on) or hardware depth through eyeFromClip (off)");
-  ImGui::Checkbox("LIGHT_STENCIL_CULLING", &o.stencilCulling);
-  if (o.stencilCulling) {
+  // Stencil culling is the deferred method's: under tiled, clustered or forward it does nothing, and
+  // the panel says so instead of offering controls without effect.
+  const bool deferred = m.stats.method.empty() || m.stats.method == "deferred";
+  if (!deferred) {
+    ImGui::TextDisabled("LIGHT_STENCIL_CULLING: deferred only (this frame ran %s)", m.stats.method.c_str());
+  } else {
+    ImGui::Checkbox("LIGHT_STENCIL_CULLING", &o.stencilCulling);
+  }
+  if (deferred && o.stencilCulling) {
     int mask = int(o.stencilMask);
     ImGui::TextDisabled("  stencil mask");
     ImGui::SameLine();
@@ -253,7 +260,12 @@ static void frameOptions(ViewerModel& m) {
   ImGui::SliderFloat("exposure", &o.exposure, 0.05f, 8.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
   ImGui::SliderInt("lights", &m.lightCount, 0, 4096, "%d", ImGuiSliderFlags_Logarithmic);
   ImGui::SliderFloat("light radius", &m.lightRadiusScale, 0.1f, 4.0f, "x%.2f", ImGuiSliderFlags_Logarithmic);
-  ImGui::Text("render size %ux%u%s", m.rendered.width, m.rendered.height, m.fixedSize ? " (fixed, --size)" : "");
+  ImGui::Text("render size %ux%u", m.fullSize.x ? m.fullSize.x : m.rendered.width, m.fullSize.y ? m.fullSize.y : m.rendered.height);
+  bool follow = !m.fixedSize;
+  ImGui::SameLine();
+  if (ImGui::Checkbox("follow the view area", &follow)) m.fixedSize = !follow;
+  tooltip("off (default): the size of --size (or 1280x720), letterboxed: pixel coordinates match gblens render and capture;\n"
+          "on: render at the view area's size (or a fraction of it)");
   if (!m.fixedSize) {
     ImGui::SameLine();
     ImGui::SetNextItemWidth(90);

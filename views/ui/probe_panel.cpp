@@ -39,12 +39,21 @@ static std::string g5(double v) {
 }
 static std::string c3(const glm::dvec3& v) { return g5(v.x) + ", " + g5(v.y) + ", " + g5(v.z); }
 
+// A value the user can copy: right-click it.
+static void copyable(const char* id, const std::string& value) {
+  if (ImGui::BeginPopupContextItem(id)) {
+    if (ImGui::MenuItem("Copy value")) ImGui::SetClipboardText(value.c_str());
+    ImGui::EndPopup();
+  }
+}
+
 static void row(const char* label, const std::string& value) {
   ImGui::TableNextRow();
   ImGui::TableNextColumn();
   ImGui::TextDisabled("%s", label);
   ImGui::TableNextColumn();
   ImGui::TextWrapped("%s", value.c_str());
+  copyable(label, value);
 }
 
 // A colour swatch of a linear colour (ImGui colours are sRGB-encoded bytes).
@@ -166,9 +175,14 @@ static void lightsSection(const PixelDossier& d) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("the counts the coverage targets stored at this pixel: volumes covering it, and\n"
                       "point-light shader runs; they should equal the lights listed and the lights shaded");
-  if (ImGui::BeginTable("lights", 5, kTable | ImGuiTableFlags_ScrollY, ImVec2(0, std::min(260.0f, 26.0f + 19.0f * (d.lights.size() + 2))))) {
-    ImGui::TableSetupScrollFreeze(0, 1);
-    for (const char* h : {"light", "d / r", "atten.", "stencil", "contribution"}) ImGui::TableSetupColumn(h);
+  // The ledger's words for each light's fate (one vocabulary with "Why is this pixel lit").
+  auto fateOf = [&](uint32_t index) -> std::string {
+    for (const LedgerEntry& e : d.ledger.entries)
+      if (e.light == "point" && e.index == index) return e.fate;
+    return "";
+  };
+  if (ImGui::BeginTable("lights", 5, kTable)) {
+    for (const char* h : {"light", "d / r", "atten.", "fate", "contribution"}) ImGui::TableSetupColumn(h);
     ImGui::TableHeadersRow();
     for (const ProbeLight& l : d.lights) {
       ImGui::TableNextRow();
@@ -184,10 +198,12 @@ static void lightsSection(const PixelDossier& d) {
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(g5(l.attenuation).c_str());
       ImGui::TableNextColumn();
-      if (l.stencilPass)
-        ImGui::TextColored(ImVec4(0.4f, 1, 0.4f, 1), "shaded");
+      std::string fate = fateOf(l.index);
+      if (fate.empty()) fate = l.stencilPass ? "shaded" : "not shaded";
+      if (fate == "shaded")
+        ImGui::TextColored(ImVec4(0.4f, 1, 0.4f, 1), "%s", fate.c_str());
       else
-        ImGui::TextDisabled("culled");
+        ImGui::TextDisabled("%s", fate.c_str());
       ImGui::TableNextColumn();
       swatch(("c" + std::to_string(l.index)).c_str(), l.color);
       ImGui::TextUnformatted(c3(l.contribution).c_str());
@@ -278,6 +294,9 @@ static void dossierSections(const PixelDossier& d) {
 void referenceSection(ViewerModel& m);  // reference_panel.cpp
 
 void drawDossier(ViewerModel& m) {
+  // The readout under the mouse keeps a fixed height, so what follows (the dossier, its buttons)
+  // does not move as the mouse goes from pixel to pixel.
+  ImGui::BeginChild("hover", ImVec2(0, ImGui::GetTextLineHeightWithSpacing() * 4.5f), false, ImGuiWindowFlags_NoScrollbar);
   if (m.hover)
     ImGui::Text("mouse (%d, %d)", m.hover->x, m.hover->y);
   else if (m.hoverShadowTexel)
@@ -285,8 +304,13 @@ void drawDossier(ViewerModel& m) {
   else
     ImGui::TextDisabled("mouse outside the image");
   if (!m.hoverText.empty()) ImGui::TextWrapped("%s", m.hoverText.c_str());
+  ImGui::EndChild();
   if (m.shadowMark) {
-    ImGui::TextColored(ImVec4(1, 0, 1, 1), "marked: pixels sampling shadow texel (%d, %d)", m.shadowMark->x, m.shadowMark->y);
+    if (m.shadowMarkCount >= 0)
+      ImGui::TextColored(ImVec4(1, 0, 1, 1), "marked: %lld pixels sample shadow texel (%d, %d)", (long long)m.shadowMarkCount,
+                         m.shadowMark->x, m.shadowMark->y);
+    else
+      ImGui::TextColored(ImVec4(1, 0, 1, 1), "marked: pixels sampling shadow texel (%d, %d)", m.shadowMark->x, m.shadowMark->y);
     ImGui::SameLine();
     if (ImGui::SmallButton("clear")) m.shadowMark.reset();
   }
@@ -300,7 +324,13 @@ void drawDossier(ViewerModel& m) {
   ImGui::Text("pixel (%d, %d) of %ux%u", m.probePixel->x, m.probePixel->y, d.width, d.height);
   ImGui::SameLine();
   if (ImGui::SmallButton("Copy as JSON")) m.copyJson = true;
+  if (m.copiedBytes && ImGui::GetTime() - m.copiedAt < 3.0) {  // the confirmation, for a few seconds
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(0.4f, 1, 0.4f, 1), "copied (%zu bytes)", m.copiedBytes);
+    m.uiChanged = true;  // keep drawing until it goes
+  }
   ImGui::TextDisabled("dossier ready %.1f ms after the click", m.probeLatencyMs);
+  if (!m.probeNote.empty()) ImGui::TextColored(ImVec4(1, 0.75f, 0.3f, 1), "%s", m.probeNote.c_str());
   if (!m.probeError.empty()) {
     ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", m.probeError.c_str());
     return;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "shaders/view_colors.h"
 #include "views/ui/viewer_model.h"
 
 namespace gb {
@@ -113,6 +114,35 @@ static void heatLegend(ImDrawList* dl, ImVec2 at, float width, float maxCount, c
     dl->AddText(ImVec2(x, at.y + h + 2), rgb(1, 1, 1), text);
   }
   dl->AddText(ImVec2(at.x, at.y - 16), rgb(1, 1, 1), unit);  // black: none
+}
+
+// The legend of a grey or false-colour mapping: its ramp from the black to the white point (depths:
+// near is bright), the values at five places (log: spaced as the mapping spaces them) and the unit.
+static void rampLegend(ImDrawList* dl, ImVec2 at, float width, const ViewMapping& mapping, const ResolvedRange& r,
+                       const std::string& unit) {
+  const float h = 10.0f;
+  const bool depth = mapping.mapping == gpu::kViewMapDepth, falseColour = mapping.flags & gpu::kViewFlagFalseColor;
+  const bool log = (mapping.flags & gpu::kViewFlagLog) && r.black > 0.0f && r.white > r.black;
+  dl->AddRectFilled(ImVec2(at.x - 4, at.y - 18), ImVec2(at.x + width + 4, at.y + h + 18), rgb(0, 0, 0, 0.6f));
+  auto colour = [&](float t) {
+    glm::vec3 c = falseColour ? colors::viridis(depth ? 1.0f - t : t) : glm::vec3(depth ? 1.0f - 0.9f * t : t);
+    return rgb(c.r, c.g, c.b);
+  };
+  const int steps = 32;
+  for (int i = 0; i < steps; ++i) {
+    float x0 = at.x + width * i / steps, x1 = at.x + width * (i + 1) / steps;
+    dl->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + h), colour(float(i) / steps), colour(float(i + 1) / steps),
+                                colour(float(i + 1) / steps), colour(float(i) / steps));
+  }
+  char text[64];
+  for (int i = 0; i <= 4; ++i) {
+    const double t = i / 4.0;
+    const double v = log ? r.black * std::pow(double(r.white) / r.black, t) : r.black + (r.white - r.black) * t;
+    std::snprintf(text, sizeof text, "%.4g", v);
+    float x = at.x + float(width * t) - ImGui::CalcTextSize(text).x * (i == 0 ? 0.0f : i == 4 ? 1.0f : 0.5f);
+    dl->AddText(ImVec2(x, at.y + h + 2), rgb(1, 1, 1), text);
+  }
+  dl->AddText(ImVec2(at.x, at.y - 16), rgb(1, 1, 1), (unit + (log ? " (log)" : "")).c_str());
 }
 
 // Outline of one texel (or a crosshair where a texel is smaller than a few pixels).
@@ -272,6 +302,12 @@ static void drawLabels(const ViewerModel& m, const SlotDraw& v, const ResolvedRa
   else if (def.visual == Visual::Count && r.w > 120 && r.h > 80)
     heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), range.white,
                viewUnit(def, m.stats.method).c_str());
+  else if (r.w > 120 && r.h > 80) {
+    const ViewMapping mapping = viewMapping(def, m.settings[size_t(v.view)]);
+    if (mapping.mapping == gpu::kViewMapDepth || (mapping.mapping == gpu::kViewMapGrey && (mapping.flags & gpu::kViewFlagFalseColor)))
+      rampLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), mapping, range,
+                 def.unit.empty() ? def.name : def.unit);
+  }
   if (v.split) {  // the split line and its handle
     float x = float(r.x + r.w * m.splitAt);
     dl->AddLine(ImVec2(x, float(r.y)), ImVec2(x, float(r.y + r.h)), rgb(1, 1, 1), 2.0f);

@@ -107,11 +107,13 @@ struct ViewerModel {
   std::optional<glm::ivec2> probeRequest;   // a click or an arrow key: the app probes it
   std::optional<glm::ivec2> probePixel;     // the pixel of the dossier shown
   std::optional<glm::ivec2> shadowMark;     // shadow-map texel clicked: the pixels sampling it are marked
+  int64_t shadowMarkCount = -1;             // how many (-1: not counted yet)
   std::optional<glm::ivec2> shadowTexelOfProbe;  // the texel the probed pixel's shadow lookup read
   std::optional<PixelDossier> dossier;      // the shared dossier (views/probe.h) of probePixel
   nlohmann::json dossierJson;               // the same as JSON (copy, --probe-log)
   std::optional<PixelDossier> dossierB;     // compare: capture B's dossier of the same pixel
   std::string probeError;
+  std::string probeNote;                    // the dossier is of an earlier frame, or its pixel's content changed
   double probeLatencyMs = 0.0;
   // The reference column (views/analysis/probe_reference.h): asked for in the panel, computed by
   // the app with each probe of a live frame; `referenceNote` says why there is none.
@@ -136,6 +138,8 @@ struct ViewerModel {
   std::string referenceNote;
   double referenceMs = 0.0;
   bool copyJson = false;
+  size_t copiedBytes = 0;   // the last copy, for the confirmation
+  double copiedAt = -1e9;   // ImGui time of it
 
   // ---- region statistics: ctrl + left drag in a screen view (views/analysis/region_stats.h) ----
   std::optional<glm::ivec2> regionAnchor;      // drag in progress: the first corner (frame pixels)

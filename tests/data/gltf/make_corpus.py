@@ -142,10 +142,12 @@ QUAD_IDX = [0, 1, 2, 0, 2, 3]
 TRI = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
 
 
-def triangle(g, material=None, normals=True):
+def triangle(g, material=None, normals=True, uvs=False):
     attrs = {"POSITION": g.data(TRI, FLOAT, "VEC3", minmax=True)}
     if normals:
         attrs["NORMAL"] = g.data([(0, 0, 1)] * 3, FLOAT, "VEC3")
+    if uvs:  # a textured material samples TEXCOORD_0: the primitive must have it (validator)
+        attrs["TEXCOORD_0"] = g.data([(0, 0), (1, 0), (0, 1)], FLOAT, "VEC2")
     prim = {"attributes": attrs, "indices": g.data([0, 1, 2], USHORT, "SCALAR")}
     if material is not None:
         prim["material"] = material
@@ -303,7 +305,7 @@ def valid():
          "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 1}},
         {"name": "smooth_metal", "pbrMetallicRoughness": {"metallicFactor": 1, "roughnessFactor": 0}},
     ]
-    g.mesh([triangle(g, material=i) for i in range(4)])
+    g.mesh([triangle(g, material=i, uvs=True) for i in range(4)])
     g.scene([g.node(mesh=0)])
     g.write("valid/materials.gltf", "loads: 4 materials (MASK 0.3 double-sided + transform, BLEND warning, normal scale 0.5, specular 0.0127 / 1)")
 
@@ -348,7 +350,7 @@ def valid():
     g = Gltf()
     tex = g.image(png(1, 1, [10, 20, 30, 255]), in_view=True)
     g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": tex}}}]
-    g.mesh([triangle(g, material=0)])
+    g.mesh([triangle(g, material=0, uvs=True)])
     g.scene([g.node(mesh=0)])
     g.write("valid/binary.glb", "loads: GLB with BIN chunk, image in a buffer view (1x1, rgb 10 20 30)", mode="glb")
 
@@ -448,9 +450,9 @@ def invalid():
         "rejected: GLB header longer than the file")
     raw("invalid/bad_magic.glb", b"glTF" + b"\x02\x00\x00\x00" + b"\xff" * 16, "rejected: GLB")
 
-    broken("invalid/draco_required.gltf", "extensionsRequired KHR_draco_mesh_compression named",
-           lambda g: g.doc.update(extensionsUsed=["KHR_draco_mesh_compression"],
-                                  extensionsRequired=["KHR_draco_mesh_compression"]))
+    broken("invalid/meshopt_required.gltf", "extensionsRequired EXT_meshopt_compression named",
+           lambda g: g.doc.update(extensionsUsed=["EXT_meshopt_compression"],
+                                  extensionsRequired=["EXT_meshopt_compression"]))
     g = simple()
     g.write("invalid/missing_bin.gltf", "rejected: buffer file 'nothere.bin' not found", mode="external",
             bin_name="unused.bin", bin_uri="nothere.bin")

@@ -1,0 +1,291 @@
+// At the end of a render pass: which requested targets it holds, and the commands that copy them
+// (and the camera's bytes) into the ring, recorded into the application's command buffer right
+// after the pass. Each attachment goes from the layout the pass left it in to TRANSFER_SRC and back,
+// with barriers that order the copy after the pass's writes and everything after it after the
+// copy, so the application's own synchronisation sees its images as it left them.
+#include <algorithm>
+#include <chrono>
+
+#include "app/layer/layer.h"
+
+namespace gbl {
+
+namespace {
+
+struct Looked {  // an attachment with what the layer knows of its image
+  const PassAttachment* a = nullptr;
+  ImageInfo image;
+  std::string viewName;
+  uint32_t viewMip = 0, viewLayer = 0;
+};
+
+struct Region {  // one copy command
+  VkImage image;
+  VkImageLayout layout;
+  VkBuffer buffer;
+  VkBufferImageCopy copy;
+};
+
+bool passMatches(const Pick& p, const OpenPass& pass) {
+  if (p.passIndex >= 0 && p.passIndex != pass.ordinal) return false;
+  if (!p.pass.empty() && p.pass != pass.renderPass &&
+      std::find(pass.labels.begin(), pass.labels.end(), p.pass) == pass.labels.end())
+    return false;
+  return true;
+}
+
+}  // namespace
+
+std::string pickText(const Pick& p) {
+  std::string t = !p.name.empty() ? "the image named \"" + p.name + "\""
+                  : p.color >= 0  ? "colour attachment " + std::to_string(p.color)
+                  : p.depth       ? std::string("the depth attachment")
+                                  : "the " + p.byFormat + " attachment";
+  if (!p.pass.empty()) t += " of pass \"" + p.pass + "\"";
+  if (p.passIndex >= 0) t += " of render pass " + std::to_string(p.passIndex);
+  return t;
+}
+
+namespace {
+
+// The attachment a pick selects in this pass, or null.
+const Looked* select(DeviceData& d, const Pick& p, const OpenPass& pass, const std::vector<Looked>& all) {
+  std::vector<const Looked*> found;
+  for (const Looked& l : all) {
+    const bool hit = !p.name.empty() ? (l.image.name == p.name || l.viewName == p.name)
+                     : p.color >= 0  ? l.a->color == p.color
+                     : p.depth       ? l.a->depth
+                                     : formatInfo(l.image.format).storage == p.byFormat;
+    if (hit) found.push_back(&l);
+  }
+  if (found.empty()) return nullptr;
+  if (found.size() > 1 && !p.byFormat.empty()) {
+    report(d, "ambiguous:" + p.targetName,
+           "target \"" + p.targetName + "\": render pass " + std::to_string(pass.ordinal) + " has " +
+               std::to_string(found.size()) + " attachments of format " + p.byFormat + "; pick one by name or index");
+    return nullptr;
+  }
+  // A pick by name alone follows the image through every pass that writes it (the last one wins).
+  if (!p.name.empty() && p.pass.empty() && p.passIndex < 0 && !found[0]->a->written) return nullptr;
+  return found[0];
+}
+
+// Why an attachment cannot be streamed as a target of storage format `want` ("" : it can; want ""
+// accepts any format a layout can hold).
+std::string refusal(const ImageInfo& image, const std::string& want) {
+  const FormatInfo& f = formatInfo(image.format);
+  if (!*f.storage) return "is " + formatName(image.format) + ", which no layout storage format holds";
+  if (!want.empty() && want != f.storage)
+    return "is " + std::string(f.storage) + " (" + formatName(image.format) + "), the layout says " + want;
+  if (image.samples != VK_SAMPLE_COUNT_1_BIT)
+    return "is multisampled (" + std::to_string(int(image.samples)) + " samples): pick its resolve attachment";
+  if (!(image.usage & VK_IMAGE_USAGE_TRANSFER_SRC_BIT))
+    return "cannot be copied (a transient attachment, or a format the device cannot copy)";
+  return "";
+}
+
+VkImageAspectFlags aspects(const FormatInfo& f) {
+  if (!f.depth && !f.stencil) return VK_IMAGE_ASPECT_COLOR_BIT;
+  return (f.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : 0) | (f.stencil ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
+}
+
+// The barriers that take an attachment to TRANSFER_SRC (there) and back (after its copy).
+void transitions(const Looked& l, const FormatInfo& f, std::vector<VkImageMemoryBarrier>& there,
+                 std::vector<VkImageMemoryBarrier>& back) {
+  const PassAttachment& a = *l.a;
+  auto barrier = [&](VkImageAspectFlags aspect, VkImageLayout layout) {
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    b.srcAccessMask = f.depth || f.stencil ? VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT : VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    b.oldLayout = layout;
+    b.newLayout = layout == VK_IMAGE_LAYOUT_GENERAL ? layout : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = a.image;
+    b.subresourceRange = {aspect, l.viewMip, 1, l.viewLayer, 1};
+    there.push_back(b);
+    std::swap(b.oldLayout, b.newLayout);
+    b.srcAccessMask = 0;  // the copy only read it
+    b.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT;
+    back.push_back(b);
+  };
+  if (f.depth && f.stencil && a.layout != a.stencilLayout) {  // separate depth and stencil layouts
+    barrier(VK_IMAGE_ASPECT_DEPTH_BIT, a.layout);
+    barrier(VK_IMAGE_ASPECT_STENCIL_BIT, a.stencilLayout);
+  } else {
+    barrier(aspects(f), a.layout);
+  }
+}
+
+VkBuffer findCamera(DeviceData& d, const CmdState& s, const Request& req, VkDeviceSize& size) {
+  std::shared_lock lock(d.objects);
+  VkBuffer found = s.cameraBuffer;
+  if (!found || !d.buffers.count(found)) {  // not seen bound: the only buffer of that name, if one
+    found = VK_NULL_HANDLE;
+    int named = 0;
+    for (const auto& [b, info] : d.buffers)
+      if (info.name == req.cameraBuffer) found = b, ++named;
+    if (named != 1) return VK_NULL_HANDLE;
+  }
+  const BufferInfo& info = d.buffers.at(found);
+  if (!(info.usage & VK_BUFFER_USAGE_TRANSFER_SRC_BIT)) return VK_NULL_HANDLE;
+  size = std::min(info.size, req.cameraBytes);
+  return found;
+}
+
+}  // namespace
+
+void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
+  const auto start = std::chrono::steady_clock::now();
+  std::shared_ptr<const Request> req = currentRequest(d);
+  if (!req) return;
+  std::vector<Looked> all;
+  {
+    std::shared_lock lock(d.objects);
+    for (const PassAttachment& a : s.open.attachments) {
+      auto img = d.images.find(a.image);
+      auto view = d.views.find(a.view);
+      if (img == d.images.end() || view == d.views.end()) continue;
+      all.push_back({&a, img->second, view->second.name, view->second.mip, view->second.layer});
+    }
+  }
+  std::vector<VkImageMemoryBarrier> there, back;
+  std::vector<Region> regions;
+  std::vector<Copy> made;
+  for (size_t t = 0; t < req->picks.size(); ++t) {
+    const Pick& p = req->picks[t];
+    if (!passMatches(p, s.open)) continue;
+    const Looked* l = select(d, p, s.open, all);
+    if (!l) continue;
+    if (std::string why = refusal(l->image, p.format); !why.empty()) {
+      report(d, "refused:" + p.targetName, "target \"" + p.targetName + "\": " + pickText(p) + " " + why);
+      continue;
+    }
+    const FormatInfo& f = formatInfo(l->image.format);
+    Copy c;
+    c.target = int(t);
+    c.width = std::max(1u, l->image.extent.width >> l->viewMip);
+    c.height = std::max(1u, l->image.extent.height >> l->viewMip);
+    c.format = l->image.format;
+    c.passOrdinal = s.open.ordinal;
+    c.pass = !s.open.labels.empty() ? s.open.labels.back() : s.open.renderPass;
+    const VkDeviceSize plane = VkDeviceSize(c.width) * c.height * f.bytes;
+    const VkDeviceSize stencilAt = (plane + 3) / 4 * 4;
+    const VkDeviceSize bytes = f.stencil && f.depth ? stencilAt + VkDeviceSize(c.width) * c.height : plane;
+    // The same target again in this recording (a later pass writes it too): the same place.
+    auto earlier = std::find_if(s.copiesMade.begin(), s.copiesMade.end(), [&](const Copy& e) {
+      return e.target == c.target && e.width == c.width && e.height == c.height && e.format == c.format;
+    });
+    if (earlier != s.copiesMade.end()) {
+      c.buffer = earlier->buffer, c.offset = earlier->offset;
+    } else if (!reserve(d, s, bytes, c.buffer, c.offset)) {
+      if (s.slot >= 0) {  // a slot, but no memory for it
+        report(d, "memory", "out of host-visible memory for the copies: streaming stops");
+        d.streaming = false;
+      }
+      s.copies = false;  // every slot is held: this recording's frame is dropped
+      return;
+    }
+    c.stencilOffset = c.offset + stencilAt;
+    if (std::none_of(there.begin(), there.end(), [&](const VkImageMemoryBarrier& b) { return b.image == l->a->image; }))
+      transitions(*l, f, there, back);  // once, when two targets pick one attachment
+    auto region = [&](VkImageAspectFlags aspect, VkDeviceSize offset) {
+      Region r{l->a->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, c.buffer->buffer, {}};
+      const VkImageLayout was = aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? l->a->stencilLayout : l->a->layout;
+      if (was == VK_IMAGE_LAYOUT_GENERAL) r.layout = VK_IMAGE_LAYOUT_GENERAL;  // copied where it is
+      r.copy.bufferOffset = offset;
+      r.copy.imageSubresource = {aspect, l->viewMip, l->viewLayer, 1};
+      r.copy.imageExtent = {c.width, c.height, 1};
+      regions.push_back(r);
+    };
+    if (f.depth || !f.stencil) region(f.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, c.offset);
+    if (f.stencil && f.depth) region(VK_IMAGE_ASPECT_STENCIL_BIT, c.stencilOffset);
+    made.push_back(c);
+  }
+  if (made.empty()) return;
+
+  // The camera's bytes as the pass saw them (a later pass's copy replaces this one's).
+  VkDeviceSize cameraSize = 0;
+  VkBuffer camera = req->cameraBuffer.empty() ? VK_NULL_HANDLE : findCamera(d, s, *req, cameraSize);
+  if (!req->cameraBuffer.empty() && !camera)
+    report(d, "camera", "camera: no buffer named \"" + req->cameraBuffer +
+                            "\" is bound where the pass runs (or several have that name and none is bound)");
+  Copy cam;
+  if (camera && reserve(d, s, cameraSize, cam.buffer, cam.offset)) {
+    cam.target = -1;
+    cam.bytes = cameraSize;
+  }
+
+  const DeviceTable& vk = d.vk;
+  // Every earlier write before these copies: the camera buffer's (whoever made them), and the ring's
+  // own from an earlier pass or an earlier submission of this command buffer (the copies write the
+  // same bytes again).
+  VkMemoryBarrier memory{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  memory.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
+  memory.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+  vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &memory, 0, nullptr,
+                        uint32_t(there.size()), there.data());
+  for (const Region& r : regions) vk.CmdCopyImageToBuffer(cmd, r.image, r.layout, r.buffer, 1, &r.copy);
+  if (cam.buffer) {
+    VkBufferCopy bc{0, cam.offset, cam.bytes};
+    vk.CmdCopyBuffer(cmd, camera, cam.buffer->buffer, 1, &bc);
+  }
+  std::vector<VkBufferMemoryBarrier> toHost;  // the ring's bytes, for the layer's thread once the fence says so
+  for (const Copy& c : made)
+    if (std::none_of(toHost.begin(), toHost.end(), [&](const VkBufferMemoryBarrier& b) { return b.buffer == c.buffer->buffer; })) {
+      VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+      b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+      b.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+      b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      b.buffer = c.buffer->buffer;
+      b.size = VK_WHOLE_SIZE;
+      toHost.push_back(b);
+    }
+  if (cam.buffer && cam.buffer->buffer != made[0].buffer->buffer) {
+    VkBufferMemoryBarrier b = toHost[0];
+    b.buffer = cam.buffer->buffer;
+    toHost.push_back(b);
+  }
+  vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_HOST_BIT,
+                        0, 0, nullptr, uint32_t(toHost.size()), toHost.data(), uint32_t(back.size()), back.data());
+
+  for (Copy& c : made) {
+    std::erase_if(s.copiesMade, [&](const Copy& e) { return e.target == c.target; });
+    s.copiesMade.push_back(std::move(c));
+  }
+  if (cam.buffer) {
+    std::erase_if(s.copiesMade, [](const Copy& e) { return e.target < 0; });
+    s.copiesMade.push_back(std::move(cam));
+  }
+  d.hookNs += uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
+}
+
+PassReport reportPass(DeviceData& d, const OpenPass& pass) {
+  PassReport r;
+  r.ordinal = pass.ordinal;
+  r.dynamic = pass.dynamic;
+  r.renderPass = pass.renderPass;
+  r.labels = pass.labels;
+  std::shared_lock lock(d.objects);
+  for (const PassAttachment& a : pass.attachments) {
+    auto img = d.images.find(a.image);
+    auto view = d.views.find(a.view);
+    if (img == d.images.end()) continue;
+    PassReport::Attachment e;
+    e.role = a.color >= 0 ? "color " + std::to_string(a.color) : a.depth ? "depth" : "other";
+    e.image = img->second.name;
+    e.view = view == d.views.end() ? "" : view->second.name;
+    const uint32_t mip = view == d.views.end() ? 0 : view->second.mip;
+    e.width = std::max(1u, img->second.extent.width >> mip);
+    e.height = std::max(1u, img->second.extent.height >> mip);
+    e.samples = uint32_t(img->second.samples);
+    e.format = formatName(img->second.format);
+    e.storage = formatInfo(img->second.format).storage;
+    e.written = a.written;
+    e.storePatched = a.storePatched;
+    e.why = refusal(img->second, "");
+    r.attachments.push_back(e);
+  }
+  return r;
+}
+
+}  // namespace gbl

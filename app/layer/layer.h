@@ -1,0 +1,368 @@
+// The gblens Vulkan layer (VK_LAYER_GBLENS_live, `gblens attach`): what it follows of the
+// application (images, views, framebuffers, render passes, buffers, debug names, labels, command
+// buffers), the next layer's functions, the ring its copies land in and the stream to the receiver.
+// Shared by the layer's files; docs/attach.md describes the whole.
+#pragma once
+#include <vulkan/vk_layer.h>
+#include <vulkan/vulkan.h>
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <shared_mutex>
+#include <string>
+#include <thread>
+#include <unordered_map>
+#include <vector>
+
+namespace gbl {
+
+// The next layer's device functions: forwarded to, or called by the layer itself.
+#define GBL_DEVICE_FUNCTIONS(X)                                                                                       \
+  X(GetDeviceProcAddr) X(DestroyDevice) X(CreateImage) X(DestroyImage) X(CreateImageView) X(DestroyImageView)          \
+  X(CreateFramebuffer) X(DestroyFramebuffer) X(CreateRenderPass) X(CreateRenderPass2) X(CreateRenderPass2KHR)          \
+  X(DestroyRenderPass) X(CreateSwapchainKHR) X(DestroySwapchainKHR) X(GetSwapchainImagesKHR) X(QueuePresentKHR)        \
+  X(CreateBuffer) X(DestroyBuffer) X(BindBufferMemory) X(BindBufferMemory2) X(BindBufferMemory2KHR) X(MapMemory)       \
+  X(UnmapMemory) X(FreeMemory) X(AllocateDescriptorSets) X(UpdateDescriptorSets) X(CmdBindDescriptorSets)              \
+  X(FreeDescriptorSets) X(ResetDescriptorPool) X(DestroyDescriptorPool)                                                \
+  X(AllocateCommandBuffers) X(FreeCommandBuffers) X(BeginCommandBuffer) X(EndCommandBuffer) X(ResetCommandBuffer)     \
+  X(ResetCommandPool) X(DestroyCommandPool) X(CmdBeginRenderPass) X(CmdBeginRenderPass2) X(CmdBeginRenderPass2KHR)    \
+  X(CmdEndRenderPass) X(CmdEndRenderPass2) X(CmdEndRenderPass2KHR) X(CmdBeginRendering) X(CmdBeginRenderingKHR)       \
+  X(CmdEndRendering) X(CmdEndRenderingKHR) X(CmdBeginDebugUtilsLabelEXT) X(CmdEndDebugUtilsLabelEXT)                  \
+  X(SetDebugUtilsObjectNameEXT) X(QueueSubmit) X(QueueSubmit2) X(QueueSubmit2KHR) X(CmdPipelineBarrier)               \
+  X(CmdCopyImageToBuffer) X(CmdCopyBuffer) X(CreateFence) X(DestroyFence) X(ResetFences) X(WaitForFences)              \
+  X(GetFenceStatus) X(AllocateMemory) X(GetBufferMemoryRequirements) X(InvalidateMappedMemoryRanges) X(DeviceWaitIdle)     \
+  X(GetMemoryHostPointerPropertiesEXT)
+
+struct DeviceTable {
+#define GBL_MEMBER(name) PFN_vk##name name = nullptr;
+  GBL_DEVICE_FUNCTIONS(GBL_MEMBER)
+#undef GBL_MEMBER
+};
+
+struct InstanceData {
+  VkInstance instance = VK_NULL_HANDLE;
+  PFN_vkGetInstanceProcAddr gipa = nullptr;
+  PFN_vkDestroyInstance destroyInstance = nullptr;
+  PFN_vkCreateDevice createDevice = nullptr;
+  PFN_vkGetPhysicalDeviceMemoryProperties memoryProperties = nullptr;
+  PFN_vkGetPhysicalDeviceProperties properties = nullptr;
+  PFN_vkGetPhysicalDeviceFormatProperties formatProperties = nullptr;
+  PFN_vkGetPhysicalDeviceSurfaceCapabilitiesKHR surfaceCapabilities = nullptr;
+  PFN_vkEnumerateDeviceExtensionProperties deviceExtensions = nullptr;
+  PFN_vkGetPhysicalDeviceProperties2 properties2 = nullptr;
+  std::string application, engine;
+  uint32_t apiVersion = VK_API_VERSION_1_0;  // the application's (VkApplicationInfo)
+};
+
+// ---- formats (formats.cpp)
+struct FormatInfo {
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  const char* vkName = "";    // "VK_FORMAT_R8G8B8A8_SRGB"
+  const char* storage = "";   // the layout storage format it is streamed as ("" : none holds it)
+  uint32_t bytes = 0;         // a texel (depth/stencil: the depth plane's, as a copy packs it)
+  bool depth = false, stencil = false;
+  bool bgra = false;          // streamed with R and B swapped (rgba8_*)
+};
+const FormatInfo& formatInfo(VkFormat f);
+std::string formatName(VkFormat f);  // the VK_FORMAT_ name, or "VkFormat N"
+
+// ---- what the layer follows of the application
+struct ImageInfo {
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent3D extent{};
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+  VkImageUsageFlags usage = 0;
+  std::string name;
+  VkSwapchainKHR swapchain = VK_NULL_HANDLE;  // a swapchain's image (not the application's to destroy)
+};
+struct ViewInfo {
+  VkImage image = VK_NULL_HANDLE;
+  uint32_t mip = 0, layer = 0;
+  std::string name;
+};
+struct RenderPassInfo {
+  struct Attachment {
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    VkImageLayout finalLayout = VK_IMAGE_LAYOUT_UNDEFINED, stencilFinalLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    bool written = false;     // a colour attachment of a subpass, or depth/stencil in a writable layout
+    bool storePatched = false;  // the application's store op was DONT_CARE/NONE: the layer stores it
+  };
+  std::string name;
+  std::vector<Attachment> attachments;
+  std::vector<int> colors;  // the last subpass's colour attachments (-1: unused)
+  int depth = -1;           // and its depth/stencil attachment
+};
+struct FramebufferInfo {
+  std::vector<VkImageView> views;  // empty: imageless (views given at vkCmdBeginRenderPass)
+  std::string name;
+};
+struct BufferInfo {
+  VkDeviceSize size = 0;
+  VkBufferUsageFlags usage = 0;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkDeviceSize memoryOffset = 0;
+  std::string name;
+};
+
+// ---- what the receiver asked for (stream.cpp parses the request)
+struct Pick {  // one target of the layout: which attachment of which pass
+  int target = 0;
+  std::string targetName, format;  // the layout's name and storage format
+  bool explicitSource = false;     // the layout names it (else: an image of the target's name, if any)
+  std::string pass;                // label or render pass name ("" : any)
+  int passIndex = -1;              // ordinal in its command buffer
+  std::string name;                // attachment picks: one of these
+  int color = -1;
+  bool depth = false;
+  std::string byFormat;
+};
+struct Request {
+  std::vector<Pick> picks;
+  std::string cameraBuffer;        // debug name of the buffer holding the matrices ("" : none)
+  VkDeviceSize cameraBytes = 0;    // bytes of it to read (the matrices' last offset + 64)
+  uint32_t every = 1;              // stream frames whose number is a multiple of this
+  uint64_t only = 0;               // stream only this streamed frame (1-based; 0: all)
+  bool suggest = false;            // report the passes and attachments of one frame
+  uint32_t giveUp = 120;           // frames with passes but no match before "nomatch"
+};
+
+// ---- the ring: host-visible buffers the copies land in (ring.cpp)
+struct DeviceData;
+struct RingBuffer {
+  DeviceData* device = nullptr;
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  uint8_t* mapped = nullptr;
+  VkDeviceSize size = 0;
+  VkDeviceSize base = 0;  // the first byte copies may use (a shared buffer starts with its header)
+  bool coherent = true;
+  // Shared with the receiver (VK_EXT_external_memory_host): the memory is a file's mapping, which
+  // the receiver maps too and reads in place; `id` names it on the wire.
+  int fd = -1;
+  uint32_t id = 0;
+  size_t mappedBytes = 0;
+  // Submissions that write it (a read is torn if this moves): in the shared header when shared.
+  std::atomic<uint64_t> localSubmissions{0};
+  std::atomic<uint64_t>* submissions = &localSubmissions;
+  std::atomic<int> holds{0};             // recordings that copy into it and frames not yet read from it
+  ~RingBuffer();
+};
+using RingRef = std::shared_ptr<RingBuffer>;
+
+// A hold on a ring buffer for as long as this lives: a recording that copies into it, or a frame
+// the thread has not read yet. A new recording takes a slot nobody holds, when there is one.
+class HeldRing {
+ public:
+  explicit HeldRing(RingRef b) : buffer_(std::move(b)) { ++buffer_->holds; }
+  HeldRing(HeldRing&& o) noexcept : buffer_(std::move(o.buffer_)) {}
+  HeldRing& operator=(HeldRing&& o) noexcept {
+    release();
+    buffer_ = std::move(o.buffer_);
+    return *this;
+  }
+  HeldRing(const HeldRing&) = delete;
+  HeldRing& operator=(const HeldRing&) = delete;
+  ~HeldRing() { release(); }
+
+ private:
+  void release() {
+    if (buffer_) --buffer_->holds, buffer_.reset();
+  }
+  RingRef buffer_;
+};
+
+// One attachment (or the camera's bytes) copied into a ring buffer by a recorded command buffer.
+struct Copy {
+  int target = -1;          // index into Request::picks (-1: the camera)
+  RingRef buffer;
+  VkDeviceSize offset = 0, stencilOffset = 0;
+  uint32_t width = 0, height = 0;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkDeviceSize bytes = 0;   // the camera's
+  int passOrdinal = 0;
+  std::string pass;         // innermost label or render pass name, for people
+};
+
+// What --suggest reports of one render pass.
+struct PassReport {
+  int ordinal = 0;
+  bool dynamic = false;
+  std::string renderPass;
+  std::vector<std::string> labels;
+  struct Attachment {
+    std::string role, image, view, format, storage, why;
+    uint32_t width = 0, height = 0, samples = 1;
+    bool written = false, storePatched = false;
+  };
+  std::vector<Attachment> attachments;
+};
+
+// A render pass being recorded: its attachments and where they are when it ends.
+struct PassAttachment {
+  VkImage image = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  int color = -1;
+  bool depth = false, written = false, storePatched = false;
+  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED, stencilLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+};
+struct OpenPass {
+  int ordinal = 0;
+  bool dynamic = false, suspending = false;
+  std::string renderPass;
+  std::vector<std::string> labels;
+  std::vector<PassAttachment> attachments;
+};
+
+struct CmdState {
+  VkCommandPool pool = VK_NULL_HANDLE;
+  bool copies = false;          // this recording copies (streaming, and its frame is due or it may be reused)
+  bool suggest = false;         // this recording reports its passes (--suggest)
+  bool reusable = false;        // it may be submitted again (no ONE_TIME_SUBMIT)
+  int passes = 0;               // render passes begun so far
+  std::vector<std::string> labels;
+  OpenPass open;
+  bool inPass = false;
+  VkBuffer cameraBuffer = VK_NULL_HANDLE;  // the last bound buffer of the camera's name
+  int slot = -1;                // the ring slot this recording copies into
+  RingRef buffer;               // its buffer as this recording found it
+  std::vector<HeldRing> held;   // every buffer this recording copies into
+  VkDeviceSize used = 0;        // bytes used of it
+  VkDeviceSize total = 0;       // bytes this recording copies in all
+  std::vector<Copy> copiesMade;
+  std::vector<PassReport> reports;  // --suggest
+  void reset() {
+    const VkCommandPool p = pool;
+    *this = CmdState{};
+    pool = p;
+  }
+};
+
+// A frame the application submitted with copies in it, waiting for its fences (stream.cpp).
+struct PendingFrame {
+  uint64_t appFrame = 0, stream = 0, endNs = 0;
+  std::vector<Copy> copies;
+  std::vector<std::pair<RingRef, uint64_t>> writes;  // each buffer's submission count at submission
+  std::vector<VkFence> fences;
+  std::vector<HeldRing> held;
+  bool due = false;     // streamed (every N); else only its fences are recycled
+  bool broken = false;  // a submission of it got no fence: never streamed
+};
+
+struct Stream;  // stream.cpp
+
+struct DeviceData {
+  VkDevice device = VK_NULL_HANDLE;
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  InstanceData* instance = nullptr;
+  DeviceTable vk;
+  PFN_vkSetDeviceLoaderData setLoaderData = nullptr;
+  VkPhysicalDeviceMemoryProperties memory{};
+  bool connected = false;  // a receiver listens: the hooks follow the application
+  std::atomic<bool> streaming{false};  // a request arrived and nobody detached
+
+  std::shared_mutex objects;  // the maps below
+  std::unordered_map<VkImage, ImageInfo> images;
+  std::unordered_map<VkImageView, ViewInfo> views;
+  std::unordered_map<VkFramebuffer, FramebufferInfo> framebuffers;
+  std::unordered_map<VkRenderPass, RenderPassInfo> renderPasses;
+  std::unordered_map<VkBuffer, BufferInfo> buffers;
+  std::unordered_map<VkDeviceMemory, uint8_t*> mapped;  // memory -> pointer to its byte 0
+  std::unordered_map<VkSwapchainKHR, ImageInfo> swapchains;  // their images' description
+  std::unordered_map<VkDescriptorSet, std::vector<VkBuffer>> setBuffers;
+  std::unordered_map<VkDescriptorPool, std::vector<VkDescriptorSet>> poolSets;
+
+  std::mutex cmdLock;
+  std::unordered_map<VkCommandBuffer, std::unique_ptr<CmdState>> cmds;
+
+  std::mutex requestLock;
+  std::shared_ptr<const Request> request;
+
+  // Frames (submit.cpp): a frame ends at vkQueuePresentKHR, or, for an application that made no
+  // swapchain, at each submission that holds a render pass.
+  std::mutex frameLock;
+  bool presents = false;
+  std::atomic<uint64_t> frame{0};  // frames ended so far: the number of the frame being made
+  uint64_t streamed = 0;
+  std::unique_ptr<PendingFrame> building;
+  std::vector<PassReport> frameReports;
+  bool passesThisFrame = false, suggestSent = false;
+  uint32_t framesWithoutMatch = 0;
+  uint64_t lastFrameEndNs = 0, frameNsSum = 0, frameIntervals = 0;
+
+  // The ring (ring.cpp): three slots, each a buffer that grows when a recording needs more.
+  std::mutex ringLock;
+  RingRef slots[3];
+  uint32_t nextSlot = 0;
+  std::vector<VkFence> freeFences;
+  size_t fenceCount = 0;
+  VkDeviceSize largestRecording = 0;  // the most bytes one recording copied: a slot's size
+  std::atomic<uint64_t> droppedAtSource{0};  // recordings that found every slot held
+  bool hostImport = false;          // ring buffers are shared memory (VK_EXT_external_memory_host)
+  VkDeviceSize hostAlignment = 4096;
+  std::atomic<uint32_t> nextRingId{0};
+  std::atomic<uint64_t> ringBytes{0};
+
+  Stream* stream = nullptr;
+  std::atomic<uint64_t> hookNs{0};   // time the layer spent in the application's threads (copies, submissions)
+  std::atomic<uint64_t> allocNs{0};  // of which allocating ring buffers (the first frames, resizes)
+};
+
+// ---- a trace of frames, copies and drops on stderr when GBLENS_LAYER_LOG=1 (layer_main.cpp)
+bool logging();
+void logLine(const char* format, ...) __attribute__((format(printf, 1, 2)));
+#define GBL_LOG(...) (logging() ? logLine(__VA_ARGS__) : void())
+
+// ---- lookups (layer_main.cpp)
+DeviceData* deviceOf(const void* dispatchable);  // VkDevice, VkQueue or VkCommandBuffer
+InstanceData* instanceOf(const void* dispatchable);
+std::shared_ptr<const Request> currentRequest(DeviceData& d);
+
+// ---- hooks: name -> function, per file
+struct Hook {
+  const char* name;
+  PFN_vkVoidFunction function;
+};
+#define GBL_HOOK(name) Hook{"vk" #name, reinterpret_cast<PFN_vkVoidFunction>(name)}
+std::vector<Hook> trackHooks();   // track.cpp
+std::vector<Hook> recordHooks();  // record.cpp
+std::vector<Hook> descriptorHooks();  // descriptors.cpp
+std::vector<Hook> submitHooks();  // submit.cpp
+
+// ---- the ring (ring.cpp)
+// Room for `bytes` in the recording's ring slot: its buffer and the offset (the slot gets a new,
+// larger buffer when the current one is full; the old one lives on while recordings and frames
+// still hold it). False when memory is short.
+bool reserve(DeviceData& d, CmdState& s, VkDeviceSize bytes, RingRef& buffer, VkDeviceSize& offset);
+int takeSlot(DeviceData& d, bool reusable);  // -1: none free for a recording submitted once
+VkFence takeFence(DeviceData& d);
+void returnFence(DeviceData& d, VkFence f);
+void destroyRing(DeviceData& d);
+
+// ---- command recording (record.cpp)
+void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);  // copy.cpp
+PassReport reportPass(DeviceData& d, const OpenPass& pass);        // copy.cpp
+std::string pickText(const Pick& p);                               // "colour attachment 0 of render pass 1"
+CmdState* cmdState(DeviceData& d, VkCommandBuffer cmd);
+
+
+// ---- the stream (stream.cpp)
+// At vkCreateDevice: the connection to the receiver and its request, before the device is made
+// (null when no receiver listens: the layer stays idle); the thread once it exists.
+Stream* openStream(InstanceData& instance, VkPhysicalDevice physical);
+void startStream(DeviceData& d, Stream* st);
+void closeStream(Stream* st);                 // the device was not made after all
+void stopStream(DeviceData& d);               // at vkDestroyDevice
+void streamFrame(DeviceData& d, std::unique_ptr<PendingFrame> f);  // hands a submitted frame over
+void streamPasses(DeviceData& d, const std::vector<PassReport>& passes, uint64_t frame);
+void streamNoMatch(DeviceData& d, uint64_t frames);
+// A message for people, sent once per key (a target that never appears, a format mismatch, ...).
+void report(DeviceData& d, const std::string& key, const std::string& text);
+bool wasReported(DeviceData& d, const std::string& key);
+
+}  // namespace gbl

@@ -1,0 +1,170 @@
+// A finished frame to the receiver. Where the ring is shared memory (VK_EXT_external_memory_host:
+// ring.cpp), the frame message names the ring buffers and offsets and the receiver reads the texels
+// in place, the buffers held until it hands the frame back; otherwise the thread copies the frame
+// into a shared-memory file of its own (buffer 0) first. Either way one frame at a time: a frame
+// that finds the receiver busy is dropped and counted. Texels are as the GPU copied them
+// (depth/stencil: the depth plane, then a stencil byte a texel: renderer/core/texels.h); B8G8R8A8
+// attachments are marked, and the receiver swaps R and B back.
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+
+#include "app/layer/stream.h"
+#include "views/capture/live_wire.h"
+
+namespace gbl {
+
+using json = nlohmann::json;
+
+namespace {
+
+size_t copyBytes(const Copy& c) {
+  if (c.target < 0) return size_t(c.bytes);
+  const FormatInfo& f = formatInfo(c.format);
+  const size_t texels = size_t(c.width) * c.height;
+  return texels * f.bytes + (f.stencil && f.depth ? texels : 0);
+}
+
+json targetJson(const Request& req, const Copy& c, uint32_t buffer, size_t offset) {
+  const FormatInfo& f = formatInfo(c.format);
+  return {{"index", c.target},  {"name", req.picks[size_t(c.target)].targetName}, {"format", f.storage},
+          {"vk_format", f.vkName}, {"bgra", f.bgra}, {"width", c.width}, {"height", c.height}, {"buffer", buffer},
+          {"offset", offset}, {"bytes", copyBytes(c)}, {"pass", c.passOrdinal}, {"pass_name", c.pass}};
+}
+
+bool allShared(const PendingFrame& f) {
+  for (const Copy& c : f.copies)
+    if (c.buffer->fd < 0) return false;
+  return true;
+}
+
+// The frame read in place: the receiver maps each ring buffer once (sent with its file), and checks
+// the submission counts in their headers before and after reading (a buffer a reused command
+// buffer wrote again meanwhile makes the frame torn, and it drops it).
+bool describeShared(Stream& st, const PendingFrame& f, const Request& req, json& targets, json& camera, json& counts) {
+  for (const auto& [buffer, count] : f.writes) {
+    if (!st.sentBuffers.count(buffer->id)) {
+      const json m = {{"type", gb::wire::kBuffer}, {"id", buffer->id}, {"bytes", buffer->size}};
+      if (!gb::wire::send(st.socket, m.dump(), buffer->fd)) return false;
+      st.sentBuffers.insert(buffer->id);
+    }
+    counts.push_back({buffer->id, count});
+  }
+  for (const Copy& c : f.copies) {
+    if (c.target < 0)
+      camera = {{"buffer", c.buffer->id}, {"offset", c.offset}, {"bytes", c.bytes}};
+    else
+      targets.push_back(targetJson(req, c, c.buffer->id, size_t(c.offset)));
+  }
+  return true;
+}
+
+// The frame copied out of the ring into buffer 0 (a file that grows when a frame needs more).
+bool fill(Stream& st, const PendingFrame& f, const Request& req, json& targets, json& camera) {
+  DeviceData& d = *st.d;
+  size_t total = 0;
+  std::vector<size_t> at;
+  for (const Copy& c : f.copies) {
+    at.push_back(total);
+    total = gb::wire::alignUp(total + copyBytes(c));
+  }
+  if (total > st.mapSize) {
+    if (st.map) munmap(st.map, st.mapSize), close(st.shm);
+    st.map = nullptr, st.mapSize = 0;
+    st.shm = memfd_create("gblens-live", MFD_CLOEXEC);
+    const size_t size = total + total / 2;
+    if (st.shm < 0 || ftruncate(st.shm, off_t(size)) != 0) return false;
+    void* p = mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_SHARED, st.shm, 0);
+    if (p == MAP_FAILED) return false;
+    st.map = static_cast<uint8_t*>(p), st.mapSize = size, st.shmSent = false;
+  }
+  if (!st.shmSent) {
+    if (!gb::wire::send(st.socket, json{{"type", gb::wire::kBuffer}, {"id", 0}, {"bytes", st.mapSize}}.dump(), st.shm))
+      return false;
+    st.shmSent = true;
+  }
+  for (size_t i = 0; i < f.copies.size(); ++i) {
+    const Copy& c = f.copies[i];
+    if (!c.buffer->coherent) {
+      VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, c.buffer->memory, 0, VK_WHOLE_SIZE};
+      d.vk.InvalidateMappedMemoryRanges(d.device, 1, &range);
+    }
+    std::memcpy(st.map + at[i], c.buffer->mapped + c.offset, copyBytes(c));
+    if (c.target < 0)
+      camera = {{"buffer", 0}, {"offset", at[i]}, {"bytes", c.bytes}};
+    else
+      targets.push_back(targetJson(req, c, 0, at[i]));
+  }
+  return true;
+}
+
+bool unchanged(const PendingFrame& f) {
+  for (const auto& [buffer, count] : f.writes)
+    if (buffer->submissions->load() != count) return false;
+  return true;
+}
+
+}  // namespace
+
+json statsJson(Stream& st) {
+  DeviceData& d = *st.d;
+  std::lock_guard lock(d.frameLock);
+  const uint64_t hook = d.hookNs.load(), alloc = std::min(hook, d.allocNs.load());
+  return {{"frames", d.frame.load()},
+          {"streamed", d.streamed},
+          {"sent", st.sent},
+          {"dropped", st.dropped + d.droppedAtSource.load()},
+          {"torn", st.torn},
+          {"ring_bytes", d.ringBytes.load()},
+          {"ring_shared", d.hostImport},
+          {"shm_bytes", st.mapSize},
+          {"frame_ms", d.frameIntervals ? double(d.frameNsSum) / double(d.frameIntervals) * 1e-6 : 0.0},
+          {"layer_ms_per_frame", d.frame ? double(hook - alloc) / double(d.frame) * 1e-6 : 0.0},
+          {"ring_allocation_ms", double(d.allocNs.load()) * 1e-6},
+          {"thread_copy_ms", st.sent ? st.copyMs / double(st.sent) : 0.0}};
+}
+
+void process(Stream& st, std::unique_ptr<PendingFrame> f) {
+  DeviceData& d = *st.d;
+  std::shared_ptr<const Request> req = currentRequest(d);
+  if (!d.streaming || st.socket < 0 || !f->due || !req) return;
+  // --capture-frame N: the Nth frame the layer reads whole. A frame whose ring buffer a reused
+  // command buffer wrote again before it was read does not count; the next one is taken.
+  if (req->only && (st.intact >= req->only || !unchanged(*f) || ++st.intact < req->only)) return;
+  if (!req->only && (st.receiverBusy || !unchanged(*f))) {
+    GBL_LOG("frame %llu (streamed %llu): dropped, %s", (unsigned long long)f->appFrame, (unsigned long long)f->stream,
+            st.receiverBusy ? "the receiver is busy" : "its ring buffer was submitted again");
+    ++st.dropped;
+    st.torn += !st.receiverBusy;
+    return;
+  }
+  const uint64_t ready = gb::wire::monotonicNs();
+  const auto start = std::chrono::steady_clock::now();
+  json targets = json::array(), camera = nullptr, counts = json::array();
+  const bool shared = allShared(*f);
+  if (!(shared ? describeShared(st, *f, *req, targets, camera, counts) : fill(st, *f, *req, targets, camera))) {
+    report(d, "shm", "cannot share a frame's memory with the receiver: streaming stops");
+    return goIdle(st);
+  }
+  if (!shared && !unchanged(*f)) {  // the application submitted the ring's buffer again while it was read
+    GBL_LOG("frame %llu: dropped, its ring buffer was submitted again while it was read", (unsigned long long)f->appFrame);
+    ++st.dropped, ++st.torn;
+    if (req->only) --st.intact;  // the next whole frame is the one
+    return;
+  }
+  st.copyMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  ++st.sent;
+  GBL_LOG("frame %llu (streamed %llu): sent, %zu copies%s", (unsigned long long)f->appFrame, (unsigned long long)f->stream,
+          f->copies.size(), shared ? " (read in place)" : "");
+  const uint64_t number = req->only ? st.intact : f->stream;
+  json m = {{"type", gb::wire::kFrame}, {"stream", number}, {"app_frame", f->appFrame}, {"end_ns", f->endNs},
+            {"ready_ns", ready},       {"targets", targets},   {"camera", camera},         {"writes", counts},
+            {"stats", statsJson(st)}};
+  if (!gb::wire::send(st.socket, m.dump())) return goIdle(st);
+  st.receiverBusy = true;
+  if (shared) st.atReceiver = std::move(f);  // its buffers stay held until the receiver hands the frame back
+}
+
+}  // namespace gbl

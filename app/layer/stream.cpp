@@ -1,0 +1,249 @@
+// The layer's thread and its wire to the receiver (views/capture/live_wire.h). At vkCreateDevice the
+// layer connects to the socket gblens attach named, says hello and waits (once, at most 5 s) for the
+// request; from then on its own thread waits for the fences of submitted frames and hands each
+// finished one to send.cpp, and sends the layer's reports. When the receiver goes away or detaches,
+// the layer stops copying (idle).
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/eventfd.h>
+#include <sys/mman.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <nlohmann/json.hpp>
+
+#include "app/layer/stream.h"
+#include "views/capture/live_wire.h"
+
+namespace gbl {
+
+using json = nlohmann::json;
+
+
+namespace {
+
+void wakeUp(Stream& st) {
+  uint64_t one = 1;
+  (void)!write(st.wake, &one, sizeof(one));
+}
+
+bool parseRequest(const std::string& text, Request& r) {
+  json j = json::parse(text, nullptr, false);
+  if (!j.is_object() || j.value("type", "") != gb::wire::kRequest) return false;
+  r.every = std::max(1u, j.value("every", 1u));
+  r.only = j.value("only", uint64_t(0));
+  r.suggest = j.value("suggest", false);
+  r.giveUp = std::max(1u, j.value("give_up", 120u));
+  if (j.contains("camera") && j["camera"].is_object()) {
+    r.cameraBuffer = j["camera"].value("buffer", "");
+    r.cameraBytes = j["camera"].value("bytes", uint64_t(0));
+  }
+  for (const json& t : j.value("targets", json::array())) {
+    Pick p;
+    p.target = int(r.picks.size());
+    p.targetName = t.value("name", "");
+    p.format = t.value("format", "");
+    p.explicitSource = t.value("explicit", false);
+    const json live = t.value("live", json::object());  // as the layout writes a live source
+    if (live.contains("pass") && live["pass"].is_string()) p.pass = live["pass"].get<std::string>();
+    if (live.contains("pass") && live["pass"].is_number_integer()) p.passIndex = live["pass"].get<int>();
+    p.name = live.value("name", "");
+    p.color = live.value("color", -1);
+    p.depth = live.value("depth", false);
+    p.byFormat = live.value("format", "");
+    r.picks.push_back(p);
+  }
+  return true;
+}
+
+}  // namespace
+
+void sendOnce(DeviceData& d, const std::string& key, const std::string& message) {
+  Stream* st = d.stream;
+  if (!st) return;
+  {
+    std::lock_guard lock(st->lock);
+    if (!st->reported.insert(key).second) return;
+    st->outbox.push_back(message);
+  }
+  wakeUp(*st);
+}
+
+void goIdle(Stream& st) {
+  st.d->streaming = false;
+  if (st.socket >= 0) close(st.socket), st.socket = -1;
+  st.atReceiver.reset();
+  st.receiverBusy = false;
+}
+
+namespace {
+
+void recycle(DeviceData& d, PendingFrame& f) {
+  for (VkFence fence : f.fences) returnFence(d, fence);
+  f.fences.clear();
+}
+
+void readMessages(Stream& st) {
+  std::string text;
+  while (st.socket >= 0) {
+    gb::wire::Received got = gb::wire::receive(st.socket, text, nullptr, 0);
+    if (got == gb::wire::Received::Nothing) return;
+    if (got == gb::wire::Received::Closed) return goIdle(st);  // the receiver closed or was killed
+    json j = json::parse(text, nullptr, false);
+    const std::string type = j.is_object() ? j.value("type", "") : "";
+    if (type == gb::wire::kAck) st.receiverBusy = false, st.atReceiver.reset();  // its buffers are free again
+    if (type == gb::wire::kDetach) return goIdle(st);
+  }
+}
+
+void run(Stream& st) {
+  DeviceData& d = *st.d;
+  while (!st.stop) {
+    readMessages(st);
+    std::vector<std::string> out;
+    std::unique_ptr<PendingFrame> front;
+    {
+      std::lock_guard lock(st.lock);
+      out.swap(st.outbox);
+      if (!st.pending.empty()) front = std::move(st.pending.front()), st.pending.pop_front();
+    }
+    for (const std::string& m : out)
+      if (st.socket >= 0 && !gb::wire::send(st.socket, m)) goIdle(st);
+    if (front) {
+      VkResult r = front->fences.empty() ? VK_SUCCESS
+                                         : d.vk.WaitForFences(d.device, uint32_t(front->fences.size()),
+                                                              front->fences.data(), VK_TRUE, 2000000);
+      if (r == VK_TIMEOUT) {  // not done yet: back to the front of the queue, and look at the socket
+        std::lock_guard lock(st.lock);
+        st.pending.push_front(std::move(front));
+        continue;
+      }
+      recycle(d, *front);
+      if (r == VK_SUCCESS) process(st, std::move(front));
+      continue;
+    }
+    pollfd fds[2] = {{st.wake, POLLIN, 0}, {st.socket, POLLIN, 0}};
+    if (poll(fds, st.socket >= 0 ? 2 : 1, 100) > 0 && (fds[0].revents & POLLIN)) {
+      uint64_t n;
+      (void)!read(st.wake, &n, sizeof(n));
+    }
+  }
+}
+
+}  // namespace
+
+Stream* openStream(InstanceData& instance, VkPhysicalDevice physical) {
+  const char* path = std::getenv(gb::wire::kSocketEnv);
+  if (!path || !*path || std::strlen(path) >= sizeof(sockaddr_un::sun_path)) return nullptr;
+  int s = socket(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  std::strcpy(addr.sun_path, path);
+  if (s < 0 || connect(s, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0) {
+    if (s >= 0) close(s);
+    return nullptr;  // nobody listens: the layer stays out of the way
+  }
+  VkPhysicalDeviceProperties props{};
+  instance.properties(physical, &props);
+  json hello = {{"type", gb::wire::kHello}, {"version", gb::wire::kVersion},   {"pid", getpid()},
+                {"application", instance.application}, {"engine", instance.engine}, {"device", props.deviceName}};
+  // The request comes at once from a receiver that listens; the application waits for it once, here,
+  // so that command buffers it records right away (once, e.g. per swapchain image) copy too.
+  std::string text;
+  auto request = std::make_shared<Request>();
+  if (!gb::wire::send(s, hello.dump()) ||
+      gb::wire::receive(s, text, nullptr, 5000) != gb::wire::Received::Message || !parseRequest(text, *request)) {
+    close(s);
+    return nullptr;
+  }
+  auto* st = new Stream;
+  st->socket = s;
+  st->wake = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
+  st->request = request;
+  return st;
+}
+
+void closeStream(Stream* st) {
+  close(st->socket);
+  close(st->wake);
+  delete st;
+}
+
+void startStream(DeviceData& d, Stream* st) {
+  st->d = &d;
+  d.stream = st;
+  {
+    std::lock_guard lock(d.requestLock);
+    d.request = st->request;
+  }
+  d.streaming = true;
+  st->thread = std::thread(run, std::ref(*st));
+}
+
+void stopStream(DeviceData& d) {
+  Stream* st = d.stream;
+  if (!st) return;
+  st->stop = true;
+  wakeUp(*st);
+  st->thread.join();
+  d.streaming = false;
+  {
+    std::lock_guard lock(d.frameLock);
+    if (d.building) st->pending.push_back(std::move(d.building));
+  }
+  st->atReceiver.reset();
+  for (auto& f : st->pending) {  // the device is about to go: its fences are waited for and recycled
+    if (!f->fences.empty()) d.vk.WaitForFences(d.device, uint32_t(f->fences.size()), f->fences.data(), VK_TRUE, UINT64_MAX);
+    recycle(d, *f);
+  }
+  if (st->socket >= 0) close(st->socket);
+  if (st->map) munmap(st->map, st->mapSize);
+  if (st->shm >= 0) close(st->shm);
+  close(st->wake);
+  d.stream = nullptr;
+  delete st;
+}
+
+void streamFrame(DeviceData& d, std::unique_ptr<PendingFrame> f) {
+  Stream* st = d.stream;
+  if (!st) return;
+  {
+    std::lock_guard lock(st->lock);
+    st->pending.push_back(std::move(f));
+  }
+  wakeUp(*st);
+}
+
+void streamPasses(DeviceData& d, const std::vector<PassReport>& passes, uint64_t frame) {
+  json list = json::array();
+  for (const PassReport& p : passes) {
+    json attachments = json::array();
+    for (const PassReport::Attachment& a : p.attachments)
+      attachments.push_back({{"role", a.role}, {"image", a.image}, {"view", a.view}, {"vk_format", a.format},
+                             {"format", a.storage}, {"width", a.width}, {"height", a.height}, {"samples", a.samples},
+                             {"written", a.written}, {"store_patched", a.storePatched}, {"why", a.why}});
+    list.push_back({{"ordinal", p.ordinal}, {"dynamic", p.dynamic}, {"render_pass", p.renderPass},
+                    {"labels", p.labels}, {"attachments", attachments}});
+  }
+  sendOnce(d, "passes", json{{"type", gb::wire::kPasses}, {"frame", frame}, {"passes", list}}.dump());
+}
+
+void streamNoMatch(DeviceData& d, uint64_t frames) {
+  sendOnce(d, "nomatch", json{{"type", gb::wire::kNoMatch}, {"frames", frames}}.dump());
+}
+
+bool wasReported(DeviceData& d, const std::string& key) {
+  Stream* st = d.stream;
+  if (!st) return false;
+  std::lock_guard lock(st->lock);
+  return st->reported.count(key) > 0;
+}
+
+void report(DeviceData& d, const std::string& key, const std::string& text) {
+  sendOnce(d, key, json{{"type", gb::wire::kReport}, {"key", key}, {"text", text}}.dump());
+}
+
+}  // namespace gbl

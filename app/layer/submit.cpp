@@ -1,0 +1,173 @@
+// Submissions and frames. The copies a submitted command buffer recorded join the frame being
+// made; after the application's own submission an empty one signals a fence of the layer's when
+// the GPU is done with it (the application's queue never waits for the layer). A frame ends at
+// vkQueuePresentKHR, or, in an application without a swapchain, at each submission that holds a
+// render pass; its copies then go to the stream thread (stream.cpp), and what the request named
+// but the frame lacked is reported once.
+#include <algorithm>
+#include <chrono>
+
+#include "app/layer/layer.h"
+#include "views/capture/live_wire.h"
+
+namespace gbl {
+
+namespace {
+
+struct Submitted {
+  bool pass = false, copies = false;
+};
+
+// Gathers what the submitted command buffers recorded. Every buffer they copy into counts one more
+// submission (a frame read from it while this count moves may be torn: the thread drops it).
+Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
+  Submitted got;
+  std::lock_guard lock(d.frameLock);
+  for (VkCommandBuffer cb : cmds) {
+    CmdState* s = cmdState(d, cb);
+    if (!s) continue;
+    got.pass |= s->passes > 0;
+    d.frameReports.insert(d.frameReports.end(), s->reports.begin(), s->reports.end());
+    std::vector<RingBuffer*> counted;
+    for (const Copy& c : s->copiesMade)
+      if (std::find(counted.begin(), counted.end(), c.buffer.get()) == counted.end()) {
+        counted.push_back(c.buffer.get());
+        ++*c.buffer->submissions;
+        GBL_LOG("frame %llu: submits a recording writing ring buffer %u (submission %llu)", (unsigned long long)d.frame.load(),
+                c.buffer->id, (unsigned long long)c.buffer->submissions->load());
+      }
+    if (s->copiesMade.empty() || !d.streaming) continue;
+    if (!d.building) d.building = std::make_unique<PendingFrame>();
+    PendingFrame& f = *d.building;
+    for (const Copy& c : s->copiesMade) {  // a later submission's copy of a target replaces an earlier one
+      std::erase_if(f.copies, [&](const Copy& e) { return e.target == c.target; });
+      f.copies.push_back(c);
+      auto w = std::find_if(f.writes.begin(), f.writes.end(), [&](const auto& e) { return e.first == c.buffer; });
+      if (w == f.writes.end()) {
+        f.writes.push_back({c.buffer, c.buffer->submissions->load()});
+        f.held.emplace_back(c.buffer);  // no new recording takes this buffer until the thread has read it
+      } else {
+        w->second = c.buffer->submissions->load();
+      }
+    }
+    got.copies = true;
+  }
+  d.passesThisFrame |= got.pass;
+  return got;
+}
+
+void endFrame(DeviceData& d) {
+  std::shared_ptr<const Request> req = currentRequest(d);
+  std::unique_ptr<PendingFrame> f;
+  std::vector<PassReport> reports;
+  bool passes = false, suggest = false;
+  uint64_t number = 0;
+  {
+    std::lock_guard lock(d.frameLock);
+    number = d.frame++;
+    const uint64_t now = gb::wire::monotonicNs();
+    if (d.lastFrameEndNs) d.frameNsSum += now - d.lastFrameEndNs, ++d.frameIntervals;
+    d.lastFrameEndNs = now;
+    f = std::move(d.building);
+    reports = std::move(d.frameReports);
+    d.frameReports.clear();
+    passes = d.passesThisFrame;
+    d.passesThisFrame = false;
+    suggest = req && req->suggest && !d.suggestSent && !reports.empty();
+    d.suggestSent |= suggest;
+    if (f) {
+      f->appFrame = number;
+      f->endNs = now;
+      f->due = req && number % req->every == 0 && !f->broken;
+      if (f->due) f->stream = ++d.streamed;
+    }
+  }
+  if (suggest) streamPasses(d, reports, number);
+  if (!req || !d.streaming || !passes) {
+    if (f) streamFrame(d, std::move(f));
+    return;
+  }
+  // What the request names and this frame lacks: once each (the receiver shows why a target is absent).
+  bool any = false;
+  for (size_t t = 0; t < req->picks.size(); ++t) {
+    const Pick& p = req->picks[t];
+    const bool got = f && std::any_of(f->copies.begin(), f->copies.end(), [&](const Copy& c) { return c.target == int(t); });
+    any |= got;
+    if (!got && p.explicitSource && !wasReported(d, "refused:" + p.targetName))  // a refusal said more
+      report(d, "missing:" + p.targetName,
+             "target \"" + p.targetName + "\": frame " + std::to_string(number) + " has no render pass with " + pickText(p));
+  }
+  if (any)
+    d.framesWithoutMatch = 0;
+  else if (++d.framesWithoutMatch == req->giveUp)
+    streamNoMatch(d, d.framesWithoutMatch);
+  if (f) streamFrame(d, std::move(f));
+}
+
+template <class Call>
+VkResult submit(DeviceData& d, VkQueue queue, const std::vector<VkCommandBuffer>& cmds, Call&& call) {
+  auto start = std::chrono::steady_clock::now();
+  const Submitted got = gather(d, cmds);
+  const auto before = std::chrono::steady_clock::now();
+  VkResult r = call();
+  d.hookNs += uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(before - start).count());
+  start = std::chrono::steady_clock::now();  // the application's own submission is not the layer's time
+  if (got.copies) {
+    // The layer's fence, signalled once everything submitted so far on this queue is done.
+    VkFence fence = r == VK_SUCCESS ? takeFence(d) : VK_NULL_HANDLE;
+    if (fence && d.vk.QueueSubmit(queue, 0, nullptr, fence) != VK_SUCCESS) returnFence(d, fence), fence = VK_NULL_HANDLE;
+    std::lock_guard lock(d.frameLock);
+    if (d.building && fence)
+      d.building->fences.push_back(fence);
+    else if (d.building)
+      d.building->broken = true;  // no way to know when its copies are done: not streamed
+    else if (fence)
+      returnFence(d, fence);
+  }
+  bool frameEnds;
+  {
+    std::lock_guard lock(d.frameLock);
+    frameEnds = !d.presents && got.pass;
+  }
+  if (frameEnds) endFrame(d);
+  d.hookNs += uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
+  return r;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL QueueSubmit(VkQueue queue, uint32_t n, const VkSubmitInfo* submits, VkFence fence) {
+  DeviceData& d = *deviceOf(queue);
+  std::vector<VkCommandBuffer> cmds;
+  for (uint32_t i = 0; i < n; ++i)
+    cmds.insert(cmds.end(), submits[i].pCommandBuffers, submits[i].pCommandBuffers + submits[i].commandBufferCount);
+  return submit(d, queue, cmds, [&] { return d.vk.QueueSubmit(queue, n, submits, fence); });
+}
+
+VkResult queueSubmit2(PFN_vkQueueSubmit2 next, VkQueue queue, uint32_t n, const VkSubmitInfo2* submits, VkFence fence) {
+  DeviceData& d = *deviceOf(queue);
+  std::vector<VkCommandBuffer> cmds;
+  for (uint32_t i = 0; i < n; ++i)
+    for (uint32_t k = 0; k < submits[i].commandBufferInfoCount; ++k)
+      cmds.push_back(submits[i].pCommandBufferInfos[k].commandBuffer);
+  return submit(d, queue, cmds, [&] { return next(queue, n, submits, fence); });
+}
+VKAPI_ATTR VkResult VKAPI_CALL QueueSubmit2(VkQueue queue, uint32_t n, const VkSubmitInfo2* submits, VkFence fence) {
+  return queueSubmit2(deviceOf(queue)->vk.QueueSubmit2, queue, n, submits, fence);
+}
+VKAPI_ATTR VkResult VKAPI_CALL QueueSubmit2KHR(VkQueue queue, uint32_t n, const VkSubmitInfo2* submits, VkFence fence) {
+  return queueSubmit2(deviceOf(queue)->vk.QueueSubmit2KHR, queue, n, submits, fence);
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL QueuePresentKHR(VkQueue queue, const VkPresentInfoKHR* info) {
+  DeviceData& d = *deviceOf(queue);
+  VkResult r = d.vk.QueuePresentKHR(queue, info);
+  endFrame(d);
+  return r;
+}
+
+}  // namespace
+
+std::vector<Hook> submitHooks() {
+  return {GBL_HOOK(QueueSubmit), GBL_HOOK(QueueSubmit2), GBL_HOOK(QueueSubmit2KHR), GBL_HOOK(QueuePresentKHR)};
+}
+
+}  // namespace gbl

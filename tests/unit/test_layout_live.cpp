@@ -1,0 +1,115 @@
+// Live sources (`gblens attach`, docs/layout-format.md): each form parses to the attachment pick it
+// names, every malformed one is refused naming the target and the field, they round-trip through
+// JSON (capture manifests), and the layout becomes the layer's request: targets without a source
+// read the image of their own name, RenderDoc texture names are debug names, a RenderDoc resource id
+// or a file is refused.
+#include <gtest/gtest.h>
+
+#include "renderer/core/layout_json.h"
+#include "views/capture/live.h"
+
+namespace gb {
+namespace {
+
+using json = nlohmann::json;
+
+json withSource(const json& source) {
+  json l = json::parse(R"({"format": "gblens-layout", "version": 1, "targets": [
+    {"name": "albedo", "format": "rgba8_srgb", "quantities": [{"quantity": "albedo", "channels": [0, 1, 2]}]},
+    {"name": "z", "format": "d16", "quantities": [{"quantity": "depth", "channels": [0], "encoding": "eye"}]}]})");
+  if (!source.is_null()) l["targets"][0]["source"] = source;
+  return l;
+}
+
+bool parse(const json& j, Layout& out, std::string& error) { return parseLayout(j, "l.json", out, error); }
+
+TEST(LayoutLive, EveryFormParses) {
+  Layout l;
+  std::string error;
+  ASSERT_TRUE(parse(withSource({{"live", "GBuffer.Albedo"}}), l, error)) << error;
+  const TargetSource& s = l.targets[0].source;
+  EXPECT_EQ(s.kind, TargetSource::Kind::Live);
+  EXPECT_EQ(s.live.name, "GBuffer.Albedo");
+  EXPECT_EQ(s.live.passIndex, -1);
+  ASSERT_TRUE(parse(withSource({{"live", {{"pass", "Lighting"}, {"color", 2}}}}), l, error)) << error;
+  EXPECT_EQ(l.targets[0].source.live.pass, "Lighting");
+  EXPECT_EQ(l.targets[0].source.live.color, 2);
+  ASSERT_TRUE(parse(withSource({{"live", {{"pass", 3}, {"depth", true}}}}), l, error)) << error;
+  EXPECT_EQ(l.targets[0].source.live.passIndex, 3);
+  EXPECT_TRUE(l.targets[0].source.live.depth);
+  ASSERT_TRUE(parse(withSource({{"live", {{"pass", 0}, {"format", "rgba16f"}}}}), l, error)) << error;
+  EXPECT_EQ(l.targets[0].source.live.format, "rgba16f");
+}
+
+TEST(LayoutLive, MistakesNameTheField) {
+  const std::pair<json, std::string> cases[] = {
+      {{{"live", {{"pass", 0}}}}, "source: live: name: give exactly one of"},
+      {{{"live", {{"name", "a"}, {"color", 1}}}}, "source: live: name: give exactly one of"},
+      {{{"live", {{"color", 9}}}}, "source: live: color: expected a colour attachment index 0..7"},
+      {{{"live", {{"color", 1.5}}}}, "source: live: color: expected a colour attachment index 0..7"},
+      {{{"live", {{"pass", -1}, {"color", 0}}}}, "source: live: pass: expected a label"},
+      {{{"live", {{"format", "rgb99"}}}}, "source: live: format: unknown storage format \"rgb99\""},
+      {{{"live", {{"name", "a"}, {"subpass", 1}}}}, "source: live: subpass: unknown field"},
+      {{{"live", "a"}, {"file", "a.exr"}}, "source: live: a live source has no other fields"},
+      {{{"live", ""}}, "source: live: expected an attachment's debug name"},
+      {{{"live", 3}}, "source: live: expected a debug name or"},
+  };
+  for (const auto& [source, want] : cases) {
+    Layout l;
+    std::string error;
+    EXPECT_FALSE(parse(withSource(source), l, error)) << source.dump();
+    EXPECT_NE(error.find("l.json: targets[0]: \"albedo\": " + want), std::string::npos) << error;
+  }
+}
+
+TEST(LayoutLive, RoundTripsThroughJson) {
+  for (const json& source : {json{{"live", "a"}}, json{{"live", {{"pass", "L"}, {"color", 1}}}},
+                             json{{"live", {{"pass", 2}, {"depth", true}}}}, json{{"live", {{"format", "r32f"}}}}}) {
+    Layout a, b;
+    std::string error;
+    ASSERT_TRUE(parse(withSource(source), a, error)) << error;
+    ASSERT_TRUE(parse(layoutJson(a), b, error)) << error;
+    const TargetSource::LivePick &x = a.targets[0].source.live, &y = b.targets[0].source.live;
+    EXPECT_EQ(b.targets[0].source.kind, TargetSource::Kind::Live);
+    EXPECT_TRUE(x.pass == y.pass && x.passIndex == y.passIndex && x.name == y.name && x.color == y.color &&
+                x.depth == y.depth && x.format == y.format)
+        << source.dump();
+  }
+}
+
+TEST(LayoutLive, TheLayerIsAskedForWhatTheLayoutNames) {
+  Layout l;
+  std::string error;
+  json j = withSource({{"live", {{"pass", "GBuffer"}, {"color", 1}}}});
+  j["camera"] = {{"renderdoc", {{"buffer", "frame"}, {"clip_from_view", {{"offset", 0}}}, {"view_from_world", {{"offset", 64}}}}}};
+  ASSERT_TRUE(parse(j, l, error)) << error;
+  LiveOptions o;
+  o.every = 3;
+  const json r = liveRequest(l, o);
+  EXPECT_EQ(r["type"], "request");
+  EXPECT_EQ(r["every"], 3);
+  EXPECT_EQ(r["camera"]["buffer"], "frame");
+  EXPECT_EQ(r["camera"]["bytes"], 128);  // the last matrix's offset + 64
+  ASSERT_EQ(r["targets"].size(), 2u);
+  EXPECT_EQ(r["targets"][0]["live"]["pass"], "GBuffer");
+  EXPECT_EQ(r["targets"][0]["live"]["color"], 1);
+  EXPECT_EQ(r["targets"][0]["format"], "rgba8_srgb");
+  EXPECT_EQ(r["targets"][0]["explicit"], true);
+  // No source: the image of the target's name, not reported when the application has none.
+  EXPECT_EQ(r["targets"][1]["live"]["name"], "z");
+  EXPECT_EQ(r["targets"][1]["explicit"], false);
+
+  ASSERT_TRUE(parse(withSource({{"renderdoc", "albedo_tex"}}), l, error)) << error;
+  ASSERT_TRUE(liveLayout(l, error)) << error;
+  EXPECT_EQ(l.targets[0].source.live.name, "albedo_tex");
+  ASSERT_TRUE(parse(withSource({{"renderdoc", "#127"}}), l, error)) << error;
+  EXPECT_FALSE(liveLayout(l, error));
+  EXPECT_NE(error.find("targets[0]: \"albedo\": source.renderdoc: \"#127\" is a RenderDoc resource id"), std::string::npos) << error;
+  ASSERT_TRUE(parse(withSource({{"file", "a.png"}}), l, error)) << error;
+  EXPECT_FALSE(liveLayout(l, error));
+  EXPECT_NE(error.find("targets[0]: \"albedo\": source.file: gblens attach streams render-pass attachments"), std::string::npos)
+      << error;
+}
+
+}  // namespace
+}  // namespace gb

@@ -1,0 +1,131 @@
+// Attaching to a running Vulkan application (`gblens attach`, docs/attach.md): start it with the
+// gblens layer (app/layer), tell the layer what a layout names, and receive its frames one at a
+// time, each decoded exactly as `gblens import` builds a FrameSnapshot (import.h: a live source is
+// one more source kind). No Vulkan here: the layer and this side share only live_wire.h.
+#pragma once
+#include <sys/types.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "renderer/core/layout.h"
+#include "renderer/core/options.h"
+#include "renderer/core/snapshot.h"
+
+namespace gb {
+
+struct LiveOptions {
+  std::string layout;                    // a layout file or builtin:NAME ("" : none, with suggest)
+  RenderOptions options;                 // what a parameterised layout is resolved with (import's --param)
+  std::vector<std::string> argv;         // the application and its arguments
+  uint32_t every = 1;                    // stream the application's frames 0, N, 2N, ...
+  uint64_t onlyFrame = 0;                // stream only this streamed frame (1: the first; 0: all)
+  bool suggest = false;                  // the layer reports one frame's render passes and attachments
+  uint32_t giveUpFrames = 120;           // frames with render passes and no target before the layer says so
+  std::string layerDir;                  // the folder of VkLayer_gblens_live.json ("" : layerFolder())
+  std::vector<std::string> environment;  // more NAME=VALUE for the application
+  std::string log;                       // the application's stdout and stderr go here ("" : gblens's own)
+};
+
+struct LiveFrameInfo {
+  uint64_t stream = 0;    // its number among the streamed frames (1, 2, ...)
+  uint64_t appFrame = 0;  // the application's frame (0: its first)
+  double latencyMs = 0.0; // from the end of that frame (present or submission) to poll() returning it
+  // Per layout target: where it came from ("render pass 3 \"gbuffer\""), or why it is absent.
+  std::vector<std::string> sources, absent;
+};
+
+struct LiveCounts {
+  uint64_t received = 0;     // frames poll() returned
+  uint64_t undecodable = 0;  // frames that came but did not decode (the reports say why)
+  uint64_t overwritten = 0;  // frames read in place that the application's GPU wrote again meanwhile
+  uint64_t dropped = 0;      // frames the layer dropped because this side was still busy (or the ring moved)
+  uint64_t appFrames = 0;    // frames the application had ended at the last frame received
+  double meanLatencyMs = 0.0, maxLatencyMs = 0.0;
+  double meanDecodeMs = 0.0;  // this side's time to turn a frame into a FrameSnapshot
+  // From the end of the application's frame to its copies being done (the layer saw its fence):
+  // the GPU's own latency, without the transfer to this side and the decoding.
+  double meanReadyMs = 0.0;
+  nlohmann::json layer;      // the layer's own figures with the last frame (docs/attach.md)
+};
+
+class LiveSession {
+ public:
+  LiveSession() = default;
+  ~LiveSession();  // detaches; the application runs on
+  LiveSession(const LiveSession&) = delete;
+  LiveSession& operator=(const LiveSession&) = delete;
+
+  // Starts the application under the layer. False, with nothing started, on a layout mistake (one
+  // line naming the file, the target and the field) or when the layer is not built.
+  bool start(const LiveOptions& o, std::string& error);
+  // The next streamed frame if one has come (never waits): decoded into `out`, true.
+  bool poll(FrameSnapshot& out, LiveFrameInfo* info = nullptr);
+  // Waits up to `seconds` for one (less when the application ends first).
+  bool wait(FrameSnapshot& out, double seconds, LiveFrameInfo* info = nullptr);
+
+  const LiveCounts& counts() const { return counts_; }
+  // What the layer and the decoding said for people since the last call, each once: a target the
+  // application never draws, a format the layout does not match, a frame that did not decode.
+  std::vector<std::string> takeReports();
+  // The layer's report of one frame's render passes (--suggest), once it came.
+  const nlohmann::json* suggestion() const { return suggestion_.is_null() ? nullptr : &suggestion_; }
+  bool noMatch() const { return noMatch_; }           // the layer gave up finding any target
+  const nlohmann::json& hello() const { return hello_; }  // the application and device, once attached
+  bool attached() const { return conn_ >= 0; }
+
+  bool running();                      // the application has not exited
+  int exitStatus() const { return status_; }  // once it exited: its status (128 + signal if killed)
+  long applicationPeakKb() const { return peakKb_; }  // once it exited: its peak resident memory
+  pid_t pid() const { return pid_; }
+  void detach();                       // the layer goes idle for good; the application runs on
+  void stop();                         // detach and end the application (SIGTERM, SIGKILL after 3 s)
+  int waitApplication(double seconds = -1.0);  // its exit status, -1 while it still runs
+
+ private:
+  bool accept();
+  bool receive(FrameSnapshot& out, LiveFrameInfo* info);
+  bool decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFrameInfo* info, std::string& error);
+  void addReport(const std::string& text);
+
+  LiveOptions options_;
+  Layout layout_;                      // its sources as the layer reads them (live_decode.cpp)
+  std::string layoutDir_, dir_, socketPath_, request_;
+  int listener_ = -1, conn_ = -1, shm_ = -1;
+  // The shared-memory files the layer sent, by id (0: its copy of a frame; others: ring buffers read
+  // in place, a submission count in their first bytes).
+  struct Mapping {
+    const uint8_t* data = nullptr;
+    size_t size = 0;
+  };
+  std::map<uint32_t, Mapping> buffers_;
+  // The bytes of a frame's buffer range, or null when it lies outside what was mapped.
+  const uint8_t* bytesAt(const nlohmann::json& where, size_t& bytes) const;
+  // The ring buffers' submission counts are what the frame says (else a reused command buffer wrote
+  // them again: the frame is torn).
+  bool untouched(const nlohmann::json& frame) const;
+  pid_t pid_ = -1;
+  int status_ = -1;
+  long peakKb_ = 0;
+  bool detached_ = false, noMatch_ = false;
+  nlohmann::json hello_, suggestion_;
+  std::vector<std::string> reports_;
+  std::set<std::string> said_;
+  LiveCounts counts_;
+};
+
+// Where the layer and its manifest are: GBLENS_LAYER_DIR, else layer/ beside the gblens executable.
+std::string layerFolder();
+
+// The layout as the layer streams it, and the request that tells the layer so: targets without a
+// source read the image of their own name; {"renderdoc": NAME} reads the image NAME. False on a
+// source that cannot be streamed (a file, a RenderDoc resource id), with the field named.
+bool liveLayout(Layout& layout, std::string& error);
+nlohmann::json liveRequest(const Layout& live, const LiveOptions& o);
+
+}  // namespace gb

@@ -1,0 +1,154 @@
+// The layout as the gblens layer streams it (which attachment each target is), the request that
+// tells the layer so, and a streamed frame decoded through import's assembly (import.h).
+#include <algorithm>
+#include <atomic>
+
+#include "views/capture/import.h"
+#include "views/capture/live.h"
+#include "views/capture/live_wire.h"
+
+namespace gb {
+
+namespace {
+
+// Targets the layout gives a source (else: the image of the target's own name, if the application
+// has one), told apart in the request so that the layer reports only those when they never come.
+std::vector<bool> explicitSources(const Layout& original) {
+  std::vector<bool> e;
+  for (const LayoutTarget& t : original.targets) e.push_back(t.source.kind != TargetSource::Kind::None);
+  return e;
+}
+
+}  // namespace
+
+bool liveLayout(Layout& layout, std::string& error) {
+  for (uint32_t t = 0; t < layout.targets.size(); ++t) {
+    TargetSource& s = layout.targets[t].source;
+    switch (s.kind) {
+      case TargetSource::Kind::Live: break;
+      case TargetSource::Kind::None:
+        s.kind = TargetSource::Kind::Live;
+        s.live.name = layout.targets[t].name;
+        break;
+      case TargetSource::Kind::RenderDoc:
+        if (!s.resource.empty() && s.resource[0] == '#') {
+          error = layoutTargetWhere(layout, t) + ": source.renderdoc: \"" + s.resource +
+                  "\" is a RenderDoc resource id; a running application's image is named by {\"live\": ...}";
+          return false;
+        }
+        s.kind = TargetSource::Kind::Live;
+        s.live.name = s.resource;  // a RenderDoc texture name is the image's debug name
+        break;
+      default:
+        error = layoutTargetWhere(layout, t) + ": source.file: gblens attach streams render-pass attachments; give "
+                "{\"live\": ...} (docs/layout-format.md) or no source (the image of the target's name)";
+        return false;
+    }
+  }
+  return true;
+}
+
+nlohmann::json liveRequest(const Layout& original, const LiveOptions& o) {
+  Layout live = original;
+  std::string unused;
+  liveLayout(live, unused);
+  const std::vector<bool> given = explicitSources(original);
+  nlohmann::json targets = nlohmann::json::array();
+  for (uint32_t t = 0; t < live.targets.size(); ++t) {
+    const LayoutTarget& lt = live.targets[t];
+    targets.push_back({{"name", lt.name}, {"format", lt.format.name}, {"explicit", bool(given[t])},
+                       {"live", livePickJson(lt.source.live)}});
+  }
+  nlohmann::json camera = nullptr;
+  if (const auto& b = original.camera.renderdoc)
+    camera = {{"buffer", b->buffer}, {"bytes", std::max(b->viewOffset, b->clipOffset) + 64}};
+  return {{"type", wire::kRequest}, {"version", wire::kVersion}, {"every", o.every}, {"only", o.onlyFrame},
+          {"suggest", o.suggest}, {"give_up", o.giveUpFrames}, {"camera", camera}, {"targets", targets}};
+}
+
+const uint8_t* LiveSession::bytesAt(const nlohmann::json& where, size_t& bytes) const {
+  auto it = buffers_.find(where.value("buffer", 0u));
+  const uint64_t offset = where.value("offset", uint64_t(0));
+  bytes = where.value("bytes", size_t(0));
+  if (it == buffers_.end() || offset > it->second.size || bytes > it->second.size - offset) return nullptr;
+  return it->second.data + offset;
+}
+
+bool LiveSession::untouched(const nlohmann::json& frame) const {
+  for (const nlohmann::json& w : frame.value("writes", nlohmann::json::array())) {
+    auto it = buffers_.find(w[0].get<uint32_t>());
+    if (it == buffers_.end() || it->second.size < sizeof(uint64_t)) return false;
+    // The layer's std::atomic<uint64_t> at the start of the file (lock-free: the same in both processes).
+    const auto* count = reinterpret_cast<const std::atomic<uint64_t>*>(it->second.data);
+    if (count->load() != w[1].get<uint64_t>()) return false;
+  }
+  return true;
+}
+
+bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFrameInfo* info, std::string& error) {
+  ImportInput in;
+  in.layout = layout_;
+  in.layoutDir = layoutDir_;
+  const Layout& l = layout_;
+  std::vector<std::string> sources(l.targets.size()), absent;
+  for (const nlohmann::json& t : frame.value("targets", nlohmann::json::array())) {
+    const int index = l.findTarget(t.value("name", ""));
+    if (index < 0) continue;
+    const LayoutTarget& lt = l.targets[size_t(index)];
+    if (t.value("format", "") != lt.format.name) {  // the layer refuses these; never decoded as another format
+      absent.push_back(lt.name + ": the attachment is " + t.value("format", "?") + ", the layout says " + lt.format.name);
+      continue;
+    }
+    size_t bytes = 0;
+    const uint8_t* texels = bytesAt(t, bytes);
+    if (!texels) {
+      error = "frame " + std::to_string(frame.value("stream", 0)) + ": target \"" + lt.name + "\" lies outside the shared memory";
+      return false;
+    }
+    in.liveTexels[lt.name] = {texels, bytes, t.value("width", 0u), t.value("height", 0u)};
+    const std::string pass = t.value("pass_name", "");
+    sources[size_t(index)] = "render pass " + std::to_string(t.value("pass", 0)) + (pass.empty() ? "" : " \"" + pass + "\"") +
+                             ", " + t.value("vk_format", "");
+  }
+  for (const LayoutTarget& lt : l.targets)
+    if (!in.liveTexels.count(lt.name)) {
+      in.leftOut.insert(lt.name);
+      if (std::none_of(absent.begin(), absent.end(), [&](const std::string& a) { return a.rfind(lt.name + ":", 0) == 0; }))
+        absent.push_back(lt.name + ": not in this frame");
+    }
+  if (in.liveTexels.empty()) {
+    error = "frame " + std::to_string(frame.value("stream", 0)) + ": no target of the layout is in it";
+    return false;
+  }
+  if (l.camera.renderdoc) {
+    const nlohmann::json& c = frame["camera"];
+    if (!c.is_object()) {
+      error = "camera: buffer \"" + l.camera.renderdoc->buffer + "\" was not copied with this frame (see the layer's reports)";
+      return false;
+    }
+    size_t bytes = 0;
+    const uint8_t* camera = bytesAt(c, bytes);
+    if (!camera) {
+      error = "camera: its bytes lie outside the shared memory";
+      return false;
+    }
+    in.renderdocCameraBuffer.assign(camera, camera + bytes);  // the matrices at the layout's offsets
+  }
+  if (!importFrame(in, out, error)) return false;
+  setImportedOptions(out, options_.options);
+  // B8G8R8A8 attachments come as the GPU stored them: R and B swapped back here (rgba8 in the layout).
+  for (const nlohmann::json& t : frame.value("targets", nlohmann::json::array()))
+    if (t.value("bgra", false) && out.indexOf(t.value("name", "")) >= 0) {
+      CpuImage& image = out.images[size_t(out.indexOf(t.value("name", "")))].image;
+      for (size_t i = 0; i + 3 < image.data.size(); i += 4) std::swap(image.data[i], image.data[i + 2]);
+    }
+  if (info) {
+    info->stream = frame.value("stream", uint64_t(0));
+    info->appFrame = frame.value("app_frame", uint64_t(0));
+    info->sources = sources;
+    info->absent = absent;
+  }
+  return true;
+}
+
+}  // namespace gb
