@@ -96,7 +96,7 @@ def test_decoded_quantities_equal_probe_and_a_numpy_reconstruction(captures):
     # default is octahedral in rgba16_snorm: Meyer et al. 2010, sign(0) = +1).
     assert f.manifest["options"]["normal_format"] == "oct-rg16"
     ch = exr_channels(os.path.join(captures["a"], "normal_shadow.exr"))
-    o = np.stack([ch[f"normal_shadow.raw.N.{c}"][1].astype(np.uint16).view(np.int16) for c in "XY"], -1)
+    o = np.stack([ch[f"normal_shadow.raw.N.{c}"][1].astype(np.uint16).view(np.int16) for c in "UV"], -1)
     o = np.maximum(o.astype(np.float64) / 32767.0, -1.0)
     n = np.concatenate([o, 1.0 - np.abs(o).sum(-1, keepdims=True)], -1)
     fold = n[..., 2] < 0
