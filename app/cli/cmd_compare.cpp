@@ -1,5 +1,8 @@
-// gblens compare A B [-o DIFFDIR] [--json REPORT] [--fail ...]: compares two captures target by
-// target (views/compare.h) with idiff's thresholds and exit codes, and FLIP of final and hdr.
+// gblens compare A B [-o DIFFDIR] [--json REPORT] [--report DIR] [--junit FILE] [--fail ...]: compares
+// two captures target by target (views/analysis/compare.h) with idiff's thresholds and exit codes, and
+// FLIP of final and hdr; --pairs LIST compares many pairs into one report (views/report/report.h).
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -8,10 +11,17 @@
 
 #include "app/cli/cli.h"
 #include "views/analysis/compare.h"
+#include "views/report/report.h"
 
 namespace gb {
 
 namespace {
+
+// Progress on stderr while it takes long enough to wonder (two 1080p captures: about 20 s here),
+// as import and decompose print theirs; only on a terminal, so scripts reading stderr see results.
+void progress(const std::string& text) {
+  if (isatty(2)) std::fprintf(stderr, "  .. %s\n", text.c_str());
+}
 
 // Two imports replayed on different drivers (or RenderDoc versions) may differ in texels the
 // application never changed: said before the figures, not after a user has chased them.
@@ -35,11 +45,94 @@ std::string replayDriverWarning(const Capture& a, const Capture& b) {
 
 namespace {
 struct CompareArgs {
-  std::string a, b, diffDir, json, mask;
-  std::vector<std::string> fail, failPercent, hardFail, warn, warnPercent, failFlip, warnFlip;
+  std::string a, b, diffDir, json, mask, report, junit, pairs, flip = "on";
+  std::vector<std::string> fail, failPercent, hardFail, warn, warnPercent, failFlip, warnFlip, exclude;
   std::string flipPpd;
   bool quiet = false;
 };
+
+int usage(const std::string& error) {
+  std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
+  return kCompareFileError;
+}
+
+// The flags as CompareSettings; false with one line naming the flag.
+bool settingsFrom(const CompareArgs& o, CompareSettings& s, std::string& error) {
+  for (auto& [param, values] : {std::pair{"fail", &o.fail}, {"failpercent", &o.failPercent}, {"hardfail", &o.hardFail},
+                                {"warn", &o.warn}, {"warnpercent", &o.warnPercent}})
+    for (const std::string& v : *values)
+      if (!s.thresholds.add(param, v, error)) return false;
+  for (auto& [flag, values] : {std::pair{"--fail-flip", &o.failFlip}, {"--warn-flip", &o.warnFlip}})
+    for (const std::string& v : *values)
+      if (!s.flip.add(flag, v, error)) return false;
+  if (!o.flipPpd.empty()) {
+    char* end = nullptr;
+    s.flip.ppd = std::strtod(o.flipPpd.c_str(), &end);
+    if (*end != '\0' || !(s.flip.ppd > 0.0) || !std::isfinite(s.flip.ppd)) {
+      error = "--flip-ppd " + o.flipPpd + ": expected a positive number";
+      return false;
+    }
+  }
+  s.flipOn = o.flip == "on";
+  s.mask = o.mask;
+  s.exclude = o.exclude;
+  if (!o.quiet)  // progress lines, as bench and stress print theirs
+    s.progress = [](double done, const std::string& what) {
+      std::fprintf(stderr, "gblens compare: %3.0f%% %s\n", 100.0 * done, what.c_str());
+    };
+  return true;
+}
+
+// Writes the summary (stdout, or stderr when the JSON goes to stdout) and the outputs asked for.
+int finish(const CompareArgs& o, CompareReport& report) {
+  std::string error;
+  if (!o.diffDir.empty() && !writeCompareImages(report, o.diffDir, error)) return usage(error);
+  std::string text = report.text();
+  if (o.quiet) text = text.substr(text.rfind('\n', text.size() - 2) + 1);
+  std::fputs(text.c_str(), o.json == "-" ? stderr : stdout);
+  if (o.json == "-") {
+    std::printf("%s\n", report.json().dump(2).c_str());
+  } else if (!o.json.empty()) {
+    std::ofstream out(o.json);
+    out << report.json().dump(2) << "\n";
+    if (!out) return usage(o.json + ": cannot write");
+  }
+  return report.exitCode;
+}
+
+int runCompare(const CompareArgs& o) {
+  std::string error;
+  CompareSettings settings;
+  if (!settingsFrom(o, settings, error)) return usage(error);
+  if (!o.pairs.empty()) {
+    if (!o.a.empty()) return usage("--pairs " + o.pairs + ": give either A B or --pairs, not both");
+    if (o.report.empty() && o.junit.empty() && o.json.empty())
+      return usage("--pairs " + o.pairs + ": needs --report DIR, --junit FILE or --json FILE to write the results to");
+    PairsRun run;
+    if (!comparePairs(o.pairs, settings, {o.report, o.junit, o.json}, run, error)) return usage(error);
+    std::fputs(run.text.c_str(), run.json.empty() ? stdout : stderr);
+    std::fputs(run.json.c_str(), stdout);
+    return run.exitCode;
+  }
+  if (o.a.empty() || o.b.empty()) return usage("A B: two capture folders to compare (or --pairs LIST)");
+  Capture a, b;
+  for (auto [cap, dir] : {std::pair{&a, &o.a}, {&b, &o.b}}) {
+    progress("reading " + *dir);
+    if (!loadCapture(*dir, *cap, error)) return usage(error);
+  }
+  const std::string drivers = replayDriverWarning(a, b);
+  if (!drivers.empty()) std::fprintf(stderr, "gblens compare: warning: %s\n", drivers.c_str());
+  progress("comparing " + std::to_string(a.frame.layout.quantities.size()) + " quantities" +
+           (settings.flipOn ? " and FLIP of the colour views" : ""));
+  CompareReport report;
+  if (!compare(a, b, settings, report, error)) return usage(error);
+  const int status = finish(o, report);
+  if (status == kCompareFileError) return status;
+  if (!o.report.empty()) progress("writing the report to " + o.report);
+  if (!o.report.empty() && !writeReport(a, b, report, o.report, error)) return usage(error);
+  if (!o.junit.empty() && !writeJunit({{"", &report}}, o.junit, error)) return usage(error);
+  return status;
+}
 }  // namespace
 
 Command addCompareCommand(CLI::App& root) {
@@ -47,10 +140,17 @@ Command addCompareCommand(CLI::App& root) {
   CLI::App* cmd = root.add_subcommand(
       "compare",
       "compare two captures; exit 0 pass, 1 warn, 2 fail, 3 size/target mismatch, 4 file or usage error (as idiff)");
-  cmd->add_option("A", o->a, "capture directory (reference)")->required();
-  cmd->add_option("B", o->b, "capture directory (test)")->required();
-  cmd->add_option("-o,--output", o->diffDir, "directory for difference heat maps (one PNG per differing group)");
+  cmd->add_option("A", o->a, "capture directory (reference)");
+  cmd->add_option("B", o->b, "capture directory (test)");
+  cmd->add_option("-o,--output", o->diffDir,
+                  "directory for images: a heat map with legend per compared group, the FLIP maps, mask.png");
   cmd->add_option("--json", o->json, "write the report as JSON to this file ('-' for stdout)");
+  cmd->add_option("--report", o->report,
+                  "write a static HTML report to this directory (index.html; open it in a browser, no server)");
+  cmd->add_option("--junit", o->junit, "write JUnit XML to this file (one test case per compared quantity)");
+  cmd->add_option("--pairs", o->pairs,
+                  "a file of pairs to compare, one 'A B [NAME]' a line (paths relative to the file; # comments): "
+                  "one report for all");
   const char* keyHelp = " (VALUE for every target, or TARGET=VALUE / TARGET.GROUP=VALUE; repeatable)";
   cmd->add_option("--fail", o->fail, std::string("failure threshold, default 1e-6") + keyHelp);
   cmd->add_option("--failpercent", o->failPercent, std::string("allow this % of pixels over --fail, default 0") + keyHelp);
@@ -64,79 +164,15 @@ Command addCompareCommand(CLI::App& root) {
   cmd->add_option("--flip-ppd", o->flipPpd,
                   "FLIP's observer: pixels per degree of visual angle (default 67: 0.7 m from a 0.7 m wide 3840-pixel "
                   "monitor)");
-  cmd->add_flag("-q,--quiet", o->quiet, "print only the verdict line");
+  cmd->add_option("--flip", o->flip, "FLIP of final and hdr: on | off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", o->quiet, "print only the verdict line (no progress)");
   cmd->add_option("--mask", o->mask,
                   "pixels reported apart, not deciding pass/fail: silhouettes (primitive_id edges), penumbra (the "
                   "shadow band), or a mask image FILE (non-zero = masked); comma-separated");
-  Command c{cmd, [o]() -> int {
-              std::string error;
-              ThresholdSettings settings;
-              for (auto& [param, values] : {std::pair{"fail", &o->fail}, {"failpercent", &o->failPercent},
-                                            {"hardfail", &o->hardFail}, {"warn", &o->warn},
-                                            {"warnpercent", &o->warnPercent}})
-                for (const std::string& v : *values)
-                  if (!settings.add(param, v, error)) {
-                    std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
-                    return kCompareFileError;
-                  }
-              FlipSettings flip;
-              for (auto& [flag, values] : {std::pair{"--fail-flip", &o->failFlip}, {"--warn-flip", &o->warnFlip}})
-                for (const std::string& v : *values)
-                  if (!flip.add(flag, v, error)) {
-                    std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
-                    return kCompareFileError;
-                  }
-              if (!o->flipPpd.empty()) {
-                char* end = nullptr;
-                flip.ppd = std::strtod(o->flipPpd.c_str(), &end);
-                if (*end != '\0' || !(flip.ppd > 0.0) || !std::isfinite(flip.ppd)) {
-                  std::fprintf(stderr, "gblens compare: --flip-ppd %s: expected a positive number\n", o->flipPpd.c_str());
-                  return kCompareFileError;
-                }
-              }
-              Capture a, b;
-              for (auto [cap, dir] : {std::pair{&a, &o->a}, {&b, &o->b}}) {
-                CaptureProblem problem;
-                if (!loadCapture(*dir, *cap, error, &problem)) {
-                  std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
-                  return kCompareFileError;
-                }
-              }
-              const std::string drivers = replayDriverWarning(a, b);
-              if (!drivers.empty()) std::fprintf(stderr, "gblens compare: warning: %s\n", drivers.c_str());
-              CompareReport report;
-              if (!compareCaptures(a, b, settings, report, error)) {
-                std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
-                return kCompareFileError;
-              }
-              compareFlip(a, b, flip, report);
-              if (!o->mask.empty()) {
-                CompareMask mask;
-                if (!buildCompareMask(a, b, o->mask, mask, error)) {
-                  std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
-                  return kCompareFileError;
-                }
-                applyCompareMask(report, mask);
-              }
-              if (!o->diffDir.empty() && !writeHeatmaps(report, o->diffDir, error)) {
-                std::fprintf(stderr, "gblens compare: %s\n", error.c_str());
-                return kCompareFileError;
-              }
-              std::string text = report.text();
-              if (o->quiet) text = text.substr(text.rfind('\n', text.size() - 2) + 1);
-              std::fputs(text.c_str(), o->json == "-" ? stderr : stdout);
-              if (o->json == "-") {
-                std::printf("%s\n", report.json().dump(2).c_str());
-              } else if (!o->json.empty()) {
-                std::ofstream out(o->json);
-                out << report.json().dump(2) << "\n";
-                if (!out) {
-                  std::fprintf(stderr, "gblens compare: %s: cannot write\n", o->json.c_str());
-                  return kCompareFileError;
-                }
-              }
-              return report.exitCode;
-            }};
+  cmd->add_option("--exclude", o->exclude, "leave this target out (listed as skipped); repeatable");
+  Command c{cmd, [o]() -> int { return runCompare(*o); }};
   c.usageExit = kCompareFileError;
   return c;
 }

@@ -60,15 +60,15 @@ TEST(CompareFormats, TwoNormalFormatsCompareWithinTheirQuantisation) {
     const GroupResult* n = group(r, "normal_shadow.Normal");
     ASSERT_NE(n, nullptr) << r.text();
     EXPECT_EQ(n->group.kind, MetricKind::Normal);
-    EXPECT_GT(n->pixels, 0u);
-    EXPECT_EQ(n->coverageDiffers, 0u);
-    EXPECT_LE(n->maxError, bound) << r.text();
-    EXPECT_GT(n->maxError, 0.0) << "two formats cannot round every normal alike";
+    EXPECT_GT(n->figures.pixels, 0u);
+    EXPECT_EQ(n->figures.coverageDiffers, 0u);
+    EXPECT_LE(n->figures.maxError, bound) << r.text();
+    EXPECT_GT(n->figures.maxError, 0.0) << "two formats cannot round every normal alike";
     // The shadow term shares the normal's target: half a step of the coarser format on each side
     // (rgba8 snorm: 0.5 / 127; 16-bit snorm and half are finer).
     const GroupResult* s = group(r, "normal_shadow.Shadow");
     ASSERT_NE(s, nullptr);
-    EXPECT_LE(s->maxError, 0.5 / 127.0 + 0.5 / 32767.0 + std::ldexp(1.0, -11)) << r.text();
+    EXPECT_LE(s->figures.maxError, 0.5 / 127.0 + 0.5 / 32767.0 + std::ldexp(1.0, -11)) << r.text();
   }
 }
 
@@ -79,20 +79,20 @@ TEST(CompareFormats, StandardAndReversedDepthCompareAsEyeDepthWithinTheirRoundin
   CompareReport r = compared(standard, reversed);
   const GroupResult* g = group(r, "depth_stencil.HardwareDepth");
   ASSERT_NE(g, nullptr) << r.text();
-  EXPECT_EQ(g->coverageDiffers, 0u) << r.text();
-  EXPECT_GT(g->pixels, 0u);
+  EXPECT_EQ(g->figures.coverageDiffers, 0u) << r.text();
+  EXPECT_GT(g->figures.pixels, 0u);
   // Both store float depth; compared raw they would differ by ~100 % (d and 1 - d). As eye depth
   // the difference is the rounding of the standard side, whose values crowd below 1: with
   // d = f (z - n) / (z (f - n)), a depth error dd moves the eye depth by
   // dz / z = dd z (f - n) / (f n) <= dd (f - n) / n. dd: the rasterizer's interpolation and the
   // float store, allowed 4 ulps of values in [0.5, 1) (2^-22); the reversed side is far finer.
   const double n = standard.frame.camera.znear, f = standard.frame.camera.zfar;
-  EXPECT_LE(g->metrics["max_rel"].get<double>(), std::ldexp(1.0, -22) * (f - n) / n) << r.text();
-  EXPECT_GT(g->maxError, 0.0);
+  EXPECT_LE(g->figures.metrics["max_rel"].get<double>(), std::ldexp(1.0, -22) * (f - n) / n) << r.text();
+  EXPECT_GT(g->figures.maxError, 0.0);
   // The stencil is an integer in both: exact.
   const GroupResult* s = group(r, "depth_stencil.Stencil");
   ASSERT_NE(s, nullptr);
-  EXPECT_EQ(s->maxError, 0.0);
+  EXPECT_EQ(s->figures.maxError, 0.0);
 }
 
 }  // namespace gb

@@ -1,6 +1,6 @@
-// Capture comparison by meaning: the targets of both layouts matched by name, their quantities by
-// name, each pixel decoded with its own frame's layout (renderer/core/decode.h) and compared with
-// the metric its kind calls for; the report and idiff's verdicts.
+// Capture comparison by meaning, per group: each pixel of a quantity decoded with its own frame's
+// layout (renderer/core/decode.h) and compared with the metric its kind calls for, the figures over
+// each set of pixels, idiff's verdict. compare_targets.cpp runs it over the targets.
 #include "views/analysis/compare.h"
 
 #include <algorithm>
@@ -8,6 +8,7 @@
 
 #include "renderer/core/decode.h"
 #include "renderer/core/statistics.h"
+#include "views/analysis/compare_internal.h"
 
 namespace gb {
 
@@ -48,11 +49,7 @@ double angleDegrees(const glm::dvec3& a, const glm::dvec3& b) {
 
 namespace {
 
-// One quantity on both sides.
-struct Side {
-  const FrameSnapshot& f;
-  const Quantity& q;
-};
+using Side = CompareSide;
 
 // Two projections equal to float precision (a camera read back from a uniform buffer is the double
 // one rounded to float): hardware depths stored under them mean the same surfaces.
@@ -121,10 +118,17 @@ double absDiff(double a, double b) {
   return std::abs(a - b);
 }
 
-// Running sums over a group's compared pixels (colour/exact: per component; others: per pixel).
+// Running sums over a group's compared pixels (colour/exact: per component; others: per pixel);
+// one per pixel set, so every figure of a set covers the same pixels.
 struct ErrorSums {
-  double sumAbs = 0.0, sumSq = 0.0, sumRel = 0.0, maxAbs = 0.0, maxRel = 0.0, sumErr = 0.0;
-  uint64_t samples = 0, differing = 0, compared = 0, coverage = 0;
+  double sumAbs = 0.0, sumSq = 0.0, sumRel = 0.0, maxAbs = 0.0, maxRel = 0.0, sumErr = 0.0, maxErr = 0.0;
+  uint64_t samples = 0, differing = 0, compared = 0, coverage = 0, overWarn = 0, overFail = 0;
+  void add(const ErrorSums& o) {
+    sumAbs += o.sumAbs, sumSq += o.sumSq, sumRel += o.sumRel, sumErr += o.sumErr;
+    maxAbs = std::max(maxAbs, o.maxAbs), maxRel = std::max(maxRel, o.maxRel), maxErr = std::max(maxErr, o.maxErr);
+    samples += o.samples, differing += o.differing, compared += o.compared, coverage += o.coverage;
+    overWarn += o.overWarn, overFail += o.overFail;
+  }
 };
 
 // Largest component difference (colours, scalars, integers).
@@ -163,6 +167,12 @@ double distanceError(const std::array<double, 4>& va, const std::array<double, 4
 
 std::array<double, 4> vec(const glm::dvec3& v) { return {v.x, v.y, v.z, 0.0}; }
 
+// Whether pixel i belongs to a set (without a mask every pixel is in All).
+bool inSet(PixelSet set, const CompareMask* mask, size_t i) {
+  if (set == PixelSet::All || !mask) return true;
+  return (mask->bits[i] != 0) == (set == PixelSet::Masked);
+}
+
 // The error of one pixel by the group's metric; nullopt where the pixel is not compared (normals
 // where neither frame has a surface).
 std::optional<double> pixelError(MetricKind kind, const Side& a, const Side& b, bool stored, uint32_t x, uint32_t y,
@@ -199,180 +209,96 @@ std::optional<double> pixelError(MetricKind kind, const Side& a, const Side& b, 
   return 0.0;
 }
 
-// The group's metrics under its kind's names, the fractions over the thresholds.
-nlohmann::json groupMetrics(const GroupResult& r, const ErrorSums& s) {
-  const double n = double(std::max<uint64_t>(r.pixels, 1));
+// The figures of one pixel set: the kind's metrics under its names, the fractions over the thresholds.
+GroupFigures figuresOf(const GroupResult& r, const ErrorSums& s, PixelSet set, const CompareMask* mask) {
+  GroupFigures f;
+  f.covers = set;
+  f.pixels = s.compared;
+  f.overWarn = s.overWarn;
+  f.overFail = s.overFail;
+  f.coverageDiffers = s.coverage;
+  f.maxError = s.maxErr;
+  const double n = double(std::max<uint64_t>(s.compared, 1));
+  f.meanError = s.sumErr / n;
   const double samples = double(std::max<uint64_t>(s.samples, 1));
-  nlohmann::json m;
+  nlohmann::json& m = f.metrics;
   switch (r.group.kind) {
     case MetricKind::Colour: {
       double rmse = std::sqrt(s.sumSq / samples);
-      m = {{"max_abs", r.maxError}, {"mean_abs", s.sumAbs / samples}, {"rmse", rmse},
+      m = {{"max_abs", s.maxErr}, {"mean_abs", s.sumAbs / samples}, {"rmse", rmse},
            {"psnr_db", rmse > 0.0 ? 20.0 * std::log10(1.0 / rmse) : INFINITY}};
       break;
     }
     case MetricKind::Normal: {
       std::vector<double> compared;
-      for (float e : r.errors)
-        if (!std::isnan(e)) compared.push_back(e);
-      m = {{"max_degrees", r.maxError}, {"mean_degrees", r.meanError}, {"p99_degrees", percentile(compared, 0.99)}};
+      for (size_t i = 0; i < r.errors.size(); ++i)
+        if (!std::isnan(r.errors[i]) && inSet(set, mask, i)) compared.push_back(r.errors[i]);
+      m = {{"max_degrees", s.maxErr}, {"mean_degrees", f.meanError}, {"p99_degrees", percentile(compared, 0.99)}};
       break;
     }
     case MetricKind::Depth:
     case MetricKind::Position:
       m = {{"max_abs", s.maxAbs}, {"mean_abs", s.sumAbs / n}, {"max_rel", s.maxRel}, {"mean_rel", s.sumRel / n}};
       break;
-    case MetricKind::Exact: m = {{"max_abs", r.maxError}}; break;
+    case MetricKind::Exact: m = {{"max_abs", s.maxErr}}; break;
   }
   m["differing_pixels"] = s.differing;
   if (r.group.kind == MetricKind::Normal || r.group.kind == MetricKind::Depth || r.group.kind == MetricKind::Position)
     m["coverage_differs"] = s.coverage;
-  m["fraction_over_fail"] = double(r.overFail) / n;
-  m["fraction_over_warn"] = double(r.overWarn) / n;
-  return m;
-}
-
-void compareGroup(const Side& a, const Side& b, GroupResult& r) {
-  const TargetImage& ta = a.f.images[a.q.target];
-  r.width = ta.image.width;
-  r.height = ta.image.height;
-  r.errors.assign(size_t(r.width) * r.height, 0.0f);
-  const bool stored = sameStorage(a, b);
-  ErrorSums s;
-  for (uint32_t y = 0; y < r.height; ++y)
-    for (uint32_t x = 0; x < r.width; ++x) {
-      std::optional<double> e = pixelError(r.group.kind, a, b, stored, x + ta.x0, y + ta.y0, s);
-      if (!e) {
-        r.errors[size_t(y) * r.width + x] = NAN;  // not compared (heat map: black; percentiles skip it)
-        continue;
-      }
-      r.errors[size_t(y) * r.width + x] = float(*e);
-      ++r.pixels;
-      r.maxError = std::max(r.maxError, *e);
-      s.sumErr += *e;
-      s.differing += *e > 0.0;
-      r.overWarn += *e > r.thresholds.warn;
-      r.overFail += *e > r.thresholds.fail;
-    }
-  r.coverageDiffers = s.coverage;
-  r.meanError = s.sumErr / double(std::max<uint64_t>(r.pixels, 1));
-  r.metrics = groupMetrics(r, s);
-  r.verdict = decide(r.thresholds, r.pixels, r.overWarn, r.overFail, r.maxError);
-}
-
-// Manifest fields whose difference a reader should know about: every option, the scene, the
-// lights, the device and the build.
-void manifestDifferences(const nlohmann::json& a, const nlohmann::json& b, nlohmann::json& out) {
-  nlohmann::json fa = nlohmann::json::object(), fb = nlohmann::json::object();
-  for (const char* key : {"options", "scene", "device", "driver", "gblens", "lights", "sun"}) {
-    fa[key] = a.is_object() ? a.value(key, nlohmann::json()) : nlohmann::json();
-    fb[key] = b.is_object() ? b.value(key, nlohmann::json()) : nlohmann::json();
-  }
-  for (nlohmann::json* j : {&fa, &fb})
-    if ((*j)["lights"].is_object()) (*j)["lights"].erase("file");
-  nlohmann::json flatA = fa.flatten(), flatB = fb.flatten();
-  for (auto& [k, v] : flatA.items())
-    if (!flatB.contains(k) || flatB[k] != v) out.push_back({{"name", k.substr(1)}, {"a", v}, {"b", flatB.value(k, nlohmann::json())}});
-  for (auto& [k, v] : flatB.items())
-    if (!flatA.contains(k)) out.push_back({{"name", k.substr(1)}, {"a", nullptr}, {"b", v}});
-  for (auto& d : out) std::replace(d["name"].get_ref<std::string&>().begin(), d["name"].get_ref<std::string&>().end(), '/', '.');
-}
-
-// Target names of both layouts: A's in order, then B's that A lacks.
-std::vector<std::string> targetNames(const Layout& a, const Layout& b) {
-  std::vector<std::string> names;
-  for (const LayoutTarget& t : a.targets) names.push_back(t.name);
-  for (const LayoutTarget& t : b.targets)
-    if (a.findTarget(t.name) < 0) names.push_back(t.name);
-  return names;
-}
-
-std::string whyAbsent(const FrameSnapshot& f, int index) {
-  return index < 0 ? "not in its layout" : absentText(f.absences[size_t(index)]);
-}
-
-// Why two present targets of one name cannot be compared ("" when they can).
-std::string targetMismatch(const FrameSnapshot& fa, int ia, const FrameSnapshot& fb, int ib) {
-  const TargetImage &a = fa.images[size_t(ia)], &b = fb.images[size_t(ib)];
-  if (a.image.width != b.image.width || a.image.height != b.image.height || a.x0 != b.x0 || a.y0 != b.y0)
-    return "size " + std::to_string(a.image.width) + "x" + std::to_string(a.image.height) + " vs " +
-           std::to_string(b.image.width) + "x" + std::to_string(b.image.height);
-  for (const Quantity* q : fa.layout.quantitiesOf(uint32_t(ia))) {
-    const Quantity* other = fb.layout.findByName(q->name);
-    if (!other || int(other->target) != ib) return "quantity " + q->name + " only in A";
-    if (metricOf(other->kind) != metricOf(q->kind))
-      return "quantity " + q->name + " is " + name(q->kind) + " in A, " + name(other->kind) + " in B";
-  }
-  for (const Quantity* q : fb.layout.quantitiesOf(uint32_t(ib))) {
-    const Quantity* other = fa.layout.findByName(q->name);
-    if (!other || int(other->target) != ia) return "quantity " + q->name + " only in B";
-  }
-  return "";
+  m["fraction_over_fail"] = double(s.overFail) / n;
+  m["fraction_over_warn"] = double(s.overWarn) / n;
+  return f;
 }
 
 }  // namespace
 
-bool compareCaptures(const Capture& ca, const Capture& cb, const ThresholdSettings& settings, CompareReport& report,
-                     std::string& error) {
-  report = CompareReport{};
-  report.a = ca.dir;
-  report.b = cb.dir;
-  manifestDifferences(ca.manifest, cb.manifest, report.differences);
-  const FrameSnapshot &fa = ca.frame, &fb = cb.frame;
-  std::vector<std::string> knownTargets, knownKeys = {""};
-  Verdict worst = Verdict::Pass;
-  for (const std::string& tn : targetNames(fa.layout, fb.layout)) {
-    knownTargets.push_back(tn);
-    const int ia = fa.indexOf(tn), ib = fb.indexOf(tn);
-    const bool pa = ia >= 0 && fa.images[size_t(ia)].present(), pb = ib >= 0 && fb.images[size_t(ib)].present();
-    if (!pa && !pb) {
-      report.skipped.push_back({tn, "absent in both (A: " + whyAbsent(fa, ia) + "; B: " + whyAbsent(fb, ib) + ")"});
-      continue;
+void compareGroup(const CompareSide& a, const CompareSide& b, const CompareMask* mask, GroupResult& r) {
+  const TargetImage& ta = a.f.images[a.q.target];
+  r.width = ta.image.width;
+  r.height = ta.image.height;
+  r.errors.assign(size_t(r.width) * r.height, 0.0f);
+  if (mask && (mask->empty() || mask->width != r.width || mask->height != r.height)) mask = nullptr;
+  const bool stored = sameStorage(a, b);
+  ErrorSums sums[3];  // by PixelSet
+  for (uint32_t y = 0; y < r.height; ++y)
+    for (uint32_t x = 0; x < r.width; ++x) {
+      const size_t i = size_t(y) * r.width + x;
+      ErrorSums px;
+      std::optional<double> e = pixelError(r.group.kind, a, b, stored, x + ta.x0, y + ta.y0, px);
+      if (!e) {
+        r.errors[i] = NAN;  // not compared (heat map: black; percentiles skip it)
+        continue;
+      }
+      r.errors[i] = float(*e);
+      px.compared = 1;
+      px.sumErr = px.maxErr = *e;
+      px.differing = *e > 0.0;
+      px.overWarn = *e > r.thresholds.warn;
+      px.overFail = *e > r.thresholds.fail;
+      sums[int(PixelSet::All)].add(px);
+      if (mask) sums[int(mask->bits[i] ? PixelSet::Masked : PixelSet::Unmasked)].add(px);
     }
-    if (pa != pb) {
-      // A frame made with the feature off (coverage, primitive ids, ...) has nothing to compare: the
-      // options differ (listed above), the targets both hold are still compared.
-      const std::string why = pa ? whyAbsent(fb, ib) : whyAbsent(fa, ia);
-      const bool featureOff = why.rfind("not computed", 0) == 0;
-      (featureOff ? report.skipped : report.mismatches).push_back({tn, std::string("only in ") + (pa ? "A" : "B") + " (" + why + ")"});
-      continue;
-    }
-    if (std::string why = targetMismatch(fa, ia, fb, ib); !why.empty()) {
-      report.mismatches.push_back({tn, why});
-      continue;
-    }
-    knownKeys.push_back(tn);
-    for (const ChannelGroup& g : channelGroups(fa.layout, uint32_t(ia))) {
-      knownKeys.push_back(g.key);
-      GroupResult r;
-      r.group = g;
-      r.target = tn;
-      r.thresholds = settings.resolve(tn, g.key);
-      compareGroup({fa, *fa.layout.findByName(g.group)}, {fb, *fb.layout.findByName(g.group)}, r);
-      worst = std::max(worst, r.verdict);
-      report.groups.push_back(std::move(r));
-    }
+  if (mask) {
+    r.figures = figuresOf(r, sums[int(PixelSet::Unmasked)], PixelSet::Unmasked, mask);
+    r.apart = {figuresOf(r, sums[int(PixelSet::Masked)], PixelSet::Masked, mask),
+               figuresOf(r, sums[int(PixelSet::All)], PixelSet::All, mask)};
+  } else {
+    r.figures = figuresOf(r, sums[int(PixelSet::All)], PixelSet::All, nullptr);
   }
-  // A key must name a target of either layout (or of gblens's own, so one threshold file serves
-  // several configurations); a key for a compared target must name it or one of its quantities.
-  for (auto& [key, params] : settings.byKey) {
-    if (key.empty()) continue;
-    const std::string target = key.substr(0, key.find('.'));
-    Target native;
-    if (std::find(knownTargets.begin(), knownTargets.end(), target) == knownTargets.end() && !parseTarget(target, native)) {
-      error = "threshold for \"" + key + "\": no target \"" + target + "\" in either capture";
-      return false;
-    }
-    if (std::find(knownKeys.begin(), knownKeys.end(), target) != knownKeys.end() &&
-        std::find(knownKeys.begin(), knownKeys.end(), key) == knownKeys.end()) {
-      error = "threshold for \"" + key + "\": no such group (groups:";
-      for (const GroupResult& g : report.groups) error += " " + g.group.key;
-      error += ")";
-      return false;
-    }
-  }
-  report.exitCode = report.mismatches.empty() ? int(worst) : kCompareMismatch;
-  return true;
+  const GroupFigures& d = r.figures;
+  r.verdict = decide(r.thresholds, d.pixels, d.overWarn, d.overFail, d.maxError);
+}
+
+const char* name(PixelSet s) {
+  static const char* n[] = {"all", "unmasked", "masked"};
+  return n[int(s)];
+}
+
+const GroupFigures* GroupResult::figuresOver(PixelSet s) const {
+  if (figures.covers == s) return &figures;
+  for (const GroupFigures& f : apart)
+    if (f.covers == s) return &f;
+  return nullptr;
 }
 
 }  // namespace gb

@@ -3,11 +3,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 
 #include "renderer/core/decode.h"
 #include "views/analysis/compare.h"
-#include "views/capture/image_io.h"
 
 namespace gb {
 
@@ -60,6 +58,13 @@ std::string fmt(double v) {
   return buf;
 }
 
+// A pool's figures and the pixels they cover, on one line.
+std::string poolText(const FlipPool& p, PixelSet covers) {
+  return "mean " + fmt(p.mean) + " weighted median " + fmt(p.weightedMedian) + " quartiles " + fmt(p.weightedQuartile1) +
+         ".." + fmt(p.weightedQuartile3) + " min " + fmt(p.min) + " max " + fmt(p.max) + " over " +
+         std::to_string(p.pixels) + " px (" + name(covers) + ")";
+}
+
 }  // namespace
 
 bool FlipSettings::add(const std::string& flag, const std::string& text, std::string& error) {
@@ -108,6 +113,15 @@ void compareFlip(const Capture& a, const Capture& b, const FlipSettings& setting
       r.errors = ldrFlip(ia, ib, r.ppd);
     }
     r.pool = poolFlip(r.errors);
+    if (const CompareMask& m = report.mask; !m.empty() && m.width == r.width && m.height == r.height) {
+      std::vector<uint8_t> unmasked(m.bits.size());
+      for (size_t i = 0; i < m.bits.size(); ++i) unmasked[i] = !m.bits[i];
+      r.masked = true;
+      r.covers = PixelSet::Unmasked;
+      r.allPool = r.pool;
+      r.pool = poolFlip(r.errors, m.bits);
+      r.maskedPool = poolFlip(r.errors, unmasked);
+    }
     r.fail = setting(settings.fail, t.name);
     r.warn = setting(settings.warn, t.name);
     r.verdict = decideFlip(r);
@@ -125,6 +139,7 @@ nlohmann::json flipJson(const FlipResult& r) {
   if (r.method == "hdr")
     j["exposures"] = {{"start", r.exposures.start}, {"stop", r.exposures.stop}, {"count", r.exposures.count},
                       {"tone_mapper", "aces"}};
+  j["covers"] = name(r.covers);
   j.update(poolJson(r.pool));
   j["histogram"] = {{"buckets", r.pool.histogram.size()}, {"range", {0.0, 1.0}},
                     {"weighting", "pixel count x bucket centre, per megapixel (2^20 pixels)"},
@@ -132,6 +147,8 @@ nlohmann::json flipJson(const FlipResult& r) {
   j["thresholds"] = {{"fail", r.fail ? nlohmann::json(*r.fail) : nlohmann::json(nullptr)},
                      {"warn", r.warn ? nlohmann::json(*r.warn) : nlohmann::json(nullptr)}, {"on", "mean"}};
   j["masked"] = r.masked ? poolJson(r.maskedPool) : nlohmann::json(nullptr);
+  j["all"] = r.masked ? poolJson(r.allPool) : nlohmann::json(nullptr);
+  if (r.masked) j["masked"]["covers"] = "masked", j["all"]["covers"] = "all";
   j["result"] = verdicts[int(r.verdict)];
   j["heatmap"] = r.heatmap.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.heatmap);
   return j;
@@ -144,25 +161,15 @@ std::string flipText(const FlipResult& r) {
   if (r.warn) thresholds += "; warn over " + fmt(*r.warn);
   std::string out = std::string(r.verdict == Verdict::Pass ? "PASS " : r.verdict == Verdict::Warn ? "WARN " : "FAIL ") +
                     " " + r.target + std::string(26 - std::min<size_t>(26, r.target.size()), ' ') + " " +
-                    (r.method == "hdr" ? "HDR-FLIP" : "LDR-FLIP") + " mean " + fmt(p.mean) + " weighted median " +
-                    fmt(p.weightedMedian) + " quartiles " + fmt(p.weightedQuartile1) + ".." +
-                    fmt(p.weightedQuartile3) + " min " + fmt(p.min) + " max " + fmt(p.max) + thresholds + "\n";
+                    (r.method == "hdr" ? "HDR-FLIP" : "LDR-FLIP") + " " + poolText(p, r.covers) + thresholds + "\n";
   if (r.method == "hdr")
     out += "      exposures " + fmt(r.exposures.start) + " to " + fmt(r.exposures.stop) + " in " +
            std::to_string(r.exposures.count) + " (ACES), " + fmt(r.ppd) + " pixels per degree\n";
-  if (r.masked && r.maskedPool.pixels)
-    out += "      masked apart: " + std::to_string(r.maskedPool.pixels) + " pixels, mean " + fmt(r.maskedPool.mean) +
-           " max " + fmt(r.maskedPool.max) + "\n";
+  if (r.masked) {
+    out += "      masked (deciding nothing): " + poolText(r.maskedPool, PixelSet::Masked) + "\n";
+    out += "      all (deciding nothing):    " + poolText(r.allPool, PixelSet::All) + "\n";
+  }
   return out;
-}
-
-bool writeFlipMap(FlipResult& r, const std::string& dir, std::string& error) {
-  Rgba8Image img{r.width, r.height, std::vector<uint8_t>(size_t(r.width) * r.height * 4, 255)};
-  for (size_t i = 0; i < r.errors.size(); ++i) magmaColor(r.errors[i], &img.pixels[i * 4]);
-  const std::string file = (std::filesystem::path(dir) / ("flip_" + r.target + ".png")).string();
-  if (!writePng(file, img, error)) return false;
-  r.heatmap = file;
-  return true;
 }
 
 }  // namespace gb

@@ -1,6 +1,6 @@
 // Compare masks (compare.h, CompareMask): silhouettes from primitive_id, the shadow penumbra band
-// from the stored shadow term, a user's mask image; and the decision over the unmasked pixels,
-// with the masked ones reported apart (Filament's imagediff masks; Skia Gold's edge filters).
+// from the stored shadow term, a user's mask image (Filament's imagediff masks; Skia Gold's edge
+// filters), and the mask as an image. compare() decides over the unmasked pixels.
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -113,53 +113,20 @@ bool buildCompareMask(const Capture& a, const Capture& b, const std::string& spe
   return true;
 }
 
-void applyCompareMask(CompareReport& report, const CompareMask& m) {
-  Verdict worst = Verdict::Pass;
-  for (GroupResult& g : report.groups) {
-    if (g.width == m.width && g.height == m.height && !g.errors.empty()) {
-      g.masked = true;
-      g.pixels = g.overWarn = g.overFail = g.maskedPixels = g.maskedOverFail = 0;
-      g.maxError = g.maskedMaxError = 0.0;
-      double sum = 0.0;
-      for (size_t i = 0; i < g.errors.size(); ++i) {
-        const double e = g.errors[i];
-        if (std::isnan(e)) continue;  // not compared
-        if (m.bits[i]) {
-          ++g.maskedPixels;
-          g.maskedOverFail += e > g.thresholds.fail;
-          g.maskedMaxError = std::max(g.maskedMaxError, e);
-          continue;
-        }
-        ++g.pixels;
-        sum += e;
-        g.maxError = std::max(g.maxError, e);
-        g.overWarn += e > g.thresholds.warn;
-        g.overFail += e > g.thresholds.fail;
-      }
-      g.meanError = sum / double(std::max<uint64_t>(g.pixels, 1));
-      g.verdict = decide(g.thresholds, g.pixels, g.overWarn, g.overFail, g.maxError);
-      // The headline maximum and mean follow the decision (the unmasked pixels); RMSE, PSNR and
-      // percentiles stay over every compared pixel.
-      for (const char* key : {"max_abs", "max_degrees"})
-        if (g.metrics.contains(key) && g.group.kind != MetricKind::Depth && g.group.kind != MetricKind::Position)
-          g.metrics[key] = g.maxError;
-      if (g.metrics.contains("mean_degrees")) g.metrics["mean_degrees"] = g.meanError;
-      g.metrics["masked"] = {{"pixels", g.maskedPixels}, {"over_fail", g.maskedOverFail}, {"max_error", g.maskedMaxError},
-                             {"unmasked_max_error", g.maxError}, {"unmasked_mean_error", g.meanError}};
-    }
-    worst = std::max(worst, g.verdict);
+uint64_t CompareMask::count() const {
+  return uint64_t(std::count_if(bits.begin(), bits.end(), [](uint8_t b) { return b != 0; }));
+}
+
+Rgba8Image maskImage(const CompareMask& m) {
+  Rgba8Image img{m.width, m.height, std::vector<uint8_t>(size_t(m.width) * m.height * 4, 0)};
+  for (size_t i = 0; i < m.bits.size(); ++i) {
+    uint8_t* p = &img.pixels[i * 4];
+    p[0] = m.bits[i] & kSilhouette ? 255 : 0;
+    p[1] = m.bits[i] & kPenumbra ? 255 : 0;
+    p[2] = m.bits[i] & kFile ? 255 : 0;
+    p[3] = 255;
   }
-  for (FlipResult& f : report.flips) {
-    if (f.width != m.width || f.height != m.height) continue;
-    std::vector<uint8_t> unmasked(m.bits.size());
-    for (size_t i = 0; i < m.bits.size(); ++i) unmasked[i] = !m.bits[i];
-    f.masked = true;
-    f.pool = poolFlip(f.errors, m.bits);
-    f.maskedPool = poolFlip(f.errors, unmasked);
-    f.verdict = decideFlip(f);
-    worst = std::max(worst, f.verdict);
-  }
-  if (report.exitCode != kCompareMismatch) report.exitCode = int(worst);
+  return img;
 }
 
 }  // namespace gb

@@ -1,7 +1,5 @@
 // Writing captures: EXRs, final.png, lights.json, then manifest.json with every file's size and
 // SHA-256, all in a temporary directory that is renamed into place only when complete.
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <ctime>
@@ -152,50 +150,14 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
 }
 
 bool writeCapture(const std::string& dirText, const FrameSnapshot& f, const CaptureMeta& meta, std::string& error) {
-  fs::path dir = fs::absolute(fs::path(dirText)).lexically_normal();
-  if (dir.filename().empty()) dir = dir.parent_path();
-  std::error_code ec;
-  if (fs::exists(dir, ec)) {
-    if (!fs::is_directory(dir, ec)) {
-      error = dirText + ": exists and is not a directory";
-      return false;
-    }
-    if (!fs::is_empty(dir, ec) && !fs::exists(dir / "manifest.json", ec)) {
-      error = dirText + ": exists, is not empty and holds no capture (manifest.json); not overwritten";
-      return false;
-    }
-  }
-  fs::path parent = dir.parent_path();
-  fs::create_directories(parent, ec);
-  std::string stamp = std::to_string(getpid()) + "-" +
-                      std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
-  fs::path tmp = parent / ("." + dir.filename().string() + ".partial-" + stamp);
-  if (!fs::create_directory(tmp, ec)) {
-    error = tmp.string() + ": cannot create (" + ec.message() + ")";
+  return replaceDirectory(dirText, "manifest.json", "capture", [&](const std::string& tmp, std::string& e) {
+    // The capture as the readers will read it, before it is moved into place: what they would refuse
+    // (a value JSON cannot hold, written as null; a name OpenEXR would merge) is not written at all.
+    if (writeContents(tmp, f, meta, e) && checkWrittenManifest(tmp, e)) return true;
+    if (e.rfind("manifest.json", 0) == 0 || e.rfind("lights.json", 0) == 0)
+      e = dirText + ": not written, it would not read back: " + e;
     return false;
-  }
-  // The capture as the readers will read it, before it is moved into place: what they would refuse
-  // (a value JSON cannot hold, written as null; a name OpenEXR would merge) is not written at all.
-  if (!writeContents(tmp, f, meta, error) || !checkWrittenManifest(tmp.string(), error)) {
-    if (error.rfind("manifest.json", 0) == 0 || error.rfind("lights.json", 0) == 0)
-      error = dirText + ": not written, it would not read back: " + error;
-    fs::remove_all(tmp, ec);
-    return false;
-  }
-  // Swap into place: an old capture moves aside first and is deleted only after the rename.
-  fs::path old = parent / ("." + dir.filename().string() + ".old-" + stamp);
-  bool hadOld = fs::exists(dir, ec);
-  if (hadOld) fs::rename(dir, old, ec);
-  if (!ec) fs::rename(tmp, dir, ec);
-  if (ec) {
-    error = dirText + ": cannot move the capture into place (" + ec.message() + ")";
-    std::error_code ignore;
-    if (hadOld && !fs::exists(dir, ignore)) fs::rename(old, dir, ignore);
-    fs::remove_all(tmp, ignore);
-    return false;
-  }
-  if (hadOld) fs::remove_all(old, ec);
-  return true;
+  }, error);
 }
 
 }  // namespace gb

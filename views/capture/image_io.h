@@ -20,4 +20,12 @@ bool writePng(const std::string& path, const Rgba8Image& image, std::string& err
 bool writeAtomically(const std::string& path, const std::string& suffix,
                      const std::function<bool(const std::string& tmpPath)>& write);
 
+// Writes a folder atomically: `write(tmp)` fills a fresh folder beside `dir`, which then takes its
+// place (an old one moves aside first and is deleted only after the rename). `dir` may be missing,
+// empty, or hold `marker` (a file only this kind of folder has: a capture's manifest.json); any
+// other folder is refused, never clobbered. `what` names the kind in messages ("capture").
+bool replaceDirectory(const std::string& dir, const std::string& marker, const std::string& what,
+                      const std::function<bool(const std::string& tmp, std::string& error)>& write,
+                      std::string& error);
+
 }  // namespace gb

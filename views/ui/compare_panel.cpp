@@ -81,22 +81,22 @@ KindColumns kindColumns(MetricKind k) {
     case MetricKind::Colour:
       return {{"max", "mean", "rmse", "PSNR dB"},
               [](const GroupResult& g) -> std::vector<std::string> {
-                return {g4(g.metrics, "max_abs"), g4(g.metrics, "mean_abs"), g4(g.metrics, "rmse"), g4(g.metrics, "psnr_db")};
+                return {g4(g.figures.metrics, "max_abs"), g4(g.figures.metrics, "mean_abs"), g4(g.figures.metrics, "rmse"), g4(g.figures.metrics, "psnr_db")};
               }};
     case MetricKind::Normal:
       return {{"max deg", "mean deg", "p99 deg"},
               [](const GroupResult& g) -> std::vector<std::string> {
-                return {g4(g.metrics, "max_degrees"), g4(g.metrics, "mean_degrees"), g4(g.metrics, "p99_degrees")};
+                return {g4(g.figures.metrics, "max_degrees"), g4(g.figures.metrics, "mean_degrees"), g4(g.figures.metrics, "p99_degrees")};
               }};
     case MetricKind::Depth:
     case MetricKind::Position:
       return {{"abs max", "abs mean", "rel max", "rel mean"},
               [](const GroupResult& g) -> std::vector<std::string> {
-                return {g4(g.metrics, "max_abs"), g4(g.metrics, "mean_abs"), g4(g.metrics, "max_rel"), g4(g.metrics, "mean_rel")};
+                return {g4(g.figures.metrics, "max_abs"), g4(g.figures.metrics, "mean_abs"), g4(g.figures.metrics, "max_rel"), g4(g.figures.metrics, "mean_rel")};
               }};
     case MetricKind::Exact:
       return {{"pixels differing"},
-              [](const GroupResult& g) -> std::vector<std::string> { return {g4(g.metrics, "differing_pixels")}; }};
+              [](const GroupResult& g) -> std::vector<std::string> { return {g4(g.figures.metrics, "differing_pixels")}; }};
   }
   return {};
 }
@@ -117,7 +117,7 @@ void groupTable(const CompareReport& r, MetricKind kind) {
     if (g.group.kind == kind) groups.push_back(&g);
   if (groups.empty()) return;
   const KindColumns cols = kindColumns(kind);
-  const bool masked = std::any_of(groups.begin(), groups.end(), [](const GroupResult* g) { return g->masked; });
+  const bool masked = std::any_of(groups.begin(), groups.end(), [](const GroupResult* g) { return g->figures.covers == PixelSet::Unmasked; });
   const int n = 2 + int(cols.headers.size()) + 2 + (masked ? 2 : 0);
   ImGui::TextDisabled("%s", name(kind));
   if (!ImGui::BeginTable(name(kind), n, kTableFlags, ImVec2(0, tableHeight(groups.size())))) return;
@@ -143,15 +143,16 @@ void groupTable(const CompareReport& r, MetricKind kind) {
       ImGui::TextUnformatted(v.c_str());
     }
     ImGui::TableNextColumn();
-    ImGui::Text("%.4g", 100.0 * double(g->overFail) / double(std::max<uint64_t>(g->pixels, 1)));
+    ImGui::Text("%.4g", 100.0 * double(g->figures.overFail) / double(std::max<uint64_t>(g->figures.pixels, 1)));
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("fail threshold %s", g4(g->thresholds.fail).c_str());
     ImGui::TableNextColumn();
-    ImGui::Text("%llu", (unsigned long long)g->pixels);
+    ImGui::Text("%llu", (unsigned long long)g->figures.pixels);
     if (masked) {
+      const GroupFigures* apart = g->figuresOver(PixelSet::Masked);
       ImGui::TableNextColumn();
-      ImGui::Text("%llu", (unsigned long long)g->maskedPixels);
+      ImGui::Text("%llu", (unsigned long long)(apart ? apart->pixels : 0));
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(g4(g->maskedMaxError).c_str());
+      ImGui::TextUnformatted(apart ? g4(apart->maxError).c_str() : "-");
     }
   }
   ImGui::EndTable();

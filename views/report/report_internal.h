@@ -1,0 +1,25 @@
+// The report writer's parts that live in their own files (report.h is the interface).
+#pragma once
+#include <string>
+
+#include "views/analysis/compare.h"
+#include "views/capture/capture.h"
+
+namespace gb {
+
+// The page's text, carried inside the binary (views/report/page.html and page.js, cmake/EmbedText.cmake).
+const char* reportPageHtml();
+const char* reportPageJs();
+
+// Writes `text` to `path` atomically (temporary file + rename); false with `error` naming the file.
+bool writeText(const std::string& path, const std::string& text, std::string& error);
+// data/<key>.js for one group (report_data.cpp).
+bool writeGroupData(const Capture& a, const Capture& b, const GroupResult& g, const std::string& file,
+                    std::string& error);
+// Everything of one pair's report into the existing folder `dir` (report_page.cpp).
+bool writeReportContents(const Capture& a, const Capture& b, const CompareReport& report, const std::string& dir,
+                         std::string& error);
+// index.html (the page, which reads report.js) and report.js calling gblensReport(`data`).
+bool writePage(const std::string& dir, const nlohmann::json& data, std::string& error);
+
+}  // namespace gb

@@ -1,0 +1,66 @@
+// One pair's report folder: index.html (the page, static), report.js (what it shows), report.json (the
+// same report as `compare --json`, file names relative to the folder), img/ (heat maps with legends,
+// FLIP maps, the mask) and data/ (per group, for the views and the hover readout).
+#include <filesystem>
+
+#include "renderer/core/assert.h"
+#include "views/report/report.h"
+#include "views/report/report_internal.h"
+
+namespace gb {
+
+namespace fs = std::filesystem;
+
+bool writePage(const std::string& dir, const nlohmann::json& data, std::string& error) {
+  std::string html = reportPageHtml();
+  const std::string slot = "/*gblens:page.js*/";
+  const size_t at = html.find(slot);
+  GB_ASSERT(at != std::string::npos);
+  html.replace(at, slot.size(), reportPageJs());
+  // The data as a script: a page opened from disk may load scripts beside it, not read files.
+  return writeText((fs::path(dir) / "report.js").string(), "gblensReport(" + data.dump() + ");\n", error) &&
+         writeText((fs::path(dir) / "index.html").string(), html, error);
+}
+
+bool writeReportContents(const Capture& a, const Capture& b, const CompareReport& report, const std::string& dir,
+                         std::string& error) {
+  std::error_code ec;
+  for (const char* sub : {"img", "data"})
+    if (fs::create_directories(fs::path(dir) / sub, ec); ec) {
+      error = dir + "/" + sub + ": cannot create (" + ec.message() + ")";
+      return false;
+    }
+  nlohmann::json j = report.json();
+  auto png = [&](const std::string& name, const Rgba8Image& img, nlohmann::json& field) {
+    if (name.empty()) error = "a group key cannot be a file name (use a-z, A-Z, 0-9, _, . and -)";
+    if (name.empty() || img.pixels.empty() || !writePng((fs::path(dir) / "img" / name).string(), img, error)) return false;
+    field = "img/" + name;
+    return true;
+  };
+  nlohmann::json groups = nlohmann::json::object();
+  for (size_t i = 0; i < report.groups.size(); ++i) {
+    const GroupResult& g = report.groups[i];
+    const std::string file = compareFileName(g.group.key, "");
+    if (!png(file + ".png", heatmapImage(g, error), j["groups"][i]["heatmap"])) return false;
+    if (!writeGroupData(a, b, g, (fs::path(dir) / "data" / (file + ".js")).string(), error)) return false;
+    groups[g.group.key] = {{"data", "data/" + file + ".js"}, {"heatmap", j["groups"][i]["heatmap"]}};
+  }
+  for (size_t i = 0; i < report.flips.size(); ++i) {
+    const FlipResult& f = report.flips[i];
+    if (!png("flip_" + f.target + ".png", flipMapImage(f, error), j["flip"][i]["heatmap"])) return false;
+    for (const GroupResult& g : report.groups)  // the FLIP map is shown with the target's group
+      if (g.target == f.target && groups.contains(g.group.key)) groups[g.group.key]["flip"] = j["flip"][i]["heatmap"];
+  }
+  if (!report.mask.empty() && !png("mask.png", maskImage(report.mask), j["mask"]["image"])) return false;
+  return writeText((fs::path(dir) / "report.json").string(), j.dump(2) + "\n", error) &&
+         writePage(dir, {{"kind", "pair"}, {"report", j}, {"groups", groups}}, error);
+}
+
+bool writeReport(const Capture& a, const Capture& b, const CompareReport& report, const std::string& dir,
+                 std::string& error) {
+  return replaceDirectory(dir, "report.js", "compare report", [&](const std::string& tmp, std::string& e) {
+    return writeReportContents(a, b, report, tmp, e);
+  }, error);
+}
+
+}  // namespace gb
