@@ -207,7 +207,11 @@ TEST(RenderDoc, MistakesGiveOneLineAndExitTwo) {
   std::ofstream(dir + "/junk.rdc") << "not a capture";
   RunResult junk = runGblens("import '" + dir + "/junk.rdc' --list");
   EXPECT_EQ(junk.exitCode, 2);
-  EXPECT_NE(junk.output.find("junk.rdc: RenderDoc cannot open it"), std::string::npos) << junk.output;
+  // RenderDoc refuses it, or (a few runs in a hundred, its start-up hangs in one of its own threads)
+  // the replay's time limit ends it: either way one line naming the file, exit 2, nothing waited for.
+  EXPECT_TRUE(junk.output.find("junk.rdc: RenderDoc cannot open it") != std::string::npos ||
+              junk.output.find("junk.rdc: RenderDoc's replay did not finish within") != std::string::npos)
+      << junk.output;
 
   // A replay that runs out of time is ended (with what it started) and named, not waited for: a
   // stand-in for Python that never finishes.

@@ -3,6 +3,9 @@
 // tangents, UVs, a camera and a light) by one edit the validator reports as that class. Each must be
 // refused with a message naming the element; undeclared extensions gblens does not draw only warn.
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
 
 #include <OpenImageIO/imageio.h>
 
@@ -27,13 +30,16 @@ void append(std::string& s, std::initializer_list<T> values) {
 }
 
 std::string png1x1() {
-  const char* path = "/tmp/gblens-rules-1x1.png";
+  // A file of this process's own: ctest runs the tests of this file in parallel processes.
+  const std::string path = "/tmp/gblens-rules-1x1-" + std::to_string(::getpid()) + ".png";
   const uint8_t rgba[4] = {200, 100, 50, 255};
   auto out = OIIO::ImageOutput::create(path);
   OIIO::ImageSpec spec(1, 1, 4, OIIO::TypeDesc::UINT8);
   out->open(path, spec), out->write_image(OIIO::TypeDesc::UINT8, rgba), out->close();
   std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), {});
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  std::remove(path.c_str());
+  return bytes;
 }
 
 // The buffer: positions (0..35), normals (36..71), tangents (72..119), UVs (120..143), indices (144..149).
