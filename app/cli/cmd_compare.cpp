@@ -1,8 +1,6 @@
 // gblens compare A B [-o DIFFDIR] [--json REPORT] [--report DIR] [--junit FILE] [--fail ...]: compares
 // two captures target by target (views/analysis/compare.h) with idiff's thresholds and exit codes, and
 // FLIP of final and hdr; --pairs LIST compares many pairs into one report (views/report/report.h).
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,12 +14,6 @@
 namespace gb {
 
 namespace {
-
-// Progress on stderr while it takes long enough to wonder (two 1080p captures: about 20 s here),
-// as import and decompose print theirs; only on a terminal, so scripts reading stderr see results.
-void progress(const std::string& text) {
-  if (isatty(2)) std::fprintf(stderr, "  .. %s\n", text.c_str());
-}
 
 // Two imports replayed on different drivers (or RenderDoc versions) may differ in texels the
 // application never changed: said before the figures, not after a user has chased them.
@@ -116,19 +108,14 @@ int runCompare(const CompareArgs& o) {
   }
   if (o.a.empty() || o.b.empty()) return usage("A B: two capture folders to compare (or --pairs LIST)");
   Capture a, b;
-  for (auto [cap, dir] : {std::pair{&a, &o.a}, {&b, &o.b}}) {
-    progress("reading " + *dir);
+  for (auto [cap, dir] : {std::pair{&a, &o.a}, {&b, &o.b}})
     if (!loadCapture(*dir, *cap, error)) return usage(error);
-  }
   const std::string drivers = replayDriverWarning(a, b);
   if (!drivers.empty()) std::fprintf(stderr, "gblens compare: warning: %s\n", drivers.c_str());
-  progress("comparing " + std::to_string(a.frame.layout.quantities.size()) + " quantities" +
-           (settings.flipOn ? " and FLIP of the colour views" : ""));
   CompareReport report;
   if (!compare(a, b, settings, report, error)) return usage(error);
   const int status = finish(o, report);
   if (status == kCompareFileError) return status;
-  if (!o.report.empty()) progress("writing the report to " + o.report);
   if (!o.report.empty() && !writeReport(a, b, report, o.report, error)) return usage(error);
   if (!o.junit.empty() && !writeJunit({{"", &report}}, o.junit, error)) return usage(error);
   return status;
