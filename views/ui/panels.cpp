@@ -83,6 +83,9 @@ static std::string helpText(const ViewerModel& m) {
   else if (m.source == FrameSource::Compare)
     text += "Compare: Space flips A and B in place; the Compare section picks A / B, swipe (drag the handle),\n"
             "|A - B| or FLIP, for every view shown";
+  else if (m.attach.on)
+    text += "Attached application: Space pauses the stream (the application runs on), C captures the frame shown;\n"
+            "closing the viewer detaches and lets the application run";
   if (m.source == FrameSource::Live) text += "\nEscape: cancel the reference error's computation";
   return text;
 }
