@@ -207,4 +207,30 @@ double standardDeviation(const std::vector<float>& v) {
   return std::sqrt(sq / std::max<size_t>(v.size(), 1));
 }
 
+bool Session::openDisplay(const std::filesystem::path& dir, int width, int height, std::string& error) {
+  dir_ = dir;
+  std::error_code ec;
+  std::filesystem::remove_all(dir_, ec);
+  std::filesystem::create_directories(dir_, ec);
+  if (ec) {
+    error = dir_.string() + ": " + ec.message();
+    return false;
+  }
+  return xvfb_.start(width, height, error);
+}
+
+void Session::closeDisplay() {
+  terminate(viewer_);
+  viewer_ = -1;
+  xvfb_.stop();
+}
+
+std::string Session::xdotool(const std::string& args) const {
+  return run("DISPLAY=" + xvfb_.display + " xdotool " + args + " 2>&1");
+}
+
+nlohmann::json Session::waitEvent(const std::function<bool(const nlohmann::json&)>& pred, double seconds) {
+  return waitForLine((dir_ / "events.jsonl").string(), seconds, pred, eventCursor_);
+}
+
 }  // namespace gb::gui

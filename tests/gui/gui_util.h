@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -33,6 +34,23 @@ struct Xvfb {
 // and moves `cursor` past it) or times out (null).
 nlohmann::json waitForLine(const std::string& file, double seconds, const std::function<bool(const nlohmann::json&)>& pred,
                            size_t& cursor);
+
+// What a GUI test fixture holds: its folder (events.jsonl, viewer.log, screenshots), its Xvfb, the
+// viewer it started and how far its event log was read. Fixtures inherit it (beside GpuTest where
+// they need a device), so every one drives the viewer the same way.
+struct Session {
+  std::filesystem::path dir_;
+  Xvfb xvfb_;
+  pid_t viewer_ = -1;
+  size_t eventCursor_ = 0;  // events before this line were consumed
+
+  // A fresh `dir` and an Xvfb screen of width x height.
+  bool openDisplay(const std::filesystem::path& dir, int width, int height, std::string& error);
+  void closeDisplay();  // the viewer terminated (if running), Xvfb stopped
+  std::string xdotool(const std::string& args) const;
+  // The next event of dir_/events.jsonl after those already waited for that `pred` accepts.
+  nlohmann::json waitEvent(const std::function<bool(const nlohmann::json&)>& pred, double seconds = 30.0);
+};
 
 struct Screenshot {
   int width = 0, height = 0;

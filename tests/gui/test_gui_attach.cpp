@@ -55,16 +55,16 @@ std::string readFile(const fs::path& p) {
 
 }  // namespace
 
-class GuiAttachTest : public ::testing::Test {
+class GuiAttachTest : public ::testing::Test, protected gui::Session {
  protected:
   void SetUp() override {
     if (!gui::haveTool("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
     for (const char* tool : {"xdotool", "xwd", "convert"}) ASSERT_TRUE(gui::haveTool(tool)) << tool << " is missing";
-    dir_ = fs::path(GBLENS_BUILD_DIR) / ("gui_attach_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     std::string error;
-    ASSERT_TRUE(xvfb_.start(1024, 640, error)) << error;
+    ASSERT_TRUE(openDisplay(fs::path(GBLENS_BUILD_DIR) /
+                                ("gui_attach_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name())),
+                            1024, 640, error))
+        << error;
     // The camera of frame 0 (the app's own dump) as the sidecar: the views and texels do not use it.
     int status = 0;
     gui::run(std::string("'") + FOREIGN_DEFERRED_BINARY + "' --frames 1 --dump '" + (dir_ / "dump0").string() + "' 2>&1", &status);
@@ -74,9 +74,8 @@ class GuiAttachTest : public ::testing::Test {
     std::ofstream(dir_ / "live.json") << liveLayout((dir_ / "camera.json").string()).dump(2);
   }
   void TearDown() override {
-    gui::terminate(viewer_);
+    closeDisplay();
     if (app_ > 0) kill(app_, SIGKILL);  // the application ran on after the viewer closed
-    xvfb_.stop();
   }
   // gblens attach in dir_ (the capture button writes into the working directory).
   void startViewer(const std::string& appArgs) {
@@ -100,10 +99,6 @@ class GuiAttachTest : public ::testing::Test {
     wid_ = wid_.substr(0, wid_.find('\n'));
     ASSERT_FALSE(wid_.empty());
   }
-  std::string xdotool(const std::string& args) { return gui::run("DISPLAY=" + xvfb_.display + " xdotool " + args + " 2>&1"); }
-  json waitEvent(const std::function<bool(const json&)>& pred, double seconds = 30.0) {
-    return gui::waitForLine((dir_ / "events.jsonl").string(), seconds, pred, cursor_);
-  }
   // Every event line so far.
   std::vector<json> events() {
     std::vector<json> out;
@@ -113,11 +108,8 @@ class GuiAttachTest : public ::testing::Test {
     return out;
   }
 
-  fs::path dir_;
-  gui::Xvfb xvfb_;
-  pid_t viewer_ = -1, app_ = -1;
+  pid_t app_ = -1;
   std::string wid_;
-  size_t cursor_ = 0;
 };
 
 TEST_F(GuiAttachTest, TheStreamShowsTheLayoutsViewsPausesAndCapturesTheAppsOwnTexels) {
@@ -151,7 +143,7 @@ TEST_F(GuiAttachTest, TheStreamShowsTheLayoutsViewsPausesAndCapturesTheAppsOwnTe
   const uint64_t frozen = paused["app_frame"];
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   const std::vector<json> all = events();
-  for (size_t i = cursor_; i < all.size(); ++i) EXPECT_NE(all[i]["event"], "attach_frame") << "a frame was taken while paused";
+  for (size_t i = eventCursor_; i < all.size(); ++i) EXPECT_NE(all[i]["event"], "attach_frame") << "a frame was taken while paused";
   EXPECT_EQ(kill(app_, 0), 0) << "the application stopped while the viewer was paused";
 
   // The app's own read-back of that frame: the same run without any layer, ending at that frame.

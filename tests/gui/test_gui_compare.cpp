@@ -19,21 +19,19 @@ namespace gb {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-class GuiCompareTest : public GpuTest {
+class GuiCompareTest : public GpuTest, protected gui::Session {
  protected:
   void SetUp() override {
     if (!gui::haveTool("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
     for (const char* tool : {"xdotool", "xwd", "convert"}) ASSERT_TRUE(gui::haveTool(tool)) << tool << " is missing";
     GpuTest::SetUp();
-    dir_ = fs::path(GBLENS_BUILD_DIR) / "gui_test" / ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     std::string error;
-    ASSERT_TRUE(xvfb_.start(1280, 720, error)) << error;
+    ASSERT_TRUE(openDisplay(fs::path(GBLENS_BUILD_DIR) / "gui_test" / ::testing::UnitTest::GetInstance()->current_test_info()->name(),
+                            1280, 720, error))
+        << error;
   }
   void TearDown() override {
-    gui::terminate(viewer_);
-    xvfb_.stop();
+    closeDisplay();
     if (!IsSkipped()) GpuTest::TearDown();
   }
 
@@ -60,11 +58,6 @@ class GuiCompareTest : public GpuTest {
     viewer_ = -1;
     EXPECT_EQ(status, 0) << "validation messages or a failure; see " << (dir_ / "viewer.log");
   }
-  std::string xdotool(const std::string& args) { return gui::run("DISPLAY=" + xvfb_.display + " xdotool " + args + " 2>&1"); }
-  // The next event after those already waited for that `pred` accepts.
-  json waitEvent(const std::function<bool(const json&)>& pred, double seconds = 30.0) {
-    return gui::waitForLine((dir_ / "events.jsonl").string(), seconds, pred, eventCursor_);
-  }
   // The first event of the whole log that `pred` accepts (whenever it came).
   json findEvent(const std::function<bool(const json&)>& pred, double seconds = 30.0) {
     size_t cursor = 0;
@@ -80,12 +73,8 @@ class GuiCompareTest : public GpuTest {
     return out;
   }
 
-  fs::path dir_;
-  gui::Xvfb xvfb_;
-  pid_t viewer_ = -1;
   std::string wid_;
   json firstLayout_;
-  size_t eventCursor_ = 0;
 };
 
 namespace {

@@ -34,30 +34,15 @@ std::string readBytes(const std::string& path) {
 
 }  // namespace
 
-class ForeignGui : public ::testing::Test {
+class ForeignGui : public ::testing::Test, protected gui::Session {
  protected:
   void SetUp() override {
     if (!gui::haveTool("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
     for (const char* tool : {"xdotool", "xwd", "convert"}) ASSERT_TRUE(gui::haveTool(tool)) << tool << " is missing";
-    dir_ = fs::path(GBLENS_BUILD_DIR) / "gui_foreign_test";
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     std::string error;
-    ASSERT_TRUE(xvfb_.start(1280, 720, error)) << error;
+    ASSERT_TRUE(openDisplay(fs::path(GBLENS_BUILD_DIR) / "gui_foreign_test", 1280, 720, error)) << error;
   }
-  void TearDown() override {
-    gui::terminate(viewer_);
-    xvfb_.stop();
-  }
-  std::string xdotool(const std::string& args) { return gui::run("DISPLAY=" + xvfb_.display + " xdotool " + args + " 2>&1"); }
-  nlohmann::json waitEvent(const std::function<bool(const nlohmann::json&)>& pred, double seconds = 30.0) {
-    return gui::waitForLine((dir_ / "events.jsonl").string(), seconds, pred, eventCursor_);
-  }
-
-  fs::path dir_;
-  gui::Xvfb xvfb_;
-  pid_t viewer_ = -1;
-  size_t eventCursor_ = 0;
+  void TearDown() override { closeDisplay(); }
 };
 
 TEST_F(ForeignGui, TheGridIsTheLayoutsQuantitiesAndHoverShowsTheStoredTexels) {
