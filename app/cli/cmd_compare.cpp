@@ -16,26 +16,17 @@ namespace gb {
 namespace {
 
 // Two imports replayed on different drivers (or RenderDoc versions) may differ in texels the
-// application never changed: said before the figures, not after a user has chased them.
-std::string replayDriverWarning(const Capture& a, const Capture& b) {
-  auto replay = [](const Capture& c) -> nlohmann::json {
-    if (!c.manifest.contains("source") || !c.manifest["source"].is_object()) return nullptr;
-    const nlohmann::json& r = c.manifest["source"].value("replay", nlohmann::json());
-    return r.is_object() ? r : nlohmann::json();
-  };
-  const nlohmann::json ra = replay(a), rb = replay(b);
-  if (ra.is_null() || rb.is_null()) return "";
-  auto text = [](const nlohmann::json& r) {
-    return r.value("device", std::string("?")) + " (RenderDoc " + r.value("renderdoc", std::string("?")) + ")";
-  };
-  if (ra.value("device", "") == rb.value("device", "") && ra.value("renderdoc", "") == rb.value("renderdoc", "")) return "";
-  return a.dir + " was replayed on " + text(ra) + ", " + b.dir + " on " + text(rb) +
-         ": differences may come from the replay drivers, not the application";
+// application never changed: said apart, not left for a user to find among the manifest fields.
+void warnOfReplays(const CompareReport& report) {
+  std::string fields;
+  for (const nlohmann::json& d : report.differences)
+    if (d["name"].get<std::string>().rfind("source.replay.", 0) == 0)
+      fields += (fields.empty() ? "" : ", ") + d["name"].get<std::string>() + " " + d["a"].dump() + " in A, " + d["b"].dump() + " in B";
+  if (!fields.empty())
+    std::fprintf(stderr, "gblens compare: warning: the captures were replayed differently (%s): differences may come from "
+                 "the replay drivers, not the application\n", fields.c_str());
 }
 
-}  // namespace
-
-namespace {
 struct CompareArgs {
   std::string a, b, diffDir, json, mask, report, junit, pairs, flip = "on";
   std::vector<std::string> fail, failPercent, hardFail, warn, warnPercent, failFlip, warnFlip, exclude;
@@ -110,10 +101,9 @@ int runCompare(const CompareArgs& o) {
   Capture a, b;
   for (auto [cap, dir] : {std::pair{&a, &o.a}, {&b, &o.b}})
     if (!loadCapture(*dir, *cap, error)) return usage(error);
-  const std::string drivers = replayDriverWarning(a, b);
-  if (!drivers.empty()) std::fprintf(stderr, "gblens compare: warning: %s\n", drivers.c_str());
   CompareReport report;
   if (!compare(a, b, settings, report, error)) return usage(error);
+  warnOfReplays(report);
   const int status = finish(o, report);
   if (status == kCompareFileError) return status;
   if (!o.report.empty() && !writeReport(a, b, report, o.report, error)) return usage(error);

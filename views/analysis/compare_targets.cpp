@@ -12,10 +12,10 @@ namespace gb {
 namespace {
 
 // Manifest fields whose difference a reader should know about: every option, the scene, the
-// lights, the device and the build.
+// lights, the device and the build, and for imports where they were recorded and replayed.
 void manifestDifferences(const nlohmann::json& a, const nlohmann::json& b, nlohmann::json& out) {
   nlohmann::json fa = nlohmann::json::object(), fb = nlohmann::json::object();
-  for (const char* key : {"options", "scene", "device", "driver", "gblens", "lights", "sun"}) {
+  for (const char* key : {"options", "scene", "device", "driver", "gblens", "lights", "sun", "source"}) {
     fa[key] = a.is_object() ? a.value(key, nlohmann::json()) : nlohmann::json();
     fb[key] = b.is_object() ? b.value(key, nlohmann::json()) : nlohmann::json();
   }
