@@ -56,7 +56,10 @@ class GuiImportTest : public GpuTest, protected gui::Session {
     for (const char* tool : {"xdotool", "xwd", "convert"}) ASSERT_TRUE(gui::haveTool(tool)) << tool << " is missing";
     GpuTest::SetUp();
     std::string error;
-    ASSERT_TRUE(openDisplay(fs::path(GBLENS_BUILD_DIR) / "gui_import_test", 1280, 720, error)) << error;
+    // A folder per test: ctest runs this fixture's tests in parallel.
+    ASSERT_TRUE(openDisplay(fs::path(GBLENS_BUILD_DIR) / "gui_import_test" / ::testing::UnitTest::GetInstance()->current_test_info()->name(),
+                            1280, 720, error))
+        << error;
   }
   void TearDown() override {
     closeDisplay();
