@@ -1,20 +1,23 @@
 // gblens attach: another running Vulkan application's G-buffer, streamed by the gblens layer.
 //   gblens attach --layout L.json --capture-frame N -o DIR [--every E] [--stats] -- APP ARGS...
 //   gblens attach --layout L.json --frames K [--every E] [--stats] -- APP ARGS...
-//   gblens attach --suggest -- APP ARGS...
+//   gblens attach --suggest [-o DRAFT.json] -- APP ARGS...   (the viewer on a drafted layout, or the draft)
 //   gblens attach --layout L.json [--suggest] [--every E] -- APP ARGS...   (the viewer on the stream)
 // Headless, the application is started with the layer, runs to its own end (the layer detaches), and
 // the command exits 0 when it got what it was asked for, 2 when nothing matched the layout (with why).
 // With a layout and none of --capture-frame, --frames: the viewer opens on the stream's first frame;
-// closing it detaches and the application runs on. docs/attach.md.
+// closing it detaches and the application runs on. --suggest without a layout drafts one from what
+// the application draws (views/capture/live_suggest.cpp) and streams under it. docs/attach.md.
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 
 #include "app/cli/cli.h"
 #include "app/viewer/viewer.h"
 #include "views/capture/capture.h"
+#include "views/capture/image_io.h"
 #include "views/capture/live.h"
 
 namespace gb {
@@ -82,15 +85,16 @@ int writeFrame(const AttachOptions& o, const LiveSession& s, const FrameSnapshot
   return 0;
 }
 
-// The viewer on the stream: the window opens on the first frame (nothing to show before it); closing
-// it detaches, and the application runs on.
-int runViewerOnStream(const AttachOptions& o, LiveSession& s) {
+// The viewer on the stream: the window opens on the first frame (nothing to show before it; with
+// `suggested`, its first frame came already); closing it detaches, and the application runs on.
+int runViewerOnStream(const AttachOptions& o, LiveSession& s, const LiveSuggestion* suggested = nullptr) {
   FrameSnapshot first;
   LiveFrameInfo info;
-  std::fprintf(stderr, "gblens attach: waiting for the first frame of %s\n", o.app[0].c_str());
+  if (suggested) first = suggested->frame, info = suggested->info;
+  else std::fprintf(stderr, "gblens attach: waiting for the first frame of %s\n", o.app[0].c_str());
   const auto start = std::chrono::steady_clock::now();
   std::string why;
-  while (!s.wait(first, 0.2, &info)) {
+  while (!suggested && !s.wait(first, 0.2, &info)) {
     printReports(s);
     if (s.noMatch())
       why = "nothing matched the layout in the application's first frames (the layer's reports above say why)";
@@ -117,6 +121,11 @@ int runViewerOnStream(const AttachOptions& o, LiveSession& s) {
   a.attach = &s;
   a.attachFirst = &first;
   a.attachFirstInfo = info;
+  if (suggested) {
+    a.attachPasses = suggested->passes;
+    for (const std::string& line : suggested->summary) a.attachPasses += "\n" + line;
+    a.attachDraft = suggested->draft;
+  }
   const int status = runViewer(a, Scene{});
   s.detach();
   printReports(s);
@@ -127,14 +136,58 @@ int runViewerOnStream(const AttachOptions& o, LiveSession& s) {
   return status;
 }
 
+// Where a window can open (GLFW's X11 and Wayland back ends look for these).
+bool haveDisplay() {
+  const char* x = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  return (x && *x) || (wayland && *wayland);
+}
+
+// --suggest without --layout: the draft refined with a streamed frame, then the viewer on the stream
+// under it, or (-o, or no display) the draft written to -o or stdout and the passes on stderr.
+int runSuggestLive(const AttachOptions& o, const LiveOptions& lo) {
+  const bool viewer = o.output.empty() && haveDisplay();
+  LiveSession s;
+  LiveSuggestion suggested;
+  std::string error;
+  const bool ok = suggestLive(lo, o.timeout, s, suggested,
+                              [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); }, error);
+  for (const std::string& r : suggested.reports) std::fprintf(stderr, "gblens attach: %s\n", r.c_str());
+  if (!suggested.passes.empty()) std::fputs(suggested.passes.c_str(), stderr);
+  if (!ok) return fail(error);
+  for (const std::string& line : suggested.summary) std::fprintf(stderr, "  %s\n", line.c_str());
+  if (viewer) return runViewerOnStream(o, s, &suggested);
+  const std::string text = suggested.draft.dump(2) + "\n";
+  s.detach();
+  if (o.output.empty()) {
+    std::fputs(text.c_str(), stdout);
+  } else if (!writeAtomically(o.output, ".tmp", [&](const std::string& tmp) {
+               std::FILE* f = std::fopen(tmp.c_str(), "wb");
+               const bool written = f && std::fwrite(text.data(), 1, text.size(), f) == text.size();
+               return (f ? std::fclose(f) == 0 : false) && written;
+             })) {
+    return fail(o.output + ": cannot write the draft");
+  }
+  std::fprintf(stderr, "gblens attach: draft%s%s; check every \"guess\", then: gblens attach --layout %s -- %s\n",
+               o.output.empty() ? " on stdout" : " written to ", o.output.c_str(),
+               o.output.empty() ? "DRAFT.json" : o.output.c_str(), appText(o).c_str());
+  const int app = s.waitApplication();
+  if (app != 0) std::fprintf(stderr, "gblens attach: %s exited with status %d\n", o.app[0].c_str(), app);
+  return 0;
+}
+
 int runAttach(const AttachOptions& o) {
-  const bool viewer = !o.captureFrame && !o.frames && !(o.suggest && o.layout.empty());
+  const bool draft = o.suggest && o.layout.empty();  // --suggest drafting the layout (runSuggestLive)
+  const bool viewer = !o.captureFrame && !o.frames && !draft;
   if (viewer && o.layout.empty())
-    return fail("--layout: required for the viewer (a layout file, docs/layout-format.md, or builtin:NAME); --suggest "
-                "alone prints the render passes");
-  if (!viewer && (!o.eventLog.empty() || o.paused)) return fail("--event-log and --paused are the viewer's");
+    return fail("--layout: required for the viewer (a layout file, docs/layout-format.md, or builtin:NAME), or --suggest "
+                "to draft one");
+  if (!viewer && !(draft && o.output.empty()) && (!o.eventLog.empty() || o.paused))
+    return fail("--event-log and --paused are the viewer's");
+  if (draft && (o.captureFrame || o.frames)) return fail("--suggest: drafts a layout; --capture-frame and --frames need --layout");
   if (o.captureFrame && o.output.empty()) return fail("-o: required with --capture-frame (the capture folder to write)");
-  if (!o.captureFrame && !o.output.empty()) return fail("-o: writes the frame --capture-frame names");
+  if (!o.captureFrame && !draft && !o.output.empty())
+    return fail("-o: writes the frame --capture-frame names, or the layout --suggest drafts");
   if ((o.captureFrame || o.frames) && o.layout.empty())
     return fail("--layout: required (a layout file, docs/layout-format.md, or builtin:NAME)");
   LiveOptions lo;
@@ -145,6 +198,7 @@ int runAttach(const AttachOptions& o) {
   lo.suggest = o.suggest;
   std::string error;
   if (!parseLayoutParameters(o.params, lo.options, error)) return fail(error);
+  if (draft) return runSuggestLive(o, lo);
   LiveSession s;
   if (!s.start(lo, error)) return fail(error);
   if (viewer) return runViewerOnStream(o, s);
@@ -166,22 +220,12 @@ int runAttach(const AttachOptions& o) {
       status = 0;
       break;
     }
-    if (o.suggest && s.suggestion()) {
-      std::fputs(describeLivePasses(s.hello(), *s.suggestion()).c_str(), stdout);
-      std::vector<std::string> summary;
-      const nlohmann::json draft = draftLiveLayout(*s.suggestion(), summary);
-      for (const std::string& line : summary) std::printf("%s\n", line.c_str());
-      std::printf("draft layout (check every \"guess\"):\n%s\n", draft.dump(2).c_str());
-      status = 0;
-      break;
-    }
     if (s.noMatch()) {
       why = "nothing matched the layout in the application's first frames (the layer's reports above say why)";
       break;
     }
     if (!s.running() && !s.attached()) {
       why = s.hello().is_null() ? "the application ended without creating a Vulkan device under the layer"
-            : o.suggest         ? "the application ended before submitting a render pass"
                                 : "the application ended after " + std::to_string(s.counts().received) +
                                       " streamed frame(s), before the one asked for";
       break;
@@ -212,11 +256,13 @@ Command addAttachCommand(CLI::App& root) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_option("--capture-frame", o->captureFrame, "write the Nth streamed frame (1: the first) as a capture, then detach")
       ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));
-  cmd->add_option("-o,--output", o->output, "the capture folder --capture-frame writes (atomically)");
+  cmd->add_option("-o,--output", o->output, "the capture folder --capture-frame writes (atomically); --suggest: the draft layout's file");
   cmd->add_option("--frames", o->frames, "receive and decode K streamed frames, write nothing (with --stats: the costs)")
       ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));
   cmd->add_option("--every", o->every, "stream every Nth frame of the application")->check(CLI::Range(1u, 100000u))->capture_default_str();
-  cmd->add_flag("--suggest", o->suggest, "print the render passes and attachments the layer sees in one frame");
+  cmd->add_flag("--suggest", o->suggest,
+                "without --layout: draft a layout from the render passes and texels the layer sees and stream under it "
+                "(the viewer; -o or no display: write the draft); with --layout: show the passes beside the stream");
   cmd->add_flag("--stats", o->stats, "print the layer's costs (frame time, memory, drops, latency) as JSON");
   cmd->add_option("--timeout", o->timeout, "give up when no frame came within this many seconds")->capture_default_str();
   cmd->add_option("--window", o->window, "the viewer's window size WxH")->capture_default_str();

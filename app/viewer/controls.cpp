@@ -22,6 +22,7 @@ void handleKeys(Viewer& v) {
     bool ctrl = k & 0x10000;
     int key = k & 0xFFFF;
     if (ctrl && key == GLFW_KEY_Q) glfwSetWindowShouldClose(v.window, 1);
+    if (ctrl && key == GLFW_KEY_S && !m.attach.draft.empty()) m.attach.saveDraftRequested = true;  // attach --suggest's draft
     if (ctrl) continue;
     if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) applyViewKey(m, key - GLFW_KEY_0);
     if (key >= GLFW_KEY_KP_0 && key <= GLFW_KEY_KP_9) applyViewKey(m, key - GLFW_KEY_KP_0);

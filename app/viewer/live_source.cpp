@@ -12,6 +12,7 @@
 #include "renderer/core/decode.h"
 #include "views/analysis/probe.h"
 #include "views/analysis/visualize.h"
+#include "views/capture/image_io.h"
 
 namespace gb {
 
@@ -128,6 +129,12 @@ void openAttached(Viewer& v) {
   m.captureHint = "Writes the frame shown (paused: the frozen one) as a gblens capture to ./gblens-attach-<date>-<time>/\n"
                   "(the format gblens import and attach --capture-frame write; key C)";
   m.attach.status = statusText(v);
+  if (!v.args.attachDraft.is_null()) {  // attach --suggest without a layout: the stream's layout is this draft
+    m.attach.passes = v.args.attachPasses;
+    m.attach.draft = v.args.attachDraft.dump(2);
+    m.attach.draftStreamed = true;
+    logLine(v.eventLog, {{"event", "attach_suggestion"}, {"draft", v.args.attachDraft}, {"streamed", true}});
+  }
   v.frameValid = true;
   v.attachPlaying = m.playing;
   logLine(v.eventLog, {{"event", "attach_open"}, {"pid", s.pid()}, {"hello", s.hello()}});
@@ -159,6 +166,13 @@ bool pollAttached(Viewer& v) {
     m.attach.reports.push_back(std::move(r));
     changed = true;
   }
+  if (m.attach.saveDraftRequested) {
+    m.attach.saveDraftRequested = false;
+    std::string path, error;
+    m.attach.draftStatus = saveAttachedDraft(m.attach.draft, path, error) ? "saved " + path : "not saved: " + error;
+    logLine(v.eventLog, {{"event", "draft_saved"}, {"status", m.attach.draftStatus}, {"path", path}});
+    changed = true;
+  }
   if (m.attach.passes.empty() && s.suggestion()) {
     m.attach.passes = describeLivePasses(s.hello(), *s.suggestion());
     std::vector<std::string> summary;
@@ -182,13 +196,32 @@ bool pollAttached(Viewer& v) {
   return changed;
 }
 
-bool captureAttachedFrame(Viewer& v, std::string& written, std::string& error) {
+// A name in the working directory no file has yet: PREFIX<date>-<time>[-n]SUFFIX.
+static std::string freshName(const std::string& prefix, const std::string& suffix) {
   char stamp[32];
   std::time_t now = std::time(nullptr);
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
-  written = std::string("gblens-attach-") + stamp;
-  for (int n = 2; std::filesystem::exists(written); ++n)  // two captures in one second
-    written = std::string("gblens-attach-") + stamp + "-" + std::to_string(n);
+  std::string name = prefix + stamp + suffix;
+  for (int n = 2; std::filesystem::exists(name); ++n)  // two in one second
+    name = prefix + stamp + "-" + std::to_string(n) + suffix;
+  return name;
+}
+
+bool saveAttachedDraft(const std::string& draft, std::string& written, std::string& error) {
+  written = freshName("gblens-layout-", ".json");
+  const std::string text = draft + "\n";
+  if (writeAtomically(written, ".tmp", [&](const std::string& tmp) {
+        std::FILE* f = std::fopen(tmp.c_str(), "wb");
+        const bool ok = f && std::fwrite(text.data(), 1, text.size(), f) == text.size();
+        return (f ? std::fclose(f) == 0 : false) && ok;
+      }))
+    return true;
+  error = written + ": cannot write it";
+  return false;
+}
+
+bool captureAttachedFrame(Viewer& v, std::string& written, std::string& error) {
+  written = freshName("gblens-attach-", "");
   const LiveSession& s = *v.args.attach;
   CaptureMeta meta;
   meta.device = s.hello().value("device", "");

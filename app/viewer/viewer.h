@@ -52,6 +52,10 @@ struct ViewerArgs {
   LiveSession* attach = nullptr;
   const FrameSnapshot* attachFirst = nullptr;
   LiveFrameInfo attachFirstInfo;
+  // attach --suggest without a layout: the layer's passes and what was found, and the drafted layout
+  // the stream is decoded with (the suggestion window shows them; ctrl+S saves the draft).
+  std::string attachPasses;
+  nlohmann::json attachDraft;
 };
 
 // The camera the viewer renders: starts as an exact copy of a scene camera; moving it derives
@@ -270,6 +274,8 @@ void openAttached(Viewer& v);
 bool pollAttached(Viewer& v);
 // Writes the frame shown as a capture (the folder ./gblens-attach-<date>-<time>/).
 bool captureAttachedFrame(Viewer& v, std::string& written, std::string& error);
+// Writes attach --suggest's draft layout (./gblens-layout-<date>-<time>.json, atomically).
+bool saveAttachedDraft(const std::string& draft, std::string& written, std::string& error);
 // The views of capture A's layout decoded and uploaded again (captures.cpp; a new frame of a stream).
 void setCaptureViews(Viewer& v);
 

@@ -173,6 +173,17 @@ TEST(Attach, UsageMistakes) {
   RunResult noApp = runGblens("attach --layout builtin:gblens --capture-frame 1 -o " + dir + "/x -- /no/such/app");
   EXPECT_EQ(noApp.exitCode, 2);
   EXPECT_NE(noApp.output.find("/no/such/app: cannot start it"), std::string::npos) << noApp.output;
+  // --suggest drafts the layout --capture-frame would need; an application without Vulkan leaves nothing to draft
+  // from, and the draft's file is not written.
+  RunResult both = runGblens("attach --suggest --capture-frame 1 -o " + dir + "/x -- true");
+  EXPECT_EQ(both.exitCode, 2);
+  EXPECT_NE(both.output.find("--suggest: drafts a layout; --capture-frame and --frames need --layout"), std::string::npos)
+      << both.output;
+  RunResult nothing = runGblens("attach --suggest -o " + dir + "/draft.json -- true");
+  EXPECT_EQ(nothing.exitCode, 2);
+  EXPECT_NE(nothing.output.find("the application ended without creating a Vulkan device under the layer"), std::string::npos)
+      << nothing.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/draft.json"));
 }
 
 }  // namespace

@@ -4,8 +4,11 @@
 // the frame RenderDoc captured (the foreign_captures fixture: frame 2 of 3), every target equal bit
 // for bit to the same .rdc imported with layout.json; the camera (a sidecar of the app's own dump
 // of that frame, its uniform buffer having no name) equals the one import read from the buffer.
+// attach --suggest with no layout drafts what import --suggest-layout drafts from that .rdc, and the
+// draft streams each attachment the app dumps itself.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -74,6 +77,84 @@ TEST(ForeignAttach, StreamsWhatRenderDocCaptured) {
   EXPECT_TRUE(differ.empty()) << differ.front();
   EXPECT_TRUE(a.frame.camera.eyeFromWorld == b.frame.camera.eyeFromWorld);
   EXPECT_TRUE(a.frame.camera.clipFromEye == b.frame.camera.clipFromEye);
+}
+
+// The quantity fields a guess is made of.
+json guessed(const json& q) {
+  json g = {{"quantity", q["quantity"]}, {"name", q["name"]}, {"channels", q["channels"]}};
+  for (const char* field : {"encoding", "space"})
+    if (q.contains(field)) g[field] = q[field];
+  return g;
+}
+
+std::string readBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// attach --suggest with no layout drafts, from the live attachments and one streamed frame's texels,
+// what import --suggest-layout drafts from the RenderDoc capture of the same application (apart from
+// what only a camera tells: the live draft has none, and shows those channels as stored); streamed
+// under that draft, every target is the attachment the application itself dumps for that frame.
+TEST(ForeignAttach, SuggestDraftsWhatImportDraftsAndItsTargetsAreTheAppsAttachments) {
+  const std::string dir = freshDir("attach_foreign_suggest");
+  RunResult suggested = runShell("cd '" + dir + "' && DISPLAY= WAYLAND_DISPLAY= GBLENS_VALIDATE=1 '" + GBLENS_BINARY +
+                                 "' attach --suggest -o draft.json -- '" + FOREIGN_DEFERRED_BINARY + "' --frames 30");
+  ASSERT_EQ(suggested.exitCode, 0) << suggested.output;
+  EXPECT_NE(suggested.output.find("passes       4"), std::string::npos) << suggested.output;  // the layer's report
+  RunResult imported = runGblens("import '" + kOut + "/foreign.rdc' --suggest-layout -o " + dir + "/rdc_draft.json");
+  ASSERT_EQ(imported.exitCode, 0) << imported.output;
+  const json live = json::parse(std::ifstream(dir + "/draft.json")), rdc = json::parse(std::ifstream(dir + "/rdc_draft.json"));
+  ASSERT_EQ(live["targets"].size(), rdc["targets"].size());
+  for (size_t t = 0; t < rdc["targets"].size(); ++t) {
+    const json &a = live["targets"][t], &b = rdc["targets"][t];
+    SCOPED_TRACE("target " + b["name"].get<std::string>());
+    EXPECT_EQ(a["name"], b["name"]);
+    EXPECT_EQ(a["format"], b["format"]);
+    ASSERT_EQ(a["quantities"].size(), b["quantities"].size());
+    for (size_t q = 0; q < b["quantities"].size(); ++q) {
+      const json &qa = a["quantities"][q], &qb = b["quantities"][q];
+      const bool fromCamera = qb["quantity"] == "depth" || qb.value("space", "") == "world";
+      if (!fromCamera) {
+        EXPECT_EQ(guessed(qa), guessed(qb));
+      } else {  // the same channels, as stored; a kind that cannot be held without a camera says so
+        EXPECT_EQ(qa["channels"], qb["channels"]);
+        EXPECT_TRUE(qa["quantity"] == "scalar" || qa["quantity"] == "vector") << qa.dump();
+        if (qb.value("encoding", "") == "hardware" || qb.value("space", "") == "world")
+          EXPECT_NE(qa.value("guess", "").find("needs the camera"), std::string::npos) << qa.dump();
+      }
+    }
+  }
+  // Streamed under the draft as written: each target is the attachment the app dumps (its camera.json
+  // says which render pass, 1-based, and attachment each file is).
+  RunResult streamed = runShell("GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout " + dir +
+                                "/draft.json --capture-frame 3 -o " + dir + "/live -- '" + FOREIGN_DEFERRED_BINARY + "' --frames 3");
+  ASSERT_EQ(streamed.exitCode, 0) << streamed.output;
+  Capture c;
+  std::string error;
+  ASSERT_TRUE(loadCapture(dir + "/live", c, error)) << error;
+  const json dumped = json::parse(std::ifstream(kOut + "/dump/camera.json"));
+  ASSERT_EQ(dumped.value("frame", -1), 2);
+  size_t compared = 0;
+  for (const json& t : live["targets"]) {
+    const json pick = t["source"]["live"];
+    SCOPED_TRACE("target " + t["name"].get<std::string>() + " " + pick.dump());
+    const json* file = nullptr;
+    for (const json& d : dumped["targets"])
+      if (d["render_pass"] == pick["pass"].get<int>() + 1 &&
+          (pick.value("depth", false) ? d["vk_format"].get<std::string>().rfind("VK_FORMAT_D", 0) == 0
+                                      : d["attachment"] == pick.value("color", -1)))
+        file = &d;
+    ASSERT_NE(file, nullptr);
+    const int i = c.frame.indexOf(t["name"].get<std::string>());
+    ASSERT_GE(i, 0);
+    const std::string bytes = readBytes(kOut + "/dump/" + (*file)["file"].get<std::string>());
+    const CpuImage& img = c.frame.images[size_t(i)].image;
+    ASSERT_EQ(img.data.size(), bytes.size());
+    EXPECT_EQ(std::memcmp(img.data.data(), bytes.data(), bytes.size()), 0);
+    ++compared;
+  }
+  EXPECT_EQ(compared, 7u);
 }
 
 }  // namespace

@@ -25,6 +25,11 @@ std::string layoutTargetWhere(const Layout& l, uint32_t t) {
          l.targets[t].name + "\"";
 }
 
+bool needsCamera(const Quantity& q) {
+  return (q.kind == QuantityKind::Depth && !q.ofSun && q.depth != DepthEncoding::Eye) ||
+         ((q.kind == QuantityKind::Normal || q.kind == QuantityKind::Position) && q.space != Space::View);
+}
+
 namespace {
 
 std::string targetWhere(const Layout& l, uint32_t t) { return layoutTargetWhere(l, t); }
@@ -294,9 +299,7 @@ bool frameCamera(const ImportInput& in, uint32_t w, uint32_t h, LayoutCamera& ca
   const Layout& l = in.layout;
   if (!camera.present && in.cameraFile.empty()) {
     for (const Quantity& q : l.quantities) {
-      const bool needsCamera = (q.kind == QuantityKind::Depth && !q.ofSun && q.depth != DepthEncoding::Eye) ||
-                               ((q.kind == QuantityKind::Normal || q.kind == QuantityKind::Position) && q.space != Space::View);
-      if (needsCamera) {
+      if (needsCamera(q)) {
         error = targetWhere(l, q.target) + ": quantities \"" + q.name + "\": needs the layout's camera (\"camera\")";
         return false;
       }

@@ -46,6 +46,9 @@ struct ImportInput {
 // start from ("" for a built-in layout: the files given on the command line).
 bool loadImportLayout(const std::string& spec, const LayoutParameters& params, Layout& out, std::string& dir,
                       std::string& error);
+// A quantity a layout without a camera cannot hold: a hardware depth (positions come from it) and a
+// normal or position in any space but the view's.
+bool needsCamera(const Quantity& q);
 // "builtin:blender-cycles, builtin:gblens, ...": every layout the binary carries.
 std::string builtinLayoutNames();
 

@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "renderer/core/layout_json.h"
 #include "views/capture/import.h"
 #include "views/capture/live_wire.h"
 
@@ -73,10 +74,13 @@ bool LiveSession::start(const LiveOptions& o, std::string& error) {
     return false;
   }
   Layout original;
-  if (!o.layout.empty()) {
-    if (!loadImportLayout(o.layout, layoutParameters(o.options), original, layoutDir_, error)) return false;
+  if (!o.layout.empty() || !o.layoutJson.is_null()) {
+    if (o.layoutJson.is_null() ? !loadImportLayout(o.layout, layoutParameters(o.options), original, layoutDir_, error)
+                               : !parseLayout(o.layoutJson, "layout", original, error))
+      return false;
     layout_ = original;
     if (!liveLayout(layout_, error)) return false;
+    for (const LayoutTarget& t : layout_.targets) wireNames_.push_back(t.name);
   }
   const std::string manifest = (fs::path(o.layerDir.empty() ? layerFolder() : o.layerDir) / wire::kLayerManifest).string();
   if (!fs::exists(manifest)) {

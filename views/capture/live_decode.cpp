@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 
+#include "renderer/core/layout_json.h"
 #include "views/capture/import.h"
 #include "views/capture/live.h"
 #include "views/capture/live_wire.h"
@@ -85,6 +86,37 @@ bool LiveSession::untouched(const nlohmann::json& frame) const {
   return true;
 }
 
+namespace {
+
+bool samePick(const TargetSource::LivePick& a, const TargetSource::LivePick& b) {
+  return a.pass == b.pass && a.passIndex == b.passIndex && a.name == b.name && a.color == b.color && a.depth == b.depth &&
+         a.format == b.format;
+}
+
+}  // namespace
+
+bool LiveSession::setLayout(const nlohmann::json& json, std::string& error) {
+  Layout l;
+  if (!parseLayout(json, "layout", l, error) || !liveLayout(l, error)) return false;
+  if (l.targets.size() != layout_.targets.size()) {
+    error = "the layout has " + std::to_string(l.targets.size()) + " targets, the stream " + std::to_string(layout_.targets.size());
+    return false;
+  }
+  for (size_t t = 0; t < l.targets.size(); ++t)
+    if (l.targets[t].format.name != layout_.targets[t].format.name ||
+        l.targets[t].source.kind != layout_.targets[t].source.kind ||
+        !samePick(l.targets[t].source.live, layout_.targets[t].source.live)) {
+      error = "target \"" + l.targets[t].name + "\": its format or live source is not the stream's \"" + layout_.targets[t].name + "\"";
+      return false;
+    }
+  if (l.camera.renderdoc || layout_.camera.renderdoc) {
+    error = "camera: a layout reading the camera from a buffer is streamed from the start";
+    return false;
+  }
+  layout_ = std::move(l);
+  return true;
+}
+
 bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFrameInfo* info, std::string& error) {
   ImportInput in;
   in.layout = layout_;
@@ -92,9 +124,10 @@ bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFr
   const Layout& l = layout_;
   std::vector<std::string> sources(l.targets.size()), absent;
   for (const nlohmann::json& t : frame.value("targets", nlohmann::json::array())) {
-    const int index = l.findTarget(t.value("name", ""));
-    if (index < 0) continue;
-    const LayoutTarget& lt = l.targets[size_t(index)];
+    const auto wire = std::find(wireNames_.begin(), wireNames_.end(), t.value("name", ""));
+    if (wire == wireNames_.end()) continue;
+    const size_t index = size_t(wire - wireNames_.begin());
+    const LayoutTarget& lt = l.targets[index];
     if (t.value("format", "") != lt.format.name) {  // the layer refuses these; never decoded as another format
       absent.push_back(lt.name + ": the attachment is " + t.value("format", "?") + ", the layout says " + lt.format.name);
       continue;
@@ -107,7 +140,7 @@ bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFr
     }
     in.liveTexels[lt.name] = {texels, bytes, t.value("width", 0u), t.value("height", 0u)};
     const std::string pass = t.value("pass_name", "");
-    sources[size_t(index)] = "render pass " + std::to_string(t.value("pass", 0)) + (pass.empty() ? "" : " \"" + pass + "\"") +
+    sources[index] = "render pass " + std::to_string(t.value("pass", 0)) + (pass.empty() ? "" : " \"" + pass + "\"") +
                              ", " + t.value("vk_format", "");
   }
   for (const LayoutTarget& lt : l.targets)

@@ -7,7 +7,9 @@
 #include <set>
 
 #include "renderer/core/layout_json.h"
+#include "views/capture/import.h"
 #include "views/capture/live.h"
+#include "views/capture/suggest.h"
 #include "views/capture/suggest_guess.h"
 
 namespace gb {
@@ -75,7 +77,7 @@ std::string describeLivePasses(const json& hello, const json& report) {
   return out;
 }
 
-json draftLiveLayout(const json& report, std::vector<std::string>& summary) {
+json draftLiveLayout(const json& report, std::vector<std::string>& summary, std::vector<bool>* later) {
   const json passes = report.value("passes", json::array());
   int best = -1, bestScore = -1;
   for (size_t i = 0; i < passes.size(); ++i) {
@@ -100,18 +102,21 @@ json draftLiveLayout(const json& report, std::vector<std::string>& summary) {
   summary.push_back("G-buffer pass: " + passName(gbuffer) + " (the most colour attachments)");
   std::set<std::string> targetNames, quantityNames, images;
   uint32_t width = 0, height = 0;
-  auto add = [&](const json& pass, const json& a, bool later) {
+  std::vector<bool> ignored, &laterTargets = later ? *later : ignored;
+  laterTargets.clear();
+  auto add = [&](const json& pass, const json& a, bool afterGBuffer) {
     StorageFormat format;
     if (!parseStorageFormat(a.value("format", ""), format)) return;
-    if (later && (a.value("width", 0u) != width || a.value("height", 0u) != height)) return;
+    if (afterGBuffer && (a.value("width", 0u) != width || a.value("height", 0u) != height)) return;
     if (!width) width = a.value("width", 0u), height = a.value("height", 0u);
     const std::string image = a.value("image", "");
     if (!image.empty() && !images.insert(image).second) return;  // a later pass writing the same image again
-    json quantities = guessQuantities(image, format, nullptr, SurfaceMask{}, quantityNames, later);
+    json quantities = guessQuantities(image, format, nullptr, SurfaceMask{}, quantityNames, afterGBuffer);
     const std::string base = !image.empty() ? image : !quantities.empty() ? quantities[0].value("quantity", "target") : "target";
     draft["targets"].push_back({{"name", targetName(base, targetNames)}, {"format", a.value("format", "")},
                                 {"source", liveSource(pass, a)}, {"quantities", quantities}});
-    if (later) summary.push_back("target " + draft["targets"].back().value("name", "") + ": written after the G-buffer pass, by " + passName(pass));
+    laterTargets.push_back(afterGBuffer);
+    if (afterGBuffer) summary.push_back("target " + draft["targets"].back().value("name", "") + ": written after the G-buffer pass, by " + passName(pass));
   };
   for (const json& a : gbuffer.value("attachments", json::array()))
     if (usable(a)) add(gbuffer, a, false);
@@ -120,6 +125,70 @@ json draftLiveLayout(const json& report, std::vector<std::string>& summary) {
       if (usable(a) && a.value("role", "") != "depth") add(passes[i], a, true);
   summary.push_back("no camera: name the buffer that holds it (camera.renderdoc) or give matrices (docs/layout-format.md)");
   return draft;
+}
+
+}  // namespace gb
+
+namespace gb {
+
+void withoutCamera(json& draft, std::vector<std::string>* summary) {
+  if (draft.contains("camera")) return;
+  Layout l;
+  std::string error;
+  if (!parseLayout(draft, "draft", l, error)) return;
+  for (const Quantity& q : l.quantities) {
+    if (!needsCamera(q)) continue;
+    for (json& t : draft["targets"])
+      for (json& j : t["quantities"]) {
+        if (j.value("name", "") != q.name) continue;
+        const std::string was = j.value("quantity", "");
+        json stored = {{"quantity", q.channels.size() == 1 ? "scalar" : "vector"}, {"name", q.name}, {"channels", j["channels"]},
+                       {"guess", j.value("guess", "") + "; shown as stored: a " + was +
+                                     " quantity needs the camera (give \"camera\", then \"quantity\": \"" + was + "\")"}};
+        j = stored;
+        if (summary) summary->push_back(q.name + ": shown as stored values (a " + was + " quantity needs the layout's camera)");
+      }
+  }
+}
+
+// What the texels say, as import --suggest-layout reads them: depth targets first (they say where the
+// surfaces are), then the rest; an unnamed image's target is named by what it holds.
+bool refineLiveDraft(json& draft, const std::vector<bool>& later, const FrameSnapshot& raw, uint64_t appFrame,
+                     FrameSnapshot& frame, std::vector<std::string>& summary, std::string& error) {
+  json& targets = draft["targets"];
+  if (targets.size() != raw.layout.targets.size() || later.size() != targets.size()) {
+    error = "the streamed frame holds " + std::to_string(raw.layout.targets.size()) + " targets, the draft " +
+            std::to_string(targets.size());
+    return false;
+  }
+  SurfaceMask surface;
+  std::set<std::string> quantityNames;
+  size_t looked = 0;
+  for (bool depthPass : {true, false}) {
+    for (size_t t = 0; t < targets.size(); ++t) {
+      const StorageFormat& f = raw.layout.targets[t].format;
+      if (f.depth != depthPass) continue;
+      const CpuImage* texels = raw.images[t].present() ? &raw.images[t].image : nullptr;
+      looked += texels != nullptr;
+      const json source = targets[t]["source"]["live"];
+      targets[t]["quantities"] = guessQuantities(source.value("name", ""), f, texels, surface, quantityNames, later[t]);
+    }
+    if (!draftFrame(draft, raw, frame, error)) return false;
+    if (depthPass) surface = surfaceOf(frame);
+  }
+  std::set<std::string> renamed;
+  for (json& t : targets) {
+    const json& qs = t["quantities"];
+    const std::string image = t["source"]["live"].value("name", ""), was = t.value("name", "target");
+    t["name"] = targetName(image.empty() && !qs.empty() ? qs[0].value("quantity", "target") : was, renamed);
+    for (std::string& line : summary)  // what was said of it under its first name
+      if (line.rfind("target " + was + ":", 0) == 0) line = "target " + t["name"].get<std::string>() + line.substr(7 + was.size());
+  }
+  withoutCamera(draft, &summary);
+  summary.push_back("the channels guessed from the texels of application frame " + std::to_string(appFrame) + " (" +
+                    std::to_string(looked) + " of " + std::to_string(targets.size()) + " targets streamed)");
+  draft["name"] = "draft (gblens attach --suggest, from the texels of one frame: check every \"guess\")";
+  return draftFrame(draft, raw, frame, error);
 }
 
 }  // namespace gb

@@ -3,6 +3,8 @@
 // layer's reports), the status bar's line and, with --suggest, the layer's passes and the drafted layout.
 #include <imgui.h>
 
+#include <algorithm>
+
 #include "views/ui/viewer_model.h"
 
 namespace gb {
@@ -40,13 +42,22 @@ std::string attachStatusLine(const ViewerModel& m) {
 // --suggest: the layer's report of one frame's passes and the layout drafted from it.
 void attachSuggestionWindow(ViewerModel& m) {
   if (!m.attach.on || m.attach.passes.empty()) return;
-  ImGui::SetNextWindowSize(ImVec2(640, 420), ImGuiCond_FirstUseEver);
+  // Over the lower right (the Pixel panel's empty part until a click), not over the grid it explains.
+  const ImVec2 screen = ImGui::GetIO().DisplaySize;
+  const ImVec2 size(std::min(560.0f, screen.x * 0.45f), screen.y * 0.5f);
+  ImGui::SetNextWindowPos(ImVec2(screen.x - size.x - 8.0f, screen.y - size.y - 28.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(size, ImGuiCond_FirstUseEver);
   if (!ImGui::Begin("Suggested layout (gblens attach --suggest)")) return ImGui::End();
   ImGui::TextUnformatted("What the layer saw in one frame:");
   ImGui::TextUnformatted(m.attach.passes.c_str());
   ImGui::Separator();
-  ImGui::TextUnformatted("A draft layout (every \"guess\" to be checked; save it and attach with --layout):");
+  ImGui::TextUnformatted(m.attach.draftStreamed
+                             ? "The stream is decoded with this draft (every \"guess\" to be checked; save it, edit, attach with --layout):"
+                             : "A draft layout (every \"guess\" to be checked; save it and attach with --layout):");
+  if (ImGui::SmallButton("save the draft (ctrl+S)")) m.attach.saveDraftRequested = true;
+  ImGui::SameLine();
   if (ImGui::SmallButton("copy the draft")) ImGui::SetClipboardText(m.attach.draft.c_str());
+  if (!m.attach.draftStatus.empty()) ImGui::TextUnformatted(m.attach.draftStatus.c_str());
   ImGui::InputTextMultiline("##draft", m.attach.draft.data(), m.attach.draft.size() + 1, ImVec2(-1, -1),
                             ImGuiInputTextFlags_ReadOnly);
   ImGui::End();

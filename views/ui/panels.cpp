@@ -85,7 +85,8 @@ static std::string helpText(const ViewerModel& m) {
             "|A - B| or FLIP, for every view shown";
   else if (m.attach.on)
     text += "Attached application: Space pauses the stream (the application runs on), C captures the frame shown;\n"
-            "closing the viewer detaches and lets the application run";
+            "closing the viewer detaches and lets the application run" +
+            std::string(m.attach.draft.empty() ? "" : "; ctrl+S saves the suggested layout");
   if (m.source == FrameSource::Live) text += "\nEscape: cancel the reference error's computation";
   return text;
 }
