@@ -31,7 +31,7 @@ struct AttachOptions {
   uint64_t captureFrame = 0, frames = 0;
   bool suggest = false, stats = false;
   double timeout = 300.0;
-  std::string window = "1280x800", eventLog;  // the viewer's
+  std::string window = "1280x800", eventLog, probeLog;  // the viewer's
   bool paused = false;
 };
 
@@ -117,6 +117,7 @@ int runViewerOnStream(const AttachOptions& o, LiveSession& s, const LiveSuggesti
   a.windowGiven = true;
   a.paused = o.paused;
   a.eventLog = o.eventLog;
+  a.probeLog = o.probeLog;
   a.render = first.options;
   a.attach = &s;
   a.attachFirst = &first;
@@ -182,8 +183,8 @@ int runAttach(const AttachOptions& o) {
   if (viewer && o.layout.empty())
     return fail("--layout: required for the viewer (a layout file, docs/layout-format.md, or builtin:NAME), or --suggest "
                 "to draft one");
-  if (!viewer && !(draft && o.output.empty()) && (!o.eventLog.empty() || o.paused))
-    return fail("--event-log and --paused are the viewer's");
+  if (!viewer && !(draft && o.output.empty()) && (!o.eventLog.empty() || !o.probeLog.empty() || o.paused))
+    return fail("--event-log, --probe-log and --paused are the viewer's");
   if (draft && (o.captureFrame || o.frames)) return fail("--suggest: drafts a layout; --capture-frame and --frames need --layout");
   if (o.captureFrame && o.output.empty()) return fail("-o: required with --capture-frame (the capture folder to write)");
   if (!o.captureFrame && !draft && !o.output.empty())
@@ -267,6 +268,7 @@ Command addAttachCommand(CLI::App& root) {
   cmd->add_option("--timeout", o->timeout, "give up when no frame came within this many seconds")->capture_default_str();
   cmd->add_option("--window", o->window, "the viewer's window size WxH")->capture_default_str();
   cmd->add_option("--event-log", o->eventLog, "the viewer: append its events (frames received, layout, hover, capture) as JSON lines");
+  cmd->add_option("--probe-log", o->probeLog, "the viewer: append each pixel dossier (a click) as one JSON line to FILE");
   cmd->add_flag("--paused", o->paused, "the viewer: start paused on the first frame (Space resumes)");
   cmd->add_option("APP", o->app, "the application and its arguments (after --)")->required();
   return {cmd, [o]() -> int { return runAttach(*o); }};
