@@ -78,6 +78,7 @@ GB_CONST(uint, kSpecPosition, 6);       // kPosition* below: where lighting gets
 GB_CONST(uint, kSpecOutputSrgb, 7);     // 1: the view pipeline writes an sRGB attachment (hardware encodes)
 GB_CONST(uint, kSpecOctPrecise, 8);     // 1: octahedral normals keep the best of the 4 neighbouring codes
 GB_CONST(uint, kSpecBaseColorTexture, 9);  // 0: the material has no base-colour texture (not sampled)
+GB_CONST(uint, kSpecViewMapping, 10);   // the view pipeline's kViewMap* (a pipeline per mapping: see view_map.frag)
 
 // The lighting passes' position source.
 GB_CONST(uint, kPositionDepth, 0);      // reconstructed from eye depth or hardware depth (kSpecEyeDepth)

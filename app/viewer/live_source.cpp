@@ -13,24 +13,29 @@
 #include "views/analysis/probe.h"
 #include "views/analysis/visualize.h"
 #include "views/capture/image_io.h"
+#include "views/capture/live_wire.h"
 
 namespace gb {
 
 namespace {
 
+// Frames the viewer did not show: those the layer dropped (this side busy), those read in place while
+// the application's GPU wrote them again, and those a newer one replaced before the viewer drew.
+uint64_t droppedFrames(const LiveReceiver::State& st) {
+  return st.counts.dropped + st.counts.overwritten + st.replaced;
+}
+
 // What the status bar says: the frame shown, frames received and dropped, the application's state.
-std::string statusText(Viewer& v) {
-  LiveSession& s = *v.args.attach;
-  const LiveCounts& c = s.counts();
+std::string statusText(Viewer& v, const LiveReceiver::State& st) {
   const ViewerModel& m = v.model;
   char text[256];
   std::snprintf(text, sizeof text, "application frame %llu | received %llu, dropped %llu | latency %.0f ms | ",
-                (unsigned long long)v.attachInfo.appFrame, (unsigned long long)c.received,
-                (unsigned long long)(c.dropped + c.overwritten), v.attachInfo.latencyMs);
-  std::string state = s.running() ? (m.attach.detachRequested ? "detached (the application runs on)"
-                                     : m.playing                ? "running"
-                                                                : "paused (the application runs on)")
-                                  : "application exited (code " + std::to_string(s.exitStatus()) + ")";
+                (unsigned long long)v.attachInfo.appFrame, (unsigned long long)st.counts.received,
+                (unsigned long long)droppedFrames(st), v.attachShownMs);
+  std::string state = st.running ? (m.attach.detachRequested ? "detached (the application runs on)"
+                                    : m.playing                ? "running"
+                                                               : "paused (the application runs on)")
+                                 : "application exited (code " + std::to_string(st.exitStatus) + ")";
   return text + state;
 }
 
@@ -94,13 +99,15 @@ void showFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info) {
                 (unsigned long long)info.appFrame, (unsigned long long)info.stream, info.latencyMs);
   m.attach.frame = text;
   for (const std::string& a : info.absent) m.attach.frame += "\nabsent: " + a;
-  const LiveCounts& c = v.args.attach->counts();
+  const LiveReceiver::State st = v.receiver->state();
+  const LiveCounts& c = st.counts;
+  v.attachPresentPending = true;
   logLine(v.eventLog, {{"event", "attach_frame"},
                        {"stream", info.stream},
                        {"app_frame", info.appFrame},
-                       {"latency_ms", info.latencyMs},
+                       {"latency_ms", double(wire::monotonicNs() - info.endNs) * 1e-6},
                        {"received", c.received},
-                       {"dropped", c.dropped + c.overwritten},
+                       {"dropped", droppedFrames(st)},
                        {"time_s", std::chrono::duration<double>(start - v.attachOpened).count()},
                        {"decode_ms", c.meanDecodeMs},
                        {"show_ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()}});
@@ -114,6 +121,7 @@ void openAttached(Viewer& v) {
   v.captureA = Capture{};
   v.captureA.dir = v.args.scene;
   v.captureA.frame = *v.args.attachFirst;
+  v.receiver = std::make_unique<LiveReceiver>(s);
   v.attachOpened = std::chrono::steady_clock::now();
   v.attachInfo = v.args.attachFirstInfo;
   m.source = FrameSource::Capture;
@@ -128,7 +136,7 @@ void openAttached(Viewer& v) {
   m.captureAvailable = true;
   m.captureHint = "Writes the frame shown (paused: the frozen one) as a gblens capture to ./gblens-attach-<date>-<time>/\n"
                   "(the format gblens import and attach --capture-frame write; key C)";
-  m.attach.status = statusText(v);
+  m.attach.status = statusText(v, v.receiver->state());
   if (!v.args.attachDraft.is_null()) {  // attach --suggest without a layout: the stream's layout is this draft
     m.attach.passes = v.args.attachPasses;
     m.attach.draft = v.args.attachDraft.dump(2);
@@ -142,26 +150,30 @@ void openAttached(Viewer& v) {
 
 bool pollAttached(Viewer& v) {
   ViewerModel& m = v.model;
-  LiveSession& s = *v.args.attach;
+  LiveReceiver& receiver = *v.receiver;
   bool changed = false;
-  if (m.attach.detachRequested && s.attached()) {
-    s.detach();
+  if (m.attach.detachRequested && !v.attachDetachLogged) {
+    receiver.detach();
+    v.attachDetachLogged = true;
     logLine(v.eventLog, {{"event", "attach_state"}, {"state", "detached"}});
   }
   if (m.playing != v.attachPlaying) {  // Space, the menu or the button
     v.attachPlaying = m.playing;
+    receiver.setPaused(!m.playing);
     logLine(v.eventLog, {{"event", "attach_state"}, {"state", m.playing ? "resumed" : "paused"}, {"app_frame", v.attachInfo.appFrame}});
   }
   FrameSnapshot frame;
   LiveFrameInfo info;
-  if (m.playing && !m.attach.detachRequested && s.poll(frame, &info)) {
+  if (m.playing && !m.attach.detachRequested && receiver.take(frame, info)) {
+    v.captureA.frame = FrameSnapshot{};  // its memory back before the new one's views are decoded
     showFrame(v, std::move(frame), info);
     changed = true;
   } else if (visibleViews(m) != v.attachShown) {  // other views came on screen
     decodeShown(v);
     changed = true;
   }
-  for (std::string& r : s.takeReports()) {
+  const LiveReceiver::State st = receiver.state();
+  for (std::string& r : receiver.takeReports()) {
     logLine(v.eventLog, {{"event", "attach_report"}, {"text", r}});
     m.attach.reports.push_back(std::move(r));
     changed = true;
@@ -173,10 +185,10 @@ bool pollAttached(Viewer& v) {
     logLine(v.eventLog, {{"event", "draft_saved"}, {"status", m.attach.draftStatus}, {"path", path}});
     changed = true;
   }
-  if (m.attach.passes.empty() && s.suggestion()) {
-    m.attach.passes = describeLivePasses(s.hello(), *s.suggestion());
+  if (m.attach.passes.empty() && !st.suggestion.is_null()) {
+    m.attach.passes = describeLivePasses(v.args.attach->hello(), st.suggestion);
     std::vector<std::string> summary;
-    const nlohmann::json draft = draftLiveLayout(*s.suggestion(), summary);
+    const nlohmann::json draft = draftLiveLayout(st.suggestion, summary);
     m.attach.draft = draft.dump(2);
     for (const std::string& line : summary) m.attach.passes += "\n" + line;
     logLine(v.eventLog, {{"event", "attach_suggestion"}, {"draft", draft}});
@@ -186,14 +198,22 @@ bool pollAttached(Viewer& v) {
   const auto now = std::chrono::steady_clock::now();
   if (changed || now - v.attachLastStatus > std::chrono::milliseconds(100)) {
     v.attachLastStatus = now;
-    std::string status = statusText(v);
-    if (!s.running() && !v.attachExitLogged) {
+    std::string status = statusText(v, st);
+    if (!st.running && !v.attachExitLogged) {
       v.attachExitLogged = true;
-      logLine(v.eventLog, {{"event", "attach_state"}, {"state", "exited"}, {"code", s.exitStatus()}, {"status", status}});
+      logLine(v.eventLog, {{"event", "attach_state"}, {"state", "exited"}, {"code", st.exitStatus}, {"status", status}});
     }
     if (status != m.attach.status) m.attach.status = std::move(status), changed = true;
   }
   return changed;
+}
+
+void attachedFramePresented(Viewer& v) {
+  if (!v.attachPresentPending) return;
+  v.attachPresentPending = false;
+  v.attachShownMs = double(wire::monotonicNs() - v.attachInfo.endNs) * 1e-6;
+  logLine(v.eventLog, {{"event", "attach_shown"}, {"stream", v.attachInfo.stream}, {"app_frame", v.attachInfo.appFrame},
+                       {"latency_ms", v.attachShownMs}});
 }
 
 // A name in the working directory no file has yet: PREFIX<date>-<time>[-n]SUFFIX.

@@ -389,6 +389,7 @@ static void presentInterface(Viewer& v) {
   }
   ImGui::Render();
   if (!presentFrame(v)) recreateSwapchain(v);
+  if (v.args.attach) attachedFramePresented(v);
   if (v.probeShownPending) {  // the frame that shows a clicked pixel's dossier is on screen
     v.probeShownPending = false;
     double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - v.probeStart).count();

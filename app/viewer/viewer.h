@@ -23,6 +23,7 @@
 #include "views/analysis/error.h"
 #include "views/capture/capture.h"
 #include "views/capture/live.h"
+#include "views/capture/live_receiver.h"
 #include "views/ui/view_map.h"
 #include "views/ui/viewer_model.h"
 
@@ -150,6 +151,10 @@ struct Viewer {
   bool attachExitLogged = false;
   bool attachPlaying = true;     // m.playing as last seen (pause and resume are logged)
   std::vector<int> attachShown;  // the views decoded from the frame shown (those on screen)
+  std::unique_ptr<LiveReceiver> receiver;  // the stream's frames, received and decoded on its own thread
+  bool attachPresentPending = false;       // a new frame of the stream goes to the screen with this present
+  double attachShownMs = 0.0;              // the last one's latency from the application's frame end to the screen
+  bool attachDetachLogged = false;
   ViewerModel model;
   CameraRig rig;
   uint64_t cameraVersion = 1, lightsVersion = 1;
@@ -274,6 +279,9 @@ void openAttached(Viewer& v);
 bool pollAttached(Viewer& v);
 // Writes the frame shown as a capture (the folder ./gblens-attach-<date>-<time>/).
 bool captureAttachedFrame(Viewer& v, std::string& written, std::string& error);
+// After a present that put a new frame of the stream on screen: its latency from the application's
+// frame end to the screen, logged (attach_shown) and shown in the status bar.
+void attachedFramePresented(Viewer& v);
 // Writes attach --suggest's draft layout (./gblens-layout-<date>-<time>.json, atomically).
 bool saveAttachedDraft(const std::string& draft, std::string& written, std::string& error);
 // The views of capture A's layout decoded and uploaded again (captures.cpp; a new frame of a stream).

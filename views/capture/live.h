@@ -38,6 +38,7 @@ struct LiveFrameInfo {
   uint64_t stream = 0;    // its number among the streamed frames (1, 2, ...)
   uint64_t appFrame = 0;  // the application's frame (0: its first)
   double latencyMs = 0.0; // from the end of that frame (present or submission) to poll() returning it
+  uint64_t endNs = 0;     // when that frame ended (CLOCK_MONOTONIC, live_wire.h monotonicNs)
   // Per layout target: where it came from ("render pass 3 \"gbuffer\""), or why it is absent.
   std::vector<std::string> sources, absent;
 };

@@ -93,43 +93,69 @@ std::optional<ViewSource> nativeSource(const Layout& layout, const ViewDef& view
   return s;
 }
 
+// A stream shows a new frame several times a second: the images of the views that keep their size
+// are written again in place, through one staging buffer kept between frames, in one submission.
 void uploadViewImages(ViewImages& out, GpuContext& ctx, const std::vector<CpuImage>& decoded) {
-  destroyViewImages(out, ctx);
-  out.images.resize(decoded.size());
-  for (size_t i = 0; i < decoded.size(); ++i) {
-    const CpuImage& img = decoded[i];
-    if (img.empty()) continue;
-    ImageDesc d;
-    d.format = img.type == PixelType::U32 ? VK_FORMAT_R32_UINT : VK_FORMAT_R32G32B32A32_SFLOAT;
-    d.width = img.width;
-    d.height = img.height;
-    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    const std::string label = "view " + img.name;  // RenderDoc / Nsight name it
-    d.name = label.c_str();
+  if (!out.images.empty()) vkDeviceWaitIdle(ctx.device);  // the views are sampled by frames in flight
+  out.images.resize(std::max(out.images.size(), decoded.size()));
+  VkDeviceSize bytes = 0;
+  for (size_t i = 0; i < out.images.size(); ++i) {
+    const CpuImage* img = i < decoded.size() && !decoded[i].empty() ? &decoded[i] : nullptr;
+    const VkFormat format = img && img->type == PixelType::U32 ? VK_FORMAT_R32_UINT : VK_FORMAT_R32G32B32A32_SFLOAT;
     Image& gi = out.images[i];
+    const bool keep = img && gi.image && gi.desc.format == format && gi.desc.width == img->width && gi.desc.height == img->height;
+    if (gi.image && !keep) destroyImage(ctx, gi);
+    if (!img) continue;
+    bytes += (img->data.size() + 15) / 16 * 16;
+    if (keep) continue;
+    ImageDesc d;
+    d.format = format;
+    d.width = img->width;
+    d.height = img->height;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    const std::string label = "view " + img->name;  // RenderDoc / Nsight name it
+    d.name = label.c_str();
     gi = createImage(ctx, d);
-    Buffer staging = createBuffer(ctx, img.data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload, "view staging");
-    std::memcpy(staging.mapped, img.data.data(), img.data.size());
-    submitOnce(ctx, [&](VkCommandBuffer cmd) {
-      const VkImageSubresourceRange all = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  }
+  out.images.resize(decoded.size());
+  if (bytes == 0) return;
+  if (out.staging.size < bytes) {
+    destroyBuffer(ctx, out.staging);
+    out.staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload, "view staging");
+  }
+  std::vector<VkDeviceSize> offsets(decoded.size());
+  VkDeviceSize at = 0;
+  for (size_t i = 0; i < decoded.size(); ++i) {
+    if (decoded[i].empty()) continue;
+    offsets[i] = at;
+    std::memcpy(static_cast<uint8_t*>(out.staging.mapped) + at, decoded[i].data.data(), decoded[i].data.size());
+    at += (decoded[i].data.size() + 15) / 16 * 16;
+  }
+  submitOnce(ctx, [&](VkCommandBuffer cmd) {
+    const VkImageSubresourceRange all = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    for (size_t i = 0; i < decoded.size(); ++i) {
+      if (decoded[i].empty()) continue;
+      const Image& gi = out.images[i];
+      // Every texel is written: what the image held before does not matter (UNDEFINED).
       imageBarrier(cmd, gi.image, all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
                    0, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
       VkBufferImageCopy copy{};
+      copy.bufferOffset = offsets[i];
       copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-      copy.imageExtent = {img.width, img.height, 1};
-      vkCmdCopyBufferToImage(cmd, staging.buffer, gi.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+      copy.imageExtent = {decoded[i].width, decoded[i].height, 1};
+      vkCmdCopyBufferToImage(cmd, out.staging.buffer, gi.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
       imageBarrier(cmd, gi.image, all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    });
-    destroyBuffer(ctx, staging);
-  }
+    }
+  });
 }
 
 void destroyViewImages(ViewImages& images, GpuContext& ctx) {
-  if (!images.images.empty()) vkDeviceWaitIdle(ctx.device);
+  if (!images.images.empty() || images.staging.buffer) vkDeviceWaitIdle(ctx.device);
   for (Image& i : images.images) destroyImage(ctx, i);
   images.images.clear();
+  destroyBuffer(ctx, images.staging);
 }
 
 ViewImage viewImageOf(const ViewImages& images, size_t view) {
@@ -237,6 +263,7 @@ void drawView(ViewMapper& m, Renderer& r, VkCommandBuffer cmd, VkRenderPass rend
                                      : Shader::view_map_frag;
   std::vector<SpecConstant> spec = commonSpec(r);
   spec.push_back({gpu::kSpecOutputSrgb, srgbOut ? 1u : 0u});
+  spec.push_back({gpu::kSpecViewMapping, params.mode.x});
   VkPipeline& p = m.pipelines[{shader, renderPass, specValues(spec)}];
   if (!p) {
     GraphicsPipelineDesc d;

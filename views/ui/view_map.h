@@ -53,6 +53,7 @@ ViewImage targetImage(const Renderer& r, const ViewSource& source);
 // Decoded view images (a capture's views, views/analysis/visualize.h viewImage) on the GPU.
 struct ViewImages {
   std::vector<Image> images;  // one per view; empty where the frame has nothing to show
+  Buffer staging;             // the last upload's (kept: a stream uploads every frame shown)
 };
 void uploadViewImages(ViewImages& out, GpuContext& ctx, const std::vector<CpuImage>& decoded);
 void destroyViewImages(ViewImages& images, GpuContext& ctx);

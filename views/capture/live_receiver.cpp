@@ -1,0 +1,70 @@
+// LiveReceiver (live_receiver.h): the thread is the only user of the LiveSession's receiving side;
+// the viewer reads what it published under the lock.
+#include "views/capture/live_receiver.h"
+
+#include <chrono>
+
+namespace gb {
+
+LiveReceiver::LiveReceiver(LiveSession& session) : session_(session) {
+  state_.counts = session_.counts();
+  thread_ = std::thread([this] { run(); });
+}
+
+LiveReceiver::~LiveReceiver() {
+  stop_ = true;
+  thread_.join();
+}
+
+bool LiveReceiver::take(FrameSnapshot& out, LiveFrameInfo& info) {
+  std::lock_guard lock(lock_);
+  if (!hasLatest_) return false;
+  out = std::move(latest_);
+  info = std::move(latestInfo_);
+  latest_ = FrameSnapshot{};
+  hasLatest_ = false;
+  return true;
+}
+
+void LiveReceiver::setPaused(bool paused) { paused_ = paused; }
+void LiveReceiver::detach() { detach_ = true; }
+
+LiveReceiver::State LiveReceiver::state() {
+  std::lock_guard lock(lock_);
+  return state_;
+}
+
+std::vector<std::string> LiveReceiver::takeReports() {
+  std::lock_guard lock(lock_);
+  std::vector<std::string> out;
+  out.swap(reports_);
+  return out;
+}
+
+void LiveReceiver::run() {
+  while (!stop_) {
+    if (detach_ && session_.attached()) session_.detach();
+    FrameSnapshot frame;
+    LiveFrameInfo info;
+    const bool receiving = !paused_ && !detach_ && (session_.attached() || session_.running());
+    const bool got = receiving && session_.wait(frame, 0.02, &info);
+    if (!receiving) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::vector<std::string> reports = session_.takeReports();
+    const bool running = session_.running();
+    std::lock_guard lock(lock_);
+    if (got) {
+      if (hasLatest_) ++state_.replaced;
+      latest_ = std::move(frame);
+      latestInfo_ = std::move(info);
+      hasLatest_ = true;
+    }
+    for (std::string& r : reports) reports_.push_back(std::move(r));
+    state_.counts = session_.counts();
+    state_.running = running;
+    state_.attached = session_.attached();
+    state_.exitStatus = session_.exitStatus();
+    if (state_.suggestion.is_null() && session_.suggestion()) state_.suggestion = *session_.suggestion();
+  }
+}
+
+}  // namespace gb

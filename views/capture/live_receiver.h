@@ -1,0 +1,54 @@
+// The viewer's side of an attached stream (gblens attach): a LiveSession driven by a thread of its
+// own, which receives and decodes each frame as it comes, so that the layer can send the next one at
+// once and the viewer, whenever it draws, takes the newest (a frame no longer waits in the socket for
+// the viewer's next loop). Paused, the thread takes nothing: the layer drops the application's frames.
+#pragma once
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "views/capture/live.h"
+
+namespace gb {
+
+class LiveReceiver {
+ public:
+  explicit LiveReceiver(LiveSession& session);  // the session must have started; the thread starts here
+  ~LiveReceiver();                               // stops the thread; the session stays as it is
+  LiveReceiver(const LiveReceiver&) = delete;
+  LiveReceiver& operator=(const LiveReceiver&) = delete;
+
+  // The newest frame decoded since the last call, if any (never waits).
+  bool take(FrameSnapshot& out, LiveFrameInfo& info);
+  void setPaused(bool paused);
+  void detach();  // the session detaches (the layer goes idle for good; the application runs on)
+
+  // What the session said, as of the thread's last look (it asks at least every 20 ms).
+  struct State {
+    LiveCounts counts;
+    bool running = true, attached = true;
+    int exitStatus = -1;
+    uint64_t replaced = 0;          // decoded frames a newer one replaced before the viewer took them
+    nlohmann::json suggestion;      // the layer's report of one frame's passes (--suggest), once it came
+  };
+  State state();
+  std::vector<std::string> takeReports();
+
+ private:
+  void run();
+
+  LiveSession& session_;
+  std::thread thread_;
+  std::atomic<bool> stop_{false}, paused_{false}, detach_{false};
+  std::mutex lock_;
+  FrameSnapshot latest_;
+  LiveFrameInfo latestInfo_;
+  bool hasLatest_ = false;
+  State state_;
+  std::vector<std::string> reports_;
+};
+
+}  // namespace gb
