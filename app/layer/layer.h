@@ -222,9 +222,11 @@ struct OpenPass {
 struct CmdState {
   VkCommandPool pool = VK_NULL_HANDLE;
   bool copies = false;          // this recording copies (streaming, and its frame is due or it may be reused)
-  // It did not copy though streaming: its frame is not due (every N), or every ring slot was held.
-  // Its frame's missing targets are no news (not reported, not counted towards giving up).
+  // It did not copy though streaming: its frame is not due (every N), every ring slot was held, or
+  // the receiver could not have taken it (paced). Its frame's missing targets are no news (not
+  // reported, not counted towards giving up).
   bool skipped = false;
+  bool paced = false;           // skipped because the receiver could not have taken its frame
   bool suggest = false;         // this recording reports its passes (--suggest)
   bool reusable = false;        // it may be submitted again (no ONE_TIME_SUBMIT)
   int passes = 0;               // render passes begun so far
@@ -296,6 +298,14 @@ struct DeviceData {
   std::vector<PassReport> frameReports;
   bool passesThisFrame = false, suggestSent = false;
   bool skippedThisFrame = false;  // a recording of this frame skipped its copies (CmdState::skipped)
+  bool pacedThisFrame = false;    // ... because the receiver could not have taken it (CmdState::paced)
+  // Pacing (record.cpp): a one-time recording copies only while the receiver can take its frame:
+  // fewer than two frames on their way to it (ended with copies, not yet sent or dropped: in the
+  // thread's queue or waiting for the receiver's ack), fewer than one while the receiver is busy
+  // with a frame. A frame it could not take would be copied for nothing (on a discrete GPU, over
+  // PCIe); two in flight keep up with an application's frames in flight when the receiver is quick.
+  std::atomic<int> toReceiver{0};
+  std::atomic<bool> receiverBusy{false};
   uint32_t framesWithoutMatch = 0;
   uint64_t lastFrameEndNs = 0, frameNsSum = 0, frameIntervals = 0;
 

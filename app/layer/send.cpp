@@ -133,11 +133,20 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
   // --capture-frame N: the Nth frame the layer reads whole. A frame whose ring buffer a reused
   // command buffer wrote again before it was read does not count; the next one is taken.
   if (req->only && (st.intact >= req->only || !unchanged(*f) || ++st.intact < req->only)) return;
-  if (!req->only && (st.receiverBusy || !unchanged(*f))) {
-    GBL_LOG("frame %llu (streamed %llu): dropped, %s", (unsigned long long)f->appFrame, (unsigned long long)f->stream,
-            st.receiverBusy ? "the receiver is busy" : "its ring buffer was submitted again");
-    ++st.dropped;
-    st.torn += !st.receiverBusy;
+  if (!req->only && !unchanged(*f)) {
+    GBL_LOG("frame %llu (streamed %llu): dropped, its ring buffer was submitted again", (unsigned long long)f->appFrame,
+            (unsigned long long)f->stream);
+    ++st.dropped, ++st.torn;
+    return;
+  }
+  if (!req->only && st.receiverBusy) {  // it waits for the receiver's ack; a newer one takes its place
+    if (st.waiting) {
+      GBL_LOG("frame %llu: dropped, a newer one waits for the receiver", (unsigned long long)st.waiting->appFrame);
+      ++st.dropped;
+      --d.toReceiver;
+    }
+    ++d.toReceiver;  // still on its way (stream.cpp run() counts it off when process returns)
+    st.waiting = std::move(f);
     return;
   }
   const uint64_t ready = gb::wire::monotonicNs();
@@ -163,7 +172,7 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
             {"ready_ns", ready},       {"targets", targets},   {"camera", camera},         {"writes", counts},
             {"stats", statsJson(st)}};
   if (!gb::wire::send(st.socket, m.dump())) return goIdle(st);
-  st.receiverBusy = true;
+  st.receiverBusy = d.receiverBusy = true;
   if (shared) st.atReceiver = std::move(f);  // its buffers stay held until the receiver hands the frame back
 }
 

@@ -76,7 +76,8 @@ void goIdle(Stream& st) {
   st.d->streaming = false;
   if (st.socket >= 0) close(st.socket), st.socket = -1;
   st.atReceiver.reset();
-  st.receiverBusy = false;
+  if (st.waiting) st.waiting.reset(), --st.d->toReceiver;
+  st.receiverBusy = st.d->receiverBusy = false;
 }
 
 namespace {
@@ -94,7 +95,14 @@ void readMessages(Stream& st) {
     if (got == gb::wire::Received::Closed) return goIdle(st);  // the receiver closed or was killed
     json j = json::parse(text, nullptr, false);
     const std::string type = j.is_object() ? j.value("type", "") : "";
-    if (type == gb::wire::kAck) st.receiverBusy = false, st.atReceiver.reset();  // its buffers are free again
+    if (type == gb::wire::kAck) {  // the receiver's buffers are free again: the frame waiting goes now
+      st.receiverBusy = st.d->receiverBusy = false;
+      st.atReceiver.reset();
+      if (st.waiting) {
+        process(st, std::move(st.waiting));
+        --st.d->toReceiver;
+      }
+    }
     if (type == gb::wire::kDetach) return goIdle(st);
   }
 }
@@ -123,6 +131,7 @@ void run(Stream& st) {
       }
       recycle(d, *front);
       if (r == VK_SUCCESS) process(st, std::move(front));
+      --d.toReceiver;
       continue;
     }
     pollfd fds[2] = {{st.wake, POLLIN, 0}, {st.socket, POLLIN, 0}};
@@ -195,6 +204,7 @@ void stopStream(DeviceData& d) {
     if (d.building) st->pending.push_back(std::move(d.building));
   }
   st->atReceiver.reset();
+  st->waiting.reset();
   for (auto& f : st->pending) {  // the device is about to go: its fences are waited for and recycled
     if (!f->fences.empty()) d.vk.WaitForFences(d.device, uint32_t(f->fences.size()), f->fences.data(), VK_TRUE, UINT64_MAX);
     recycle(d, *f);
@@ -210,6 +220,7 @@ void stopStream(DeviceData& d) {
 void streamFrame(DeviceData& d, std::unique_ptr<PendingFrame> f) {
   Stream* st = d.stream;
   if (!st) return;
+  ++d.toReceiver;  // until the thread has sent or dropped it
   {
     std::lock_guard lock(st->lock);
     st->pending.push_back(std::move(f));

@@ -15,7 +15,7 @@ namespace gbl {
 namespace {
 
 struct Submitted {
-  bool pass = false, copies = false, skipped = false;
+  bool pass = false, copies = false, skipped = false, paced = false;
 };
 
 // Gathers what the submitted command buffers recorded. Every buffer they copy into counts one more
@@ -28,6 +28,7 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
     if (!s) continue;
     got.pass |= s->passes > 0;
     got.skipped |= s->skipped && s->passes > 0;
+    got.paced |= s->paced && s->passes > 0;
     d.frameReports.insert(d.frameReports.end(), s->reports.begin(), s->reports.end());
     std::vector<RingBuffer*> counted;
     for (const Copy& c : s->copiesMade)
@@ -55,6 +56,7 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
   }
   d.passesThisFrame |= got.pass;
   d.skippedThisFrame |= got.skipped;
+  d.pacedThisFrame |= got.paced;
   return got;
 }
 
@@ -77,6 +79,8 @@ void endFrame(DeviceData& d) {
     d.passesThisFrame = false;
     skipped = d.skippedThisFrame;
     d.skippedThisFrame = false;
+    if (d.pacedThisFrame && req && number % req->every == 0 && !f) ++d.droppedAtSource;  // due, not taken
+    d.pacedThisFrame = false;
     suggest = req && req->suggest && !d.suggestSent && !reports.empty();
     d.suggestSent |= suggest;
     if (f) {

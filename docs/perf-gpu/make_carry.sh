@@ -2,7 +2,7 @@
 # Builds the folder carried to the device machine for `gblens bench --only methods` on its GPU
 # (docs/perf-gpu.md): the binary, stub libraries for what the device image lacks and the
 # method comparison never calls (every symbol gblens imports from them defined as an abort),
-# libcrypto, and the Vulkan loader .debs. Usage: docs/perf-gpu/make_carry.sh BUILD_DIR DEST
+# libcrypto, libdraco, and the Vulkan loader .debs. Usage: docs/perf-gpu/make_carry.sh BUILD_DIR DEST
 set -eu
 BUILD=${1:-build}; DEST=${2:-build-perfgpu}
 mkdir -p "$DEST/lib" "$DEST/gl"
@@ -17,6 +17,8 @@ for L in libglfw.so.3 libstb.so.0 libembree3.so.3 libOpenImageIO.so.2.4 libOpenI
   gcc -shared -fPIC -O1 -Wl,-soname,$L -o "$DEST/lib/$L" "$TMP/$L.c"
 done
 cp /usr/lib/x86_64-linux-gnu/libcrypto.so.3 "$DEST/lib/"
+# Draco (glTF mesh compression) is small and has no further dependencies: carried as it is.
+cp -L /usr/lib/x86_64-linux-gnu/libdraco.so.7 "$DEST/lib/"
 mkdir -p /tmp/amd64/partial
 o='-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 -oDir::State::Lists=/tmp/amd64'
 apt-get $o update -qq
