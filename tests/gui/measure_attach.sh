@@ -19,7 +19,7 @@ while [ ! -s "$OUT/display" ]; do sleep 0.1; done
 export DISPLAY=:$(head -1 "$OUT/display")
 
 if [ $# -eq 0 ]; then  # the foreign test subject, its targets live by pass and attachment index
-  set -- "$BUILD/tests/subjects/foreign_deferred/foreign_deferred" --frames 1000000
+  set -- "$BUILD/tests/subjects/foreign_deferred/foreign_deferred" --frames 16384
   "$1" --frames 1 --dump "$OUT/dump0" >/dev/null  # its camera (the uniform buffer has no name): a sidecar
   /usr/bin/python3 - "$OUT/live.json" "$OUT/dump0/camera.json" <<'EOF'
 import json, sys
@@ -53,7 +53,10 @@ WID=$(xdotool search --onlyvisible --name '^gblens' | head -1)
 sleep "$SECONDS_"
 xdotool key --window "$WID" ctrl+q
 wait $VIEWER || true
-pkill -f -- "$1" 2>/dev/null || true  # the application ran on after the viewer detached
+# The application ran on after the viewer detached: its pid is the attach_open event's.
+APP_PID=$(/usr/bin/python3 -c 'import json, sys
+print(next((json.loads(l)["pid"] for l in open(sys.argv[1]) if "attach_open" in l), ""))' "$OUT/events")
+[ -n "$APP_PID" ] && kill "$APP_PID" 2>/dev/null || true
 /usr/bin/python3 - "$OUT/events" "$VIEWS" "$WINDOW" "$OUT/viewer.log" <<'EOF'
 import json, statistics, sys
 events = [json.loads(l) for l in open(sys.argv[1]) if l.strip().endswith("}")]
