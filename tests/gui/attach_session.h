@@ -103,6 +103,19 @@ class GuiAttachTest : public ::testing::Test, protected gui::Session {
       if (!line.empty() && line.back() == '}') out.push_back(json::parse(line));
     return out;
   }
+  // The app's own read-back of its frame `frame` (the same run without any layer, ending at that
+  // frame: the app is deterministic) in dir_/dump; its camera.json (null, with a failure, if not).
+  json dumpAppFrame(uint64_t frame) {
+    int status = 0;
+    gui::run(std::string("'") + FOREIGN_DEFERRED_BINARY + "' --frames " + std::to_string(frame + 1) + " --dump '" +
+                 (dir_ / "dump").string() + "' 2>&1",
+             &status);
+    if (status != 0) {
+      ADD_FAILURE() << "foreign_deferred --dump exited with " << status;
+      return nullptr;
+    }
+    return json::parse(std::ifstream(dir_ / "dump" / "camera.json"));
+  }
 
   pid_t app_ = -1;
   std::string wid_;

@@ -10,13 +10,7 @@ BUILD=${1:-build}; VIEWS=${2:-grid}; SECONDS_=${3:-15}; WINDOW=${4:-1200x760}
 [ $# -ge 4 ] && shift 4 || shift $#
 [ "${1:-}" = "--" ] && shift
 GBLENS=$BUILD/gblens
-OUT=$(mktemp -d)
-exec 3>"$OUT/display"
-Xvfb -displayfd 3 -screen 0 1600x900x24 -nolisten tcp >/dev/null 2>&1 &
-XVFB=$!
-trap 'kill $XVFB 2>/dev/null; rm -rf "$OUT"' EXIT
-while [ ! -s "$OUT/display" ]; do sleep 0.1; done
-export DISPLAY=:$(head -1 "$OUT/display")
+. "$(dirname "$0")/own_xvfb.sh"
 
 if [ $# -eq 0 ]; then  # the foreign test subject, its targets live by pass and attachment index
   set -- "$BUILD/tests/subjects/foreign_deferred/foreign_deferred" --frames 16384

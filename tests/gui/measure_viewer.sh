@@ -12,13 +12,7 @@ BUILD=${1:-build}
 SIZE=${2:-320x180}
 REDUCE=${3:-auto}
 GBLENS=$BUILD/gblens
-OUT=$(mktemp -d)
-exec 3>"$OUT/display"
-Xvfb -displayfd 3 -screen 0 1600x900x24 -nolisten tcp >/dev/null 2>&1 &
-XVFB=$!
-trap 'kill $XVFB 2>/dev/null; rm -rf "$OUT"' EXIT
-while [ ! -s "$OUT/display" ]; do sleep 0.1; done
-export DISPLAY=:$(head -1 "$OUT/display")
+. "$(dirname "$0")/own_xvfb.sh"
 
 "$GBLENS" view --size "$SIZE" --window 1600x900 --paused --time 1 --reduce-while-moving "$REDUCE" \
   --event-log "$OUT/events" 2>"$OUT/viewer.log" &

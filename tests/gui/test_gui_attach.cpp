@@ -172,12 +172,8 @@ TEST_F(GuiAttachTest, TheStreamShowsTheLayoutsViewsPausesAndCapturesTheAppsOwnTe
 
   // The app's own read-back of that frame: the same run without any layer, ending at that frame.
   const fs::path dump = dir_ / "dump";
-  int status = 0;
-  gui::run(std::string("'") + FOREIGN_DEFERRED_BINARY + "' --frames " + std::to_string(frozen + 1) + " --dump '" +
-               dump.string() + "' 2>&1",
-           &status);
-  ASSERT_EQ(status, 0);
-  const json cam = json::parse(std::ifstream(dump / "camera.json"));
+  const json cam = dumpAppFrame(frozen);
+  ASSERT_FALSE(cam.is_null());
   gui::ForeignDump texels;
   std::string error;
   ASSERT_TRUE(texels.load(dump, error)) << error;

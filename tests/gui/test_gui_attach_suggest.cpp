@@ -53,12 +53,8 @@ TEST_F(GuiAttachTest, SuggestWithoutALayoutStreamsUnderTheDraftAndSavesIt) {
   ASSERT_FALSE(paused.is_null());
   const uint64_t frozen = paused["app_frame"];
   const fs::path dump = dir_ / "dump";
-  int status = 0;
-  gui::run(std::string("'") + FOREIGN_DEFERRED_BINARY + "' --frames " + std::to_string(frozen + 1) + " --dump '" +
-               dump.string() + "' 2>&1",
-           &status);
-  ASSERT_EQ(status, 0);
-  const json cam = json::parse(std::ifstream(dump / "camera.json"));
+  const json cam = dumpAppFrame(frozen);
+  ASSERT_FALSE(cam.is_null());
   const uint32_t width = cam["width"], height = cam["height"];
   const std::string occlusion = readFile(dump / "occlusion.bin");
   ASSERT_EQ(occlusion.size(), size_t(width) * height);
