@@ -3,10 +3,8 @@
 // layout decoded and uploaded, hover, probe and region statistics on its snapshot). Paused, nothing is
 // polled (the layer drops the frames nobody takes; the application runs on); "Capture" writes the
 // frame shown with writeCapture, the format `import` and `attach --capture-frame` write.
-#include <atomic>
 #include <chrono>
 #include <cstdio>
-#include <thread>
 #include <ctime>
 #include <filesystem>
 
@@ -63,16 +61,7 @@ void decodeShown(Viewer& v) {
   std::vector<int> due;
   for (int k : v.attachShown)
     if (m.unavailable[size_t(k)].empty() && m.views[size_t(k)].quantity >= 0) due.push_back(k);
-  // The views are independent functions of one read-only frame: decoded on every core (a grid of a
-  // 720p frame's 14 views is hundreds of ms on one).
-  std::atomic<size_t> next{0};
-  auto work = [&] {
-    for (size_t i = next++; i < due.size(); i = next++) v.decodedA[size_t(due[i])] = viewImage(f, m.views[size_t(due[i])]);
-  };
-  std::vector<std::thread> pool(std::min<size_t>(due.size(), std::max(1u, std::thread::hardware_concurrency())) - std::min<size_t>(due.size(), 1));
-  for (std::thread& t : pool) t = std::thread(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  for (int k : due) v.decodedA[size_t(k)] = viewImage(f, m.views[size_t(k)]);  // each on every core
   uploadViewImages(v.imagesA, v.ctx, v.decodedA);
   v.rangeKeys.assign(m.views.size(), "");
 }

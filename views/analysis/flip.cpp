@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "renderer/core/assert.h"
+#include "views/analysis/parallel_rows.h"
 
 namespace gb {
 
@@ -56,17 +57,6 @@ Vec3 huntLab(Vec3 rgb) {
   return {L, 0.01 * L * 500.0 * (fx - fy), 0.01 * L * 200.0 * (fy - fz)};
 }
 double hyab(Vec3 a, Vec3 b) { return std::abs(a.x - b.x) + std::hypot(a.y - b.y, a.z - b.z); }
-
-// Runs f(begin, end) over row ranges on up to the machine's cores (inline for small images).
-template <class F>
-void parallelRows(uint32_t rows, size_t pixels, const F& f) {
-  const unsigned n = pixels < 32768 ? 1u : std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
-  if (n == 1) return f(0u, rows);
-  std::vector<std::thread> threads;
-  for (unsigned i = 1; i < n; ++i) threads.emplace_back(f, rows * i / n, rows * (i + 1) / n);
-  f(0u, rows / n);
-  for (std::thread& t : threads) t.join();
-}
 
 // A separable convolution with a 1-D kernel of odd size, edges clamped: along rows into `tmp`, then
 // columns into `dst` (added to it with `add`). The buffers are the caller's: they are reused.

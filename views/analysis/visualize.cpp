@@ -9,6 +9,7 @@
 #include "renderer/core/assert.h"
 #include "renderer/core/decode.h"
 #include "shaders/view_colors.h"
+#include "views/analysis/parallel_rows.h"
 
 namespace gb {
 
@@ -87,22 +88,26 @@ CpuImage viewImage(const FrameSnapshot& f, const ViewDef& view) {
   out.channels = view.integer ? std::vector<std::string>{view.name} : std::vector<std::string>{"0", "1", "2", "3"};
   out.data.assign(size_t(out.width) * out.height * out.texelBytes(), 0);
   const uint32_t n = out.channelCount();
-  for (uint32_t y = 0; y < out.height; ++y)
-    for (uint32_t x = 0; x < out.width; ++x) {
-      std::optional<std::array<double, 4>> v = viewValue(f, view, ti->x0 + x, ti->y0 + y);
-      uint8_t* p = out.data.data() + (size_t(y) * out.width + x) * out.texelBytes();
-      for (uint32_t c = 0; c < n; ++c) {
-        uint32_t bits = kEmptyTexel;
-        if (v && view.integer) {
-          bits = uint32_t((*v)[c]);
-        } else if (v) {
-          float value = float((*v)[c]);
-          std::memcpy(&bits, &value, 4);
-          if (std::isnan(value)) bits = 0x7FC00000u;  // never the empty texel's payload
+  // Every texel is a function of the read-only frame alone: rows on every core (a stream's frame is
+  // decoded while the viewer waits to show it).
+  parallelRows(out.height, size_t(out.width) * out.height, [&](uint32_t y0, uint32_t y1) {
+    for (uint32_t y = y0; y < y1; ++y)
+      for (uint32_t x = 0; x < out.width; ++x) {
+        std::optional<std::array<double, 4>> v = viewValue(f, view, ti->x0 + x, ti->y0 + y);
+        uint8_t* p = out.data.data() + (size_t(y) * out.width + x) * out.texelBytes();
+        for (uint32_t c = 0; c < n; ++c) {
+          uint32_t bits = kEmptyTexel;
+          if (v && view.integer) {
+            bits = uint32_t((*v)[c]);
+          } else if (v) {
+            float value = float((*v)[c]);
+            std::memcpy(&bits, &value, 4);
+            if (std::isnan(value)) bits = 0x7FC00000u;  // never the empty texel's payload
+          }
+          std::memcpy(p + 4 * c, &bits, 4);
         }
-        std::memcpy(p + 4 * c, &bits, 4);
       }
-    }
+  });
   return out;
 }
 
