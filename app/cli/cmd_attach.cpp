@@ -162,11 +162,7 @@ int runSuggestLive(const AttachOptions& o, const LiveOptions& lo) {
   s.detach();
   if (o.output.empty()) {
     std::fputs(text.c_str(), stdout);
-  } else if (!writeAtomically(o.output, ".tmp", [&](const std::string& tmp) {
-               std::FILE* f = std::fopen(tmp.c_str(), "wb");
-               const bool written = f && std::fwrite(text.data(), 1, text.size(), f) == text.size();
-               return (f ? std::fclose(f) == 0 : false) && written;
-             })) {
+  } else if (!writeTextAtomically(o.output, text, error)) {
     return fail(o.output + ": cannot write the draft");
   }
   std::fprintf(stderr, "gblens attach: draft%s%s; check every \"guess\", then: gblens attach --layout %s -- %s\n",

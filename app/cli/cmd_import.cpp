@@ -14,6 +14,7 @@
 #include "app/cli/cli.h"
 #include "renderer/core/library_output.h"
 #include "views/capture/capture.h"
+#include "views/capture/image_io.h"
 #include "views/capture/import_renderdoc.h"
 #include "views/capture/suggest.h"
 
@@ -150,15 +151,7 @@ int runSuggest(const ImportOptions& o) {
   if (o.output.empty()) {
     std::fputs(text.c_str(), stdout);
   } else {
-    const std::string tmp = o.output + ".tmp";
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f || std::fwrite(text.data(), 1, text.size(), f) != text.size() || std::fclose(f) != 0) {
-      std::remove(tmp.c_str());
-      return fail(o.output + ": cannot write the draft");
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, o.output, ec);
-    if (ec) return fail(o.output + ": cannot write the draft (" + ec.message() + ")");
+    if (!writeTextAtomically(o.output, text, error)) return fail(o.output + ": cannot write the draft");
   }
   for (const std::string& line : draft.summary) std::fprintf(stderr, "  %s\n", line.c_str());
   std::string args = isRenderDocCapture(o.inputs[0]) ? o.inputs[0] : "";

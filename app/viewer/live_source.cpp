@@ -174,7 +174,6 @@ bool pollAttached(Viewer& v) {
     decodeShown(v);
     changed = true;
   }
-  const LiveReceiver::State st = receiver.state();
   for (std::string& r : receiver.takeReports()) {
     logLine(v.eventLog, {{"event", "attach_report"}, {"text", r}});
     m.attach.reports.push_back(std::move(r));
@@ -187,10 +186,10 @@ bool pollAttached(Viewer& v) {
     logLine(v.eventLog, {{"event", "draft_saved"}, {"status", m.attach.draftStatus}, {"path", path}});
     changed = true;
   }
-  if (m.attach.passes.empty() && !st.suggestion.is_null()) {
-    m.attach.passes = describeLivePasses(v.args.attach->hello(), st.suggestion);
+  if (nlohmann::json suggestion; m.attach.passes.empty() && receiver.takeSuggestion(suggestion)) {
+    m.attach.passes = describeLivePasses(v.args.attach->hello(), suggestion);
     std::vector<std::string> summary;
-    const nlohmann::json draft = draftLiveLayout(st.suggestion, summary);
+    const nlohmann::json draft = draftLiveLayout(suggestion, summary);
     m.attach.draft = draft.dump(2);
     for (const std::string& line : summary) m.attach.passes += "\n" + line;
     logLine(v.eventLog, {{"event", "attach_suggestion"}, {"draft", draft}});
@@ -200,6 +199,7 @@ bool pollAttached(Viewer& v) {
   const auto now = std::chrono::steady_clock::now();
   if (changed || now - v.attachLastStatus > std::chrono::milliseconds(100)) {
     v.attachLastStatus = now;
+    const LiveReceiver::State st = receiver.state();
     std::string status = statusText(v, st);
     if (!st.running && !v.attachExitLogged) {
       v.attachExitLogged = true;
@@ -231,15 +231,7 @@ static std::string freshName(const std::string& prefix, const std::string& suffi
 
 bool saveAttachedDraft(const std::string& draft, std::string& written, std::string& error) {
   written = freshName("gblens-layout-", ".json");
-  const std::string text = draft + "\n";
-  if (writeAtomically(written, ".tmp", [&](const std::string& tmp) {
-        std::FILE* f = std::fopen(tmp.c_str(), "wb");
-        const bool ok = f && std::fwrite(text.data(), 1, text.size(), f) == text.size();
-        return (f ? std::fclose(f) == 0 : false) && ok;
-      }))
-    return true;
-  error = written + ": cannot write it";
-  return false;
+  return writeTextAtomically(written, draft + "\n", error);
 }
 
 bool captureAttachedFrame(Viewer& v, std::string& written, std::string& error) {

@@ -55,12 +55,9 @@ class GuiAttachTest : public ::testing::Test, protected gui::Session {
   void SetUp() override {
     using namespace attach_gui;
     if (!gui::haveTool("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
-    for (const char* tool : {"xdotool", "xwd", "convert"}) ASSERT_TRUE(gui::haveTool(tool)) << tool << " is missing";
+    ASSERT_EQ(gui::missingTool(), "") << "is missing (debian-packages.txt lists it; run make deps)";
     std::string error;
-    ASSERT_TRUE(openDisplay(fs::path(GBLENS_BUILD_DIR) /
-                                ("gui_attach_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name())),
-                            1024, 640, error))
-        << error;
+    ASSERT_TRUE(openTestDisplay("gui_attach_", 1024, 640, error)) << error;
     // The camera of frame 0 (the app's own dump) as the sidecar: the views and texels do not use it.
     int status = 0;
     gui::run(std::string("'") + FOREIGN_DEFERRED_BINARY + "' --frames 1 --dump '" + (dir_ / "dump0").string() + "' 2>&1", &status);

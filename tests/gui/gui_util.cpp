@@ -1,6 +1,8 @@
 // GUI test helpers: processes, Xvfb, event-log polling, screenshots.
 #include "tests/gui/gui_util.h"
 
+#include <gtest/gtest.h>
+
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -217,6 +219,17 @@ bool Session::openDisplay(const std::filesystem::path& dir, int width, int heigh
     return false;
   }
   return xvfb_.start(width, height, error);
+}
+
+bool Session::openTestDisplay(const std::string& prefix, int width, int height, std::string& error) {
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  return openDisplay(std::filesystem::path(GBLENS_BUILD_DIR) / (prefix + test), width, height, error);
+}
+
+std::string missingTool() {
+  for (const char* tool : {"xdotool", "xwd", "convert"})
+    if (!haveTool(tool)) return tool;
+  return "";
 }
 
 void Session::closeDisplay() {

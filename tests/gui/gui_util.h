@@ -46,11 +46,18 @@ struct Session {
 
   // A fresh `dir` and an Xvfb screen of width x height.
   bool openDisplay(const std::filesystem::path& dir, int width, int height, std::string& error);
+  // The same in GBLENS_BUILD_DIR/<prefix><the running test's name>: a folder per test (ctest runs a
+  // fixture's tests in parallel, and each starts by emptying its own).
+  bool openTestDisplay(const std::string& prefix, int width, int height, std::string& error);
   void closeDisplay();  // the viewer terminated (if running), Xvfb stopped
   std::string xdotool(const std::string& args) const;
   // The next event of dir_/events.jsonl after those already waited for that `pred` accepts.
   nlohmann::json waitEvent(const std::function<bool(const nlohmann::json&)>& pred, double seconds = 30.0);
 };
+
+// The first of the tools the GUI tests drive the viewer with (xdotool, xwd, convert) that is not
+// installed ("" : all are; debian-packages.txt lists them, make deps installs them).
+std::string missingTool();
 
 struct Screenshot {
   int width = 0, height = 0;

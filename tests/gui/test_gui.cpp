@@ -20,8 +20,7 @@ class GuiTest : public GpuTest {
  protected:
   void SetUp() override {
     if (!gui::haveTool("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb): no display to test the viewer on";
-    for (const char* tool : {"xdotool", "xwd", "convert"})
-      ASSERT_TRUE(gui::haveTool(tool)) << tool << " is missing (debian-packages.txt lists it; run make deps)";
+    ASSERT_EQ(gui::missingTool(), "") << "is missing (debian-packages.txt lists it; run make deps)";
     GpuTest::SetUp();
     // One folder per test: CTest runs them in parallel, and each starts by emptying its own.
     dir_ = fs::path(GBLENS_BUILD_DIR) / "gui_test" / ::testing::UnitTest::GetInstance()->current_test_info()->name();

@@ -23,12 +23,10 @@ class GuiCompareTest : public GpuTest, protected gui::Session {
  protected:
   void SetUp() override {
     if (!gui::haveTool("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
-    for (const char* tool : {"xdotool", "xwd", "convert"}) ASSERT_TRUE(gui::haveTool(tool)) << tool << " is missing";
+    ASSERT_EQ(gui::missingTool(), "") << "is missing (debian-packages.txt lists it; run make deps)";
     GpuTest::SetUp();
     std::string error;
-    ASSERT_TRUE(openDisplay(fs::path(GBLENS_BUILD_DIR) / "gui_test" / ::testing::UnitTest::GetInstance()->current_test_info()->name(),
-                            1280, 720, error))
-        << error;
+    ASSERT_TRUE(openTestDisplay("gui_test/", 1280, 720, error)) << error;
   }
   void TearDown() override {
     closeDisplay();

@@ -38,7 +38,7 @@ class ForeignGui : public ::testing::Test, protected gui::Session {
  protected:
   void SetUp() override {
     if (!gui::haveTool("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
-    for (const char* tool : {"xdotool", "xwd", "convert"}) ASSERT_TRUE(gui::haveTool(tool)) << tool << " is missing";
+    ASSERT_EQ(gui::missingTool(), "") << "is missing (debian-packages.txt lists it; run make deps)";
     std::string error;
     ASSERT_TRUE(openDisplay(fs::path(GBLENS_BUILD_DIR) / "gui_foreign_test", 1280, 720, error)) << error;
   }

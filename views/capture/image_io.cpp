@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 
 namespace gb {
 
@@ -27,6 +28,16 @@ bool writeAtomically(const std::string& path, const std::string& suffix,
     return false;
   }
   return true;
+}
+
+bool writeTextAtomically(const std::string& path, const std::string& text, std::string& error) {
+  const bool ok = writeAtomically(path, ".tmp", [&](const std::string& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    return bool(out.flush());
+  });
+  if (!ok) error = path + ": cannot write";
+  return ok;
 }
 
 bool writePng(const std::string& path, const Rgba8Image& image, std::string& error) {

@@ -19,6 +19,8 @@ bool writePng(const std::string& path, const Rgba8Image& image, std::string& err
 // Runs `write(tmpPath)`, then renames tmpPath to `path`. Removes the temporary on failure.
 bool writeAtomically(const std::string& path, const std::string& suffix,
                      const std::function<bool(const std::string& tmpPath)>& write);
+// `text` as the file `path`, through writeAtomically; false with "PATH: cannot write" in `error`.
+bool writeTextAtomically(const std::string& path, const std::string& text, std::string& error);
 
 // Writes a folder atomically: `write(tmp)` fills a fresh folder beside `dir`, which then takes its
 // place (an old one moves aside first and is deleted only after the rename). `dir` may be missing,

@@ -41,6 +41,15 @@ std::vector<std::string> LiveReceiver::takeReports() {
   return out;
 }
 
+bool LiveReceiver::takeSuggestion(nlohmann::json& out) {
+  std::lock_guard lock(lock_);
+  if (suggestion_.is_null()) return false;
+  out = std::move(suggestion_);
+  suggestion_ = nullptr;
+  suggestionTaken_ = true;
+  return true;
+}
+
 void LiveReceiver::run() {
   while (!stop_) {
     if (detach_ && session_.attached()) session_.detach();
@@ -63,7 +72,7 @@ void LiveReceiver::run() {
     state_.running = running;
     state_.attached = session_.attached();
     state_.exitStatus = session_.exitStatus();
-    if (state_.suggestion.is_null() && session_.suggestion()) state_.suggestion = *session_.suggestion();
+    if (suggestion_.is_null() && !suggestionTaken_ && session_.suggestion()) suggestion_ = *session_.suggestion();
   }
 }
 

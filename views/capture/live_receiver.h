@@ -32,10 +32,11 @@ class LiveReceiver {
     bool running = true, attached = true;
     int exitStatus = -1;
     uint64_t replaced = 0;          // decoded frames a newer one replaced before the viewer took them
-    nlohmann::json suggestion;      // the layer's report of one frame's passes (--suggest), once it came
   };
   State state();
   std::vector<std::string> takeReports();
+  // The layer's report of one frame's passes (--suggest): true once, when it has come.
+  bool takeSuggestion(nlohmann::json& out);
 
  private:
   void run();
@@ -49,6 +50,8 @@ class LiveReceiver {
   bool hasLatest_ = false;
   State state_;
   std::vector<std::string> reports_;
+  nlohmann::json suggestion_;
+  bool suggestionTaken_ = false;
 };
 
 }  // namespace gb

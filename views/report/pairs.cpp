@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "views/capture/image_io.h"
 #include "views/report/report.h"
 #include "views/report/report_internal.h"
 
@@ -127,7 +128,7 @@ bool comparePairs(const std::string& list, const CompareSettings& settings, cons
   }
   if (!out.junit.empty() && !writeJunit(named, out.junit, error)) return false;
   if (out.json == "-") run.json = all.dump(2) + "\n";
-  else if (!out.json.empty() && !writeText(out.json, all.dump(2) + "\n", error)) return false;
+  else if (!out.json.empty() && !writeTextAtomically(out.json, all.dump(2) + "\n", error)) return false;
   return true;
 }
 

@@ -90,16 +90,6 @@ nlohmann::json side(const FrameSnapshot& f, const Quantity& q, bool shuffle) {
 
 }  // namespace
 
-bool writeText(const std::string& path, const std::string& text, std::string& error) {
-  const bool ok = writeAtomically(path, ".tmp", [&](const std::string& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    return bool(out.flush());
-  });
-  if (!ok) error = path + ": cannot write";
-  return ok;
-}
-
 bool writeGroupData(const Capture& a, const Capture& b, const GroupResult& g, const std::string& file,
                     std::string& error) {
   const Quantity &qa = *a.frame.layout.findByName(g.group.group), &qb = *b.frame.layout.findByName(g.group.group);
@@ -112,7 +102,7 @@ bool writeGroupData(const Capture& a, const Capture& b, const GroupResult& g, co
                          {"a", side(a.frame, qa, shuffle)},
                          {"b", side(b.frame, qb, shuffle)},
                          {"error", pack(g.errors, 1, shuffle)}};
-  return writeText(file, "gblensData(" + data.dump() + ");\n", error);
+  return writeTextAtomically(file, "gblensData(" + data.dump() + ");\n", error);
 }
 
 }  // namespace gb

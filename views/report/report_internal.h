@@ -11,8 +11,6 @@ namespace gb {
 const char* reportPageHtml();
 const char* reportPageJs();
 
-// Writes `text` to `path` atomically (temporary file + rename); false with `error` naming the file.
-bool writeText(const std::string& path, const std::string& text, std::string& error);
 // data/<key>.js for one group (report_data.cpp).
 bool writeGroupData(const Capture& a, const Capture& b, const GroupResult& g, const std::string& file,
                     std::string& error);

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "renderer/core/assert.h"
+#include "views/capture/image_io.h"
 #include "views/report/report.h"
 #include "views/report/report_internal.h"
 
@@ -18,8 +19,8 @@ bool writePage(const std::string& dir, const nlohmann::json& data, std::string& 
   GB_ASSERT(at != std::string::npos);
   html.replace(at, slot.size(), reportPageJs());
   // The data as a script: a page opened from disk may load scripts beside it, not read files.
-  return writeText((fs::path(dir) / "report.js").string(), "gblensReport(" + data.dump() + ");\n", error) &&
-         writeText((fs::path(dir) / "index.html").string(), html, error);
+  return writeTextAtomically((fs::path(dir) / "report.js").string(), "gblensReport(" + data.dump() + ");\n", error) &&
+         writeTextAtomically((fs::path(dir) / "index.html").string(), html, error);
 }
 
 bool writeReportContents(const Capture& a, const Capture& b, const CompareReport& report, const std::string& dir,
@@ -52,7 +53,7 @@ bool writeReportContents(const Capture& a, const Capture& b, const CompareReport
       if (g.target == f.target && groups.contains(g.group.key)) groups[g.group.key]["flip"] = j["flip"][i]["heatmap"];
   }
   if (!report.mask.empty() && !png("mask.png", maskImage(report.mask), j["mask"]["image"])) return false;
-  return writeText((fs::path(dir) / "report.json").string(), j.dump(2) + "\n", error) &&
+  return writeTextAtomically((fs::path(dir) / "report.json").string(), j.dump(2) + "\n", error) &&
          writePage(dir, {{"kind", "pair"}, {"report", j}, {"groups", groups}}, error);
 }
 
