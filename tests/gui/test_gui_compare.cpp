@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <thread>
 
-#include "tests/gpu/gpu_test.h"
+#include "tests/gui/gpu_session.h"
 #include "tests/gui/gui_util.h"
 
 namespace gb {
@@ -19,19 +19,9 @@ namespace gb {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-class GuiCompareTest : public GpuTest, protected gui::Session {
+class GuiCompareTest : public GpuGuiTest {
  protected:
-  void SetUp() override {
-    if (!gui::haveTool("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
-    ASSERT_EQ(gui::missingTool(), "") << "is missing (debian-packages.txt lists it; run make deps)";
-    GpuTest::SetUp();
-    std::string error;
-    ASSERT_TRUE(openTestDisplay("gui_test/", 1280, 720, error)) << error;
-  }
-  void TearDown() override {
-    closeDisplay();
-    if (!IsSkipped()) GpuTest::TearDown();
-  }
+  std::string folderPrefix() const override { return "gui_test/"; }
 
   // Starts `gblens view ARGS --validate --window 1280x720 --event-log` and waits for its first frame
   // (its layout in firstLayout_); the window's id (xdotool) in wid_.

@@ -15,7 +15,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "renderer/core/layout_json.h"
-#include "tests/gpu/gpu_test.h"
+#include "tests/gui/gpu_session.h"
 #include "tests/gui/gui_util.h"
 #include "views/capture/capture.h"
 #include "views/capture/import.h"
@@ -49,19 +49,9 @@ nlohmann::json layoutJsonText() {
 
 }  // namespace
 
-class GuiImportTest : public GpuTest, protected gui::Session {
+class GuiImportTest : public GpuGuiTest {
  protected:
-  void SetUp() override {
-    if (!gui::haveTool("Xvfb")) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
-    ASSERT_EQ(gui::missingTool(), "") << "is missing (debian-packages.txt lists it; run make deps)";
-    GpuTest::SetUp();
-    std::string error;
-    ASSERT_TRUE(openTestDisplay("gui_import_test/", 1280, 720, error)) << error;
-  }
-  void TearDown() override {
-    closeDisplay();
-    if (!IsSkipped()) GpuTest::TearDown();
-  }
+  std::string folderPrefix() const override { return "gui_import_test/"; }
 };
 
 // The analytic frame: eye position, the camera, and for each pixel the plane point it sees.
