@@ -19,7 +19,7 @@
 
 #include "app/bench/bench_report.h"
 #include "renderer/core/layout_json.h"
-#include "views/capture/live.h"
+#include "views/live/live.h"
 
 extern char** environ;
 

@@ -7,7 +7,7 @@
 // the command exits 0 when it got what it was asked for, 2 when nothing matched the layout (with why).
 // With a layout and none of --capture-frame, --frames: the viewer opens on the stream's first frame;
 // closing it detaches and the application runs on. --suggest without a layout drafts one from what
-// the application draws (views/capture/live_suggest.cpp) and streams under it. docs/attach.md.
+// the application draws (views/infer/live_suggest.cpp) and streams under it. docs/attach.md.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -18,7 +18,8 @@
 #include "app/viewer/viewer.h"
 #include "views/capture/capture.h"
 #include "views/capture/image_io.h"
-#include "views/capture/live.h"
+#include "views/live/live.h"
+#include "views/infer/suggest_live.h"
 
 namespace gb {
 

@@ -15,8 +15,8 @@
 #include "renderer/core/library_output.h"
 #include "views/capture/capture.h"
 #include "views/capture/image_io.h"
-#include "views/capture/import_renderdoc.h"
-#include "views/capture/suggest.h"
+#include "views/import/import_renderdoc.h"
+#include "views/infer/suggest.h"
 
 namespace gb {
 

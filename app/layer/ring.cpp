@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/layer/stream.h"
-#include "views/capture/live_wire.h"
+#include "views/live/live_wire.h"
 
 namespace gbl {
 

@@ -12,7 +12,7 @@
 #include <cstring>
 
 #include "app/layer/stream.h"
-#include "views/capture/live_wire.h"
+#include "views/live/live_wire.h"
 
 namespace gbl {
 

@@ -1,4 +1,4 @@
-// The layer's thread and its wire to the receiver (views/capture/live_wire.h). At vkCreateDevice the
+// The layer's thread and its wire to the receiver (views/live/live_wire.h). At vkCreateDevice the
 // layer connects to the socket gblens attach named, says hello and waits (once, at most 5 s) for the
 // request; from then on its own thread waits for the fences of submitted frames and hands each
 // finished one to send.cpp, and sends the layer's reports. When the receiver goes away or detaches,
@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/layer/stream.h"
-#include "views/capture/live_wire.h"
+#include "views/live/live_wire.h"
 
 namespace gbl {
 

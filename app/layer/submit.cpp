@@ -8,7 +8,7 @@
 #include <chrono>
 
 #include "app/layer/layer.h"
-#include "views/capture/live_wire.h"
+#include "views/live/live_wire.h"
 
 namespace gbl {
 

@@ -15,7 +15,7 @@
 #include "views/analysis/probe.h"
 #include "views/analysis/view_table.h"
 #include "views/analysis/region_stats.h"
-#include "views/capture/import_renderdoc.h"
+#include "views/import/import_renderdoc.h"
 #include "app/python/python.h"
 
 namespace gb::python {

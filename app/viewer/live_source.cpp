@@ -9,11 +9,12 @@
 #include <filesystem>
 
 #include "app/viewer/viewer.h"
+#include "views/infer/suggest_live.h"
 #include "renderer/core/decode.h"
 #include "views/analysis/probe.h"
 #include "views/analysis/visualize.h"
 #include "views/capture/image_io.h"
-#include "views/capture/live_wire.h"
+#include "views/live/live_wire.h"
 
 namespace gb {
 

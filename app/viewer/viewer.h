@@ -22,8 +22,8 @@
 #include "views/analysis/decompose.h"
 #include "views/analysis/error.h"
 #include "views/capture/capture.h"
-#include "views/capture/live.h"
-#include "views/capture/live_receiver.h"
+#include "views/live/live.h"
+#include "views/live/live_receiver.h"
 #include "views/ui/view_map.h"
 #include "views/ui/viewer_model.h"
 

@@ -16,7 +16,7 @@
 #include "tests/cli/attach_util.h"
 #include "tests/gui/gui_util.h"
 #include "tests/support/capture_util.h"
-#include "views/capture/live.h"
+#include "views/live/live.h"
 
 namespace gb {
 namespace {

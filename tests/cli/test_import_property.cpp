@@ -19,7 +19,7 @@
 #include "views/analysis/probe.h"
 #include "views/analysis/region_stats.h"
 #include "views/capture/capture.h"
-#include "views/capture/import.h"
+#include "views/import/import.h"
 
 namespace gb {
 namespace {

@@ -22,7 +22,7 @@
 #include "renderer/core/texels.h"
 #include "tests/support/capture_util.h"
 #include "views/capture/capture.h"
-#include "views/capture/renderdoc_replay.h"
+#include "views/import/renderdoc_replay.h"
 
 extern char** environ;
 

@@ -9,9 +9,9 @@
 
 #include "renderer/core/json_read.h"
 #include "renderer/core/layout_json.h"
-#include "views/capture/import.h"
+#include "views/import/import.h"
 #include "views/capture/manifest_check.h"
-#include "views/capture/renderdoc_replay.h"
+#include "views/import/renderdoc_replay.h"
 
 namespace gb::fuzz {
 

@@ -18,7 +18,7 @@
 #include "tests/gui/gpu_session.h"
 #include "tests/gui/gui_util.h"
 #include "views/capture/capture.h"
-#include "views/capture/import.h"
+#include "views/import/import.h"
 
 namespace gb {
 

@@ -16,7 +16,7 @@
 #include "renderer/core/layout_json.h"
 #include "tests/support/capture_util.h"
 #include "views/capture/capture.h"
-#include "views/capture/import.h"
+#include "views/import/import.h"
 
 namespace gb {
 

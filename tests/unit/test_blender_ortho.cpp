@@ -14,8 +14,8 @@
 #include "renderer/core/decode.h"
 #include "renderer/core/layout_json.h"
 #include "tests/support/capture_util.h"
-#include "views/capture/import.h"
-#include "views/capture/suggest.h"
+#include "views/import/import.h"
+#include "views/infer/suggest.h"
 
 namespace gb {
 namespace {

@@ -14,7 +14,7 @@
 #include "renderer/core/camera.h"
 #include "renderer/core/decode.h"
 #include "renderer/core/layout_json.h"
-#include "views/capture/import.h"
+#include "views/import/import.h"
 
 namespace gb {
 namespace {

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "renderer/core/layout_json.h"
-#include "views/capture/live.h"
+#include "views/live/live.h"
 
 namespace gb {
 namespace {

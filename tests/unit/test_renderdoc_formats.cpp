@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "views/capture/renderdoc_replay.h"
+#include "views/import/renderdoc_replay.h"
 
 namespace gb {
 

@@ -10,7 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "views/capture/suggest_camera.h"
+#include "views/infer/suggest_camera.h"
 
 namespace gb {
 namespace {

@@ -1,4 +1,4 @@
-// `gblens attach --suggest`'s draft layout (views/capture/suggest_live.cpp) from a report of one
+// `gblens attach --suggest`'s draft layout (views/infer/suggest_live.cpp) from a report of one
 // frame's passes written here by hand as the layer reports them: for foreign_deferred's four passes
 // (its README's table: pass 0 writes position, normal, albedo and depth; passes 1-3 occlusion, hdr,
 // final), and for vkcube's one named pass. The G-buffer pass, the targets, their formats and live
@@ -6,7 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "renderer/core/layout_json.h"
-#include "views/capture/live.h"
+#include "views/live/live.h"
+#include "views/infer/suggest_live.h"
 
 namespace gb {
 namespace {

@@ -7,8 +7,8 @@
 #include <map>
 
 #include "renderer/core/layout_json.h"
-#include "views/capture/import.h"
-#include "views/capture/suggest.h"
+#include "views/import/import.h"
+#include "views/infer/suggest.h"
 
 namespace gb {
 

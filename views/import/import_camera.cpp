@@ -8,7 +8,7 @@
 
 #include "renderer/core/json_read.h"
 #include "renderer/core/layout_json.h"
-#include "views/capture/import_internal.h"
+#include "views/import/import_internal.h"
 
 namespace gb {
 

@@ -7,10 +7,11 @@
 #include <set>
 
 #include "renderer/core/layout_json.h"
-#include "views/capture/import.h"
-#include "views/capture/live.h"
-#include "views/capture/suggest.h"
-#include "views/capture/suggest_guess.h"
+#include "views/import/import.h"
+#include "views/live/live.h"
+#include "views/infer/suggest_live.h"
+#include "views/infer/suggest.h"
+#include "views/infer/suggest_guess.h"
 
 namespace gb {
 

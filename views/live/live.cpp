@@ -2,7 +2,7 @@
 // application started with the layer enabled through the loader's environment, and the wire's
 // messages turned into frames, reports and counts. One frame at a time: the shared memory is the
 // layer's again (ack) as soon as a frame is decoded.
-#include "views/capture/live.h"
+#include "views/live/live.h"
 
 #include <fcntl.h>
 #include <malloc.h>
@@ -23,8 +23,8 @@
 #include <thread>
 
 #include "renderer/core/layout_json.h"
-#include "views/capture/import.h"
-#include "views/capture/live_wire.h"
+#include "views/import/import.h"
+#include "views/live/live_wire.h"
 
 extern char** environ;
 

@@ -1,5 +1,5 @@
 // The gblens layer <-> receiver wire (see live_wire.h): one JSON message per SOCK_SEQPACKET packet.
-#include "views/capture/live_wire.h"
+#include "views/live/live_wire.h"
 
 #include <poll.h>
 #include <sys/socket.h>

@@ -1,6 +1,6 @@
 // The bounded replay child of replay_child.h: fork + exec into its own process group with
 // PR_SET_PDEATHSIG, a wait loop with a deadline, and stop signals that take the child with gblens.
-#include "views/capture/replay_child.h"
+#include "views/import/replay_child.h"
 
 #include <fcntl.h>
 #include <signal.h>

@@ -1,6 +1,6 @@
 // LiveReceiver (live_receiver.h): the thread is the only user of the LiveSession's receiving side;
 // the viewer reads what it published under the lock.
-#include "views/capture/live_receiver.h"
+#include "views/live/live_receiver.h"
 
 #include <chrono>
 

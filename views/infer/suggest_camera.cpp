@@ -1,6 +1,6 @@
 // The camera search of import --suggest-layout (see suggest_camera.h): candidates by the shape of
 // their numbers, hypotheses by conventions, and the stored positions as the judge.
-#include "views/capture/suggest_camera.h"
+#include "views/infer/suggest_camera.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <map>
 #include <sstream>
 
-#include "views/capture/import.h"
+#include "views/import/import.h"
 
 namespace gb {
 

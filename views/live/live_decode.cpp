@@ -4,9 +4,9 @@
 #include <atomic>
 
 #include "renderer/core/layout_json.h"
-#include "views/capture/import.h"
-#include "views/capture/live.h"
-#include "views/capture/live_wire.h"
+#include "views/import/import.h"
+#include "views/live/live.h"
+#include "views/live/live_wire.h"
 
 namespace gb {
 

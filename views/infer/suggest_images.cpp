@@ -10,8 +10,8 @@
 
 #include "renderer/core/decode.h"
 #include "renderer/core/layout_json.h"
-#include "views/capture/import.h"
-#include "views/capture/suggest.h"
+#include "views/import/import.h"
+#include "views/infer/suggest.h"
 
 namespace gb {
 

@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 
-#include "views/capture/import.h"
+#include "views/import/import.h"
 
 namespace gb {
 

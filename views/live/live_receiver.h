@@ -10,7 +10,7 @@
 #include <thread>
 #include <vector>
 
-#include "views/capture/live.h"
+#include "views/live/live.h"
 
 namespace gb {
 

@@ -1,7 +1,7 @@
 // RenderDoc replay in a child process (see renderdoc_replay.h): the embedded script is written to a
 // private temporary folder, run by /usr/bin/python3 with a time limit (replay_child.h: its own
 // process group, killed with gblens), and the folder removed.
-#include "views/capture/renderdoc_replay.h"
+#include "views/import/renderdoc_replay.h"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -17,7 +17,7 @@
 #include <sstream>
 
 #include "renderer/core/json_read.h"
-#include "views/capture/replay_child.h"
+#include "views/import/replay_child.h"
 
 namespace gb {
 

@@ -1,5 +1,5 @@
 // Quantity guesses for draft layouts (see suggest_guess.h): a table of names, then the texels.
-#include "views/capture/suggest_guess.h"
+#include "views/infer/suggest_guess.h"
 
 #include <algorithm>
 #include <cmath>

@@ -12,7 +12,7 @@
 
 #include "renderer/core/camera.h"
 #include "renderer/core/layout.h"
-#include "views/capture/renderdoc_replay.h"
+#include "views/import/renderdoc_replay.h"
 
 namespace gb {
 

@@ -5,7 +5,8 @@
 // `import --suggest-layout` reads a capture's. The second run goes on streaming under the refined draft.
 #include <chrono>
 
-#include "views/capture/live.h"
+#include "views/live/live.h"
+#include "views/infer/suggest_live.h"
 
 namespace gb {
 

@@ -1,7 +1,7 @@
 """gblens's RenderDoc replay: lists a capture and reads raw texels and buffer bytes from it.
 
 gblens carries this script inside its binary (cmake/EmbedText.cmake) and runs it with the system
-/usr/bin/python3 and Debian's python3-renderdoc (views/capture/renderdoc_replay.cpp). Commands:
+/usr/bin/python3 and Debian's python3-renderdoc (views/import/renderdoc_replay.cpp). Commands:
   list RDC                          JSON on stdout: api, driver, passes, textures, last event
   texels RDC EVENT OUTDIR TEX...    OUTDIR/<i>.bin: the stored bits of each texture (a name or #id)
                                     after EVENT (0: the end of the pass that last writes it), packed

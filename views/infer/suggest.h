@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/core/snapshot.h"
-#include "views/capture/renderdoc_replay.h"
-#include "views/capture/suggest_camera.h"
-#include "views/capture/suggest_guess.h"
+#include "views/import/renderdoc_replay.h"
+#include "views/infer/suggest_camera.h"
+#include "views/infer/suggest_guess.h"
 
 namespace gb {
 

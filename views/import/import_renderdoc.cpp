@@ -1,6 +1,6 @@
 // Gathering an import from a RenderDoc capture (see import_renderdoc.h): list it, choose the event,
 // read the targets' texels and the camera's buffer, check formats against the layout.
-#include "views/capture/import_renderdoc.h"
+#include "views/import/import_renderdoc.h"
 
 #include <algorithm>
 #include <optional>

@@ -1,5 +1,5 @@
 // Safe reading of import sources (see import_source.h).
-#include "views/capture/import_source.h"
+#include "views/import/import_source.h"
 
 #include <fstream>
 

@@ -28,7 +28,7 @@ struct ImportInput {
   std::vector<uint8_t> renderdocCameraBuffer;
   std::string renderdocCameraBufferAt;  // where it was read, for people: " (#123) at event 140"
   std::string capture;                  // the RenderDoc capture imported ("": files): a sidecar may be beside it
-  // Texels the gblens layer streamed for {"live": ...} targets (`gblens attach`, views/capture/live.h),
+  // Texels the gblens layer streamed for {"live": ...} targets (`gblens attach`, views/live/live.h),
   // by target name: packed as texels.h says, in the stream's shared memory, with the attachment's size.
   struct LiveTexels {
     const uint8_t* data = nullptr;

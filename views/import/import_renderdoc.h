@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "views/capture/import.h"
-#include "views/capture/renderdoc_replay.h"
+#include "views/import/import.h"
+#include "views/import/renderdoc_replay.h"
 
 namespace gb {
 

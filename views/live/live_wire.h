@@ -1,5 +1,5 @@
 // The wire between the gblens layer (app/layer, inside the application) and the receiver
-// (views/capture/live.h, in gblens): a local SOCK_SEQPACKET socket carrying one JSON message per
+// (views/live/live.h, in gblens): a local SOCK_SEQPACKET socket carrying one JSON message per
 // packet, and a shared-memory file (memfd, passed with SCM_RIGHTS) that holds one frame's texels.
 // Compiled into both; no Vulkan here. docs/attach.md describes the messages.
 #pragma once

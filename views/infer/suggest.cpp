@@ -1,6 +1,6 @@
 // Draft layouts (see suggest.h): what both sources share once the texels are read: where the
 // surfaces are, the camera's evidence, and what the camera then tells about the quantities.
-#include "views/capture/suggest.h"
+#include "views/infer/suggest.h"
 
 #include <algorithm>
 #include <cmath>

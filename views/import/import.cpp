@@ -1,6 +1,6 @@
 // Importing a G-buffer (see import.h): sources -> CpuImages checked against the layout, the camera
 // in gblens's convention, the lights, one FrameSnapshot.
-#include "views/capture/import.h"
+#include "views/import/import.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -13,8 +13,8 @@
 #include "renderer/core/layout_json.h"
 #include "renderer/core/library_output.h"
 #include "renderer/core/texels.h"
-#include "views/capture/import_internal.h"
-#include "views/capture/import_source.h"
+#include "views/import/import_internal.h"
+#include "views/import/import_source.h"
 
 namespace gb {
 
