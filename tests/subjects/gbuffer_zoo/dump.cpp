@@ -59,9 +59,9 @@ std::vector<Slot> plan(const Renderer& r, size_t& total) {
     for (size_t a = 0; a < r.desc->passes[p].attachments.size(); ++a) {
       const Attachment& at = r.desc->passes[p].attachments[a];
       if (!at.store) continue;  // DONT_CARE: not dumped (a depth format's depth aspect decides)
+      total = (total + 15) & ~size_t(15);  // copy offsets: a multiple of the texel size (16 at most), 4 for depth
       Slot s{int(p), int(a), total, texels * info_of(at.format).bytes, at.stencil_store ? texels : 0};
       total += s.depth_bytes + s.stencil_bytes;
-      total = (total + 3) & ~size_t(3);  // copy offsets must be 4-byte aligned for depth/stencil
       slots.push_back(s);
     }
   return slots;
@@ -124,7 +124,7 @@ json attachments_json(const Renderer& r) {
       json j = {{"pass", p}, {"attachment", a}, {"name", at.name}, {"vk_format", fi.name},
                 {"store", at.store ? "store" : "dont_care"}};
       j["file"] = at.store ? json(file_name(r, int(p), int(a))) : json(nullptr);
-      j["bytes_per_texel"] = at.store ? fi.bytes + (at.stencil_store ? 1 : 0) : 0;
+      j["bytes_per_texel"] = at.store ? json(fi.bytes + (at.stencil_store ? 1 : 0)) : json(nullptr);
       if (is_depth(at.format)) {
         j["depth_bytes_per_texel"] = fi.bytes;
         j["stencil_store"] = st ? json(at.stencil_store ? "store" : "dont_care") : json(nullptr);
