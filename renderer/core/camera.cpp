@@ -1,6 +1,7 @@
 // Projection and reconstruction math shared by the renderer, the probe and the tests.
 #include "renderer/core/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gb {
@@ -122,6 +123,37 @@ glm::dvec3 eyeFromHardwareDepth(const Camera& v, double px, double py, double de
 double hardwareDepth(const Camera& v, const glm::dvec3& eye) {
   glm::dvec4 c = v.clipFromEye * glm::dvec4(eye, 1.0);
   return c.z / c.w;
+}
+
+bool splitClipFromWorld(const glm::dmat4& m, bool clipYUp, glm::dmat4& viewFromWorld, glm::dmat4& clipFromView) {
+  auto row = [&](int r) { return glm::dvec4(m[0][r], m[1][r], m[2][r], m[3][r]); };
+  const glm::dvec4 rx = row(0), ry = row(1), rw = row(3);
+  const glm::dvec3 toward(rw);  // clip w grows with the distance along the view direction
+  if (!(glm::length(toward) > 1e-12 * std::max(glm::length(glm::dvec3(rx)), 1e-300))) return false;  // orthographic
+  const glm::dmat3 rows = glm::transpose(glm::dmat3(glm::dvec3(rx), glm::dvec3(ry), glm::dvec3(rw)));
+  if (!(std::abs(glm::determinant(rows)) > 1e-300)) return false;
+  const glm::dvec3 eye = -glm::inverse(rows) * glm::dvec3(rx.w, ry.w, rw.w);
+  const glm::dvec3 f = glm::normalize(toward);
+  glm::dvec3 right = glm::dvec3(rx) - glm::dot(glm::dvec3(rx), f) * f;
+  if (!(glm::length(right) > 0.0)) return false;
+  right = glm::normalize(right);
+  glm::dvec3 down = glm::dvec3(ry) - glm::dot(glm::dvec3(ry), f) * f - glm::dot(glm::dvec3(ry), right) * right;
+  if (!(glm::length(down) > 0.0)) return false;
+  down = glm::normalize(down);  // the direction clip y grows in
+  const glm::dvec3 up = clipYUp ? down : -down;
+  // gblens's eye: x right, y up the image, looking down -z.
+  const glm::dmat3 r = glm::transpose(glm::dmat3(right, up, -f));
+  viewFromWorld = glm::dmat4(r);
+  viewFromWorld[3] = glm::dvec4(-(r * eye), 1.0);
+  clipFromView = m * glm::inverse(viewFromWorld);
+  // The terms a perspective has none of come out at float rounding, not zero: zero them (a split
+  // of float matrices is good to about 1e-7 of the largest entry).
+  double largest = 0.0;
+  for (int c = 0; c < 4; ++c)
+    for (int k = 0; k < 4; ++k) largest = std::max(largest, std::abs(clipFromView[c][k]));
+  for (auto [c, k] : {std::pair{0, 1}, {1, 0}, {0, 3}, {1, 3}, {3, 3}, {3, 0}, {3, 1}, {0, 2}, {1, 2}})
+    if (std::abs(clipFromView[c][k]) < 1e-5 * largest) clipFromView[c][k] = 0.0;
+  return std::isfinite(glm::determinant(clipFromView));
 }
 
 }  // namespace gb

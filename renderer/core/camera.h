@@ -64,6 +64,13 @@ glm::dvec3 eyeFromHardwareDepth(const Camera& camera, double px, double py, doub
 // Hardware depth value of an eye-space point (what the rasterizer writes, before rounding).
 double hardwareDepth(const Camera& camera, const glm::dvec3& eye);
 
+// A camera's combined clip_from_world (a perspective: clip w is the distance along the view
+// direction) split into a rigid view_from_world (right-handed: looking down -Z, +Y up the image) and
+// the clip_from_view that makes it up again (clip_from_world = clip_from_view * view_from_world).
+// `clipYUp`: clip y points up the image (D3D, GL). False for an orthographic or singular matrix.
+bool splitClipFromWorld(const glm::dmat4& clipFromWorld, bool clipYUp, glm::dmat4& viewFromWorld,
+                        glm::dmat4& clipFromView);
+
 // A camera looking from `eye` at `target` (+Y up).
 glm::dmat4 lookAt(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up = {0, 1, 0});
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 
 #include "renderer/core/image.h"
 #include "renderer/core/lights.h"
@@ -65,7 +66,7 @@ struct Quantity {
   std::string unit;                  // scalar/vector: for people
   std::map<uint32_t, std::string> idNames;      // id: value -> name
   std::map<std::string, uint32_t> stencilBits;  // stencil: name -> mask
-  std::string guess;                 // a draft layout's note (import --suggest-layout); for people
+  nlohmann::json guess;              // a draft layout's note (import --suggest-layout): text or an object
   std::map<std::string, std::string> check;     // `gblens check` policy for this quantity: class -> level
 };
 
@@ -95,7 +96,7 @@ struct LayoutTarget {
   // Formats a file may hold the target in ("format": ["rgba16f", "rgba32f"]): import takes the one
   // the file's channel type holds exactly and sets `format` to it. Empty: `format` only.
   std::vector<StorageFormat> formatChoices;
-  std::string guess;                 // a draft layout's note (import --suggest-layout); for people
+  nlohmann::json guess;              // a draft layout's note (import --suggest-layout); for people
   std::vector<std::string> channels;
   uint32_t width = 0, height = 0;    // 0: the layout's size (or the source's)
   TargetSource source;
@@ -129,10 +130,13 @@ struct LayoutCamera {
     uint64_t viewOffset = 0, clipOffset = 0;
     bool worldFromView = false;  // the view matrix given is world_from_view (inverted when read)
     bool rowMajor = false;
+    // Only clip_from_world is given (at clipOffset; engines that keep view * projection only): split
+    // into view and projection when read (camera.h splitClipFromWorld).
+    bool combined = false;
   };
   std::optional<BufferMatrix> renderdoc;  // the matrices come from a capture's uniform buffer
   std::string from;  // where import read the matrices (a sidecar's path, a buffer and its offsets)
-  std::string guess; // a draft layout's note (import --suggest-layout): why this camera; for people
+  nlohmann::json guess;  // a draft layout's note (import --suggest-layout): why this camera; for people
 };
 
 // The world's handedness from the view matrix (a mirror, det < 0, between a world and a view of the

@@ -2,6 +2,8 @@
 // names the file, the target or quantity and the field (docs/layout-format.md).
 #include "renderer/core/layout_json.h"
 
+#include "renderer/core/camera.h"
+
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -222,9 +224,12 @@ bool readQuantityFields(Reader& r, const json& j, const Where& w, Quantity& q) {
 }
 
 // A draft layout's "guess" notes (import --suggest-layout): kept for people, never interpreted.
-bool takeGuess(Reader& r, json& j, const Where& w, std::string& guess) {
-  if (!r.string(j, w, "guess", guess, false)) return false;
-  j.erase("guess");
+bool takeGuess(Reader& r, json& j, const Where& w, json& guess) {
+  auto it = j.find("guess");
+  if (it == j.end()) return true;
+  if (!it->is_string() && !it->is_object()) return r.fail(w, "guess", "expected a text or an object");
+  guess = *it;
+  j.erase(it);
   return true;
 }
 
@@ -475,9 +480,13 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
       !r.choice(j, wc, "world_handedness", {"right", "left"}, worldHand) ||
       !r.choice(j, wc, "projection", {"perspective", "orthographic"}, projection) || !r.string(j, wc, "up", up, false) ||
       !r.choice(j, wc, "image_origin", {"top", "bottom"}, origin) || !r.string(j, wc, "sidecar", c.sidecar, false) ||
-      !r.string(j, wc, "from", c.from, false) || !r.string(j, wc, "guess", c.guess, false) ||
+      !r.string(j, wc, "from", c.from, false) ||
       !r.size(j, wc, "size", c.width, c.height))
     return false;
+  if (auto g = j.find("guess"); g != j.end()) {
+    if (!g->is_string() && !g->is_object()) return r.fail(wc, "guess", "expected a text or an object");
+    c.guess = *g;
+  }
   if (!up.empty() && !parseAxis(up, c.up))
     return r.fail(wc, "up", "\"" + up + "\" is not one of x, -x, y, -y, z, -z");
   if (conv >= 0) c.convention = LayoutCamera::Convention(conv);
@@ -491,9 +500,17 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
     int64_t view = -1, clip = -1;
     if (!it->is_object() || !r.string(*it, wr, "buffer", b.buffer, true)) return r.fail(wr, "buffer", "missing");
     b.worldFromView = it->contains("world_from_view");
+    b.combined = it->contains("clip_from_world");
     b.rowMajor = order == 1;
     const char* viewKey = b.worldFromView ? "world_from_view" : "view_from_world";
-    for (auto [key, out] : {std::pair{viewKey, &view}, {"clip_from_view", &clip}}) {
+    std::vector<std::pair<const char*, int64_t*>> keys = {{viewKey, &view}, {"clip_from_view", &clip}};
+    if (b.combined) {
+      for (const char* other : {"view_from_world", "world_from_view", "clip_from_view"})
+        if (it->contains(other)) return r.fail(wr, other, "clip_from_world gives both matrices: give it alone");
+      keys = {{"clip_from_world", &clip}};
+      view = 0;
+    }
+    for (auto [key, out] : keys) {
       auto m = it->find(key);
       // A uniform buffer is at most a few kilobytes: an offset past 2^32 is never one.
       if (m == it->end() || !m->is_object() || !m->contains("offset") ||
@@ -506,15 +523,26 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
   }
   const bool fromElsewhere = !c.sidecar.empty() || c.renderdoc;
   if (!fromElsewhere) {
-    // The view matrix as view_from_world, or its inverse world_from_view (a camera's transform).
-    if (j.contains("world_from_view")) {
+    // The view matrix as view_from_world, or its inverse world_from_view (a camera's transform); or
+    // only their product clip_from_world, split here.
+    if (j.contains("clip_from_world")) {
+      for (const char* other : {"view_from_world", "world_from_view", "clip_from_view"})
+        if (j.contains(other)) return r.fail(wc, other, "clip_from_world gives both matrices: give it alone");
+      glm::dmat4 clipFromWorld;
+      if (!readMatrix(r, j, wc, "clip_from_world", order == 1, clipFromWorld)) return false;
+      if (!splitClipFromWorld(clipFromWorld, c.convention != LayoutCamera::Convention::Vulkan, c.viewFromWorld,
+                              c.clipFromView))
+        return r.fail(wc, "clip_from_world", "not a perspective projection (clip w is no distance): give view_from_world "
+                                             "and clip_from_view");
+      c.leftHanded = false;  // the split gives a right-handed view
+    } else if (j.contains("world_from_view")) {
       glm::dmat4 worldFromView;
       if (!readMatrix(r, j, wc, "world_from_view", order == 1, worldFromView)) return false;
       c.viewFromWorld = glm::inverse(worldFromView);
     } else if (!readMatrix(r, j, wc, "view_from_world", order == 1, c.viewFromWorld)) {
       return false;
     }
-    if (!readMatrix(r, j, wc, "clip_from_view", order == 1, c.clipFromView)) return false;
+    if (!j.contains("clip_from_world") && !readMatrix(r, j, wc, "clip_from_view", order == 1, c.clipFromView)) return false;
     std::string error;
     if (!settleWorldHandedness(c, error)) return r.fail(w, "camera", error.substr(8));
     if (c.statedOrthographic && *c.statedOrthographic != (c.clipFromView[2][3] == 0.0))
@@ -522,7 +550,7 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
                                           "\", but clip_from_view is " +
                                           (c.clipFromView[2][3] == 0.0 ? "orthographic" : "not orthographic"));
   }
-  return r.unknownKeys(j, wc, {"view_from_world", "world_from_view", "clip_from_view", "matrix_order", "convention",
+  return r.unknownKeys(j, wc, {"view_from_world", "world_from_view", "clip_from_view", "clip_from_world", "matrix_order", "convention",
                                "view_handedness", "world_handedness", "projection", "up", "image_origin", "sidecar",
                                "renderdoc", "size", "from", "guess"});
 }

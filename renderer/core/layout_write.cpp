@@ -70,7 +70,7 @@ static json quantityJson(const Quantity& q) {
       if (!q.unit.empty()) j["unit"] = q.unit;
       break;
   }
-  if (!q.guess.empty()) j["guess"] = q.guess;
+  if (!q.guess.is_null()) j["guess"] = q.guess;
   if (!q.check.empty()) j["check"] = q.check;
   return j;
 }
@@ -109,13 +109,16 @@ json layoutCameraJson(const LayoutCamera& c) {
   if (c.statedOrthographic) j["projection"] = *c.statedOrthographic ? "orthographic" : "perspective";
   if (!c.sidecar.empty()) j["sidecar"] = c.sidecar;
   if (!c.from.empty()) j["from"] = c.from;
-  if (!c.guess.empty()) j["guess"] = c.guess;
+  if (!c.guess.is_null()) j["guess"] = c.guess;
   if (c.width) j["size"] = {c.width, c.height};
   if (c.renderdoc) {
     j["matrix_order"] = c.renderdoc->rowMajor ? "row_major" : "column_major";
-    j["renderdoc"] = {{"buffer", c.renderdoc->buffer},
-                      {c.renderdoc->worldFromView ? "world_from_view" : "view_from_world", {{"offset", c.renderdoc->viewOffset}}},
-                      {"clip_from_view", {{"offset", c.renderdoc->clipOffset}}}};
+    if (c.renderdoc->combined)
+      j["renderdoc"] = {{"buffer", c.renderdoc->buffer}, {"clip_from_world", {{"offset", c.renderdoc->clipOffset}}}};
+    else
+      j["renderdoc"] = {{"buffer", c.renderdoc->buffer},
+                        {c.renderdoc->worldFromView ? "world_from_view" : "view_from_world", {{"offset", c.renderdoc->viewOffset}}},
+                        {"clip_from_view", {{"offset", c.renderdoc->clipOffset}}}};
   }
   if (c.sidecar.empty() && !c.renderdoc) {
     j["view_from_world"] = matrix(c.viewFromWorld);
@@ -150,7 +153,7 @@ json layoutJson(const Layout& l) {
       j["format"] = json::array();
       for (const StorageFormat& f : lt.formatChoices) j["format"].push_back(f.name);
     }
-    if (!lt.guess.empty()) j["guess"] = lt.guess;
+    if (!lt.guess.is_null()) j["guess"] = lt.guess;
     if (lt.width) j["size"] = {lt.width, lt.height};
     if (lt.source.kind != TargetSource::Kind::None) j["source"] = sourceJson(lt.source);
     json qs = json::array();

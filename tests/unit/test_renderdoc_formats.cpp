@@ -29,8 +29,10 @@ TEST(RenderDocFormats, EachFormatGblensHoldsIsRecognised) {
       {{"D24S8", "D24S8", "Depth", 2, 1, false}, TexelFormat::D24S8},
       {{"D32", "Regular", "Depth", 1, 4, false}, TexelFormat::D32f},
       {{"D16", "Regular", "Depth", 1, 2, false}, TexelFormat::D16},
+      // 8-bit BGRA: the replay script swaps R and B back (as the gblens layer does live).
+      {{"B8G8R8A8_UNORM", "Regular", "UNorm", 4, 1, true}, TexelFormat::Rgba8Unorm},
+      {{"B8G8R8A8_SRGB", "Regular", "UNormSRGB", 4, 1, true}, TexelFormat::Rgba8Srgb},
       // Not held: another channel order, count or type; block compression; packed floats.
-      {{"B8G8R8A8_UNORM", "Regular", "UNorm", 4, 1, true}, std::nullopt},
       {{"B10G10R10A2_UNORM", "R10G10B10A2", "UNorm", 4, 1, true}, std::nullopt},
       {{"R16G16_FLOAT", "Regular", "Float", 2, 2, false}, std::nullopt},
       {{"R32G32B32_FLOAT", "Regular", "Float", 3, 4, false}, std::nullopt},

@@ -42,7 +42,8 @@ TEST(SuggestLive, ForeignDeferredsGBufferPassAndLaterTargets) {
     EXPECT_EQ(draft["targets"][t]["format"], expected[t].first) << t;
     EXPECT_EQ(draft["targets"][t]["source"]["live"], expected[t].second) << t;
   }
-  EXPECT_EQ(summary.front(), "G-buffer pass: #0 (the most colour attachments)");
+  EXPECT_EQ(summary.front(), "G-buffer pass: #0 (the most colour targets with a depth target; the frame says nothing of what reads "
+                             "them)");
   Layout layout;
   std::string error;
   ASSERT_TRUE(parseLayout(draft, "draft", layout, error)) << error;

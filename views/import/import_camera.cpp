@@ -8,6 +8,7 @@
 
 #include "renderer/core/json_read.h"
 #include "renderer/core/layout_json.h"
+#include "renderer/core/camera.h"
 #include "views/import/import_internal.h"
 
 namespace gb {
@@ -119,6 +120,19 @@ bool resolveCamera(const ImportInput& in, LayoutCamera& c, uint32_t w, uint32_t 
     }
     glm::dmat4 view = matrixFromFloats(bytes, b.viewOffset, b.rowMajor);
     c.clipFromView = matrixFromFloats(bytes, b.clipOffset, b.rowMajor);
+    if (b.combined) {
+      const glm::dmat4 clipFromWorld = c.clipFromView;
+      if (!splitClipFromWorld(clipFromWorld, c.convention != LayoutCamera::Convention::Vulkan, c.viewFromWorld,
+                              c.clipFromView)) {
+        error = where + ": renderdoc: clip_from_world read from \"" + b.buffer + "\" at byte " +
+                std::to_string(b.clipOffset) + " is no perspective projection";
+        return false;
+      }
+      c.leftHanded = false;
+      c.from = "buffer \"" + b.buffer + "\"" + in.renderdocCameraBufferAt + ": clip_from_world at byte " +
+               std::to_string(b.clipOffset) + (b.rowMajor ? ", row-major" : ", column-major") + ", split into view and projection";
+      return checkCameraSize(c, file, w, h, error);
+    }
     for (auto [m, name] : {std::pair{&view, "view matrix"}, {&c.clipFromView, "clip_from_view"}})
       if (!(std::abs(glm::determinant(*m)) > 1e-30)) {
         error = where + ": renderdoc: " + name + " read from \"" + b.buffer + "\" is singular";

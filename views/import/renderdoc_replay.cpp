@@ -163,6 +163,8 @@ RdcTexture textureFromJson(const nlohmann::json& j) {
   t.mips = j.value("mips", 1u);
   t.layers = j.value("arraysize", 1u);
   t.samples = j.value("samples", 1u);
+  t.reads = j.value("reads", std::vector<uint32_t>{});
+  t.presented = j.value("presented", false);
   return t;
 }
 
@@ -201,7 +203,8 @@ std::optional<TexelFormat> texelFormatOf(const RdcFormat& f) {
   if (f.type == "D24S8") return TexelFormat::D24S8;
   if (f.type == "R10G10B10A2")
     return !f.bgra && f.compType == "UNorm" ? std::optional(TexelFormat::Rgb10a2Unorm) : std::nullopt;
-  if (f.type != "Regular" || f.bgra) return std::nullopt;
+  // BGRA: 8-bit only, R and B swapped back by the replay script.
+  if (f.type != "Regular" || (f.bgra && !(f.compCount == 4 && f.compByteWidth == 1))) return std::nullopt;
   const std::string& c = f.compType;
   if (f.compCount == 1 && c == "Depth") {
     if (f.compByteWidth == 4) return TexelFormat::D32f;
@@ -245,6 +248,13 @@ bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& 
     RdcPass pass{p.value("name", ""), p.value("first", 0u), p.value("last", 0u), p.value("depth", 0u), {}};
     for (uint64_t id : p.at("writes").get<std::vector<uint64_t>>())
       pass.writes.push_back(names[id].empty() ? std::string("#") + std::to_string(id) : names[id]);
+    for (const nlohmann::json& st : p.value("stores", nlohmann::json::array())) {
+      const uint64_t id = st.value("id", uint64_t(0));
+      RdcPass::Store store{names[id].empty() ? "#" + std::to_string(id) : names[id], "", ""};
+      if (st.contains("store") && st["store"].is_string()) store.store = st["store"];
+      if (st.contains("stencil_store") && st["stencil_store"].is_string()) store.stencilStore = st["stencil_store"];
+      pass.stores.push_back(store);
+    }
     pass.boundAt = p.value("boundAt", 0u);
     for (const nlohmann::json& b : p.value("buffers", nlohmann::json::array())) pass.buffers.push_back(bindingFromJson(b));
     drawStateFromJson(p, pass);

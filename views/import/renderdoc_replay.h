@@ -25,6 +25,8 @@ struct RdcTexture {
   std::optional<TexelFormat> texelFormat;  // when gblens can hold the format
   uint32_t width = 0, height = 0;
   uint32_t depth = 1, mips = 1, layers = 1, samples = 1;
+  std::vector<uint32_t> reads;  // events that read it (sampled, input attachment, copy/blit/resolve source)
+  bool presented = false;       // a swapchain image
 };
 
 // A uniform or storage buffer used at a draw or dispatch: its kind and the stages that read it (from
@@ -61,6 +63,13 @@ struct RdcPass {
   std::vector<std::string> outputs;  // its colour targets, depth target (names; a draw only)
   std::string depthTarget;
   std::array<double, 4> viewport{};  // x, y, width, height (readDrawState; Vulkan: a negative height flips y)
+  // The application's own store ops of the render passes begun inside it, per attachment texture
+  // ("store", "dont_care", "none"; "" where the capture does not say): an aspect not stored is no
+  // quantity of the frame.
+  struct Store {
+    std::string texture, store, stencilStore;
+  };
+  std::vector<Store> stores;
 };
 
 struct RdcBuffer {

@@ -28,6 +28,16 @@ WRITES = {
 }
 
 
+# How a texture can be read (the reads that make a pass's output an input of a later one): sampled or
+# loaded by a shader stage, an input attachment, the source of a copy, blit or resolve.
+READS = {
+    rd.ResourceUsage.VS_Resource, rd.ResourceUsage.HS_Resource, rd.ResourceUsage.DS_Resource,
+    rd.ResourceUsage.GS_Resource, rd.ResourceUsage.PS_Resource, rd.ResourceUsage.CS_Resource,
+    rd.ResourceUsage.All_Resource, rd.ResourceUsage.InputTarget, rd.ResourceUsage.CopySrc,
+    rd.ResourceUsage.ResolveSrc, rd.ResourceUsage.Copy, rd.ResourceUsage.Resolve,
+}
+
+
 class Failure(Exception):
     pass
 
@@ -125,6 +135,10 @@ class Replay:
         self.controller.Shutdown()
         self.cap.Shutdown()
 
+    def reads(self, tex_id):
+        return sorted(set(u.eventId for u in self.controller.GetUsage(self.textures[tex_id].resourceId)
+                          if u.usage in READS))
+
     def writes(self, tex_id):
         return sorted(u.eventId for u in self.controller.GetUsage(self.textures[tex_id].resourceId)
                       if u.usage in WRITES)
@@ -207,7 +221,76 @@ def describe_texture(replay, tex_id):
     return {"name": replay.names.get(tex_id, "#%d" % tex_id), "id": tex_id, "auto": tex_id in replay.auto,
             "format": describe_format(t.format),
             "width": t.width, "height": t.height, "depth": t.depth, "mips": t.mips, "arraysize": t.arraysize,
-            "samples": t.msSamp}
+            "samples": t.msSamp, "reads": replay.reads(tex_id),
+            "presented": bool(int(t.creationFlags) & int(rd.TextureCategory.SwapBuffer))}
+
+
+def child(obj, name):
+    for i in range(obj.NumChildren()):
+        if obj.GetChild(i).name == name:
+            return obj.GetChild(i)
+    return None
+
+
+def children(obj):
+    return [obj.GetChild(i) for i in range(obj.NumChildren())] if obj is not None else []
+
+
+def store_name(obj):
+    """VK_ATTACHMENT_STORE_OP_DONT_CARE -> dont_care (None: not given)."""
+    if obj is None:
+        return None
+    text = obj.AsString()
+    return text.replace("VK_ATTACHMENT_STORE_OP_", "").replace("_KHR", "").replace("_EXT", "").replace("_QCOM", "").lower() or None
+
+
+def attachment_stores(replay):
+    """The application's own store ops of each render pass's attachments, by the begin event: {event:
+    {image id: {"store", "stencil_store"}}}, read from the capture's creation chunks (vkCreateRenderPass(2),
+    vkCreateFramebuffer, vkCreateImageView) and each vkCmdBeginRenderPass(2) / vkCmdBeginRendering."""
+    rps, fbs, views = {}, {}, {}
+    sf = replay.sfile
+    for ch in sf.chunks:
+        if ch.name in ("vkCreateRenderPass", "vkCreateRenderPass2", "vkCreateRenderPass2KHR"):
+            made = child(ch, "RenderPass")
+            info = child(ch, "CreateInfo")
+            if made is None or info is None:
+                continue
+            rps[int(made.AsResourceId())] = [(store_name(child(a, "storeOp")), store_name(child(a, "stencilStoreOp")))
+                                             for a in children(child(info, "pAttachments"))]
+        elif ch.name == "vkCreateFramebuffer":
+            made, info = child(ch, "Framebuffer"), child(ch, "CreateInfo")
+            if made is not None and info is not None:
+                fbs[int(made.AsResourceId())] = [int(v.AsResourceId()) for v in children(child(info, "pAttachments"))]
+        elif ch.name == "vkCreateImageView":
+            made, info = child(ch, "View"), child(ch, "CreateInfo")
+            if made is not None and info is not None and child(info, "image") is not None:
+                views[int(made.AsResourceId())] = int(child(info, "image").AsResourceId())
+    out = {}
+    for a, _ in replay.actions:
+        if not a.flags & rd.ActionFlags.BeginPass or not a.events:
+            continue
+        ch = sf.chunks[a.events[-1].chunkIndex]
+        found = {}
+        begin = child(ch, "RenderPassBegin")
+        if begin is not None:
+            rp, fb = child(begin, "renderPass"), child(begin, "framebuffer")
+            ops = rps.get(int(rp.AsResourceId()), []) if rp is not None else []
+            atts = fbs.get(int(fb.AsResourceId()), []) if fb is not None else []
+            for i, view in enumerate(atts):
+                if i < len(ops) and view in views:
+                    found[views[view]] = {"store": ops[i][0], "stencil_store": ops[i][1]}
+        info = child(ch, "RenderingInfo")
+        if info is not None:  # dynamic rendering: each attachment names its view and store op
+            for name in ("pColorAttachments", "pDepthAttachment", "pStencilAttachment"):
+                for att in (children(child(info, name)) if name == "pColorAttachments" else [child(info, name)]):
+                    view = child(att, "imageView") if att is not None else None
+                    if view is None or int(view.AsResourceId()) not in views:
+                        continue
+                    entry = found.setdefault(views[int(view.AsResourceId())], {"store": None, "stencil_store": None})
+                    entry["stencil_store" if name == "pStencilAttachment" else "store"] = store_name(child(att, "storeOp"))
+        out[a.eventId] = found
+    return out
 
 
 # Buffer descriptors (RenderDoc's BindType) and what gblens calls them.
@@ -347,7 +430,10 @@ def command_list(replay):
     for tex_id in replay.textures:
         writers[tex_id] = replay.writes(tex_id)
     uses = uses_by_event(replay)
+    stores = attachment_stores(replay)
     for p in passes:
+        p["stores"] = [dict(v, id=tex_id) for e, found in sorted(stores.items()) if p["first"] <= e <= p["last"]
+                       for tex_id, v in sorted(found.items()) if tex_id in replay.textures]
         p["writes"] = [tex_id for tex_id, events in sorted(writers.items())
                        if any(p["first"] <= e <= p["last"] for e in events)]
         work = last_work(replay, p["first"], p["last"])
@@ -422,6 +508,11 @@ def packed(data, fmt, width, height):
     if kind == "D16S8":
         expect(data, 4 * n)
         return memoryview(data).cast("H")[0::2].tobytes() + data[2::4]
+    if fmt.BGRAOrder() and kind == "Regular" and fmt.compCount == 4 and fmt.compByteWidth == 1:
+        # B8G8R8A8: R and B swapped back, as the gblens layer streams it (rgba8_unorm / rgba8_srgb).
+        swapped = bytearray(data)
+        swapped[0::4], swapped[2::4] = data[2::4], data[0::4]
+        return bytes(swapped)
     return data
 
 

@@ -36,7 +36,7 @@ bool suggestLive(const LiveOptions& o, double timeout, LiveSession& session, Liv
   first.layoutJson = nullptr;
   first.suggest = true;
   first.onlyFrame = 0;
-  std::vector<bool> later;
+  std::vector<LiveTargetFacts> later;
   {
     LiveSession s;
     if (!s.start(first, error)) return false;
@@ -74,7 +74,7 @@ bool suggestLive(const LiveOptions& o, double timeout, LiveSession& session, Liv
     if (!got) error = gaveUp(session, start, timeout, "a frame");
   }
   if (!got) return false;
-  if (!refineLiveDraft(out.draft, later, raw, out.info.appFrame, out.frame, out.summary, error) ||
+  if (!refineLiveDraft(out.draft, later, raw, out.info.appFrame, {}, out.frame, out.summary, error) ||
       !session.setLayout(out.draft, error)) {
     error = "the refined draft: " + error;  // a bug here: the refinement keeps targets and sources
     return false;

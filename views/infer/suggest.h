@@ -1,8 +1,9 @@
 // Drafting a layout for an unfamiliar G-buffer: `gblens import APP.rdc --suggest-layout` (the pass
-// that writes the G-buffer, its targets and storage formats, a guessed quantity per channel, the
-// camera found by search in the bound buffers) and `gblens import FILES.exr --suggest-layout`
-// (targets from channel names, the camera from a sidecar beside them). Every guess carries a
-// "guess" note in the draft; the draft parses as a layout and imports as it is.
+// that writes the G-buffer decided by the frame's structure, its targets and storage formats, what
+// each channel group holds decided by evidence, the camera found by search in the bound buffers) and
+// `gblens import FILES.exr --suggest-layout` (targets from channel names, the camera from a sidecar
+// beside them). Every quantity carries a "guess" object (views/infer/guess.h); the draft parses as a
+// layout and imports as it is.
 #pragma once
 #include <functional>
 #include <string>
@@ -12,8 +13,7 @@
 
 #include "renderer/core/snapshot.h"
 #include "views/import/renderdoc_replay.h"
-#include "views/infer/suggest_camera.h"
-#include "views/infer/suggest_guess.h"
+#include "views/infer/infer.h"
 
 namespace gb {
 
@@ -37,15 +37,8 @@ bool suggestFromRenderDoc(const SuggestRequest& request, Suggestion& out, std::s
 bool suggestFromImages(const SuggestRequest& request, Suggestion& out, std::string& error);
 // `raw`'s texels under the draft's layout (parsed; false with its message when it does not parse).
 bool draftFrame(const nlohmann::json& draft, const FrameSnapshot& raw, FrameSnapshot& frame, std::string& error);
-// The surface pixels by a depth quantity of a frame (hardware: not the clear value; eye: finite,
-// positive and not the background); every pixel when the layout has none.
-SurfaceMask surfaceOf(const FrameSnapshot& frame);
-// Samples of stored positions and hardware depth at surface pixels of a drafted frame.
-CameraEvidence evidenceOf(const FrameSnapshot& frame, const SurfaceMask& surface);
-// With the camera known: positions' space, a position's 4th channel that is a linear depth (eye
-// depth / scale), normals' space; the draft's quantities are rewritten with notes.
-void refineWithCamera(nlohmann::json& draft, const FrameSnapshot& frame, const SurfaceMask& surface,
-                      const LayoutCamera& camera, const Camera& converted, bool positionsChecked, Space positionSpace,
-                      std::vector<std::string>& summary);
+// The inference's quantities and camera into the draft's targets (in order); a target whose name the
+// source made up (`unnamed`) is named by the first quantity it holds.
+void applyInference(nlohmann::json& draft, const InferOutput& inferred, const std::vector<bool>& unnamed);
 
 }  // namespace gb

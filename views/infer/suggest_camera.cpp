@@ -80,9 +80,18 @@ std::string lower(std::string s) {
 
 struct Candidates {
   std::vector<Candidate> projections, views;
+  std::vector<Candidate> combined;  // clip_from_world: a perspective projection times a view
 };
 
-Candidates findCandidates(const std::vector<RdcBinding>& buffers) {
+// A clip_from_world (view * projection, an engine's only camera matrix): neither shape above, and it
+// splits into a rigid view and a perspective projection.
+bool combinedShape(const glm::dmat4& m, bool clipYUp) {
+  if (perspectiveShape(m) || orthographicShape(m) || rigidShape(m)) return false;
+  glm::dmat4 view, proj;
+  return splitClipFromWorld(m, clipYUp, view, proj) && perspectiveShape(proj);
+}
+
+Candidates findCandidates(const std::vector<RdcBinding>& buffers, bool clipYUp) {
   Candidates out;
   for (size_t b = 0; b < buffers.size(); ++b) {
     const std::vector<uint8_t>& d = buffers[b].data;
@@ -95,6 +104,9 @@ Candidates findCandidates(const std::vector<RdcBinding>& buffers) {
         auto it = members.find(o);
         Candidate c{b, o, rowMajor, m, it == members.end() || it->second.rfind("_child", 0) == 0 ? "" : it->second};
         if ((perspectiveShape(m) || orthographicShape(m)) && out.projections.size() < 256) out.projections.push_back(c);
+        if (out.combined.size() < 256 && combinedShape(m, clipYUp) &&
+            std::none_of(out.combined.begin(), out.combined.end(), [&](const Candidate& v) { return same(v.m, m); }))
+          out.combined.push_back(c);
         // Keep one of each distinct view matrix (per-object arrays repeat them).
         if (rigidShape(m) && out.views.size() < 1024 &&
             std::none_of(out.views.begin(), out.views.end(), [&](const Candidate& v) { return same(v.m, m); }))
@@ -109,6 +121,7 @@ struct Hypothesis {
   const Candidate* projection = nullptr;
   const Candidate* view = nullptr;
   bool inverseView = false;  // the view candidate is world_from_view
+  bool combined = false;     // `projection` is a clip_from_world, split into both
   bool leftHanded = false;
   Space space = Space::View;
   LayoutCamera layout;
@@ -201,6 +214,7 @@ bool makeCamera(Hypothesis& h, const CameraEvidence& e) {
   c.convention = !e.clipYUp ? LayoutCamera::Convention::Vulkan
                  : e.clipDepthGl ? LayoutCamera::Convention::Gl
                                  : LayoutCamera::Convention::D3d;
+  if (h.combined && !splitClipFromWorld(h.projection->m, e.clipYUp, c.viewFromWorld, c.clipFromView)) return false;
   std::string error;
   return settleWorldHandedness(c, error) && importCamera(c, e.width, e.height, h.camera, error);
 }
@@ -218,19 +232,39 @@ std::string where(const std::vector<RdcBinding>& buffers, const Candidate& c) {
 }
 
 // The draft's camera block for the chosen hypothesis.
-nlohmann::json cameraJson(const std::vector<RdcBinding>& buffers, const Hypothesis& h, Axis up) {
+// Where the camera's matrices are, as the layout names them: a capture's buffer (offsets from its
+// start), or a running application's binding (offsets from the bound range's start).
+nlohmann::json matricesAt(const std::vector<RdcBinding>& buffers, const Candidate& p, const Candidate* view,
+                          bool inverse, const std::string& source, int livePass) {
+  const RdcBinding& b = buffers[p.buffer];
+  const uint64_t base = source == "live" ? 0 : b.offset;
+  nlohmann::json m = nlohmann::json::object();
+  if (view) m[inverse ? "world_from_view" : "view_from_world"] = {{"offset", base + view->offset}};
+  m[view ? "clip_from_view" : "clip_from_world"] = {{"offset", base + p.offset}};
+  if (source != "live") {
+    m["buffer"] = b.autoName || b.name.empty() ? "#" + std::to_string(b.id) : b.name;
+    return {{"renderdoc", m}};
+  }
+  nlohmann::json pick = {{"pass", livePass}};
+  if (b.kind == "push_constants")
+    pick["push_constants"] = true;
+  else
+    pick.update({{"set", b.set}, {"binding", b.binding}, {"index", b.index}});
+  m["live"] = pick;
+  return m;
+}
+
+nlohmann::json cameraJson(const std::vector<RdcBinding>& buffers, const Hypothesis& h, Axis up, const std::string& source,
+                          int livePass) {
   const LayoutCamera& c = h.layout;
   nlohmann::json j = {{"convention", conventionName(c.convention)},
                       {"view_handedness", c.leftHanded ? "left" : "right"},
                       {"up", name(up)},
                       {"projection", orthographic(h.camera) ? "orthographic" : "perspective"}};
   const Candidate& p = *h.projection;
-  if (h.view && h.view->buffer == p.buffer && h.view->rowMajor == p.rowMajor) {
-    const RdcBinding& b = buffers[p.buffer];
+  if (h.combined || (h.view && h.view->buffer == p.buffer && h.view->rowMajor == p.rowMajor)) {
     j["matrix_order"] = p.rowMajor ? "row_major" : "column_major";
-    j["renderdoc"] = {{"buffer", b.autoName || b.name.empty() ? "#" + std::to_string(b.id) : b.name},
-                      {h.inverseView ? "world_from_view" : "view_from_world", {{"offset", b.offset + h.view->offset}}},
-                      {"clip_from_view", {{"offset", b.offset + p.offset}}}};
+    j.update(matricesAt(buffers, p, h.combined ? nullptr : h.view, h.inverseView, source, livePass));
     return j;
   }
   // Matrices the renderdoc block cannot name together (two buffers, two orders, no view): their values.
@@ -286,6 +320,9 @@ namespace {
 // (and its inverse): scored by the stored positions (view space, and world space through the view
 // matrix), or by the depth's fit alone. Sorted, the best first.
 std::vector<Hypothesis> rankHypotheses(const Candidates& cands, const CameraEvidence& e, bool positions) {
+  // Without positions or depths (a linear depth only, say) nothing here judges: the priors rank, and
+  // the caller judges the few best by the normals (views/infer).
+  const bool depths = std::any_of(e.samples.begin(), e.samples.end(), [](const auto& s) { return !std::isnan(s.depth); });
   std::vector<Hypothesis> tried;
   for (const Candidate& p : cands.projections) {
     const bool persp = perspectiveShape(p.m);
@@ -296,7 +333,7 @@ std::vector<Hypothesis> rankHypotheses(const Candidates& cands, const CameraEvid
       h.leftHanded = left;
       h.prior = projectionPrior(p);
       if (!makeCamera(h, e)) continue;
-      if (positions ? score(h, e, 256) : depthsFit(h, e)) tried.push_back(h);
+      if (positions ? score(h, e, 256) : !depths || depthsFit(h, e)) tried.push_back(h);
     }
   }
   std::vector<Hypothesis> withViews;
@@ -318,6 +355,20 @@ std::vector<Hypothesis> rankHypotheses(const Candidates& cands, const CameraEvid
         }
         withViews.push_back(h);
       }
+  for (const Candidate& m : cands.combined) {  // clip_from_world alone: view and projection at once
+    Hypothesis h;
+    h.projection = &m;
+    h.combined = true;
+    h.prior = projectionPrior(m) + 1;
+    if (!makeCamera(h, e)) continue;
+    if (positions) {
+      h.space = Space::World;
+      score(h, e, 256);
+    } else if (depths && !depthsFit(h, e)) {
+      continue;
+    }
+    withViews.push_back(h);
+  }
   std::vector<Hypothesis>& pool = withViews.empty() ? tried : withViews;
   // The best fit wins; the priors break ties (and decide alone without positions).
   auto better = [](const Hypothesis& a, const Hypothesis& b) {
@@ -341,7 +392,8 @@ std::string guessNote(const std::vector<RdcBinding>& buffers, const std::vector<
   const Hypothesis& best = pool[0];
   std::ostringstream why;
   why << (orthographic(best.camera) ? "orthographic" : "perspective") << " projection at " << where(buffers, *best.projection);
-  if (best.view) why << ", " << (best.inverseView ? "world_from_view" : "view_from_world") << " at " << where(buffers, *best.view);
+  if (best.combined) why << " (clip_from_world: view and projection together, split; the view's handedness is not in it)";
+  else if (best.view) why << ", " << (best.inverseView ? "world_from_view" : "view_from_world") << " at " << where(buffers, *best.view);
   else why << ", no view matrix found (identity)";
   if (positions)
     why << "; stored positions in " << (best.space == Space::View ? "view" : "world") << " space land "
@@ -363,35 +415,56 @@ std::string guessNote(const std::vector<RdcBinding>& buffers, const std::vector<
 
 }  // namespace
 
-FoundCamera searchCamera(const std::vector<RdcBinding>& buffers, const CameraEvidence& e) {
-  FoundCamera out;
-  const Candidates cands = findCandidates(buffers);
+std::vector<FoundCamera> searchCameras(const std::vector<RdcBinding>& buffers, const CameraEvidence& e,
+                                       const std::string& source, int livePass, size_t wanted) {
+  std::vector<FoundCamera> found;
+  const Candidates cands = findCandidates(buffers, e.clipYUp);
   const bool positions = std::any_of(e.samples.begin(), e.samples.end(), [](const auto& s) { return s.hasPosition; });
   std::ostringstream log;
-  log << cands.projections.size() << " projection-shaped and " << cands.views.size()
-      << " view-shaped matrices in " << buffers.size() << " bound buffers";
-  out.summary.push_back(log.str());
+  log << cands.projections.size() << " projection-shaped, " << cands.views.size() << " view-shaped and "
+      << cands.combined.size() << " clip_from_world-shaped matrices in " << buffers.size() << " bound buffers";
   const std::vector<Hypothesis> pool = rankHypotheses(cands, e, positions);
   if (pool.empty()) {
-    out.summary.push_back(cands.projections.empty()
+    FoundCamera out;
+    out.summary.push_back(log.str());
+    out.summary.push_back(cands.projections.empty() && cands.combined.empty()
                               ? "no projection found: give the camera yourself (docs/layout-format.md, \"camera\")"
                               : "no projection fits the stored depth: give the camera yourself");
-    return out;
+    found.push_back(out);
+    return found;
   }
-  const Hypothesis& best = pool[0];
-  double alignment = 0.0;
-  const Axis up = guessUpAxis(best.layout, best.camera, alignment);
-  out.found = true;
-  out.layout = best.layout;
-  out.layout.up = up;
-  out.converted = best.camera;
-  out.positionsChecked = positions && best.pixelError < 0.5;
-  out.positionSpace = best.space;
-  out.pixelError = best.pixelError;
-  out.camera = cameraJson(buffers, best, up);
-  out.camera["guess"] = guessNote(buffers, pool, positions, out.positionsChecked, up, alignment);
-  out.summary.push_back("camera: " + out.camera["guess"].get<std::string>());
-  return out;
+  for (size_t i = 0; i < pool.size() && found.size() < wanted; ++i) {
+    const Hypothesis& best = pool[i];
+    if (std::any_of(pool.begin(), pool.begin() + long(i), [&](const Hypothesis& h) {
+          return h.projection == best.projection && h.view == best.view && h.inverseView == best.inverseView;
+        }))
+      continue;
+    FoundCamera out;
+    out.summary.push_back(log.str());
+    double alignment = 0.0;
+    const Axis up = guessUpAxis(best.layout, best.camera, alignment);
+    out.found = true;
+    out.layout = best.layout;
+    out.layout.up = up;
+    out.converted = best.camera;
+    // The world as the layout states it (its up axis): the converted camera turns that world.
+    std::string unused;
+    if (!importCamera(out.layout, e.width, e.height, out.converted, unused)) out.converted = best.camera;
+    out.positionsChecked = positions && best.pixelError < e.pixelBound;
+    out.positionSpace = best.space;
+    out.pixelError = best.pixelError;
+    out.camera = cameraJson(buffers, best, up, source, livePass);
+    std::vector<Hypothesis> rest(pool.begin() + long(i), pool.end());
+    out.camera["guess"] = guessNote(buffers, rest, positions, out.positionsChecked, up, alignment);
+    out.summary.push_back("camera: " + out.camera["guess"].get<std::string>());
+    found.push_back(std::move(out));
+  }
+  return found;
+}
+
+FoundCamera searchCamera(const std::vector<RdcBinding>& buffers, const CameraEvidence& e, const std::string& source,
+                         int livePass) {
+  return searchCameras(buffers, e, source, livePass, 1)[0];
 }
 
 }  // namespace gb

@@ -1,8 +1,9 @@
 // The camera of an unfamiliar capture, found by search (import --suggest-layout): every 4x4 float
 // matrix in the buffers bound at the G-buffer pass, in both orders, tried as a projection
-// (perspective or orthographic, either clip convention, standard or reversed depth) and as a view
-// matrix (view_from_world or its inverse); a pair is kept when the G-buffer's stored positions,
-// projected through it, land on their own pixels (and its depth, when the G-buffer has one).
+// (perspective or orthographic, either clip convention, standard or reversed depth), as a view
+// matrix (view_from_world or its inverse), or as a combined clip_from_world split into both; a pair is
+// kept when the G-buffer's stored positions, projected through it, land on their own pixels (and
+// its depth, when the G-buffer has one).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -27,6 +28,7 @@ struct CameraEvidence {
     double depth = NAN;           // a stored hardware depth (NaN: none)
   };
   std::vector<Sample> samples;    // surface pixels
+  double pixelBound = 0.5;        // how far (pixels, median) positions may land and confirm a camera
 };
 
 struct FoundCamera {
@@ -41,7 +43,14 @@ struct FoundCamera {
 };
 
 // Every candidate in `buffers` (their bound ranges' bytes; offsets reported from the buffer's start).
-FoundCamera searchCamera(const std::vector<RdcBinding>& buffers, const CameraEvidence& evidence);
+// `source`: the camera block names a capture's buffer ("renderdoc") or a running application's binding
+// in render pass `livePass` ("live": offsets from the bound range's start).
+FoundCamera searchCamera(const std::vector<RdcBinding>& buffers, const CameraEvidence& evidence,
+                         const std::string& source = "renderdoc", int livePass = 0);
+// The `wanted` best distinct cameras (the first is searchCamera's), for a caller that judges them by
+// other evidence (normals against a linear depth). Never empty: a first entry not found says why.
+std::vector<FoundCamera> searchCameras(const std::vector<RdcBinding>& buffers, const CameraEvidence& evidence,
+                                       const std::string& source, int livePass, size_t wanted);
 
 // A camera given otherwise (a sidecar): the median distance in pixels of the stored positions,
 // projected through it, from their pixels, in the space (view or world) they fit best; INFINITY

@@ -12,6 +12,7 @@
 #include "renderer/core/layout_json.h"
 #include "views/import/import.h"
 #include "views/infer/suggest.h"
+#include "views/infer/suggest_guess.h"
 
 namespace gb {
 
@@ -90,33 +91,6 @@ std::string groupFormat(const Group& g) {
   return "";
 }
 
-// Every target's quantities, twice: first to find the depth (where the surfaces are), then every
-// guess over the surfaces only. `frame` receives the texels under the drafted layout.
-bool draftQuantities(nlohmann::json& draft, const Layout& targetsOnly, const FrameSnapshot& raw,
-                     const std::vector<std::string>& labels, FrameSnapshot& frame, SurfaceMask& surface,
-                     std::string& error) {
-  for (int round = 0; round < 2; ++round) {
-    std::set<std::string> quantityNames;
-    for (uint32_t t = 0; t < targetsOnly.targets.size(); ++t) {
-      nlohmann::json qs = guessQuantities(labels[t], targetsOnly.targets[t].format, &raw.images[t].image, surface,
-                                          quantityNames);
-      for (nlohmann::json& q : qs)  // an eye depth "at infinity" where nothing was hit (Blender: 1e10)
-        if (q["quantity"] == "depth" && q.value("encoding", "") == "eye") {
-          double far = 0.0;
-          const CpuImage& img = raw.images[t].image;
-          for (uint32_t y = 0; y < img.height; ++y)
-            for (uint32_t x = 0; x < img.width; ++x) far = std::max(far, img.value(x, y, q["channels"][0].get<uint32_t>()));
-          if (far >= 1e9)
-            q["background"] = far, q["guess"] = q["guess"].get<std::string>() + "; " + std::to_string(far) + " where nothing was hit";
-        }
-      draft["targets"][t]["quantities"] = qs;
-    }
-    if (!draftFrame(draft, raw, frame, error)) return false;
-    surface = surfaceOf(frame);
-  }
-  return true;
-}
-
 }  // namespace
 
 bool suggestFromImages(const SuggestRequest& r, Suggestion& out, std::string& error) {
@@ -157,37 +131,41 @@ bool suggestFromImages(const SuggestRequest& r, Suggestion& out, std::string& er
   FrameSnapshot raw;
   if (!importFrame(in, raw, error)) return false;
 
-  FrameSnapshot frame;
-  SurfaceMask surface;
-  if (!draftQuantities(draft, in.layout, raw, labels, frame, surface, error)) return false;
-  const Layout& layout = frame.layout;
-
+  InferInput infer;
+  for (size_t t = 0; t < labels.size(); ++t) {
+    InferTarget target;
+    target.label = labels[t];
+    target.format = in.layout.targets[t].format;
+    target.texels = raw.images[t].present() ? &raw.images[t].image : nullptr;
+    // Files say nothing of passes: a layer named for light or the picture is lit colour.
+    for (QuantityKind k : namedKinds(labels[t]))
+      if (k == QuantityKind::Radiance || k == QuantityKind::Display) target.writer = Writer::Later;
+    infer.targets.push_back(target);
+  }
   // The camera: a sidecar beside the files (Blender's script writes camera.json there).
   std::string sidecar;
   for (const std::string& f : r.inputs)
     if (std::error_code ec; sidecar.empty() && fs::is_regular_file(fs::path(f).parent_path() / "camera.json", ec))
       sidecar = (fs::path(f).parent_path() / "camera.json").string();
   if (sidecar.empty()) {
-    out.summary.push_back("camera: none found (no camera.json beside the files): add one (docs/layout-format.md, \"camera\")");
+    out.summary.push_back("camera: no camera.json beside the files");
   } else {
     ImportInput withCamera = in;
-    withCamera.layout = layout;
     withCamera.cameraFile = sidecar;
     FrameSnapshot imported;
     if (!importFrame(withCamera, imported, error)) return false;
-    const CameraEvidence evidence = evidenceOf(frame, surface);
-    Space space = Space::View;
-    const double px = fitPositions(imported.layout.camera, evidence, space);
-    const bool checked = px < 0.5;
-    refineWithCamera(draft, frame, surface, imported.layout.camera, imported.camera, checked, space, out.summary);
-    std::string why = "the sidecar beside the files (" + sidecar + "; its own fields say its conventions)";
-    if (std::isfinite(px))
-      why += "; stored positions land " + std::to_string(px) + " px from their pixels" + (checked ? "" : ": NOT confirmed");
-    draft["camera"] = {{"sidecar", "camera.json"}, {"guess", why}};
-    out.summary.push_back("camera: " + why);
+    infer.given = imported.layout.camera;
+    infer.givenConverted = imported.camera;
+    infer.givenNote = "the sidecar beside the files (" + sidecar + "; its own fields say its conventions)";
   }
+  const InferOutput inferred = inferLayout(infer);
+  out.summary.insert(out.summary.end(), inferred.summary.begin(), inferred.summary.end());
+  applyInference(draft, inferred, std::vector<bool>(labels.size(), false));
   Layout check;
-  if (!parseLayout(draft, "draft", check, error)) return false;
+  if (!parseLayout(draft, "draft", check, error)) {
+    error = "the draft does not parse (a bug in gblens): " + error;
+    return false;
+  }
   out.layout = draft;
   return true;
 }

@@ -1,9 +1,9 @@
 // `gblens attach --suggest`: a draft layout from the layer's report of one frame's render passes
-// (live.h draftLiveLayout). The same guesses as `import --suggest-layout` where no texels are at hand:
-// the G-buffer pass is the one writing the most colour attachments (and a depth attachment), its
-// attachments and the frame-sized ones later passes write are the targets, named live as the report
-// names them; what the channels hold is guessed from the image's name and format (suggest_guess.h).
+// (suggest_live.h draftLiveLayout): the frame's structure decides the G-buffer pass and the targets
+// (roles.h), named live as the report names them, every channel first as stored; the first frame
+// streamed under it decides what the channels hold, as `import --suggest-layout` decides (infer.h).
 #include <cstdio>
+#include <map>
 #include <set>
 
 #include "renderer/core/layout_json.h"
@@ -11,6 +11,7 @@
 #include "views/live/live.h"
 #include "views/infer/suggest_live.h"
 #include "views/infer/suggest.h"
+#include "views/infer/roles.h"
 #include "views/infer/suggest_guess.h"
 
 namespace gb {
@@ -78,53 +79,107 @@ std::string describeLivePasses(const json& hello, const json& report) {
   return out;
 }
 
-json draftLiveLayout(const json& report, std::vector<std::string>& summary, std::vector<bool>* later) {
-  const json passes = report.value("passes", json::array());
-  int best = -1, bestScore = -1;
-  for (size_t i = 0; i < passes.size(); ++i) {
-    int colours = 0, depth = 0;
-    for (const json& a : passes[i].value("attachments", json::array())) {
-      if (!usable(a)) continue;
-      if (a.value("role", "") == "depth")
-        depth = 1;
-      else
-        ++colours;
+namespace {
+
+// An attachment's image as the frame's structure names it: the layer's id, else its debug name.
+std::string imageKey(const json& pass, const json& a) {
+  if (a.contains("image_id")) return "#" + std::to_string(a.value("image_id", 0));
+  if (!a.value("image", "").empty()) return a.value("image", "");
+  return "pass " + std::to_string(pass.value("ordinal", 0)) + " " + a.value("role", "");
+}
+
+// The layer's report as roles.h reads it: passes in recording order (pass k spans 2k; what reads an
+// image during pass k reads at 2k, between passes k and k + 1 at 2k + 1).
+FrameFacts factsOf(const json& report, std::vector<const json*>& attachments) {
+  FrameFacts f;
+  std::map<std::string, std::vector<uint32_t>> reads;
+  for (const json& p : report.value("passes", json::array())) {
+    const uint32_t at = 2u * uint32_t(p.value("ordinal", 0));
+    PassFacts pf{passName(p), at, at, {}};
+    for (const json& a : p.value("attachments", json::array())) {
+      const std::string role = a.value("role", "");
+      if (role == "other") continue;
+      PassFacts::Output o{imageKey(p, a), role == "depth", true, true, usable(a), a.value("width", 0u), a.value("height", 0u)};
+      if (a.contains("store") && a["store"].is_string()) o.stored = a["store"] == "store";
+      if (a.contains("stencil_store") && a["stencil_store"].is_string()) o.stencilStored = a["stencil_store"] == "store";
+      if (a.value("presented", false)) f.presented.insert(o.image);
+      pf.outputs.push_back(o);
+      attachments.push_back(&a);
     }
-    const int score = colours * 2 + depth;
-    if (score > bestScore) best = int(i), bestScore = score;
+    for (const char* key : {"reads", "reads_after"})
+      if (p.contains(key)) {
+        f.readsKnown = true;
+        for (const json& id : p[key]) reads["#" + std::to_string(id.get<int>())].push_back(at + (key[5] ? 1 : 0));
+      }
+    f.passes.push_back(pf);
   }
+  for (const json& id : report.value("presented", json::array())) f.presented.insert("#" + std::to_string(id.get<int>()));
+  for (auto& [image, events] : reads) f.reads.push_back({image, events});
+  return f;
+}
+
+// The first draft's quantities: every channel as stored (the streamed texels decide the rest).
+json storedQuantity(const char* kind, const char* name, json channels) {
+  json q = json::object();
+  q["quantity"] = kind;
+  q["name"] = name;
+  q["channels"] = std::move(channels);
+  return q;
+}
+
+json storedQuantities(const StorageFormat& f) {
+  json q = json::array();
+  if (f.depth) {
+    q.push_back(storedQuantity("scalar", "depth", json::array({0})));
+    if (f.stencil) q.push_back(storedQuantity("scalar", "stencil", json::array({1})));
+    return q;
+  }
+  json channels = json::array();
+  for (uint32_t c = 0; c < f.channels; ++c) channels.push_back(c);
+  q.push_back(storedQuantity(f.channels == 1 ? "scalar" : "vector", f.channels == 1 ? "scalar" : "vector", channels));
+  return q;
+}
+
+}  // namespace
+
+json draftLiveLayout(const json& report, std::vector<std::string>& summary, std::vector<LiveTargetFacts>* facts) {
   json draft = {{"format", "gblens-layout"}, {"version", 1},
                 {"name", "draft (gblens attach --suggest: check every \"guess\")"}, {"targets", json::array()}};
-  if (best < 0 || bestScore <= 0) {
+  std::vector<const json*> attachments;
+  const FrameFacts frame = factsOf(report, attachments);
+  const PassRoles roles = decideRoles(frame);
+  if (facts) facts->clear();
+  if (roles.gbuffer < 0 || roles.targets.empty()) {
     summary.push_back("no render pass writes an attachment a layout can hold");
     return draft;
   }
-  const json& gbuffer = passes[size_t(best)];
-  summary.push_back("G-buffer pass: " + passName(gbuffer) + " (the most colour attachments)");
-  std::set<std::string> targetNames, quantityNames, images;
-  uint32_t width = 0, height = 0;
-  std::vector<bool> ignored, &laterTargets = later ? *later : ignored;
-  laterTargets.clear();
-  auto add = [&](const json& pass, const json& a, bool afterGBuffer) {
+  summary.insert(summary.end(), roles.notes.begin(), roles.notes.end());
+  const json passes = report.value("passes", json::array());
+  std::set<std::string> targetNames, quantityNames;
+  for (const PassTarget& r : roles.targets) {
+    // The report's attachment of this output: passes and their non-"other" attachments in order.
+    size_t index = 0;
+    for (size_t p = 0; p < r.pass; ++p) index += frame.passes[p].outputs.size();
+    const json& a = *attachments[index + r.output];
+    const json& pass = passes[r.pass];
     StorageFormat format;
-    if (!parseStorageFormat(a.value("format", ""), format)) return;
-    if (afterGBuffer && (a.value("width", 0u) != width || a.value("height", 0u) != height)) return;
-    if (!width) width = a.value("width", 0u), height = a.value("height", 0u);
+    if (!parseStorageFormat(a.value("format", ""), format)) continue;
+    json quantities = storedQuantities(format);
+    for (json& q : quantities) {  // unique names across targets
+      std::string n = q["name"].get<std::string>(), base = n;
+      for (int i = 2; quantityNames.count(n); ++i) n = base + std::to_string(i);
+      quantityNames.insert(n);
+      q["name"] = n;
+    }
     const std::string image = a.value("image", "");
-    if (!image.empty() && !images.insert(image).second) return;  // a later pass writing the same image again
-    json quantities = guessQuantities(image, format, nullptr, SurfaceMask{}, quantityNames, afterGBuffer);
-    const std::string base = !image.empty() ? image : !quantities.empty() ? quantities[0].value("quantity", "target") : "target";
-    draft["targets"].push_back({{"name", targetName(base, targetNames)}, {"format", a.value("format", "")},
-                                {"source", liveSource(pass, a)}, {"quantities", quantities}});
-    laterTargets.push_back(afterGBuffer);
-    if (afterGBuffer) summary.push_back("target " + draft["targets"].back().value("name", "") + ": written after the G-buffer pass, by " + passName(pass));
-  };
-  for (const json& a : gbuffer.value("attachments", json::array()))
-    if (usable(a)) add(gbuffer, a, false);
-  for (size_t i = size_t(best) + 1; i < passes.size(); ++i)
-    for (const json& a : passes[i].value("attachments", json::array()))
-      if (usable(a) && a.value("role", "") != "depth") add(passes[i], a, true);
-  summary.push_back("no camera: name the buffer that holds it (camera.renderdoc) or give matrices (docs/layout-format.md)");
+    draft["targets"].push_back({{"name", targetName(!image.empty() ? image : format.depth ? "depth" : "target", targetNames)},
+                                {"format", a.value("format", "")}, {"source", liveSource(pass, a)}, {"quantities", quantities}});
+    if (facts)
+      facts->push_back({image, r.writer, r.readLater, r.presented, r.stencilStored, pass.value("ordinal", 0)});
+    if (r.writer == Writer::Later)
+      summary.push_back("target " + draft["targets"].back().value("name", "") + ": written after the G-buffer pass, by " +
+                        passName(pass));
+  }
   return draft;
 }
 
@@ -143,50 +198,63 @@ void withoutCamera(json& draft, std::vector<std::string>* summary) {
       for (json& j : t["quantities"]) {
         if (j.value("name", "") != q.name) continue;
         const std::string was = j.value("quantity", "");
+        const std::string note = "shown as stored: a " + was + " quantity needs the camera (give \"camera\", then \"quantity\": \"" +
+                                 was + "\")";
+        json guess = j.contains("guess") && j["guess"].is_object() ? j["guess"] : json::object();
+        if (j.contains("guess") && j["guess"].is_string()) guess["evidence"] = j["guess"];
+        guess["quantity"] = "unknown";
+        guess["evidence"] = guess.value("evidence", "") + "; " + note;
         json stored = {{"quantity", q.channels.size() == 1 ? "scalar" : "vector"}, {"name", q.name}, {"channels", j["channels"]},
-                       {"guess", j.value("guess", "") + "; shown as stored: a " + was +
-                                     " quantity needs the camera (give \"camera\", then \"quantity\": \"" + was + "\")"}};
+                       {"guess", guess}};
         j = stored;
         if (summary) summary->push_back(q.name + ": shown as stored values (a " + was + " quantity needs the layout's camera)");
       }
   }
 }
 
-// What the texels say, as import --suggest-layout reads them: depth targets first (they say where the
-// surfaces are), then the rest; an unnamed image's target is named by what it holds.
-bool refineLiveDraft(json& draft, const std::vector<bool>& later, const FrameSnapshot& raw, uint64_t appFrame,
-                     FrameSnapshot& frame, std::vector<std::string>& summary, std::string& error) {
+// What the texels say, decided by the evidence as import --suggest-layout decides a capture's
+// (infer.h): the targets and their sources stay; an unnamed image's target is named by what it holds.
+bool refineLiveDraft(json& draft, const std::vector<LiveTargetFacts>& facts, const FrameSnapshot& raw, uint64_t appFrame,
+                     const std::vector<RdcBinding>& buffers, FrameSnapshot& frame, std::vector<std::string>& summary,
+                     std::string& error) {
   json& targets = draft["targets"];
-  if (targets.size() != raw.layout.targets.size() || later.size() != targets.size()) {
+  if (targets.size() != raw.layout.targets.size() || facts.size() != targets.size()) {
     error = "the streamed frame holds " + std::to_string(raw.layout.targets.size()) + " targets, the draft " +
             std::to_string(targets.size());
     return false;
   }
-  SurfaceMask surface;
-  std::set<std::string> quantityNames;
+  InferInput in;
+  std::vector<bool> unnamed;
   size_t looked = 0;
-  for (bool depthPass : {true, false}) {
-    for (size_t t = 0; t < targets.size(); ++t) {
-      const StorageFormat& f = raw.layout.targets[t].format;
-      if (f.depth != depthPass) continue;
-      const CpuImage* texels = raw.images[t].present() ? &raw.images[t].image : nullptr;
-      looked += texels != nullptr;
-      const json source = targets[t]["source"]["live"];
-      targets[t]["quantities"] = guessQuantities(source.value("name", ""), f, texels, surface, quantityNames, later[t]);
-    }
-    if (!draftFrame(draft, raw, frame, error)) return false;
-    if (depthPass) surface = surfaceOf(frame);
+  for (size_t t = 0; t < targets.size(); ++t) {
+    InferTarget target;
+    target.label = facts[t].label;
+    target.format = raw.layout.targets[t].format;
+    target.texels = raw.images[t].present() ? &raw.images[t].image : nullptr;
+    looked += target.texels != nullptr;
+    target.writer = facts[t].writer;
+    target.readLater = facts[t].readLater;
+    target.presented = facts[t].presented;
+    target.stencilStored = facts[t].stencilStored;
+    if (facts[t].writer != Writer::Later) in.livePass = facts[t].pass;
+    in.targets.push_back(target);
+    unnamed.push_back(facts[t].label.empty());
   }
-  std::set<std::string> renamed;
-  for (json& t : targets) {
-    const json& qs = t["quantities"];
-    const std::string image = t["source"]["live"].value("name", ""), was = t.value("name", "target");
-    t["name"] = targetName(image.empty() && !qs.empty() ? qs[0].value("quantity", "target") : was, renamed);
-    for (std::string& line : summary)  // what was said of it under its first name
-      if (line.rfind("target " + was + ":", 0) == 0) line = "target " + t["name"].get<std::string>() + line.substr(7 + was.size());
-  }
-  withoutCamera(draft, &summary);
-  summary.push_back("the channels guessed from the texels of application frame " + std::to_string(appFrame) + " (" +
+  in.buffers = buffers;
+  in.bufferSource = "live";
+  const InferOutput inferred = inferLayout(in);
+  const std::vector<std::string> was = [&] {
+    std::vector<std::string> n;
+    for (const json& t : targets) n.push_back(t.value("name", "target"));
+    return n;
+  }();
+  applyInference(draft, inferred, unnamed);
+  for (size_t t = 0; t < targets.size(); ++t)  // what was said of a target under its first name
+    for (std::string& line : summary)
+      if (line.rfind("target " + was[t] + ":", 0) == 0)
+        line = "target " + targets[t]["name"].get<std::string>() + line.substr(7 + was[t].size());
+  summary.insert(summary.end(), inferred.summary.begin(), inferred.summary.end());
+  summary.push_back("the channels decided from the texels of application frame " + std::to_string(appFrame) + " (" +
                     std::to_string(looked) + " of " + std::to_string(targets.size()) + " targets streamed)");
   draft["name"] = "draft (gblens attach --suggest, from the texels of one frame: check every \"guess\")";
   return draftFrame(draft, raw, frame, error);

@@ -9,23 +9,35 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/core/snapshot.h"
+#include "views/import/renderdoc_replay.h"
+#include "views/infer/roles.h"
 #include "views/live/live.h"
 
 namespace gb {
 
-// A draft layout from the layer's report of one frame's render passes (LiveSession::suggestion), with
-// what was found and what to check in `summary` (suggest_live.cpp); `later`: per target, whether a pass
-// after the G-buffer pass writes it.
+// What the frame's structure said of each target of a live draft, for the refinement.
+struct LiveTargetFacts {
+  std::string label;  // the image's debug name ("" : none)
+  Writer writer = Writer::GBuffer;
+  bool readLater = false, presented = false, stencilStored = true;
+  int pass = 0;       // the ordinal of the render pass that writes it
+};
+
+// A draft layout from the layer's report of one frame's render passes (LiveSession::suggestion): the
+// G-buffer pass and targets decided by the frame's structure (roles.h), every channel as stored; what
+// was found and what to check in `summary` (suggest_live.cpp); `facts`: per target, for the refinement.
 nlohmann::json draftLiveLayout(const nlohmann::json& report, std::vector<std::string>& summary,
-                               std::vector<bool>* later = nullptr);
+                               std::vector<LiveTargetFacts>* facts = nullptr);
 // A draft with no camera: each quantity that needs one (import.h needsCamera) becomes the stored values
 // (scalar or vector, same name and channels) with a note saying how to have it back; said in `summary`.
 void withoutCamera(nlohmann::json& draft, std::vector<std::string>* summary);
-// That draft refined with the texels of a frame streamed under it (`raw`): what the channels hold is
-// guessed as import --suggest-layout guesses it, unnamed targets are named by what they hold; `frame`
-// is `raw` under the refined draft. The targets and their sources stay (LiveSession::setLayout).
-bool refineLiveDraft(nlohmann::json& draft, const std::vector<bool>& later, const FrameSnapshot& raw, uint64_t appFrame,
-                     FrameSnapshot& frame, std::vector<std::string>& summary, std::string& error);
+// That draft refined with the texels of a frame streamed under it (`raw`) and the buffers bound at the
+// G-buffer pass (the camera search; may be empty): what the channels hold is decided as import
+// --suggest-layout decides it (infer.h), unnamed targets are named by what they hold; `frame` is `raw`
+// under the refined draft. The targets and their sources stay (LiveSession::setLayout).
+bool refineLiveDraft(nlohmann::json& draft, const std::vector<LiveTargetFacts>& facts, const FrameSnapshot& raw,
+                     uint64_t appFrame, const std::vector<RdcBinding>& buffers, FrameSnapshot& frame,
+                     std::vector<std::string>& summary, std::string& error);
 // The same report for people, as `import --list` prints a capture, with the source naming each attachment.
 std::string describeLivePasses(const nlohmann::json& hello, const nlohmann::json& report);
 

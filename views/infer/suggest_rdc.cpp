@@ -1,14 +1,17 @@
-// A draft layout from a RenderDoc capture (see suggest.h): the G-buffer pass is the one whose last
-// draw writes the most colour targets (and a depth target); its targets, and the frame-sized ones
-// later passes write, are read as the import would read them; the camera is searched for in the
-// buffers bound at that draw.
+// A draft layout from a RenderDoc capture (see suggest.h): the frame's structure (what each pass writes
+// and stores, when each texture is read, what is presented) decides the G-buffer pass and the targets
+// (roles.h); their texels are read as the import will read them; what each channel group holds and
+// the camera (searched in the buffers bound at the G-buffer pass's last draw) are decided by the
+// evidence (infer.h).
 #include <algorithm>
 #include <filesystem>
 #include <map>
 
 #include "renderer/core/layout_json.h"
 #include "views/import/import.h"
+#include "views/infer/roles.h"
 #include "views/infer/suggest.h"
+#include "views/infer/suggest_guess.h"
 
 namespace gb {
 
@@ -20,79 +23,70 @@ const RdcTexture* findTexture(const RdcListing& l, const std::string& name) {
   return nullptr;
 }
 
-// What a texture's name says about it: nothing when RenderDoc made the name up ("2D Color
-// Attachment 127" is no albedo).
-std::string said(const RdcTexture& t) { return t.autoName ? "" : t.name; }
-
 // How a layout names a texture: by name when no other texture has it, else by id.
 std::string sourceName(const RdcListing& l, const RdcTexture& t) {
   const size_t same = size_t(std::count_if(l.textures.begin(), l.textures.end(), [&](const RdcTexture& o) { return o.name == t.name; }));
   return same == 1 && !t.name.empty() && !t.autoName ? t.name : "#" + std::to_string(t.id);
 }
 
-// The G-buffer pass: --pass, the pass ending at --event, or the one whose last draw writes the most
-// colour targets with a depth target (the innermost of passes ending with the same draw).
-const RdcPass* gbufferPass(const RdcListing& l, const SuggestRequest& r, std::string& error) {
-  const RdcPass* best = nullptr;
-  auto better = [](const RdcPass& p, const RdcPass* b) {
-    if (!b) return true;
-    const size_t sp = p.outputs.size() * 2 + !p.depthTarget.empty(), sb = b->outputs.size() * 2 + !b->depthTarget.empty();
-    if (sp != sb) return sp > sb;
-    return p.lastEvent - p.firstEvent < b->lastEvent - b->firstEvent;
-  };
+bool holdable(const RdcTexture& t) {
+  return !storageFormatName(t.format).empty() && t.samples == 1 && t.depth == 1 && t.layers == 1;
+}
+
+// The frame's structure as roles.h reads it: the passes with a draw, their outputs at the last draw
+// with the application's store ops, and when each texture is read.
+FrameFacts factsOf(const RdcListing& l, std::vector<const RdcPass*>& passes) {
+  FrameFacts f;
   for (const RdcPass& p : l.passes) {
+    if (!p.boundAt || (p.outputs.empty() && p.depthTarget.empty())) continue;
+    PassFacts pf{p.name, p.firstEvent, p.lastEvent, {}};
+    auto add = [&](const std::string& name, bool depth) {
+      const RdcTexture* t = findTexture(l, name);
+      if (!t) return;
+      PassFacts::Output o{name, depth, true, true, holdable(*t), t->width, t->height};
+      const bool stencil = t->format.find("S8") != std::string::npos;
+      for (const RdcPass::Store& st : p.stores)
+        if (st.texture == name) {
+          o.stored = st.store.empty() || st.store == "store";
+          o.stencilStored = !stencil || st.stencilStore.empty() || st.stencilStore == "store";
+        }
+      pf.outputs.push_back(o);
+    };
+    for (const std::string& name : p.outputs) add(name, false);
+    if (!p.depthTarget.empty()) add(p.depthTarget, true);
+    f.passes.push_back(pf);
+    passes.push_back(&p);
+  }
+  for (const RdcTexture& t : l.textures) {
+    f.reads.push_back({t.name, t.reads});
+    f.readsKnown = f.readsKnown || !t.reads.empty();
+    if (t.presented) f.presented.insert(t.name);
+  }
+  return f;
+}
+
+// The pass --pass names, or the innermost one holding --event (-1: neither given).
+int forcedPass(const SuggestRequest& r, const std::vector<const RdcPass*>& passes, std::string& error) {
+  if (r.pass.empty() && !r.event) return -1;
+  int best = -1;
+  for (size_t i = 0; i < passes.size(); ++i) {
+    const RdcPass& p = *passes[i];
     if (!r.pass.empty() && p.name != r.pass) continue;
     if (r.event && !(p.firstEvent <= r.event && r.event <= p.lastEvent)) continue;
-    if (p.boundAt && (r.event ? !best || p.lastEvent - p.firstEvent < best->lastEvent - best->firstEvent : better(p, best)))
-      best = &p;
+    if (best < 0 || p.lastEvent - p.firstEvent < passes[size_t(best)]->lastEvent - passes[size_t(best)]->firstEvent)
+      best = int(i);
   }
-  if (!best)
+  if (best < 0)
     error = r.inputs[0] + (!r.pass.empty() ? ": --pass \"" + r.pass + "\": no pass of that name draws (see --list)"
-                           : r.event       ? ": --event " + std::to_string(r.event) + ": no pass with a draw holds it"
-                                           : ": no pass draws anything");
-  else if (best->outputs.empty() && best->depthTarget.empty())
-    error = r.inputs[0] + ": no draw of the capture writes a colour or depth target";
-  return error.empty() ? best : nullptr;
+                                           : ": --event " + std::to_string(r.event) + ": no pass with a draw holds it");
+  return best;
 }
-
-// The textures to draft: the G-buffer draw's targets, then frame-sized ones later passes write.
-std::vector<const RdcTexture*> draftTextures(const RdcListing& l, const RdcPass& gbuffer, uint32_t after,
-                                             std::vector<std::string>& summary) {
-  std::vector<const RdcTexture*> out;
-  auto add = [&](const std::string& name, const std::string& why) {
-    const RdcTexture* t = findTexture(l, name);
-    if (!t || std::find(out.begin(), out.end(), t) != out.end()) return;
-    if (storageFormatName(t->format).empty() || t->samples > 1 || t->depth > 1 || t->layers > 1) {
-      summary.push_back("left out " + t->name + " (" + t->format + "): a format or shape a layout cannot hold");
-      return;
-    }
-    if (!out.empty() && (t->width != out[0]->width || t->height != out[0]->height) && why.empty()) return;
-    out.push_back(t);
-    if (!why.empty()) summary.push_back("target " + t->name + ": " + why);
-  };
-  for (const std::string& name : gbuffer.outputs) add(name, "");
-  if (!gbuffer.depthTarget.empty()) add(gbuffer.depthTarget, "");
-  if (out.empty()) return out;
-  for (const RdcPass& p : l.passes)
-    if (p.firstEvent > after)
-      for (const std::string& name : p.writes) {
-        const RdcTexture* t = findTexture(l, name);
-        if (t && t->width == out[0]->width && t->height == out[0]->height)
-          add(name, "written after the G-buffer pass, by " + p.name);
-      }
-  return out;
-}
-
-}  // namespace
-
-namespace {
 
 // The draft's targets (no quantities yet) and their texels, read as the import will read them:
 // after the pass that last writes each (or at --event / --pass).
-bool readTargets(const SuggestRequest& r, const RdcListing& listing, const RdcPass& pass,
+bool readTargets(const SuggestRequest& r, const RdcListing& listing, uint32_t readAt,
                  const std::vector<const RdcTexture*>& textures, nlohmann::json& draft, FrameSnapshot& raw,
                  std::string& error) {
-  const uint32_t readAt = r.event ? r.event : r.pass.empty() ? 0 : pass.lastEvent;
   std::set<std::string> targetNames;
   std::vector<std::string> sources;
   for (const RdcTexture* t : textures) {
@@ -113,31 +107,6 @@ bool readTargets(const SuggestRequest& r, const RdcListing& listing, const RdcPa
   return importFrame(in, raw, error);
 }
 
-// What the channels hold: depth targets first (they say where surfaces are), then the rest; unnamed
-// textures' targets named by what they hold ("position", "normal"). `frame` gets the drafted layout.
-bool guessTargets(nlohmann::json& draft, const std::vector<const RdcTexture*>& textures, const RdcPass& pass,
-                  const FrameSnapshot& raw, FrameSnapshot& frame, SurfaceMask& surface, std::string& error) {
-  std::set<std::string> quantityNames;
-  for (bool depthPass : {true, false}) {
-    for (uint32_t t = 0; t < textures.size(); ++t) {
-      const StorageFormat& f = raw.layout.targets[t].format;
-      if (f.depth != depthPass) continue;
-      const bool later = std::find(pass.outputs.begin(), pass.outputs.end(), textures[t]->name) == pass.outputs.end();
-      draft["targets"][t]["quantities"] =
-          guessQuantities(said(*textures[t]), f, &raw.images[t].image, surface, quantityNames, later);
-    }
-    if (!draftFrame(draft, raw, frame, error)) return false;
-    if (depthPass) surface = surfaceOf(frame);
-  }
-  std::set<std::string> renamed;
-  for (size_t t = 0; t < textures.size(); ++t) {
-    const nlohmann::json& qs = draft["targets"][t]["quantities"];
-    const std::string base = textures[t]->autoName && !qs.empty() ? qs[0]["quantity"].get<std::string>() : textures[t]->name;
-    draft["targets"][t]["name"] = targetName(base, renamed);
-  }
-  return draftFrame(draft, raw, frame, error);
-}
-
 }  // namespace
 
 bool suggestFromRenderDoc(const SuggestRequest& r, Suggestion& out, std::string& error) {
@@ -145,14 +114,19 @@ bool suggestFromRenderDoc(const SuggestRequest& r, Suggestion& out, std::string&
   r.progress("listing " + rdc + " (RenderDoc replays it)");
   RdcListing listing;
   if (!listRenderDocCapture(rdc, listing, error, r.replay)) return false;
-  const RdcPass* pass = gbufferPass(listing, r, error);
-  if (!pass) return false;
-  const uint32_t event = r.event ? r.event : pass->lastEvent;
-  out.summary.push_back("G-buffer pass: " + pass->name + " (events " + std::to_string(pass->firstEvent) + ".." +
-                        std::to_string(pass->lastEvent) + "; its last draw, event " + std::to_string(pass->boundAt) +
-                        ", writes " + std::to_string(pass->outputs.size()) + " colour target(s)" +
-                        (pass->depthTarget.empty() ? "" : " and a depth target") + ")");
-  r.progress("reading the buffers bound at event " + std::to_string(pass->boundAt));
+  std::vector<const RdcPass*> passes;
+  const FrameFacts facts = factsOf(listing, passes);
+  const int forced = forcedPass(r, passes, error);
+  if (!error.empty()) return false;
+  const PassRoles roles = decideRoles(facts, forced);
+  if (roles.gbuffer < 0 || roles.targets.empty()) {
+    error = rdc + (passes.empty() ? ": no pass draws anything" : ": no draw of the capture writes a target a layout can hold");
+    return false;
+  }
+  const RdcPass& pass = *passes[size_t(roles.gbuffer)];
+  out.summary.insert(out.summary.end(), roles.notes.begin(), roles.notes.end());
+  const uint32_t event = r.event ? r.event : pass.lastEvent;
+  r.progress("reading the buffers bound at event " + std::to_string(pass.boundAt));
   std::map<uint32_t, RdcPass> states;
   std::string skipped;
   if (!readDrawState(rdc, {event}, true, states, skipped, error, r.replay)) return false;
@@ -161,33 +135,52 @@ bool suggestFromRenderDoc(const SuggestRequest& r, Suggestion& out, std::string&
     return false;
   }
   const RdcPass& bound = states[event];
-  const std::vector<const RdcTexture*> textures = draftTextures(listing, *pass, pass->lastEvent, out.summary);
-  if (textures.empty()) {
-    error = rdc + ": the G-buffer pass's targets have no format a layout can hold";
-    return false;
-  }
+  std::vector<const RdcTexture*> textures;
+  for (const PassTarget& t : roles.targets)
+    textures.push_back(findTexture(listing, facts.passes[t.pass].outputs[t.output].image));
   nlohmann::json draft = {{"format", "gblens-layout"}, {"version", 1},
                           {"name", "draft for " + std::filesystem::path(rdc).filename().string() +
                                        " (gblens import --suggest-layout: check every \"guess\")"},
                           {"targets", nlohmann::json::array()}};
-  FrameSnapshot raw, frame;
-  SurfaceMask surface;
-  if (!readTargets(r, listing, *pass, textures, draft, raw, error) ||
-      !guessTargets(draft, textures, *pass, raw, frame, surface, error))
-    return false;
-  CameraEvidence evidence = evidenceOf(frame, surface);
-  evidence.clipYUp = listing.api != "Vulkan" || bound.viewport[3] < 0.0;
-  evidence.clipDepthGl = listing.api == "OpenGL";
-  r.progress("searching " + std::to_string(bound.buffers.size()) + " bound buffers for the camera");
-  const FoundCamera found = searchCamera(bound.buffers, evidence);
-  out.summary.insert(out.summary.end(), found.summary.begin(), found.summary.end());
-  if (found.found) {
-    refineWithCamera(draft, frame, surface, found.layout, found.converted, found.positionsChecked, found.positionSpace,
-                     out.summary);
-    draft["camera"] = found.camera;
+  FrameSnapshot raw;
+  const uint32_t readAt = r.event ? r.event : r.pass.empty() ? 0 : pass.lastEvent;
+  if (!readTargets(r, listing, readAt, textures, draft, raw, error)) return false;
+  InferInput in;
+  std::vector<bool> unnamed;
+  for (size_t k = 0; k < roles.targets.size(); ++k) {
+    const PassTarget& role = roles.targets[k];
+    InferTarget t;
+    t.label = textures[k]->autoName ? "" : textures[k]->name;
+    t.format = raw.layout.targets[k].format;
+    t.texels = raw.images[k].present() ? &raw.images[k].image : nullptr;
+    t.writer = role.writer;
+    t.readLater = role.readLater;
+    t.presented = role.presented;
+    t.stencilStored = role.stencilStored;
+    in.targets.push_back(t);
+    unnamed.push_back(textures[k]->autoName);
+  }
+  in.buffers = bound.buffers;
+  in.clipYUp = listing.api != "Vulkan" || bound.viewport[3] < 0.0;
+  in.clipDepthGl = listing.api == "OpenGL";
+  r.progress("deciding what the " + std::to_string(in.targets.size()) + " targets hold");
+  const InferOutput inferred = inferLayout(in);
+  out.summary.insert(out.summary.end(), inferred.summary.begin(), inferred.summary.end());
+  applyInference(draft, inferred, unnamed);
+  for (size_t k = 0; k < roles.targets.size(); ++k) {  // where each target came from, for people and tests
+    const PassTarget& role = roles.targets[k];
+    const PassFacts& pf = facts.passes[role.pass];
+    int colour = 0;
+    for (size_t o = 0; o < role.output; ++o) colour += !pf.outputs[o].depth;
+    draft["targets"][k]["guess"] = {{"pass", role.pass}, {"pass_name", pf.name},
+                                    {"attachment", pf.outputs[role.output].depth ? "depth" : "color " + std::to_string(colour)},
+                                    {"writer", role.writer == Writer::GBuffer ? "gbuffer" : role.writer == Writer::Later ? "later" : "forward"}};
   }
   Layout check;
-  if (!parseLayout(draft, "draft", check, error)) return false;  // a draft that does not parse is a bug here
+  if (!parseLayout(draft, "draft", check, error)) {
+    error = "the draft does not parse (a bug in gblens): " + error;
+    return false;
+  }
   out.layout = draft;
   return true;
 }
