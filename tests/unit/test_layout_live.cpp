@@ -113,3 +113,48 @@ TEST(LayoutLive, TheLayerIsAskedForWhatTheLayoutNames) {
 
 }  // namespace
 }  // namespace gb
+
+namespace gb {
+namespace {
+
+json withLiveCamera(const json& camera) {
+  json l = withSource({{"live", {{"pass", 0}, {"color", 0}}}});
+  l["camera"] = camera;
+  return l;
+}
+
+// camera.live (docs/layout-format.md): its mistakes name the field.
+TEST(LayoutLive, CameraLiveMistakesNameTheField) {
+  const json offsets = {{"view_from_world", {{"offset", 64}}}, {"clip_from_view", {{"offset", 0}}}};
+  auto with = [&](json live, json extra = json::object()) {
+    json c = offsets;
+    c["live"] = std::move(live);
+    for (auto& [k, v] : extra.items()) c[k] = v;
+    return c;
+  };
+  const std::pair<json, std::string> cases[] = {
+      {with({{"set", 0}, {"binding", 0}}), "camera: live: pass: expected a label"},
+      {with({{"pass", -2}, {"set", 0}, {"binding", 0}}), "camera: live: pass: expected a label"},
+      {with({{"pass", 0}, {"binding", 0}}), "camera: live: set: missing (or give \"push_constants\": true)"},
+      {with({{"pass", 0}, {"set", 0}, {"binding", -1}}), "camera: live: binding: expected an integer"},
+      {with({{"pass", 0}, {"push_constants", true}, {"set", 0}}), "camera: live: set: push constants have no set"},
+      {with({{"pass", 0}, {"set", 0}, {"binding", 0}, {"offset", 4}}), "camera: live: offset: unknown field"},
+      {with({{"pass", 0}, {"set", 0}, {"binding", 0}}, {{"clip_from_view", {{"offset", 6}}}}),
+       "camera: clip_from_view: expected {\"offset\": BYTES} from the start of the bound range (a multiple of 4)"},
+      {with({{"pass", 0}, {"set", 0}, {"binding", 0}}, {{"view_from_world", json::array({1, 0, 0, 0})}}),
+       "camera: view_from_world: expected {\"offset\": BYTES}"},
+      {with({{"pass", 0}, {"set", 0}, {"binding", 0}}, {{"renderdoc", {{"buffer", "b"}, {"view_from_world", {{"offset", 0}}},
+                                                                        {"clip_from_view", {{"offset", 64}}}}}}),
+       "camera: live: give one of \"live\", \"renderdoc\" and \"sidecar\""},
+      {with(3), "camera: live: expected {\"pass\""},
+  };
+  for (const auto& [camera, want] : cases) {
+    Layout l;
+    std::string error;
+    EXPECT_FALSE(parse(withLiveCamera(camera), l, error)) << camera.dump();
+    EXPECT_NE(error.find("l.json: " + want), std::string::npos) << error;
+  }
+}
+
+}  // namespace
+}  // namespace gb
