@@ -192,6 +192,7 @@ int runImport(const ImportOptions& o) {
     return fail(error);
   ImportInput in;
   if (!loadImportLayout(o.layout, layoutParameters(options), in.layout, in.layoutDir, error)) return fail(error);
+  if (const std::string why = importCameraRefusal(in.layout); !why.empty()) return fail(why);
   if (!o.size.empty()) in.layout.width = options.width, in.layout.height = options.height;
   in.cameraFile = o.camera;
   RenderDocImported read;

@@ -1,5 +1,5 @@
 // At the end of a render pass: which requested targets it holds, and the commands that copy them
-// (and the camera's bytes) into the ring, recorded into the application's command buffer right
+// (and the camera's and the bound buffers' bytes, copy_buffers.cpp) into the ring, recorded into the application's command buffer right
 // after the pass. Each attachment goes from the layout the pass left it in to TRANSFER_SRC and back,
 // with barriers that order the copy after the pass's writes and everything after it after the
 // copy, so the application's own synchronisation sees its images as it left them.
@@ -116,20 +116,61 @@ void transitions(const Looked& l, const FormatInfo& f, std::vector<VkImageMemory
   }
 }
 
-VkBuffer findCamera(DeviceData& d, const CmdState& s, const Request& req, VkDeviceSize& size) {
-  std::shared_lock lock(d.objects);
-  VkBuffer found = s.cameraBuffer;
-  if (!found || !d.buffers.count(found)) {  // not seen bound: the only buffer of that name, if one
-    found = VK_NULL_HANDLE;
-    int named = 0;
-    for (const auto& [b, info] : d.buffers)
-      if (info.name == req.cameraBuffer) found = b, ++named;
-    if (named != 1) return VK_NULL_HANDLE;
+}  // namespace
+
+namespace {
+
+// The commands: every earlier write before the copies, the attachments to TRANSFER_SRC, the
+// copies, then the ring's bytes to the host and the attachments back to the application's layouts.
+void recordTransfers(DeviceData& d, VkCommandBuffer cmd, const std::vector<VkImageMemoryBarrier>& there,
+                     const std::vector<VkImageMemoryBarrier>& back, const std::vector<Region>& regions,
+                     const std::vector<Copy>& made, const std::vector<BufferCopy>& buffers) {
+  const DeviceTable& vk = d.vk;
+  // Every earlier write before these copies: the buffers' (whoever made them), and the ring's own
+  // from an earlier pass or an earlier submission of this command buffer (the copies write the same
+  // bytes again).
+  VkMemoryBarrier memory{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  memory.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
+  memory.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+  vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &memory, 0, nullptr,
+                        uint32_t(there.size()), there.data());
+  for (const Region& r : regions) vk.CmdCopyImageToBuffer(cmd, r.image, r.layout, r.buffer, 1, &r.copy);
+  for (const BufferCopy& b : buffers) {
+    if (b.source) {
+      VkBufferCopy bc{b.offset, b.copy.offset, b.size};
+      vk.CmdCopyBuffer(cmd, b.source, b.copy.buffer->buffer, 1, &bc);
+    } else {  // push constants: bytes the application gave at recording (a multiple of 4, at most 4 KiB)
+      vk.CmdUpdateBuffer(cmd, b.copy.buffer->buffer, b.copy.offset, b.size, b.inlineBytes.data());
+    }
   }
-  const BufferInfo& info = d.buffers.at(found);
-  if (!(info.usage & VK_BUFFER_USAGE_TRANSFER_SRC_BIT)) return VK_NULL_HANDLE;
-  size = std::min(info.size, req.cameraBytes);
-  return found;
+  std::vector<VkBufferMemoryBarrier> toHost;  // the ring's bytes, for the layer's thread once the fence says so
+  auto ring = [&](VkBuffer buffer) {
+    if (std::any_of(toHost.begin(), toHost.end(), [&](const VkBufferMemoryBarrier& b) { return b.buffer == buffer; })) return;
+    VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+    b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.buffer = buffer;
+    b.size = VK_WHOLE_SIZE;
+    toHost.push_back(b);
+  };
+  for (const Copy& c : made) ring(c.buffer->buffer);
+  for (const BufferCopy& b : buffers) ring(b.copy.buffer->buffer);
+  vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_HOST_BIT,
+                        0, 0, nullptr, uint32_t(toHost.size()), toHost.data(), uint32_t(back.size()), back.data());
+}
+
+// The recording's copies so far: a target copied again (a later pass writes it too) and a later
+// pass's camera replace the earlier ones; a pass's bound buffers replace all earlier ones.
+void keep(CmdState& s, std::vector<Copy>& made, std::vector<BufferCopy>& buffers) {
+  for (Copy& c : made) {
+    std::erase_if(s.copiesMade, [&](const Copy& e) { return e.target == c.target; });
+    s.copiesMade.push_back(std::move(c));
+  }
+  for (int kind : {kCameraCopy, kBoundCopy})
+    if (std::any_of(buffers.begin(), buffers.end(), [&](const BufferCopy& b) { return b.copy.target == kind; }))
+      std::erase_if(s.copiesMade, [&](const Copy& e) { return e.target == kind; });
+  for (BufferCopy& b : buffers) s.copiesMade.push_back(std::move(b.copy));
 }
 
 }  // namespace
@@ -202,61 +243,17 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
     if (f.stencil && f.depth) region(VK_IMAGE_ASPECT_STENCIL_BIT, c.stencilOffset);
     made.push_back(c);
   }
-  if (made.empty()) return;
-
-  // The camera's bytes as the pass saw them (a later pass's copy replaces this one's).
-  VkDeviceSize cameraSize = 0;
-  VkBuffer camera = req->cameraBuffer.empty() ? VK_NULL_HANDLE : findCamera(d, s, *req, cameraSize);
-  if (!req->cameraBuffer.empty() && !camera)
-    report(d, "camera", "camera: no buffer named \"" + req->cameraBuffer +
-                            "\" is bound where the pass runs (or several have that name and none is bound)");
-  Copy cam;
-  if (camera && reserve(d, s, cameraSize, cam.buffer, cam.offset)) {
-    cam.target = -1;
-    cam.bytes = cameraSize;
-  }
-
-  const DeviceTable& vk = d.vk;
-  // Every earlier write before these copies: the camera buffer's (whoever made them), and the ring's
-  // own from an earlier pass or an earlier submission of this command buffer (the copies write the
-  // same bytes again).
-  VkMemoryBarrier memory{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  memory.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
-  memory.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-  vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &memory, 0, nullptr,
-                        uint32_t(there.size()), there.data());
-  for (const Region& r : regions) vk.CmdCopyImageToBuffer(cmd, r.image, r.layout, r.buffer, 1, &r.copy);
-  if (cam.buffer) {
-    VkBufferCopy bc{0, cam.offset, cam.bytes};
-    vk.CmdCopyBuffer(cmd, camera, cam.buffer->buffer, 1, &bc);
-  }
-  std::vector<VkBufferMemoryBarrier> toHost;  // the ring's bytes, for the layer's thread once the fence says so
-  for (const Copy& c : made)
-    if (std::none_of(toHost.begin(), toHost.end(), [&](const VkBufferMemoryBarrier& b) { return b.buffer == c.buffer->buffer; })) {
-      VkBufferMemoryBarrier b{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
-      b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-      b.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-      b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      b.buffer = c.buffer->buffer;
-      b.size = VK_WHOLE_SIZE;
-      toHost.push_back(b);
+  // The camera's bytes and the bound buffers, each where the ring has room.
+  std::vector<BufferCopy> buffers;
+  for (BufferCopy& b : bufferCopies(d, s, *req, !made.empty()))
+    if (reserve(d, s, b.size, b.copy.buffer, b.copy.offset)) {
+      b.copy.passOrdinal = s.open.ordinal;
+      b.copy.pass = !s.open.labels.empty() ? s.open.labels.back() : s.open.renderPass;
+      buffers.push_back(std::move(b));
     }
-  if (cam.buffer && cam.buffer->buffer != made[0].buffer->buffer) {
-    VkBufferMemoryBarrier b = toHost[0];
-    b.buffer = cam.buffer->buffer;
-    toHost.push_back(b);
-  }
-  vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_HOST_BIT,
-                        0, 0, nullptr, uint32_t(toHost.size()), toHost.data(), uint32_t(back.size()), back.data());
-
-  for (Copy& c : made) {
-    std::erase_if(s.copiesMade, [&](const Copy& e) { return e.target == c.target; });
-    s.copiesMade.push_back(std::move(c));
-  }
-  if (cam.buffer) {
-    std::erase_if(s.copiesMade, [](const Copy& e) { return e.target < 0; });
-    s.copiesMade.push_back(std::move(cam));
-  }
+  if (made.empty() && buffers.empty()) return;
+  recordTransfers(d, cmd, there, back, regions, made, buffers);
+  keep(s, made, buffers);
   d.hookNs += uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
 }
 
@@ -282,7 +279,11 @@ PassReport reportPass(DeviceData& d, const OpenPass& pass) {
     e.format = formatName(img->second.format);
     e.storage = formatInfo(img->second.format).storage;
     e.written = a.written;
-    e.storePatched = a.storePatched;
+    e.ops = a.ops;
+    e.depth = formatInfo(img->second.format).depth;
+    e.stencil = formatInfo(img->second.format).stencil;
+    e.presented = img->second.swapchain != VK_NULL_HANDLE;
+    e.imageId = imageId(d, a.image);
     e.why = refusal(img->second, "");
     r.attachments.push_back(e);
   }

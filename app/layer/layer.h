@@ -1,6 +1,7 @@
 // The gblens Vulkan layer (VK_LAYER_GBLENS_live, `gblens attach`): what it follows of the
-// application (images, views, framebuffers, render passes, buffers, debug names, labels, command
-// buffers), the next layer's functions, the ring its copies land in and the stream to the receiver.
+// application (images, views, framebuffers, render passes, buffers, descriptor sets, debug names,
+// labels, command buffers), the next layer's functions, the ring its copies land in (ring.h) and the
+// stream to the receiver.
 // Shared by the layer's files; docs/attach.md describes the whole.
 #pragma once
 #include <vulkan/vk_layer.h>
@@ -19,6 +20,9 @@
 #include <unordered_map>
 #include <vector>
 
+#include "app/layer/descriptors.h"
+#include "app/layer/ring.h"
+
 namespace gbl {
 
 // The next layer's device functions: forwarded to, or called by the layer itself.
@@ -36,7 +40,15 @@ namespace gbl {
   X(SetDebugUtilsObjectNameEXT) X(QueueSubmit) X(QueueSubmit2) X(QueueSubmit2KHR) X(CmdPipelineBarrier)               \
   X(CmdCopyImageToBuffer) X(CmdCopyBuffer) X(CreateFence) X(DestroyFence) X(ResetFences) X(WaitForFences)              \
   X(GetFenceStatus) X(AllocateMemory) X(GetBufferMemoryRequirements) X(InvalidateMappedMemoryRanges) X(DeviceWaitIdle)     \
-  X(GetMemoryHostPointerPropertiesEXT)
+  X(GetMemoryHostPointerPropertiesEXT) X(CmdUpdateBuffer) X(CreateDescriptorSetLayout) X(DestroyDescriptorSetLayout)      \
+  X(CreateDescriptorUpdateTemplate) X(CreateDescriptorUpdateTemplateKHR) X(DestroyDescriptorUpdateTemplate)              \
+  X(DestroyDescriptorUpdateTemplateKHR) X(UpdateDescriptorSetWithTemplate) X(UpdateDescriptorSetWithTemplateKHR)         \
+  X(CmdPushConstants) X(CmdDispatch) X(CmdDispatchIndirect) X(CmdDispatchBase) X(CmdDispatchBaseKHR) X(CmdCopyImage)     \
+  X(CmdCopyImage2) X(CmdCopyImage2KHR) X(CmdBlitImage) X(CmdBlitImage2) X(CmdBlitImage2KHR) X(CmdResolveImage)          \
+  X(CmdResolveImage2) X(CmdResolveImage2KHR) X(CmdCopyImageToBuffer2) X(CmdCopyImageToBuffer2KHR)                 \
+  X(CmdPushDescriptorSetKHR) X(CmdPushDescriptorSetWithTemplateKHR) X(CmdDraw) X(CmdDrawIndexed) X(CmdDrawIndirect)  \
+  X(CmdDrawIndexedIndirect) X(CmdDrawIndirectCount) X(CmdDrawIndirectCountKHR) X(CmdDrawIndexedIndirectCount)         \
+  X(CmdDrawIndexedIndirectCountKHR) X(CmdDrawMeshTasksEXT) X(CmdDrawMeshTasksIndirectEXT)
 
 struct DeviceTable {
 #define GBL_MEMBER(name) PFN_vk##name name = nullptr;
@@ -85,13 +97,21 @@ struct ViewInfo {
   uint32_t mip = 0, layer = 0;
   std::string name;
 };
+// An attachment's load and store ops as the application gave them, per aspect, and which of its
+// DONT_CARE stores the layer patched to STORE (so that it can copy what the pass wrote).
+struct AttachmentOps {
+  VkAttachmentLoadOp load = VK_ATTACHMENT_LOAD_OP_DONT_CARE, stencilLoad = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  VkAttachmentStoreOp store = VK_ATTACHMENT_STORE_OP_DONT_CARE, stencilStore = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  bool storePatched = false, stencilStorePatched = false;
+};
 struct RenderPassInfo {
   struct Attachment {
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
     VkImageLayout finalLayout = VK_IMAGE_LAYOUT_UNDEFINED, stencilFinalLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     bool written = false;     // a colour attachment of a subpass, or depth/stencil in a writable layout
-    bool storePatched = false;  // the application's store op was DONT_CARE/NONE: the layer stores it
+    // The application's own ops (colour or depth aspect; stencil), before the layer patches them.
+    AttachmentOps ops;
   };
   std::string name;
   std::vector<Attachment> attachments;
@@ -122,71 +142,29 @@ struct Pick {  // one target of the layout: which attachment of which pass
   bool depth = false;
   std::string byFormat;
 };
+// Which render pass: its ordinal in its command buffer, or a label / render pass name.
+struct PassPick {
+  std::string pass;   // "" : any name
+  int passIndex = -1; // -1: any ordinal
+  bool on = false;    // asked for at all
+};
 struct Request {
   std::vector<Pick> picks;
+  // camera.live: the matrices' bytes at the end of a pass, from the buffer range bound at set /
+  // binding / index there, or from its push constants.
+  PassPick liveCamera;
+  uint32_t cameraSet = 0, cameraBinding = 0, cameraIndex = 0;
+  bool cameraPushConstants = false;
+  // bound_buffers: every buffer range bound at the graphics bind point during a pass, and its push
+  // constants, copied at its end (the camera search on a live application).
+  PassPick boundBuffers;
+  VkDeviceSize boundMaxBytes = 4u << 20;
   std::string cameraBuffer;        // debug name of the buffer holding the matrices ("" : none)
   VkDeviceSize cameraBytes = 0;    // bytes of it to read (the matrices' last offset + 64)
   uint32_t every = 1;              // stream frames whose number is a multiple of this
   uint64_t only = 0;               // stream only this streamed frame (1-based; 0: all)
   bool suggest = false;            // report the passes and attachments of one frame
   uint32_t giveUp = 120;           // frames with passes but no match before "nomatch"
-};
-
-// ---- the ring: host-visible buffers the copies land in (ring.cpp)
-struct DeviceData;
-struct RingBuffer {
-  DeviceData* device = nullptr;
-  VkBuffer buffer = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  uint8_t* mapped = nullptr;
-  VkDeviceSize size = 0;
-  VkDeviceSize base = 0;  // the first byte copies may use (a shared buffer starts with its header)
-  bool coherent = true;
-  // Shared with the receiver (VK_EXT_external_memory_host): the memory is a file's mapping, which
-  // the receiver maps too and reads in place; `id` names it on the wire.
-  int fd = -1;
-  uint32_t id = 0;
-  size_t mappedBytes = 0;
-  // Submissions that write it (a read is torn if this moves): in the shared header when shared.
-  std::atomic<uint64_t> localSubmissions{0};
-  std::atomic<uint64_t>* submissions = &localSubmissions;
-  std::atomic<int> holds{0};             // recordings that copy into it and frames not yet read from it
-  ~RingBuffer();
-};
-using RingRef = std::shared_ptr<RingBuffer>;
-
-// A hold on a ring buffer for as long as this lives: a recording that copies into it, or a frame
-// the thread has not read yet. A new recording takes a slot nobody holds, when there is one.
-class HeldRing {
- public:
-  explicit HeldRing(RingRef b) : buffer_(std::move(b)) { ++buffer_->holds; }
-  HeldRing(HeldRing&& o) noexcept : buffer_(std::move(o.buffer_)) {}
-  HeldRing& operator=(HeldRing&& o) noexcept {
-    release();
-    buffer_ = std::move(o.buffer_);
-    return *this;
-  }
-  HeldRing(const HeldRing&) = delete;
-  HeldRing& operator=(const HeldRing&) = delete;
-  ~HeldRing() { release(); }
-
- private:
-  void release() {
-    if (buffer_) --buffer_->holds, buffer_.reset();
-  }
-  RingRef buffer_;
-};
-
-// One attachment (or the camera's bytes) copied into a ring buffer by a recorded command buffer.
-struct Copy {
-  int target = -1;          // index into Request::picks (-1: the camera)
-  RingRef buffer;
-  VkDeviceSize offset = 0, stencilOffset = 0;
-  uint32_t width = 0, height = 0;
-  VkFormat format = VK_FORMAT_UNDEFINED;
-  VkDeviceSize bytes = 0;   // the camera's
-  int passOrdinal = 0;
-  std::string pass;         // innermost label or render pass name, for people
 };
 
 // What --suggest reports of one render pass.
@@ -198,9 +176,17 @@ struct PassReport {
   struct Attachment {
     std::string role, image, view, format, storage, why;
     uint32_t width = 0, height = 0, samples = 1;
-    bool written = false, storePatched = false;
+    bool written = false;
+    uint32_t imageId = 0;
+    bool depth = false, stencil = false;  // the format's aspects
+    bool presented = false;               // a swapchain's image
+    AttachmentOps ops;
   };
   std::vector<Attachment> attachments;
+  // Image ids (imageId) the pass's draws may read through the sets bound at the graphics bind
+  // point, and those read after it (compute dispatches, copy/blit/resolve sources) before the next
+  // pass of the frame begins.
+  std::vector<uint32_t> reads, readsAfter;
 };
 
 // A render pass being recorded: its attachments and where they are when it ends.
@@ -208,7 +194,8 @@ struct PassAttachment {
   VkImage image = VK_NULL_HANDLE;
   VkImageView view = VK_NULL_HANDLE;
   int color = -1;
-  bool depth = false, written = false, storePatched = false;
+  bool depth = false, written = false;
+  AttachmentOps ops;
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED, stencilLayout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
 struct OpenPass {
@@ -219,6 +206,16 @@ struct OpenPass {
   std::vector<PassAttachment> attachments;
 };
 
+// Push constants as the graphics stages see them: the bytes and the range written so far.
+struct PushState {
+  std::vector<uint8_t> bytes;
+  uint32_t lo = UINT32_MAX, hi = 0;
+};
+struct BindEvent {
+  uint32_t number = 0;  // the set number it was bound at
+  BoundSet set;
+};
+
 struct CmdState {
   VkCommandPool pool = VK_NULL_HANDLE;
   bool copies = false;          // this recording copies (streaming, and its frame is due or it may be reused)
@@ -227,7 +224,19 @@ struct CmdState {
   // reported, not counted towards giving up).
   bool skipped = false;
   bool paced = false;           // skipped because the receiver could not have taken its frame
-  bool suggest = false;         // this recording reports its passes (--suggest)
+  bool suggest = false;         // this recording reports its passes (--suggest, until the report is sent)
+  // Descriptor sets bound are followed (--suggest's reads; bound_buffers, camera.live): the sets
+  // bound now per bind point, and the graphics sets the open pass's draws see, each once from the
+  // first draw that sees it (a set bound before the pass began counts from its first draw; one
+  // replaced before any draw does not). structure.cpp.
+  bool trackBinds = false;
+  std::vector<BoundSet> graphicsSets, computeSets;  // by set number
+  int passBindsOf = -2;         // the passes whose binds are kept: -1 every pass, N the pass of ordinal N, -2 none
+  bool keepPassBinds = false;   // the open pass's are
+  std::vector<BindEvent> passBinds;
+  PushState push;               // only while bound_buffers or camera.live asks for them
+  std::vector<uint32_t> leadingReads;   // --suggest: image ids read before this recording's first pass
+  std::vector<uint32_t> intoSwapchain;  // --suggest: image ids copied or blitted into a swapchain image
   bool reusable = false;        // it may be submitted again (no ONE_TIME_SUBMIT)
   int passes = 0;               // render passes begun so far
   std::vector<std::string> labels;
@@ -246,17 +255,6 @@ struct CmdState {
     *this = CmdState{};
     pool = p;
   }
-};
-
-// A frame the application submitted with copies in it, waiting for its fences (stream.cpp).
-struct PendingFrame {
-  uint64_t appFrame = 0, stream = 0, endNs = 0;
-  std::vector<Copy> copies;
-  std::vector<std::pair<RingRef, uint64_t>> writes;  // each buffer's submission count at submission
-  std::vector<VkFence> fences;
-  std::vector<HeldRing> held;
-  bool due = false;     // streamed (every N); else only its fences are recycled
-  bool broken = false;  // a submission of it got no fence: never streamed
 };
 
 struct Stream;  // stream.cpp
@@ -279,8 +277,16 @@ struct DeviceData {
   std::unordered_map<VkBuffer, BufferInfo> buffers;
   std::unordered_map<VkDeviceMemory, uint8_t*> mapped;  // memory -> pointer to its byte 0
   std::unordered_map<VkSwapchainKHR, ImageInfo> swapchains;  // their images' description
-  std::unordered_map<VkDescriptorSet, std::vector<VkBuffer>> setBuffers;
+  std::unordered_map<VkSwapchainKHR, std::vector<VkImage>> swapchainImages;  // by image index
+  std::unordered_map<VkDescriptorSetLayout, std::shared_ptr<const SetLayoutInfo>> setLayouts;
+  std::unordered_map<VkDescriptorSet, SetInfo> sets;  // descriptors.cpp
   std::unordered_map<VkDescriptorPool, std::vector<VkDescriptorSet>> poolSets;
+  std::unordered_map<VkDescriptorUpdateTemplate, TemplateInfo> templates;
+
+  // --suggest: a small number per image, in the order the report first meets them (structure.cpp).
+  std::mutex idLock;
+  std::unordered_map<VkImage, uint32_t> imageIds;
+  uint32_t nextImageId = 0;
 
   std::mutex cmdLock;
   std::unordered_map<VkCommandBuffer, std::unique_ptr<CmdState>> cmds;
@@ -296,7 +302,10 @@ struct DeviceData {
   uint64_t streamed = 0;
   std::unique_ptr<PendingFrame> building;
   std::vector<PassReport> frameReports;
-  bool passesThisFrame = false, suggestSent = false;
+  std::vector<uint32_t> framePresented;  // --suggest: images copied or blitted into a swapchain image this frame
+  bool passesThisFrame = false;
+  std::atomic<bool> suggestSent{false};  // the passes report went: --suggest's tracking stops
+  bool boundBuffersAsked = false;        // the request has bound_buffers (set before any recording)
   bool skippedThisFrame = false;  // a recording of this frame skipped its copies (CmdState::skipped)
   bool pacedThisFrame = false;    // ... because the receiver could not have taken it (CmdState::paced)
   // Pacing (record.cpp): a one-time recording copies only while the receiver can take its frame:
@@ -346,7 +355,20 @@ struct Hook {
 std::vector<Hook> trackHooks();   // track.cpp
 std::vector<Hook> recordHooks();  // record.cpp
 std::vector<Hook> descriptorHooks();  // descriptors.cpp
+std::vector<Hook> bindHooks();        // structure.cpp (vkCmdBindDescriptorSets)
 std::vector<Hook> submitHooks();  // submit.cpp
+// structure.cpp: handed out only to a device whose receiver asked for what they follow (--suggest:
+// dispatches and image copies; bound_buffers and camera.live: push constants), so that a stream
+// that asks for none of it does not pass through them.
+std::vector<Hook> structureHooks(const Request& req);
+
+// ---- the frame's structure and the bound sets (structure.cpp)
+uint32_t imageId(DeviceData& d, VkImage image);  // 1, 2, ... in the order first asked
+void forgetImageId(DeviceData& d, VkImage image);
+// A pass begins / ends: the graphics sets bound now start its binds; the image ids its binds read.
+void beginPassBinds(CmdState& s);
+std::vector<uint32_t> passReads(DeviceData& d, const CmdState& s);
+bool passMatches(const PassPick& p, const OpenPass& pass);
 
 // ---- the ring (ring.cpp)
 // Room for `bytes` in the recording's ring slot: its buffer and the offset (the slot gets a new,
@@ -361,6 +383,9 @@ void destroyRing(DeviceData& d);
 // ---- command recording (record.cpp)
 void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);  // copy.cpp
 PassReport reportPass(DeviceData& d, const OpenPass& pass);        // copy.cpp
+// The camera's and the bound buffers' copies at the end of the open pass (`targets`: it copies
+// attachments too, and so the camera of a debug name). copy_buffers.cpp.
+std::vector<BufferCopy> bufferCopies(DeviceData& d, const CmdState& s, const Request& req, bool targets);
 std::string pickText(const Pick& p);                               // "colour attachment 0 of render pass 1"
 CmdState* cmdState(DeviceData& d, VkCommandBuffer cmd);
 
@@ -373,7 +398,8 @@ void startStream(DeviceData& d, Stream* st);
 void closeStream(Stream* st);                 // the device was not made after all
 void stopStream(DeviceData& d);               // at vkDestroyDevice
 void streamFrame(DeviceData& d, std::unique_ptr<PendingFrame> f);  // hands a submitted frame over
-void streamPasses(DeviceData& d, const std::vector<PassReport>& passes, uint64_t frame);
+void streamPasses(DeviceData& d, const std::vector<PassReport>& passes, const std::vector<uint32_t>& presented,
+                  uint64_t frame);
 void streamNoMatch(DeviceData& d, uint64_t frames);
 // A message for people, sent once per key (a target that never appears, a format mismatch, ...).
 void report(DeviceData& d, const std::string& key, const std::string& text);

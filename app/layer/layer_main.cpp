@@ -40,7 +40,7 @@ const T* findChain(const void* next, VkStructureType type, VkLayerFunction funct
 const std::unordered_map<std::string, PFN_vkVoidFunction>& hookTable() {
   static auto* table = [] {
     auto* t = new std::unordered_map<std::string, PFN_vkVoidFunction>;
-    for (auto hooks : {trackHooks(), recordHooks(), descriptorHooks(), submitHooks()})
+    for (auto hooks : {trackHooks(), recordHooks(), descriptorHooks(), bindHooks(), submitHooks()})
       for (const Hook& h : hooks) (*t)[h.name] = h.function;
     return t;
   }();
@@ -183,7 +183,7 @@ VKAPI_ATTR void VKAPI_CALL DestroyDevice(VkDevice device, const VkAllocationCall
     GBL_LOG("device destroyed: following %zu images, %zu views, %zu framebuffers, %zu render passes, %zu buffers, %zu "
             "descriptor sets, %zu command buffers, %zu mapped memories",
             d->images.size(), d->views.size(), d->framebuffers.size(), d->renderPasses.size(), d->buffers.size(),
-            d->setBuffers.size(), d->cmds.size(), d->mapped.size());
+            d->sets.size(), d->cmds.size(), d->mapped.size());
     stopStream(*d);
     d->vk.DeviceWaitIdle(device);
     {
@@ -229,7 +229,12 @@ VKAPI_ATTR PFN_vkVoidFunction VKAPI_CALL GetDeviceProcAddr(VkDevice device, cons
   PFN_vkVoidFunction next = d->vk.GetDeviceProcAddr(device, name);
   if (!d->connected || !next) return next;  // idle, or a function the device does not have
   auto it = hookTable().find(name);
-  return it == hookTable().end() ? next : it->second;
+  if (it != hookTable().end()) return it->second;
+  // What only some requests need (the request came before the device was made).
+  if (std::shared_ptr<const Request> req = currentRequest(*d))
+    for (const Hook& h : structureHooks(*req))
+      if (!std::strcmp(h.name, name)) return h.function;
+  return next;
 }
 
 }  // namespace

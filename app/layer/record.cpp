@@ -1,7 +1,7 @@
-// Following command buffers as the application records them: their lifetime, debug labels, the
-// camera's buffer as descriptor sets bind it, and render passes (VkRenderPass and dynamic
-// rendering) with their attachments and where they are when the pass ends; at the end of each pass
-// copy.cpp records the copies the request asks for.
+// Following command buffers as the application records them: their lifetime, debug labels, and
+// render passes (VkRenderPass and dynamic rendering) with their attachments, their load/store ops
+// and where they are when the pass ends; at the end of each pass copy.cpp records the copies the
+// request asks for (the sets bound and the frame's structure: structure.cpp).
 #include <algorithm>
 
 #include "app/layer/layer.h"
@@ -66,7 +66,11 @@ VKAPI_ATTR VkResult VKAPI_CALL BeginCommandBuffer(VkCommandBuffer cmd, const VkC
     s->copies = d.streaming && req && !req->picks.empty() && (reusable || d.frame % req->every == 0) && !s->paced;
     s->skipped = d.streaming && req && !req->picks.empty() && !s->copies;
     s->reusable = reusable;
-    s->suggest = req && req->suggest;
+    s->suggest = req && req->suggest && !d.suggestSent;  // the report is of one frame: no tracking after it
+    // The sets bound are followed only for what asks for them (a stream of attachments alone does not).
+    s->trackBinds = s->suggest || (s->copies && (req->boundBuffers.on || (req->liveCamera.on && !req->cameraPushConstants)));
+    const bool bound = s->copies && req->boundBuffers.on;
+    s->passBindsOf = s->suggest || (bound && !req->boundBuffers.pass.empty()) ? -1 : bound ? req->boundBuffers.passIndex : -2;
   }
   return d.vk.BeginCommandBuffer(cmd, info);
 }
@@ -89,27 +93,6 @@ VKAPI_ATTR void VKAPI_CALL CmdEndDebugUtilsLabelEXT(VkCommandBuffer cmd) {
   d.vk.CmdEndDebugUtilsLabelEXT(cmd);
 }
 
-// The camera's buffer is the last one of its name a descriptor set bound before the pass ends.
-VKAPI_ATTR void VKAPI_CALL CmdBindDescriptorSets(VkCommandBuffer cmd, VkPipelineBindPoint point, VkPipelineLayout layout,
-                                                 uint32_t first, uint32_t count, const VkDescriptorSet* sets,
-                                                 uint32_t dynamicCount, const uint32_t* dynamicOffsets) {
-  DeviceData& d = *deviceOf(cmd);
-  d.vk.CmdBindDescriptorSets(cmd, point, layout, first, count, sets, dynamicCount, dynamicOffsets);
-  CmdState* s = cmdState(d, cmd);
-  if (!s || !s->copies) return;
-  std::shared_ptr<const Request> req = currentRequest(d);
-  if (!req || req->cameraBuffer.empty()) return;
-  std::shared_lock lock(d.objects);
-  for (uint32_t i = 0; i < count; ++i) {
-    auto held = d.setBuffers.find(sets[i]);
-    if (held == d.setBuffers.end()) continue;
-    for (VkBuffer b : held->second) {
-      auto info = d.buffers.find(b);
-      if (info != d.buffers.end() && info->second.name == req->cameraBuffer) s->cameraBuffer = b;
-    }
-  }
-}
-
 // ---- VkRenderPass
 
 void beginRenderPass(DeviceData& d, VkCommandBuffer cmd, const VkRenderPassBeginInfo* info) {
@@ -119,6 +102,7 @@ void beginRenderPass(DeviceData& d, VkCommandBuffer cmd, const VkRenderPassBegin
   s->open.ordinal = s->passes++;
   s->open.labels = s->labels;
   s->inPass = true;
+  beginPassBinds(*s);
   std::shared_lock lock(d.objects);
   auto rp = d.renderPasses.find(info->renderPass);
   auto fb = d.framebuffers.find(info->framebuffer);
@@ -141,7 +125,7 @@ void beginRenderPass(DeviceData& d, VkCommandBuffer cmd, const VkRenderPassBegin
     pa.color = c == r.colors.end() ? -1 : int(c - r.colors.begin());
     pa.depth = r.depth == int(a);
     pa.written = r.attachments[a].written;
-    pa.storePatched = r.attachments[a].storePatched;
+    pa.ops = r.attachments[a].ops;
     pa.layout = r.attachments[a].finalLayout;
     pa.stencilLayout = r.attachments[a].stencilFinalLayout;
     s->open.attachments.push_back(pa);
@@ -154,7 +138,10 @@ void endPass(DeviceData& d, VkCommandBuffer cmd) {
   s->inPass = false;
   for (const std::string& l : s->labels)  // labels pushed inside the pass name it too
     if (std::find(s->open.labels.begin(), s->open.labels.end(), l) == s->open.labels.end()) s->open.labels.push_back(l);
-  if (s->suggest) s->reports.push_back(reportPass(d, s->open));
+  if (s->suggest) {
+    s->reports.push_back(reportPass(d, s->open));
+    s->reports.back().reads = passReads(d, *s);
+  }
   if (s->copies) recordCopies(d, cmd, *s);
 }
 
@@ -214,18 +201,27 @@ void beginRendering(DeviceData& d, VkCommandBuffer cmd, const VkRenderingInfo* i
   s->open.dynamic = true;
   s->open.suspending = info->flags & VK_RENDERING_SUSPENDING_BIT;
   s->inPass = true;
+  beginPassBinds(*s);
   std::shared_lock lock(d.objects);
+  // Depth and stencil are separate attachments here, each with its own ops; an aspect the pass does
+  // not attach is neither loaded nor stored (NONE).
   auto add = [&](VkRenderingAttachmentInfo& a, int color, bool isDepth, bool isStencil) {
     auto v = d.views.find(a.imageView);
     if (!a.imageView || v == d.views.end()) return;
     const bool written = a.storeOp != VK_ATTACHMENT_STORE_OP_NONE && !readOnlyLayout(a.imageLayout);
     const bool patch = written && a.storeOp == VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    auto setOps = [&](AttachmentOps& ops) {
+      if (isStencil)
+        ops.stencilLoad = a.loadOp, ops.stencilStore = a.storeOp, ops.stencilStorePatched = patch;
+      else
+        ops.load = a.loadOp, ops.store = a.storeOp, ops.storePatched = patch;
+    };
     if (patch) a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     for (PassAttachment& pa : s->open.attachments)
       if (pa.view == a.imageView) {  // the stencil of the depth attachment's view
         pa.stencilLayout = a.imageLayout;
-        pa.written |= written, pa.storePatched |= patch;
-        return;
+        pa.written |= written;
+        return setOps(pa.ops);
       }
     PassAttachment pa;
     pa.image = v->second.image;
@@ -233,7 +229,9 @@ void beginRendering(DeviceData& d, VkCommandBuffer cmd, const VkRenderingInfo* i
     pa.color = color;
     pa.depth = isDepth || isStencil;
     pa.written = written;
-    pa.storePatched = patch;
+    pa.ops.load = pa.ops.stencilLoad = VK_ATTACHMENT_LOAD_OP_NONE_EXT;
+    pa.ops.store = pa.ops.stencilStore = VK_ATTACHMENT_STORE_OP_NONE;
+    setOps(pa.ops);
     pa.layout = pa.stencilLayout = a.imageLayout;
     s->open.attachments.push_back(pa);
   };
@@ -273,7 +271,7 @@ VKAPI_ATTR void VKAPI_CALL CmdEndRenderingKHR(VkCommandBuffer cmd) {
 std::vector<Hook> recordHooks() {
   return {GBL_HOOK(AllocateCommandBuffers), GBL_HOOK(FreeCommandBuffers),     GBL_HOOK(ResetCommandPool),
           GBL_HOOK(DestroyCommandPool),     GBL_HOOK(BeginCommandBuffer),     GBL_HOOK(ResetCommandBuffer),
-          GBL_HOOK(CmdBeginDebugUtilsLabelEXT), GBL_HOOK(CmdEndDebugUtilsLabelEXT), GBL_HOOK(CmdBindDescriptorSets),
+          GBL_HOOK(CmdBeginDebugUtilsLabelEXT), GBL_HOOK(CmdEndDebugUtilsLabelEXT),
           GBL_HOOK(CmdBeginRenderPass),     GBL_HOOK(CmdBeginRenderPass2),    GBL_HOOK(CmdBeginRenderPass2KHR),
           GBL_HOOK(CmdEndRenderPass),       GBL_HOOK(CmdEndRenderPass2),      GBL_HOOK(CmdEndRenderPass2KHR),
           GBL_HOOK(CmdBeginRendering),      GBL_HOOK(CmdBeginRenderingKHR),   GBL_HOOK(CmdEndRendering),

@@ -34,6 +34,26 @@ json targetJson(const Request& req, const Copy& c, uint32_t buffer, size_t offse
           {"offset", offset}, {"bytes", copyBytes(c)}, {"pass", c.passOrdinal}, {"pass_name", c.pass}};
 }
 
+// A bound buffer's range (or the push constants) and where its bytes are.
+json boundJson(const Copy& c, uint32_t buffer, size_t offset) {
+  const BoundInfo& b = c.bound;
+  const json data = {{"buffer", buffer}, {"offset", offset}, {"bytes", c.bytes}};
+  if (b.kind == "push_constants")
+    return {{"kind", b.kind}, {"offset", b.offset}, {"size", b.range}, {"pass", c.passOrdinal}, {"data", data}};
+  return {{"kind", b.kind}, {"set", b.set},   {"binding", b.binding}, {"index", b.index}, {"name", b.name},
+          {"size", b.size}, {"offset", b.offset}, {"range", b.range}, {"pass", c.passOrdinal}, {"data", data}};
+}
+
+// The frame message's entry for one copy: a target, the camera or a bound buffer.
+void describe(const Request& req, const Copy& c, uint32_t buffer, size_t offset, json& targets, json& camera, json& bound) {
+  if (c.target == kCameraCopy)
+    camera = {{"buffer", buffer}, {"offset", offset}, {"bytes", c.bytes}};
+  else if (c.target == kBoundCopy)
+    bound.push_back(boundJson(c, buffer, offset));
+  else
+    targets.push_back(targetJson(req, c, buffer, offset));
+}
+
 bool allShared(const PendingFrame& f) {
   for (const Copy& c : f.copies)
     if (c.buffer->fd < 0) return false;
@@ -43,7 +63,8 @@ bool allShared(const PendingFrame& f) {
 // The frame read in place: the receiver maps each ring buffer once (sent with its file), and checks
 // the submission counts in their headers before and after reading (a buffer a reused command
 // buffer wrote again meanwhile makes the frame torn, and it drops it).
-bool describeShared(Stream& st, const PendingFrame& f, const Request& req, json& targets, json& camera, json& counts) {
+bool describeShared(Stream& st, const PendingFrame& f, const Request& req, json& targets, json& camera, json& bound,
+                    json& counts) {
   for (const auto& [buffer, count] : f.writes) {
     if (!st.sentBuffers.count(buffer->id)) {
       const json m = {{"type", gb::wire::kBuffer}, {"id", buffer->id}, {"bytes", buffer->size}};
@@ -52,17 +73,12 @@ bool describeShared(Stream& st, const PendingFrame& f, const Request& req, json&
     }
     counts.push_back({buffer->id, count});
   }
-  for (const Copy& c : f.copies) {
-    if (c.target < 0)
-      camera = {{"buffer", c.buffer->id}, {"offset", c.offset}, {"bytes", c.bytes}};
-    else
-      targets.push_back(targetJson(req, c, c.buffer->id, size_t(c.offset)));
-  }
+  for (const Copy& c : f.copies) describe(req, c, c.buffer->id, size_t(c.offset), targets, camera, bound);
   return true;
 }
 
 // The frame copied out of the ring into buffer 0 (a file that grows when a frame needs more).
-bool fill(Stream& st, const PendingFrame& f, const Request& req, json& targets, json& camera) {
+bool fill(Stream& st, const PendingFrame& f, const Request& req, json& targets, json& camera, json& bound) {
   DeviceData& d = *st.d;
   size_t total = 0;
   std::vector<size_t> at;
@@ -92,10 +108,7 @@ bool fill(Stream& st, const PendingFrame& f, const Request& req, json& targets, 
       d.vk.InvalidateMappedMemoryRanges(d.device, 1, &range);
     }
     std::memcpy(st.map + at[i], c.buffer->mapped + c.offset, copyBytes(c));
-    if (c.target < 0)
-      camera = {{"buffer", 0}, {"offset", at[i]}, {"bytes", c.bytes}};
-    else
-      targets.push_back(targetJson(req, c, 0, at[i]));
+    describe(req, c, 0, at[i], targets, camera, bound);
   }
   return true;
 }
@@ -151,9 +164,9 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
   }
   const uint64_t ready = gb::wire::monotonicNs();
   const auto start = std::chrono::steady_clock::now();
-  json targets = json::array(), camera = nullptr, counts = json::array();
+  json targets = json::array(), camera = nullptr, bound = json::array(), counts = json::array();
   const bool shared = allShared(*f);
-  if (!(shared ? describeShared(st, *f, *req, targets, camera, counts) : fill(st, *f, *req, targets, camera))) {
+  if (!(shared ? describeShared(st, *f, *req, targets, camera, bound, counts) : fill(st, *f, *req, targets, camera, bound))) {
     report(d, "shm", "cannot share a frame's memory with the receiver: streaming stops");
     return goIdle(st);
   }
@@ -171,6 +184,7 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
   json m = {{"type", gb::wire::kFrame}, {"stream", number}, {"app_frame", f->appFrame}, {"end_ns", f->endNs},
             {"ready_ns", ready},       {"targets", targets},   {"camera", camera},         {"writes", counts},
             {"stats", statsJson(st)}};
+  if (req->boundBuffers.on) m["bound_buffers"] = bound;
   if (!gb::wire::send(st.socket, m.dump())) return goIdle(st);
   st.receiverBusy = d.receiverBusy = true;
   if (shared) st.atReceiver = std::move(f);  // its buffers stay held until the receiver hands the frame back

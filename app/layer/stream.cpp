@@ -30,6 +30,16 @@ void wakeUp(Stream& st) {
   (void)!write(st.wake, &one, sizeof(one));
 }
 
+// {"pass": ORDINAL or "label"} as a layout's live source writes it.
+PassPick passPick(const json& j) {
+  PassPick p;
+  p.on = j.is_object();
+  if (!p.on || !j.contains("pass")) return p;
+  if (j["pass"].is_string()) p.pass = j["pass"].get<std::string>();
+  if (j["pass"].is_number_integer()) p.passIndex = j["pass"].get<int>();
+  return p;
+}
+
 bool parseRequest(const std::string& text, Request& r) {
   json j = json::parse(text, nullptr, false);
   if (!j.is_object() || j.value("type", "") != gb::wire::kRequest) return false;
@@ -40,6 +50,17 @@ bool parseRequest(const std::string& text, Request& r) {
   if (j.contains("camera") && j["camera"].is_object()) {
     r.cameraBuffer = j["camera"].value("buffer", "");
     r.cameraBytes = j["camera"].value("bytes", uint64_t(0));
+    if (const json live = j["camera"].value("live", json()); live.is_object()) {
+      r.liveCamera = passPick(live);
+      r.cameraSet = live.value("set", 0u);
+      r.cameraBinding = live.value("binding", 0u);
+      r.cameraIndex = live.value("index", 0u);
+      r.cameraPushConstants = live.value("push_constants", false);
+    }
+  }
+  if (j.contains("bound_buffers")) {
+    r.boundBuffers = passPick(j["bound_buffers"]);
+    if (r.boundBuffers.on) r.boundMaxBytes = std::max<uint64_t>(4, j["bound_buffers"].value("max_bytes", uint64_t(4) << 20));
   }
   for (const json& t : j.value("targets", json::array())) {
     Pick p;
@@ -188,6 +209,7 @@ void startStream(DeviceData& d, Stream* st) {
     std::lock_guard lock(d.requestLock);
     d.request = st->request;
   }
+  d.boundBuffersAsked = st->request->boundBuffers.on;
   d.streaming = true;
   st->thread = std::thread(run, std::ref(*st));
 }
@@ -228,18 +250,46 @@ void streamFrame(DeviceData& d, std::unique_ptr<PendingFrame> f) {
   wakeUp(*st);
 }
 
-void streamPasses(DeviceData& d, const std::vector<PassReport>& passes, uint64_t frame) {
+namespace {
+
+json loadName(VkAttachmentLoadOp op) {
+  switch (op) {
+    case VK_ATTACHMENT_LOAD_OP_LOAD: return "load";
+    case VK_ATTACHMENT_LOAD_OP_CLEAR: return "clear";
+    case VK_ATTACHMENT_LOAD_OP_DONT_CARE: return "dont_care";
+    default: return "none";
+  }
+}
+json storeName(VkAttachmentStoreOp op) {
+  return op == VK_ATTACHMENT_STORE_OP_STORE ? "store" : op == VK_ATTACHMENT_STORE_OP_DONT_CARE ? "dont_care" : "none";
+}
+
+// An attachment with the application's own ops per aspect (null: the format has no such aspect).
+json attachmentJson(const PassReport::Attachment& a) {
+  const bool main = a.depth || !a.stencil;  // a colour or depth aspect
+  return {{"role", a.role}, {"image", a.image}, {"view", a.view}, {"image_id", a.imageId}, {"vk_format", a.format},
+          {"format", a.storage}, {"width", a.width}, {"height", a.height}, {"samples", a.samples},
+          {"written", a.written}, {"presented", a.presented},
+          {"load", main ? loadName(a.ops.load) : json()}, {"store", main ? storeName(a.ops.store) : json()},
+          {"stencil_load", a.stencil ? loadName(a.ops.stencilLoad) : json()},
+          {"stencil_store", a.stencil ? storeName(a.ops.stencilStore) : json()},
+          {"store_patched", a.ops.storePatched || a.ops.stencilStorePatched},
+          {"stencil_store_patched", a.ops.stencilStorePatched}, {"why", a.why}};
+}
+
+}  // namespace
+
+void streamPasses(DeviceData& d, const std::vector<PassReport>& passes, const std::vector<uint32_t>& presented,
+                  uint64_t frame) {
   json list = json::array();
   for (const PassReport& p : passes) {
     json attachments = json::array();
-    for (const PassReport::Attachment& a : p.attachments)
-      attachments.push_back({{"role", a.role}, {"image", a.image}, {"view", a.view}, {"vk_format", a.format},
-                             {"format", a.storage}, {"width", a.width}, {"height", a.height}, {"samples", a.samples},
-                             {"written", a.written}, {"store_patched", a.storePatched}, {"why", a.why}});
-    list.push_back({{"ordinal", p.ordinal}, {"dynamic", p.dynamic}, {"render_pass", p.renderPass},
-                    {"labels", p.labels}, {"attachments", attachments}});
+    for (const PassReport::Attachment& a : p.attachments) attachments.push_back(attachmentJson(a));
+    list.push_back({{"ordinal", p.ordinal}, {"dynamic", p.dynamic}, {"render_pass", p.renderPass}, {"labels", p.labels},
+                    {"attachments", attachments}, {"reads", p.reads}, {"reads_after", p.readsAfter}});
   }
-  sendOnce(d, "passes", json{{"type", gb::wire::kPasses}, {"frame", frame}, {"passes", list}}.dump());
+  sendOnce(d, "passes",
+           json{{"type", gb::wire::kPasses}, {"frame", frame}, {"passes", list}, {"presented", presented}}.dump());
 }
 
 void streamNoMatch(DeviceData& d, uint64_t frames) {

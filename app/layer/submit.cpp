@@ -18,6 +18,20 @@ struct Submitted {
   bool pass = false, copies = false, skipped = false, paced = false;
 };
 
+void addOnce(std::vector<uint32_t>& ids, const std::vector<uint32_t>& more) {
+  for (uint32_t id : more)
+    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+}
+
+// --suggest: a recording's passes join the frame's; what it read before its first pass was read
+// after the frame's pass before it (reads_after), and what it copied into a swapchain image counts
+// as presented.
+void gatherStructure(DeviceData& d, const CmdState& s) {
+  if (!d.frameReports.empty()) addOnce(d.frameReports.back().readsAfter, s.leadingReads);
+  d.frameReports.insert(d.frameReports.end(), s.reports.begin(), s.reports.end());
+  addOnce(d.framePresented, s.intoSwapchain);
+}
+
 // Gathers what the submitted command buffers recorded. Every buffer they copy into counts one more
 // submission (a frame read from it while this count moves may be torn: the thread drops it).
 Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
@@ -29,7 +43,7 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
     got.pass |= s->passes > 0;
     got.skipped |= s->skipped && s->passes > 0;
     got.paced |= s->paced && s->passes > 0;
-    d.frameReports.insert(d.frameReports.end(), s->reports.begin(), s->reports.end());
+    if (s->suggest && !d.suggestSent) gatherStructure(d, *s);
     std::vector<RingBuffer*> counted;
     for (const Copy& c : s->copiesMade)
       if (std::find(counted.begin(), counted.end(), c.buffer.get()) == counted.end()) {
@@ -41,8 +55,11 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
     if (s->copiesMade.empty() || !d.streaming) continue;
     if (!d.building) d.building = std::make_unique<PendingFrame>();
     PendingFrame& f = *d.building;
-    for (const Copy& c : s->copiesMade) {  // a later submission's copy of a target replaces an earlier one
-      std::erase_if(f.copies, [&](const Copy& e) { return e.target == c.target; });
+    // A later submission's copy of a target replaces an earlier one; its bound buffers replace all earlier ones.
+    if (std::any_of(s->copiesMade.begin(), s->copiesMade.end(), [](const Copy& c) { return c.target == kBoundCopy; }))
+      std::erase_if(f.copies, [](const Copy& e) { return e.target == kBoundCopy; });
+    for (const Copy& c : s->copiesMade) {
+      if (c.target != kBoundCopy) std::erase_if(f.copies, [&](const Copy& e) { return e.target == c.target; });
       f.copies.push_back(c);
       auto w = std::find_if(f.writes.begin(), f.writes.end(), [&](const auto& e) { return e.first == c.buffer; });
       if (w == f.writes.end()) {
@@ -60,10 +77,11 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
   return got;
 }
 
-void endFrame(DeviceData& d) {
+void endFrame(DeviceData& d, const std::vector<uint32_t>& presentedNow = {}) {
   std::shared_ptr<const Request> req = currentRequest(d);
   std::unique_ptr<PendingFrame> f;
   std::vector<PassReport> reports;
+  std::vector<uint32_t> presented;
   bool passes = false, suggest = false, skipped = false;
   uint64_t number = 0;
   {
@@ -75,6 +93,9 @@ void endFrame(DeviceData& d) {
     f = std::move(d.building);
     reports = std::move(d.frameReports);
     d.frameReports.clear();
+    presented = presentedNow;
+    addOnce(presented, d.framePresented);
+    d.framePresented.clear();
     passes = d.passesThisFrame;
     d.passesThisFrame = false;
     skipped = d.skippedThisFrame;
@@ -82,7 +103,7 @@ void endFrame(DeviceData& d) {
     if (d.pacedThisFrame && req && number % req->every == 0 && !f) ++d.droppedAtSource;  // due, not taken
     d.pacedThisFrame = false;
     suggest = req && req->suggest && !d.suggestSent && !reports.empty();
-    d.suggestSent |= suggest;
+    if (suggest) d.suggestSent = true;
     if (f) {
       f->appFrame = number;
       f->endNs = now;
@@ -90,7 +111,7 @@ void endFrame(DeviceData& d) {
       if (f->due) f->stream = ++d.streamed;
     }
   }
-  if (suggest) streamPasses(d, reports, number);
+  if (suggest) streamPasses(d, reports, presented, number);
   if (!req || !d.streaming || !passes || skipped) {  // a frame that did not copy says nothing of the targets
     if (f) streamFrame(d, std::move(f));
     return;
@@ -168,7 +189,23 @@ VKAPI_ATTR VkResult VKAPI_CALL QueueSubmit2KHR(VkQueue queue, uint32_t n, const 
 VKAPI_ATTR VkResult VKAPI_CALL QueuePresentKHR(VkQueue queue, const VkPresentInfoKHR* info) {
   DeviceData& d = *deviceOf(queue);
   VkResult r = d.vk.QueuePresentKHR(queue, info);
-  endFrame(d);
+  std::vector<uint32_t> presented;  // --suggest: the swapchain images this present shows
+  if (!d.suggestSent) {
+    std::shared_ptr<const Request> req = currentRequest(d);
+    if (req && req->suggest) {
+      std::vector<VkImage> images;
+      {
+        std::shared_lock lock(d.objects);
+        for (uint32_t i = 0; i < info->swapchainCount; ++i) {
+          auto it = d.swapchainImages.find(info->pSwapchains[i]);
+          if (it != d.swapchainImages.end() && info->pImageIndices[i] < it->second.size())
+            images.push_back(it->second[info->pImageIndices[i]]);
+        }
+      }
+      for (VkImage image : images) addOnce(presented, {imageId(d, image)});
+    }
+  }
+  endFrame(d, presented);
   return r;
 }
 

@@ -44,6 +44,7 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateImage(VkDevice device, const VkImageCreateI
 VKAPI_ATTR void VKAPI_CALL DestroyImage(VkDevice device, VkImage image, const VkAllocationCallbacks* alloc) {
   DeviceData& d = *deviceOf(device);
   forget(d, d.images, image);
+  forgetImageId(d, image);
   d.vk.DestroyImage(device, image, alloc);
 }
 
@@ -74,6 +75,7 @@ VKAPI_ATTR void VKAPI_CALL DestroySwapchainKHR(VkDevice device, VkSwapchainKHR s
   {
     std::unique_lock lock(d.objects);
     d.swapchains.erase(swapchain);
+    d.swapchainImages.erase(swapchain);
     std::erase_if(d.images, [&](const auto& i) { return i.second.swapchain == swapchain; });
   }
   d.vk.DestroySwapchainKHR(device, swapchain, alloc);
@@ -86,8 +88,10 @@ VKAPI_ATTR VkResult VKAPI_CALL GetSwapchainImagesKHR(VkDevice device, VkSwapchai
   if ((r == VK_SUCCESS || r == VK_INCOMPLETE) && images) {
     std::unique_lock lock(d.objects);
     auto it = d.swapchains.find(swapchain);
-    if (it != d.swapchains.end())
+    if (it != d.swapchains.end()) {
       for (uint32_t i = 0; i < *count; ++i) d.images[images[i]] = it->second;
+      d.swapchainImages[swapchain].assign(images, images + *count);
+    }
   }
   return r;
 }
@@ -155,6 +159,9 @@ RenderPassInfo describeRenderPass(Attachment* attachments, uint32_t count, const
     if (auto* s = static_cast<const VkAttachmentDescriptionStencilLayout*>(stencilFinal(attachments[a])))
       rp.attachments[a].stencilFinalLayout = s->stencilFinalLayout;
     rp.attachments[a].written = attachments[a].loadOp == VK_ATTACHMENT_LOAD_OP_CLEAR;
+    AttachmentOps& ops = rp.attachments[a].ops;
+    ops.load = attachments[a].loadOp, ops.stencilLoad = attachments[a].stencilLoadOp;
+    ops.store = attachments[a].storeOp, ops.stencilStore = attachments[a].stencilStoreOp;
   }
   for (uint32_t s = 0; s < subpassCount; ++s) {
     const Subpass& sp = subpasses[s];
@@ -178,9 +185,9 @@ RenderPassInfo describeRenderPass(Attachment* attachments, uint32_t count, const
     const FormatInfo& f = formatInfo(attachments[a].format);
     const bool colourOrDepth = !f.stencil || f.depth;
     if (colourOrDepth && attachments[a].storeOp == VK_ATTACHMENT_STORE_OP_DONT_CARE)
-      attachments[a].storeOp = VK_ATTACHMENT_STORE_OP_STORE, rp.attachments[a].storePatched = true;
+      attachments[a].storeOp = VK_ATTACHMENT_STORE_OP_STORE, rp.attachments[a].ops.storePatched = true;
     if (f.stencil && attachments[a].stencilStoreOp == VK_ATTACHMENT_STORE_OP_DONT_CARE)
-      attachments[a].stencilStoreOp = VK_ATTACHMENT_STORE_OP_STORE, rp.attachments[a].storePatched = true;
+      attachments[a].stencilStoreOp = VK_ATTACHMENT_STORE_OP_STORE, rp.attachments[a].ops.stencilStorePatched = true;
   }
   return rp;
 }

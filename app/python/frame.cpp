@@ -152,6 +152,7 @@ FramePtr importFrames(const std::vector<std::string>& inputs, const std::string&
   if (!size.empty() && !setOption(options, "size", size, error)) fail(error);
   ImportInput in;
   if (!loadImportLayout(layout, layoutParameters(options), in.layout, in.layoutDir, error)) fail(error);
+  if (const std::string why = importCameraRefusal(in.layout); !why.empty()) fail(why);
   if (!size.empty()) in.layout.width = options.width, in.layout.height = options.height;
   in.cameraFile = cameraFile;
   const bool rdc = inputs.size() == 1 && std::filesystem::path(inputs[0]).extension() == ".rdc";

@@ -125,6 +125,20 @@ bool parseAxis(const std::string& text, Axis& out) {
   return false;
 }
 
+std::string liveCameraText(const LayoutCamera::LiveBinding& b) {
+  std::string t = b.passIndex >= 0 ? "render pass " + std::to_string(b.passIndex) : "render pass \"" + b.pass + "\"";
+  if (b.pushConstants) return t + ", push constants";
+  return t + ", set " + std::to_string(b.set) + " binding " + std::to_string(b.binding) +
+         (b.index ? " index " + std::to_string(b.index) : "");
+}
+
+std::string importCameraRefusal(const Layout& l) {
+  if (!l.camera.live) return "";
+  return (l.file.empty() ? std::string("layout") : l.file) +
+         ": camera: live: the bytes a running application binds are only read by gblens attach; an import reads "
+         "the camera from the layout's matrices, a sidecar, --camera or camera.renderdoc";
+}
+
 bool settleWorldHandedness(LayoutCamera& c, std::string& error) {
   // A view matrix maps the world to the view rigidly: det +1 between frames of one handedness, -1
   // (a mirror) between a left- and a right-handed one.

@@ -135,6 +135,18 @@ struct LayoutCamera {
     bool combined = false;
   };
   std::optional<BufferMatrix> renderdoc;  // the matrices come from a capture's uniform buffer
+  // `gblens attach` only: the matrices come from the bytes a render pass of the running application
+  // binds, a uniform/storage buffer range at set / binding / index, or its push constants; the
+  // offsets (in `matrices`, whose buffer name is empty) count from the start of the bound range
+  // (push constants: from push-constant byte 0).
+  struct LiveBinding {
+    std::string pass;        // a debug label or render pass name ...
+    int passIndex = -1;      // ... or its ordinal in its command buffer
+    uint32_t set = 0, binding = 0, index = 0;
+    bool pushConstants = false;
+    BufferMatrix matrices;
+  };
+  std::optional<LiveBinding> live;
   std::string from;  // where import read the matrices (a sidecar's path, a buffer and its offsets)
   nlohmann::json guess;  // a draft layout's note (import --suggest-layout): why this camera; for people
 };
@@ -143,6 +155,8 @@ struct LayoutCamera {
 // same handedness is impossible for a camera): sets worldLeftHanded; false with a message naming
 // "world_handedness" when the layout stated the other one.
 bool settleWorldHandedness(LayoutCamera& c, std::string& error);
+// camera.live as people read it: "render pass 0, set 0 binding 0" / "render pass \"GBuffer\", push constants".
+std::string liveCameraText(const LayoutCamera::LiveBinding& b);
 
 // gblens's world is Y-up and right-handed; a layout's world may have another up axis and sign
 // (camera.up) and left-handed axes. The rotation (with a mirror for a left-handed world) that takes
@@ -183,5 +197,10 @@ struct Layout {
   // The quantities stored in one target, in layout order.
   std::vector<const Quantity*> quantitiesOf(uint32_t target) const;
 };
+
+// Why `gblens import` (files, a RenderDoc capture, the Python module) cannot read this layout's
+// camera, one line naming the file and the field; "" when it can. camera.live is a running
+// application's bytes: only `gblens attach` has them.
+std::string importCameraRefusal(const Layout& l);
 
 }  // namespace gb

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "renderer/core/file_name.h"
 #include "renderer/core/json_read.h"
@@ -468,6 +469,48 @@ bool readMatrix(Reader& r, const json& j, const Where& w, const char* key, bool 
   return true;
 }
 
+// camera.live (gblens attach): {"pass": P, "set": S, "binding": B, "index": I} or {"pass": P,
+// "push_constants": true}, the matrices' offsets beside it as {"offset": BYTES} from the bound range's start.
+bool readLiveCamera(Reader& r, const json& j, const json& live, const Where& wc, bool rowMajor, LayoutCamera& c) {
+  if (c.renderdoc || !c.sidecar.empty())
+    return r.fail(wc, "live", "give one of \"live\", \"renderdoc\" and \"sidecar\"");
+  if (!live.is_object())
+    return r.fail(wc, "live", "expected {\"pass\": ..., \"set\": S, \"binding\": B} or {\"pass\": ..., \"push_constants\": true}");
+  Where wl = wc.at("live");
+  LayoutCamera::LiveBinding b;
+  auto pass = live.find("pass");
+  if (pass != live.end() && pass->is_number_integer() && pass->get<int64_t>() >= 0 && pass->get<int64_t>() < 1 << 20)
+    b.passIndex = int(pass->get<int64_t>());
+  else if (pass != live.end() && pass->is_string() && !pass->get<std::string>().empty())
+    b.pass = pass->get<std::string>();
+  else
+    return r.fail(wl, "pass", "expected a label (text) or the render pass's ordinal in its command buffer (0, 1, ...)");
+  if (!r.boolean(live, wl, "push_constants", b.pushConstants)) return false;
+  for (auto [key, out, required] : {std::tuple{"set", &b.set, true}, {"binding", &b.binding, true}, {"index", &b.index, false}}) {
+    auto it = live.find(key);
+    int64_t v = 0;
+    if (b.pushConstants && it != live.end()) return r.fail(wl, key, "push constants have no set, binding or index");
+    if (b.pushConstants) continue;
+    if (it == live.end() && required) return r.fail(wl, key, "missing (or give \"push_constants\": true)");
+    if (it != live.end() && !jsonInteger(*it, 0, 1 << 20, v)) return r.fail(wl, key, "expected an integer 0..1048576");
+    *out = uint32_t(v);
+  }
+  if (!r.unknownKeys(live, wl, {"pass", "set", "binding", "index", "push_constants"})) return false;
+  b.matrices.rowMajor = rowMajor;
+  b.matrices.worldFromView = j.contains("world_from_view");
+  const char* viewKey = b.matrices.worldFromView ? "world_from_view" : "view_from_world";
+  for (auto [key, out] : {std::pair{viewKey, &b.matrices.viewOffset}, {"clip_from_view", &b.matrices.clipOffset}}) {
+    auto m = j.find(key);
+    int64_t v = -1;
+    if (m == j.end() || !m->is_object() || m->size() != 1 || !m->contains("offset") ||
+        !jsonInteger((*m)["offset"], 0, 0xFFFFFFFFll, v) || v % 4)
+      return r.fail(wc, key, "expected {\"offset\": BYTES} from the start of the bound range (a multiple of 4) with camera.live");
+    *out = uint64_t(v);
+  }
+  c.live = b;
+  return true;
+}
+
 bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
   if (!j.is_object()) return r.fail(w, "camera", "expected an object");
   Where wc = w.at("camera");
@@ -521,7 +564,8 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
     b.clipOffset = uint64_t(clip);
     c.renderdoc = b;
   }
-  const bool fromElsewhere = !c.sidecar.empty() || c.renderdoc;
+  if (auto it = j.find("live"); it != j.end() && !readLiveCamera(r, j, *it, wc, order == 1, c)) return false;
+  const bool fromElsewhere = !c.sidecar.empty() || c.renderdoc || c.live;
   if (!fromElsewhere) {
     // The view matrix as view_from_world, or its inverse world_from_view (a camera's transform); or
     // only their product clip_from_world, split here.
@@ -552,7 +596,7 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
   }
   return r.unknownKeys(j, wc, {"view_from_world", "world_from_view", "clip_from_view", "clip_from_world", "matrix_order", "convention",
                                "view_handedness", "world_handedness", "projection", "up", "image_origin", "sidecar",
-                               "renderdoc", "size", "from", "guess"});
+                               "renderdoc", "live", "size", "from", "guess"});
 }
 
 bool readLights(Reader& r, const json& j, const Where& w, LayoutLights& l) {

@@ -120,7 +120,19 @@ json layoutCameraJson(const LayoutCamera& c) {
                         {c.renderdoc->worldFromView ? "world_from_view" : "view_from_world", {{"offset", c.renderdoc->viewOffset}}},
                         {"clip_from_view", {{"offset", c.renderdoc->clipOffset}}}};
   }
-  if (c.sidecar.empty() && !c.renderdoc) {
+  if (c.live) {
+    const LayoutCamera::LiveBinding& b = *c.live;
+    json live = {{"pass", b.passIndex >= 0 ? json(b.passIndex) : json(b.pass)}};
+    if (b.pushConstants)
+      live["push_constants"] = true;
+    else
+      live["set"] = b.set, live["binding"] = b.binding, live["index"] = b.index;
+    j["live"] = live;
+    j["matrix_order"] = b.matrices.rowMajor ? "row_major" : "column_major";
+    j[b.matrices.worldFromView ? "world_from_view" : "view_from_world"] = {{"offset", b.matrices.viewOffset}};
+    j["clip_from_view"] = {{"offset", b.matrices.clipOffset}};
+  }
+  if (c.sidecar.empty() && !c.renderdoc && !c.live) {
     j["view_from_world"] = matrix(c.viewFromWorld);
     j["clip_from_view"] = matrix(c.clipFromView);
     // What the matrices say, for people reading a manifest (parseLayoutCamera checks them again).

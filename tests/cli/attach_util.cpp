@@ -1,12 +1,17 @@
 // Helpers of the attach tests (see attach_util.h).
 #include "tests/cli/attach_util.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "tests/support/capture_util.h"
+#include "views/live/live.h"
 
 namespace gb::attach {
 
@@ -19,6 +24,35 @@ std::string layerEnvironment(const std::string& socket, const std::string& dumpF
   }
   if (!socket.empty()) env += "GBLENS_LIVE_SOCKET='" + socket + "' ";
   return env + "XDG_DATA_DIRS=" + dirs + ":/usr/local/share:/usr/share ";
+}
+
+Report passesReport(const std::vector<std::string>& argv, const std::vector<std::string>& environment, const std::string& dir) {
+  Report r;
+  std::filesystem::create_directories(dir);
+  LiveOptions o;
+  o.argv = argv;
+  o.suggest = true;
+  o.environment = environment;
+  o.environment.push_back("GBLENS_VALIDATE=1");
+  o.log = dir + "/app.log";
+  LiveSession s;
+  if (!s.start(o, r.error)) return r;
+  for (auto start = std::chrono::steady_clock::now(); !s.suggestion() && std::chrono::steady_clock::now() - start < std::chrono::seconds(60);) {
+    FrameSnapshot unused;
+    s.wait(unused, 0.2);
+    if (!s.running() && !s.attached()) break;
+  }
+  if (!s.suggestion()) {
+    r.error = "no passes report came";
+    for (const std::string& t : s.takeReports()) r.error += "\n" + t;
+  } else {
+    r.passes = *s.suggestion();
+    r.hello = s.hello();
+  }
+  r.status = s.waitApplication(60.0);
+  if (r.status < 0) s.stop();
+  r.log = readText(o.log);
+  return r;
 }
 
 bool readDump(const std::string& file, Dump& out) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 
 #include "views/capture/capture.h"
 
@@ -21,6 +22,16 @@ std::string layerEnvironment(const std::string& socket, const std::string& dumpF
 constexpr const char* kSyncValidation =
     "VK_LAYER_ENABLES=VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT:"
     "VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT";
+
+// The layer's report of one frame's render passes (--suggest, no layout) for `argv` run under it
+// with `environment` (and GBLENS_VALIDATE=1), its output in dir/app.log; the application is let run
+// to its end (status: its exit status, -1 if it ran on past 60 s).
+struct Report {
+  nlohmann::json passes, hello;
+  int status = -1;
+  std::string log, error;
+};
+Report passesReport(const std::vector<std::string>& argv, const std::vector<std::string>& environment, const std::string& dir);
 
 // A present the dump layer wrote: width, height, VkFormat and the raw texels.
 struct Dump {

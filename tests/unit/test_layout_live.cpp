@@ -2,7 +2,8 @@
 // names, every malformed one is refused naming the target and the field, they round-trip through
 // JSON (capture manifests), and the layout becomes the layer's request: targets without a source
 // read the image of their own name, RenderDoc texture names are debug names, a RenderDoc resource id
-// or a file is refused.
+// or a file is refused. camera.live (the bytes a pass binds) parses, round-trips, is requested with
+// its byte count, names the field of each mistake, and is refused by an import.
 #include <gtest/gtest.h>
 
 #include "renderer/core/layout_json.h"
@@ -109,6 +110,100 @@ TEST(LayoutLive, TheLayerIsAskedForWhatTheLayoutNames) {
   EXPECT_FALSE(liveLayout(l, error));
   EXPECT_NE(error.find("targets[0]: \"albedo\": source.file: gblens attach streams render-pass attachments"), std::string::npos)
       << error;
+}
+
+}  // namespace
+}  // namespace gb
+
+namespace gb {
+namespace {
+
+json withLiveCamera(const json& camera) {
+  json l = withSource({{"live", {{"pass", 0}, {"color", 0}}}});
+  l["camera"] = camera;
+  return l;
+}
+
+// camera.live (docs/layout-format.md): the bytes a render pass binds at a set / binding / index, or its
+// push constants; the matrices' offsets count from the bound range's start.
+TEST(LayoutLive, CameraLiveParsesRoundTripsAndIsRequested) {
+  Layout l, back;
+  std::string error;
+  ASSERT_TRUE(parse(withLiveCamera({{"live", {{"pass", 0}, {"set", 0}, {"binding", 2}}},
+                                    {"view_from_world", {{"offset", 64}}}, {"clip_from_view", {{"offset", 0}}}}),
+                    l, error))
+      << error;
+  ASSERT_TRUE(l.camera.live);
+  EXPECT_EQ(l.camera.live->passIndex, 0);
+  EXPECT_EQ(l.camera.live->binding, 2u);
+  EXPECT_EQ(l.camera.live->index, 0u);
+  EXPECT_EQ(l.camera.live->matrices.viewOffset, 64u);
+  EXPECT_EQ(l.camera.live->matrices.clipOffset, 0u);
+  EXPECT_FALSE(l.camera.renderdoc);
+  EXPECT_EQ(liveCameraText(*l.camera.live), "render pass 0, set 0 binding 2");
+  ASSERT_TRUE(parse(layoutJson(l), back, error)) << error;
+  ASSERT_TRUE(back.camera.live);
+  EXPECT_EQ(back.camera.live->binding, 2u);
+  EXPECT_EQ(back.camera.live->matrices.viewOffset, 64u);
+
+  LiveOptions o;
+  json r = liveRequest(l, o);
+  EXPECT_EQ(r["camera"]["live"]["pass"], 0);
+  EXPECT_EQ(r["camera"]["live"]["binding"], 2);
+  EXPECT_EQ(r["camera"]["bytes"], 128);  // the last matrix's offset + 64, from the bound range's start
+  EXPECT_FALSE(r.contains("bound_buffers"));
+  o.boundBuffersPass = 3;
+  r = liveRequest(l, o);
+  EXPECT_EQ(r["bound_buffers"]["pass"], 3);
+  EXPECT_EQ(r["bound_buffers"]["max_bytes"], 4u << 20);
+
+  ASSERT_TRUE(parse(withLiveCamera({{"live", {{"pass", "GBuffer"}, {"push_constants", true}}}, {"matrix_order", "row_major"},
+                                    {"world_from_view", {{"offset", 0}}}, {"clip_from_view", {{"offset", 64}}}}),
+                    l, error))
+      << error;
+  EXPECT_TRUE(l.camera.live->pushConstants);
+  EXPECT_TRUE(l.camera.live->matrices.worldFromView);
+  EXPECT_TRUE(l.camera.live->matrices.rowMajor);
+  EXPECT_EQ(liveCameraText(*l.camera.live), "render pass \"GBuffer\", push constants");
+  ASSERT_TRUE(parse(layoutJson(l), back, error)) << error;
+  EXPECT_TRUE(back.camera.live->pushConstants && back.camera.live->matrices.worldFromView && back.camera.live->matrices.rowMajor);
+  EXPECT_EQ(liveRequest(l, o)["camera"]["live"]["push_constants"], true);
+  // An import cannot read it: one line naming the field.
+  EXPECT_NE(importCameraRefusal(l).find("l.json: camera: live: "), std::string::npos) << importCameraRefusal(l);
+  ASSERT_TRUE(parse(withSource(nullptr), l, error)) << error;
+  EXPECT_EQ(importCameraRefusal(l), "");
+}
+
+TEST(LayoutLive, CameraLiveMistakesNameTheField) {
+  const json offsets = {{"view_from_world", {{"offset", 64}}}, {"clip_from_view", {{"offset", 0}}}};
+  auto with = [&](json live, json extra = json::object()) {
+    json c = offsets;
+    c["live"] = std::move(live);
+    for (auto& [k, v] : extra.items()) c[k] = v;
+    return c;
+  };
+  const std::pair<json, std::string> cases[] = {
+      {with({{"set", 0}, {"binding", 0}}), "camera: live: pass: expected a label"},
+      {with({{"pass", -2}, {"set", 0}, {"binding", 0}}), "camera: live: pass: expected a label"},
+      {with({{"pass", 0}, {"binding", 0}}), "camera: live: set: missing (or give \"push_constants\": true)"},
+      {with({{"pass", 0}, {"set", 0}, {"binding", -1}}), "camera: live: binding: expected an integer"},
+      {with({{"pass", 0}, {"push_constants", true}, {"set", 0}}), "camera: live: set: push constants have no set"},
+      {with({{"pass", 0}, {"set", 0}, {"binding", 0}, {"offset", 4}}), "camera: live: offset: unknown field"},
+      {with({{"pass", 0}, {"set", 0}, {"binding", 0}}, {{"clip_from_view", {{"offset", 6}}}}),
+       "camera: clip_from_view: expected {\"offset\": BYTES} from the start of the bound range (a multiple of 4)"},
+      {with({{"pass", 0}, {"set", 0}, {"binding", 0}}, {{"view_from_world", json::array({1, 0, 0, 0})}}),
+       "camera: view_from_world: expected {\"offset\": BYTES}"},
+      {with({{"pass", 0}, {"set", 0}, {"binding", 0}}, {{"renderdoc", {{"buffer", "b"}, {"view_from_world", {{"offset", 0}}},
+                                                                        {"clip_from_view", {{"offset", 64}}}}}}),
+       "camera: live: give one of \"live\", \"renderdoc\" and \"sidecar\""},
+      {with(3), "camera: live: expected {\"pass\""},
+  };
+  for (const auto& [camera, want] : cases) {
+    Layout l;
+    std::string error;
+    EXPECT_FALSE(parse(withLiveCamera(camera), l, error)) << camera.dump();
+    EXPECT_NE(error.find("l.json: " + want), std::string::npos) << error;
+  }
 }
 
 }  // namespace

@@ -64,6 +64,27 @@ TEST(SuggestLive, NamedImagesArePickedByName) {
   EXPECT_NE(text.find("source: {\"live\":{\"name\":\"DepthImage\"}}"), std::string::npos) << text;
 }
 
+// The store ops per aspect (the layer reports the application's own): a stored depth with a DONT_CARE
+// stencil is a stencil not stored (gbuffer_zoo --mode stencil_dontcare), not the whole attachment.
+TEST(SuggestLive, WhatTheApplicationDoesNotStoreIsNamedPerAspect) {
+  auto depth = [](const std::string& format, json store, json stencil, bool patched) {
+    json a = attachment("depth", format);
+    a["store"] = store, a["stencil_store"] = stencil, a["store_patched"] = patched;
+    return a;
+  };
+  auto text = [](const json& a) {
+    return describeLivePasses({{"application", "zoo"}, {"device", "llvmpipe"}}, {{"frame", 0}, {"passes", {pass(0, {a})}}});
+  };
+  EXPECT_NE(text(depth("d32s8", "store", "dont_care", true)).find("(stencil not stored by the application: gblens stores it)"),
+            std::string::npos);
+  EXPECT_NE(text(depth("d32f", "dont_care", nullptr, true)).find("(not stored by the application: gblens stores it)"),
+            std::string::npos);
+  EXPECT_NE(text(depth("d24s8", "dont_care", "dont_care", true)).find("(depth and stencil not stored by the application"),
+            std::string::npos);
+  EXPECT_EQ(text(depth("d24s8", "store", "store", false)).find("not stored"), std::string::npos);
+  EXPECT_NE(text(depth("d16", "none", nullptr, false)).find("(not stored by the application)"), std::string::npos);
+}
+
 TEST(SuggestLive, NothingALayoutCanHold) {
   json bad = attachment("color 0", "");
   bad["why"] = "BGRA packed";

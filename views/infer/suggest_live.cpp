@@ -49,6 +49,18 @@ std::string passName(const json& p) {
   return "#" + std::to_string(p.value("ordinal", 0)) + (labels.empty() ? "" : " " + labels);
 }
 
+// Which of an attachment's aspects the application does not store (its own store ops, per aspect:
+// a stored depth with a DONT_CARE stencil is only "stencil"), and whether gblens stores them.
+std::string notStored(const json& a) {
+  auto off = [&](const char* key) { return a.contains(key) && a[key].is_string() && a[key] != "store"; };
+  const bool depthStencil = a.value("role", "") == "depth" && a.contains("stencil_store") && a["stencil_store"].is_string() &&
+                            a.contains("store") && a["store"].is_string();
+  const bool main = off("store"), stencil = off("stencil_store");
+  if (!main && !stencil) return a.value("store_patched", false) ? "  (not stored by the application: gblens stores it)" : "";
+  const std::string which = !depthStencil ? "" : main && stencil ? "depth and stencil " : main ? "depth " : "stencil ";
+  return "  (" + which + "not stored by the application" + (a.value("store_patched", false) ? ": gblens stores it)" : ")");
+}
+
 // printf into a std::string.
 template <class... A>
 std::string format(const char* f, A... a) {
@@ -71,7 +83,7 @@ std::string describeLivePasses(const json& hello, const json& report) {
       const std::string role = a.value("role", ""), image = a.value("image", ""), fmt = a.value("format", "");
       out += format("       %-8s %-20s %-32s %-14s %ux%u%s%s\n", role.c_str(), image.empty() ? "(unnamed)" : image.c_str(),
                     a.value("vk_format", "").c_str(), fmt.empty() ? "-" : fmt.c_str(), a.value("width", 0u),
-                    a.value("height", 0u), a.value("store_patched", false) ? "  (not stored by the application: gblens stores it)" : "",
+                    a.value("height", 0u), notStored(a).c_str(),
                     a.value("why", "").empty() ? "" : ("  * " + a.value("why", "")).c_str());
       if (usable(a)) out += "                source: " + liveSource(p, a).dump() + "\n";
     }

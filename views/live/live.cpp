@@ -227,6 +227,7 @@ bool LiveSession::receive(FrameSnapshot& out, LiveFrameInfo* info) {
     counts_.meanDecodeMs = (counts_.meanDecodeMs * double(counts_.received) + decodeMs) / double(counts_.received + 1);
     ++counts_.received;
     if (info) info->latencyMs = latency, info->endNs = m.value("end_ns", uint64_t(0));
+    boundBuffers_.swap(decodedBound_);  // the bytes of the frame returned, not of one dropped while read
     return true;
   }
   return false;

@@ -17,6 +17,7 @@
 #include "renderer/core/layout.h"
 #include "renderer/core/options.h"
 #include "renderer/core/snapshot.h"
+#include "views/import/renderdoc_replay.h"
 
 namespace gb {
 
@@ -29,6 +30,11 @@ struct LiveOptions {
   uint64_t onlyFrame = 0;                // stream only this streamed frame (1: the first; 0: all)
   bool suggest = false;                  // the layer reports one frame's render passes and attachments
   uint32_t giveUpFrames = 120;           // frames with render passes and no target before the layer says so
+  // bound_buffers: in each streamed frame the layer also copies, at the end of this render pass (its
+  // ordinal in its command buffer; -1: none), every buffer range the descriptor sets bound at the
+  // graphics bind point during it bind, and its push constants (LiveSession::boundBuffers).
+  int boundBuffersPass = -1;
+  uint64_t boundBuffersMaxBytes = 4u << 20;  // in all; the rest is left out (the layer says so)
   std::string layerDir;                  // the folder of VkLayer_gblens_live.json ("" : layerFolder())
   std::vector<std::string> environment;  // more NAME=VALUE for the application
   std::string log;                       // the application's stdout and stderr go here ("" : gblens's own)
@@ -80,6 +86,12 @@ class LiveSession {
   // What the layer and the decoding said for people since the last call, each once: a target the
   // application never draws, a format the layout does not match, a frame that did not decode.
   std::vector<std::string> takeReports();
+  // The buffers bound at the bound_buffers pass of the frame poll() / wait() last returned, in bind
+  // order, as a RenderDoc capture's draw state gives them to the camera search: name (the debug
+  // name, else "set S binding B"), kind ("uniform", "storage"; "push_constants": the pass's push
+  // constants, offset and range their bytes), set, binding, index, offset and range of the bound
+  // range, bytes (the whole buffer's size), data (the range's bytes, max_bytes in all), bound = true.
+  const std::vector<RdcBinding>& boundBuffers() const { return boundBuffers_; }
   // The layer's report of one frame's render passes (--suggest), once it came.
   const nlohmann::json* suggestion() const { return suggestion_.is_null() ? nullptr : &suggestion_; }
   bool noMatch() const { return noMatch_; }           // the layer gave up finding any target
@@ -98,6 +110,7 @@ class LiveSession {
   bool accept();
   bool receive(FrameSnapshot& out, LiveFrameInfo* info);
   bool decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFrameInfo* info, std::string& error);
+  bool decodeBoundBuffers(const nlohmann::json& frame, std::string& error);
   void addReport(const std::string& text);
 
   LiveOptions options_;
@@ -122,6 +135,7 @@ class LiveSession {
   long peakKb_ = 0;
   bool detached_ = false, noMatch_ = false;
   nlohmann::json hello_, suggestion_;
+  std::vector<RdcBinding> boundBuffers_, decodedBound_;  // the frame returned; the one being decoded
   std::vector<std::string> reports_;
   std::set<std::string> said_;
   LiveCounts counts_;

@@ -63,8 +63,15 @@ nlohmann::json liveRequest(const Layout& original, const LiveOptions& o) {
   nlohmann::json camera = nullptr;
   if (const auto& b = original.camera.renderdoc)
     camera = {{"buffer", b->buffer}, {"bytes", std::max(b->viewOffset, b->clipOffset) + 64}};
-  return {{"type", wire::kRequest}, {"version", wire::kVersion}, {"every", o.every}, {"only", o.onlyFrame},
-          {"suggest", o.suggest}, {"give_up", o.giveUpFrames}, {"camera", camera}, {"targets", targets}};
+  if (const auto& b = original.camera.live) {
+    nlohmann::json live = {{"pass", b->passIndex >= 0 ? nlohmann::json(b->passIndex) : nlohmann::json(b->pass)},
+                           {"set", b->set}, {"binding", b->binding}, {"index", b->index}, {"push_constants", b->pushConstants}};
+    camera = {{"live", live}, {"bytes", std::max(b->matrices.viewOffset, b->matrices.clipOffset) + 64}};
+  }
+  nlohmann::json r = {{"type", wire::kRequest}, {"version", wire::kVersion}, {"every", o.every}, {"only", o.onlyFrame},
+                      {"suggest", o.suggest}, {"give_up", o.giveUpFrames}, {"camera", camera}, {"targets", targets}};
+  if (o.boundBuffersPass >= 0) r["bound_buffers"] = {{"pass", o.boundBuffersPass}, {"max_bytes", o.boundBuffersMaxBytes}};
+  return r;
 }
 
 const uint8_t* LiveSession::bytesAt(const nlohmann::json& where, size_t& bytes) const {
@@ -109,11 +116,41 @@ bool LiveSession::setLayout(const nlohmann::json& json, std::string& error) {
       error = "target \"" + l.targets[t].name + "\": its format or live source is not the stream's \"" + layout_.targets[t].name + "\"";
       return false;
     }
-  if (l.camera.renderdoc || layout_.camera.renderdoc) {
+  if (l.camera.renderdoc || layout_.camera.renderdoc || l.camera.live || layout_.camera.live) {
     error = "camera: a layout reading the camera from a buffer is streamed from the start";
     return false;
   }
   layout_ = std::move(l);
+  return true;
+}
+
+// bound_buffers: each range's bytes out of the shared memory, as a RenderDoc draw state's binding.
+bool LiveSession::decodeBoundBuffers(const nlohmann::json& frame, std::string& error) {
+  decodedBound_.clear();
+  for (const nlohmann::json& b : frame.value("bound_buffers", nlohmann::json::array())) {
+    size_t bytes = 0;
+    const uint8_t* data = bytesAt(b.value("data", nlohmann::json::object()), bytes);
+    if (!data) {
+      error = "frame " + std::to_string(frame.value("stream", 0)) + ": a bound buffer lies outside the shared memory";
+      return false;
+    }
+    RdcBinding r;
+    r.kind = b.value("kind", "");
+    r.bound = true;
+    r.offset = b.value("offset", uint64_t(0));
+    r.data.assign(data, data + bytes);
+    if (r.kind == "push_constants") {
+      r.name = "push constants";
+      r.range = r.bytes = b.value("size", uint64_t(0));
+    } else {
+      r.set = b.value("set", 0u), r.binding = b.value("binding", 0u), r.index = b.value("index", 0u);
+      r.name = b.value("name", "");
+      if (r.name.empty()) r.name = "set " + std::to_string(r.set) + " binding " + std::to_string(r.binding);
+      r.range = b.value("range", uint64_t(0));
+      r.bytes = b.value("size", uint64_t(0));
+    }
+    decodedBound_.push_back(std::move(r));
+  }
   return true;
 }
 
@@ -153,10 +190,16 @@ bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFr
     error = "frame " + std::to_string(frame.value("stream", 0)) + ": no target of the layout is in it";
     return false;
   }
-  if (l.camera.renderdoc) {
+  if (l.camera.live) {  // decoded as a capture's camera buffer, its matrices at offsets from the bound range's start
+    in.layout.camera.renderdoc = l.camera.live->matrices;
+    in.layout.camera.renderdoc->buffer = liveCameraText(*l.camera.live);
+    in.layout.camera.live.reset();
+  }
+  if (const auto& b = in.layout.camera.renderdoc) {
     const nlohmann::json& c = frame["camera"];
     if (!c.is_object()) {
-      error = "camera: buffer \"" + l.camera.renderdoc->buffer + "\" was not copied with this frame (see the layer's reports)";
+      error = std::string("camera: ") + (l.camera.live ? "live: " + b->buffer : "buffer \"" + b->buffer + "\"") +
+              " was not copied with this frame (see the layer's reports)";
       return false;
     }
     size_t bytes = 0;
@@ -167,6 +210,7 @@ bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFr
     }
     in.renderdocCameraBuffer.assign(camera, camera + bytes);  // the matrices at the layout's offsets
   }
+  if (!decodeBoundBuffers(frame, error)) return false;
   if (!importFrame(in, out, error)) return false;
   setImportedOptions(out, options_.options);
   // B8G8R8A8 attachments come as the GPU stored them: R and B swapped back here (rgba8 in the layout).
