@@ -238,7 +238,7 @@ bool takeGuess(Reader& r, json& j, const Where& w, json& guess) {
 bool readCheck(Reader& r, const json& j, const Where& w, std::map<std::string, std::string>& out) {
   auto it = j.find("check");
   if (it == j.end()) return true;
-  static const std::set<std::string> classes = {"nan", "inf", "denormal", "out_of_range", "position"};
+  static const std::set<std::string> classes = {"nan", "inf", "denormal", "out_of_range", "position", "normal"};
   static const std::set<std::string> levels = {"fault", "warn", "ignore"};
   if (!it->is_object()) return r.fail(w, "check", "expected {\"CLASS\": \"fault|warn|ignore\", ...}");
   for (auto& [k, v] : it->items()) {
@@ -498,8 +498,15 @@ bool readLiveCamera(Reader& r, const json& j, const json& live, const Where& wc,
   if (!r.unknownKeys(live, wl, {"pass", "set", "binding", "index", "push_constants"})) return false;
   b.matrices.rowMajor = rowMajor;
   b.matrices.worldFromView = j.contains("world_from_view");
+  b.matrices.combined = j.contains("clip_from_world");
   const char* viewKey = b.matrices.worldFromView ? "world_from_view" : "view_from_world";
-  for (auto [key, out] : {std::pair{viewKey, &b.matrices.viewOffset}, {"clip_from_view", &b.matrices.clipOffset}}) {
+  std::vector<std::pair<const char*, uint64_t*>> keys = {{viewKey, &b.matrices.viewOffset}, {"clip_from_view", &b.matrices.clipOffset}};
+  if (b.matrices.combined) {
+    for (const char* other : {"view_from_world", "world_from_view", "clip_from_view"})
+      if (j.contains(other)) return r.fail(wc, other, "clip_from_world gives both matrices: give it alone");
+    keys = {{"clip_from_world", &b.matrices.clipOffset}};
+  }
+  for (auto [key, out] : keys) {
     auto m = j.find(key);
     int64_t v = -1;
     if (m == j.end() || !m->is_object() || m->size() != 1 || !m->contains("offset") ||

@@ -129,8 +129,12 @@ json layoutCameraJson(const LayoutCamera& c) {
       live["set"] = b.set, live["binding"] = b.binding, live["index"] = b.index;
     j["live"] = live;
     j["matrix_order"] = b.matrices.rowMajor ? "row_major" : "column_major";
-    j[b.matrices.worldFromView ? "world_from_view" : "view_from_world"] = {{"offset", b.matrices.viewOffset}};
-    j["clip_from_view"] = {{"offset", b.matrices.clipOffset}};
+    if (b.matrices.combined) {
+      j["clip_from_world"] = {{"offset", b.matrices.clipOffset}};
+    } else {
+      j[b.matrices.worldFromView ? "world_from_view" : "view_from_world"] = {{"offset", b.matrices.viewOffset}};
+      j["clip_from_view"] = {{"offset", b.matrices.clipOffset}};
+    }
   }
   if (c.sidecar.empty() && !c.renderdoc && !c.live) {
     j["view_from_world"] = matrix(c.viewFromWorld);

@@ -173,10 +173,10 @@ void note(AnomalyCount& a, uint32_t x, uint32_t y, const std::string& channel, d
 
 // Where surfaces are, by texel of the surface depth's target (empty: every texel is one, or none
 // can be told, e.g. a target of another size).
-struct SurfaceMask {
+struct ScanMask {
   uint32_t width = 0, height = 0;
   std::vector<uint8_t> surface;
-  explicit SurfaceMask(const FrameSnapshot& f) {
+  explicit ScanMask(const FrameSnapshot& f) {
     for (const Quantity& q : f.layout.quantities) {
       if (q.kind != QuantityKind::Depth || q.ofSun) continue;
       const TargetImage* ti = layoutImage(f, q.target);
@@ -194,7 +194,7 @@ struct SurfaceMask {
 
 // Scans `channels` of a target (and, for a quantity, its range), as the policy says.
 CheckRow scan(const FrameSnapshot& f, uint32_t t, const std::vector<uint32_t>& channels, const Quantity* q,
-              const SurfaceMask& mask, const CheckPolicy& policy) {
+              const ScanMask& mask, const CheckPolicy& policy) {
   const TargetImage& ti = f.images[t];
   const LayoutTarget& lt = f.layout.targets[t];
   CheckRow row;
@@ -264,6 +264,8 @@ uint64_t CheckReport::count(Severity s) const {
       if (r.severity[a] == s) n += r.found[a].count;
   for (const PositionCheck& p : positions)
     if (p.severity == s) n += p.overBound;
+  for (const NormalCheck& c : normals)
+    if (c.severity == s && c.wrong()) ++n;
   return n;
 }
 
@@ -275,7 +277,7 @@ uint64_t CheckReport::count(Anomaly a) const {
 
 CheckReport checkFrame(const FrameSnapshot& f, const CheckPolicy& policy) {
   CheckReport report;
-  const SurfaceMask mask(f);
+  const ScanMask mask(f);
   for (uint32_t t = 0; t < f.layout.targets.size(); ++t) {
     if (!layoutImage(f, t)) {
       report.absent.emplace_back(f.layout.targets[t].name, absentText(f.absences[t] == Absent::No ? Absent::NotCaptured : f.absences[t]));
@@ -290,6 +292,7 @@ CheckReport checkFrame(const FrameSnapshot& f, const CheckPolicy& policy) {
       if (!claimed[c]) report.rows.push_back(scan(f, t, {c}, nullptr, mask, policy));
   }
   report.positions = checkPositions(f, policy);
+  report.normals = checkNormals(f, policy);
   return report;
 }
 

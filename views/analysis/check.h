@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/core/snapshot.h"
+#include "renderer/core/surface_normals.h"
 
 namespace gb {
 
@@ -31,7 +32,7 @@ struct AnomalyCount {
 
 // What a kind of finding means: a fault (exit 1), a warning (reported, exit 0), or nothing (not
 // reported). Classes: "nan", "inf" (+Inf and -Inf), "denormal", "out_of_range", "position" (positions
-// rebuilt from depth vs a stored position target).
+// rebuilt from depth vs a stored position target), "normal" (stored normals vs the rebuilt surface).
 enum class Severity : uint8_t { Fault, Warn, Ignore };
 const char* name(Severity s);
 struct CheckPolicy {
@@ -61,6 +62,20 @@ struct PositionCheck {
 };
 std::vector<PositionCheck> checkPositions(const FrameSnapshot& frame, const CheckPolicy& policy);
 
+// A stored normal against the normal of the surface the camera depth rebuilds (check_normals.cpp):
+// its angles as the layout decodes it, and a mistake that fits far better when one does (stored in
+// the other space, a component negated, x and y swapped), or normals that point away from the eye.
+struct NormalCheck {
+  std::string normal, depth, declared;  // quantity names; "xyz_unorm, view space"
+  AngleStats stats;                     // as declared
+  std::string better;                   // "" or the mistake that fits far better ("its y negated")
+  AngleStats betterStats;
+  bool facesAway = false;               // most stored normals point away from the camera
+  Severity severity = Severity::Fault;
+  bool wrong() const { return !better.empty() || facesAway; }
+};
+std::vector<NormalCheck> checkNormals(const FrameSnapshot& frame, const CheckPolicy& policy);
+
 // One quantity of one target (or a channel no quantity of the layout claims).
 struct CheckRow {
   std::string target, quantity;  // the layout's names; an unclaimed channel: its channel name
@@ -76,6 +91,7 @@ struct CheckRow {
 struct CheckReport {
   std::vector<CheckRow> rows;
   std::vector<PositionCheck> positions;
+  std::vector<NormalCheck> normals;
   std::vector<std::pair<std::string, std::string>> absent;  // targets the frame does not hold, and why
   uint64_t total() const;                 // findings the policy reports (faults and warnings)
   uint64_t count(Anomaly a) const;

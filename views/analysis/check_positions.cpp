@@ -42,6 +42,29 @@ double storedRounding(const LayoutTarget& t, const glm::dvec3& s) {
   return std::sqrt(sum);
 }
 
+// The rasterizer places a triangle with its vertices snapped to a sub-pixel grid (Vulkan: at least
+// 4 bits, subPixelPrecisionBits; desktop GPUs and lavapipe have 8): the depth at a pixel centre and
+// the attributes interpolated there belong to points up to that far apart along the surface. gblens
+// does not know the recording device's limit, so the spec's minimum: 1/16 pixel in x and in y.
+constexpr double kPlacementPixels = 1.0 / 16.0;
+
+// How far the surface rebuilt from `depth` moves per pixel at (x, y), in x plus in y (the smaller of
+// the steps to either neighbour on each axis: a silhouette's jump is the other surface's).
+double surfaceStep(const FrameSnapshot& f, const Quantity& depth, uint32_t x, uint32_t y, const glm::dvec3& at) {
+  auto step = [&](int dx, int dy) {
+    double best = INFINITY;
+    for (int sign : {-1, 1}) {
+      const int xx = int(x) + sign * dx, yy = int(y) + sign * dy;
+      if (xx < 0 || yy < 0 || xx >= int(f.camera.width) || yy >= int(f.camera.height)) continue;
+      if (!holds(f, depth, uint32_t(xx), uint32_t(yy)) || !hasSurface(f, uint32_t(xx), uint32_t(yy))) continue;
+      const std::optional<glm::dvec3> p = decodePosition(f, depth, uint32_t(xx), uint32_t(yy));
+      if (p) best = std::min(best, glm::length(*p - at));
+    }
+    return std::isfinite(best) ? best : 0.0;
+  };
+  return step(1, 0) + step(0, 1);
+}
+
 PositionCheck compare(const FrameSnapshot& f, const Quantity& depth, const Quantity& stored, Severity severity) {
   PositionCheck p;
   p.depth = depth.name;
@@ -57,8 +80,14 @@ PositionCheck compare(const FrameSnapshot& f, const Quantity& depth, const Quant
       const std::optional<glm::dvec3> a = decodePosition(f, depth, x, y), b = decodePosition(f, stored, x, y);
       if (!a || !b || !std::isfinite(glm::length(*a)) || !std::isfinite(glm::length(*b))) continue;
       const glm::dvec3 s = spaceFromEye(f, stored.space, *b, true);
+      // The stored point is interpolated from vertices computed in fp32: its rounding is that of
+      // the vertices' coordinates, which may lie far beyond the point (a floor's corners): up to the
+      // far plane, at most 100 times the point's own distance.
+      const double eye = glm::length(*a);
+      const double vertices = std::max(eye, std::min(f.camera.zfar, 100.0 * eye));
       const double bound = 2.0 * (storedRounding(st, s) + depthRounding(f, depth, x, y, *a) +
-                                  fp32 * (glm::length(*a) + std::max({std::abs(s.x), std::abs(s.y), std::abs(s.z)})));
+                                  fp32 * (eye + std::max({std::abs(s.x), std::abs(s.y), std::abs(s.z)}) + vertices) +
+                                  kPlacementPixels * surfaceStep(f, depth, x, y, *a));
       const double distance = glm::length(*a - *b);
       const double ratio = bound > 0.0 ? distance / bound : (distance > 0.0 ? INFINITY : 0.0);
       ++p.pixels;

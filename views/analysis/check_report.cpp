@@ -23,15 +23,30 @@ std::string valueText(double v) {
 
 std::string positionText(const PositionCheck& p) {
   char line[512];
+  // The verdict, not the class's level: "[fault]" only where pixels are beyond their bound.
+  const std::string verdict = p.overBound == 0 ? "within the bound"
+                              : p.severity == Severity::Ignore ? "ignored by the policy"
+                                                               : name(p.severity);
   std::snprintf(line, sizeof(line),
                 "positions: %s rebuilt from depth vs the stored %s (%s) at %llu surface pixels: %llu beyond the bound "
                 "(largest %.3g scene units, %.3g x the bound at %u,%u; median %.3g x) [%s]\n",
                 p.depth.c_str(), p.stored.c_str(), p.storedFormat.c_str(), (unsigned long long)p.pixels,
-                (unsigned long long)p.overBound, p.maxDistance, p.maxRatio, p.x, p.y, p.medianRatio, name(p.severity));
+                (unsigned long long)p.overBound, p.maxDistance, p.maxRatio, p.x, p.y, p.medianRatio, verdict.c_str());
   std::string out = line;
   if (p.cameraSuspect)
     out += "  the camera looks wrong: most pixels rebuild far from the stored positions (check the matrices, their "
            "buffer offsets, matrix_order, convention, up and handedness)\n";
+  return out;
+}
+
+std::string normalText(const NormalCheck& c) {
+  std::string out = "normals: " + c.normal + " (" + c.declared + ") vs the surface " + c.depth + " rebuilds: " + c.stats.text();
+  if (!c.better.empty())
+    out += "; fits far better with " + c.better + " (" + c.betterStats.text() + "): the layout's decoding looks wrong";
+  if (c.facesAway)
+    out += "; " + std::to_string(int(std::round(100.0 * (1.0 - c.stats.sameSide)))) +
+           " % point away from the camera (negated?)";
+  out += std::string(" [") + (!c.wrong() ? "consistent" : c.severity == Severity::Ignore ? "ignored" : name(c.severity)) + "]\n";
   return out;
 }
 
@@ -57,6 +72,7 @@ std::string checkText(const CheckReport& r) {
     out += line;
   }
   for (const PositionCheck& p : r.positions) out += positionText(p);
+  for (const NormalCheck& c : r.normals) out += normalText(c);
   for (const auto& [target, why] : r.absent) out += "absent: " + target + " (" + why + ")\n";
   const uint64_t faults = r.count(Severity::Fault), warnings = r.count(Severity::Warn);
   if (faults == 0)
@@ -100,10 +116,20 @@ nlohmann::json checkJson(const CheckReport& r) {
                          {"over_bound", p.overBound}, {"max_distance", p.maxDistance}, {"max_ratio", p.maxRatio},
                          {"median_ratio", p.medianRatio}, {"worst", {p.x, p.y}}, {"camera_suspect", p.cameraSuspect},
                          {"level", name(p.severity)}});
+  nlohmann::json normals = nlohmann::json::array();
+  auto angles = [](const AngleStats& a) {
+    return nlohmann::json{{"pixels", a.count}, {"median_deg", a.median}, {"p90_deg", a.p90}, {"p99_deg", a.p99}};
+  };
+  for (const NormalCheck& c : r.normals) {
+    nlohmann::json j = {{"normal", c.normal}, {"depth", c.depth}, {"declared", c.declared}, {"angles", angles(c.stats)},
+                        {"faces_away", c.facesAway}, {"wrong", c.wrong()}, {"level", name(c.severity)}};
+    if (!c.better.empty()) j["better"] = {{"hypothesis", c.better}, {"angles", angles(c.betterStats)}};
+    normals.push_back(j);
+  }
   for (const auto& [target, why] : r.absent) absent.push_back({{"target", target}, {"reason", why}});
   return {{"format", "gblens-check"}, {"clean", r.clean()}, {"faults", r.count(Severity::Fault)},
           {"warnings", r.count(Severity::Warn)}, {"counts", counts}, {"rows", rows}, {"positions", positions},
-          {"absent", absent}};
+          {"normals", normals}, {"absent", absent}};
 }
 
 // ---- the policy ----------------------------------------------------------------------------------
@@ -128,7 +154,7 @@ Severity CheckPolicy::at(const std::string& quantity, const std::string& cls) co
 CheckPolicy defaultCheckPolicy() {
   CheckPolicy p;
   p.classes = {{"nan", Severity::Fault}, {"inf", Severity::Fault}, {"denormal", Severity::Warn},
-               {"out_of_range", Severity::Fault}, {"position", Severity::Fault}};
+               {"out_of_range", Severity::Fault}, {"position", Severity::Fault}, {"normal", Severity::Fault}};
   return p;
 }
 
@@ -152,14 +178,14 @@ bool checkPolicy(const Layout& l, const std::vector<std::string>& rules, CheckPo
   for (const Quantity& q : l.quantities)
     for (auto& [cls, level] : q.check)
       if (parseLevel(level, s)) apply(q.name, cls, s);
-  static const std::set<std::string> classes = {"nan", "inf", "denormal", "out_of_range", "position"};
+  static const std::set<std::string> classes = {"nan", "inf", "denormal", "out_of_range", "position", "normal"};
   for (const std::string& rule : rules) {
     const size_t eq = rule.find('=');
     std::string left = rule.substr(0, eq), quantity, cls = left;
     if (const size_t dot = left.rfind('.'); dot != std::string::npos) quantity = left.substr(0, dot), cls = left.substr(dot + 1);
     if (eq == std::string::npos || !classes.count(cls) || !parseLevel(rule.substr(eq + 1), s)) {
       error = "--policy " + rule + ": expected [QUANTITY.]CLASS=LEVEL, CLASS one of nan, inf, denormal, out_of_range, "
-              "position and LEVEL one of fault, warn, ignore (e.g. denormal=fault, Normal.out_of_range=warn)";
+              "position, normal and LEVEL one of fault, warn, ignore (e.g. denormal=fault, Normal.out_of_range=warn)";
       return false;
     }
     if (!quantity.empty() && !l.findByName(quantity)) {

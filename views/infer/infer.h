@@ -36,6 +36,7 @@ struct InferInput {
   std::vector<InferTarget> targets;
   std::vector<RdcBinding> buffers;   // bound where the G-buffer pass draws, with their bytes (camera search)
   bool clipYUp = false, clipDepthGl = false;  // the API's clip space (and a negative viewport)
+  bool clipYKnown = true;                     // false: the viewport's sign is not known (live): both are tried
   std::string bufferSource = "renderdoc";     // the camera block's source key for a found buffer
   int livePass = 0;                           // "live": the render pass the buffers were bound in
   // A camera given otherwise (a sidecar beside image files): used, not searched for.

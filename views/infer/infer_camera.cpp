@@ -130,6 +130,34 @@ CameraEvidence evidence(const State& s) {
   return e;
 }
 
+// Without stored positions the buffers' cameras are ranked by names and places only. With a hardware
+// depth and a stored normal, the surface each camera rebuilds judges them: the camera under which
+// some stored vector lies along the rebuilt surface's normal wins (within 2 % of each other, the
+// ranking decides: a previous frame's matrix or a copy rebuilds nearly the same surface).
+bool judgeByNormals(State& s, CameraEvidence e, FoundCamera& chosen) {
+  if (!s.hardware || s.positions.target >= 0) return false;
+  std::vector<FoundCamera> cams = searchCameras(s.in.buffers, e, s.in.bufferSource, s.in.livePass, 8);
+  if (!s.in.clipYKnown) {
+    e.clipYUp = !e.clipYUp;
+    for (FoundCamera& c : searchCameras(s.in.buffers, e, s.in.bufferSource, s.in.livePass, 8)) cams.push_back(std::move(c));
+  }
+  double best = INFINITY, next = INFINITY;
+  int at = -1;
+  for (size_t k = 0; k < cams.size(); ++k) {
+    if (!cams[k].found) continue;
+    const double score =
+        bestNormalMedian(s, referencesFromDepth(s, *s.hardware, cams[k].layout, cams[k].converted, "the hardware depth"));
+    if (score < best * 0.98) next = std::min(next, best), best = score, at = int(k);
+    else next = std::min(next, score);
+  }
+  if (at < 0 || !(best <= 30.0)) return false;
+  chosen = std::move(cams[size_t(at)]);
+  chosen.camera["guess"] = chosen.camera["guess"].get<std::string>() + "; chosen among the buffers' cameras by the normals: " +
+                           "the surface it and the hardware depth rebuild lies along a stored normal (score " + numText(best) +
+                           "°; the next camera " + numText(next) + "°)";
+  return true;
+}
+
 }  // namespace
 
 void decideCamera(State& s) {
@@ -150,7 +178,16 @@ void decideCamera(State& s) {
     return;
   }
   if (!s.in.buffers.empty()) {
-    const FoundCamera found = searchCamera(s.in.buffers, evidence(s), s.in.bufferSource, s.in.livePass);
+    CameraEvidence e = evidence(s);
+    FoundCamera found = searchCamera(s.in.buffers, e, s.in.bufferSource, s.in.livePass);
+    if (!s.in.clipYKnown && !found.positionsChecked && s.positions.target >= 0) {  // a negative viewport flips clip y
+      CameraEvidence flippedEvidence = e;
+      flippedEvidence.clipYUp = !e.clipYUp;
+      FoundCamera flipped = searchCamera(s.in.buffers, flippedEvidence, s.in.bufferSource, s.in.livePass);
+      if (flipped.found && (!found.found || flipped.pixelError < found.pixelError)) found = std::move(flipped);
+    }
+    FoundCamera judged;
+    if (judgeByNormals(s, e, judged)) found = std::move(judged);
     s.summary.insert(s.summary.end(), found.summary.begin(), found.summary.end());
     const bool positions = s.positions.target >= 0;
     if (found.found && (!positions || found.positionsChecked)) {
@@ -165,6 +202,12 @@ void decideCamera(State& s) {
     if (found.found)
       s.summary.push_back("camera: the bound buffers hold none that maps the stored positions onto their pixels (best " +
                           numText(found.pixelError) + " px)");
+  }
+  if (s.positions.target >= 0 && s.in.bufferSource == "live") {  // a later frame's camera is not this one's
+    s.summary.push_back("camera: the stored positions fit a camera (" + numText(s.positions.fit.medianPx) +
+                        " px), but no bound buffer holds it: a running application's camera must be read each frame "
+                        "(give camera.live, docs/layout-format.md)");
+    return;
   }
   if (s.positions.target >= 0 && !cameraFromFit(s))
     s.summary.push_back("camera: none found, and the stored positions fit no perspective camera (" +

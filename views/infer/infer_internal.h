@@ -9,7 +9,7 @@
 
 #include "views/infer/guess.h"
 #include "views/infer/infer.h"
-#include "views/infer/pinhole.h"
+#include "renderer/core/pinhole.h"
 
 namespace gb::infer {
 

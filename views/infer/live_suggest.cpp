@@ -62,6 +62,10 @@ bool suggestLive(const LiveOptions& o, double timeout, LiveSession& session, Liv
   second.layoutJson = out.draft;
   withoutCamera(second.layoutJson, nullptr);  // the texels as stored; the refined draft says what they need
   second.suggest = false;
+  // The buffers the G-buffer pass binds, copied with each frame: the camera search reads the first
+  // frame's, and the refined draft's camera.live reads its camera from them in every later frame.
+  for (const LiveTargetFacts& f : later)
+    if (f.writer != Writer::Later) second.boundBuffersPass = f.pass;
   progress("gblens attach: starting " + o.argv[0] + " again, streaming the " + std::to_string(out.draft["targets"].size()) +
            " attachments the draft names");
   if (!session.start(second, error)) return false;
@@ -74,7 +78,7 @@ bool suggestLive(const LiveOptions& o, double timeout, LiveSession& session, Liv
     if (!got) error = gaveUp(session, start, timeout, "a frame");
   }
   if (!got) return false;
-  if (!refineLiveDraft(out.draft, later, raw, out.info.appFrame, {}, out.frame, out.summary, error) ||
+  if (!refineLiveDraft(out.draft, later, raw, out.info.appFrame, session.boundBuffers(), out.frame, out.summary, error) ||
       !session.setLayout(out.draft, error)) {
     error = "the refined draft: " + error;  // a bug here: the refinement keeps targets and sources
     return false;

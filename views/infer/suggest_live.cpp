@@ -102,13 +102,19 @@ std::string imageKey(const json& pass, const json& a) {
 
 // The layer's report as roles.h reads it: passes in recording order (pass k spans 2k; what reads an
 // image during pass k reads at 2k, between passes k and k + 1 at 2k + 1).
+// A list member of a report by reference (value() would copy it: the attachments are kept by address).
+const json& listOf(const json& j, const char* key) {
+  static const json empty = json::array();
+  return j.contains(key) && j[key].is_array() ? j[key] : empty;
+}
+
 FrameFacts factsOf(const json& report, std::vector<const json*>& attachments) {
   FrameFacts f;
   std::map<std::string, std::vector<uint32_t>> reads;
-  for (const json& p : report.value("passes", json::array())) {
+  for (const json& p : listOf(report, "passes")) {
     const uint32_t at = 2u * uint32_t(p.value("ordinal", 0));
     PassFacts pf{passName(p), at, at, {}};
-    for (const json& a : p.value("attachments", json::array())) {
+    for (const json& a : listOf(p, "attachments")) {
       const std::string role = a.value("role", "");
       if (role == "other") continue;
       PassFacts::Output o{imageKey(p, a), role == "depth", true, true, usable(a), a.value("width", 0u), a.value("height", 0u)};
@@ -166,7 +172,7 @@ json draftLiveLayout(const json& report, std::vector<std::string>& summary, std:
     return draft;
   }
   summary.insert(summary.end(), roles.notes.begin(), roles.notes.end());
-  const json passes = report.value("passes", json::array());
+  const json& passes = listOf(report, "passes");
   std::set<std::string> targetNames, quantityNames;
   for (const PassTarget& r : roles.targets) {
     // The report's attachment of this output: passes and their non-"other" attachments in order.
@@ -254,6 +260,7 @@ bool refineLiveDraft(json& draft, const std::vector<LiveTargetFacts>& facts, con
   }
   in.buffers = buffers;
   in.bufferSource = "live";
+  in.clipYKnown = false;  // the layer does not report the viewport's sign
   const InferOutput inferred = inferLayout(in);
   const std::vector<std::string> was = [&] {
     std::vector<std::string> n;

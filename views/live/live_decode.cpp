@@ -102,6 +102,17 @@ bool samePick(const TargetSource::LivePick& a, const TargetSource::LivePick& b) 
 
 }  // namespace
 
+// The same buffer source of the camera (the same bytes are copied).
+static bool sameCamera(const LayoutCamera& a, const LayoutCamera& b) {
+  if (a.renderdoc.has_value() != b.renderdoc.has_value() || a.live.has_value() != b.live.has_value()) return false;
+  if (a.renderdoc && a.renderdoc->buffer != b.renderdoc->buffer) return false;
+  if (a.live && (a.live->pass != b.live->pass || a.live->passIndex != b.live->passIndex || a.live->set != b.live->set ||
+                 a.live->binding != b.live->binding || a.live->index != b.live->index ||
+                 a.live->pushConstants != b.live->pushConstants))
+    return false;
+  return true;
+}
+
 bool LiveSession::setLayout(const nlohmann::json& json, std::string& error) {
   Layout l;
   if (!parseLayout(json, "layout", l, error) || !liveLayout(l, error)) return false;
@@ -116,7 +127,12 @@ bool LiveSession::setLayout(const nlohmann::json& json, std::string& error) {
       error = "target \"" + l.targets[t].name + "\": its format or live source is not the stream's \"" + layout_.targets[t].name + "\"";
       return false;
     }
-  if (l.camera.renderdoc || layout_.camera.renderdoc || l.camera.live || layout_.camera.live) {
+  // A camera the stream copies from the start is the stream's; a camera.live that the bound buffers
+  // this stream copies hold (attach --suggest's refined draft) can come later.
+  const bool fromBound = l.camera.live && !layout_.camera.live && !layout_.camera.renderdoc &&
+                         options_.boundBuffersPass >= 0 && l.camera.live->passIndex == options_.boundBuffersPass;
+  if (!fromBound && (l.camera.renderdoc || layout_.camera.renderdoc || l.camera.live || layout_.camera.live) &&
+      !sameCamera(l.camera, layout_.camera)) {
     error = "camera: a layout reading the camera from a buffer is streamed from the start";
     return false;
   }
@@ -190,12 +206,22 @@ bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFr
     error = "frame " + std::to_string(frame.value("stream", 0)) + ": no target of the layout is in it";
     return false;
   }
+  if (!decodeBoundBuffers(frame, error)) return false;
+  const RdcBinding* bound = nullptr;  // camera.live's range among the bound buffers the frame carries
   if (l.camera.live) {  // decoded as a capture's camera buffer, its matrices at offsets from the bound range's start
     in.layout.camera.renderdoc = l.camera.live->matrices;
     in.layout.camera.renderdoc->buffer = liveCameraText(*l.camera.live);
     in.layout.camera.live.reset();
+    const LayoutCamera::LiveBinding& c = *l.camera.live;
+    if (c.passIndex == options_.boundBuffersPass)
+      for (const RdcBinding& b : decodedBound_)
+        if (c.pushConstants ? b.kind == "push_constants"
+                            : b.kind != "push_constants" && b.set == c.set && b.binding == c.binding && b.index == c.index)
+          bound = &b;
   }
-  if (const auto& b = in.layout.camera.renderdoc) {
+  if (bound) {
+    in.renderdocCameraBuffer = bound->data;
+  } else if (const auto& b = in.layout.camera.renderdoc) {
     const nlohmann::json& c = frame["camera"];
     if (!c.is_object()) {
       error = std::string("camera: ") + (l.camera.live ? "live: " + b->buffer : "buffer \"" + b->buffer + "\"") +
@@ -210,7 +236,6 @@ bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFr
     }
     in.renderdocCameraBuffer.assign(camera, camera + bytes);  // the matrices at the layout's offsets
   }
-  if (!decodeBoundBuffers(frame, error)) return false;
   if (!importFrame(in, out, error)) return false;
   setImportedOptions(out, options_.options);
   // B8G8R8A8 attachments come as the GPU stored them: R and B swapped back here (rgba8 in the layout).

@@ -1,4 +1,4 @@
-// A camera from stored points alone: the direct linear transform (Hartley and Zisserman, "Multiple
+// A camera from stored points alone (views/infer drafts with it): the direct linear transform (Hartley and Zisserman, "Multiple
 // View Geometry", ch. 7: the 3x4 projection that maps each stored point onto its own pixel, from the
 // normalised points' linear system) and its decomposition into K [R | t]. No buffer and no name is
 // needed: a 3-vector field that a pinhole maps onto its pixels is a position, and the fit says in

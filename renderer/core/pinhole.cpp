@@ -1,7 +1,7 @@
 // The direct linear transform of pinhole.h: normalised points, the homogeneous least-squares system
 // solved by its smallest eigenvector, an affine (orthographic) fit beside it, and the RQ split of the
 // projection into intrinsics, rotation and the eye.
-#include "views/infer/pinhole.h"
+#include "renderer/core/pinhole.h"
 
 #include <algorithm>
 #include <cmath>
