@@ -116,6 +116,23 @@ void showFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info) {
                        {"show_ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()}});
 }
 
+// Each drafted quantity's verdict for the Suggested layout window's table (views/infer/guess.h).
+std::vector<ViewerModel::AttachUi::Verdict> verdictsOf(const nlohmann::json& draft) {
+  std::vector<ViewerModel::AttachUi::Verdict> out;
+  for (const nlohmann::json& t : draft.value("targets", nlohmann::json::array()))
+    for (const nlohmann::json& q : t.value("quantities", nlohmann::json::array())) {
+      const nlohmann::json g = q.value("guess", nlohmann::json::object());
+      if (!g.is_object()) continue;
+      const std::string kind = q.value("quantity", "");
+      const bool unknown = g.value("quantity", "") == "unknown" || kind == "scalar" || kind == "vector";
+      char confidence[16];
+      std::snprintf(confidence, sizeof confidence, "%.2f", g.value("confidence", 0.0));
+      out.push_back({t.value("name", ""), q.value("channels", nlohmann::json::array()).dump(), unknown ? "unknown" : kind,
+                     confidence, g.value("evidence", "")});
+    }
+  return out;
+}
+
 }  // namespace
 
 void openAttached(Viewer& v) {
@@ -143,6 +160,7 @@ void openAttached(Viewer& v) {
   if (!v.args.attachDraft.is_null()) {  // attach --suggest without a layout: the stream's layout is this draft
     m.attach.passes = v.args.attachPasses;
     m.attach.draft = v.args.attachDraft.dump(2);
+    m.attach.verdicts = verdictsOf(v.args.attachDraft);
     m.attach.draftStreamed = true;
     logLine(v.eventLog, {{"event", "attach_suggestion"}, {"draft", v.args.attachDraft}, {"streamed", true}});
   }

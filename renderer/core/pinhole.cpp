@@ -199,7 +199,9 @@ PinholeFit fitPinhole(const std::vector<PointSample>& all, size_t maxPoints) {
   if (fitAffine(s, affine)) {
     std::vector<double> da = distances(affine, all);
     const double m = quantile(da, 0.5);
-    if (m < 0.5 * f.medianPx) f.projection = affine, f.medianPx = m, f.p90Px = quantile(da, 0.9), f.orthographic = true;
+    // A perspective fits a parallel camera too (its last row tends to 0 0 0 c): the affine camera,
+    // with fewer parameters, is taken whenever it fits about as well.
+    if (m <= 1.5 * f.medianPx + 1e-3) f.projection = affine, f.medianPx = m, f.p90Px = quantile(da, 0.9), f.orthographic = true;
   }
   f.ok = std::isfinite(f.medianPx);
   if (f.ok && !f.orthographic) decompose(f, s);

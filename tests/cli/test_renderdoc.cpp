@@ -114,7 +114,7 @@ void expectTruncatedCapturesRefused(const std::string& rdc, const std::string& d
     EXPECT_EQ(r.exitCode, 2) << message;
     EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << message;
     EXPECT_EQ(message.rfind("gblens import: " + cut + ": ", 0), 0u) << message;
-    EXPECT_LT(seconds, kReplayBaseSeconds + 10.0) << message;  // the stated limit, not a speed target
+    EXPECT_LT(seconds, kReplayStallSeconds + 10.0) << message;  // the stated limit, not a speed target
     EXPECT_EQ(runShell("pgrep -f 'gblens-rd[c]-" + std::to_string(pid) + "-'").exitCode, 1) << "a replay process is left";
     EXPECT_TRUE(replayFolders(pid).empty()) << "a replay folder is left";
   }
@@ -210,24 +210,46 @@ TEST(RenderDoc, MistakesGiveOneLineAndExitTwo) {
   // RenderDoc refuses it, or (a few runs in a hundred, its start-up hangs in one of its own threads)
   // the replay's time limit ends it: either way one line naming the file, exit 2, nothing waited for.
   EXPECT_TRUE(junk.output.find("junk.rdc: RenderDoc cannot open it") != std::string::npos ||
-              junk.output.find("junk.rdc: RenderDoc's replay did not finish within") != std::string::npos)
+              junk.output.find("junk.rdc: RenderDoc's replay made no progress for") != std::string::npos)
       << junk.output;
 
-  // A replay that runs out of time is ended (with what it started) and named, not waited for: a
-  // stand-in for Python that never finishes.
+  // A replay that stops making progress is ended (with what it started) and named, not waited for: a
+  // stand-in for Python that prints one progress line and then sleeps (no output, no CPU time).
   const std::string stuck = dir + "/stuck-python";
   std::ofstream(stuck) << "#!/bin/sh\necho 'progress: replaying on a stuck driver' >&2\nsleep 60\n";
   fs::permissions(stuck, fs::perms::owner_all);
   RdcReplayOptions quick;
   quick.python = stuck;
-  quick.timeoutSeconds = 1;
+  quick.stallSeconds = 1;
   unsetenv("GBLENS_RENDERDOC_TIMEOUT");
+  unsetenv("GBLENS_RENDERDOC_STALL");
   RdcListing listing;
   std::string error;
   const auto start = std::chrono::steady_clock::now();
   EXPECT_FALSE(listRenderDocCapture(dir + "/junk.rdc", listing, error, quick));
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
-  EXPECT_NE(error.find("did not finish within 1 s (while replaying on a stuck driver)"), std::string::npos) << error;
+  EXPECT_NE(error.find("made no progress for 1 s (while replaying on a stuck driver): ended (GBLENS_RENDERDOC_STALL=SECONDS "
+                       "allows longer)"),
+            std::string::npos)
+      << error;
+
+  // A replay that keeps reporting progress runs past the stall limit as long as it needs (a loaded
+  // machine replays slowly): three seconds of progress lines, then its result.
+  const std::string slow = dir + "/slow-python";
+  std::ofstream(slow) << "#!/bin/sh\nfor i in 1 2 3 4 5 6 7 8 9 10; do echo \"progress: step $i\" >&2; sleep 0.3; done\n"
+                         "echo '{\"api\": \"Vulkan\", \"textures\": [], \"passes\": []}'\n";
+  fs::permissions(slow, fs::perms::owner_all);
+  quick.python = slow;
+  error.clear();
+  EXPECT_TRUE(listRenderDocCapture(dir + "/junk.rdc", listing, error, quick)) << error;
+  EXPECT_EQ(listing.api, "Vulkan");
+  // And one that works on without a word (CPU time is progress too) is not ended either.
+  const std::string busy = dir + "/busy-python";
+  std::ofstream(busy) << "#!/bin/sh\nend=$(($(date +%s) + 3)); while [ $(date +%s) -lt $end ]; do :; done\n"
+                         "echo '{\"api\": \"Vulkan\", \"textures\": [], \"passes\": []}'\n";
+  fs::permissions(busy, fs::perms::owner_all);
+  quick.python = busy;
+  EXPECT_TRUE(listRenderDocCapture(dir + "/junk.rdc", listing, error, quick)) << error;
 }
 
 // Every texel of `target` in two captures, bit for bit ("" when equal, else the first difference).

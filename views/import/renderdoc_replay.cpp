@@ -66,15 +66,18 @@ struct ScriptLog {
   }
 };
 
-// The limit: GBLENS_RENDERDOC_TIMEOUT, the caller's, or kReplayBaseSeconds plus one second per
-// 10 MiB of capture (a small capture lists in a few seconds here: 20 s is ample and well under a
-// minute; a large one takes longer to load).
-int timeoutSeconds(const RdcReplayOptions& o, const std::string& rdc) {
-  if (const char* v = std::getenv("GBLENS_RENDERDOC_TIMEOUT"); v && std::atoi(v) > 0) return std::atoi(v);
-  if (o.timeoutSeconds > 0) return o.timeoutSeconds;
+// The limits: the environment's, the caller's, or the defaults (the overall one grows with the
+// capture's size: a large capture takes longer to load).
+ChildLimits replayLimits(const RdcReplayOptions& o, const std::string& rdc) {
+  ChildLimits l;
+  l.stallSeconds = o.stallSeconds > 0 ? o.stallSeconds : kReplayStallSeconds;
   std::error_code ec;
   const uintmax_t bytes = fs::file_size(rdc, ec);
-  return kReplayBaseSeconds + int(std::min<uintmax_t>(ec ? 0 : bytes >> 20, 10 * 600) / 10);
+  l.limitSeconds = o.limitSeconds > 0 ? o.limitSeconds
+                                      : kReplayLimitSeconds + int(std::min<uintmax_t>(ec ? 0 : bytes >> 20, 10 * 6000) / 10);
+  if (const char* v = std::getenv("GBLENS_RENDERDOC_STALL"); v && std::atoi(v) > 0) l.stallSeconds = std::atoi(v);
+  if (const char* v = std::getenv("GBLENS_RENDERDOC_TIMEOUT"); v && std::atoi(v) > 0) l.limitSeconds = std::atoi(v);
+  return l;
 }
 
 // Runs the script with `args`; true with its JSON result, else false with one line in `error`.
@@ -96,20 +99,24 @@ bool runScript(const std::string& rdc, const std::vector<std::string>& args, Tem
 
   std::vector<std::string> argv = {o.python, script.string()};
   argv.insert(argv.end(), args.begin(), args.end());
-  const int limit = timeoutSeconds(o, rdc);
+  const ChildLimits limits = replayLimits(o, rdc);
   ChildOutcome child;
-  if (!runBoundedChild(argv, out, err, limit, tmp, child, error)) {
+  if (!runBoundedChild(argv, out, err, limits, tmp, child, error)) {
     error = rdc + ": " + error;
     return false;
   }
-  const bool timedOut = child.timedOut;
   const int status = child.status;
 
   const ScriptLog log(readText(err), rdc);
   const std::string doing = log.lastProgress.empty() ? "" : " (while " + log.lastProgress + ")";
-  if (timedOut) {
-    error = rdc + ": RenderDoc's replay did not finish within " + std::to_string(limit) + " s" + doing +
-            "; the capture may not replay on this machine's driver (GBLENS_RENDERDOC_TIMEOUT sets the limit)";
+  if (child.stalled) {
+    error = rdc + ": RenderDoc's replay made no progress for " + std::to_string(limits.stallSeconds) + " s" + doing +
+            ": ended (GBLENS_RENDERDOC_STALL=SECONDS allows longer)";
+    return false;
+  }
+  if (child.timedOut) {
+    error = rdc + ": RenderDoc's replay did not finish within " + std::to_string(limits.limitSeconds) + " s" + doing +
+            ": ended (GBLENS_RENDERDOC_TIMEOUT=SECONDS allows longer)";
     return false;
   }
   if (WIFSIGNALED(status)) {

@@ -1,8 +1,8 @@
 // RenderDoc captures (.rdc) as a source of G-buffers: list a capture's passes and textures, read the
 // stored bits of textures and the bytes of buffers at an event. The replay runs in a child process,
 // the system /usr/bin/python3 with Debian's python3-renderdoc, on a script carried inside the binary
-// (renderdoc_replay.py), under a time limit: a capture that does not replay on this machine's driver
-// gives one line naming the API and the driver, never a hang.
+// (renderdoc_replay.py), watched for progress: a replay that stops making progress is ended with one
+// line naming the limit and the variable that raises it, never a hang.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -89,14 +89,17 @@ struct RdcListing {
   uint32_t lastEvent = 0;
 };
 
-// The replay's time limit: kReplayBaseSeconds plus one second per 10 MiB of capture (a small
-// capture: 20 s; listing one takes a few seconds), unless set.
-constexpr int kReplayBaseSeconds = 20;
+// How long a replay may run: while it makes progress (prints a progress line, or uses CPU time), and
+// kReplayStallSeconds at most without any; in any case kReplayLimitSeconds plus one second per 10 MiB
+// of capture. GBLENS_RENDERDOC_STALL and GBLENS_RENDERDOC_TIMEOUT (seconds) override them.
+constexpr int kReplayStallSeconds = 30;
+constexpr int kReplayLimitSeconds = 600;
 
-// Where the replay runs. The defaults suit the command line; tests shorten the limit.
+// Where the replay runs. The defaults suit the command line; tests shorten the limits.
 struct RdcReplayOptions {
   std::string python = "/usr/bin/python3";
-  int timeoutSeconds = 0;  // 0: the limit above; GBLENS_RENDERDOC_TIMEOUT overrides both (seconds)
+  int stallSeconds = 0;  // 0: kReplayStallSeconds (GBLENS_RENDERDOC_STALL overrides both)
+  int limitSeconds = 0;  // 0: the limit above (GBLENS_RENDERDOC_TIMEOUT overrides both)
 };
 
 bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& error,

@@ -12,6 +12,8 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <thread>
 
 extern char** environ;
@@ -61,8 +63,33 @@ ReplayFolder::~ReplayFolder() {
   if (!path.empty()) fs::remove_all(path, ec);
 }
 
+namespace {
+
+// CPU time (clock ticks) the process and its waited-for children used: /proc/PID/stat's utime,
+// stime, cutime, cstime (fields 14-17); 0 when it cannot be read.
+unsigned long long cpuTicks(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t close = text.rfind(')');  // the command name may hold spaces
+  if (close == std::string::npos) return 0;
+  std::istringstream fields(text.substr(close + 2));
+  std::string f;
+  unsigned long long sum = 0;
+  for (int i = 3; i <= 17 && fields >> f; ++i)
+    if (i >= 14) sum += std::strtoull(f.c_str(), nullptr, 10);
+  return sum;
+}
+
+uintmax_t fileSize(const fs::path& p) {
+  std::error_code ec;
+  const uintmax_t n = fs::file_size(p, ec);
+  return ec ? 0 : n;
+}
+
+}  // namespace
+
 bool runBoundedChild(const std::vector<std::string>& args, const fs::path& stdoutFile, const fs::path& stderrFile,
-                     int timeoutSeconds, ReplayFolder& folder, ChildOutcome& outcome, std::string& error) {
+                     const ChildLimits& limits, ReplayFolder& folder, ChildOutcome& outcome, std::string& error) {
   // Everything the child needs is prepared before fork (only async-signal-safe calls after it).
   std::vector<std::string> argv = args;
   std::vector<char*> cargv;
@@ -104,13 +131,26 @@ bool runBoundedChild(const std::vector<std::string>& args, const fs::path& stdou
   gChildGroup = pid;
   outcome.started = true;
 
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(timeoutSeconds);
+  const auto start = std::chrono::steady_clock::now();
+  const auto deadline = start + std::chrono::seconds(limits.limitSeconds);
+  auto lastProgress = start;
+  unsigned long long ticks = 0;
+  uintmax_t logged = 0;
   int status = 0;
-  while (waitpid(pid, &status, WNOHANG) == 0) {
-    if (gStopSignal || std::chrono::steady_clock::now() > deadline) {
+  for (int poll = 0; waitpid(pid, &status, WNOHANG) == 0; ++poll) {
+    const auto now = std::chrono::steady_clock::now();
+    if (poll % 10 == 0) {  // every 0.2 s: has it printed, or worked, since?
+      const unsigned long long t = cpuTicks(pid);
+      const uintmax_t n = fileSize(stderrFile);
+      if (t > ticks + 2 || n > logged) lastProgress = now;
+      ticks = std::max(ticks, t), logged = std::max(logged, n);
+    }
+    const bool stalled = now - lastProgress > std::chrono::seconds(limits.stallSeconds);
+    if (gStopSignal || stalled || now > deadline) {
       kill(-pid, SIGKILL);
       waitpid(pid, &status, 0);
-      outcome.timedOut = !gStopSignal;
+      outcome.stalled = !gStopSignal && stalled;
+      outcome.timedOut = !gStopSignal && !stalled;
       break;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));

@@ -1,5 +1,5 @@
 // The RenderDoc replay's child process and its temporary folder, bounded: the child runs in its own
-// process group, is killed with it at the time limit, when gblens is interrupted or terminated
+// process group, is killed with it when it stops making progress or at the overall limit, when gblens is interrupted or terminated
 // (SIGINT, SIGTERM, SIGHUP, SIGQUIT: the group is killed, the folder removed, then gblens ends by
 // the same signal), and when gblens dies outright (the kernel kills the child: PR_SET_PDEATHSIG;
 // the folder, named with gblens's process id, is removed by the next replay).
@@ -21,15 +21,25 @@ struct ReplayFolder {
 };
 
 struct ChildOutcome {
-  bool started = false, timedOut = false;
-  int status = 0;  // waitpid's status when it ended by itself
+  bool started = false;
+  bool stalled = false;   // ended: no progress for the stall limit
+  bool timedOut = false;  // ended: the overall limit
+  int status = 0;         // waitpid's status when it ended by itself
 };
 
-// Runs argv[0] with argv (stdin /dev/null, stdout and stderr to the files), waits up to
-// `timeoutSeconds`, and kills its whole process group on a time-out. `folder` is removed before
-// gblens re-raises a stopping signal. False with `error` when it cannot be started.
+// How long a child may run: ended when it makes no progress for `stallSeconds` (progress: its stderr
+// grows, or it uses CPU time: a replay loading a large capture on a busy machine is slow, not stuck),
+// and in any case after `limitSeconds`.
+struct ChildLimits {
+  int stallSeconds = 30;
+  int limitSeconds = 600;
+};
+
+// Runs argv[0] with argv (stdin /dev/null, stdout and stderr to the files), waits while it makes
+// progress, and kills its whole process group when it stalls or runs out of time. `folder` is removed
+// before gblens re-raises a stopping signal. False with `error` when it cannot be started.
 bool runBoundedChild(const std::vector<std::string>& argv, const std::filesystem::path& stdoutFile,
-                     const std::filesystem::path& stderrFile, int timeoutSeconds, ReplayFolder& folder,
+                     const std::filesystem::path& stderrFile, const ChildLimits& limits, ReplayFolder& folder,
                      ChildOutcome& outcome, std::string& error);
 
 }  // namespace gb

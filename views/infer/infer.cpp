@@ -132,6 +132,21 @@ void decideRest(State& s) {
         if (distinct.size() < 1000) distinct.insert(v);
       }
       if (lo == hi) continue;  // the same value at every surface: padding
+      if (target.writer == Writer::Later && target.format.channels == 1 && target.format.encoding == Encoding::Unorm &&
+          hi == 1.0) {  // a pass of its own after the G-buffer writes one 0..1 value: ambient occlusion
+        size_t open = 0;
+        for (const glm::uvec2& p : s.pixels) open += img->value(p.x, p.y, c) >= 0.95;
+        if (open * 4 >= s.pixels.size()) {
+          Guess g;
+          g.quantity = "occlusion";
+          g.confidence = 0.6;
+          g.evidence = "one 0..1 channel a pass after the G-buffer pass writes alone, 1 (open) at " +
+                       numText(100.0 * double(open) / double(s.pixels.size())) +
+                       " % of the surfaces and darker elsewhere: ambient occlusion (or another mask: check it)";
+          s.add(t, QuantityKind::Occlusion, {c}, nullptr, g);
+          continue;
+        }
+      }
       if (integral && (distinct.size() >= 3 || hi > 1.0)) {  // small whole numbers in a float: an index
         Guess g;
         g.quantity = "id";

@@ -7,8 +7,6 @@
 // the rebuilt surface has (decideJointly).
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <map>
 
 #include "renderer/core/camera.h"
@@ -68,15 +66,22 @@ Distances knownDistances(const State& s) {
   if (s.positions.target < 0) return d;
   const CpuImage* img = s.image(size_t(s.positions.target));
   const PinholeFit& fit = s.positions.fit;
+  const LayoutCamera& lc = s.cam.layout;
   for (const glm::uvec2& px : s.pixels) {
     const glm::dvec3 p(channelValues(*img, px.x, px.y, s.positions.channels));
     if (!std::isfinite(p.x + p.y + p.z)) continue;
     double eye = NAN, radial = NAN;
-    if (s.positions.space == Space::View && !fit.orthographic) {
-      eye = std::abs(fittedEyeDepth(fit, p));
-      radial = glm::length(p);
-    } else if (!fit.orthographic) {
-      eye = fittedEyeDepth(fit, p), radial = glm::length(p - fit.eye);
+    if (s.cam.present) {  // through the camera: perspective or orthographic alike
+      const glm::dvec3 e =
+          s.positions.space == Space::View
+              ? (lc.leftHanded ? glm::dvec3(p.x, p.y, -p.z) : p)
+              : glm::dvec3(s.cam.camera.eyeFromWorld *
+                           glm::dvec4(worldFromLayoutWorld(lc) * p, s.positions.space == Space::World ? 1.0 : 0.0));
+      eye = -e.z;
+      radial = ortho ? NAN : glm::length(e);
+    } else if (!fit.orthographic) {  // through the camera the positions fit
+      eye = s.positions.space == Space::View ? std::abs(fittedEyeDepth(fit, p)) : fittedEyeDepth(fit, p);
+      radial = glm::length(p - (s.positions.space == Space::View ? glm::dvec3(0.0) : fit.eye));
     }
     if (!(eye > 0.0)) continue;
     d.pixels.push_back(px), d.eye.push_back(eye), d.radial.push_back(radial);
@@ -171,7 +176,6 @@ void decideJointly(State& s) {
     CameraEvidence e;
     e.width = s.width, e.height = s.height, e.clipYUp = s.in.clipYUp, e.clipDepthGl = s.in.clipDepthGl;
     cams = searchCameras(s.in.buffers, e, s.in.bufferSource, s.in.livePass, 8);
-    if (getenv("GBLENS_INFER_DEBUG")) fprintf(stderr, "joint: %zu cameras\n", cams.size());
   }
   struct Tried {
     size_t cam;
@@ -190,10 +194,6 @@ void decideJointly(State& s) {
       }
   }
   std::sort(tried.begin(), tried.end(), [](const Tried& a, const Tried& b) { return a.median < b.median; });
-  if (getenv("GBLENS_INFER_DEBUG"))
-    for (const Tried& t : tried)
-      fprintf(stderr, "joint cam %zu (%s) t%zu c%u %s: %.2f\n", t.cam, cams[t.cam].camera.dump().substr(0, 160).c_str(),
-              t.depth.target, t.depth.channel, t.depth.encoding == DepthEncoding::Eye ? "eye" : "radial", t.median);
   if (tried.empty() || !(tried[0].median <= 30.0)) {
     s.summary.push_back("camera: the bound buffers' cameras rebuild no surface that a stored normal fits");
     return;

@@ -4,8 +4,6 @@
 // points through a camera from any depth source, and the reference normals they give.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "renderer/core/camera.h"
 #include "views/infer/infer_internal.h"
@@ -163,12 +161,6 @@ std::vector<SpaceRef> referencesFromDepth(const State& s, const DepthSource& d, 
                                           const std::string& from) {
   const ReferenceNormals eye = surfaceNormals(eyePoints(s, d, c), s.surface, s.pixels, glm::dvec3(0.0));
   std::vector<SpaceRef> out;
-  if (getenv("GBLENS_INFER_DEBUG"))
-    for (size_t i = 0; i < eye.pixels.size(); i += eye.pixels.size() / 5 + 1) {
-      const glm::dvec3 w = layoutFromEye(lc, c, Space::World, eye.normals[i]);
-      fprintf(stderr, "ref %u,%u eye n %.3f %.3f %.3f world n %.3f %.3f %.3f\n", eye.pixels[i].x, eye.pixels[i].y, eye.normals[i].x,
-              eye.normals[i].y, eye.normals[i].z, w.x, w.y, w.z);
-    }
   for (Space space : {Space::View, Space::World}) {
     SpaceRef r{space, eye};
     for (glm::dvec3& n : r.normals.normals) n = glm::normalize(layoutFromEye(lc, c, space, n));

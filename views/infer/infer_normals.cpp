@@ -5,8 +5,6 @@
 // length is reported, never decisive (a normal-mapped shader's TBN leaves lengths short of 1).
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "renderer/core/decode.h"
 #include "views/infer/infer_internal.h"
@@ -72,6 +70,26 @@ void lengths(const State& s, const Candidate& c, double& p50, double& p99) {
 // (a normal map leaves a median of 10-15° but a short tail; a wrong space or encoding a long one).
 double score(const AngleStats& a) { return 0.5 * (a.median + a.p90); }
 
+// The reference pixels whose normal is not the frame's dominant direction (a big floor's): a constant
+// field that happens to point that way (an emission pass's zeros read as octahedral (0, 0, 1) in a Z-up
+// world) fits the dominant surface and nothing else.
+ReferenceNormals offDominant(const ReferenceNormals& r) {
+  ReferenceNormals out;
+  out.from = r.from;
+  if (r.normals.empty()) return out;
+  size_t best = 0, bestCount = 0;
+  const size_t step = std::max<size_t>(1, r.normals.size() / 200);
+  for (size_t i = 0; i < r.normals.size(); i += step) {
+    size_t n = 0;
+    for (size_t k = 0; k < r.normals.size(); k += step) n += std::abs(glm::dot(r.normals[i], r.normals[k])) > 0.966;  // 15°
+    if (n > bestCount) best = i, bestCount = n;
+  }
+  for (size_t i = 0; i < r.normals.size(); ++i)
+    if (std::abs(glm::dot(r.normals[i], r.normals[best])) <= 0.966)
+      out.pixels.push_back(r.pixels[i]), out.normals.push_back(r.normals[i]);
+  return out;
+}
+
 struct Scored {
   Candidate c;
   Space space = Space::View;
@@ -89,8 +107,14 @@ Scored judge(const State& s, const Candidate& c, const std::vector<SpaceRef>& re
   };
   std::vector<InSpace> bySpace;
   for (const SpaceRef& ref : refs) {
-    const AngleStats a = anglesTo(ref.normals, f);
+    AngleStats a = anglesTo(ref.normals, f);
     if (a.count < 16) continue;
+    // The surfaces facing elsewhere than the dominant one must fit too (when the frame has enough).
+    const ReferenceNormals others = offDominant(ref.normals);
+    if (others.pixels.size() >= std::max<size_t>(64, ref.normals.pixels.size() / 10)) {
+      const AngleStats o = anglesTo(others, f);
+      if (score(o) > score(a)) a = o;
+    }
     auto it = std::find_if(bySpace.begin(), bySpace.end(), [&](auto& e) { return e.space == ref.space; });
     if (it == bySpace.end()) bySpace.push_back({ref.space, a, ref.normals.from});
     else if (score(a) < score(it->stats)) it->stats = a, it->from = ref.normals.from;
@@ -140,9 +164,6 @@ bool decideAgainst(State& s, const std::vector<SpaceRef>& refs) {
   bool any = false;
   std::vector<size_t> targetsWithNormal;
   for (const Scored& r : scored) {
-    if (getenv("GBLENS_INFER_DEBUG"))
-      fprintf(stderr, "normal candidate t%zu %s: %s best %s (%s) other %s\n", r.c.target, name(r.c.encoding), spaceName(r.space),
-              r.best.text().c_str(), r.from.c_str(), r.other.text().c_str());
     if (r.best.count == 0 || !s.isFree(r.c.target, r.c.channels)) continue;
     if (std::count(targetsWithNormal.begin(), targetsWithNormal.end(), r.c.target)) continue;
     // The next best explanation of these channels: the other space, or no relation at all (70°: the

@@ -163,7 +163,8 @@ bool suggestFromRenderDoc(const SuggestRequest& r, Suggestion& out, std::string&
   in.buffers = bound.buffers;
   in.clipYUp = listing.api != "Vulkan" || bound.viewport[3] < 0.0;
   in.clipDepthGl = listing.api == "OpenGL";
-  r.progress("deciding what the " + std::to_string(in.targets.size()) + " targets hold");
+  r.progress("searching " + std::to_string(in.buffers.size()) + " bound buffers for the camera, deciding what the " +
+             std::to_string(in.targets.size()) + " targets hold");
   const InferOutput inferred = inferLayout(in);
   out.summary.insert(out.summary.end(), inferred.summary.begin(), inferred.summary.end());
   applyInference(draft, inferred, unnamed);

@@ -54,6 +54,22 @@ void attachSuggestionWindow(ViewerModel& m) {
   ImGui::TextUnformatted(m.attach.draftStreamed
                              ? "The stream is decoded with this draft (every \"guess\" to be checked; save it, edit, attach with --layout):"
                              : "A draft layout (every \"guess\" to be checked; save it and attach with --layout):");
+  // What each channel group was decided to hold, and on what evidence (unknown: shown as stored).
+  if (!m.attach.verdicts.empty() &&
+      ImGui::BeginTable("verdicts", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+    for (const char* h : {"target", "channels", "holds", "confidence", "evidence"}) ImGui::TableSetupColumn(h);
+    ImGui::TableHeadersRow();
+    for (const ViewerModel::AttachUi::Verdict& v : m.attach.verdicts) {
+      ImGui::TableNextRow();
+      const std::string* cells[] = {&v.target, &v.channels, &v.quantity, &v.confidence, &v.evidence};
+      for (int c = 0; c < 5; ++c) {
+        ImGui::TableSetColumnIndex(c);
+        if (c == 2 && v.quantity == "unknown") ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "unknown");
+        else ImGui::TextWrapped("%s", cells[c]->c_str());
+      }
+    }
+    ImGui::EndTable();
+  }
   if (ImGui::SmallButton("save the draft (ctrl+S)")) m.attach.saveDraftRequested = true;
   ImGui::SameLine();
   if (ImGui::SmallButton("copy the draft")) ImGui::SetClipboardText(m.attach.draft.c_str());

@@ -176,6 +176,12 @@ struct ViewerModel {
     std::string frame;           // which application frame is shown, its latency
     std::vector<std::string> reports;  // what the layer said (a target never drawn, a format mismatch)
     std::string passes, draft;   // --suggest: the layer's report of one frame's passes, the layout drafted from it
+    // ... and each drafted quantity's verdict for the table: target, channels, quantity ("unknown" when
+    // the evidence did not decide), confidence, the evidence.
+    struct Verdict {
+      std::string target, channels, quantity, confidence, evidence;
+    };
+    std::vector<Verdict> verdicts;
     bool draftStreamed = false;  // the stream is decoded with that draft (attach --suggest without a layout)
     bool saveDraftRequested = false;  // ctrl+S or the window's button: ./gblens-layout-<date>-<time>.json
     std::string draftStatus;     // where it was saved, or why not
