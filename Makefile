@@ -4,7 +4,7 @@ JOBS    ?= $(shell nproc)
 GBLENS  := $(BUILD)/gblens
 PACKAGES := $(shell grep -v '^\#' debian-packages.txt)
 
-.PHONY: deps build run test bench stress fuzz test-asan clean golden fixtures
+.PHONY: deps build build-gblens run test bench stress fuzz test-asan clean golden fixtures
 
 # Install missing Debian packages when root; otherwise print the exact command and stop.
 deps:
@@ -20,14 +20,23 @@ deps:
 	  fi; \
 	fi
 
+# Ninja (debian-packages.txt installs it): it starts the next compile as soon as one ends and
+# rebuilds only what changed; ccache (the same list) serves what any clone compiled before.
+GENERATOR := $(if $(shell command -v ninja),-G Ninja,)
+
 $(BUILD)/CMakeCache.txt:
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	cmake -S . -B $(BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=Release
 
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
+# What `run` needs only: the gblens executable and the layer it loads (not the tests, the test
+# subjects or the Python module), so that a fresh clone shows a frame soonest.
+build-gblens: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS) --target gblens
+
 # With a display: the viewer. Without: a headless render of the built-in scene.
-run: build
+run: build-gblens
 	@if [ -n "$$DISPLAY" ]; then $(GBLENS) view; else \
 	  mkdir -p out && $(GBLENS) render builtin:temple -o out/temple.png && \
 	  echo "No DISPLAY: rendered a headless frame to $$(pwd)/out/temple.png"; fi
@@ -55,11 +64,11 @@ fixtures:
 # The default sweep on the built-in temple and, when present, the shared VC model (a glTF that
 # does not load is skipped with a message). Budgeted to finish within 15 minutes on 2 cores.
 VC_SCENE := $(firstword $(wildcard ../shared/assets/VC/glTF/VC.gltf /work/shared/assets/VC/glTF/VC.gltf))
-bench: build
+bench: build-gblens
 	$(GBLENS) bench builtin:temple $(VC_SCENE) --out out/bench
 
 # The numerical stability suite in full (docs/stability.md holds the table of the last run).
-stress: build
+stress: build-gblens
 	mkdir -p out && $(GBLENS) stress --json out/stress.json
 
 # The glTF loader and the import path under libFuzzer + ASan + UBSan (clang-14, libclang-rt-14-dev),
@@ -86,7 +95,7 @@ fuzz:
 # in build-asan. ASAN_TESTS narrows it (a ctest -R regex), e.g. ASAN_TESTS=Gltf.
 ASAN_TESTS ?= .
 test-asan: deps
-	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGBLENS_SANITIZE=ON
+	cmake -S . -B build-asan $(GENERATOR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGBLENS_SANITIZE=ON
 	cmake --build build-asan -j $(JOBS)
 	cd build-asan && LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp ASAN_OPTIONS=abort_on_error=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

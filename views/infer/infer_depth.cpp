@@ -194,8 +194,10 @@ void decideJointly(State& s) {
       }
   }
   std::sort(tried.begin(), tried.end(), [](const Tried& a, const Tried& b) { return a.median < b.median; });
-  if (tried.empty() || !(tried[0].median <= 30.0)) {
-    s.summary.push_back("camera: the bound buffers' cameras rebuild no surface that a stored normal fits");
+  if (tried.empty()) return;  // no channel could be a distance
+  if (!(tried[0].median <= 30.0)) {
+    s.summary.push_back("linear depth: no channel, as a distance through the buffers' cameras, rebuilds a surface a stored "
+                        "normal fits");
     return;
   }
   const Tried& best = tried[0];
