@@ -293,6 +293,15 @@ CheckReport checkFrame(const FrameSnapshot& f, const CheckPolicy& policy) {
   }
   report.positions = checkPositions(f, policy);
   report.normals = checkNormals(f, policy);
+  if (const Quantity* depth = surfaceDepth(f.layout); depth && layoutImage(f, depth->target)) {
+    uint64_t n = 0;
+    for (uint32_t y = 0; y < f.camera.height; ++y)
+      for (uint32_t x = 0; x < f.camera.width; ++x) n += hasSurface(f, x, y);
+    report.surfaces = "surfaces: where " + depth->name + " holds one, " + std::to_string(n) + " of " +
+                      std::to_string(uint64_t(f.camera.width) * f.camera.height) + " pixels";
+  } else {
+    report.surfaces = "surfaces: unknown (the layout has no camera depth): every pixel is scanned as one";
+  }
   return report;
 }
 

@@ -92,6 +92,7 @@ struct CheckReport {
   std::vector<CheckRow> rows;
   std::vector<PositionCheck> positions;
   std::vector<NormalCheck> normals;
+  std::string surfaces;  // which pixels the surface-only rows cover, for people ("where Depth ...: N of M pixels")
   std::vector<std::pair<std::string, std::string>> absent;  // targets the frame does not hold, and why
   uint64_t total() const;                 // findings the policy reports (faults and warnings)
   uint64_t count(Anomaly a) const;

@@ -71,6 +71,7 @@ std::string checkText(const CheckReport& r) {
                   cells[1].c_str(), cells[2].c_str(), cells[3].c_str(), cells[4].c_str(), range.c_str());
     out += line;
   }
+  if (!r.surfaces.empty()) out += r.surfaces + "\n";
   for (const PositionCheck& p : r.positions) out += positionText(p);
   for (const NormalCheck& c : r.normals) out += normalText(c);
   for (const auto& [target, why] : r.absent) out += "absent: " + target + " (" + why + ")\n";
@@ -129,7 +130,7 @@ nlohmann::json checkJson(const CheckReport& r) {
   for (const auto& [target, why] : r.absent) absent.push_back({{"target", target}, {"reason", why}});
   return {{"format", "gblens-check"}, {"clean", r.clean()}, {"faults", r.count(Severity::Fault)},
           {"warnings", r.count(Severity::Warn)}, {"counts", counts}, {"rows", rows}, {"positions", positions},
-          {"normals", normals}, {"absent", absent}};
+          {"normals", normals}, {"surfaces", r.surfaces}, {"absent", absent}};
 }
 
 // ---- the policy ----------------------------------------------------------------------------------

@@ -124,6 +124,7 @@ RegionStats regionStats(const FrameSnapshot& f, const RegionRect& r, const std::
   s.rect = r;
   Gatherer channels, quantities;
   const bool surfaceKnown = surfaceDepth(f.layout) != nullptr;
+  s.surfaceKnown = surfaceKnown;
   const std::vector<ViewDef> views = layoutViews(f.layout);
   for (uint32_t y = r.y; y < r.y + r.height; ++y)
     for (uint32_t x = r.x; x < r.x + r.width; ++x) {
@@ -217,7 +218,9 @@ void textRows(const std::vector<SeriesStats>& list, std::ostringstream& o) {
 std::string regionStatsText(const RegionStats& s) {
   std::ostringstream o;
   o << "region " << s.rect.x << "," << s.rect.y << " " << s.rect.width << "x" << s.rect.height << ": " << s.pixels
-    << " pixels, " << s.surfacePixels << " with a surface\nstored channels (every pixel):\n";
+    << " pixels, " << s.surfacePixels
+    << (s.surfaceKnown ? " with a surface" : " counted as surfaces (the layout has no camera depth: surfaces unknown)")
+    << "\nstored channels (every pixel):\n";
   textRows(s.channels, o);
   o << "decoded quantities:\n";
   textRows(s.quantities, o);
@@ -227,7 +230,7 @@ std::string regionStatsText(const RegionStats& s) {
 nlohmann::json regionStatsJson(const RegionStats& s) {
   nlohmann::json j = {{"rect", {{"x", s.rect.x}, {"y", s.rect.y}, {"width", s.rect.width}, {"height", s.rect.height}}},
                       {"pixels", s.pixels},
-                      {"surface_pixels", s.surfacePixels},
+                      {"surface_pixels", s.surfacePixels}, {"surfaces_known", s.surfaceKnown},
                       {"channels", nlohmann::json::array()},
                       {"quantities", nlohmann::json::array()}};
   for (const SeriesStats& c : s.channels) j["channels"].push_back(seriesJson(c));

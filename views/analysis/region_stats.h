@@ -37,6 +37,7 @@ struct SeriesStats {
 struct RegionStats {
   RegionRect rect;
   uint64_t pixels = 0, surfacePixels = 0;  // in the rect; with a surface (all of them when unknown)
+  bool surfaceKnown = false;               // the layout has a camera depth that says where surfaces are
   std::vector<SeriesStats> channels;       // stored channels, every pixel of the rect
   std::vector<SeriesStats> quantities;     // decoded quantities
   // The stored channel / decoded series of that name; null when absent.

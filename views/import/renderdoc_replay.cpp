@@ -73,16 +73,36 @@ ChildLimits replayLimits(const RdcReplayOptions& o, const std::string& rdc) {
   l.stallSeconds = o.stallSeconds > 0 ? o.stallSeconds : kReplayStallSeconds;
   std::error_code ec;
   const uintmax_t bytes = fs::file_size(rdc, ec);
+  l.busySeconds = o.busySeconds > 0 ? o.busySeconds
+                                    : kReplayBusySeconds + int(std::min<uintmax_t>(ec ? 0 : bytes >> 20, 10 * 6000) / 10);
   l.limitSeconds = o.limitSeconds > 0 ? o.limitSeconds
                                       : kReplayLimitSeconds + int(std::min<uintmax_t>(ec ? 0 : bytes >> 20, 10 * 6000) / 10);
   if (const char* v = std::getenv("GBLENS_RENDERDOC_STALL"); v && std::atoi(v) > 0) l.stallSeconds = std::atoi(v);
+  if (const char* v = std::getenv("GBLENS_RENDERDOC_BUSY"); v && std::atoi(v) > 0) l.busySeconds = std::atoi(v);
   if (const char* v = std::getenv("GBLENS_RENDERDOC_TIMEOUT"); v && std::atoi(v) > 0) l.limitSeconds = std::atoi(v);
   return l;
 }
 
-// Runs the script with `args`; true with its JSON result, else false with one line in `error`.
+// Runs the script with `args` once; true with its JSON result, else false with one line in `error`
+// (`crashed`: it ended by a signal).
+bool runScriptOnce(const std::string& rdc, const std::vector<std::string>& args, TempFolder& tmp,
+                   const RdcReplayOptions& o, nlohmann::json& result, std::string& error, bool& crashed);
+
+// Runs the script with `args`; a replay that crashes is started once more (RenderDoc 1.24 on
+// lavapipe crashes now and then opening a capture it opens every other time: the commands are
+// reads, so a second run is the same run). True with its JSON result, else one line in `error`.
 bool runScript(const std::string& rdc, const std::vector<std::string>& args, TempFolder& tmp,
                const RdcReplayOptions& o, nlohmann::json& result, std::string& error) {
+  bool crashed = false;
+  if (runScriptOnce(rdc, args, tmp, o, result, error, crashed)) return true;
+  if (!crashed) return false;
+  error.clear();
+  return runScriptOnce(rdc, args, tmp, o, result, error, crashed);
+}
+
+bool runScriptOnce(const std::string& rdc, const std::vector<std::string>& args, TempFolder& tmp,
+                   const RdcReplayOptions& o, nlohmann::json& result, std::string& error, bool& crashed) {
+  crashed = false;
   if (tmp.path.empty()) {
     error = "cannot create a temporary folder in " + fs::temp_directory_path().string();
     return false;
@@ -110,8 +130,10 @@ bool runScript(const std::string& rdc, const std::vector<std::string>& args, Tem
   const ScriptLog log(readText(err), rdc);
   const std::string doing = log.lastProgress.empty() ? "" : " (while " + log.lastProgress + ")";
   if (child.stalled) {
-    error = rdc + ": RenderDoc's replay made no progress for " + std::to_string(limits.stallSeconds) + " s" + doing +
-            ": ended (GBLENS_RENDERDOC_STALL=SECONDS allows longer)";
+    error = rdc + ": RenderDoc's replay made no progress for " +
+            std::to_string(child.busy ? limits.busySeconds : limits.stallSeconds) + " s" + doing +
+            (child.busy ? " (busy, without a word): ended (GBLENS_RENDERDOC_BUSY=SECONDS allows longer)"
+                        : " (idle): ended (GBLENS_RENDERDOC_STALL=SECONDS allows longer)");
     return false;
   }
   if (child.timedOut) {
@@ -120,7 +142,8 @@ bool runScript(const std::string& rdc, const std::vector<std::string>& args, Tem
     return false;
   }
   if (WIFSIGNALED(status)) {
-    error = rdc + ": RenderDoc's replay crashed (signal " + std::to_string(WTERMSIG(status)) + ")" + doing +
+    crashed = true;
+    error = rdc + ": RenderDoc's replay crashed (signal " + std::to_string(WTERMSIG(status)) + ", twice)" + doing +
             "; the capture may not replay on this machine's driver";
     return false;
   }

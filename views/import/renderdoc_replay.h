@@ -89,16 +89,19 @@ struct RdcListing {
   uint32_t lastEvent = 0;
 };
 
-// How long a replay may run: while it makes progress (prints a progress line, or uses CPU time), and
-// kReplayStallSeconds at most without any; in any case kReplayLimitSeconds plus one second per 10 MiB
-// of capture. GBLENS_RENDERDOC_STALL and GBLENS_RENDERDOC_TIMEOUT (seconds) override them.
+// How long a replay may run: while it reports progress (a line per step); silent, kReplayStallSeconds
+// without CPU time (hung) or kReplayBusySeconds plus one second per 10 MiB of capture of working without
+// a word (spinning); in any case kReplayLimitSeconds plus one second per 10 MiB. GBLENS_RENDERDOC_STALL,
+// GBLENS_RENDERDOC_BUSY and GBLENS_RENDERDOC_TIMEOUT (seconds) override them.
 constexpr int kReplayStallSeconds = 30;
+constexpr int kReplayBusySeconds = 120;
 constexpr int kReplayLimitSeconds = 600;
 
 // Where the replay runs. The defaults suit the command line; tests shorten the limits.
 struct RdcReplayOptions {
   std::string python = "/usr/bin/python3";
   int stallSeconds = 0;  // 0: kReplayStallSeconds (GBLENS_RENDERDOC_STALL overrides both)
+  int busySeconds = 0;   // 0: the busy limit above (GBLENS_RENDERDOC_BUSY overrides both)
   int limitSeconds = 0;  // 0: the limit above (GBLENS_RENDERDOC_TIMEOUT overrides both)
 };
 

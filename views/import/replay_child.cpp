@@ -133,7 +133,7 @@ bool runBoundedChild(const std::vector<std::string>& args, const fs::path& stdou
 
   const auto start = std::chrono::steady_clock::now();
   const auto deadline = start + std::chrono::seconds(limits.limitSeconds);
-  auto lastProgress = start;
+  auto lastWord = start, lastWork = start;
   unsigned long long ticks = 0;
   uintmax_t logged = 0;
   int status = 0;
@@ -142,15 +142,18 @@ bool runBoundedChild(const std::vector<std::string>& args, const fs::path& stdou
     if (poll % 10 == 0) {  // every 0.2 s: has it printed, or worked, since?
       const unsigned long long t = cpuTicks(pid);
       const uintmax_t n = fileSize(stderrFile);
-      if (t > ticks + 2 || n > logged) lastProgress = now;
+      if (n > logged) lastWord = lastWork = now;
+      if (t > ticks + 2) lastWork = now;
       ticks = std::max(ticks, t), logged = std::max(logged, n);
     }
-    const bool stalled = now - lastProgress > std::chrono::seconds(limits.stallSeconds);
-    if (gStopSignal || stalled || now > deadline) {
+    const bool idle = now - lastWork > std::chrono::seconds(limits.stallSeconds);
+    const bool busy = now - lastWord > std::chrono::seconds(limits.busySeconds);
+    if (gStopSignal || idle || busy || now > deadline) {
       kill(-pid, SIGKILL);
       waitpid(pid, &status, 0);
-      outcome.stalled = !gStopSignal && stalled;
-      outcome.timedOut = !gStopSignal && !stalled;
+      outcome.stalled = !gStopSignal && (idle || busy);
+      outcome.busy = outcome.stalled && !idle;
+      outcome.timedOut = !gStopSignal && !outcome.stalled;
       break;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));

@@ -22,16 +22,19 @@ struct ReplayFolder {
 
 struct ChildOutcome {
   bool started = false;
-  bool stalled = false;   // ended: no progress for the stall limit
+  bool stalled = false;   // ended: no progress for a stall limit
+  bool busy = false;      // ... the busy one (it used CPU time, silently)
   bool timedOut = false;  // ended: the overall limit
   int status = 0;         // waitpid's status when it ended by itself
 };
 
-// How long a child may run: ended when it makes no progress for `stallSeconds` (progress: its stderr
-// grows, or it uses CPU time: a replay loading a large capture on a busy machine is slow, not stuck),
-// and in any case after `limitSeconds`.
+// How long a child may run: while it reports progress (its stderr grows). Silent, it is ended after
+// `stallSeconds` without CPU time (waiting on nothing: hung), or after `busySeconds` of working without
+// a word (RenderDoc can spin in one of its threads on a broken capture; a replay step of a large
+// capture on a busy machine is slow, so this one is longer); and in any case after `limitSeconds`.
 struct ChildLimits {
   int stallSeconds = 30;
+  int busySeconds = 120;
   int limitSeconds = 600;
 };
 
