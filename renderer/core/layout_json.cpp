@@ -261,7 +261,7 @@ bool readQuantity(Reader& r, const json& jIn, const Where& w, Layout& l, uint32_
   if (!parseQuantityKind(kind, q.kind)) return r.fail(w, "quantity", "unknown kind \"" + kind + "\"");
   if (!r.string(j, w, "name", q.name, false)) return false;
   if (q.name.empty()) q.name = kind;
-  if (std::string why; !safeFileName(q.name, why)) return r.fail(w, "name", "\"" + jsonBrief(q.name) + "\": " + why);
+  if (std::string why; !safeFileName(q.name, why)) return r.fail(w, "name", jsonBrief(q.name) + ": " + why);
   q.target = target;
   if (!readQuantityFields(r, j, w, q)) return false;
   const LayoutTarget& t = l.targets[target];

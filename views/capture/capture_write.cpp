@@ -79,6 +79,33 @@ static bool record(const fs::path& tmp, const std::string& file, nlohmann::json&
   return true;
 }
 
+// What the frame's source does not say is left out with why ("unknown"), never written as a
+// default: FrameSnapshot::unknown's fields, the options nobody stated, and the device, driver and
+// scene digest no one recorded.
+static void leaveOutUnknown(const FrameSnapshot& f, nlohmann::json& m) {
+  nlohmann::json unknown = nlohmann::json::object();
+  for (const auto& [field, why] : f.unknown) unknown[field] = why;
+  for (const char* key : {"device", "driver"})
+    if (m[key] == "") m.erase(key), unknown[key] = "not recorded";
+  if (m["scene"]["content_sha256"] == "") m["scene"].erase("content_sha256"), unknown["scene.content_sha256"] = "not recorded";
+  for (const auto& [field, why] : f.unknown) {
+    const size_t dot = field.find('.');
+    if (field == "options" && m.contains("options")) {
+      nlohmann::json stated = nlohmann::json::object();
+      for (const std::string& name : f.statedOptions)
+        if (m["options"].contains(name)) stated[name] = m["options"][name];
+      m["options"] = stated;
+    } else if (field == "lights") {  // lights.json stays (empty lists): the summary's counts go
+      for (const char* key : {"count", "visible", "stencil_class", "culled"}) m["lights"].erase(key);
+    } else if (dot == std::string::npos) {
+      m.erase(field);
+    } else if (m.contains(field.substr(0, dot))) {
+      m[field.substr(0, dot)].erase(field.substr(dot + 1));
+    }
+  }
+  if (!unknown.empty()) m["unknown"] = unknown;
+}
+
 static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const CaptureMeta& meta, std::string& error) {
   nlohmann::json files = nlohmann::json::object(), targets = nlohmann::json::array();
   nlohmann::json skipped = nlohmann::json::array();
@@ -145,6 +172,7 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
   // gblens's render options describe gblens's frames; another renderer's G-buffer has none.
   if (!gblensLayout(f.layout)) m.erase("options");
   if (!meta.source.is_null()) m["source"] = meta.source;
+  leaveOutUnknown(f, m);
   // Written last: a directory without it is never a capture.
   return writeText(tmp / "manifest.json", m.dump(2) + "\n", error);
 }
