@@ -50,8 +50,10 @@ static nlohmann::json lightsJson(const FrameSnapshot& f) {
     }
     lights.push_back(j);
   }
-  return {{"format", "gblens-lights"}, {"time", f.options.time}, {"visible", f.visibleLights},
-          {"stencil_count", f.stencilCount}, {"layer_starts", f.layerStarts}, {"lights", lights}};
+  nlohmann::json j = {{"format", "gblens-lights"}, {"time", f.options.time}, {"visible", f.visibleLights},
+                      {"stencil_count", f.stencilCount}, {"layer_starts", f.layerStarts}, {"lights", lights}};
+  if (auto why = f.unknown.find("lights"); why != f.unknown.end()) j["unknown"] = why->second, j.erase("time");
+  return j;
 }
 
 static std::string utcNow() {
@@ -95,8 +97,8 @@ static void leaveOutUnknown(const FrameSnapshot& f, nlohmann::json& m) {
       for (const std::string& name : f.statedOptions)
         if (m["options"].contains(name)) stated[name] = m["options"][name];
       m["options"] = stated;
-    } else if (field == "lights") {  // lights.json stays (empty lists): the summary's counts go
-      for (const char* key : {"count", "visible", "stencil_class", "culled"}) m["lights"].erase(key);
+    } else if (field == "lights") {  // lights.json stays (empty lists, saying why): the summary's figures go
+      for (const char* key : {"count", "visible", "stencil_class", "culled", "sha256"}) m["lights"].erase(key);
     } else if (dot == std::string::npos) {
       m.erase(field);
     } else if (m.contains(field.substr(0, dot))) {
