@@ -17,6 +17,7 @@
 
 #include "app/cli/attach_args.h"
 #include "app/cli/cli.h"
+#include "app/cli/messages.h"
 #include "app/viewer/viewer.h"
 #include "views/capture/capture.h"
 #include "views/capture/image_io.h"
@@ -28,7 +29,7 @@ namespace gb {
 namespace {
 
 int fail(const std::string& message) {
-  std::fprintf(stderr, "gblens attach: %s\n", message.c_str());
+  std::fprintf(stderr, "gblens attach: %s\n", oneLine(message).c_str());
   return 2;
 }
 

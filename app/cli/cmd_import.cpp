@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "app/cli/cli.h"
+#include "app/cli/messages.h"
 #include "renderer/core/library_output.h"
 #include "views/capture/capture.h"
 #include "views/capture/image_io.h"
@@ -124,10 +125,9 @@ void printListing(const std::string& rdc, const RdcListing& l, const std::string
 }
 
 
-int fail(std::string message) {
+int fail(const std::string& message) {
   // One line, whatever a library's message held.
-  for (size_t at; (at = message.find('\n')) != std::string::npos;) message.replace(at, 1, "; ");
-  std::fprintf(stderr, "gblens import: %s\n", message.c_str());
+  std::fprintf(stderr, "gblens import: %s\n", oneLine(message).c_str());
   return 2;
 }
 
