@@ -71,14 +71,17 @@ bench: build-gblens
 stress: build-gblens
 	mkdir -p out && $(GBLENS) stress --json out/stress.json
 
-# The glTF loader and the import path under libFuzzer + ASan + UBSan (clang-14, libclang-rt-14-dev),
-# FUZZ_SECONDS each; FUZZ_TARGETS chooses (gltf, import). Seeds: the glTF test corpus and
-# tests/fuzz/import_corpus (the import crash cases, also run by `make test`); new inputs go to
-# build-fuzz/corpus-TARGET, crashes to build-fuzz/crashes. Not run in CI.
+# The glTF loader, the import path, the capture readers and attach's command line under libFuzzer +
+# ASan + UBSan (clang-14, libclang-rt-14-dev), FUZZ_SECONDS each; FUZZ_TARGETS chooses (gltf, import,
+# capture, attach). Seeds: the glTF test corpus and tests/fuzz/{import,capture,attach}_corpus (the
+# crash cases, also run by `make test`); new inputs go to build-fuzz/corpus-TARGET, crashes to
+# build-fuzz/crashes. Not run in CI.
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS ?= gltf import
+FUZZ_TARGETS ?= gltf import capture attach
 FUZZ_SEEDS_gltf := tests/data/gltf/valid tests/data/gltf/invalid -dict=tests/fuzz/gltf.dict -max_len=65536
 FUZZ_SEEDS_import := tests/fuzz/import_corpus -max_len=16384
+FUZZ_SEEDS_capture := tests/fuzz/capture_corpus -dict=tests/fuzz/capture.dict -max_len=65536
+FUZZ_SEEDS_attach := tests/fuzz/attach_corpus -dict=tests/fuzz/attach.dict -max_len=4096
 fuzz:
 	@command -v clang++-14 >/dev/null && test -e /usr/lib/llvm-14/lib/clang/14.0.6/lib/linux/libclang_rt.fuzzer-x86_64.a || \
 	  { echo "make fuzz: needs clang-14 and libclang-rt-14-dev (sudo apt-get install clang-14 libclang-rt-14-dev)"; exit 1; }
@@ -87,7 +90,8 @@ fuzz:
 	mkdir -p build-fuzz/crashes
 	set -e; for t in $(FUZZ_TARGETS); do mkdir -p build-fuzz/corpus-$$t; \
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp build-fuzz/fuzz_$$t build-fuzz/corpus-$$t \
-	    $$(case $$t in gltf) echo "$(FUZZ_SEEDS_gltf)";; import) echo "$(FUZZ_SEEDS_import)";; esac) \
+	    $$(case $$t in gltf) echo "$(FUZZ_SEEDS_gltf)";; import) echo "$(FUZZ_SEEDS_import)";; \
+                     capture) echo "$(FUZZ_SEEDS_capture)";; attach) echo "$(FUZZ_SEEDS_attach)";; esac) \
 	    -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=4096 \
 	    -artifact_prefix=build-fuzz/crashes/$$t- -print_final_stats=1; done
 

@@ -8,6 +8,7 @@
 #include "renderer/core/layout_json.h"
 #include "renderer/scene/builtin.h"
 #include "views/analysis/view_table.h"
+#include "views/capture/debris.h"
 
 namespace gb {
 
@@ -66,22 +67,8 @@ void reportRenderDocCapture(const char* command, RenderDocCapture& capture) {
     std::fprintf(stderr, "gblens: RenderDoc capture %s\n", path.c_str());
 }
 
-bool parseLayoutParameters(const std::vector<std::string>& params, RenderOptions& options, std::string& error) {
-  for (const std::string& p : params) {
-    const size_t eq = p.find('=');
-    std::string name = eq == std::string::npos ? "" : p.substr(0, eq);
-    if (name.rfind("--", 0) == 0) name = name.substr(2);
-    std::replace(name.begin(), name.end(), '-', '_');
-    if (name.empty() || !findOption(name)) {
-      error = "--param " + p + ": expected NAME=VALUE with NAME an option of gblens --help (e.g. normal_format=oct-rg16)";
-      return false;
-    }
-    if (!setOption(options, name, p.substr(eq + 1), error)) {
-      error = "--param " + p + ": " + error;
-      return false;
-    }
-  }
-  return true;
+void removeDebrisOf(const char* command, const std::string& path) {
+  for (const std::string& line : removeDebris(path)) std::fprintf(stderr, "gblens %s: %s\n", command, line.c_str());
 }
 
 std::string& commandLine() {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli/params.h"
 #include "renderer/core/options.h"
 #include "renderer/frame/renderer.h"
 #include "renderer/scene/scene.h"
@@ -54,6 +55,10 @@ Command addCaptureCommand(CLI::App& root);
 Command addCompareCommand(CLI::App& root);
 Command addProbeCommand(CLI::App& root);
 
+// Removes what an interrupted run writing `path` left beside it (views/capture/debris.h) and says so
+// on stderr ("gblens COMMAND: removed ...").
+void removeDebrisOf(const char* command, const std::string& path);
+
 // The command line as typed (set by main; recorded in capture manifests).
 std::string& commandLine();
 Command addErrorCommand(CLI::App& root);
@@ -65,9 +70,6 @@ Command addStatsCommand(CLI::App& root);
 Command addDecomposeCommand(CLI::App& root);
 Command addAttachCommand(CLI::App& root);
 
-// --param NAME=VALUE... (import, attach: option names as in the option table, or as flags) -> the
-// values a parameterised layout is resolved with. False with a message naming the --param.
-bool parseLayoutParameters(const std::vector<std::string>& params, RenderOptions& options, std::string& error);
 
 // Loads SCENE; on a user mistake prints one line and returns false (caller exits 2).
 bool loadSceneOrReport(const CommonOptions& o, Scene& scene);

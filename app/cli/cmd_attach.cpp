@@ -13,8 +13,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <type_traits>
 
+#include "app/cli/attach_args.h"
 #include "app/cli/cli.h"
+#include "app/cli/messages.h"
 #include "app/viewer/viewer.h"
 #include "views/capture/capture.h"
 #include "views/capture/image_io.h"
@@ -25,19 +28,8 @@ namespace gb {
 
 namespace {
 
-struct AttachOptions {
-  std::string layout, output;
-  std::vector<std::string> params, app;
-  uint32_t every = 1;
-  uint64_t captureFrame = 0, frames = 0;
-  bool suggest = false, stats = false;
-  double timeout = 300.0;
-  std::string window = "1280x800", eventLog, probeLog;  // the viewer's
-  bool paused = false;
-};
-
 int fail(const std::string& message) {
-  std::fprintf(stderr, "gblens attach: %s\n", message.c_str());
+  std::fprintf(stderr, "gblens attach: %s\n", oneLine(message).c_str());
   return 2;
 }
 
@@ -45,11 +37,21 @@ void printReports(LiveSession& s) {
   for (const std::string& r : s.takeReports()) std::fprintf(stderr, "gblens attach: %s\n", r.c_str());
 }
 
+// A field of what the layer sent, or `fallback`: the hello is null when the application never made a
+// device under the layer (/bin/true), the layer's figures null before its first frame (killed early).
+template <class T>
+T field(const nlohmann::json& j, const char* key, T fallback) {
+  if (!j.is_object() || !j.contains(key)) return fallback;
+  const nlohmann::json& v = j[key];
+  if constexpr (std::is_same_v<T, std::string>) return v.is_string() ? v.get<std::string>() : fallback;
+  else return v.is_number() ? v.get<T>() : fallback;
+}
+
 nlohmann::json statsJson(const LiveSession& s) {
   const LiveCounts& c = s.counts();
-  const double frameMs = c.layer.value("frame_ms", 0.0);
-  return {{"application", s.hello().value("application", "")},
-          {"device", s.hello().value("device", "")},
+  const double frameMs = field(c.layer, "frame_ms", 0.0);
+  return {{"application", s.hello().is_object() ? nlohmann::json(field(s.hello(), "application", std::string())) : nullptr},
+          {"device", s.hello().is_object() ? nlohmann::json(field(s.hello(), "device", std::string())) : nullptr},
           {"received", c.received},
           {"undecodable", c.undecodable},
           {"dropped", c.dropped},
@@ -70,13 +72,13 @@ std::string appText(const AttachOptions& o) {
 
 int writeFrame(const AttachOptions& o, const LiveSession& s, const FrameSnapshot& frame, const LiveFrameInfo& info) {
   CaptureMeta meta;
-  meta.device = s.hello().value("device", "");
+  meta.device = field(s.hello(), "device", std::string());
   meta.scene = "attach: " + appText(o) + " (application frame " + std::to_string(info.appFrame) + ")";
   meta.commandLine = commandLine();
   std::string error;
   if (!writeCapture(o.output, frame, meta, error)) return fail(error);
   std::printf("attached to %s (%s): wrote application frame %llu (streamed frame %llu) with layout %s into %s\n",
-              s.hello().value("application", "?").c_str(), meta.device.c_str(), (unsigned long long)info.appFrame,
+              field(s.hello(), "application", std::string("?")).c_str(), meta.device.c_str(), (unsigned long long)info.appFrame,
               (unsigned long long)info.stream, o.layout.c_str(), o.output.c_str());
   for (uint32_t t = 0; t < frame.layout.targets.size(); ++t)
     if (frame.images[t].present())
@@ -177,26 +179,11 @@ int runSuggestLive(const AttachOptions& o, const LiveOptions& lo) {
 int runAttach(const AttachOptions& o) {
   const bool draft = o.suggest && o.layout.empty();  // --suggest drafting the layout (runSuggestLive)
   const bool viewer = !o.captureFrame && !o.frames && !draft;
-  if (viewer && o.layout.empty())
-    return fail("--layout: required for the viewer (a layout file, docs/layout-format.md, or builtin:NAME), or --suggest "
-                "to draft one");
-  if (!viewer && !(draft && o.output.empty()) && (!o.eventLog.empty() || !o.probeLog.empty() || o.paused))
-    return fail("--event-log, --probe-log and --paused are the viewer's");
-  if (draft && (o.captureFrame || o.frames)) return fail("--suggest: drafts a layout; --capture-frame and --frames need --layout");
-  if (o.captureFrame && o.output.empty()) return fail("-o: required with --capture-frame (the capture folder to write)");
-  if (!o.captureFrame && !draft && !o.output.empty())
-    return fail("-o: writes the frame --capture-frame names, or the layout --suggest drafts");
-  if ((o.captureFrame || o.frames) && o.layout.empty())
-    return fail("--layout: required (a layout file, docs/layout-format.md, or builtin:NAME)");
   LiveOptions lo;
-  lo.layout = o.layout;
-  lo.argv = o.app;
-  lo.every = o.every;
-  lo.onlyFrame = o.captureFrame;
-  lo.suggest = o.suggest;
   std::string error;
-  if (!parseLayoutParameters(o.params, lo.options, error)) return fail(error);
+  if (!checkAttachOptions(o, lo, error)) return fail(error);
   if (draft) return runSuggestLive(o, lo);
+  if (o.captureFrame) removeDebrisOf("attach", o.output);
   LiveSession s;
   if (!s.start(lo, error)) return fail(error);
   if (viewer) return runViewerOnStream(o, s);
@@ -248,26 +235,7 @@ Command addAttachCommand(CLI::App& root) {
   auto o = std::make_shared<AttachOptions>();
   CLI::App* cmd = root.add_subcommand("attach", "start a Vulkan application with the gblens layer and stream its G-buffer "
                                                 "(docs/attach.md)");
-  cmd->add_option("--layout", o->layout, "what the G-buffer holds and where (a layout file with live sources, or builtin:NAME)");
-  cmd->add_option("--param", o->params, "NAME=VALUE: an option value for a parameterised layout (e.g. normal_format=oct-rg16)")
-      ->allow_extra_args(false)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  cmd->add_option("--capture-frame", o->captureFrame, "write the Nth streamed frame (1: the first) as a capture, then detach")
-      ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));
-  cmd->add_option("-o,--output", o->output, "the capture folder --capture-frame writes (atomically); --suggest: the draft layout's file");
-  cmd->add_option("--frames", o->frames, "receive and decode K streamed frames, write nothing (with --stats: the costs)")
-      ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));
-  cmd->add_option("--every", o->every, "stream every Nth frame of the application")->check(CLI::Range(1u, 100000u))->capture_default_str();
-  cmd->add_flag("--suggest", o->suggest,
-                "without --layout: draft a layout from the render passes and texels the layer sees and stream under it "
-                "(the viewer; -o or no display: write the draft); with --layout: show the passes beside the stream");
-  cmd->add_flag("--stats", o->stats, "print the layer's costs (frame time, memory, drops, latency) as JSON");
-  cmd->add_option("--timeout", o->timeout, "give up when no frame came within this many seconds")->capture_default_str();
-  cmd->add_option("--window", o->window, "the viewer's window size WxH")->capture_default_str();
-  cmd->add_option("--event-log", o->eventLog, "the viewer: append its events (frames received, layout, hover, capture) as JSON lines");
-  cmd->add_option("--probe-log", o->probeLog, "the viewer: append each pixel dossier (a click) as one JSON line to FILE");
-  cmd->add_flag("--paused", o->paused, "the viewer: start paused on the first frame (Space resumes)");
-  cmd->add_option("APP", o->app, "the application and its arguments (after --)")->required();
+  addAttachOptions(cmd, *o);
   return {cmd, [o]() -> int { return runAttach(*o); }};
 }
 

@@ -66,6 +66,7 @@ static int capture(const CommonOptions& o, const std::string& targets, bool cove
   if (!loadSceneOrReport(o, scene)) return 2;
   std::vector<Target> wanted;
   if (!chooseTargets(targets, ro, scene, wanted)) return 2;
+  removeDebrisOf("capture", o.output);
   HeadlessSession session(scene, {o.device, o.validate});
   // An output the device cannot hold is refused here, before any target is allocated.
   if (std::string why = session.tooLarge(ro); !why.empty()) {

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <memory>
 
 #include "app/cli/cli.h"
 #include "views/analysis/compare.h"
+#include "views/capture/image_io.h"
 #include "views/report/report.h"
 
 namespace gb {
@@ -76,17 +76,24 @@ int finish(const CompareArgs& o, CompareReport& report) {
   if (o.json == "-") {
     std::printf("%s\n", report.json().dump(2).c_str());
   } else if (!o.json.empty()) {
-    std::ofstream out(o.json);
-    out << report.json().dump(2) << "\n";
-    if (!out) return usage(o.json + ": cannot write");
+    if (!writeTextAtomically(o.json, report.json().dump(2) + "\n", error)) return usage("--json " + error);
   }
   return report.exitCode;
+}
+
+// Every destination, before any capture is loaded: a bad one is said at once, and nothing is written.
+bool checkDestinations(const CompareArgs& o, std::string& error) {
+  return (o.diffDir.empty() || checkFolderDestination("-o", o.diffDir, "", "", error)) &&
+         (o.json.empty() || o.json == "-" || checkFileDestination("--json", o.json, error)) &&
+         (o.report.empty() || checkFolderDestination("--report", o.report, "report.js", "compare report", error)) &&
+         (o.junit.empty() || checkFileDestination("--junit", o.junit, error));
 }
 
 int runCompare(const CompareArgs& o) {
   std::string error;
   CompareSettings settings;
-  if (!settingsFrom(o, settings, error)) return usage(error);
+  if (!settingsFrom(o, settings, error) || !checkDestinations(o, error)) return usage(error);
+  if (!o.report.empty()) removeDebrisOf("compare", o.report);
   if (!o.pairs.empty()) {
     if (!o.a.empty()) return usage("--pairs " + o.pairs + ": give either A B or --pairs, not both");
     if (o.report.empty() && o.junit.empty() && o.json.empty())

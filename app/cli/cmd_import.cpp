@@ -5,6 +5,8 @@
 //   gblens import APP.rdc|FILES... --suggest-layout [--event EID | --pass NAME] [-o DRAFT.json]
 // The layout says what the files hold (docs/layout-format.md); the capture is written atomically, and
 // nothing at all when anything does not match (one line naming the file, the target and the field; exit 2).
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +14,7 @@
 #include <memory>
 
 #include "app/cli/cli.h"
+#include "app/cli/messages.h"
 #include "renderer/core/library_output.h"
 #include "views/capture/capture.h"
 #include "views/capture/image_io.h"
@@ -29,11 +32,15 @@ struct ImportOptions {
   uint32_t event = 0;
   bool list = false, suggest = false;
   bool verbose = false;  // library messages (libpng, OpenEXR) as printed, not folded into the one line
+  bool allowOutside = false;  // --allow-outside-sources
 };
 
-// Progress on stderr, as stress prints its own ("  .. "): what import is doing now. A mistake is
-// still one line of its own ("gblens import: ...").
-void progress(const std::string& text) { std::fprintf(stderr, "  .. %s\n", text.c_str()); }
+// Progress on stderr, as stress prints its own ("  .. "): what import is doing now, for a person at a
+// terminal only, so that a refusal read by a script (a pipe, a file) is its one line ("gblens import: ...").
+void progress(const std::string& text) {
+  static const bool terminal = isatty(STDERR_FILENO) == 1;
+  if (terminal) std::fprintf(stderr, "  .. %s\n", text.c_str());
+}
 
 bool isRenderDocCapture(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -118,10 +125,9 @@ void printListing(const std::string& rdc, const RdcListing& l, const std::string
 }
 
 
-int fail(std::string message) {
+int fail(const std::string& message) {
   // One line, whatever a library's message held.
-  for (size_t at; (at = message.find('\n')) != std::string::npos;) message.replace(at, 1, "; ");
-  std::fprintf(stderr, "gblens import: %s\n", message.c_str());
+  std::fprintf(stderr, "gblens import: %s\n", oneLine(message).c_str());
   return 2;
 }
 
@@ -188,13 +194,17 @@ int runImport(const ImportOptions& o) {
 
   RenderOptions options;
   std::string error;
-  if (!parseLayoutParameters(o.params, options, error) || (!o.size.empty() && !setOption(options, "size", o.size, error)))
+  std::vector<std::string> stated;  // the options the user gave: facts the capture records
+  if (!parseLayoutParameters(o.params, options, error, &stated) ||
+      (!o.size.empty() && !setOption(options, "size", o.size, error)))
     return fail(error);
+  removeDebrisOf("import", o.output);
   ImportInput in;
   if (!loadImportLayout(o.layout, layoutParameters(options), in.layout, in.layoutDir, error)) return fail(error);
   if (const std::string why = importCameraRefusal(in.layout); !why.empty()) return fail(why);
   if (!o.size.empty()) in.layout.width = options.width, in.layout.height = options.height;
   in.cameraFile = o.camera;
+  in.allowOutsideSources = o.allowOutside;
   RenderDocImported read;
   if (rdc) {
     RenderDocImport r{o.inputs[0], o.event, o.pass, !o.camera.empty(), {}};
@@ -208,7 +218,7 @@ int runImport(const ImportOptions& o) {
   progress("decoding " + std::to_string(in.layout.targets.size()) + " targets with layout " + o.layout);
   if (!importFrame(in, frame, error)) return fail(error);
   // The options the layout was resolved with are the frame's (gblens's own frames: how it was rendered).
-  setImportedOptions(frame, options);
+  setImportedOptions(frame, options, stated);
   // gblens's own layout: a target the capture does not hold says why, as gblens's captures do (a
   // 1x1 stand-in of coverage left out: "not computed: coverage off", by the options given).
   if (frame.layout.name == nativeLayout(options).name)
@@ -282,6 +292,8 @@ Command addImportCommand(CLI::App& root) {
                 "draft a layout (to -o, else stdout): RenderDoc: the G-buffer pass's targets, a guessed quantity per "
                 "channel and the camera searched for in its buffers; image files: targets from channel names")
       ->excludes(list);
+  cmd->add_flag("--allow-outside-sources", o->allowOutside,
+                "let the layout read files outside its folder and the given files' folders (a layout you trust)");
   cmd->add_flag("--verbose", o->verbose, "print what image libraries say about broken files as they say it");
   return {cmd, [o]() -> int { return runImport(*o); }};
 }

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "app/cli/cli.h"
+#include "app/cli/messages.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"gblens: an interactive G-buffer debugger for deferred renderers"};
@@ -52,7 +53,7 @@ int main(int argc, char** argv) {
       for (gb::Command& c : commands)
         if (c.app == sub) status = c.usageExit;
     }
-    std::fprintf(stderr, "gblens%s: %s (see gblens%s --help)\n", where.c_str(), e.what(), where.c_str());
+    std::fprintf(stderr, "gblens%s: %s (see gblens%s --help)\n", where.c_str(), gb::oneLine(e.what()).c_str(), where.c_str());
     return status;
   }
   for (gb::Command& c : commands)

@@ -77,6 +77,7 @@ struct TargetSource {
   std::string part;                  // File: EXR part (index or name; "" the first)
   std::vector<std::string> channels; // File: the file's channel names in target channel order
   uint64_t offset = 0;               // Raw: bytes skipped at the start
+  uint64_t rowStride = 0;            // Raw: bytes from one row's start to the next (0: rows packed)
   std::string resource;              // RenderDoc: texture name or "#id"
   // Live (`gblens attach`): the attachment the gblens layer copies at the end of a render pass.
   // One of name, color, depth, format picks the attachment; pass (a label) or passIndex the pass.

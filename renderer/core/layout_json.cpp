@@ -261,7 +261,7 @@ bool readQuantity(Reader& r, const json& jIn, const Where& w, Layout& l, uint32_
   if (!parseQuantityKind(kind, q.kind)) return r.fail(w, "quantity", "unknown kind \"" + kind + "\"");
   if (!r.string(j, w, "name", q.name, false)) return false;
   if (q.name.empty()) q.name = kind;
-  if (std::string why; !safeFileName(q.name, why)) return r.fail(w, "name", "\"" + jsonBrief(q.name) + "\": " + why);
+  if (std::string why; !safeFileName(q.name, why)) return r.fail(w, "name", jsonBrief(q.name) + ": " + why);
   q.target = target;
   if (!readQuantityFields(r, j, w, q)) return false;
   const LayoutTarget& t = l.targets[target];
@@ -353,6 +353,11 @@ bool readSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
   // A byte offset into a file: at most 2^48 (256 TiB), never wrapped.
   if (auto it = j.find("offset"); it != j.end() && !jsonInteger(*it, 0, int64_t(1) << 48, offset))
     return r.fail(ws, "offset", "expected a byte count 0..2^48, got " + jsonBrief(*it));
+  // Bytes from one row's start to the next in a raw dump (rows padded to an alignment): at most 2^32.
+  int64_t stride = 0;
+  if (auto it = j.find("row_stride"); it != j.end() && (!jsonInteger(*it, 1, int64_t(1) << 32, stride) || !raw))
+    return r.fail(ws, "row_stride", raw ? "expected a byte count 1..2^32, got " + jsonBrief(*it) : "applies to a raw dump");
+  s.rowStride = uint64_t(stride);
   if (auto it = j.find("part"); it != j.end()) {
     if (it->is_string())
       s.part = it->get<std::string>();
@@ -372,7 +377,7 @@ bool readSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
   if (!s.path.empty() && !s.resource.empty()) return r.fail(ws, "file", "give one of \"file\" and \"renderdoc\", not both");
   s.kind = !s.resource.empty() ? TargetSource::Kind::RenderDoc : raw ? TargetSource::Kind::Raw : TargetSource::Kind::File;
   s.offset = uint64_t(offset);
-  return r.unknownKeys(j, ws, {"file", "raw", "offset", "part", "channels", "renderdoc"});
+  return r.unknownKeys(j, ws, {"file", "raw", "offset", "row_stride", "part", "channels", "renderdoc"});
 }
 
 bool readTarget(Reader& r, const json& given, const Where& w, Layout& l) {

@@ -93,6 +93,7 @@ static json sourceJson(const TargetSource& s) {
   if (!s.path.empty()) j["file"] = s.path;
   if (s.kind == TargetSource::Kind::Raw) j["raw"] = true;
   if (s.offset) j["offset"] = s.offset;
+  if (s.rowStride) j["row_stride"] = s.rowStride;
   if (!s.part.empty()) j["part"] = s.part;
   if (!s.channels.empty()) j["channels"] = s.channels;
   return j;

@@ -3,6 +3,7 @@
 // renderer/frame/session.h) or from a capture directory (views/capture/capture.h); analysis reads only this.
 #pragma once
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,12 @@ struct FrameSnapshot {
   gpu::FrameData frameData{};
   // What the device's sampler returns for each 8-bit sRGB value (empty: not probed; exact curve).
   std::vector<float> srgbDecode;
+  // What the frame's source does not say (an imported or streamed frame): manifest field -> why
+  // ("sun": "the layout gives no lights"). A capture leaves those fields out and records why, never
+  // a default in their place; compare reports them apart. Empty for gblens's own frames.
+  std::map<std::string, std::string> unknown;
+  // With unknown["options"]: the options (table names) the source or the user stated.
+  std::vector<std::string> statedOptions;
 
   // Sets the layout: one empty image per target, each absent as "not captured".
   void setLayout(Layout l);

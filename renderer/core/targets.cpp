@@ -122,8 +122,9 @@ static const char* const kAbsentText[] = {
     "not captured",
     "pixel outside the read-back region",
     "not in this G-buffer's layout (no quantity of the imported frame fills it)",
+    "not in the source (the imported capture or the streamed frame has no such image)",
 };
-static_assert(sizeof(kAbsentText) / sizeof(kAbsentText[0]) == size_t(Absent::NotInLayout) + 1);
+static_assert(sizeof(kAbsentText) / sizeof(kAbsentText[0]) == size_t(Absent::NotInSource) + 1);
 
 const char* absentText(Absent a) { return kAbsentText[size_t(a)]; }
 

@@ -88,6 +88,7 @@ enum class Absent : uint8_t {
   NotCaptured,        // a capture does not hold it (older manifests, synthetic frames)
   OutsideRegion,      // the viewer read back a window that does not contain the pixel
   NotInLayout,        // an imported frame's layout has no quantity for it (views/analysis/viewable.h)
+  NotInSource,        // an imported or streamed frame's source has no such image (compare: reported apart)
 };
 const char* absentText(Absent a);
 // The Absent whose absentText() is `text` (manifests store the text); NotCaptured when none is.

@@ -16,7 +16,10 @@ namespace gb {
 namespace gltf {
 
 void fail(const Doc& doc, const std::string& element, const std::string& what) {
-  throw SceneError{doc.file + ": " + element + ": " + what};
+  // One line, whatever a library's words held (OpenImageIO's PNG errors span two).
+  std::string line = what;
+  for (size_t at; (at = line.find('\n')) != std::string::npos;) line.replace(at, 1, "; ");
+  throw SceneError{doc.file + ": " + element + ": " + line};
 }
 
 void warn(const Doc& doc, const std::string& message) { doc.scene->warnings.push_back(doc.file + ": " + message); }

@@ -16,7 +16,12 @@ namespace {
 
 using json = nlohmann::json;
 
-enum class Kind { Index, Int, Number, Bool, String, Numbers, Indices, Object, Objects };
+enum class Kind { Index, Int, Number, Bool, String, Numbers, Indices, IndexMap, IndexMaps, Object, Objects };
+
+// tinygltf holds indices (and texCoord) in an int: 2^32 would wrap to 0 and name an element that
+// exists. No collection holds more than this, so a larger index names none (the validator's
+// UNRESOLVED_REFERENCE).
+constexpr double kMaxIndex = 2147483647.0;
 
 // One property: its kind, range [lo, hi], allowed values (ints or strings), array lengths, the
 // schema of an object (or of each object of an array), whether it is required.
@@ -78,23 +83,23 @@ const std::vector<Schema>& schemas() {
         {"metallicFactor", Kind::Number, 0, 1},
         {"roughnessFactor", Kind::Number, 0, 1},
         {"metallicRoughnessTexture", Kind::Object, 0, 0, {}, {}, {}, "textureInfo"}}},
-      {"textureInfo", {{"index", Kind::Index, 0, INFINITY, {}, {}, {}, nullptr, true}, {"texCoord", Kind::Int, 0}}},
+      {"textureInfo", {{"index", Kind::Index, 0, INFINITY, {}, {}, {}, nullptr, true}, {"texCoord", Kind::Int, 0, kMaxIndex}}},
       {"normalTextureInfo",
-       {{"index", Kind::Index, 0, INFINITY, {}, {}, {}, nullptr, true}, {"texCoord", Kind::Int, 0}, {"scale", Kind::Number}}},
+       {{"index", Kind::Index, 0, INFINITY, {}, {}, {}, nullptr, true}, {"texCoord", Kind::Int, 0, kMaxIndex}, {"scale", Kind::Number}}},
       {"occlusionTextureInfo",
-       {{"index", Kind::Index, 0, INFINITY, {}, {}, {}, nullptr, true}, {"texCoord", Kind::Int, 0}, {"strength", Kind::Number, 0, 1}}},
+       {{"index", Kind::Index, 0, INFINITY, {}, {}, {}, nullptr, true}, {"texCoord", Kind::Int, 0, kMaxIndex}, {"strength", Kind::Number, 0, 1}}},
       {"KHR_texture_transform",
        {{"offset", Kind::Numbers, -INFINITY, INFINITY, {}, {}, {2}},
         {"rotation", Kind::Number},
         {"scale", Kind::Numbers, -INFINITY, INFINITY, {}, {}, {2}},
-        {"texCoord", Kind::Int, 0}}},
+        {"texCoord", Kind::Int, 0, kMaxIndex}}},
       {"mesh", {{"primitives", Kind::Objects, 0, 0, {}, {}, {}, "primitive", true}, {"weights", Kind::Numbers}}},
       {"primitive",
-       {{"attributes", Kind::Object, 0, 0, {}, {}, {}, nullptr, true},
+       {{"attributes", Kind::IndexMap, 0, 0, {}, {}, {}, nullptr, true},
         {"indices", Kind::Index},
         {"material", Kind::Index},
         {"mode", Kind::Int, -INFINITY, INFINITY, {0, 1, 2, 3, 4, 5, 6}},
-        {"targets", Kind::Objects}}},
+        {"targets", Kind::IndexMaps}}},
       {"node",
        {{"camera", Kind::Index},
         {"children", Kind::Indices},
@@ -120,6 +125,11 @@ const std::vector<Schema>& schemas() {
         {"ymag", Kind::Number, -INFINITY, INFINITY, {}, {}, {}, nullptr, true},
         {"zfar", Kind::Number, 1e-300, INFINITY, {}, {}, {}, nullptr, true},
         {"znear", Kind::Number, 0, INFINITY, {}, {}, {}, nullptr, true}}},
+      // Extensions whose members are indices (checked where the extension sits).
+      {"KHR_lights_punctual", {{"light", Kind::Index, 0, INFINITY, {}, {}, {}, nullptr, true}}},
+      {"KHR_draco_mesh_compression",
+       {{"bufferView", Kind::Index, 0, INFINITY, {}, {}, {}, nullptr, true},
+        {"attributes", Kind::IndexMap, 0, 0, {}, {}, {}, nullptr, true}}},
       {"light",
        {{"type", Kind::String, 0, 0, {}, {"point", "spot", "directional"}, {}, nullptr, true},
         {"color", Kind::Numbers, 0, 1, {}, {}, {3}},
@@ -166,12 +176,17 @@ struct Checker {
 
   bool integral(const json& v) { return v.is_number_integer() || v.is_number_unsigned(); }
 
+  void unresolved(const std::string& el, const std::string& path, const json& v) {
+    problem(el, path + " " + brief(v) + " does not exist (an index beyond any collection)");
+  }
+
   void checkValue(const Rule& r, const json& v, const std::string& el, const std::string& path) {
     auto mismatch = [&](const char* expected) { problem(el, path + ": expected " + expected + ", got " + brief(v)); };
     switch (r.kind) {
       case Kind::Index:
       case Kind::Int:
         if (!integral(v)) return mismatch(r.kind == Kind::Index ? "an index (an integer >= 0)" : "an integer");
+        if (r.kind == Kind::Index && v.get<double>() > kMaxIndex) return unresolved(el, path, v);
         if (v.get<double>() < (r.kind == Kind::Index ? 0.0 : r.lo) || v.get<double>() > r.hi)
           return problem(el, path + " " + brief(v) + " is out of range");
         if (!inList(r, v)) return problem(el, path + " " + brief(v) + " is not one of the values glTF allows");
@@ -202,6 +217,18 @@ struct Checker {
         if (!v.is_array()) return mismatch("an array of indices");
         for (const json& e : v)
           if (!integral(e) || e.get<double>() < 0) return mismatch("an array of indices");
+          else if (e.get<double>() > kMaxIndex) return unresolved(el, path, e);
+        return;
+      case Kind::IndexMap:  // {"POSITION": 0, ...}: every member an accessor index
+        if (!v.is_object()) return mismatch("an object");
+        for (auto& [name, e] : v.items())
+          if (!integral(e) || e.get<double>() < 0) return problem(el, path + "." + name + ": expected an index, got " + brief(e));
+          else if (e.get<double>() > kMaxIndex) return unresolved(el, path + "." + name, e);
+        return;
+      case Kind::IndexMaps:  // morph targets: an array of such objects
+        if (!v.is_array() || v.empty()) return mismatch("a non-empty array of objects");
+        for (size_t i = 0; i < v.size(); ++i)
+          checkValue({r.key, Kind::IndexMap}, v[i], el, path + "[" + std::to_string(i) + "]");
         return;
       case Kind::Object:
         if (!v.is_object()) return mismatch("an object");
@@ -235,11 +262,15 @@ struct Checker {
     }
     if (auto ext = o.find("extensions"); ext != o.end()) {
       if (!ext->is_object()) return problem(el, prefix + "extensions: expected an object, got " + brief(*ext));
-      if (auto t = ext->find("KHR_texture_transform"); t != ext->end()) {
+      // Each extension where it belongs: texture infos, nodes (a light), primitives (Draco).
+      const char* own = std::string(s.name) == "node"        ? "KHR_lights_punctual"
+                        : std::string(s.name) == "primitive" ? "KHR_draco_mesh_compression"
+                                                             : "KHR_texture_transform";
+      if (auto t = ext->find(own); t != ext->end()) {
         if (!t->is_object())
-          problem(el, prefix + "extensions.KHR_texture_transform: expected an object, got " + brief(*t));
+          problem(el, prefix + "extensions." + own + ": expected an object, got " + brief(*t));
         else
-          checkObject(*schemaNamed("KHR_texture_transform"), *t, el, prefix + "extensions.KHR_texture_transform.");
+          checkObject(*schemaNamed(own), *t, el, prefix + "extensions." + own + ".");
       }
     }
   }

@@ -186,6 +186,7 @@ TEST(CompareMasks, ExcludeLeavesATargetOut) {
     sm.image.width = sm.targetWidth = sm.image.height = sm.targetHeight = size;
     sm.image.data.assign(size_t(size) * size * sm.image.texelBytes(), 0);
     f->setAbsence(Target::ShadowMap, Absent::No);
+    f->options.shadowMapSize = size;  // the manifest says the size its image has
   }
   const std::string ca = write(a, root + "/a"), cb = write(b, root + "/b");
   EXPECT_EQ(runGblens("compare " + ca + " " + cb).exitCode, kCompareMismatch);

@@ -10,6 +10,7 @@
 #include "renderer/core/json_read.h"
 #include "renderer/core/layout_json.h"
 #include "views/import/import.h"
+#include "views/import/import_internal.h"
 #include "views/capture/manifest_check.h"
 #include "views/import/renderdoc_replay.h"
 
@@ -103,11 +104,17 @@ std::string importOne(const uint8_t* data, size_t size, const std::string& dir) 
       static const char* const formats[] = {"r32f", "rgba8_unorm", "rgb10a2_unorm", "d24s8", "d32s8", "d16",
                                             "rg16_snorm", "rgba16f", "r32_uint", "rgba8_srgb"};
       const std::string format = formats[data[1] % 10];
-      writeBytes(dir + "/in.bin", data + 5, size - 5);
       const bool depth = format[0] == 'd';
-      return runImport(oneTarget("in.bin", format, true, 1 + data[2] % 64, 1 + data[3] % 64, depth ? "depth" : "albedo",
-                                 depth ? 1 : format == "r32f" || format == "r32_uint" ? 1 : format == "rg16_snorm" ? 2 : 3),
-                       dir, "");
+      const json l = oneTarget("in.bin", format, true, 1 + data[2] % 64, 1 + data[3] % 64, depth ? "depth" : "albedo",
+                               depth ? 1 : format == "r32f" || format == "r32_uint" ? 1 : format == "rg16_snorm" ? 2 : 3);
+      // Byte 4: 3 (mod 4) writes the rest as given (a size the layout may not explain); otherwise at
+      // most the dump's own size, so that inputs reach the unpackers.
+      size_t bytes = size - 5;
+      Layout parsed;
+      if (data[4] % 4 != 3 && parseLayout(l, "fuzz.json", parsed, error))
+        bytes = std::min(bytes, dumpBytes(parsed.targets[0], 1 + data[2] % 64, 1 + data[3] % 64));
+      writeBytes(dir + "/in.bin", data + 5, bytes);
+      return runImport(l, dir, "");
     }
     case 'M': {
       const size_t nul = rest.find('\0');

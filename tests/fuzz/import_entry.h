@@ -2,7 +2,8 @@
 // `make test` (tests/unit/test_import_corpus.cpp). The first byte chooses what the rest is:
 //   L  a layout (parsed, resolved, imported against small source files)   C  a camera sidecar
 //   P/E/T/H  a PNG/EXR/TIFF/HDR source file of a layout of size 4x2; p/e/t/h: the file's size
-//   R  a raw dump (byte 2: format, bytes 3-4: size)
+//   R  a raw dump (byte 2: format, bytes 3-4: size; byte 5: 3 mod 4 writes the rest as given, else cut
+//      to the dump's size)
 //   M  a manifest and lights.json (split at the first NUL), read as loadCapture reads them
 //   D  an .rdc listed by the RenderDoc replay (only with GBLENS_FUZZ_RDC=1: a replay takes seconds)
 #pragma once

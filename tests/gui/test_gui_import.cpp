@@ -64,6 +64,8 @@ struct PlaneScene {
     camera.eyeFromWorld = glm::lookAt(eyeWorld, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0));
     camera.worldFromEye = glm::inverse(camera.eyeFromWorld);
     camera.clipFromEye = perspective(glm::radians(60.0), double(kW) / kH, 0.5, 50.0, false);
+    camera.eyeFromClip = glm::inverse(camera.clipFromEye);  // a manifest's matrices agree (or it is refused)
+    camera.clipFromWorld = camera.clipFromEye * camera.eyeFromWorld;
     camera.znear = 0.5;
     camera.zfar = 50.0;
   }

@@ -384,6 +384,11 @@ TEST(Gltf, InvalidFilesRejectedWithClearMessages) {
       {"bad_light.gltf", {"KHR_lights_punctual light 0", "\"area\""}},
       {"sparse_bad_index.gltf", {"accessor 0", "sparse index 9", "out of range"}},
       {"zero_quaternion.gltf", {"node 0", "zero quaternion"}},
+      // Indices of 2^32 (tinygltf's int would wrap them to 0, an element that exists).
+      {"wrapped_buffer_view.gltf", {"accessor 0", "bufferView 4294967296", "does not exist"}},
+      {"wrapped_buffer.gltf", {"bufferView 0", "buffer 4294967296", "does not exist"}},
+      {"wrapped_mesh.gltf", {"node 0", "mesh 4294967296", "does not exist"}},
+      {"wrapped_position.gltf", {"mesh 0 primitive 0", "attributes.POSITION 4294967296", "does not exist"}},
   };
   for (const auto& [file, words] : cases) {
     std::string path = corpus(std::string("invalid/") + file);
@@ -392,6 +397,7 @@ TEST(Gltf, InvalidFilesRejectedWithClearMessages) {
       ADD_FAILURE() << file << " was accepted";
     } catch (const SceneError& e) {
       EXPECT_EQ(e.message.rfind(path + ": ", 0), 0u) << "the message does not start with the file: " << e.message;
+      EXPECT_EQ(e.message.find('\n'), std::string::npos) << file << ": not one line: " << e.message;
       size_t at = 0;
       for (const char* w : words) {
         size_t found = e.message.find(w, at);

@@ -140,7 +140,9 @@ struct CompareReport {
   std::vector<FlipResult> flips;
   std::vector<std::pair<std::string, std::string>> mismatches;  // target, reason
   std::vector<std::pair<std::string, std::string>> skipped;     // target, reason (absent in both, excluded)
-  nlohmann::json differences = nlohmann::json::array();         // manifest fields that differ
+  nlohmann::json differences = nlohmann::json::array();         // manifest fields both hold that differ
+  // Manifest fields only one side holds (the other's source does not say them): reported apart.
+  nlohmann::json onlyInA = nlohmann::json::array(), onlyInB = nlohmann::json::array();
   CompareMask mask;                                             // --mask (empty: none)
   std::string maskImage;                                        // file written, if any
   nlohmann::json json() const;

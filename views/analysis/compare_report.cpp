@@ -139,7 +139,8 @@ nlohmann::json CompareReport::json() const {
                 {"image", maskImage.empty() ? nlohmann::json(nullptr) : nlohmann::json(maskImage)}};
   return {{"a", a},           {"b", b},
           {"result", resultName(exitCode)}, {"exit_code", exitCode},
-          {"differences", differences},     {"mismatches", mism},
+          {"differences", differences},     {"only_in_a", onlyInA},
+          {"only_in_b", onlyInB},           {"mismatches", mism},
           {"skipped", skip},                {"mask", maskJson},
           {"groups", groupsJson},           {"flip", flipsJson}};
 }
@@ -167,6 +168,11 @@ std::string CompareReport::text() const {
     out += "manifest fields that differ:\n";
     for (const nlohmann::json& d : differences)
       out += "  " + d["name"].get<std::string>() + ": " + d["a"].dump() + " -> " + d["b"].dump() + "\n";
+  }
+  for (auto [side, list] : {std::pair{"A", &onlyInA}, {"B", &onlyInB}}) {
+    if (list->empty()) continue;
+    out += std::string("manifest fields only in ") + side + " (the other's source does not say them; deciding nothing):\n";
+    for (const nlohmann::json& d : *list) out += "  " + d["name"].get<std::string>() + ": " + d["value"].dump() + "\n";
   }
   for (auto& [t, why] : mismatches) out += "MISMATCH " + t + ": " + why + "\n";
   for (auto& [t, why] : skipped) out += "skipped  " + t + ": " + why + "\n";

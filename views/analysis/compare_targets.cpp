@@ -12,8 +12,11 @@ namespace gb {
 namespace {
 
 // Manifest fields whose difference a reader should know about: every option, the scene, the
-// lights, the device and the build, and for imports where they were recorded and replayed.
-void manifestDifferences(const nlohmann::json& a, const nlohmann::json& b, nlohmann::json& out) {
+// lights, the device and the build, and for imports where they were recorded and replayed. A field
+// only one side holds (the other's source does not say it: an import's lights, a streamed frame's
+// options) goes to `onlyA` / `onlyB`, apart from the fields both hold that differ.
+void manifestDifferences(const nlohmann::json& a, const nlohmann::json& b, nlohmann::json& out, nlohmann::json& onlyA,
+                         nlohmann::json& onlyB) {
   nlohmann::json fa = nlohmann::json::object(), fb = nlohmann::json::object();
   for (const char* key : {"options", "scene", "device", "driver", "gblens", "lights", "sun", "source"}) {
     fa[key] = a.is_object() ? a.value(key, nlohmann::json()) : nlohmann::json();
@@ -22,11 +25,17 @@ void manifestDifferences(const nlohmann::json& a, const nlohmann::json& b, nlohm
   for (nlohmann::json* j : {&fa, &fb})
     if ((*j)["lights"].is_object()) (*j)["lights"].erase("file");
   nlohmann::json flatA = fa.flatten(), flatB = fb.flatten();
-  for (auto& [k, v] : flatA.items())
-    if (!flatB.contains(k) || flatB[k] != v) out.push_back({{"name", k.substr(1)}, {"a", v}, {"b", flatB.value(k, nlohmann::json())}});
+  // A whole section one side lacks flattens to null: its fields are that side's alone.
+  auto holds = [](const nlohmann::json& flat, const std::string& k) { return flat.contains(k) && !flat[k].is_null(); };
+  for (auto& [k, v] : flatA.items()) {
+    if (v.is_null()) continue;
+    if (!holds(flatB, k)) onlyA.push_back({{"name", k.substr(1)}, {"value", v}});
+    else if (flatB[k] != v) out.push_back({{"name", k.substr(1)}, {"a", v}, {"b", flatB[k]}});
+  }
   for (auto& [k, v] : flatB.items())
-    if (!flatA.contains(k)) out.push_back({{"name", k.substr(1)}, {"a", nullptr}, {"b", v}});
-  for (auto& d : out) std::replace(d["name"].get_ref<std::string&>().begin(), d["name"].get_ref<std::string&>().end(), '/', '.');
+    if (!v.is_null() && !holds(flatA, k)) onlyB.push_back({{"name", k.substr(1)}, {"value", v}});
+  for (nlohmann::json* list : {&out, &onlyA, &onlyB})
+    for (auto& d : *list) std::replace(d["name"].get_ref<std::string&>().begin(), d["name"].get_ref<std::string&>().end(), '/', '.');
 }
 
 // Target names of both layouts: A's in order, then B's that A lacks.
@@ -81,8 +90,13 @@ std::vector<TargetPlan> planTargets(const FrameSnapshot& fa, const FrameSnapshot
     else if (pa != pb) {
       // A frame made with the feature off (coverage, primitive ids, ...) has nothing to compare: the
       // options differ (listed in the report), the targets both hold are still compared.
+      // Nor does one whose source had no such image (a streamed frame that did not draw it): reported
+      // apart, the verdict decided on what both hold.
       const std::string why = pa ? whyAbsent(fb, p.ib) : whyAbsent(fa, p.ia);
-      p.what = why.rfind("not computed", 0) == 0 ? TargetPlan::Do::Skip : TargetPlan::Do::Mismatch;
+      const FrameSnapshot& lacking = pa ? fb : fa;
+      const int index = pa ? p.ib : p.ia;  // -1: not in its layout at all (a mismatch)
+      const bool notInSource = index >= 0 && lacking.absences[size_t(index)] == Absent::NotInSource;
+      p.what = why.rfind("not computed", 0) == 0 || notInSource ? TargetPlan::Do::Skip : TargetPlan::Do::Mismatch;
       p.why = std::string("only in ") + (pa ? "A" : "B") + " (" + why + ")";
     }
     else if (std::string why = targetMismatch(fa, p.ia, fb, p.ib); !why.empty())
@@ -139,7 +153,7 @@ bool compare(const Capture& ca, const Capture& cb, const CompareSettings& settin
   report = CompareReport{};
   report.a = ca.dir;
   report.b = cb.dir;
-  manifestDifferences(ca.manifest, cb.manifest, report.differences);
+  manifestDifferences(ca.manifest, cb.manifest, report.differences, report.onlyInA, report.onlyInB);
   const FrameSnapshot &fa = ca.frame, &fb = cb.frame;
   const std::vector<TargetPlan> plans = planTargets(fa, fb, settings.exclude);
   if (!checkNames(settings, plans, fa, error)) return false;

@@ -50,8 +50,10 @@ static nlohmann::json lightsJson(const FrameSnapshot& f) {
     }
     lights.push_back(j);
   }
-  return {{"format", "gblens-lights"}, {"time", f.options.time}, {"visible", f.visibleLights},
-          {"stencil_count", f.stencilCount}, {"layer_starts", f.layerStarts}, {"lights", lights}};
+  nlohmann::json j = {{"format", "gblens-lights"}, {"time", f.options.time}, {"visible", f.visibleLights},
+                      {"stencil_count", f.stencilCount}, {"layer_starts", f.layerStarts}, {"lights", lights}};
+  if (auto why = f.unknown.find("lights"); why != f.unknown.end()) j["unknown"] = why->second, j.erase("time");
+  return j;
 }
 
 static std::string utcNow() {
@@ -77,6 +79,33 @@ static bool record(const fs::path& tmp, const std::string& file, nlohmann::json&
   if (!sha256File((tmp / file).string(), hex, error)) return false;
   files[file] = {{"bytes", fs::file_size(tmp / file)}, {"sha256", hex}};
   return true;
+}
+
+// What the frame's source does not say is left out with why ("unknown"), never written as a
+// default: FrameSnapshot::unknown's fields, the options nobody stated, and the device, driver and
+// scene digest no one recorded.
+static void leaveOutUnknown(const FrameSnapshot& f, nlohmann::json& m) {
+  nlohmann::json unknown = nlohmann::json::object();
+  for (const auto& [field, why] : f.unknown) unknown[field] = why;
+  for (const char* key : {"device", "driver"})
+    if (m[key] == "") m.erase(key), unknown[key] = "not recorded";
+  if (m["scene"]["content_sha256"] == "") m["scene"].erase("content_sha256"), unknown["scene.content_sha256"] = "not recorded";
+  for (const auto& [field, why] : f.unknown) {
+    const size_t dot = field.find('.');
+    if (field == "options" && m.contains("options")) {
+      nlohmann::json stated = nlohmann::json::object();
+      for (const std::string& name : f.statedOptions)
+        if (m["options"].contains(name)) stated[name] = m["options"][name];
+      m["options"] = stated;
+    } else if (field == "lights") {  // lights.json stays (empty lists, saying why): the summary's figures go
+      for (const char* key : {"count", "visible", "stencil_class", "culled", "sha256"}) m["lights"].erase(key);
+    } else if (dot == std::string::npos) {
+      m.erase(field);
+    } else if (m.contains(field.substr(0, dot))) {
+      m[field.substr(0, dot)].erase(field.substr(dot + 1));
+    }
+  }
+  if (!unknown.empty()) m["unknown"] = unknown;
 }
 
 static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const CaptureMeta& meta, std::string& error) {
@@ -145,6 +174,7 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
   // gblens's render options describe gblens's frames; another renderer's G-buffer has none.
   if (!gblensLayout(f.layout)) m.erase("options");
   if (!meta.source.is_null()) m["source"] = meta.source;
+  leaveOutUnknown(f, m);
   // Written last: a directory without it is never a capture.
   return writeText(tmp / "manifest.json", m.dump(2) + "\n", error);
 }

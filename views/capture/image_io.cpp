@@ -5,9 +5,14 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <atomic>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+
+#include "views/capture/debris.h"
 
 namespace gb {
 
@@ -15,7 +20,10 @@ bool writeAtomically(const std::string& path, const std::string& suffix,
                      const std::function<bool(const std::string&)>& write) {
   namespace fs = std::filesystem;
   fs::path target(path);
-  fs::path tmp = target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()) + suffix);
+  // Stamped with this process (debris.h), so a later run can tell an interrupted write's file.
+  static std::atomic<uint64_t> sequence{0};
+  fs::path tmp = target.parent_path() / ("." + target.filename().string() + ".tmp-" + processStamp() + "-" +
+                                         std::to_string(sequence++) + suffix);
   if (!write(tmp.string())) {
     std::error_code ec;
     fs::remove(tmp, ec);
@@ -60,6 +68,75 @@ bool writePng(const std::string& path, const Rgba8Image& image, std::string& err
   return ok;
 }
 
+namespace {
+
+// The folder `path` lies in, as written ("." for a bare name).
+std::filesystem::path folderOf(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  return parent.empty() ? std::filesystem::path(".") : parent;
+}
+
+// The nearest folder of `dir` and its ancestors that exists must be one this process can write.
+bool creatable(const std::string& flag, const std::filesystem::path& dir, std::string& error) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path p = fs::absolute(dir, ec).lexically_normal();
+  while (!p.empty() && !fs::exists(p, ec) && p != p.parent_path()) p = p.parent_path();
+  if (!fs::is_directory(p, ec)) {
+    error = flag + p.string() + ": not a folder";
+    return false;
+  }
+  if (access(p.c_str(), W_OK | X_OK) != 0) {
+    error = flag + p.string() + ": cannot write in it (" + std::strerror(errno) + ")";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool checkFileDestination(const std::string& flag, const std::string& path, std::string& error) {
+  namespace fs = std::filesystem;
+  const std::string at = (flag.empty() ? "" : flag + " ") + path;
+  std::error_code ec;
+  const fs::path folder = folderOf(path);
+  if (path.empty() || fs::path(path).filename().empty()) {
+    error = at + ": not a file name";
+    return false;
+  }
+  if (fs::is_directory(fs::symlink_status(path, ec))) {
+    error = at + ": is a folder";
+    return false;
+  }
+  if (!fs::is_directory(folder, ec)) {
+    error = at + ": no folder " + folder.string() + " to write it in";
+    return false;
+  }
+  return creatable(at + ": ", folder, error);
+}
+
+bool checkFolderDestination(const std::string& flag, const std::string& dirText, const std::string& marker,
+                            const std::string& what, std::string& error) {
+  namespace fs = std::filesystem;
+  const std::string at = (flag.empty() ? "" : flag + " ") + dirText;
+  std::error_code ec;
+  // A folder replaced as a whole: a link there is replaced too; one written into: followed.
+  const fs::file_status st = marker.empty() ? fs::status(dirText, ec) : fs::symlink_status(dirText, ec);
+  if (fs::is_symlink(st)) return creatable(at + ": ", folderOf(dirText), error);
+  if (fs::exists(st)) {
+    if (!fs::is_directory(st)) {
+      error = at + ": exists and is not a directory";
+      return false;
+    }
+    if (!marker.empty() && !fs::is_empty(dirText, ec) && !fs::exists(fs::path(dirText) / marker, ec)) {
+      error = at + ": exists, is not empty and holds no " + what + " (" + marker + "); not overwritten";
+      return false;
+    }
+    return creatable(at + ": ", marker.empty() ? fs::path(dirText) : folderOf(dirText), error);
+  }
+  return creatable(at + ": ", folderOf(dirText), error);
+}
+
 bool replaceDirectory(const std::string& dirText, const std::string& marker, const std::string& what,
                       const std::function<bool(const std::string& tmp, std::string& error)>& write,
                       std::string& error) {
@@ -67,20 +144,11 @@ bool replaceDirectory(const std::string& dirText, const std::string& marker, con
   fs::path dir = fs::absolute(fs::path(dirText)).lexically_normal();
   if (dir.filename().empty()) dir = dir.parent_path();
   std::error_code ec;
-  if (fs::exists(dir, ec)) {
-    if (!fs::is_directory(dir, ec)) {
-      error = dirText + ": exists and is not a directory";
-      return false;
-    }
-    if (!fs::is_empty(dir, ec) && !fs::exists(dir / marker, ec)) {
-      error = dirText + ": exists, is not empty and holds no " + what + " (" + marker + "); not overwritten";
-      return false;
-    }
-  }
+  if (!checkFolderDestination("", dirText, marker, what, error)) return false;
   fs::path parent = dir.parent_path();
   fs::create_directories(parent, ec);
-  std::string stamp = std::to_string(getpid()) + "-" +
-                      std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
+  // The writer's pid and start time (debris.h): a later run removes what an interrupted one left.
+  std::string stamp = processStamp() + "-" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
   fs::path tmp = parent / ("." + dir.filename().string() + ".partial-" + stamp);
   if (!fs::create_directory(tmp, ec)) {
     error = tmp.string() + ": cannot create (" + ec.message() + ")";
@@ -92,7 +160,8 @@ bool replaceDirectory(const std::string& dirText, const std::string& marker, con
   }
   // Swap into place: an old folder moves aside first and is deleted only after the rename.
   fs::path old = parent / ("." + dir.filename().string() + ".old-" + stamp);
-  bool hadOld = fs::exists(dir, ec);
+  std::error_code missing;  // (symlink_status sets it when nothing is there)
+  bool hadOld = fs::exists(fs::symlink_status(dir, missing));  // a symbolic link there is replaced, as a file's is
   if (hadOld) fs::rename(dir, old, ec);
   if (!ec) fs::rename(tmp, dir, ec);
   if (ec) {

@@ -22,6 +22,15 @@ bool writeAtomically(const std::string& path, const std::string& suffix,
 // `text` as the file `path`, through writeAtomically; false with "PATH: cannot write" in `error`.
 bool writeTextAtomically(const std::string& path, const std::string& text, std::string& error);
 
+// Destinations checked before any work (compare's -o, --json, --report, --junit): one rule for files
+// and folders. A file is written beside itself and renamed into place, so its folder must exist and
+// it must not be a folder; a folder (replaceDirectory's rule) may be missing, empty or hold `marker`
+// (empty marker: any folder, written into). A symbolic link at either is replaced, never written
+// through. False with "FLAG PATH: why".
+bool checkFileDestination(const std::string& flag, const std::string& path, std::string& error);
+bool checkFolderDestination(const std::string& flag, const std::string& dir, const std::string& marker,
+                            const std::string& what, std::string& error);
+
 // Writes a folder atomically: `write(tmp)` fills a fresh folder beside `dir`, which then takes its
 // place (an old one moves aside first and is deleted only after the rename). `dir` may be missing,
 // empty, or hold `marker` (a file only this kind of folder has: a capture's manifest.json); any

@@ -94,6 +94,43 @@ void layoutIn(const JsonIn& m, const std::string& file, FrameSnapshot& f) {
   f.setLayout(std::move(l));
 }
 
+// What the frame's source did not say ("unknown": {FIELD: WHY}); those fields may be absent.
+void unknownIn(const JsonIn& m, FrameSnapshot& f) {
+  if (!m.has("unknown")) return;
+  const JsonIn u = m["unknown"];
+  for (const std::string& field : u.keys()) f.unknown[field] = u[field.c_str()].string();
+  if (f.unknown.count("options") && m.has("options")) f.statedOptions = m["options"].keys();  // what it did state
+}
+
+// Whether `field` may be absent: the manifest says its source did not state it (or all of `section`).
+bool unstated(const FrameSnapshot& f, const std::string& section, const std::string& field = "") {
+  return f.unknown.count(section) || (!field.empty() && f.unknown.count(section + "." + field));
+}
+
+void sunAndSkyIn(const JsonIn& m, FrameSnapshot& f) {
+  if (!m.has("lightClipFromWorld") && unstated(f, "lightClipFromWorld")) f.lightClipFromWorld = glm::dmat4(1.0);
+  else f.lightClipFromWorld = matrixIn(m["lightClipFromWorld"]);
+  if (!m.has("sun") && unstated(f, "sun")) {
+    f.sun.enabled = false;  // no sun the frame's lighting would use
+  } else {
+    const JsonIn sun = m["sun"];
+    f.sun.enabled = sun["enabled"].boolean();
+    f.sun.toSun = sun["to_sun"].vec3();
+    f.sun.color = glm::vec3(sun["color"].vec3());
+  }
+  const bool anySky = m.has("sky");
+  const JsonIn sky = anySky ? m["sky"] : m;
+  std::pair<const char*, glm::vec3*> fields[] = {
+      {"zenith", &f.sky.zenith}, {"horizon", &f.sky.horizon}, {"ground", &f.sky.ground}, {"ambient", &f.sky.ambient}};
+  for (auto& [key, value] : fields) {
+    if ((!anySky || !sky.has(key)) && unstated(f, "sky", key)) {
+      if (std::string(key) == "ambient") *value = glm::vec3(0.0f);  // no ambient term said: none applied
+      continue;
+    }
+    *value = glm::vec3((anySky ? sky : m["sky"])[key].vec3());
+  }
+}
+
 void targetsIn(const JsonIn& m, FrameSnapshot& f, std::vector<ManifestTarget>& out) {
   const JsonIn skipped = m["skipped"];
   for (size_t i = 0; i < skipped.size(); ++i)
@@ -105,7 +142,7 @@ void targetsIn(const JsonIn& m, FrameSnapshot& f, std::vector<ManifestTarget>& o
     const std::string nameText = e["name"].string();
     ManifestTarget t;
     t.index = f.indexOf(nameText);
-    if (t.index < 0) e["name"].fail("\"" + jsonBrief(nameText) + "\" is not in the capture's layout");
+    if (t.index < 0) e["name"].fail(jsonBrief(nameText) + " is not in the capture's layout");
     CpuImage& img = t.image;
     describeImage(f.layout.targets[size_t(t.index)], img);
     const std::string type = e["type"].string(), encoding = e["encoding"].string();
@@ -151,7 +188,7 @@ bool manifestFiles(const nlohmann::json& m, const std::string& file, std::vector
     if (names.empty()) files.fail("no file list");
     for (const std::string& n : names) {
       std::string why;
-      if (!safeFileName(n, why)) files.fail("\"" + jsonBrief(n) + "\": not a file of the capture folder (" + why + ")");
+      if (!safeFileName(n, why)) files.fail(jsonBrief(n) + ": not a file of the capture folder (" + why + ")");
       const JsonIn entry = files[n.c_str()];
       out.push_back({n, entry["sha256"].string(), uint64_t(entry["bytes"].integer(0, INT64_MAX))});
     }
@@ -194,17 +231,10 @@ bool frameFromManifest(const nlohmann::json& mj, const nlohmann::json& lights, c
       for (const char* key : {"source", "content_sha256"})
         if (scene->has(key)) (*scene)[key].string();
     }
-    f.lightClipFromWorld = matrixIn(m["lightClipFromWorld"]);
-    const JsonIn sun = m["sun"];
-    f.sun.enabled = sun["enabled"].boolean();
-    f.sun.toSun = sun["to_sun"].vec3();
-    f.sun.color = glm::vec3(sun["color"].vec3());
-    const JsonIn sky = m["sky"];
-    f.sky.zenith = glm::vec3(sky["zenith"].vec3());
-    f.sky.horizon = glm::vec3(sky["horizon"].vec3());
-    f.sky.ground = glm::vec3(sky["ground"].vec3());
-    f.sky.ambient = glm::vec3(sky["ambient"].vec3());
+    unknownIn(m, f);
+    sunAndSkyIn(m, f);
     targetsIn(m, f, targets);
+    checkManifestConsistency(m, JsonIn(lights, lightsFile), f, targets);
   } catch (const JsonError& e) {
     error = e.what();
     return false;

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/core/image.h"
+#include "renderer/core/json_read.h"
 #include "renderer/core/snapshot.h"
 
 namespace gb {
@@ -41,6 +42,14 @@ bool manifestFiles(const nlohmann::json& m, const std::string& file, std::vector
 bool frameFromManifest(const nlohmann::json& m, const nlohmann::json& lights, const std::string& file,
                        const std::string& lightsFile, FrameSnapshot& f, std::vector<ManifestTarget>& targets,
                        std::string& error);
+
+// The manifest against itself (manifest_sanity.cpp; frameFromManifest runs it last): the frame's
+// size is every target's (its layout's size, gblens's shadow map options.shadow_map_size) and the
+// size fields'; the camera's ranges (yfov, aspect, znear < zfar), its matrices each other's inverses
+// and its projection a perspective or orthographic one; lights, sun and sky within a 32-bit float's
+// range. Throws JsonError naming the field.
+void checkManifestConsistency(const JsonIn& m, const JsonIn& lights, const FrameSnapshot& f,
+                              const std::vector<ManifestTarget>& targets);
 
 // What writeCapture runs on the folder it wrote (before renaming it into place): manifest.json and
 // lights.json read back from disk and through frameFromManifest.

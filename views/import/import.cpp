@@ -4,6 +4,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -174,52 +175,6 @@ bool readImageFile(const std::string& path, const TargetSource& s, LayoutTarget&
   return true;
 }
 
-// The GPU format a layout format names, when it is one (its dumps are packed as texels.h says).
-bool gpuFormatOf(const LayoutTarget& t, TexelFormat& gpu) {
-  for (int f = 0; f <= int(TexelFormat::D16); ++f)
-    if (t.format.name == texelFormatInfo(TexelFormat(f)).name) {
-      gpu = TexelFormat(f);
-      return true;
-    }
-  return false;
-}
-
-// The bytes a packed dump of w x h texels of the target's format takes.
-size_t dumpBytes(const LayoutTarget& t, uint32_t w, uint32_t h) {
-  TexelFormat gpu{};
-  return gpuFormatOf(t, gpu) ? packedImageBytes(gpu, w, h) : size_t(w) * h * t.format.packedBytes();
-}
-
-// A packed dump (raw file or RenderDoc texels) of a target's format, from `offset` in `data` (`bytesSize` bytes) (a raw
-// file's bytes from its offset on: offset 0 here, `fileOffset` and `fileBytes` for the message).
-bool unpackDump(const uint8_t* data, size_t bytesSize, uint64_t offset, const LayoutTarget& t, uint32_t w, uint32_t h,
-                const std::string& at, CpuImage& img, std::string& error, uint64_t fileOffset = 0, uint64_t fileBytes = 0) {
-  TexelFormat gpu{};
-  const bool isGpuFormat = gpuFormatOf(t, gpu);
-  const size_t need = dumpBytes(t, w, h);
-  if (bytesSize < offset || bytesSize - offset < need) {
-    const bool fromFile = fileBytes || fileOffset;
-    const uint64_t size = fromFile ? fileBytes : bytesSize;
-    offset = fromFile ? fileOffset : offset;
-    error = at + ": holds " + std::to_string(size - std::min<uint64_t>(offset, size)) + " bytes after offset " +
-            std::to_string(offset) + "; " + t.format.name + " " + std::to_string(w) + "x" + std::to_string(h) + " needs " +
-            std::to_string(need);
-    return false;
-  }
-  const uint8_t* src = data + offset;
-  if (isGpuFormat) {
-    img = unpackTexels(gpu, src, w, h);
-  } else {
-    img.width = w;
-    img.height = h;
-    img.type = t.format.type;
-    img.encoding = t.format.encoding;
-    img.data.assign(src, src + need);
-  }
-  img.channels = t.channels;
-  return true;
-}
-
 void flipRows(CpuImage& img) {
   const size_t row = size_t(img.width) * img.texelBytes();
   for (uint32_t y = 0; y < img.height / 2; ++y)
@@ -243,7 +198,7 @@ bool readTarget(const ImportInput& in, uint32_t t, LayoutTarget& lt, uint32_t w,
       error = where + ": source.renderdoc: the capture has no texture \"" + s.resource + "\"";
       return false;
     }
-    return unpackDump(it->second.data(), it->second.size(), 0, lt, w, h, where + ": source.renderdoc \"" + s.resource + "\"",
+    return unpackDump(it->second.data(), it->second.size(), lt, w, h, where + ": source.renderdoc \"" + s.resource + "\"",
                       img, error);
   }
   if (s.kind == TargetSource::Kind::Live) {
@@ -252,7 +207,7 @@ bool readTarget(const ImportInput& in, uint32_t t, LayoutTarget& lt, uint32_t w,
       error = where + ": source.live: an attachment of a running application: stream it with gblens attach";
       return false;
     }
-    return unpackDump(it->second.data, it->second.bytes, 0, lt, w, h, where + ": source.live", img, error);
+    return unpackDump(it->second.data, it->second.bytes, lt, w, h, where + ": source.live", img, error);
   }
   const std::string path = sourcePath(in, lt);
   if (path.empty()) {
@@ -260,13 +215,8 @@ bool readTarget(const ImportInput& in, uint32_t t, LayoutTarget& lt, uint32_t w,
             lt.name + ".*)";
     return false;
   }
-  if (s.kind == TargetSource::Kind::Raw) {
-    // Only the bytes the layout needs are read (a dump may be followed by more).
-    std::vector<uint8_t> bytes;
-    uint64_t fileBytes = 0;
-    return readFileRange(path, s.offset, dumpBytes(lt, w, h), bytes, fileBytes, where, error) &&
-           unpackDump(bytes.data(), bytes.size(), 0, lt, w, h, where + ": " + path, img, error, s.offset, fileBytes);
-  }
+  if (!sourceAllowed(in, path, where, "source.file", error)) return false;
+  if (s.kind == TargetSource::Kind::Raw) return readRawDump(in, lt, path, w, h, where, img, error);
   return readImageFile(path, s, lt, where, w, h, img, error);
 }
 
@@ -275,7 +225,14 @@ void importLights(const Layout& l, FrameSnapshot& f) {
   const LayoutLights& lights = l.lights;
   f.sun.enabled = false;
   f.sky.ambient = glm::vec3(0.0f);
-  if (!lights.present) return;
+  // gblens's sky and shadow-map projection are its renderer's; another renderer's frame states neither.
+  for (const char* key : {"sky.zenith", "sky.horizon", "sky.ground"}) f.unknown[key] = "gblens's sky; the source has none";
+  f.unknown["lightClipFromWorld"] = "gblens's shadow-map projection; the source has none";
+  if (!lights.present) {
+    const std::string why = "the layout gives no lights";
+    for (const char* key : {"sun", "sky.ambient", "lights"}) f.unknown[key] = why;
+    return;
+  }
   const glm::dmat3 toWorld = worldFromLayoutWorld(l.camera);
   auto world = [&](glm::dvec3 v) { return toWorld * v; };
   f.sun = lights.sun;
@@ -335,11 +292,17 @@ std::string builtinLayoutNames() {
   return names;
 }
 
-void setImportedOptions(FrameSnapshot& frame, const RenderOptions& options) {
+void setImportedOptions(FrameSnapshot& frame, const RenderOptions& options, const std::vector<std::string>& stated) {
   const RenderOptions imported = frame.options;
   frame.options = options;
   frame.options.width = imported.width, frame.options.height = imported.height;
   frame.options.reversedZ = imported.reversedZ;
+  // The frame states its size and depth direction, the user the --param values; the rest are defaults.
+  frame.statedOptions = stated;
+  for (const char* own : {"size", "reversed_z"})
+    if (std::find(stated.begin(), stated.end(), own) == stated.end()) frame.statedOptions.push_back(own);
+  frame.unknown["options"] = "the source states only size and reversed_z (and the --param values given)";
+  if (std::find(stated.begin(), stated.end(), "time") == stated.end()) frame.unknown["time"] = "not stated by the source";
 }
 
 bool loadImportLayout(const std::string& spec, const LayoutParameters& params, Layout& out, std::string& dir,
@@ -396,8 +359,9 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
       tw = rw, th = rh;
     }
     if (!tw && (lt.source.kind == TargetSource::Kind::File || lt.source.kind == TargetSource::Kind::None)) {  // the file's
-      std::string ignored;  // a file that does not open is reported by readTarget
-      auto inp = openImportImage(sourcePath(in, lt), targetWhere(l, t), ignored);
+      std::string ignored;  // a file that does not open (or may not be read) is reported by readTarget
+      const std::string path = sourcePath(in, lt);
+      auto inp = sourceAllowed(in, path, "", "", ignored) ? openImportImage(path, targetWhere(l, t), ignored) : nullptr;
       if (inp) tw = uint32_t(std::max(inp->spec().width, 0)), th = uint32_t(std::max(inp->spec().height, 0));
     }
     if (!tw) tw = w, th = h;  // a raw dump without a size: the frame's (the first target's)
@@ -409,6 +373,9 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
     if (!w) w = tw, h = th;
     if (!readTarget(in, t, frameLayout.targets[t], tw, th, images[t], error)) return false;
     frameLayout.targets[t].formatChoices.clear();
+    // A target of another size than the frame's says so in the frame's layout (the manifest check
+    // holds every other target to the frame's size).
+    if (tw != w || th != h) frameLayout.targets[t].width = tw, frameLayout.targets[t].height = th;
     images[t].name = l.targets[t].name;
   }
   out.setLayout(frameLayout);
@@ -426,7 +393,10 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
   out.options.height = h;
   out.options.reversedZ = out.camera.reversedZ;
   for (uint32_t t = 0; t < l.targets.size(); ++t) {
-    if (images[t].empty()) continue;  // left out: absent, not captured
+    if (images[t].empty()) {  // left out: the source has no such image
+      if (in.leftOut.count(l.targets[t].name)) out.absences[t] = Absent::NotInSource;
+      continue;
+    }
     TargetImage& ti = out.images[t];
     ti.image = std::move(images[t]);
     ti.targetWidth = ti.image.width;

@@ -20,6 +20,10 @@ struct ImportInput {
   std::string layoutDir;            // relative source paths: the layout file's folder ...
   std::vector<std::string> files;   // ... unless a file given on the command line has that name; a
                                     // source without "file" takes the only one given
+  // A file the layout names (a source, the camera's sidecar) must lie in the layout's folder or the
+  // folder of a file given (after symlinks): a layout someone else wrote cannot read your files.
+  // True (--allow-outside-sources): anywhere.
+  bool allowOutsideSources = false;
   std::string cameraFile;           // --camera: a sidecar JSON overriding the layout's camera
   // Texels read from a RenderDoc capture for its targets ({"renderdoc": ...} sources), packed as
   // renderer/core/texels.h says, by target name; and the bytes of the camera's uniform buffer.
@@ -63,8 +67,9 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error);
 std::string layoutTargetWhere(const Layout& l, uint32_t t);
 
 // The options an imported frame records: `options` (what a parameterised layout was resolved with)
-// with the frame's own size and depth direction.
-void setImportedOptions(FrameSnapshot& frame, const RenderOptions& options);
+// with the frame's own size and depth direction. Only those and `stated` (the --param names) are
+// facts: the rest is recorded as unknown (FrameSnapshot::unknown), never as a default.
+void setImportedOptions(FrameSnapshot& frame, const RenderOptions& options, const std::vector<std::string>& stated = {});
 
 // The camera a layout describes (matrices, sidecar or uniform-buffer bytes) in gblens's convention:
 // Vulkan clip space (y down, depth 0..1; w = -z for a perspective, 1 for an orthographic

@@ -56,13 +56,13 @@ std::vector<std::string> sidecarCandidates(const ImportInput& in, const std::str
 }
 
 bool findSidecar(const ImportInput& in, const std::string& where, std::string& sidecar, std::string& error) {
-  if (fs::path(sidecar).is_absolute()) return true;
+  if (fs::path(sidecar).is_absolute()) return sourceAllowed(in, sidecar, where, "sidecar", error);
   const std::vector<std::string> places = sidecarCandidates(in, sidecar);
   std::error_code ec;
   for (const std::string& place : places)
     if (fs::is_regular_file(place, ec)) {
       sidecar = place;
-      return true;
+      return sourceAllowed(in, sidecar, where, "sidecar", error);
     }
   std::string looked;
   for (const std::string& place : places) looked += (looked.empty() ? "" : ", ") + place;

@@ -1,12 +1,48 @@
 // Safe reading of import sources (see import_source.h).
 #include "views/import/import_source.h"
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 
 #include "renderer/core/json_read.h"
 #include "renderer/core/library_output.h"
+#include "views/import/import_internal.h"
 
 namespace gb {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Whether `path` lies inside `folder`, both resolved (symbolic links, "..") as far as they exist.
+bool inside(const fs::path& folder, const fs::path& path) {
+  std::error_code ec;
+  const fs::path root = fs::weakly_canonical(folder.empty() ? fs::path(".") : folder, ec);
+  if (ec) return false;
+  const fs::path p = fs::weakly_canonical(path, ec);
+  if (ec) return false;
+  auto r = root.begin(), q = p.begin();
+  for (; r != root.end() && !r->empty(); ++r, ++q)
+    if (q == p.end() || *q != *r) return false;
+  return true;
+}
+
+}  // namespace
+
+bool sourceAllowed(const ImportInput& in, const std::string& path, const std::string& where, const std::string& field,
+                   std::string& error) {
+  if (in.allowOutsideSources || std::find(in.files.begin(), in.files.end(), path) != in.files.end()) return true;
+  std::vector<fs::path> roots;
+  if (in.layout.file.rfind("builtin:", 0) != 0) roots.push_back(in.layoutDir);  // a layout file's folder
+  for (const std::string& f : in.files) roots.push_back(fs::path(f).parent_path());
+  if (!in.capture.empty()) roots.push_back(fs::path(in.capture).parent_path());
+  for (const fs::path& root : roots)
+    if (inside(root, path)) return true;
+  error = where + ": " + field + " \"" + path + "\": outside the layout's folder and the given files' folders " +
+          "(a layout reads only files beside it or beside the files given; --allow-outside-sources lets it)";
+  return false;
+}
 
 bool checkImportSize(const std::string& at, uint64_t w, uint64_t h, std::string& error) {
   if (w && h && w * h <= kMaxImportTexels) return true;

@@ -23,6 +23,7 @@
 #include <thread>
 
 #include "renderer/core/layout_json.h"
+#include "views/capture/debris.h"
 #include "views/import/import.h"
 #include "views/live/live_wire.h"
 
@@ -82,26 +83,24 @@ bool LiveSession::start(const LiveOptions& o, std::string& error) {
     error = "APP: give the application to start (gblens attach ... -- APP ARGS...)";
     return false;
   }
-  Layout original;
-  if (!o.layout.empty() || !o.layoutJson.is_null()) {
-    if (o.layoutJson.is_null() ? !loadImportLayout(o.layout, layoutParameters(o.options), original, layoutDir_, error)
-                               : !parseLayout(o.layoutJson, "layout", original, error))
-      return false;
-    layout_ = original;
-    if (!liveLayout(layout_, error)) return false;
-    for (const LayoutTarget& t : layout_.targets) wireNames_.push_back(t.name);
-  }
+  LivePlan plan;
+  if (!planLive(o, plan, error)) return false;
+  layout_ = plan.live;
+  layoutDir_ = plan.layoutDir;
+  for (const LayoutTarget& t : layout_.targets) wireNames_.push_back(t.name);
   const std::string manifest = (fs::path(o.layerDir.empty() ? layerFolder() : o.layerDir) / wire::kLayerManifest).string();
   if (!fs::exists(manifest)) {
     error = manifest + ": the gblens layer is not built (cmake --build build --target gblens_layer)";
     return false;
   }
-  char tmpl[] = "/tmp/gblens-attach-XXXXXX";
-  if (!mkdtemp(tmpl)) {
+  // Named by this process (pid and start time, debris.h): what a killed attach left is removed here.
+  for (const std::string& line : removeDebrisNamed("/tmp", "gblens-attach-")) addReport(line);
+  std::string tmpl = "/tmp/gblens-attach-" + processStamp() + "-XXXXXX";
+  if (!mkdtemp(tmpl.data())) {
     error = std::string("cannot make a folder for the socket: ") + std::strerror(errno);
     return false;
   }
-  dir_ = tmpl;
+  dir_ = tmpl.c_str();
   socketPath_ = dir_ + "/socket";
   listener_ = socket(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
   sockaddr_un addr{};
@@ -141,9 +140,22 @@ bool LiveSession::start(const LiveOptions& o, std::string& error) {
     error = o.argv[0] + ": cannot start it (" + std::strerror(err) + ")";
     return false;
   }
+  request_ = plan.request;
+  return true;
+}
+
+bool planLive(const LiveOptions& o, LivePlan& plan, std::string& error) {
+  plan = LivePlan{};
+  if (!o.layout.empty() || !o.layoutJson.is_null()) {
+    if (o.layoutJson.is_null() ? !loadImportLayout(o.layout, layoutParameters(o.options), plan.original, plan.layoutDir, error)
+                               : !parseLayout(o.layoutJson, "layout", plan.original, error))
+      return false;
+    plan.live = plan.original;
+    if (!liveLayout(plan.live, error)) return false;
+  }
   // The request is sent to each layer that connects (an application may make a second device after
   // destroying its first).
-  request_ = liveRequest(original, o).dump();
+  plan.request = liveRequest(plan.original, o).dump();
   return true;
 }
 

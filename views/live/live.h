@@ -25,6 +25,7 @@ struct LiveOptions {
   std::string layout;                    // a layout file or builtin:NAME ("" : none, with suggest)
   nlohmann::json layoutJson;             // or the layout itself (a draft; null: `layout`)
   RenderOptions options;                 // what a parameterised layout is resolved with (import's --param)
+  std::vector<std::string> given;        // the options of those the user gave (the rest are defaults)
   std::vector<std::string> argv;         // the application and its arguments
   uint32_t every = 1;                    // stream the application's frames 0, N, 2N, ...
   uint64_t onlyFrame = 0;                // stream only this streamed frame (1: the first; 0: all)
@@ -140,6 +141,16 @@ class LiveSession {
   std::set<std::string> said_;
   LiveCounts counts_;
 };
+
+// What LiveSession::start resolves before it starts anything: the layout (as given, and as the layer
+// streams it), the folder its relative names start from, and the request for the layer. False on a
+// layout mistake (one line naming the file, the target and the field). `gblens attach`'s command
+// line is checked through it without an application (tests/fuzz/fuzz_attach.cpp).
+struct LivePlan {
+  Layout original, live;
+  std::string layoutDir, request;
+};
+bool planLive(const LiveOptions& o, LivePlan& plan, std::string& error);
 
 // Where the layer and its manifest are: GBLENS_LAYER_DIR, else layer/ beside the gblens executable.
 std::string layerFolder();

@@ -237,7 +237,7 @@ bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFr
     in.renderdocCameraBuffer.assign(camera, camera + bytes);  // the matrices at the layout's offsets
   }
   if (!importFrame(in, out, error)) return false;
-  setImportedOptions(out, options_.options);
+  setImportedOptions(out, options_.options, options_.given);
   // B8G8R8A8 attachments come as the GPU stored them: R and B swapped back here (rgba8 in the layout).
   for (const nlohmann::json& t : frame.value("targets", nlohmann::json::array()))
     if (t.value("bgra", false) && out.indexOf(t.value("name", "")) >= 0) {

@@ -549,6 +549,15 @@ def invalid():
                "values": {"bufferView": 0}}))
     broken("invalid/zero_quaternion.gltf", "rotation is a zero quaternion",
            lambda g: g.doc["nodes"][0].update(rotation=[0, 0, 0, 0]))
+    # Indices of 2^32 and more: tinygltf holds an int, so 2^32 would wrap to 0 and name what exists.
+    broken("invalid/wrapped_buffer_view.gltf", "accessor bufferView 4294967296 does not exist",
+           lambda g: g.doc["accessors"][0].update(bufferView=1 << 32))
+    broken("invalid/wrapped_buffer.gltf", "bufferView buffer 4294967296 does not exist",
+           lambda g: g.doc["bufferViews"][0].update(buffer=1 << 32))
+    broken("invalid/wrapped_mesh.gltf", "node mesh 4294967296 does not exist",
+           lambda g: g.doc["nodes"][0].update(mesh=1 << 32))
+    broken("invalid/wrapped_position.gltf", "primitive attributes.POSITION 4294967296 does not exist",
+           lambda g: g.doc["meshes"][0]["primitives"][0]["attributes"].update(POSITION=1 << 32))
 
 
 def main():

@@ -1,0 +1,61 @@
+// gblens attach's flags and their checks (see attach_args.h).
+#include "app/cli/attach_args.h"
+
+#include <cmath>
+
+#include "app/cli/params.h"
+
+namespace gb {
+
+void addAttachOptions(CLI::App* cmd, AttachOptions& o) {
+  cmd->add_option("--layout", o.layout, "what the G-buffer holds and where (a layout file with live sources, or builtin:NAME)");
+  cmd->add_option("--param", o.params, "NAME=VALUE: an option value for a parameterised layout (e.g. normal_format=oct-rg16)")
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd->add_option("--capture-frame", o.captureFrame, "write the Nth streamed frame (1: the first) as a capture, then detach")
+      ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));
+  cmd->add_option("-o,--output", o.output, "the capture folder --capture-frame writes (atomically); --suggest: the draft layout's file");
+  cmd->add_option("--frames", o.frames, "receive and decode K streamed frames, write nothing (with --stats: the costs)")
+      ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));
+  cmd->add_option("--every", o.every, "stream every Nth frame of the application")->check(CLI::Range(1u, 100000u))->capture_default_str();
+  cmd->add_flag("--suggest", o.suggest,
+                "without --layout: draft a layout from the render passes and texels the layer sees and stream under it "
+                "(the viewer; -o or no display: write the draft); with --layout: show the passes beside the stream");
+  cmd->add_flag("--stats", o.stats, "print the layer's costs (frame time, memory, drops, latency) as JSON");
+  cmd->add_option("--timeout", o.timeout, "give up when no frame came within this many seconds")->capture_default_str();
+  cmd->add_option("--window", o.window, "the viewer's window size WxH")->capture_default_str();
+  cmd->add_option("--event-log", o.eventLog, "the viewer: append its events (frames received, layout, hover, capture) as JSON lines");
+  cmd->add_option("--probe-log", o.probeLog, "the viewer: append each pixel dossier (a click) as one JSON line to FILE");
+  cmd->add_flag("--paused", o.paused, "the viewer: start paused on the first frame (Space resumes)");
+  cmd->add_option("APP", o.app, "the application and its arguments (after --)")->required();
+}
+
+bool checkAttachOptions(const AttachOptions& o, LiveOptions& lo, std::string& error) {
+  const bool draft = o.suggest && o.layout.empty();  // --suggest drafting the layout
+  const bool viewer = !o.captureFrame && !o.frames && !draft;
+  auto refuse = [&](const std::string& why) {
+    error = why;
+    return false;
+  };
+  if (viewer && o.layout.empty())
+    return refuse("--layout: required for the viewer (a layout file, docs/layout-format.md, or builtin:NAME), or --suggest "
+                  "to draft one");
+  if (!viewer && !(draft && o.output.empty()) && (!o.eventLog.empty() || !o.probeLog.empty() || o.paused))
+    return refuse("--event-log, --probe-log and --paused are the viewer's");
+  if (draft && (o.captureFrame || o.frames)) return refuse("--suggest: drafts a layout; --capture-frame and --frames need --layout");
+  if (o.captureFrame && o.output.empty()) return refuse("-o: required with --capture-frame (the capture folder to write)");
+  if (!o.captureFrame && !draft && !o.output.empty())
+    return refuse("-o: writes the frame --capture-frame names, or the layout --suggest drafts");
+  if ((o.captureFrame || o.frames) && o.layout.empty())
+    return refuse("--layout: required (a layout file, docs/layout-format.md, or builtin:NAME)");
+  if (!(o.timeout > 0.0) || !std::isfinite(o.timeout)) return refuse("--timeout: expected a positive number of seconds");
+  lo = LiveOptions{};
+  lo.layout = o.layout;
+  lo.argv = o.app;
+  lo.every = o.every;
+  lo.onlyFrame = o.captureFrame;
+  lo.suggest = o.suggest;
+  return parseLayoutParameters(o.params, lo.options, error, &lo.given);
+}
+
+}  // namespace gb

@@ -1,0 +1,33 @@
+// gblens attach's command line (cmd_attach.cpp runs it): the flags, and every check of them that
+// needs no application, apart from the command so that tests/fuzz/fuzz_attach.cpp can parse and
+// check command lines without starting anything or opening a window.
+#pragma once
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "views/live/live.h"
+
+namespace gb {
+
+struct AttachOptions {
+  std::string layout, output;
+  std::vector<std::string> params, app;
+  uint32_t every = 1;
+  uint64_t captureFrame = 0, frames = 0;
+  bool suggest = false, stats = false;
+  double timeout = 300.0;
+  std::string window = "1280x800", eventLog, probeLog;  // the viewer's
+  bool paused = false;
+};
+
+// The flags of `gblens attach` on `cmd`, parsed into `o`.
+void addAttachOptions(CLI::App* cmd, AttachOptions& o);
+
+// The flags' combinations (one line naming the flag when they do not go together) and what the
+// session is asked: `lo` (layout, --param values, the application, --every, the frame, --suggest).
+bool checkAttachOptions(const AttachOptions& o, LiveOptions& lo, std::string& error);
+
+}  // namespace gb
