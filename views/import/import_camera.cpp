@@ -77,6 +77,12 @@ bool findSidecar(const ImportInput& in, const std::string& where, std::string& s
 bool resolveCamera(const ImportInput& in, LayoutCamera& c, uint32_t w, uint32_t h, std::string& error) {
   const std::string file = in.layout.file.empty() ? std::string("layout") : in.layout.file;
   const std::string where = file + ": camera";
+  // camera.live names a running application's binding: only attach (which hands its bytes over as a
+  // capture buffer's) has them; every other import refuses it rather than use no matrices.
+  if (c.live && in.liveTexels.empty()) {
+    error = importCameraRefusal(in.layout);
+    return false;
+  }
   std::string sidecar = !in.cameraFile.empty() ? in.cameraFile : c.sidecar;
   if (!sidecar.empty()) {
     if (in.cameraFile.empty() && !findSidecar(in, where, sidecar, error)) return false;
