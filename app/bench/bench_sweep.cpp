@@ -24,7 +24,7 @@ namespace gb {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double sweepSeconds(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
@@ -143,13 +143,13 @@ void sweepRow(Run& run, Scene& scene, Renderer& r, ReferenceCache& cache, const 
   // is left after the typical row's time is set aside for each row to come, so slow rows (4096
   // lights) get their frames when the run is on schedule.
   const auto rowStart = Clock::now();
-  double left = 0.85 * p.settings.budget - since(run.start);
+  double left = 0.85 * p.settings.budget - sweepSeconds(run.start);
   double typical = run.rowSeconds.empty() ? 10.0 : timingOf(run.rowSeconds).median;
   double cap = std::min(p.settings.variantSeconds, std::max(left - typical * double(run.rowsTotal - run.rowsDone), 0.0));
   timeVariant(r, row.options, p.settings, p.frames, cap, row);
   auto render = [&](const RenderOptions& ro, const std::vector<Target>& t) { return renderSnapshot(r, ro, t); };
   FrameError e = measureFrame(render, row.options, cache).error;
-  run.rowSeconds.push_back(since(rowStart));
+  run.rowSeconds.push_back(sweepSeconds(rowStart));
   row.error = errorSummary(e);
   row.errorDetail = errorJson(e);
   row.measured = true;
@@ -161,7 +161,7 @@ void sweepRow(Run& run, Scene& scene, Renderer& r, ReferenceCache& cache, const 
                run.rowsDone, run.rowsTotal, scene.source.c_str(), row.name.c_str(), row.frames, row.frameMs.median,
                row.frameMs.min, row.frameMs.max, row.error["normal_deg_mean"], row.error["position_rel_mean"],
                100.0 * row.error["shadow_mismatch"], row.error["lighting_rel_mean"], row.error["hdr_rel_mean"],
-               minutes(since(run.start)).c_str());
+               minutes(sweepSeconds(run.start)).c_str());
 }
 
 // Variants whose errors are no worse than the defaults': only time can make them dominate, so it
@@ -177,7 +177,7 @@ void abChecks(Run& run, Scene& scene) {
     if (!v || v->note.rfind("same options", 0) == 0) continue;
     // Up to --ab-pairs pairs, within a quarter of the budget left; at least 6 (a 97% interval of
     // the median needs 6 ratios: the whole range).
-    double left = p.settings.budget - since(run.start);
+    double left = p.settings.budget - sweepSeconds(run.start);
     int pairs = std::clamp(int(left / 4.0 / std::max(v->frameMs.median * 2e-3, 1e-3)), 0, p.settings.abPairs);
     if (pairs < 6) continue;
     Renderer ra, rb;  // both fresh: neither side inherits the sweep's history
@@ -219,7 +219,7 @@ void sweepScene(Run& run, Scene& scene) {
   for (const BenchVariant& v : p.variants) sweepRow(run, scene, r, cache, v, measuredRows);
   const std::string defaultKey = optionsJson(p.defaults).dump();
   if (measuredRows.count(defaultKey)) abChecks(run, scene);
-  if (measuredRows.count(defaultKey) && since(run.start) < 0.9 * p.settings.budget)
+  if (measuredRows.count(defaultKey) && sweepSeconds(run.start) < 0.9 * p.settings.budget)
     repeatDefaults(run, scene, r, measuredRows[defaultKey]);
   if (scene.generatedLights) generateLights(scene, p.defaults.lights);
   destroyRenderer(r);
@@ -301,7 +301,7 @@ BenchReport runBench(GpuContext& ctx, const BenchPlan& p) {
     Scene temple = loadScene("builtin:temple", p.defaults.lights);
     report.methods = methodStudy(ctx, temple, p.defaults, s.methods);
     report.skips = skipSavings(ctx, temple, p.defaults, 6);
-    std::fprintf(stderr, "gblens bench: method comparison done [%s]\n", minutes(since(run.start)).c_str());
+    std::fprintf(stderr, "gblens bench: method comparison done [%s]\n", minutes(sweepSeconds(run.start)).c_str());
   }
   // Every scene first: one that does not load is skipped before the budget is shared out.
   std::vector<std::string> skippedScenes;
@@ -316,7 +316,7 @@ BenchReport runBench(GpuContext& ctx, const BenchPlan& p) {
   }
   run.rowsTotal = p.variants.size() * scenes.size();
   for (std::unique_ptr<Scene>& scene : scenes) sweepScene(run, *scene);
-  if (s.depthRange == "on" && !p.variants.empty() && since(run.start) < 0.95 * s.budget) {
+  if (s.depthRange == "on" && !p.variants.empty() && sweepSeconds(run.start) < 0.95 * s.budget) {
     report.depthRange = depthRangeStudy(ctx, p.defaults);
     report.depthTest = depthTestStudy(ctx, p.defaults, {1e-3, 1e-4, 1e-5});
   }
@@ -324,10 +324,10 @@ BenchReport runBench(GpuContext& ctx, const BenchPlan& p) {
     std::fprintf(stderr, "gblens bench: no time left for the depth-range study (--budget)\n");
   if (p.runAttach) {
     report.attach = attachStudy(s.attach);
-    std::fprintf(stderr, "gblens bench: attach done [%s]\n", minutes(since(run.start)).c_str());
+    std::fprintf(stderr, "gblens bench: attach done [%s]\n", minutes(sweepSeconds(run.start)).c_str());
   }
   report.meta["skipped_scenes"] = skippedScenes;
-  report.meta["seconds"] = since(run.start);
+  report.meta["seconds"] = sweepSeconds(run.start);
   markFrontiers(report.rows);
   report.defaults = checkDefaults(report.rows, report.tolerances);
   return report;

@@ -28,7 +28,7 @@ namespace gb {
 
 namespace {
 
-int fail(const std::string& message) {
+int attachFail(const std::string& message) {
   std::fprintf(stderr, "gblens attach: %s\n", oneLine(message).c_str());
   return 2;
 }
@@ -76,7 +76,7 @@ int writeFrame(const AttachOptions& o, const LiveSession& s, const FrameSnapshot
   meta.scene = "attach: " + appText(o) + " (application frame " + std::to_string(info.appFrame) + ")";
   meta.commandLine = commandLine();
   std::string error;
-  if (!writeCapture(o.output, frame, meta, error)) return fail(error);
+  if (!writeCapture(o.output, frame, meta, error)) return attachFail(error);
   std::printf("attached to %s (%s): wrote application frame %llu (streamed frame %llu) with layout %s into %s\n",
               field(s.hello(), "application", std::string("?")).c_str(), meta.device.c_str(), (unsigned long long)info.appFrame,
               (unsigned long long)info.stream, o.layout.c_str(), o.output.c_str());
@@ -108,7 +108,7 @@ int runViewerOnStream(const AttachOptions& o, LiveSession& s, const LiveSuggesti
       why = "--timeout " + std::to_string(int(o.timeout)) + " s: no frame came";
     if (!why.empty()) {
       s.detach();
-      return fail(why);
+      return attachFail(why);
     }
   }
   printReports(s);
@@ -158,7 +158,7 @@ int runSuggestLive(const AttachOptions& o, const LiveOptions& lo) {
                               [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); }, error);
   for (const std::string& r : suggested.reports) std::fprintf(stderr, "gblens attach: %s\n", r.c_str());
   if (!suggested.passes.empty()) std::fputs(suggested.passes.c_str(), stderr);
-  if (!ok) return fail(error);
+  if (!ok) return attachFail(error);
   for (const std::string& line : suggested.summary) std::fprintf(stderr, "  %s\n", line.c_str());
   if (viewer) return runViewerOnStream(o, s, &suggested);
   const std::string text = suggested.draft.dump(2) + "\n";
@@ -166,7 +166,7 @@ int runSuggestLive(const AttachOptions& o, const LiveOptions& lo) {
   if (o.output.empty()) {
     std::fputs(text.c_str(), stdout);
   } else if (!writeTextAtomically(o.output, text, error)) {
-    return fail(o.output + ": cannot write the draft");
+    return attachFail(o.output + ": cannot write the draft");
   }
   std::fprintf(stderr, "gblens attach: draft%s%s; check every \"guess\", then: gblens attach --layout %s -- %s\n",
                o.output.empty() ? " on stdout" : " written to ", o.output.c_str(),
@@ -181,11 +181,11 @@ int runAttach(const AttachOptions& o) {
   const bool viewer = !o.captureFrame && !o.frames && !draft;
   LiveOptions lo;
   std::string error;
-  if (!checkAttachOptions(o, lo, error)) return fail(error);
+  if (!checkAttachOptions(o, lo, error)) return attachFail(error);
   if (draft) return runSuggestLive(o, lo);
   if (o.captureFrame) removeDebrisOf("attach", o.output);
   LiveSession s;
-  if (!s.start(lo, error)) return fail(error);
+  if (!s.start(lo, error)) return attachFail(error);
   if (viewer) return runViewerOnStream(o, s);
 
   int status = 2;
@@ -223,7 +223,7 @@ int runAttach(const AttachOptions& o) {
   s.detach();
   printReports(s);
   if (o.stats) std::printf("%s\n", statsJson(s).dump(2).c_str());
-  if (status != 0 && !why.empty()) fail(why);
+  if (status != 0 && !why.empty()) attachFail(why);
   const int app = s.waitApplication();
   if (app != 0) std::fprintf(stderr, "gblens attach: %s exited with status %d\n", o.app[0].c_str(), app);
   return status;

@@ -125,7 +125,7 @@ void printListing(const std::string& rdc, const RdcListing& l, const std::string
 }
 
 
-int fail(const std::string& message) {
+int importFail(const std::string& message) {
   // One line, whatever a library's message held.
   std::fprintf(stderr, "gblens import: %s\n", oneLine(message).c_str());
   return 2;
@@ -144,7 +144,7 @@ std::string sourceText(const LayoutTarget& t, const RenderDocImported& rdc) {
 
 // --suggest-layout: the draft to -o (atomically) or stdout, what was found on stderr.
 int runSuggest(const ImportOptions& o) {
-  if (!o.layout.empty()) return fail("--suggest-layout: drafts a layout; give no --layout");
+  if (!o.layout.empty()) return importFail("--suggest-layout: drafts a layout; give no --layout");
   SuggestRequest r;
   r.inputs = o.inputs;
   r.event = o.event;
@@ -152,12 +152,12 @@ int runSuggest(const ImportOptions& o) {
   r.progress = progress;
   Suggestion draft;
   std::string error;
-  if (!suggestLayout(r, draft, error)) return fail(error);
+  if (!suggestLayout(r, draft, error)) return importFail(error);
   const std::string text = draft.layout.dump(2) + "\n";
   if (o.output.empty()) {
     std::fputs(text.c_str(), stdout);
   } else {
-    if (!writeTextAtomically(o.output, text, error)) return fail(o.output + ": cannot write the draft");
+    if (!writeTextAtomically(o.output, text, error)) return importFail(o.output + ": cannot write the draft");
   }
   for (const std::string& line : draft.summary) std::fprintf(stderr, "  %s\n", line.c_str());
   std::string args = isRenderDocCapture(o.inputs[0]) ? o.inputs[0] : "";
@@ -173,35 +173,35 @@ int runSuggest(const ImportOptions& o) {
 int runImport(const ImportOptions& o) {
   showLibraryOutput(o.verbose);
   const bool rdc = o.inputs.size() == 1 && isRenderDocCapture(o.inputs[0]);
-  if (o.inputs.empty() && o.layout.empty()) return fail("INPUT: give image files and --layout, or a RenderDoc capture");
+  if (o.inputs.empty() && o.layout.empty()) return importFail("INPUT: give image files and --layout, or a RenderDoc capture");
   for (const std::string& input : o.inputs)
-    if (isRenderDocCapture(input) && !rdc) return fail(input + ": a RenderDoc capture is imported on its own");
+    if (isRenderDocCapture(input) && !rdc) return importFail(input + ": a RenderDoc capture is imported on its own");
   if (o.list) {
-    if (!rdc) return fail("--list: lists a RenderDoc capture (one .rdc)");
+    if (!rdc) return importFail("--list: lists a RenderDoc capture (one .rdc)");
     RdcListing listing;
     std::string error;
     progress("listing " + o.inputs[0] + " (RenderDoc replays it)");
-    if (!listRenderDocCapture(o.inputs[0], listing, error)) return fail(error);
+    if (!listRenderDocCapture(o.inputs[0], listing, error)) return importFail(error);
     std::string note;
     addBindings(o.inputs[0], listing, note);
     printListing(o.inputs[0], listing, note);
     return 0;
   }
   if (o.suggest) return runSuggest(o);
-  if (o.layout.empty()) return fail("--layout: required (a layout file, docs/layout-format.md, or builtin:gblens)");
-  if (o.output.empty()) return fail("-o: required (the capture folder to write)");
-  if (!rdc && (o.event || !o.pass.empty())) return fail(std::string(o.event ? "--event" : "--pass") + ": applies to a RenderDoc capture (.rdc)");
+  if (o.layout.empty()) return importFail("--layout: required (a layout file, docs/layout-format.md, or builtin:gblens)");
+  if (o.output.empty()) return importFail("-o: required (the capture folder to write)");
+  if (!rdc && (o.event || !o.pass.empty())) return importFail(std::string(o.event ? "--event" : "--pass") + ": applies to a RenderDoc capture (.rdc)");
 
   RenderOptions options;
   std::string error;
   std::vector<std::string> stated;  // the options the user gave: facts the capture records
   if (!parseLayoutParameters(o.params, options, error, &stated) ||
       (!o.size.empty() && !setOption(options, "size", o.size, error)))
-    return fail(error);
+    return importFail(error);
   removeDebrisOf("import", o.output);
   ImportInput in;
-  if (!loadImportLayout(o.layout, layoutParameters(options), in.layout, in.layoutDir, error)) return fail(error);
-  if (const std::string why = importCameraRefusal(in.layout); !why.empty()) return fail(why);
+  if (!loadImportLayout(o.layout, layoutParameters(options), in.layout, in.layoutDir, error)) return importFail(error);
+  if (const std::string why = importCameraRefusal(in.layout); !why.empty()) return importFail(why);
   if (!o.size.empty()) in.layout.width = options.width, in.layout.height = options.height;
   in.cameraFile = o.camera;
   in.allowOutsideSources = o.allowOutside;
@@ -209,14 +209,14 @@ int runImport(const ImportOptions& o) {
   if (rdc) {
     RenderDocImport r{o.inputs[0], o.event, o.pass, !o.camera.empty(), {}};
     progress("reading " + o.inputs[0] + " (RenderDoc replays it: the listing, the texels, the camera's buffer)");
-    if (!readRenderDocImport(r, in, read, error)) return fail(error);
+    if (!readRenderDocImport(r, in, read, error)) return importFail(error);
   } else {
     in.files = o.inputs;
   }
 
   FrameSnapshot frame;
   progress("decoding " + std::to_string(in.layout.targets.size()) + " targets with layout " + o.layout);
-  if (!importFrame(in, frame, error)) return fail(error);
+  if (!importFrame(in, frame, error)) return importFail(error);
   // The options the layout was resolved with are the frame's (gblens's own frames: how it was rendered).
   setImportedOptions(frame, options, stated);
   // gblens's own layout: a target the capture does not hold says why, as gblens's captures do (a
@@ -240,7 +240,7 @@ int runImport(const ImportOptions& o) {
   }
   meta.commandLine = commandLine();
   progress("writing " + o.output);
-  if (!writeCapture(o.output, frame, meta, error)) return fail(error);
+  if (!writeCapture(o.output, frame, meta, error)) return importFail(error);
 
   std::printf("imported %s (%ux%u) with layout %s into %s\n", rdc ? o.inputs[0].c_str() : "files", frame.camera.width,
               frame.camera.height, o.layout.c_str(), o.output.c_str());

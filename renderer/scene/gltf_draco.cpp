@@ -15,8 +15,6 @@ namespace {
 
 const char kDraco[] = "KHR_draco_mesh_compression";
 
-bool inRange(int index, size_t size) { return index >= 0 && size_t(index) < size; }
-
 // Appends `bytes` as a buffer view of a new buffer and an accessor over it; returns the accessor.
 int addAccessor(Doc& doc, std::vector<unsigned char> bytes, const tinygltf::Accessor& like, int componentType,
                 size_t count) {

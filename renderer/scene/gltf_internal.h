@@ -130,5 +130,7 @@ void buildNodes(Doc& doc, int lightCount);
 const tinygltf::Value* member(const tinygltf::Value& object, const char* key);
 bool number(const tinygltf::Value* v, double& out);  // finite numbers only
 const tinygltf::Value* extension(const tinygltf::ExtensionMap& extensions, const char* name);
+// An index glTF stores as int, valid for an array of SIZE elements.
+inline bool inRange(int index, size_t size) { return index >= 0 && size_t(index) < size; }
 
 }  // namespace gb::gltf

@@ -10,7 +10,6 @@ namespace gb::gltf {
 
 namespace {
 
-bool inRange(int index, size_t size) { return index >= 0 && size_t(index) < size; }
 
 void warnIgnored(const Doc& doc, const std::string& part, const std::string& what, const char* kind) {
   warn(doc, part + ": " + what + " (" + kind + " are not drawn: ignored)");

@@ -11,7 +11,6 @@ namespace {
 
 using tinygltf::Model;
 
-bool inRange(int index, size_t size) { return index >= 0 && size_t(index) < size; }
 
 // offset + length <= limit without overflow.
 bool fits(uint64_t offset, uint64_t length, uint64_t limit) { return offset <= limit && length <= limit - offset; }

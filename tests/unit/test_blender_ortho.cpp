@@ -38,7 +38,7 @@ bool importExr(const std::string& exr, const Layout& layout, FrameSnapshot& f, s
   return importFrame(in, f, error);
 }
 
-const Quantity& quantity(const FrameSnapshot& f, const char* name) {
+const Quantity& orthoQuantity(const FrameSnapshot& f, const char* name) {
   const Quantity* q = f.layout.findByName(name);
   if (!q) throw std::runtime_error(std::string("no quantity ") + name);
   return *q;
@@ -48,7 +48,7 @@ const Quantity& quantity(const FrameSnapshot& f, const char* name) {
 // fixture's test argues) plus Cycles' ray start within 0.005 px of the pixel centre (its 0.01 px
 // filter): for an orthographic camera a fixed distance, half a pixel's width times 0.01.
 double bound(const FrameSnapshot& f) {
-  const Quantity& position = quantity(f, "Position");
+  const Quantity& position = orthoQuantity(f, "Position");
   double s = 0.0;
   for (uint32_t y = 0; y < f.camera.height; ++y)
     for (uint32_t x = 0; x < f.camera.width; ++x) {
@@ -74,7 +74,7 @@ TEST(BlenderOrtho, FullFloatPassesImportAndPositionsFromDepthMatchThePositionPas
   EXPECT_NE(f.layout.camera.from.find("sidecar "), std::string::npos) << f.layout.camera.from;
   EXPECT_NE(f.layout.camera.from.find("ortho/camera.json"), std::string::npos) << f.layout.camera.from;
 
-  const Quantity &depth = quantity(f, "Depth"), &position = quantity(f, "Position");
+  const Quantity &depth = orthoQuantity(f, "Depth"), &position = orthoQuantity(f, "Position");
   const double b = bound(f);
   double worst = 0.0, worstAxial = 0.0;
   int surfaces = 0;
@@ -174,11 +174,11 @@ void expectDraftDecodesAsShipped(const std::string& dir) {
   for (uint32_t y = 0; y < a.camera.height; ++y)
     for (uint32_t x = 0; x < a.camera.width; ++x) {
       ASSERT_EQ(hasSurface(a, x, y), hasSurface(b, x, y)) << x << "," << y;
-      EXPECT_EQ(decodeInteger(a, *objectId, x, y), decodeInteger(b, quantity(b, "IndexOB"), x, y));
+      EXPECT_EQ(decodeInteger(a, *objectId, x, y), decodeInteger(b, orthoQuantity(b, "IndexOB"), x, y));
       if (!hasSurface(a, x, y)) continue;
       EXPECT_EQ(*decodePosition(a, *da, x, y), *decodePosition(b, *db, x, y)) << x << "," << y;
-      EXPECT_EQ(*decodePosition(a, *a.layout.find(QuantityKind::Position), x, y), *decodePosition(b, quantity(b, "Position"), x, y));
-      EXPECT_EQ(decodeNormal(a, *a.layout.find(QuantityKind::Normal), x, y).unit, decodeNormal(b, quantity(b, "Normal"), x, y).unit);
+      EXPECT_EQ(*decodePosition(a, *a.layout.find(QuantityKind::Position), x, y), *decodePosition(b, orthoQuantity(b, "Position"), x, y));
+      EXPECT_EQ(decodeNormal(a, *a.layout.find(QuantityKind::Normal), x, y).unit, decodeNormal(b, orthoQuantity(b, "Normal"), x, y).unit);
       ++compared;
     }
   EXPECT_GT(compared, a.camera.width * a.camera.height / 3);

@@ -14,7 +14,7 @@ namespace gb {
 namespace {
 
 using json = nlohmann::json;
-constexpr uint32_t kW = 32, kH = 24;
+constexpr uint32_t kRawW = 32, kRawH = 24;
 
 // The value written at texel (x, y): distinct everywhere, exact in float.
 float texel(uint32_t x, uint32_t y) { return float(y * 100 + x); }
@@ -22,12 +22,12 @@ float texel(uint32_t x, uint32_t y) { return float(y * 100 + x); }
 // Rows of 32 floats, each followed by `pad` bytes of 0xEE.
 std::string dump(size_t pad = 0, bool padLast = true) {
   std::string bytes;
-  for (uint32_t y = 0; y < kH; ++y) {
-    for (uint32_t x = 0; x < kW; ++x) {
+  for (uint32_t y = 0; y < kRawH; ++y) {
+    for (uint32_t x = 0; x < kRawW; ++x) {
       const float v = texel(x, y);
       bytes.append(reinterpret_cast<const char*>(&v), 4);
     }
-    if (y + 1 < kH || padLast) bytes.append(pad, char(0xEE));
+    if (y + 1 < kRawH || padLast) bytes.append(pad, char(0xEE));
   }
   return bytes;
 }
@@ -39,7 +39,7 @@ std::string import(const std::string& dir, const std::string& bytes, const json&
   json targets = {{{"name", "depth"}, {"format", "r32f"}, {"source", source},
                    {"quantities", {{{"quantity", "depth"}, {"name", "D"}, {"channels", {0}}, {"encoding", "eye"}}}}}};
   if (!more.is_null()) targets.push_back(more);
-  json layout = {{"format", "gblens-layout"}, {"version", 1}, {"size", {kW, kH}}, {"targets", targets}};
+  json layout = {{"format", "gblens-layout"}, {"version", 1}, {"size", {kRawW, kRawH}}, {"targets", targets}};
   ImportInput in;
   std::string error;
   if (!parseLayout(layout, dir + "/l.json", in.layout, error)) return "layout: " + error;
@@ -52,12 +52,12 @@ std::string import(const std::string& dir, const std::string& bytes, const json&
 
 // Every texel of `image` is texel(x, y).
 void expectTexels(const CpuImage& image) {
-  ASSERT_EQ(image.width, kW);
-  ASSERT_EQ(image.height, kH);
-  for (uint32_t y = 0; y < kH; ++y)
-    for (uint32_t x = 0; x < kW; ++x) {
+  ASSERT_EQ(image.width, kRawW);
+  ASSERT_EQ(image.height, kRawH);
+  for (uint32_t y = 0; y < kRawH; ++y)
+    for (uint32_t x = 0; x < kRawW; ++x) {
       float v = 0.0f;
-      std::memcpy(&v, &image.data[(size_t(y) * kW + x) * 4], 4);
+      std::memcpy(&v, &image.data[(size_t(y) * kRawW + x) * 4], 4);
       ASSERT_EQ(v, texel(x, y)) << x << "," << y;
     }
 }
@@ -72,7 +72,7 @@ TEST(ImportRaw, ASizeTheLayoutDoesNotExplainIsRefused) {
 
   // 100 bytes appended, or inserted after the fifth row: the same 3,172 bytes, both refused.
   std::string inserted = dump();
-  inserted.insert(5 * kW * 4, std::string(100, char(0x55)));
+  inserted.insert(5 * kRawW * 4, std::string(100, char(0x55)));
   for (const std::string& bytes : {dump() + std::string(100, '\0'), inserted}) {
     const std::string e = import(dir, bytes, plain);
     EXPECT_NE(e.find("d.bin: 3172 bytes, the layout explains 3072 (offset 0 + r32f 32x24)"), std::string::npos) << e;

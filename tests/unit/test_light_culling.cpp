@@ -21,7 +21,7 @@ static Camera testCamera(uint32_t width, uint32_t height) {
 }
 
 // The fractional part of i * k: a deterministic spread over [0, 1).
-static double spread(int i, double k) { return i * k - std::floor(i * k); }
+static double cullSpread(int i, double k) { return i * k - std::floor(i * k); }
 
 // Distance from `c` (eye space) to the ray from the eye through pixel (x, y)'s centre.
 static double distanceToCentreRay(const Camera& v, const glm::dvec3& c, uint32_t x, uint32_t y) {
@@ -37,10 +37,10 @@ TEST(LightCulling, ALightSkippedAsSubpixelMissesEveryPixelCentreRay) {
   int skipped = 0, kept = 0, subpixelKept = 0;
   for (int i = 0; i < 4000; ++i) {
     // Deterministic spread: depths 5..400, radii from 0.05 to 3 pixels' footprint.
-    double u = spread(i, 0.6180339887), w = spread(i, 0.7548776662);
-    double depth = 5.0 + 395.0 * spread(i, 0.5698402910);
+    double u = cullSpread(i, 0.6180339887), w = cullSpread(i, 0.7548776662);
+    double depth = 5.0 + 395.0 * cullSpread(i, 0.5698402910);
     double pixel = 2.0 * depth * std::tan(0.4) / v.height;
-    double radius = pixel * (0.05 + 3.0 * spread(i, 0.3141592653));
+    double radius = pixel * (0.05 + 3.0 * cullSpread(i, 0.3141592653));
     glm::dvec3 c = eyeFromEyeDepth(v, u * v.width - 0.5, w * v.height - 0.5, depth);
     bool skip = coversNoPixelCentre(v, c, radius);
     bool hit = false;
@@ -67,10 +67,10 @@ TEST(LightRect, HoldsEveryPixelWhoseCentreRayMeetsTheSphere) {
   const Camera v = testCamera(40, 24);
   int tight = 0, whole = 0, none = 0;
   for (int i = 0; i < 3000; ++i) {
-    double u = spread(i, 0.6180339887), w = spread(i, 0.7548776662);
-    double depth = -4.0 + 40.0 * spread(i, 0.5698402910);
+    double u = cullSpread(i, 0.6180339887), w = cullSpread(i, 0.7548776662);
+    double depth = -4.0 + 40.0 * cullSpread(i, 0.5698402910);
     // A third of the radii absolute (many reach the eye's plane), the rest 1% to 31% of the depth.
-    double radius = i % 3 == 0 ? 0.02 + 6.0 * spread(i, 0.3141592653) : std::abs(depth) * (0.01 + 0.3 * spread(i, 0.3141592653));
+    double radius = i % 3 == 0 ? 0.02 + 6.0 * cullSpread(i, 0.3141592653) : std::abs(depth) * (0.01 + 0.3 * cullSpread(i, 0.3141592653));
     glm::dvec3 c = eyeFromEyeDepth(v, (1.6 * u - 0.3) * v.width, (1.6 * w - 0.3) * v.height, 1.0);
     c *= depth;  // the point at eye depth `depth` on that ray (behind the eye when negative)
     PixelRect rect = sphereScreenRect(v, c, radius, 1e-6);

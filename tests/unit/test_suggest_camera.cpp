@@ -15,9 +15,9 @@
 namespace gb {
 namespace {
 
-constexpr uint32_t kW = 40, kH = 30;
+constexpr uint32_t kCamW = 40, kCamH = 30;
 
-struct Scene {
+struct CameraSetup {
   glm::dmat4 proj, view, model;
   bool rowMajor = false;
   bool leftHanded = false;  // D3D-style: the view looks down +Z, the projection's w is +z
@@ -32,7 +32,7 @@ void put(std::vector<uint8_t>& bytes, size_t offset, const glm::dmat4& m, bool r
 
 // The buffer: the model matrix (named "view_matrix", a lie) at 0, the projection at 64, the view
 // matrix at 128, projection * view at 192, the inverse projection at 256.
-RdcBinding buffer(const Scene& s) {
+RdcBinding buffer(const CameraSetup& s) {
   RdcBinding b;
   b.name = "camera_block";
   b.id = 77;
@@ -52,14 +52,14 @@ RdcBinding buffer(const Scene& s) {
 // World-space points on a grid of pixel centres at varying depth, placed through the setup's own
 // matrices (by hand: the pixel's NDC, the projection's inverse, then the inverse view), and their
 // hardware depth.
-CameraEvidence evidence(const Scene& s) {
+CameraEvidence evidence(const CameraSetup& s) {
   CameraEvidence e;
-  e.width = kW, e.height = kH;
+  e.width = kCamW, e.height = kCamH;
   const glm::dmat4 inverse = glm::inverse(s.proj * s.view);
-  for (uint32_t y = 1; y < kH; y += 3)
-    for (uint32_t x = 2; x < kW; x += 3) {
+  for (uint32_t y = 1; y < kCamH; y += 3)
+    for (uint32_t x = 2; x < kCamW; x += 3) {
       const double depth = 0.2 + 0.7 * double((x * 7 + y * 3) % 11) / 10.0;
-      const glm::dvec4 ndc((x + 0.5) / kW * 2.0 - 1.0, (y + 0.5) / kH * 2.0 - 1.0, depth, 1.0);
+      const glm::dvec4 ndc((x + 0.5) / kCamW * 2.0 - 1.0, (y + 0.5) / kCamH * 2.0 - 1.0, depth, 1.0);
       const glm::dvec4 w = inverse * ndc;
       CameraEvidence::Sample sample;
       sample.x = x, sample.y = y;
@@ -71,9 +71,9 @@ CameraEvidence evidence(const Scene& s) {
   return e;
 }
 
-Scene perspective(bool rowMajor, bool yDown) {
-  Scene s;
-  s.proj = glm::perspectiveRH_ZO(0.9, double(kW) / kH, 0.3, 50.0);
+CameraSetup perspective(bool rowMajor, bool yDown) {
+  CameraSetup s;
+  s.proj = glm::perspectiveRH_ZO(0.9, double(kCamW) / kCamH, 0.3, 50.0);
   s.proj[1][1] *= -1.0;  // Vulkan: y down the image
   const glm::dvec3 up(0.0, yDown ? -1.0 : 1.0, 0.0);
   s.view = glm::lookAtRH(glm::dvec3(3.0, 2.0 * up.y, 6.0), glm::dvec3(0.0, 0.5 * up.y, 0.0), up);
@@ -82,7 +82,7 @@ Scene perspective(bool rowMajor, bool yDown) {
   return s;
 }
 
-void expectFound(const Scene& s, const char* up, const char* projection) {
+void expectFound(const CameraSetup& s, const char* up, const char* projection) {
   const FoundCamera f = searchCamera({buffer(s)}, evidence(s));
   ASSERT_TRUE(f.found);
   SCOPED_TRACE(f.camera.dump());
@@ -107,17 +107,17 @@ TEST(SuggestCamera, FindsProjectionAndViewByStoredPositionsNotByNamesOrPlaces) {
 }
 
 TEST(SuggestCamera, FindsOrthographicAndReversedDepthAndLeftHandedViews) {
-  Scene ortho = perspective(false, false);
+  CameraSetup ortho = perspective(false, false);
   ortho.proj = glm::orthoRH_ZO(-4.0, 4.0, -3.0, 3.0, 0.5, 40.0);
   ortho.proj[1][1] *= -1.0;
   expectFound(ortho, "y", "orthographic");
-  Scene reversed = perspective(true, false);
-  reversed.proj = glm::perspectiveRH_ZO(0.9, double(kW) / kH, 50.0, 0.3);  // near and far swapped
+  CameraSetup reversed = perspective(true, false);
+  reversed.proj = glm::perspectiveRH_ZO(0.9, double(kCamW) / kCamH, 50.0, 0.3);  // near and far swapped
   reversed.proj[1][1] *= -1.0;
   expectFound(reversed, "y", "perspective");
-  Scene left = perspective(false, false);
+  CameraSetup left = perspective(false, false);
   left.leftHanded = true;
-  left.proj = glm::perspectiveLH_ZO(0.9, double(kW) / kH, 0.3, 50.0);
+  left.proj = glm::perspectiveLH_ZO(0.9, double(kCamW) / kCamH, 0.3, 50.0);
   left.proj[1][1] *= -1.0;
   left.view = glm::lookAtLH(glm::dvec3(3.0, 2.0, 6.0), glm::dvec3(0.0, 0.5, 0.0), glm::dvec3(0, 1, 0));
   expectFound(left, "y", "perspective");
@@ -125,7 +125,7 @@ TEST(SuggestCamera, FindsOrthographicAndReversedDepthAndLeftHandedViews) {
 
 // The positions decide: placed where the model matrix is, the draft would not match them.
 TEST(SuggestCamera, APlantedModelMatrixDoesNotFitThePositions) {
-  Scene s = perspective(false, false);
+  CameraSetup s = perspective(false, false);
   const FoundCamera f = searchCamera({buffer(s)}, evidence(s));
   ASSERT_TRUE(f.found);
   EXPECT_NE(f.camera["renderdoc"]["view_from_world"]["offset"], 256);

@@ -52,7 +52,7 @@ nlohmann::json poolJson(const FlipPool& p) {
           {"min", p.min}, {"max", p.max}};
 }
 
-std::string fmt(double v) {
+std::string flipFigure(double v) {
   char buf[32];
   std::snprintf(buf, sizeof(buf), "%.4g", v);
   return buf;
@@ -60,8 +60,8 @@ std::string fmt(double v) {
 
 // A pool's figures and the pixels they cover, on one line.
 std::string poolText(const FlipPool& p, PixelSet covers) {
-  return "mean " + fmt(p.mean) + " weighted median " + fmt(p.weightedMedian) + " quartiles " + fmt(p.weightedQuartile1) +
-         ".." + fmt(p.weightedQuartile3) + " min " + fmt(p.min) + " max " + fmt(p.max) + " over " +
+  return "mean " + flipFigure(p.mean) + " weighted median " + flipFigure(p.weightedMedian) + " quartiles " + flipFigure(p.weightedQuartile1) +
+         ".." + flipFigure(p.weightedQuartile3) + " min " + flipFigure(p.min) + " max " + flipFigure(p.max) + " over " +
          std::to_string(p.pixels) + " px (" + name(covers) + ")";
 }
 
@@ -157,14 +157,14 @@ nlohmann::json flipJson(const FlipResult& r) {
 std::string flipText(const FlipResult& r) {
   const FlipPool& p = r.pool;
   std::string thresholds = r.fail || r.warn ? "" : "; no threshold (reported only)";
-  if (r.fail) thresholds += "; fail over " + fmt(*r.fail);
-  if (r.warn) thresholds += "; warn over " + fmt(*r.warn);
+  if (r.fail) thresholds += "; fail over " + flipFigure(*r.fail);
+  if (r.warn) thresholds += "; warn over " + flipFigure(*r.warn);
   std::string out = std::string(r.verdict == Verdict::Pass ? "PASS " : r.verdict == Verdict::Warn ? "WARN " : "FAIL ") +
                     " " + r.target + std::string(26 - std::min<size_t>(26, r.target.size()), ' ') + " " +
                     (r.method == "hdr" ? "HDR-FLIP" : "LDR-FLIP") + " " + poolText(p, r.covers) + thresholds + "\n";
   if (r.method == "hdr")
-    out += "      exposures " + fmt(r.exposures.start) + " to " + fmt(r.exposures.stop) + " in " +
-           std::to_string(r.exposures.count) + " (ACES), " + fmt(r.ppd) + " pixels per degree\n";
+    out += "      exposures " + flipFigure(r.exposures.start) + " to " + flipFigure(r.exposures.stop) + " in " +
+           std::to_string(r.exposures.count) + " (ACES), " + flipFigure(r.ppd) + " pixels per degree\n";
   if (r.masked) {
     out += "      masked (deciding nothing): " + poolText(r.maskedPool, PixelSet::Masked) + "\n";
     out += "      all (deciding nothing):    " + poolText(r.allPool, PixelSet::All) + "\n";

@@ -29,13 +29,13 @@ const char* resultName(int exitCode) {
 }
 
 // JSON has no infinity: write it as the string "inf".
-nlohmann::json number(double v) { return std::isinf(v) ? nlohmann::json("inf") : nlohmann::json(v); }
+nlohmann::json jsonNumber(double v) { return std::isinf(v) ? nlohmann::json("inf") : nlohmann::json(v); }
 
 nlohmann::json figuresJson(const GroupFigures& f) {
   nlohmann::json metrics = nlohmann::json::object();
-  for (auto& [k, v] : f.metrics.items()) metrics[k] = v.is_number_float() ? number(v.get<double>()) : v;
-  return {{"covers", name(f.covers)},          {"pixels", f.pixels},         {"max_error", number(f.maxError)},
-          {"mean_error", number(f.meanError)}, {"over_warn", f.overWarn},    {"over_fail", f.overFail},
+  for (auto& [k, v] : f.metrics.items()) metrics[k] = v.is_number_float() ? jsonNumber(v.get<double>()) : v;
+  return {{"covers", name(f.covers)},          {"pixels", f.pixels},         {"max_error", jsonNumber(f.maxError)},
+          {"mean_error", jsonNumber(f.meanError)}, {"over_warn", f.overWarn},    {"over_fail", f.overFail},
           {"metrics", metrics}};
 }
 
@@ -119,7 +119,7 @@ nlohmann::json CompareReport::json() const {
     const Thresholds& t = g.thresholds;
     nlohmann::json j = {{"key", g.group.key}, {"target", g.target}, {"kind", name(g.group.kind)}};
     j.update(figuresJson(g.figures));
-    j["thresholds"] = {{"fail", t.fail}, {"failpercent", t.failPercent}, {"hardfail", number(t.hardFail)},
+    j["thresholds"] = {{"fail", t.fail}, {"failpercent", t.failPercent}, {"hardfail", jsonNumber(t.hardFail)},
                        {"warn", t.warn}, {"warnpercent", t.warnPercent}};
     const GroupFigures *masked = g.figuresOver(PixelSet::Masked), *all = g.figuresOver(PixelSet::All);
     j["masked"] = masked ? figuresJson(*masked) : nlohmann::json(nullptr);

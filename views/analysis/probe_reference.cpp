@@ -48,7 +48,7 @@ void compare(const FrameSnapshot& f, const PixelDossier& d, ReferencePixel& r) {
   if (f.options.fairies) r.note += std::string(r.note.empty() ? "" : "; ") + "fairy sprites are in the stored hdr, not in the reference";
 }
 
-std::string v3(const glm::dvec3& v) {
+std::string v3Text(const glm::dvec3& v) {
   char b[96];
   std::snprintf(b, sizeof b, "(%.9g, %.9g, %.9g)", v.x, v.y, v.z);
   return b;
@@ -90,12 +90,12 @@ std::string referenceText(const ReferencePixel& r) {
   std::string o = "\nreference (ray traced, double):\n";
   if (s.hit) {
     char b[320];
-    std::snprintf(b, sizeof b, "  normal %s  eye depth %.9g\n  position eye %s world %s\n", v3(s.normal).c_str(),
-                  s.eyeDepth, v3(s.eye).c_str(), v3(s.world).c_str());
+    std::snprintf(b, sizeof b, "  normal %s  eye depth %.9g\n  position eye %s world %s\n", v3Text(s.normal).c_str(),
+                  s.eyeDepth, v3Text(s.eye).c_str(), v3Text(s.world).c_str());
     o += b;
-    std::snprintf(b, sizeof b, "  albedo %s  specular %.6g  sun %s  primitive_id %u\n  hdr %s\n", v3(s.albedo).c_str(),
+    std::snprintf(b, sizeof b, "  albedo %s  specular %.6g  sun %s  primitive_id %u\n  hdr %s\n", v3Text(s.albedo).c_str(),
                   s.specular, s.sunVisible < 0 ? "not evaluated" : s.sunVisible ? "reached" : "blocked", s.primitiveId,
-                  v3(r.hdr).c_str());
+                  v3Text(r.hdr).c_str());
     o += b;
   } else {
     o += "  no surface (sky)\n";

@@ -11,11 +11,6 @@ namespace gb {
 
 namespace {
 
-std::string targetWhere(const Layout& l, uint32_t t) {
-  return (l.file.empty() ? std::string("layout") : l.file) + ": targets[" + std::to_string(t) + "]: \"" +
-         l.targets[t].name + "\"";
-}
-
 // The GPU format a layout storage format names, if it is one (rgba16f, d32s8, ...).
 std::optional<TexelFormat> gpuFormat(const StorageFormat& f) {
   for (int i = 0; i <= int(TexelFormat::D16); ++i)
@@ -95,7 +90,7 @@ bool checkTexels(const Layout& layout, uint32_t t, const RdcTexels& got, std::st
   else  // a format gblens does not render to (rg16_snorm, r8_unorm, ...): tightly packed texels of its size
     same = !want && got.bytes.size() == size_t(tex.width) * tex.height * lt.format.packedBytes();
   if (!same) {
-    error = targetWhere(layout, t) + ": format: the capture's texture \"" + lt.source.resource + "\" is " + tex.format +
+    error = layoutTargetWhere(layout, t) + ": format: the capture's texture \"" + lt.source.resource + "\" is " + tex.format +
             ", the layout says " + lt.format.name;
     return false;
   }

@@ -39,7 +39,7 @@ const Word kWords[] = {
     {"count", QuantityKind::Count},        {"mist", QuantityKind::Scalar},
 };
 
-std::string lower(std::string s) {
+std::string lowerCase(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return s;
 }
@@ -103,7 +103,7 @@ std::string storageFormatName(const std::string& r) {
   const std::string channels = std::string("r") + (m[3].matched ? "g" : "") + (m[4].matched ? "b" : "") + (m[5].matched ? "a" : "");
   if (m[4].matched && !m[3].matched) return "";
   const std::string type = m[6];
-  const std::string suffix = type == "FLOAT" ? "f" : "_" + lower(type);
+  const std::string suffix = type == "FLOAT" ? "f" : "_" + lowerCase(type);
   const std::string text = channels + m[2].str() + suffix;
   StorageFormat f;
   return parseStorageFormat(text, f) ? text : "";

@@ -110,14 +110,14 @@ bool applyViewKey(ViewerModel& m, int digit) {
   return false;
 }
 
-static ImU32 rgb(float r, float g, float b, float a = 1.0f) { return ImGui::ColorConvertFloat4ToU32(ImVec4(r, g, b, a)); }
+static ImU32 panelColour(float r, float g, float b, float a = 1.0f) { return ImGui::ColorConvertFloat4ToU32(ImVec4(r, g, b, a)); }
 
 // Outline of one texel (or a crosshair where a texel is smaller than a few pixels).
 static void markTexel(ImDrawList* dl, const Placement& pl, glm::ivec2 t, ImU32 colour, const Rect& clip) {
   glm::dvec2 a = windowAt(pl, glm::dvec2(t)), b = windowAt(pl, glm::dvec2(t) + 1.0);
   dl->PushClipRect(ImVec2(float(clip.x), float(clip.y)), ImVec2(float(clip.x + clip.w), float(clip.y + clip.h)), true);
   if (pl.scale >= 4.0) {
-    dl->AddRect(ImVec2(float(a.x) - 1, float(a.y) - 1), ImVec2(float(b.x) + 1, float(b.y) + 1), rgb(0, 0, 0), 0, 0, 3.0f);
+    dl->AddRect(ImVec2(float(a.x) - 1, float(a.y) - 1), ImVec2(float(b.x) + 1, float(b.y) + 1), panelColour(0, 0, 0), 0, 0, 3.0f);
     dl->AddRect(ImVec2(float(a.x) - 1, float(a.y) - 1), ImVec2(float(b.x) + 1, float(b.y) + 1), colour, 0, 0, 1.5f);
   } else {
     glm::dvec2 c = (a + b) * 0.5;
@@ -125,8 +125,8 @@ static void markTexel(ImDrawList* dl, const Placement& pl, glm::ivec2 t, ImU32 c
     for (int s : {-1, 1}) {
       ImVec2 h0(float(c.x) + s * gap, float(c.y)), h1(float(c.x) + s * (gap + len), float(c.y));
       ImVec2 v0(float(c.x), float(c.y) + s * gap), v1(float(c.x), float(c.y) + s * (gap + len));
-      dl->AddLine(h0, h1, rgb(0, 0, 0), 3.0f);
-      dl->AddLine(v0, v1, rgb(0, 0, 0), 3.0f);
+      dl->AddLine(h0, h1, panelColour(0, 0, 0), 3.0f);
+      dl->AddLine(v0, v1, panelColour(0, 0, 0), 3.0f);
       dl->AddLine(h0, h1, colour, 1.5f);
       dl->AddLine(v0, v1, colour, 1.5f);
     }
@@ -205,20 +205,20 @@ static void drawMarks(const ViewerModel& m, const SlotDraw& v, const Placement& 
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const Rect& r = v.rect;
   if (!m.views[size_t(v.view)].sun) {
-    if (v.hover.texel) markTexel(dl, pl, *v.hover.texel, rgb(1, 1, 1), r);
-    if (m.probePixel) markTexel(dl, pl, *m.probePixel, rgb(0.2f, 1.0f, 0.4f), r);
+    if (v.hover.texel) markTexel(dl, pl, *v.hover.texel, panelColour(1, 1, 1), r);
+    if (m.probePixel) markTexel(dl, pl, *m.probePixel, panelColour(0.2f, 1.0f, 0.4f), r);
     if (m.region) {  // the region statistics' rectangle, in every screen view
       const RegionRect& g = *m.region;
       glm::dvec2 a = windowAt(pl, glm::dvec2(g.x, g.y)), b = windowAt(pl, glm::dvec2(g.x + g.width, g.y + g.height));
       dl->PushClipRect(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), true);
-      dl->AddRect(ImVec2(float(a.x), float(a.y)), ImVec2(float(b.x), float(b.y)), rgb(0, 0, 0), 0, 0, 3.0f);
-      dl->AddRect(ImVec2(float(a.x), float(a.y)), ImVec2(float(b.x), float(b.y)), rgb(1.0f, 0.8f, 0.1f), 0, 0, 1.5f);
+      dl->AddRect(ImVec2(float(a.x), float(a.y)), ImVec2(float(b.x), float(b.y)), panelColour(0, 0, 0), 0, 0, 3.0f);
+      dl->AddRect(ImVec2(float(a.x), float(a.y)), ImVec2(float(b.x), float(b.y)), panelColour(1.0f, 0.8f, 0.1f), 0, 0, 1.5f);
       dl->PopClipRect();
     }
   } else {
-    if (v.hover.shadowTexel) markTexel(dl, pl, *v.hover.shadowTexel, rgb(1, 1, 1), r);
-    if (m.shadowTexelOfProbe) markTexel(dl, pl, *m.shadowTexelOfProbe, rgb(0.2f, 1.0f, 0.4f), r);
-    if (m.shadowMark) markTexel(dl, pl, *m.shadowMark, rgb(1, 0, 1), r);
+    if (v.hover.shadowTexel) markTexel(dl, pl, *v.hover.shadowTexel, panelColour(1, 1, 1), r);
+    if (m.shadowTexelOfProbe) markTexel(dl, pl, *m.shadowTexelOfProbe, panelColour(0.2f, 1.0f, 0.4f), r);
+    if (m.shadowMark) markTexel(dl, pl, *m.shadowMark, panelColour(1, 0, 1), r);
   }
 }
 
@@ -287,15 +287,15 @@ static void drawLabels(const ViewerModel& m, const SlotDraw& v, const ResolvedRa
   float boxW = std::max(ls.x, ImGui::CalcTextSize(line2.c_str()).x) + 10;
   float boxH = ls.y * (line2.empty() ? 1 : 2) + 6;
   // Compare: the box is coloured by the side shown (A blue, B orange), so a flip is seen at once.
-  const ImU32 box = m.source != FrameSource::Compare || v.split ? rgb(0, 0, 0, 0.6f)
-                    : v.side == FrameSide::A                    ? rgb(0.1f, 0.25f, 0.6f, 0.85f)
-                    : v.side == FrameSide::B                    ? rgb(0.6f, 0.3f, 0.05f, 0.85f)
-                                                                : rgb(0, 0, 0, 0.6f);
+  const ImU32 box = m.source != FrameSource::Compare || v.split ? panelColour(0, 0, 0, 0.6f)
+                    : v.side == FrameSide::A                    ? panelColour(0.1f, 0.25f, 0.6f, 0.85f)
+                    : v.side == FrameSide::B                    ? panelColour(0.6f, 0.3f, 0.05f, 0.85f)
+                                                                : panelColour(0, 0, 0, 0.6f);
   dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x) + boxW, float(r.y) + boxH), box);
-  dl->AddText(ImVec2(float(r.x) + 5, float(r.y) + 3), rgb(1, 1, 1), label);
+  dl->AddText(ImVec2(float(r.x) + 5, float(r.y) + 3), panelColour(1, 1, 1), label);
   if (!line2.empty())
     dl->AddText(ImVec2(float(r.x) + 5, float(r.y) + 3 + ls.y),
-                range.stats.nan || range.stats.inf ? rgb(1, 0.4f, 1) : rgb(0.8f, 0.8f, 0.8f), line2.c_str());
+                range.stats.nan || range.stats.inf ? panelColour(1, 0.4f, 1) : panelColour(0.8f, 0.8f, 0.8f), line2.c_str());
   // Legends where there is room for them beside the image (not over a grid tile, where they would
   // cover the label and the picture and their ticks would run together).
   const bool room = r.w > 200 && r.h > 200;
@@ -317,8 +317,8 @@ static void drawLabels(const ViewerModel& m, const SlotDraw& v, const ResolvedRa
   }
   if (v.split) {  // the split line and its handle
     float x = float(r.x + r.w * m.splitAt);
-    dl->AddLine(ImVec2(x, float(r.y)), ImVec2(x, float(r.y + r.h)), rgb(1, 1, 1), 2.0f);
-    dl->AddCircleFilled(ImVec2(x, float(r.y + r.h * 0.5)), 6.0f, rgb(1, 1, 1));
+    dl->AddLine(ImVec2(x, float(r.y)), ImVec2(x, float(r.y + r.h)), panelColour(1, 1, 1), 2.0f);
+    dl->AddCircleFilled(ImVec2(x, float(r.y + r.h * 0.5)), 6.0f, panelColour(1, 1, 1));
   }
 }
 
@@ -409,10 +409,10 @@ static void drawOneView(ViewerModel& m, const SlotDraw& v) {
   if (why.empty() && v.side == FrameSide::Flip && !m.flipPools[size_t(v.view)]) why = m.flipStatus;
   if (!why.empty()) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), rgb(0.12f, 0.12f, 0.12f));
+    dl->AddRectFilled(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), panelColour(0.12f, 0.12f, 0.12f));
     // Wrapped: the reason must be readable in a grid tile too.
     dl->AddText(ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(float(r.x) + 8, float(r.y + r.h * 0.4)),
-                rgb(0.8f, 0.8f, 0.8f), why.c_str(), nullptr, float(r.w) - 16.0f);
+                panelColour(0.8f, 0.8f, 0.8f), why.c_str(), nullptr, float(r.w) - 16.0f);
   } else {
     ResolvedRange range = resolveRange(def, m.settings[size_t(v.view)], &m.ranges[size_t(v.view)]);
     queueViewDraw(m, v, pl, range);
