@@ -1,12 +1,13 @@
-# gblens_layer(NAME FOLDER [VULKAN] [EXECUTABLE | SHARED] DEPS layers... LINK targets... SOURCES files...)
-# One folder = one library (gblens_NAME; the executable is `gblens`), with an explicit file list.
+# gblens_layer(NAME FOLDER [VULKAN] [EXECUTABLE | SHARED] [COLD] DEPS layers... LINK targets... SOURCES files...)
+# One folder = one library (gblens_NAME; the executable is `gblens`), with an explicit file list;
+# COLD: code no figure's speed depends on, compiled at -O1 (cmake/BuildSpeed.cmake).
 # DEPS are the layers whose headers the folder may include, and whose libraries it links (a SHARED
 # library, the Vulkan layer loaded into other programs, links none: it compiles what it uses).
 # gblens_write_layers() writes the table that cmake/check_includes.py checks every #include against.
 set_property(GLOBAL PROPERTY GBLENS_LAYER_TABLE "")
 
 function(gblens_layer NAME FOLDER)
-  cmake_parse_arguments(L "VULKAN;EXECUTABLE;SHARED" "" "DEPS;LINK;SOURCES" ${ARGN})
+  cmake_parse_arguments(L "VULKAN;EXECUTABLE;SHARED;COLD" "" "DEPS;LINK;SOURCES" ${ARGN})
   set(sources "")
   foreach(f ${L_SOURCES})
     if(IS_ABSOLUTE "${f}")
@@ -16,9 +17,16 @@ function(gblens_layer NAME FOLDER)
     endif()
   endforeach()
   if(L_EXECUTABLE)
-    set(target gblens)
-    add_executable(${target} ${sources})
-    gblens_pch(${target} executable)
+    # The executable's files as an object library, so that they compile while the libraries they
+    # link are still compiling (CMAKE_OPTIMIZE_DEPENDENCIES); `gblens` only links them.
+    set(target gblens_${NAME})
+    add_library(${target} OBJECT ${sources})
+    gblens_pch(${target} cold)
+    # Three batches, not two: the last files to compile are the executable's, and a shorter last
+    # batch leaves the other core idle for less time.
+    set_target_properties(${target} PROPERTIES UNITY_BUILD_BATCH_SIZE 7)
+    add_executable(gblens)
+    target_link_libraries(gblens PRIVATE ${target})
   elseif(L_SHARED)
     set(target gblens_${NAME})
     add_library(${target} SHARED ${sources})
@@ -26,7 +34,11 @@ function(gblens_layer NAME FOLDER)
   else()
     set(target gblens_${NAME})
     add_library(${target} STATIC ${sources})
-    gblens_pch(${target} library)
+    if(L_COLD)
+      gblens_pch(${target} cold)
+    else()
+      gblens_pch(${target} library)
+    endif()
   endif()
   set(folders "${FOLDER}")
   foreach(d ${L_DEPS})

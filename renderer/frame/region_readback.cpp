@@ -71,7 +71,6 @@ std::vector<RegionImage> readbackRegions(Renderer& r, const std::vector<RegionRe
 
   for (const Copy& c : copies) {
     RegionImage& o = out[c.request];
-    const Image& img = r.targets[size_t(o.target)].image;
     o.x0 = c.x;
     o.y0 = c.y;
     o.image = unpackTarget(o.target, r.options, static_cast<const uint8_t*>(buffer.mapped) + c.offset,
