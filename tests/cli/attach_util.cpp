@@ -1,4 +1,5 @@
 // Helpers of the attach tests (see attach_util.h).
+#include "tests/support/test_paths.h"
 #include "tests/cli/attach_util.h"
 
 #include <chrono>

@@ -6,6 +6,7 @@
 // - no receiver: the layer stays idle and the application's frame is as without it;
 // - a layout naming an image the application never makes, or another format, is reported once and
 //   the target left out (never decoded as something else); nothing matched: exit 2 with why.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 #include <signal.h>
 

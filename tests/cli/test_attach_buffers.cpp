@@ -3,6 +3,7 @@
 // are its uniform buffer at set 0 binding 0 (uniforms.bin) and its last object's push constants;
 // camera.live at set 0 binding 0 streams the camera its dump's camera.json holds, as a sidecar of
 // those matrices does; camera.live in an import is refused with one line.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -21,7 +22,7 @@ using json = nlohmann::json;
 // foreign_deferred's layout.json with live sources (render pass, colour index or depth: its README's
 // table) and without the fields today's decoding refuses (as test_attach_foreign.cpp); no camera.
 json foreignLiveLayout() {
-  json l = json::parse(std::ifstream(FOREIGN_DEFERRED_DIR "/layout.json"));
+  json l = json::parse(std::ifstream(FOREIGN_DEFERRED_DIR + "/layout.json"));
   const std::map<std::string, std::pair<int, int>> live = {{"position", {0, 0}}, {"normal", {0, 1}}, {"albedo", {0, 2}},
                                                            {"depth", {0, -1}},   {"occlusion", {1, 0}}, {"hdr", {2, 0}},
                                                            {"final", {3, 0}}};

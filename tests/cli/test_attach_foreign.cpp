@@ -6,6 +6,7 @@
 // of that frame, its uniform buffer having no name) equals the one import read from the buffer.
 // attach --suggest with no layout drafts what import --suggest-layout drafts from that .rdc, and the
 // draft streams each attachment the app dumps itself.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -22,8 +23,8 @@ namespace {
 
 using nlohmann::json;
 
-const std::string kLayout = FOREIGN_DEFERRED_DIR "/layout.json";
-const std::string kOut = GBLENS_BUILD_DIR "/foreign";
+const std::string kLayout = FOREIGN_DEFERRED_DIR + "/layout.json";
+const std::string kOut = GBLENS_BUILD_DIR + "/foreign";
 
 // Where each target of layout.json is live: (render pass in the command buffer, colour index or -1
 // for the depth attachment), from the app's README.

@@ -3,6 +3,7 @@
 // ids, the application's own load/store ops per aspect, the images its draws may read and those read
 // after it; for vkcube, the swapchain image it presents. Validation on in every application.
 // The bound buffers and camera.live: test_attach_buffers.cpp.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <fstream>

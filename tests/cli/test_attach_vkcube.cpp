@@ -6,6 +6,7 @@
 //   here from cube.c's geometry and matrices, pixel by pixel;
 // - vkcube presents the same frame k with the gblens layer streaming and without it;
 // - the window resized, the layer follows the new swapchain and depth images (library API).
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <chrono>

@@ -1,5 +1,6 @@
 // The command line as a user or CI job meets it: exit codes for mistakes, the --stats JSON
 // shape every later tool reads (frame_ms, passes with skip reasons, culling), and the PNG written.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 

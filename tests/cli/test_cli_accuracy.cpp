@@ -1,6 +1,7 @@
 // `gblens error` and `gblens bench` as a user runs them (validation on through GBLENS_VALIDATE):
 // the JSON has every quantity with sane values, the bench writes its files with one row per
 // variant, and user mistakes exit 2 with a message while a glTF that fails to load is skipped.
+#include "tests/support/test_paths.h"
 #include <sys/wait.h>
 #include <unistd.h>
 

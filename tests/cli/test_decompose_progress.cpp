@@ -1,6 +1,7 @@
 // gblens decompose reports its progress on stderr as bench and stress do: lines "gblens decompose:
 // N% (K of H rows, S s)" whose percentages rise in tenths and whose last line counts every row of the
 // capture (its height, known from the capture command), stdout keeping the one line it had.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <cstdio>

@@ -6,6 +6,7 @@
 // the app's own read-back of the same frame (--dump): every stored texel bit for bit, and positions
 // rebuilt from its depth against its stored positions within a derived bound; the manifest's
 // provenance; what the viewer and probe offer for it (only the layout's quantities).
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,9 +30,9 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const std::string kLayout = FOREIGN_DEFERRED_DIR "/layout.json";
+const std::string kLayout = FOREIGN_DEFERRED_DIR + "/layout.json";
 const std::string kApp = FOREIGN_DEFERRED_BINARY;
-const std::string kOut = GBLENS_BUILD_DIR "/foreign";
+const std::string kOut = GBLENS_BUILD_DIR + "/foreign";
 
 struct Variant {
   const char* name;  // for messages

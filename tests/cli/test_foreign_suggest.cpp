@@ -8,6 +8,7 @@
 // derived fp32 bound; the rebuilt positions also equal the app's stored ones within a loose bound
 // here, so a wrong camera cannot pass unnoticed. The uniform buffer also holds projection * view at
 // byte 128, a plausible wrong offset: suggest does not take it.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -23,8 +24,8 @@
 namespace gb {
 namespace {
 
-const std::string kOut = GBLENS_BUILD_DIR "/foreign";
-const std::string kLayout = FOREIGN_DEFERRED_DIR "/layout.json";
+const std::string kOut = GBLENS_BUILD_DIR + "/foreign";
+const std::string kLayout = FOREIGN_DEFERRED_DIR + "/layout.json";
 
 Capture importWith(const std::string& rdc, const std::string& layout, const std::string& out) {
   RunResult r = runGblens("import '" + rdc + "' --layout '" + layout + "' -o '" + out + "'");

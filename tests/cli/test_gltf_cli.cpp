@@ -1,4 +1,5 @@
 // glTF files on the command line: a bad file or --camera is one line on stderr and exit code 2.
+#include "tests/support/test_paths.h"
 #include <sys/wait.h>
 
 #include <gtest/gtest.h>

@@ -5,6 +5,7 @@
 // leaving a capture, a sidecar without matrices, channel and offset overflows, a path in a
 // quantity name, values that overflow to Inf). Each must give one line and exit 2 within seconds,
 // write nothing (nothing at -o, nothing left beside it, nothing outside it).
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 

@@ -4,6 +4,7 @@
 // bit, a `gblens capture` of the same frame made without RenderDoc, and so does `gblens import` of the
 // .rdc with gblens's own layout (builtin:gblens, the options as --param). Every RenderDoc run has a time
 // limit: a capture that does not replay on this machine's driver fails with a message, not a hang.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>

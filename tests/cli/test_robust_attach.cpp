@@ -6,6 +6,7 @@
 // - a live capture states only what its source said: compared with `gblens capture` of the same
 //   frame, every texel passes and so does the verdict; what only one side holds (the capture's
 //   lights, sun, options; targets the application did not draw in that frame) is reported apart (item 8).
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 #include <signal.h>
 

@@ -1,5 +1,6 @@
 // gblens stress as CI meets it (the suite itself runs as the CTest entry stress.quick): mistakes
 // exit 2, one case runs alone and writes its table as JSON.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 

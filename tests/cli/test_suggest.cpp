@@ -5,6 +5,7 @@
 // `gblens capture` of the same frame, and the stored positions. And the docs' own example: a
 // RenderDoc capture of `gblens render` imported with builtin:gblens compares clean against `gblens
 // capture` of the same frame (gblens's 1x1 stand-ins are absent, not targets).
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 #include <unistd.h>
 

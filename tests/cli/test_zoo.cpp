@@ -5,6 +5,7 @@
 // its RenderDoc captures (`import --suggest-layout`) and attached live (`attach --suggest`), every
 // quantity its hand-written truth file lists is drafted as it says or as unknown, never wrong, and
 // the camera is found where the truth says; `check` is clean on each correct frame.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -18,7 +19,7 @@ namespace {
 
 using json = nlohmann::json;
 
-const std::string kCaptures = GBLENS_BUILD_DIR "/zoo";
+const std::string kCaptures = GBLENS_BUILD_DIR + "/zoo";
 
 class ZooSuggest : public testing::TestWithParam<const char*> {};
 

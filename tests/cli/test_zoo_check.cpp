@@ -3,6 +3,7 @@
 // the subject's README and truth file passes clean; each planted mistake — the camera read from the
 // wrong offset, normals declared in the wrong space, two normal channels swapped, a NaN, a normal
 // component negated — is flagged and named.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-const std::string kDump = GBLENS_BUILD_DIR "/zoo/world_tbn_dump";
+const std::string kDump = GBLENS_BUILD_DIR + "/zoo/world_tbn_dump";
 
 // world_tbn as its truth file says: world positions and not-renormalised world normals in rgba16f,
 // linear albedo, D16 depth; the camera as the matrices the app used (its clip space is D3D's: y up,

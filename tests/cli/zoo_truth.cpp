@@ -1,5 +1,6 @@
 // Holding a draft to the gbuffer_zoo truth (zoo_truth.h): no gblens code decides here, only the truth
 // file's own words and the draft's JSON.
+#include "tests/support/test_paths.h"
 #include "tests/cli/zoo_truth.h"
 
 #include <algorithm>

@@ -1,6 +1,7 @@
 // glTF files on the command line and on the GPU: exit codes and messages of the CLI; a MASK
 // cut-out quad at a known eye depth; a mirrored single-sided quad that must stay visible; a few
 // corpus files rendered with zero validation messages.
+#include "tests/support/test_paths.h"
 #include <sys/wait.h>
 
 #include <cmath>

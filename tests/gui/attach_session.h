@@ -1,6 +1,7 @@
 // The attach GUI tests' session (test_gui_attach*.cpp): Xvfb, the foreign_deferred test subject's
 // layout with live sources and a camera sidecar, and `gblens attach` started in the test's folder.
 #pragma once
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -30,7 +31,7 @@ inline const std::map<std::string, std::pair<int, int>> kLive = {{"position", {0
 // layout.json with live sources; the camera from a sidecar (the app's uniform buffer has no name);
 // the decoding fields today's gblens refuses left out (no source or stored texel changes).
 inline json liveLayout(const std::string& sidecar) {
-  json layout = json::parse(std::ifstream(FOREIGN_DEFERRED_DIR "/layout.json"));
+  json layout = json::parse(std::ifstream(FOREIGN_DEFERRED_DIR + "/layout.json"));
   for (json& t : layout["targets"]) {
     const auto [pass, color] = kLive.at(t["name"].get<std::string>());
     t["source"] = {{"live", color < 0 ? json{{"pass", pass}, {"depth", true}} : json{{"pass", pass}, {"color", color}}}};

@@ -1,6 +1,7 @@
 // The GUI fixtures that also need gblens's device in the test (GpuTest: the frame the viewer should
 // show, computed apart) and an Xvfb session (gui::Session): skipped without Xvfb, a folder per test.
 #pragma once
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <string>

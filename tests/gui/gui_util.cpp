@@ -1,4 +1,5 @@
 // GUI test helpers: processes, Xvfb, event-log polling, screenshots.
+#include "tests/support/test_paths.h"
 #include "tests/gui/gui_util.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,7 @@
 // Helpers for GUI tests: child processes, an Xvfb server of the test's own (display chosen by
 // Xvfb -displayfd, so parallel runs never collide), xdotool input, screenshots read as RGB.
 #pragma once
+#include "tests/support/test_paths.h"
 #include <sys/types.h>
 
 #include <nlohmann/json.hpp>

@@ -3,6 +3,7 @@
 // different views; each key shows its view), the clicked pixel's dossier (--probe-log) checked
 // against a headless render of the same frame, and zero validation messages (--validate: the
 // viewer exits non-zero on any). Screenshots stay in the build tree (gui_test/TEST/) to look at.
+#include "tests/support/test_paths.h"
 #include <algorithm>
 #include <filesystem>
 #include <fstream>

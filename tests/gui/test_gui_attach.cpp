@@ -10,6 +10,7 @@
 // rectangle, pixel and surface counts and its statistics (AO, albedo; surfaces only) are those the
 // test decodes itself from the app's dump. Closing the viewer leaves the application running. A
 // short run ends while attached: its last frame stays with "application exited (code 0)".
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -151,7 +152,7 @@ TEST_F(GuiAttachTest, TheStreamShowsTheLayoutsViewsPausesAndCapturesTheAppsOwnTe
     if (v["view"] == "Albedo") albedoView = v;
     if (v["view"] == "AO") aoView = v;
   }
-  const json layout = json::parse(std::ifstream(FOREIGN_DEFERRED_DIR "/layout.json"));
+  const json layout = json::parse(std::ifstream(FOREIGN_DEFERRED_DIR + "/layout.json"));
   for (const json& t : layout["targets"])
     for (const json& q : t["quantities"]) declared.push_back(q["name"]);
   std::sort(shown.begin(), shown.end());

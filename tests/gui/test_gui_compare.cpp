@@ -4,6 +4,7 @@
 // `gblens compare` reports; the reference error's maps join the grid as views, a click on one probes
 // that pixel and its hover value is the probe's own count, and Escape cancels the computation with
 // nothing written. Screenshots stay in the build tree (gui_test/TEST/) to look at.
+#include "tests/support/test_paths.h"
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>

@@ -3,6 +3,7 @@
 // grid shows exactly the layout's quantities (no shadow, specular or stencil stand-ins); hovering a
 // pixel shows the stored texel as the application wrote it (its own --dump of the same frame); a
 // click probes the pixel and the dossier holds only the layout's quantities.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,8 +25,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kLayout = FOREIGN_DEFERRED_DIR "/layout.json";
-const std::string kOut = GBLENS_BUILD_DIR "/foreign";
+const std::string kLayout = FOREIGN_DEFERRED_DIR + "/layout.json";
+const std::string kOut = GBLENS_BUILD_DIR + "/foreign";
 
 std::string readBytes(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
@@ -48,7 +49,7 @@ class ForeignGui : public ::testing::Test, protected gui::Session {
 TEST_F(ForeignGui, TheGridIsTheLayoutsQuantitiesAndHoverShowsTheStoredTexels) {
   const std::string capture = (dir_ / "imported").string();
   int status = -1;
-  const std::string out = gui::run("'" GBLENS_BINARY "' import '" + kOut + "/foreign.rdc' --layout '" + kLayout + "' -o '" +
+  const std::string out = gui::run("'" + GBLENS_BINARY + "' import '" + kOut + "/foreign.rdc' --layout '" + kLayout + "' -o '" +
                                    capture + "' 2>&1", &status);
   ASSERT_EQ(status, 0) << out;
   // The app's own read-back of the captured frame (tests/subjects/foreign_deferred/README.md).

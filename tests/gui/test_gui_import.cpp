@@ -3,6 +3,7 @@
 // ids), opened with `gblens view --capture` under Xvfb. The grid shows exactly the layout's quantities;
 // hover shows the stored codes; a click probes the pixel and the dossier holds the decoded values, checked against the analytic scene the frame was made from (a plane y = 0 seen
 // from above at an angle: every value known in closed form).
+#include "tests/support/test_paths.h"
 #include <cmath>
 #include <cstring>
 #include <filesystem>

@@ -1,4 +1,5 @@
 // Capture test helpers.
+#include "tests/support/test_paths.h"
 #include "tests/support/capture_util.h"
 
 #include <sys/wait.h>

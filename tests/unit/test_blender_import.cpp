@@ -3,6 +3,7 @@
 // needed here) is imported, and what gblens decodes is checked against what Cycles wrote beside it:
 // positions from Depth and the camera against the Position pass, unit normals, the indices the script
 // assigned. Everything is compared in gblens's eye space after the layout's conversions (Z up, GL).
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <cmath>

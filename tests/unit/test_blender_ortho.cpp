@@ -4,6 +4,7 @@
 // positions rebuilt from Cycles' Depth pass through it equal Cycles' own Position pass. Also: the
 // sidecar is looked for only beside the images, and --suggest-layout drafts both Blender fixtures
 // from their channel names into layouts that decode every pixel as the shipped layout does.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -2,6 +2,7 @@
 // tests/fuzz/attach_corpus), run through the fuzz targets' entries in-process: the seeds and every
 // case found (issue 36: manifests that contradict their images, attach command lines that crashed).
 // Files named "*valid*" must be accepted, every other one refused with one line, each within seconds.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 #include <unistd.h>
 

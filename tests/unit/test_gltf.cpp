@@ -2,6 +2,7 @@
 // README lists every case). Valid files: exact vertex/index data, transforms and winding, checked
 // against values worked out by hand from how each file was built. Invalid files: the message names
 // the file and the element. (The command line and the GPU: test_gltf_gpu.cpp.)
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <cmath>

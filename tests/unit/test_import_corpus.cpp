@@ -3,6 +3,7 @@
 // devices as sources, huge declared image sizes, channel and offset overflows, paths in names,
 // manifests a reader would refuse), run through the fuzz target's entry in-process. Files named
 // "*valid*" must be accepted, every other one refused with one line, each within seconds.
+#include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 #include <unistd.h>
 
