@@ -81,6 +81,7 @@ TEST(Check, FindsEveryPlantedTexelAtItsPixel) {
   EXPECT_NE(loose.output.find("clean: no fault in 4 quantities (6 warnings"), std::string::npos) << loose.output;
   RunResult perQuantity = runGblens("check '" + capture + "' --policy N.out_of_range=ignore --json");
   EXPECT_EQ(json::parse(perQuantity.output)["faults"].get<uint64_t>(), 5u) << perQuantity.output;
+  EXPECT_EQ(json::parse(perQuantity.output)["version"], 2) << perQuantity.output;  // normals, surfaces
   RunResult bad = runGblens("check '" + capture + "' --policy Nope.nan=warn");
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.output.find("--policy Nope.nan=warn: the layout has no quantity \"Nope\""), std::string::npos) << bad.output;

@@ -151,6 +151,14 @@ void expectStoppedReplayCleansUp(const std::string& rdc, const std::string& dir)
   }
 }
 
+
+// Writes an executable shell script (a stand-in for Python) and returns its path.
+std::string writeScript(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+  fs::permissions(path, fs::perms::owner_all);
+  return path;
+}
+
 TEST(RenderDoc, HeadlessRenderIsCapturedWithEveryPassLabelAndTargetName) {
   requireRenderDoc();
   const std::string dir = freshDir("renderdoc-render");
@@ -218,9 +226,7 @@ TEST(RenderDoc, MistakesGiveOneLineAndExitTwo) {
 
   // A replay that stops making progress is ended (with what it started) and named, not waited for: a
   // stand-in for Python that prints one progress line and then sleeps (no output, no CPU time).
-  const std::string stuck = dir + "/stuck-python";
-  std::ofstream(stuck) << "#!/bin/sh\necho 'progress: replaying on a stuck driver' >&2\nsleep 60\n";
-  fs::permissions(stuck, fs::perms::owner_all);
+  const std::string stuck = writeScript(dir + "/stuck-python", "#!/bin/sh\necho 'progress: replaying on a stuck driver' >&2\nsleep 60\n");
   RdcReplayOptions quick;
   quick.python = stuck;
   quick.stallSeconds = 1;
@@ -236,9 +242,7 @@ TEST(RenderDoc, MistakesGiveOneLineAndExitTwo) {
             std::string::npos)
       << error;
   // One that spins without a word is ended by the busy limit.
-  const std::string spin = dir + "/spin-python";
-  std::ofstream(spin) << "#!/bin/sh\necho 'progress: spinning' >&2\nwhile :; do :; done\n";
-  fs::permissions(spin, fs::perms::owner_all);
+  const std::string spin = writeScript(dir + "/spin-python", "#!/bin/sh\necho 'progress: spinning' >&2\nwhile :; do :; done\n");
   RdcReplayOptions spinning;
   spinning.python = spin;
   spinning.busySeconds = 2;
@@ -249,19 +253,15 @@ TEST(RenderDoc, MistakesGiveOneLineAndExitTwo) {
 
   // A replay that keeps reporting progress runs past the stall limit as long as it needs (a loaded
   // machine replays slowly): three seconds of progress lines, then its result.
-  const std::string slow = dir + "/slow-python";
-  std::ofstream(slow) << "#!/bin/sh\nfor i in 1 2 3 4 5 6 7 8 9 10; do echo \"progress: step $i\" >&2; sleep 0.3; done\n"
-                         "echo '{\"api\": \"Vulkan\", \"textures\": [], \"passes\": []}'\n";
-  fs::permissions(slow, fs::perms::owner_all);
+  const std::string slow = writeScript(dir + "/slow-python", "#!/bin/sh\nfor i in 1 2 3 4 5 6 7 8 9 10; do echo \"progress: step $i\" >&2; sleep 0.3; done\n"
+                                                 "echo '{\"api\": \"Vulkan\", \"textures\": [], \"passes\": []}'\n");
   quick.python = slow;
   error.clear();
   EXPECT_TRUE(listRenderDocCapture(dir + "/junk.rdc", listing, error, quick)) << error;
   EXPECT_EQ(listing.api, "Vulkan");
   // And one that works on without a word (CPU time is progress too) is not ended either.
-  const std::string busy = dir + "/busy-python";
-  std::ofstream(busy) << "#!/bin/sh\nend=$(($(date +%s) + 3)); while [ $(date +%s) -lt $end ]; do :; done\n"
-                         "echo '{\"api\": \"Vulkan\", \"textures\": [], \"passes\": []}'\n";
-  fs::permissions(busy, fs::perms::owner_all);
+  const std::string busy = writeScript(dir + "/busy-python", "#!/bin/sh\nend=$(($(date +%s) + 3)); while [ $(date +%s) -lt $end ]; do :; done\n"
+                                                 "echo '{\"api\": \"Vulkan\", \"textures\": [], \"passes\": []}'\n");
   quick.python = busy;
   EXPECT_TRUE(listRenderDocCapture(dir + "/junk.rdc", listing, error, quick)) << error;
 }

@@ -128,7 +128,8 @@ nlohmann::json checkJson(const CheckReport& r) {
     normals.push_back(j);
   }
   for (const auto& [target, why] : r.absent) absent.push_back({{"target", target}, {"reason", why}});
-  return {{"format", "gblens-check"}, {"clean", r.clean()}, {"faults", r.count(Severity::Fault)},
+  // version 2: "normals" (the normal class) and "surfaces" (which pixels were counted) added.
+  return {{"format", "gblens-check"}, {"version", 2}, {"clean", r.clean()}, {"faults", r.count(Severity::Fault)},
           {"warnings", r.count(Severity::Warn)}, {"counts", counts}, {"rows", rows}, {"positions", positions},
           {"normals", normals}, {"surfaces", r.surfaces}, {"absent", absent}};
 }
