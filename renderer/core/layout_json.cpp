@@ -452,6 +452,10 @@ bool readTarget(Reader& r, const json& given, const Where& w, Layout& l) {
                           q->kind == QuantityKind::Display;
       for (size_t k = 0; k < q->channels.size(); ++k)
         lt.channels[q->channels[k]] = q->channels.size() == 1 ? q->name : q->name + "." + (colour ? rgba : xyzw)[k];
+      // A manifest writes these names back and they must read again (tests/fuzz found a 99-byte name).
+      if (const std::string& c = lt.channels[q->channels[0]]; c.size() > kMaxNameBytes)
+        return r.fail(wt, "quantities", jsonBrief(q->name) + ": its channels would be named " + jsonBrief(c) + ", over " +
+                                            std::to_string(kMaxNameBytes) + " bytes: shorten it or name the target's \"channels\"");
     }
   }
   return true;

@@ -1,6 +1,7 @@
 // The import path's fuzz entry (see import_entry.h).
 #include "tests/fuzz/import_entry.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -52,7 +53,11 @@ std::string runImport(const json& layoutJson, const std::string& dir, const std:
     return error;
   // What parseLayout accepts, layoutJson writes back, and parseLayout accepts again (manifests).
   Layout again;
-  if (!parseLayout(gb::layoutJson(layout), "again", again, error)) std::abort();
+  if (!parseLayout(gb::layoutJson(layout), "again", again, error)) {
+    std::fprintf(stderr, "layoutJson wrote back what parseLayout refuses: %s\n%s\n", error.c_str(),
+                 gb::layoutJson(layout).dump().c_str());
+    std::abort();
+  }
   ImportInput in;
   in.layout = layout;
   in.layoutDir = dir;
