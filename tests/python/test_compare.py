@@ -13,7 +13,7 @@ from conftest import SMALL, run
 
 def without_paths(report):
     report = json.loads(json.dumps(report))
-    report.pop("a"), report.pop("b")
+    report.pop("a"), report.pop("b"), report.pop("seconds")  # seconds: wall time, not a figure
     for g in report["groups"]:
         g.pop("heatmap")
     for f in report["flip"]:

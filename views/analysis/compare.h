@@ -80,6 +80,7 @@ struct GroupResult {
   std::vector<float> errors;        // per-pixel error (the heat map), row major; NaN: not compared
   uint32_t width = 0, height = 0;
   std::string heatmap;              // file written, if any
+  double seconds = 0.0;             // wall time comparing it (JUnit's time)
   const GroupFigures* figuresOver(PixelSet s) const;  // null when not computed
 };
 
@@ -107,6 +108,7 @@ struct FlipResult {
   std::vector<float> errors;   // per-pixel FLIP, row major (computed over the whole frame)
   uint32_t width = 0, height = 0;
   std::string heatmap;         // file written, if any
+  double seconds = 0.0;        // wall time computing it (JUnit's time)
 };
 Verdict decideFlip(const FlipResult& r);
 nlohmann::json flipJson(const FlipResult& r);  // the report's entry
@@ -136,6 +138,8 @@ Rgba8Image maskImage(const CompareMask& mask);
 struct CompareReport {
   std::string a, b;
   int exitCode = kComparePass;
+  std::string error;     // why the pair could not be compared (exit 4; `compare --pairs`), else ""
+  double seconds = 0.0;  // wall time of the whole comparison
   std::vector<GroupResult> groups;
   std::vector<FlipResult> flips;
   std::vector<std::pair<std::string, std::string>> mismatches;  // target, reason

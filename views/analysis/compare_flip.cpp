@@ -6,6 +6,7 @@
 
 #include "renderer/core/decode.h"
 #include "views/analysis/compare.h"
+#include "views/analysis/compare_internal.h"
 
 namespace gb {
 
@@ -100,6 +101,7 @@ void compareFlip(const Capture& a, const Capture& b, const FlipSettings& setting
     if (!flipImage(a.frame, t, ia) || !flipImage(b.frame, t, ib) || ia.width != ib.width || ia.height != ib.height ||
         ia.rgb.empty())
       continue;  // absent or mismatched: the target's own entry says why
+    const auto started = std::chrono::steady_clock::now();
     FlipResult r;
     r.target = t.name;
     r.method = t.hdr ? "hdr" : "ldr";
@@ -126,6 +128,7 @@ void compareFlip(const Capture& a, const Capture& b, const FlipSettings& setting
     r.warn = setting(settings.warn, t.name);
     r.verdict = decideFlip(r);
     worst = std::max(worst, r.verdict);
+    r.seconds = secondsSince(started);
     report.flips.push_back(std::move(r));
   }
   if (report.exitCode != kCompareMismatch && report.exitCode != kCompareFileError)

@@ -1,8 +1,14 @@
 // Compare's parts that live in their own files (compare.h is the interface).
 #pragma once
+#include <chrono>
+
 #include "views/analysis/compare.h"
 
 namespace gb {
+
+inline double secondsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
 
 // One quantity on one side.
 struct CompareSide {

@@ -137,8 +137,12 @@ nlohmann::json CompareReport::json() const {
   if (!mask.empty())
     maskJson = {{"parts", mask.parts}, {"pixels", mask.count()}, {"of", uint64_t(mask.width) * mask.height},
                 {"image", maskImage.empty() ? nlohmann::json(nullptr) : nlohmann::json(maskImage)}};
-  return {{"a", a},           {"b", b},
+  // The JSON is an interface (docs/schemas/compare.schema.json): a change of shape bumps the version.
+  return {{"format", "gblens-compare"}, {"version", 1},
+          {"a", a},           {"b", b},
           {"result", resultName(exitCode)}, {"exit_code", exitCode},
+          {"error", error.empty() ? nlohmann::json(nullptr) : nlohmann::json(error)},
+          {"seconds", seconds},
           {"differences", differences},     {"only_in_a", onlyInA},
           {"only_in_b", onlyInB},           {"mismatches", mism},
           {"skipped", skip},                {"mask", maskJson},

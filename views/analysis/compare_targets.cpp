@@ -150,6 +150,7 @@ bool checkNames(const CompareSettings& settings, const std::vector<TargetPlan>& 
 
 bool compare(const Capture& ca, const Capture& cb, const CompareSettings& settings, CompareReport& report,
              std::string& error) {
+  const auto started = std::chrono::steady_clock::now();
   report = CompareReport{};
   report.a = ca.dir;
   report.b = cb.dir;
@@ -184,7 +185,9 @@ bool compare(const Capture& ca, const Capture& cb, const CompareSettings& settin
       r.thresholds = settings.thresholds.resolve(p.name, g.key);
       const CpuImage& image = fa.images[size_t(p.ia)].image;
       progress(g.key, double(image.width) * image.height);
+      const auto t0 = std::chrono::steady_clock::now();
       compareGroup({fa, *fa.layout.findByName(g.group)}, {fb, *fb.layout.findByName(g.group)}, &report.mask, r);
+      r.seconds = secondsSince(t0);
       worst = std::max(worst, r.verdict);
       report.groups.push_back(std::move(r));
     }
@@ -195,6 +198,7 @@ bool compare(const Capture& ca, const Capture& cb, const CompareSettings& settin
     compareFlip(ca, cb, settings.flip, report);
   }
   if (settings.progress) settings.progress(1.0, "done");
+  report.seconds = secondsSince(started);
   return true;
 }
 

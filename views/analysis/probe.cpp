@@ -224,7 +224,7 @@ static void decodeGBuffer(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelD
   const Quantity* hardware = cameraDepth(l, DepthEncoding::Hardware);
   const Quantity* stencil = l.find(QuantityKind::Stencil);
   if ((d.hasAlbedo = need(f, albedo, x, y, d))) d.albedo = glm::dvec3(decodeColor(f, *albedo, x, y));
-  if (need(f, specular, x, y, d)) d.specular = decodeScalar(f, *specular, x, y);
+  if ((d.hasSpecular = need(f, specular, x, y, d))) d.specular = decodeScalar(f, *specular, x, y);
   if ((d.hasNormal = need(f, normal, x, y, d))) {
     NormalSample n = decodeNormal(f, *normal, x, y);
     d.normal = n.unit;
@@ -239,10 +239,10 @@ static void decodeGBuffer(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelD
       d.unlit = ni.contains(x, y) && unlitTexel(ni.image, x - ni.x0, y - ni.y0, f.options.normalFormat);
     }
   }
-  if (need(f, shadow, x, y, d)) d.shadow = decodeScalar(f, *shadow, x, y);
+  if ((d.hasShadow = need(f, shadow, x, y, d))) d.shadow = decodeScalar(f, *shadow, x, y);
   if ((d.hasEyeDepth = need(f, eye, x, y, d))) d.eyeDepth = storedValues(f, *eye, x, y)[0];
   if ((d.hasHardwareDepth = need(f, hardware, x, y, d))) d.hardwareDepth = storedValues(f, *hardware, x, y)[0];
-  if (need(f, stencil, x, y, d)) d.stencil = decodeInteger(f, *stencil, x, y);
+  if ((d.hasStencil = need(f, stencil, x, y, d))) d.stencil = decodeInteger(f, *stencil, x, y);
 }
 
 // The position from each depth (eye and world space) and how far apart they are, in scene units

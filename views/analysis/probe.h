@@ -127,6 +127,7 @@ struct PixelDossier {
 
   // Decoded G-buffer (each valid only with its target: has* say which were available).
   bool hasAlbedo = false, hasNormal = false, hasEyeDepth = false, hasHardwareDepth = false;
+  bool hasSpecular = false, hasShadow = false, hasStencil = false;
   bool geometry = false;
   glm::dvec3 albedo{0.0};
   double specular = 0.0;
@@ -172,7 +173,10 @@ bool shadowMapFootprint(const FrameSnapshot& frame, uint32_t x, uint32_t y, int3
 PixelDossier probePixel(const FrameSnapshot& frame, uint32_t x, uint32_t y);
 
 // The dossier as JSON (`gblens probe --json`, the viewer's "copy as JSON", --probe-log) and as
-// the text `gblens probe` prints.
+// the text `gblens probe` prints. The JSON is an interface (docs/schemas/probe.schema.json,
+// "format": "gblens-probe", kProbeJsonVersion): every key is present for every layout, null where
+// the frame does not hold it; a change of shape bumps the version.
+constexpr int kProbeJsonVersion = 2;
 nlohmann::json dossierJson(const PixelDossier& d);
 std::string dossierText(const PixelDossier& d);
 

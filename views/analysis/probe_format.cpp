@@ -128,41 +128,42 @@ static nlohmann::json reconstructionsJson(const PixelDossier& d) {
 }
 
 nlohmann::json dossierJson(const PixelDossier& d) {
-  nlohmann::json j = {{"pixel", {d.x, d.y}}, {"size", {d.width, d.height}}};
-  if (!d.error.empty()) {
-    j["error"] = d.error;
-    return j;
-  }
+  nlohmann::json j = {{"format", "gblens-probe"}, {"version", kProbeJsonVersion}, {"pixel", {d.x, d.y}},
+                      {"size", {d.width, d.height}}, {"native", d.native},
+                      {"error", d.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(d.error)}};
+  for (const char* k : {"missing", "targets", "quantities", "reconstructions", "decoded", "position", "shadow_map",
+                        "lighting", "hdr", "final"})
+    j[k] = nullptr;
+  if (!d.error.empty()) return j;
   j["missing"] = d.missing;
   j["targets"] = targetsJson(d);
   j["quantities"] = quantitiesJson(d);
   j["reconstructions"] = reconstructionsJson(d);
-  if (!d.native) {
-    // Another renderer's G-buffer: its quantities only, and its lights when gblens can evaluate them.
-    if (d.lightingNote.empty()) j["lighting"] = lightingJson(d);
-    else j["lighting"] = {{"note", d.lightingNote}};
-    return j;
-  }
+  // Through the layout, for every layout: null where it holds no such quantity.
   j["decoded"] = {{"geometry", d.geometry},
                   {"albedo", opt(d.hasAlbedo, v3(d.albedo))},
-                  {"specular", opt(d.hasAlbedo, d.specular)},
+                  {"specular", opt(d.hasSpecular, d.specular)},
                   {"unlit", opt(d.hasNormal, d.unlit)},
                   {"normal", opt(d.hasNormal && !d.unlit, v3(d.normal))},
                   {"normal_stored", opt(d.hasNormal, v3(d.normalStored))},
                   {"normal_length_error", opt(d.hasNormal, d.normalLengthError)},
-                  {"shadow", opt(d.hasNormal, d.shadow)},
+                  {"shadow", opt(d.hasShadow, d.shadow)},
                   {"eye_depth", opt(d.hasEyeDepth, d.eyeDepth)},
                   {"hardware_depth", opt(d.hasHardwareDepth, d.hardwareDepth)},
-                  {"stencil", opt(d.hasHardwareDepth, d.stencil)}};
+                  {"stencil", opt(d.hasStencil, d.stencil)}};
+  const bool both = d.fromEyeDepth.valid && d.fromHardwareDepth.valid;
   j["position"] = {{"source", d.positionSource},
                    {"from_eye_depth", position(d.fromEyeDepth)},
                    {"from_hardware_depth", position(d.fromHardwareDepth)},
-                   {"difference", d.positionDifference},
-                   {"eye_depth_ulps", d.eyeDepthUlps},
-                   {"hardware_depth_ulps", d.hardwareDepthUlps}};
+                   {"difference", opt(both, d.positionDifference)},
+                   {"eye_depth_ulps", opt(both, d.eyeDepthUlps)},
+                   {"hardware_depth_ulps", opt(both, d.hardwareDepthUlps)}};
+  if (d.lightingNote.empty()) j["lighting"] = lightingJson(d);
+  else if (d.native) (j["lighting"] = lightingJson(d))["note"] = d.lightingNote;
+  else j["lighting"] = {{"note", d.lightingNote}};
+  // gblens's own frame only: its shadow map, hdr and final (another renderer's mean something else).
+  if (!d.native) return j;
   j["shadow_map"] = shadowJson(d.shadowMap);
-  j["lighting"] = lightingJson(d);
-  if (!d.lightingNote.empty()) j["lighting"]["note"] = d.lightingNote;
   const bool expected = d.geometry && d.lightingNote.empty();
   // Without geometry the skybox wrote hdr: there is no lighting to expect.
   j["hdr"] = {{"stored", opt(d.hasHdr, v4(d.hdr))},

@@ -228,7 +228,9 @@ std::string regionStatsText(const RegionStats& s) {
 }
 
 nlohmann::json regionStatsJson(const RegionStats& s) {
-  nlohmann::json j = {{"rect", {{"x", s.rect.x}, {"y", s.rect.y}, {"width", s.rect.width}, {"height", s.rect.height}}},
+  // The JSON is an interface (docs/schemas/stats.schema.json): a change of shape bumps the version.
+  nlohmann::json j = {{"format", "gblens-stats"}, {"version", 1},
+                      {"rect", {{"x", s.rect.x}, {"y", s.rect.y}, {"width", s.rect.width}, {"height", s.rect.height}}},
                       {"pixels", s.pixels},
                       {"surface_pixels", s.surfacePixels}, {"surfaces_known", s.surfaceKnown},
                       {"channels", nlohmann::json::array()},

@@ -1,6 +1,7 @@
 // `gblens compare --pairs LIST` (report.h): many pairs compared with one set of settings, one page per
 // pair under the report folder and an index page, one JUnit file and one JSON file for all of them.
 // Pairs are compared one at a time; only their figures stay in memory.
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -68,6 +69,8 @@ struct Done {
 
 void comparePair(const Pair& p, const CompareSettings& settings, const std::string& dir, Done& d, std::string& fatal) {
   d.pair = p;
+  const auto started = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(); };
   Capture a, b;
   std::string error;
   if (!loadCapture(p.a, a, error) || !loadCapture(p.b, b, error) || !compare(a, b, settings, d.report, error)) {
@@ -75,9 +78,11 @@ void comparePair(const Pair& p, const CompareSettings& settings, const std::stri
     d.report = CompareReport{};
     d.report.a = p.a, d.report.b = p.b;
     d.report.exitCode = kCompareFileError;
-    d.report.mismatches.push_back({"(pair)", error});
+    d.report.error = error;
+    d.report.seconds = elapsed();
     return;
   }
+  d.report.seconds = elapsed();  // loading both captures too: what the pair cost
   if (!dir.empty()) {
     std::error_code ec;
     fs::create_directories(fs::path(dir) / p.name, ec);
