@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "app/python/docstrings.h"
 #include "app/python/python.h"
 #include "views/analysis/compare.h"
 #include "views/report/report.h"
@@ -34,6 +35,12 @@ std::vector<std::string> settingTexts(const py::object& v) {
   return out;
 }
 
+// compare's flags and the keyword arguments that stand for them.
+const std::vector<std::pair<std::string, std::string>> kFlags = {
+    {"--failpercent", "failpercent"}, {"--fail-flip", "fail_flip"}, {"--fail", "fail"}, {"--hardfail", "hardfail"},
+    {"--warnpercent", "warnpercent"}, {"--warn-flip", "warn_flip"}, {"--warn", "warn"}, {"--mask", "mask"},
+    {"--exclude", "exclude"}, {"--flip-ppd", "flip_ppd"}};
+
 ResultPtr compareFrames(const py::object& a, const py::object& b, const py::object& fail_, const py::object& failPercent,
                         const py::object& hardFail, const py::object& warn, const py::object& warnPercent,
                         const py::object& maskSpec, const std::vector<std::string>& exclude, bool flip,
@@ -46,13 +53,13 @@ ResultPtr compareFrames(const py::object& a, const py::object& b, const py::obje
   for (auto& [param, value] : {std::pair{"fail", &fail_}, {"failpercent", &failPercent}, {"hardfail", &hardFail},
                                {"warn", &warn}, {"warnpercent", &warnPercent}})
     for (const std::string& text : settingTexts(*value))
-      if (!s.thresholds.add(param, text, error)) fail(error);
+      if (!s.thresholds.add(param, text, error)) failArgument(keywordMessage(error, kFlags));
   for (auto& [flag, value] : {std::pair{"--fail-flip", &failFlip}, {"--warn-flip", &warnFlip}})
     for (const std::string& text : settingTexts(*value))
-      if (!s.flip.add(flag, text, error)) fail(error);
+      if (!s.flip.add(flag, text, error)) failArgument(keywordMessage(error, kFlags));
   if (!flipPpd.is_none()) {
     s.flip.ppd = flipPpd.cast<double>();
-    if (!(s.flip.ppd > 0.0) || !std::isfinite(s.flip.ppd)) fail("--flip-ppd " + std::string(py::str(flipPpd)) + ": expected a positive number");
+    if (!(s.flip.ppd > 0.0) || !std::isfinite(s.flip.ppd)) failArgument("flip_ppd=" + std::string(py::str(flipPpd)) + ": expected a positive number");
   }
   s.flipOn = flip;
   s.mask = maskSpec.is_none() ? "" : std::string(py::str(maskSpec));
@@ -62,7 +69,7 @@ ResultPtr compareFrames(const py::object& a, const py::object& b, const py::obje
     py::gil_scoped_release release;
     ok = compare(r->a->capture, r->b->capture, s, r->report, error);
   }
-  if (!ok) fail(error);
+  if (!ok) fail(keywordMessage(error, kFlags));
   return r;
 }
 
@@ -74,32 +81,32 @@ py::array errors(const ResultPtr& r, const std::string& key) {
   std::string keys;
   for (const GroupResult& g : r->report.groups) keys += " " + g.group.key;
   for (const FlipResult& f : r->report.flips) keys += " flip." + f.target;
-  throw py::key_error("\"" + key + "\": no compared group of that key (keys:" + keys + ")");
+  throw QuantityError("key=\"" + key + "\": no compared group of that key (keys:" + keys + ")");
 }
 
 }  // namespace
 
 void bindCompare(py::module_& m) {
   using namespace pybind11::literals;
-  py::class_<Result, ResultPtr>(m, "Result", "What gblens.compare found (docs/python.md)")
-      .def_property_readonly("exit_code", [](const ResultPtr& r) { return r->report.exitCode; })
-      .def_property_readonly("passed", [](const ResultPtr& r) { return r->report.exitCode <= kCompareWarn; })
-      .def_property_readonly("result", [](const ResultPtr& r) { return toPython(r->report.json()["result"]); })
-      .def_property_readonly("json", [](const ResultPtr& r) { return toPython(r->report.json()); })
+  py::class_<Result, ResultPtr>(m, "Result", doc::kResult)
+      .def_property_readonly("exit_code", [](const ResultPtr& r) { return r->report.exitCode; }, doc::kExitCode)
+      .def_property_readonly("passed", [](const ResultPtr& r) { return r->report.exitCode <= kCompareWarn; }, doc::kPassed)
+      .def_property_readonly("result", [](const ResultPtr& r) { return toPython(r->report.json()["result"]); }, doc::kResultName)
+      .def_property_readonly("json", [](const ResultPtr& r) { return toPython(r->report.json()); }, doc::kJson)
       .def_property_readonly("groups", [](const ResultPtr& r) {
         py::dict out;
         const nlohmann::json j = r->report.json();
         for (const nlohmann::json& g : j["groups"]) out[py::str(g["key"].get<std::string>())] = toPython(g);
         return out;
-      })
-      .def_property_readonly("flip", [](const ResultPtr& r) { return toPython(r->report.json()["flip"]); })
-      .def_property_readonly("text", [](const ResultPtr& r) { return r->report.text(); })
+      }, doc::kGroups)
+      .def_property_readonly("flip", [](const ResultPtr& r) { return toPython(r->report.json()["flip"]); }, doc::kFlip)
+      .def_property_readonly("text", [](const ResultPtr& r) { return r->report.text(); }, doc::kText)
       .def_property_readonly("mask", [](const ResultPtr& r) -> py::object {
         const CompareMask& m = r->report.mask;
         if (m.empty()) return py::none();
         return view(py::dtype("uint8"), {py::ssize_t(m.height), py::ssize_t(m.width)}, m.bits.data(), r);
-      })
-      .def("errors", &errors, "key"_a)
+      }, doc::kResultMask)
+      .def("errors", &errors, "key"_a, doc::kErrors)
       .def("report", [](const ResultPtr& r, const std::filesystem::path& dir) {
         std::string error;
         bool ok;
@@ -108,22 +115,22 @@ void bindCompare(py::module_& m) {
           ok = writeReport(r->a->capture, r->b->capture, r->report, dir.string(), error);
         }
         if (!ok) fail(error);
-      }, "dir"_a)
+      }, "dir"_a, doc::kReport)
       .def("junit", [](const ResultPtr& r, const std::filesystem::path& file, const std::string& name) {
         std::string error;
         if (!writeJunit({{name, &r->report}}, file.string(), error)) fail(error);
-      }, "file"_a, "name"_a = "")
+      }, "file"_a, "name"_a = "", doc::kJunit)
       .def("write_images", [](const ResultPtr& r, const std::filesystem::path& dir) {
         std::string error;
         if (!writeCompareImages(r->report, dir.string(), error)) fail(error);
-      }, "dir"_a)
+      }, "dir"_a, doc::kWriteImages)
       .def("__repr__", [](const ResultPtr& r) {
         return "<gblens.Result " + r->report.json()["result"].get<std::string>() + " (exit " + std::to_string(r->report.exitCode) + ")>";
       });
   m.def("compare", &compareFrames, "a"_a, "b"_a, py::kw_only(), "fail"_a = py::none(), "failpercent"_a = py::none(),
         "hardfail"_a = py::none(), "warn"_a = py::none(), "warnpercent"_a = py::none(), "mask"_a = py::none(),
         "exclude"_a = std::vector<std::string>{}, "flip"_a = true, "fail_flip"_a = py::none(), "warn_flip"_a = py::none(),
-        "flip_ppd"_a = py::none(), "Compares two frames (Frame or capture folder) as `gblens compare` does");
+        "flip_ppd"_a = py::none(), doc::kCompare);
 }
 
 }  // namespace gb::python

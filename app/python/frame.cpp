@@ -16,6 +16,7 @@
 #include "views/analysis/view_table.h"
 #include "views/analysis/region_stats.h"
 #include "views/import/import_renderdoc.h"
+#include "app/python/docstrings.h"
 #include "app/python/python.h"
 
 namespace gb::python {
@@ -41,7 +42,7 @@ const FrameSnapshot& frameOfHandle(const FramePtr& h) { return h->capture.frame;
 ViewDef findQuantity(const FrameSnapshot& f, const std::string& name) {
   const std::vector<ViewDef> views = layoutViews(f.layout);
   const int i = findView(views, name);
-  if (i < 0) throw py::key_error("\"" + name + "\": no quantity of that name (quantities: " + viewNameList(views) + ")");
+  if (i < 0) throw QuantityError("\"" + name + "\": no quantity of that name (quantities: " + viewNameList(views) + ")");
   return views[size_t(i)];
 }
 
@@ -56,20 +57,23 @@ py::array quantityArray(const FramePtr& h, const std::string& name) {
     py::gil_scoped_release release;
     values = decodedImage<double>(f, v);
   }
-  return adopt(std::move(values), {py::ssize_t(ti->image.height), py::ssize_t(ti->image.width), py::ssize_t(decodedComponents(f, v))});
+  // A scalar is (H, W), as numpy and OpenImageIO give one channel; vectors and colours (H, W, C).
+  const py::ssize_t components = py::ssize_t(decodedComponents(f, v));
+  if (components == 1) return adopt(std::move(values), {py::ssize_t(ti->image.height), py::ssize_t(ti->image.width)});
+  return adopt(std::move(values), {py::ssize_t(ti->image.height), py::ssize_t(ti->image.width), components});
 }
 
 // Positions from the first camera depth ("depth"), the stored position ("stored") or a depth quantity
 // named, in eye space or the layout's world axes.
 py::array position(const FramePtr& h, const std::string& source, const std::string& space) {
   const FrameSnapshot& f = frameOfHandle(h);
-  if (space != "world" && space != "eye") fail("position: space \"" + space + "\": world or eye");
+  if (space != "world" && space != "eye") failArgument("space=\"" + space + "\": world or eye");
   const Quantity* q = source == "depth" ? surfaceDepth(f.layout) : source == "stored" ? f.layout.find(QuantityKind::Position) : nullptr;
   if (source != "depth" && source != "stored") {
     q = &f.layout.quantities[size_t(findQuantity(f, source).quantity)];
-    if (q->kind != QuantityKind::Depth || q->ofSun) fail("position: source \"" + source + "\": depth, stored or a camera depth's name");
+    if (q->kind != QuantityKind::Depth || q->ofSun) failArgument("source=\"" + source + "\": depth, stored or a camera depth's name");
   }
-  if (!q) fail("position: the layout has no " + std::string(source == "depth" ? "camera depth" : "stored position"));
+  if (!q) failArgument("source=\"" + source + "\": the layout has no " + std::string(source == "depth" ? "camera depth" : "stored position"));
   if (!layoutImage(f, q->target)) fail("position: the frame does not hold target " + f.layout.targets[q->target].name);
   const TargetImage& ti = *layoutImage(f, q->target);
   std::vector<double> out(size_t(ti.image.width) * ti.image.height * 3);
@@ -95,7 +99,7 @@ py::array mask(const FramePtr& h, const std::string& name) {
   } else {  // compare's masks, of this frame alone
     CompareMask m;
     std::string error;
-    if (!buildCompareMask(h->capture, h->capture, name, m, error)) fail(error);
+    if (!buildCompareMask(h->capture, h->capture, name, m, error)) failArgument("name=" + name + ": " + error);
     for (size_t i = 0; i < out.size(); ++i) out[i] = m.bits[i] != 0;
   }
   py::array a = adopt(std::move(out), {py::ssize_t(f.camera.height), py::ssize_t(f.camera.width)});
@@ -146,10 +150,10 @@ FramePtr importFrames(const std::vector<std::string>& inputs, const std::string&
   for (auto [key, value] : params) {
     std::string name = py::str(key);
     std::replace(name.begin(), name.end(), '-', '_');
-    if (!findOption(name)) fail("params: \"" + std::string(py::str(key)) + "\" is no option of gblens --help (e.g. normal_format)");
-    if (!setOption(options, name, py::str(value), error)) fail("params: " + name + ": " + error);
+    if (!findOption(name)) failArgument("params: \"" + std::string(py::str(key)) + "\" is no option of gblens --help (e.g. normal_format)");
+    if (!setOption(options, name, py::str(value), error)) failArgument("params: " + name + ": " + error);
   }
-  if (!size.empty() && !setOption(options, "size", size, error)) fail(error);
+  if (!size.empty() && !setOption(options, "size", size, error)) failArgument("size=" + size + ": " + error);
   ImportInput in;
   if (!loadImportLayout(layout, layoutParameters(options), in.layout, in.layoutDir, error)) fail(error);
   if (const std::string why = importCameraRefusal(in.layout); !why.empty()) fail(why);
@@ -180,10 +184,10 @@ FramePtr open(const py::object& path, const py::object& layout, const py::dict& 
   std::vector<std::string> inputs;
   if (py::isinstance<py::str>(path) || py::hasattr(path, "__fspath__")) inputs.push_back(py::str(path));
   else for (const py::handle& p : path) inputs.push_back(py::str(p));
-  if (inputs.empty()) fail("open: no path");
+  if (inputs.empty()) failArgument("path: no path given");
   if (layout.is_none()) {
-    if (inputs.size() != 1) fail("open: several files are an import: give layout=");
-    if (!params.empty() || !cameraFile.is_none() || !size.is_none()) fail("open: params, camera and size apply to an import (layout=)");
+    if (inputs.size() != 1) failArgument("path: several files are an import: give layout=");
+    if (!params.empty() || !cameraFile.is_none() || !size.is_none()) failArgument("params, camera and size apply to an import (layout=)");
     return openCapture(inputs[0]);
   }
   return importFrames(inputs, py::str(layout), params, cameraFile.is_none() ? "" : std::string(py::str(cameraFile)),
@@ -215,28 +219,42 @@ FramePtr frameOf(const py::object& o) {
 
 void bindFrame(py::module_& m) {
   using namespace pybind11::literals;
-  py::class_<FrameHandle, FramePtr>(m, "Frame", "A frame: a capture, an import or a render (docs/python.md)")
-      .def_property_readonly("path", [](const FramePtr& h) { return h->capture.dir; })
-      .def_property_readonly("width", [](const FramePtr& h) { return h->capture.frame.camera.width; })
-      .def_property_readonly("height", [](const FramePtr& h) { return h->capture.frame.camera.height; })
-      .def_property_readonly("layout", [](const FramePtr& h) { return toPython(layoutJson(h->capture.frame.layout)); })
-      .def_property_readonly("manifest", [](const FramePtr& h) { return toPython(h->capture.manifest); })
-      .def_property_readonly("camera", &camera)
-      .def_property_readonly("targets", &targets)
+  py::class_<FrameHandle, FramePtr>(m, "Frame", doc::kFrame)
+      .def_property_readonly("path", [](const FramePtr& h) { return h->capture.dir; }, doc::kPath)
+      .def_property_readonly("width", [](const FramePtr& h) { return h->capture.frame.camera.width; }, doc::kWidth)
+      .def_property_readonly("height", [](const FramePtr& h) { return h->capture.frame.camera.height; }, doc::kHeight)
+      .def_property_readonly("layout", [](const FramePtr& h) { return toPython(layoutJson(h->capture.frame.layout)); }, doc::kLayout)
+      .def_property_readonly("manifest", [](const FramePtr& h) { return toPython(h->capture.manifest); }, doc::kManifest)
+      .def_property_readonly("camera", &camera, doc::kCamera)
+      .def_property_readonly("targets", &targets, doc::kTargets)
       .def_property_readonly("quantities", [](const FramePtr& h) {
         std::vector<std::string> names;
-        for (const ViewDef& v : layoutViews(h->capture.frame.layout)) names.push_back(v.name);
+        for (const ViewDef& v : layoutViews(h->capture.frame.layout))
+          if (layoutImage(h->capture.frame, v.target)) names.push_back(v.name);
         return names;
-      })
-      .def("quantity", &quantityArray, "name"_a)
-      .def("__getitem__", &quantityArray, "name"_a)
-      .def("position", &position, "source"_a = "depth", "space"_a = "world")
-      .def("mask", &mask, "name"_a = "surface")
-      .def("probe", [](const FramePtr& h, uint32_t x, uint32_t y) {
-        const PixelDossier d = probePixel(h->capture.frame, x, y);
+      }, doc::kQuantities)
+      .def_property_readonly("missing_quantities", [](const FramePtr& h) {
+        py::dict out;
+        const FrameSnapshot& f = h->capture.frame;
+        for (const ViewDef& v : layoutViews(f.layout))
+          if (!layoutImage(f, v.target))
+            out[py::str(v.name)] = "the frame does not hold target " + f.layout.targets[v.target].name + " (" +
+                                   absentText(f.absences[v.target]) + ")";
+        return out;
+      }, doc::kMissingQuantities)
+      .def("quantity", &quantityArray, "name"_a, doc::kQuantity)
+      .def("__getitem__", &quantityArray, "name"_a, doc::kGetItem)
+      .def("position", &position, "source"_a = "depth", "space"_a = "world", doc::kPosition)
+      .def("mask", &mask, "name"_a = "surface", doc::kMask)
+      .def("probe", [](const FramePtr& h, int64_t x, int64_t y) {
+        const Camera& c = h->capture.frame.camera;
+        if (x < 0 || y < 0 || x >= int64_t(c.width) || y >= int64_t(c.height))
+          failArgument("x=" + std::to_string(x) + ", y=" + std::to_string(y) + ": outside the " + std::to_string(c.width) +
+                       "x" + std::to_string(c.height) + " frame (0 <= x < width, 0 <= y < height)");
+        const PixelDossier d = probePixel(h->capture.frame, uint32_t(x), uint32_t(y));
         if (!d.error.empty()) fail(d.error);
         return toPython(dossierJson(d));
-      }, "x"_a, "y"_a)
+      }, "x"_a, "y"_a, doc::kProbe)
       .def("stats", [](const FramePtr& h, const py::object& rect, const std::string& target, int bins) {
         std::string text = py::str(rect), error;
         if (!py::isinstance<py::str>(rect)) {
@@ -245,14 +263,14 @@ void bindFrame(py::module_& m) {
         }
         RegionRect r;
         const Camera& c = h->capture.frame.camera;
-        if (!parseRegionRect(text, c.width, c.height, r, error)) fail("--rect " + error);
+        if (!parseRegionRect(text, c.width, c.height, r, error)) failArgument("rect=" + error);
         if (!target.empty() && h->capture.frame.layout.findTarget(target) < 0) {
           std::string names;
           for (const LayoutTarget& t : h->capture.frame.layout.targets) names += (names.empty() ? "" : ", ") + t.name;
-          fail("--target " + target + ": not a target of this capture (targets: " + names + ")");
+          failArgument("target=\"" + target + "\": not a target of this frame (targets: " + names + ")");
         }
         return toPython(regionStatsJson(regionStats(h->capture.frame, r, target, bins)));
-      }, "rect"_a, "target"_a = "", "bins"_a = 32)
+      }, "rect"_a, "target"_a = "", "bins"_a = 32, doc::kStats)
       .def("check", [](const FramePtr& h, const py::object& rules) {
         // The policy as `check --policy RULE`: ["denormal=fault", ...] or {"Normal.out_of_range": "warn"}.
         std::vector<std::string> texts;
@@ -262,20 +280,20 @@ void bindFrame(py::module_& m) {
           for (const py::handle& r : rules) texts.push_back(py::str(r));
         CheckPolicy policy;
         std::string error;
-        if (!checkPolicy(h->capture.frame.layout, texts, policy, error)) fail(error);
+        if (!checkPolicy(h->capture.frame.layout, texts, policy, error)) failArgument(keywordMessage(error, {{"--policy", "policy"}}));
         return toPython(checkJson(checkFrame(h->capture.frame, policy)));
-      }, "policy"_a = py::none())
+      }, "policy"_a = py::none(), doc::kCheck)
       .def("save", [](const FramePtr& h, const std::filesystem::path& dir) {
         std::string error;
         if (!writeCapture(dir.string(), h->capture.frame, h->meta, error)) fail(error);
-      }, "dir"_a)
+      }, "dir"_a, doc::kSave)
       .def("__repr__", [](const FramePtr& h) {
         const FrameSnapshot& f = h->capture.frame;
         return "<gblens.Frame " + std::to_string(f.camera.width) + "x" + std::to_string(f.camera.height) + ", layout " +
                f.layout.name + ", " + h->capture.dir + ">";
       });
   m.def("open", &open, "path"_a, "layout"_a = py::none(), "params"_a = py::dict(), "camera"_a = py::none(),
-        "size"_a = py::none(), "A capture folder, or files imported through a layout (docs/python.md)");
+        "size"_a = py::none(), doc::kOpen);
 }
 
 }  // namespace gb::python

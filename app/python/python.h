@@ -16,11 +16,24 @@ namespace gb::python {
 namespace py = pybind11;
 
 // gblens.Error: a user mistake or an unreadable input, with the message the CLI prints after
-// "gblens COMMAND: ".
+// "gblens COMMAND: " (a flag named there is named as the keyword argument: "fail=abc", not "--fail abc").
+// Its subclasses say which: gblens.ArgumentError (also a ValueError) for an argument's value,
+// gblens.QuantityError (also a KeyError) for a quantity the frame does not have.
 struct Error : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+struct ArgumentError : Error {
+  using Error::Error;
+};
+struct QuantityError : Error {
+  using Error::Error;
+};
 [[noreturn]] inline void fail(const std::string& message) { throw Error(message); }
+[[noreturn]] inline void failArgument(const std::string& message) { throw ArgumentError(message); }
+
+// The engine's message with a leading CLI flag named as the keyword argument ("--fail abc: ..." ->
+// "fail=abc: ..."); `flags` maps each flag to its argument ({"--fail", "fail"}).
+std::string keywordMessage(const std::string& message, const std::vector<std::pair<std::string, std::string>>& flags);
 
 // A frame with what a capture records about it; shared by the Python Frame and every array that
 // points into it (their base is a capsule holding a reference), so arrays outlive the Frame safely.

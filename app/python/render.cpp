@@ -4,6 +4,7 @@
 
 #include <functional>
 
+#include "app/python/docstrings.h"
 #include "app/python/python.h"
 #include "renderer/gpu/render_targets.h"
 #include "renderer/scene/builtin.h"
@@ -29,8 +30,8 @@ RenderOptions optionsFrom(const py::kwargs& kwargs) {
       for (const py::handle& item : value) v.push_back(py::str(item));
       text = v.size() == 2 ? v[0] + "x" + v[1] : text;
     }
-    if (!findOption(name)) fail(name + ": no option of that name (gblens --help lists them; - as _)");
-    if (!setOption(o, name, text, error)) fail(error);
+    if (!findOption(name)) failArgument(name + "=: no option of that name (gblens --help lists them; - as _)");
+    if (!setOption(o, name, text, error)) failArgument(name + "=" + text + ": " + error);
   }
   return o;
 }
@@ -44,7 +45,7 @@ Scene sceneFrom(const std::string& source, const RenderOptions& o) {
   }
   for (const std::string& w : scene.warnings) PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1);
   if (size_t(o.camera) >= scene.cameras.size())
-    fail("--camera " + std::to_string(o.camera) + ": " + source + " has " + std::to_string(scene.cameras.size()) + " camera(s)");
+    failArgument("camera=" + std::to_string(o.camera) + ": " + source + " has " + std::to_string(scene.cameras.size()) + " camera(s)");
   return scene;
 }
 
@@ -55,8 +56,8 @@ std::vector<Target> targetsFrom(const py::object& names, const RenderOptions& o,
   for (const py::handle& n : names) {
     Target t;
     const std::string name = py::str(n);
-    if (!parseTarget(name, t)) fail("--targets: unknown target \"" + name + "\"");
-    if (Absent why = targetAbsence(t, o, scene.sun.enabled); why != Absent::No) fail("--targets " + name + ": " + absentText(why));
+    if (!parseTarget(name, t)) failArgument("targets: unknown target \"" + name + "\"");
+    if (Absent why = targetAbsence(t, o, scene.sun.enabled); why != Absent::No) failArgument("targets: " + name + ": " + absentText(why));
     out.push_back(t);
   }
   return out;
@@ -125,9 +126,8 @@ py::object error(const std::string& source, const std::string& device, double ba
 void bindRender(py::module_& m) {
   using namespace pybind11::literals;
   m.def("render", &render, "scene"_a = "builtin:temple", py::kw_only(), "targets"_a = py::none(), "device"_a = "",
-        "coverage"_a = true, "One headless frame as `gblens capture` renders it; options by their table names");
-  m.def("error", &error, "scene"_a = "builtin:temple", py::kw_only(), "device"_a = "", "band"_a = kShadowBandTexels,
-        "One frame's error per quantity against the CPU reference: the figures of `gblens error --json`");
+        "coverage"_a = true, doc::kRender);
+  m.def("error", &error, "scene"_a = "builtin:temple", py::kw_only(), "device"_a = "", "band"_a = kShadowBandTexels, doc::kError);
 }
 
 }  // namespace gb::python

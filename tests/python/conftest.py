@@ -35,12 +35,14 @@ def cli_message(stderr, command):
 @pytest.fixture(scope="session")
 def captures(tmp_path_factory):
     """Two native captures of builtin:temple at 64x36 (time 0 and 0.25, primitive ids and stored world
-    positions on) and the Blender fixture imported with its shipped layout."""
+    positions on), one with the default options ("plain") and the Blender fixture imported with its
+    shipped layout."""
     root = tmp_path_factory.mktemp("captures")
-    a, b, blender = root / "a", root / "b", root / "blender"
+    a, b, blender, plain = root / "a", root / "b", root / "blender", root / "plain"
     common = [*SMALL, "--primitive-id", "on", "--position", "rgba32f", "--position-space", "world"]
     run("capture", *common, "-o", a)
     run("capture", *common, "--time", "0.25", "-o", b)
+    run("capture", *SMALL, "-o", plain)  # the defaults: no primitive ids, positions from depth
     run("import", os.path.join(SOURCE, "tests", "data", "blender", "cycles.exr"), "--layout", "builtin:blender-cycles",
         "-o", blender)
-    return {"a": str(a), "b": str(b), "blender": str(blender), "root": root}
+    return {"a": str(a), "b": str(b), "blender": str(blender), "plain": str(plain), "root": root}
