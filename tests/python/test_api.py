@@ -147,3 +147,17 @@ def test_every_docs_example_runs(index, tmp_path, monkeypatch):
     for name in ("cycles.exr", "camera.json"):  # the Blender passes and their camera sidecar
         shutil.copy(os.path.join(SOURCE, "tests", "data", "blender", name), tmp_path / name)
     exec(compile(code, f"docs/python.md example {index}", "exec"), {"__name__": "__docs__"})
+
+
+def test_save_is_lossless(captures, tmp_path):
+    """A frame saved again keeps every light's description (lights.json, read here as JSON) and
+    compares identical with nothing only on one side."""
+    import json
+    f = gblens.open(captures["a"])
+    f.save(tmp_path / "saved")
+    original = json.load(open(os.path.join(captures["a"], "lights.json")))
+    saved = json.load(open(tmp_path / "saved" / "lights.json"))
+    assert original["lights"] and all("desc" in l for l in original["lights"])
+    assert saved["lights"] == original["lights"]
+    r = gblens.compare(captures["a"], str(tmp_path / "saved"), flip=False)
+    assert r.exit_code == 0 and r.json["only_in_a"] == [] and r.json["only_in_b"] == []

@@ -59,6 +59,21 @@ void lightsIn(const JsonIn& j, FrameSnapshot& f) {
     p.eyePositionRadius = glm::vec4(glm::vec3(lights[i]["eye_position"].vec3()), float(lights[i]["radius"].number()));
     p.color = glm::vec4(glm::vec3(lights[i]["color"].vec3()), 0.0f);
     f.eyeLights.push_back(p);
+    // The scene's description of the light (its animation), which a re-saved capture writes back: kept,
+    // so that Frame.save and a capture re-written compare equal (the writer gives it to the first lights).
+    if (lights[i].has("desc") && f.lightDescs.size() == i) {
+      const JsonIn d = lights[i]["desc"];
+      PointLightDesc desc;
+      desc.center = d["center"].vec3();
+      desc.orbitRadius = d["orbit_radius"].number();
+      desc.orbitSpeed = d["orbit_speed"].number();
+      desc.phase = d["phase"].number();
+      desc.bob = d["bob"].number();
+      desc.radius = d["radius"].number();
+      desc.color = glm::vec3(d["color"].vec3());
+      desc.intensity = d["intensity"].number();
+      f.lightDescs.push_back(desc);
+    }
   }
   f.visibleLights = j["visible"].u32s();
   f.stencilCount = j["stencil_count"].u32();
