@@ -236,6 +236,21 @@ void setCaptureViews(Viewer& v) {
   for (const ViewDef& d : m.views)
     if (d.sun) sm = layoutImage(a, d.target);
   m.shadowMapSize = sm && sm->present() ? glm::uvec2(sm->image.width, sm->image.height) : glm::uvec2(1, 1);
+  // Values in texels at high zoom: both captures are on the CPU, decoded as hover decodes them.
+  m.texelValue = [&v](int view, FrameSide side, glm::ivec2 t) -> std::optional<TexelValue> {
+    const bool b = side == FrameSide::B;
+    if ((b && !v.hasB) || view < 0 || size_t(view) >= v.model.views.size()) return std::nullopt;
+    const ViewDef& d = b ? v.viewsB[size_t(view)] : v.model.views[size_t(view)];
+    const FrameSnapshot& f = b ? v.captureB.frame : v.captureA.frame;
+    if (d.quantity < 0) return std::nullopt;
+    TexelValue out;
+    out.lines = texelValueLines(f, d, uint32_t(t.x), uint32_t(t.y), v.model.settings[size_t(view)].channels);
+    if (const std::optional<std::array<double, 4>> value = viewValue(f, d, uint32_t(t.x), uint32_t(t.y))) {
+      for (int c = 0; c < 4; ++c) out.value[size_t(c)] = float((*value)[size_t(c)]);
+      out.empty = false;
+    }
+    return out;
+  };
 }
 
 void updateCaptureRanges(Viewer& v) {

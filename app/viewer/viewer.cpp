@@ -253,9 +253,19 @@ static void logLayout(Viewer& v, int windowW, int windowH) {
   }
   j["views"] = list;
   std::string key = j.dump();
-  if (key == v.layoutKey) return;
-  v.layoutKey = key;
-  logLine(v.eventLog, j);
+  if (key != v.layoutKey) {
+    v.layoutKey = key;
+    logLine(v.eventLog, j);
+  }
+  // The values printed in texels (at high zoom), when they change: what a person reads there.
+  if (m.texelValuesDrawn == v.loggedTexelValues) return;
+  v.loggedTexelValues = m.texelValuesDrawn;
+  for (const TexelValuesDrawn& d : m.texelValuesDrawn) {
+    nlohmann::json texels = nlohmann::json::array();
+    for (const auto& [t, lines] : d.texels) texels.push_back({{"texel", {t.x, t.y}}, {"lines", lines}});
+    logLine(v.eventLog, {{"event", "texel_values"}, {"view", m.views[size_t(d.view)].name}, {"side", kSides[int(d.side)]},
+                         {"scale", d.scale}, {"texels", texels}});
+  }
 }
 
 static void answerProbe(Viewer& v) {

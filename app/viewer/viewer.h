@@ -172,6 +172,7 @@ struct Viewer {
   std::optional<glm::ivec2> hoverRead;
   std::optional<int> hoverReadView;
   std::string loggedHover;         // the hover text last written to --event-log
+  std::vector<TexelValuesDrawn> loggedTexelValues;  // the texel values last written to --event-log
   std::string markCountKey;        // the mark and frame the marked pixels were counted for
   std::optional<glm::ivec2> dossierShownFor;  // the probed pixel whose dossier the panel has settled on
   std::string layoutKey;           // logged layout, to log changes only

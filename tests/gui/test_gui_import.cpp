@@ -308,3 +308,95 @@ TEST_F(GuiImportTest, ACtrlDragSelectsARegionWhoseStatisticsAreGblensStats) {
 }
 
 }  // namespace gb
+
+namespace gb {
+
+// Values in texels, as tev and RenderDoc print them: zoomed in on the imported plane with the wheel,
+// each texel of the base colour shows its R, G, B as the 8-bit codes the test wrote decode (code / 255,
+// four significant digits: an 8-bit step), and of the eye depth the float the test stored (seven
+// digits); texels where nothing was drawn print nothing. Checked against the analytic scene, and
+// screenshotted (zoom_basecolor.png, zoom_depth.png) for a person to read.
+TEST_F(GuiImportTest, ZoomedInEachTexelPrintsItsValueAtItsStoragePrecision) {
+  PlaneScene scene;
+  std::string error;
+  const std::string capture = writePlaneCapture(dir_, scene);
+  viewer_ = gui::spawn({GBLENS_BINARY, "view", "--capture", capture, "--validate", "--window", "1280x720", "--event-log",
+                        (dir_ / "events.jsonl").string()},
+                       {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
+  ASSERT_FALSE(waitEvent([](const nlohmann::json& j) { return j["event"] == "ready"; }, 60.0).is_null())
+      << "the viewer did not present the capture; see " << (dir_ / "viewer.log");
+  std::string wid = xdotool("search --onlyvisible --name '^gblens'");
+  wid = wid.substr(0, wid.find('\n'));
+  ASSERT_FALSE(wid.empty());
+  auto alone = [&](const std::string& key, const std::string& name) {
+    xdotool("key --window " + wid + " " + key);
+    return waitEvent([name](const nlohmann::json& j) {
+      return j["event"] == "layout" && j["views"].size() == 1 && j["views"][0]["view"] == name;
+    });
+  };
+  // A capture opens on its first colour view alone: the latest layout event saying so.
+  size_t fromStart = 0;
+  nlohmann::json one;
+  auto baseColorAlone = [](const nlohmann::json& j) {
+    return j["event"] == "layout" && j["views"].size() == 1 && j["views"][0]["view"] == "BaseColor";
+  };
+  for (nlohmann::json j; !(j = gui::waitForLine((dir_ / "events.jsonl").string(), one.is_null() ? 30.0 : 1.0, baseColorAlone,
+                                                 fromStart)).is_null();)
+    one = j;
+  ASSERT_FALSE(one.is_null());
+  // The wheel over pixel (40, 70) of the plane until the values fit in the texels (at most 30 steps).
+  const nlohmann::json& v = one["views"][0];
+  const int sx = int(double(v["origin"][0]) + 40.5 * double(v["scale"]));
+  const int sy = int(double(v["origin"][1]) + 70.5 * double(v["scale"]));
+  xdotool("mousemove --window " + wid + " " + std::to_string(sx) + " " + std::to_string(sy));
+  auto valuesOf = [](const std::string& name) {
+    return [name](const nlohmann::json& j) { return j["event"] == "texel_values" && j["view"] == name && !j["texels"].empty(); };
+  };
+  nlohmann::json values;
+  for (int step = 0; step < 30 && values.is_null(); ++step) {
+    xdotool("click --window " + wid + " 4");
+    values = waitEvent(valuesOf("BaseColor"), 1.0);
+  }
+  ASSERT_FALSE(values.is_null()) << "no values in texels after 30 wheel steps; see " << (dir_ / "events.jsonl");
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  gui::Screenshot shot;
+  ASSERT_TRUE(gui::screenshot(xvfb_.display, (dir_ / "zoom_basecolor.png").string(), shot, error)) << error;
+  EXPECT_GE(values["scale"].get<double>(), 40.0);
+  bool sawHovered = false;
+  for (const nlohmann::json& t : values["texels"]) {
+    const uint32_t x = t["texel"][0], y = t["texel"][1];
+    sawHovered |= x == 40 && y == 70;
+    const glm::dvec3 c = scene.baseColor(x, y);
+    std::vector<std::string> expected;
+    for (int k = 0; k < 3; ++k) {
+      char line[32];
+      std::snprintf(line, sizeof line, "%c %.4g", "RGB"[k], double(std::lround(c[k] * 255.0)) / 255.0);
+      expected.push_back(line);
+    }
+    EXPECT_EQ(t["lines"].get<std::vector<std::string>>(), expected) << "texel " << x << "," << y;
+  }
+  EXPECT_TRUE(sawHovered) << "the texel under the mouse was not among those printed";
+
+  // The eye depth at the same zoom: the stored float, seven digits; the sky (no surface) prints nothing.
+  ASSERT_FALSE(alone("4", "Z").is_null());
+  nlohmann::json depth = waitEvent(valuesOf("Z"), 10.0);
+  ASSERT_FALSE(depth.is_null());
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_TRUE(gui::screenshot(xvfb_.display, (dir_ / "zoom_depth.png").string(), shot, error)) << error;
+  for (const nlohmann::json& t : depth["texels"]) {
+    const uint32_t x = t["texel"][0], y = t["texel"][1];
+    const std::optional<double> z = scene.eyeDepth(x, y);
+    ASSERT_TRUE(z.has_value()) << "a value printed where nothing was drawn: " << x << "," << y;
+    char line[32];
+    std::snprintf(line, sizeof line, "%.7g", double(float(*z)));
+    EXPECT_EQ(t["lines"], nlohmann::json::array({line})) << "texel " << x << "," << y;
+  }
+
+  xdotool("key --window " + wid + " ctrl+q");
+  int status = -1;
+  ASSERT_TRUE(gui::waitExit(viewer_, 30.0, status)) << "the viewer did not quit";
+  viewer_ = -1;
+  EXPECT_EQ(status, 0) << "validation messages or a failure; see " << (dir_ / "viewer.log");
+}
+
+}  // namespace gb

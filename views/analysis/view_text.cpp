@@ -1,6 +1,7 @@
 // Hover and status-bar text of a view at a pixel (see view_text.h).
 #include "views/analysis/view_text.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "renderer/core/decode.h"
@@ -47,6 +48,40 @@ static std::string decodedText(const FrameSnapshot& f, const ViewDef& v, const s
     if (!bits.empty()) out += " (" + bits + ")";
   }
   return out;
+}
+
+int storageDigits(PixelType t, Encoding e) {
+  // Enough digits to tell one storage step from the next: ceil(log10(2^bits)) + 1 for normalised
+  // integers, the mantissa's decimal digits for floats.
+  switch (e) {
+    case Encoding::Float: return t == PixelType::F16 ? 4 : 7;
+    case Encoding::Unorm10: return 4;
+    case Encoding::Unorm24: return 8;
+    case Encoding::Uint: return 10;
+    default: return pixelTypeSize(t) == 1 ? 4 : pixelTypeSize(t) == 2 ? 6 : 7;
+  }
+}
+
+std::vector<std::string> texelValueLines(const FrameSnapshot& f, const ViewDef& v, uint32_t x, uint32_t y, uint32_t shown) {
+  std::vector<std::string> lines;
+  const Quantity& q = f.layout.quantities[size_t(v.quantity)];
+  const TargetImage* ti = layoutImage(f, q.target);
+  if (!ti || !ti->contains(x, y)) return lines;
+  const std::optional<std::array<double, 4>> value = viewValue(f, v, x, y);
+  if (!value) return lines;
+  const int digits = storageDigits(ti->image.type, ti->image.encoding);
+  const uint32_t n = std::min(v.components, 4u);
+  char buf[64];
+  for (uint32_t c = 0; c < n; ++c) {
+    if (!(shown & (1u << c)) && n > 1) continue;
+    const std::string label = n > 1 && c < v.componentNames.size() ? v.componentNames[c] + " " : "";
+    if (v.integer)
+      std::snprintf(buf, sizeof buf, "%s%u", label.c_str(), uint32_t((*value)[c]));
+    else
+      std::snprintf(buf, sizeof buf, "%s%.*g", label.c_str(), digits, (*value)[c]);
+    lines.push_back(buf);
+  }
+  return lines;
 }
 
 std::string viewValueText(const FrameSnapshot& f, const ViewDef& v, uint32_t x, uint32_t y) {

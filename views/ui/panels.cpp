@@ -75,7 +75,7 @@ static std::string helpText(const ViewerModel& m) {
   std::string text = keys + "\n"
       "Left click: probe a pixel (dossier on the right); arrows move it\n"
       "Ctrl + left drag: statistics of a region\n"
-      "Wheel: zoom (all views); middle drag or shift+drag: pan; Z: fit; G: texel grid\n";
+      "Wheel: zoom (all views); middle drag or shift+drag: pan; Z: fit; G: texel grid (zoomed in: values in texels)\n";
   if (m.source == FrameSource::Live)
     text += "Click the shadow map: mark the pixels that sample that texel\n"
             "Right drag: orbit (fly mode: look); WASD/QE: move; ctrl+wheel: dolly\n"
@@ -235,7 +235,13 @@ static void viewSettings(ViewerModel& m) {
   ImGui::TextUnformatted(d.negativeSuspicious ? "negative" : "negative (not flagged here)");
   ImGui::Checkbox("texel grid", &m.grid);
   ImGui::SameLine();
-  ImGui::Text("zoom %.2fx", m.transform.zoom);
+  ImGui::Checkbox("values in texels", &m.texelValues);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("zoomed in far enough, each texel shows its value (captures)");
+  // The zoom as what it is on screen: window pixels per texel of the first view (and the fit's factor).
+  if (m.texelScale >= 1.0)
+    ImGui::Text("%.4g px per texel (%.3gx fit)", m.texelScale, m.transform.zoom);
+  else if (m.texelScale > 0.0)
+    ImGui::Text("1 px per %.3g texels (%.3gx fit)", 1.0 / m.texelScale, m.transform.zoom);
   ImGui::SameLine();
   if (ImGui::SmallButton("fit")) m.transform = ViewTransform{};
 }

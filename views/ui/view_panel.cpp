@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "views/ui/texel_values.h"
 #include "views/ui/view_legends.h"
 #include "views/ui/viewer_model.h"
 
@@ -405,6 +406,7 @@ static void drawOneView(ViewerModel& m, const SlotDraw& v) {
   ImGui::PopID();
 
   Placement pl = placeImage(r, size.x, size.y, m.transform);
+  if (v.index == 0) m.texelScale = pl.scale;
   std::string why = m.unavailable[size_t(v.view)];
   if (why.empty() && v.side == FrameSide::Flip && !m.flipPools[size_t(v.view)]) why = m.flipStatus;
   if (!why.empty()) {
@@ -416,6 +418,8 @@ static void drawOneView(ViewerModel& m, const SlotDraw& v) {
   } else {
     ResolvedRange range = resolveRange(def, m.settings[size_t(v.view)], &m.ranges[size_t(v.view)]);
     queueViewDraw(m, v, pl, range);
+    // A split slot shows A and B in one rectangle: values would not say which side they are.
+    if (!v.split) drawTexelValues(m, v.view, v.side, r, pl, range);
     drawMarks(m, v, pl);
     drawLabels(m, v, range);
   }
@@ -436,6 +440,7 @@ void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, s
   m.hover.reset();
   m.hoverView.reset();
   m.hoverShadowTexel.reset();
+  m.texelValuesDrawn.clear();
   std::vector<ViewSlot> slots = viewSlots(m, area);
   for (size_t i = 0; i < slots.size(); ++i)
     drawOneView(m, {.view = slots[i].view,

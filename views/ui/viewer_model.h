@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -49,6 +50,24 @@ using ViewDrawCallback = void (*)(const ImDrawList*, const ImDrawCmd*);
 
 enum class CameraMode { Orbit, Fly };
 
+// A texel's value as the viewer prints it inside the texel at high zoom (views/ui/texel_values.cpp):
+// the lines (views/analysis/view_text.h texelValueLines) and the decoded components, which pick the
+// text's colour (black on light texels, white on dark ones).
+struct TexelValue {
+  std::vector<std::string> lines;
+  std::array<float, 4> value{};
+  bool empty = true;  // nothing drawn there
+};
+using TexelValueSource = std::function<std::optional<TexelValue>(int view, FrameSide side, glm::ivec2 texel)>;
+// What the last interface frame printed in one view (the app logs it: "texel_values" events).
+struct TexelValuesDrawn {
+  int view = -1;
+  FrameSide side = FrameSide::A;
+  double scale = 0.0;  // window pixels per texel
+  std::vector<std::pair<glm::ivec2, std::vector<std::string>>> texels;
+  bool operator==(const TexelValuesDrawn&) const = default;
+};
+
 struct ViewerModel {
   FrameSource source = FrameSource::Live;
   std::string captureA, captureB;    // directories (capture modes)
@@ -74,6 +93,12 @@ struct ViewerModel {
   int edited = 0;                      // the view whose settings the panel shows (last used)
   ViewTransform transform;
   bool grid = true;
+  // Values printed in texels once a texel is large enough for them (tev, RenderDoc): the app gives
+  // the values of the frames it holds on the CPU (captures); none: the view shows the grid only.
+  bool texelValues = true;
+  TexelValueSource texelValue;
+  std::vector<TexelValuesDrawn> texelValuesDrawn;  // this interface frame's, one per view that printed
+  double texelScale = 0.0;  // window pixels per texel of the first view slot drawn (the zoom label)
   bool showControls = true, showPixel = true;
 
   // ---- the frame as rendered (the app fills these) ----
