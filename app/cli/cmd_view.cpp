@@ -5,6 +5,7 @@
 
 #include "app/cli/cli.h"
 #include "app/viewer/viewer.h"
+#include "views/ui/keys.h"
 
 namespace gb {
 
@@ -13,6 +14,8 @@ Command addViewCommand(CLI::App& root) {
   auto common = std::make_shared<CommonOptions>();
   CLI::App* cmd = root.add_subcommand("view", "open the interactive viewer (needs a display)");
   addCommonOptions(cmd, *common);
+  auto keys = std::make_shared<bool>(false);
+  cmd->add_flag("--keys", *keys, "print the viewer's keys and mouse as a Markdown table (the README's) and exit");
   cmd->add_option("--window", a->window, "initial window size WxH (default: 85% of the monitor, at most 1920x1080)");
   cmd->add_flag("--paused", a->paused, "start with the animation paused (at --time)");
   addViewOption(cmd, "--view", a->initialView, "initial view");
@@ -31,7 +34,11 @@ Command addViewCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--capture", a->capture, "open a capture directory instead of rendering (gblens capture -o DIR)");
   cmd->add_option("--compare", a->compare, "with --capture A: compare with capture B (A, B, |A-B|, split, both dossiers)");
-  return {cmd, [a, common, cmd, reduce]() -> int {
+  return {cmd, [a, common, cmd, reduce, keys]() -> int {
+            if (*keys) {
+              std::fputs(keysMarkdown().c_str(), stdout);
+              return 0;
+            }
             std::string error;
             if (!finishCommonOptions(*common, error)) {
               std::fprintf(stderr, "gblens view: %s\n", error.c_str());

@@ -1,5 +1,5 @@
 // The viewer's controls outside ImGui's widgets: keys (the seed's 1..9, 0, Return and the
-// viewer's own), the camera (scene cameras, right-drag, ctrl+wheel, WASD/QE) and the lights
+// viewer's own, dispatched through views/ui/keys.h), the camera (scene cameras, right-drag, ctrl+wheel, WASD/QE) and the lights
 // (count, radius scale), applied to the live scene between frames.
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
@@ -9,38 +9,70 @@
 
 #include "app/viewer/viewer.h"
 #include "views/ui/compare_view.h"
+#include "views/ui/keys.h"
 
 namespace gb {
 
-// Keys of the seed (1..9, 0, Return) and the viewer's own.
+// The table's name of a GLFW key (views/ui/keys.cpp), "" for keys the table does not name.
+static std::string keyName(int key) {
+  if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) return std::string(1, char('0' + key - GLFW_KEY_0));
+  if (key >= GLFW_KEY_KP_0 && key <= GLFW_KEY_KP_9) return std::string(1, char('0' + key - GLFW_KEY_KP_0));
+  if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z) return std::string(1, char('A' + key - GLFW_KEY_A));
+  switch (key) {
+    case GLFW_KEY_ENTER: case GLFW_KEY_KP_ENTER: return "Return";
+    case GLFW_KEY_SPACE: return "Space";
+    case GLFW_KEY_ESCAPE: return "Escape";
+    case GLFW_KEY_PERIOD: return ".";
+    case GLFW_KEY_COMMA: return ",";
+    case GLFW_KEY_HOME: return "Home";
+    case GLFW_KEY_LEFT: return "Left";
+    case GLFW_KEY_RIGHT: return "Right";
+    case GLFW_KEY_UP: return "Up";
+    case GLFW_KEY_DOWN: return "Down";
+    default: return "";
+  }
+}
+
+static unsigned keySession(const ViewerModel& m) {
+  return m.source == FrameSource::Compare ? kCompare : m.attach.on ? kAttach : m.source == FrameSource::Live ? kLive : kCapture;
+}
+
+// Keys, through the one table (views/ui/keys.h) that Help and the README show.
 void handleKeys(Viewer& v) {
   ViewerModel& m = v.model;
   std::vector<int> keys;
   keys.swap(v.pressedKeys);
   if (ImGui::GetIO().WantTextInput) return;
   for (int k : keys) {
-    bool ctrl = k & 0x10000;
-    int key = k & 0xFFFF;
-    if (ctrl && key == GLFW_KEY_Q) glfwSetWindowShouldClose(v.window, 1);
-    if (ctrl && key == GLFW_KEY_S && !m.attach.draft.empty()) m.attach.saveDraftRequested = true;  // attach --suggest's draft
-    if (ctrl) continue;
-    if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) applyViewKey(m, key - GLFW_KEY_0);
-    if (key >= GLFW_KEY_KP_0 && key <= GLFW_KEY_KP_9) applyViewKey(m, key - GLFW_KEY_KP_0);
-    if (key == GLFW_KEY_ENTER || key == GLFW_KEY_KP_ENTER) applyViewKey(m, 0);
-    if (key == GLFW_KEY_SPACE && m.source == FrameSource::Compare) flipCompareSide(m);  // A <-> B in place
-    if (key == GLFW_KEY_SPACE && m.source != FrameSource::Compare) m.playing = !m.playing;
-    if (key == GLFW_KEY_ESCAPE) m.referenceError.cancelRequested = true;
-    if (key == GLFW_KEY_C && m.attach.on) m.captureRequested = true;  // an attached stream: capture the frame shown
-    if (key == GLFW_KEY_PERIOD) m.stepForward = true;
-    if (key == GLFW_KEY_COMMA) m.stepBack = true;
-    if (key == GLFW_KEY_HOME) m.resetCamera = true;
-    if (key == GLFW_KEY_G) m.grid = !m.grid;
-    if (key == GLFW_KEY_Z) m.transform = ViewTransform{};
-    glm::ivec2 step(key == GLFW_KEY_RIGHT ? 1 : key == GLFW_KEY_LEFT ? -1 : 0,
-                    key == GLFW_KEY_DOWN ? 1 : key == GLFW_KEY_UP ? -1 : 0);
-    if (step != glm::ivec2(0)) {
-      glm::ivec2 from = m.probePixel ? *m.probePixel : glm::ivec2(viewImageSize(m, m.primary) / 2u);
-      m.probeRequest = from + step;
+    const bool ctrl = k & 0x10000;
+    const int key = k & 0xFFFF;
+    const std::string name = keyName(key);
+    const std::optional<KeyAction> action = keyAction(name, ctrl, keySession(m));
+    if (!action) continue;
+    switch (*action) {
+      case KeyAction::Quit: glfwSetWindowShouldClose(v.window, 1); break;
+      case KeyAction::SaveDraft:
+        if (!m.attach.draft.empty()) m.attach.saveDraftRequested = true;
+        break;
+      case KeyAction::Grid: case KeyAction::FirstView: case KeyAction::ViewKey:
+        applyViewKey(m, name == "Return" ? 0 : name[0] - '0');
+        break;
+      case KeyAction::FlipCompare: flipCompareSide(m); break;
+      case KeyAction::PlayPause: case KeyAction::PauseStream: m.playing = !m.playing; break;
+      case KeyAction::CancelReference: m.referenceError.cancelRequested = true; break;
+      case KeyAction::CaptureShown: m.captureRequested = true; break;
+      case KeyAction::StepForward: m.stepForward = true; break;
+      case KeyAction::StepBack: m.stepBack = true; break;
+      case KeyAction::ResetCamera: m.resetCamera = true; break;
+      case KeyAction::TexelGrid: m.grid = !m.grid; break;
+      case KeyAction::Fit: m.transform = ViewTransform{}; break;
+      case KeyAction::MoveProbe: {
+        const glm::ivec2 step(name == "Right" ? 1 : name == "Left" ? -1 : 0, name == "Down" ? 1 : name == "Up" ? -1 : 0);
+        const glm::ivec2 from = m.probePixel ? *m.probePixel : glm::ivec2(viewImageSize(m, m.primary) / 2u);
+        m.probeRequest = from + step;
+        break;
+      }
+      case KeyAction::MoveCamera: case KeyAction::Mouse: break;  // held keys and the mouse: elsewhere
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "views/ui/keys.h"
 #include "views/ui/viewer_model.h"
 
 namespace gb {
@@ -67,28 +68,34 @@ static bool viewCombo(const ViewerModel& m, const char* label, int& v) {
   return changed;
 }
 
-// Help: the keys of this frame's views (from its layout) and the mouse.
-static std::string helpText(const ViewerModel& m) {
-  std::string keys = "1 grid of the frame's views";
+// Help: the keys of this frame's views (from its layout), then the session's rows of the key table
+// (views/ui/keys.h: the same table the key handler dispatches through and the README shows), as a
+// two-column table whose descriptions wrap within the window (nothing runs off its edge).
+static void helpMenu(const ViewerModel& m) {
+  std::string keys = "Views: 1 grid";
   for (const ViewDef& d : m.views)
     if (!d.key.empty()) keys += (d.key == "0" ? ", 0 / Return " : ", " + d.key + " ") + d.name;
-  std::string text = keys + "\n"
-      "Left click: probe a pixel (dossier on the right); arrows move it\n"
-      "Ctrl + left drag: statistics of a region\n"
-      "Wheel: zoom (all views); middle drag or shift+drag: pan; Z: fit; G: texel grid (zoomed in: values in texels)\n";
-  if (m.source == FrameSource::Live)
-    text += "Click the shadow map: mark the pixels that sample that texel\n"
-            "Right drag: orbit (fly mode: look); WASD/QE: move; ctrl+wheel: dolly\n"
-            "Space: play/pause; , and .: step; Home: reset camera";
-  else if (m.source == FrameSource::Compare)
-    text += "Compare: Space flips A and B in place; the Compare section picks A / B, swipe (drag the handle),\n"
-            "|A - B| or FLIP, for every view shown";
-  else if (m.attach.on)
-    text += "Attached application: Space pauses the stream (the application runs on), C captures the frame shown;\n"
-            "closing the viewer detaches and lets the application run" +
-            std::string(m.attach.draft.empty() ? "" : "; ctrl+S saves the suggested layout");
-  if (m.source == FrameSource::Live) text += "\nEscape: cancel the reference error's computation";
-  return text;
+  const unsigned session = m.source == FrameSource::Compare ? kCompare
+                           : m.attach.on                     ? kAttach
+                           : m.source == FrameSource::Live   ? kLive
+                                                             : kCapture;
+  const float width = std::min(900.0f, ImGui::GetIO().DisplaySize.x - 40.0f);
+  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
+  ImGui::TextUnformatted(keys.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::Separator();
+  if (!ImGui::BeginTable("keys", 2, ImGuiTableFlags_SizingFixedFit, ImVec2(width, 0.0f))) return;
+  ImGui::TableSetupColumn("input", ImGuiTableColumnFlags_WidthFixed);
+  ImGui::TableSetupColumn("does", ImGuiTableColumnFlags_WidthStretch);
+  for (const KeyBinding& k : keyBindings()) {
+    if (!(k.sessions & session)) continue;
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(k.keys);
+    ImGui::TableNextColumn();
+    ImGui::TextWrapped("%s", k.does);
+  }
+  ImGui::EndTable();
 }
 
 static void menuBar(ViewerModel& m) {
@@ -130,7 +137,7 @@ static void menuBar(ViewerModel& m) {
   }
   attachMenu(m);
   if (ImGui::BeginMenu("Help")) {
-    ImGui::TextUnformatted(helpText(m).c_str());
+    helpMenu(m);
     ImGui::EndMenu();
   }
   ImGui::EndMainMenuBar();
