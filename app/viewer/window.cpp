@@ -41,7 +41,11 @@ bool openWindow(Viewer& v, uint32_t width, uint32_t height) {
         height = uint32_t(std::min(1080.0, std::max(480.0, mode->height * 0.85)));
       }
   }
+  // What the window shows: the scene rendered, the capture(s) opened, or the attached application.
   std::string title = "gblens - " + v.args.scene;
+  if (v.args.attach) title = "gblens - attached application";
+  else if (!v.args.compare.empty()) title = "gblens - capture " + v.args.capture + " vs " + v.args.compare;
+  else if (!v.args.capture.empty()) title = "gblens - capture " + v.args.capture;
   v.window = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
   if (!v.window) {
     std::fprintf(stderr, "gblens view: cannot create a %ux%u window\n", width, height);

@@ -407,19 +407,24 @@ static void controlsPanel(ViewerModel& m, const Rect& at) {
     if (ImGui::CollapsingHeader("Camera")) cameraControls(m);
     if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) statistics(m);
   }
-  if (!m.captureAvailable) ImGui::BeginDisabled();
-  if (ImGui::Button("Capture frame")) m.captureRequested = true;
-  if (!m.captureAvailable) ImGui::EndDisabled();
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", m.captureHint.c_str());
-  const bool renderDoc = m.captureAvailable && m.renderDocAvailable;
-  ImGui::SameLine();
-  if (!renderDoc) ImGui::BeginDisabled();
-  if (ImGui::Button("Capture in RenderDoc")) m.renderDocRequested = true;
-  if (!renderDoc) ImGui::EndDisabled();
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-    ImGui::SetTooltip("%s", renderDoc ? "The same frame as a gblens capture and, beside it, a RenderDoc capture (.rdc)"
-                                      : "Start gblens under RenderDoc (renderdoccmd capture gblens view ..., or qrenderdoc's "
-                                        "Launch Application) to capture the frame in RenderDoc too");
+  // Capturing needs a renderer or an application behind the frame: none for a capture opened.
+  if (m.source == FrameSource::Live || m.attach.on) {
+    if (!m.captureAvailable) ImGui::BeginDisabled();
+    if (ImGui::Button("Capture frame")) m.captureRequested = true;
+    if (!m.captureAvailable) ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", m.captureHint.c_str());
+  }
+  if (m.source == FrameSource::Live) {  // gblens's own renderer: a RenderDoc capture of it beside
+    const bool renderDoc = m.captureAvailable && m.renderDocAvailable;
+    ImGui::SameLine();
+    if (!renderDoc) ImGui::BeginDisabled();
+    if (ImGui::Button("Capture in RenderDoc")) m.renderDocRequested = true;
+    if (!renderDoc) ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip("%s", renderDoc ? "The same frame as a gblens capture and, beside it, a RenderDoc capture (.rdc)"
+                                        : "Start gblens under RenderDoc (renderdoccmd capture gblens view ..., or qrenderdoc's "
+                                          "Launch Application) to capture the frame in RenderDoc too");
+  }
   if (!m.captureStatus.empty()) ImGui::TextWrapped("%s", m.captureStatus.c_str());
   ImGui::End();
 }
