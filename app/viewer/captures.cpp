@@ -350,6 +350,22 @@ std::string captureHoverText(const Viewer& v, int view, glm::ivec2 texel) {
   const ViewDef& b = v.viewsB[size_t(view)];
   std::string text =
       "A: " + a + (b.quantity >= 0 ? "\nB: " + viewValueText(v.captureB.frame, b, uint32_t(texel.x), uint32_t(texel.y)) : "");
+  // |A - B| of the decoded components, as the |A-B| view maps it (each side decoded by its layout).
+  const std::optional<std::array<double, 4>> va = viewValue(v.captureA.frame, m.views[size_t(view)], uint32_t(texel.x), uint32_t(texel.y));
+  const std::optional<std::array<double, 4>> vb =
+      b.quantity >= 0 ? viewValue(v.captureB.frame, b, uint32_t(texel.x), uint32_t(texel.y)) : std::nullopt;
+  if (va && vb) {
+    const ViewDef& d = m.views[size_t(view)];
+    text += "\n|A-B|";
+    char part[64];
+    for (uint32_t c = 0; c < std::min(d.components, 4u); ++c) {
+      std::snprintf(part, sizeof part, " %s%.7g", d.components > 1 && c < d.componentNames.size() ? (d.componentNames[c] + " ").c_str() : "",
+                    std::abs((*va)[c] - (*vb)[c]));
+      text += part;
+    }
+  } else if (va.has_value() != vb.has_value()) {
+    text += std::string("\n|A-B| a value in ") + (va ? "A" : "B") + " only";
+  }
   if (size_t(view) < v.flipErrors.size() && !v.flipErrors[size_t(view)].empty()) {
     const std::vector<float>& e = v.flipErrors[size_t(view)];
     const size_t i = size_t(texel.y) * v.decodedA[size_t(view)].width + size_t(texel.x);

@@ -160,6 +160,33 @@ TEST_F(GuiCompareTest, SpaceFlipsAAndBInPlaceAndTheirFlipIsGblensCompares) {
   // FLIP (computed at open, in a worker) against gblens compare's.
   const json flip = findEvent([](const json& j) { return j["event"] == "flip"; }, 60.0);
   ASSERT_FALSE(flip.is_null()) << "no FLIP; see " << (dir_ / "viewer.log");
+
+  // Hover: A's and B's values and |A - B| of the decoded (linear) colour, against both final.png's
+  // codes read with OpenImageIO and decoded from sRGB here. A texel where the lights differ most.
+  int tx = 0, ty = 0, most = -1;
+  for (int y = 0; y < finalA.height; ++y)
+    for (int x = 0; x < finalA.width; ++x) {
+      const size_t i = (size_t(y) * finalA.width + x) * 3;
+      const int d = std::abs(int(finalA.rgb[i]) - int(finalB.rgb[i]));
+      if (d > most) most = d, tx = x, ty = y;
+    }
+  const auto [hx, hy] = screenOf(layout["views"][0], tx, ty);
+  xdotool("mousemove --window " + wid_ + " " + std::to_string(hx) + " " + std::to_string(hy));
+  const json hover = waitEvent([](const json& j) {
+    return j["event"] == "hover" && j["text"].get<std::string>().find("|A-B|") != std::string::npos;
+  });
+  ASSERT_FALSE(hover.is_null()) << "no |A-B| in the hover text";
+  const std::string hoverText = hover["text"];
+  double diff[3] = {};
+  ASSERT_EQ(std::sscanf(hoverText.c_str() + hoverText.find("|A-B|"), "|A-B| R %lf G %lf B %lf", &diff[0], &diff[1], &diff[2]), 3) << hoverText;
+  auto linear = [](uint8_t code) {
+    const double v = code / 255.0;
+    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+  };
+  for (int c = 0; c < 3; ++c) {
+    const size_t i = (size_t(ty) * finalA.width + tx) * 3 + size_t(c);
+    EXPECT_NEAR(diff[c], std::abs(linear(finalA.rgb[i]) - linear(finalB.rgb[i])), 1e-6) << hoverText;
+  }
   quit();
   int status = -1;
   const std::string text = gui::run(std::string(GBLENS_BINARY) + " compare " + a + " " + b + " --json - 2>/dev/null", &status);
