@@ -72,6 +72,10 @@ void handleKeys(Viewer& v) {
         m.probeRequest = from + step;
         break;
       }
+      case KeyAction::CompareSwipe: m.compareMode = CompareMode::Swipe, m.uiChanged = true; break;
+      case KeyAction::CompareDifference: m.compareMode = CompareMode::Difference, m.uiChanged = true; break;
+      case KeyAction::CompareFlip: m.compareMode = CompareMode::Flip, m.uiChanged = true; break;
+      case KeyAction::CompareRow: m.compareMode = CompareMode::Row, m.uiChanged = true; break;
       case KeyAction::MoveCamera: case KeyAction::Mouse: break;  // held keys and the mouse: elsewhere
     }
   }

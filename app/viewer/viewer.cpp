@@ -248,6 +248,7 @@ static void logLayout(Viewer& v, int windowW, int windowH) {
                     {"origin", {p.originX, p.originY}},
                     {"scale", p.scale},
                     {"image", {size.x, size.y}}});
+    if (slot.split) list.back()["split_at"] = m.splitAt;  // the swipe: A left of rect x + w * split_at
     // A view the frame cannot show (e.g. an imported layout without a shadow map) says why.
     if (!m.unavailable[size_t(slot.view)].empty()) list.back()["unavailable"] = m.unavailable[size_t(slot.view)];
   }

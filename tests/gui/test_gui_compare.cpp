@@ -121,6 +121,51 @@ int largestCodeDifference(const gui::Screenshot& s, const json& view, const Rgb8
 
 }  // namespace
 
+// The swipe (key S) follows the mouse, as the review page's does: texels left of the mouse are A's
+// final.png, those right of it B's, wherever the mouse goes; each side carries its letter
+// (swipe_30.png, swipe_70.png).
+TEST_F(GuiCompareTest, TheSwipeFollowsTheMouseAndEachSideIsItsCapture) {
+  const std::string a = capture("A", ""), b = capture("B", "--lights 100");
+  startViewer({"--capture", a, "--compare", b});
+  xdotool("key --window " + wid_ + " s");
+  json layout = waitEvent([](const json& j) { return j["event"] == "layout" && j["views"][0]["side"] == "split"; });
+  ASSERT_FALSE(layout.is_null()) << "S did not show the swipe";
+  const Rgb8 finalA = readPng(a + "/final.png"), finalB = readPng(b + "/final.png");
+  for (double at : {0.3, 0.7}) {
+    const json& r = layout["views"][0]["rect"];
+    const int mx = int(double(r[0]) + double(r[2]) * at), my = int(double(r[1]) + double(r[3]) * 0.6);
+    xdotool("mousemove --window " + wid_ + " " + std::to_string(mx) + " " + std::to_string(my));
+    layout = waitEvent([&](const json& j) {
+      return j["event"] == "layout" && j["views"][0].contains("split_at") &&
+             std::abs(j["views"][0]["split_at"].get<double>() - at) < 2.0 / double(r[2]);
+    });
+    ASSERT_FALSE(layout.is_null()) << "the swipe did not follow the mouse to " << at;
+    gui::Screenshot shot;
+    std::string error;
+    ASSERT_TRUE(gui::screenshot(xvfb_.display, (dir_ / ("swipe_" + std::to_string(int(at * 100)) + ".png")).string(), shot, error))
+        << error;
+    const json& view = layout["views"][0];
+    const double split = double(view["rect"][0]) + double(view["rect"][2]) * view["split_at"].get<double>();
+    int worstA = 0, worstB = 0, checkedA = 0, checkedB = 0;
+    for (int y = finalA.height / 3; y < finalA.height; y += 2)  // below the labels
+      for (int x = 0; x < finalA.width; x += 2) {
+        const auto [sx, sy] = screenOf(view, x, y);
+        if (std::abs(sx - split) < 8 || std::abs(sx - mx) < 12 && std::abs(sy - my) < 12) continue;  // the line, the mark
+        const Rgb8& side = sx < split ? finalA : finalB;
+        int d = 0;
+        for (int c = 0; c < 3; ++c)
+          d = std::max(d, std::abs(int(std::lround(shot.at(sx, sy)[c] * 255.0f)) - int(side.rgb[(size_t(y) * side.width + x) * 3 + size_t(c)])));
+        (sx < split ? worstA : worstB) = std::max(sx < split ? worstA : worstB, d);
+        ++(sx < split ? checkedA : checkedB);
+      }
+    EXPECT_GT(checkedA, 100);
+    EXPECT_GT(checkedB, 100);
+    EXPECT_LE(worstA, 1) << "left of the swipe at " << at << " is not A";
+    EXPECT_LE(worstB, 1) << "right of the swipe at " << at << " is not B";
+  }
+  quit();
+}
+
 // Space flips the pane between A and B (tev's workflow): the same view, zoom and pan, the label saying
 // which; each side's pixels are its capture's final.png. FLIP of the colour views, computed by the
 // viewer from its decoded views, is the FLIP `gblens compare` reports for final (LDR) and hdr (HDR).

@@ -14,7 +14,8 @@ enum KeySession : unsigned { kLive = 1, kCapture = 2, kCompare = 4, kAttach = 8,
 // What a key does (the handler's switch); Mouse rows are described only.
 enum class KeyAction {
   Quit, SaveDraft, Grid, FirstView, ViewKey, FlipCompare, PlayPause, PauseStream, CancelReference, CaptureShown,
-  StepForward, StepBack, ResetCamera, TexelGrid, Fit, MoveProbe, MoveCamera, Mouse
+  StepForward, StepBack, ResetCamera, TexelGrid, Fit, MoveProbe, MoveCamera, CompareSwipe, CompareDifference,
+  CompareFlip, CompareRow, Mouse
 };
 
 struct KeyBinding {

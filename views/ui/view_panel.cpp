@@ -316,10 +316,16 @@ static void drawLabels(const ViewerModel& m, const SlotDraw& v, const ResolvedRa
       rampLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), mapping, range,
                  def.unit.empty() ? def.name : def.unit);
   }
-  if (v.split) {  // the split line and its handle
+  if (v.split) {  // the split line, its handle and which side is which (A blue, B orange, as the labels)
     float x = float(r.x + r.w * m.splitAt);
     dl->AddLine(ImVec2(x, float(r.y)), ImVec2(x, float(r.y + r.h)), panelColour(1, 1, 1), 2.0f);
     dl->AddCircleFilled(ImVec2(x, float(r.y + r.h * 0.5)), 6.0f, panelColour(1, 1, 1));
+    const float y = float(r.y + boxH + 4), h = ImGui::GetFontSize() + 4;
+    const float wa = ImGui::CalcTextSize("A").x + 8, wb = ImGui::CalcTextSize("B").x + 8;
+    dl->AddRectFilled(ImVec2(x - 4 - wa, y), ImVec2(x - 4, y + h), panelColour(0.1f, 0.25f, 0.6f, 0.9f));
+    dl->AddText(ImVec2(x - wa, y + 2), panelColour(1, 1, 1), "A");
+    dl->AddRectFilled(ImVec2(x + 4, y), ImVec2(x + 4 + wb, y + h), panelColour(0.6f, 0.3f, 0.05f, 0.9f));
+    dl->AddText(ImVec2(x + 8, y + 2), panelColour(1, 1, 1), "B");
   }
 }
 
@@ -363,6 +369,12 @@ static void handleMouse(ViewerModel& m, const SlotDraw& v, const Placement& pl, 
   }
   if (v.split && ImGui::IsItemClicked(ImGuiMouseButton_Left) && std::abs(mouse.x - (r.x + r.w * m.splitAt)) < 8.0)
     m.draggingSplit = true;
+  // The swipe follows the mouse over the slot (as the review page's does); a button held pans,
+  // probes or drags instead.
+  if (v.split && hovered && !ImGui::IsAnyMouseDown() && !m.draggingSplit) {
+    const float at = float(std::clamp((mouse.x - r.x) / std::max(r.w, 1.0), 0.0, 1.0));
+    if (at != m.splitAt) m.splitAt = at, m.uiChanged = true;
+  }
   if (m.draggingSplit) {
     if (active && ImGui::IsMouseDown(ImGuiMouseButton_Left))
       m.splitAt = float(std::clamp((mouse.x - r.x) / std::max(r.w, 1.0), 0.0, 1.0));
