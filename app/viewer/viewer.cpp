@@ -241,10 +241,12 @@ static void logLayout(Viewer& v, int windowW, int windowH) {
   static const char* const kSides[] = {"a", "b", "difference", "flip"};
   for (const ViewSlot& slot : viewSlots(m, area)) {
     glm::uvec2 size = viewImageSize(m, slot.view);
-    Placement p = placeImage(slot.rect, size.x, size.y, m.transform);
+    const Rect image = imageRectOf(m, slot);
+    Placement p = placeImage(image, size.x, size.y, m.transform);
     list.push_back({{"view", m.views[size_t(slot.view)].name},
                     {"side", slot.split ? "split" : kSides[int(slot.side)]},
                     {"rect", {slot.rect.x, slot.rect.y, slot.rect.w, slot.rect.h}},
+                    {"image_rect", {image.x, image.y, image.w, image.h}},  // the slot less its legend strip
                     {"origin", {p.originX, p.originY}},
                     {"scale", p.scale},
                     {"image", {size.x, size.y}}});

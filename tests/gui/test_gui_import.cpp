@@ -378,11 +378,32 @@ TEST_F(GuiImportTest, ZoomedInEachTexelPrintsItsValueAtItsStoragePrecision) {
   EXPECT_TRUE(sawHovered) << "the texel under the mouse was not among those printed";
 
   // The eye depth at the same zoom: the stored float, seven digits; the sky (no surface) prints nothing.
-  ASSERT_FALSE(alone("4", "Z").is_null());
+  const nlohmann::json zLayout = alone("4", "Z");
+  ASSERT_FALSE(zLayout.is_null());
   nlohmann::json depth = waitEvent(valuesOf("Z"), 10.0);
   ASSERT_FALSE(depth.is_null());
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   ASSERT_TRUE(gui::screenshot(xvfb_.display, (dir_ / "zoom_depth.png").string(), shot, error)) << error;
+  // The depth's legend lies in a strip below the image, never on it: zoomed in, the image fills its
+  // rectangle and stops at the strip, whose pixels right of the legend box are the strip's grey.
+  {
+    int winX = 0, winY = 0;
+    const std::string geometry = xdotool("getwindowgeometry " + wid);
+    std::sscanf(geometry.c_str() + geometry.find("Position:"), "Position: %d,%d", &winX, &winY);
+    const nlohmann::json& zv = zLayout["views"][0];
+    const double imageBottom = double(zv["image_rect"][1]) + double(zv["image_rect"][3]);
+    const double slotBottom = double(zv["rect"][1]) + double(zv["rect"][3]);
+    ASSERT_GT(slotBottom - imageBottom, 30.0) << "no legend strip below the image: " << zv.dump();
+    const int right = int(double(zv["rect"][0]) + double(zv["rect"][2])) - 6;
+    for (int y = int(imageBottom) + 2; y < int(slotBottom) - 2; y += 4)
+      for (int x = right - 60; x < right; x += 6) {
+        const float* p = shot.at(x + winX, y + winY);
+        EXPECT_NEAR(p[0], 0.08f, 0.03f) << "the strip at " << x << "," << y << " is not the legend's background";
+      }
+    // ... and the image's last row above it is the picture (the plane's depths, not the strip).
+    const float* above = shot.at(right - 30 + winX, int(imageBottom) - 3 + winY);
+    EXPECT_GT(std::abs(above[0] - 0.08f), 0.05f) << "the image does not reach its strip";
+  }
   for (const nlohmann::json& t : depth["texels"]) {
     const uint32_t x = t["texel"][0], y = t["texel"][1];
     const std::optional<double> z = scene.eyeDepth(x, y);

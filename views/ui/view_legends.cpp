@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
 #include <cstdio>
 
 #include "shaders/view_colors.h"
@@ -12,6 +15,27 @@
 namespace gb {
 
 static ImU32 rgb(float r, float g, float b, float a = 1.0f) { return ImGui::ColorConvertFloat4ToU32(ImVec4(r, g, b, a)); }
+
+// Tick labels under a ramp at five, three or two places (t in [0, 1]), as many as fit with a gap
+// between neighbours: labels never run together however long the numbers are.
+static void ticks(ImDrawList* dl, ImVec2 at, float width, float below, const std::function<std::string(double)>& label) {
+  for (int n : {5, 3, 2}) {
+    std::vector<std::string> texts;
+    std::vector<float> x0s, x1s;
+    for (int i = 0; i < n; ++i) {
+      const double t = double(i) / (n - 1);
+      texts.push_back(label(t));
+      const float w = ImGui::CalcTextSize(texts.back().c_str()).x;
+      const float x = at.x + float(width * t) - w * (i == 0 ? 0.0f : i == n - 1 ? 1.0f : 0.5f);
+      x0s.push_back(x), x1s.push_back(x + w);
+    }
+    bool fits = true;
+    for (int i = 1; i < n; ++i) fits &= x0s[size_t(i)] >= x1s[size_t(i - 1)] + 8.0f;
+    if (!fits && n > 2) continue;
+    for (int i = 0; i < n; ++i) dl->AddText(ImVec2(x0s[size_t(i)], at.y + below), rgb(1, 1, 1), texts[size_t(i)].c_str());
+    return;
+  }
+}
 
 // The heat map's legend: the colour ramp of views/visualize.cpp from 0 to the white point.
 void heatLegend(ImDrawList* dl, ImVec2 at, float width, float maxCount, const char* unit) {
@@ -23,12 +47,11 @@ void heatLegend(ImDrawList* dl, ImVec2 at, float width, float maxCount, const ch
     ImU32 a = ImGui::ColorConvertFloat4ToU32(stops[i]), b = ImGui::ColorConvertFloat4ToU32(stops[i + 1]);
     dl->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + h), a, b, b, a);
   }
-  char text[64];
-  for (int i = 0; i <= 4; ++i) {
-    std::snprintf(text, sizeof text, "%.3g", maxCount * i / 4.0);
-    float x = at.x + width * i / 4 - ImGui::CalcTextSize(text).x * (i == 0 ? 0.0f : i == 4 ? 1.0f : 0.5f);
-    dl->AddText(ImVec2(x, at.y + h + 2), rgb(1, 1, 1), text);
-  }
+  ticks(dl, at, width, h + 2, [&](double t) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g", maxCount * t);
+    return std::string(text);
+  });
   dl->AddText(ImVec2(at.x, at.y - 16), rgb(1, 1, 1), unit);  // black: none
 }
 
@@ -50,14 +73,12 @@ void rampLegend(ImDrawList* dl, ImVec2 at, float width, const ViewMapping& mappi
     dl->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + h), colour(float(i) / steps), colour(float(i + 1) / steps),
                                 colour(float(i + 1) / steps), colour(float(i) / steps));
   }
-  char text[64];
-  for (int i = 0; i <= 4; ++i) {
-    const double t = i / 4.0;
+  ticks(dl, at, width, h + 2, [&](double t) {
     const double v = log ? r.black * std::pow(double(r.white) / r.black, t) : r.black + (r.white - r.black) * t;
+    char text[64];
     std::snprintf(text, sizeof text, "%.4g", v);
-    float x = at.x + float(width * t) - ImGui::CalcTextSize(text).x * (i == 0 ? 0.0f : i == 4 ? 1.0f : 0.5f);
-    dl->AddText(ImVec2(x, at.y + h + 2), rgb(1, 1, 1), text);
-  }
+    return std::string(text);
+  });
   dl->AddText(ImVec2(at.x, at.y - 16), rgb(1, 1, 1), (unit + (log ? " (log)" : "")).c_str());
 }
 
@@ -74,12 +95,11 @@ void magmaLegend(ImDrawList* dl, ImVec2 at, float width) {
     dl->AddRectFilledMultiColor(ImVec2(at.x + width * i / steps, at.y), ImVec2(at.x + width * (i + 1) / steps, at.y + h), ca,
                                 cb, cb, ca);
   }
-  for (int i = 0; i <= 4; ++i) {
+  ticks(dl, at, width, h + 2, [](double t) {
     char text[16];
-    std::snprintf(text, sizeof text, "%.2g", i / 4.0);
-    float x = at.x + width * i / 4 - ImGui::CalcTextSize(text).x * (i == 0 ? 0.0f : i == 4 ? 1.0f : 0.5f);
-    dl->AddText(ImVec2(x, at.y + h + 2), rgb(1, 1, 1), text);
-  }
+    std::snprintf(text, sizeof text, "%.2g", t);
+    return std::string(text);
+  });
   dl->AddText(ImVec2(at.x, at.y - 16), rgb(1, 1, 1), "FLIP (A reference, B test): 0 alike .. 1");
 }
 

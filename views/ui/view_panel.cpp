@@ -275,6 +275,62 @@ static std::string compareLabel(const ViewerModel& m, const SlotDraw& v) {
   return "";
 }
 
+// Which legend a slot shows: beside the image, in a strip below it (never over the picture), where
+// the slot is large enough for one (grid cells too, from 200 x 200 px).
+enum class LegendKind { None, Flip, Difference, Count, Words, Ramp };
+static LegendKind legendOf(const ViewerModel& m, int view, FrameSide side, const Rect& r) {
+  if (r.w <= 200 || r.h <= 200) return LegendKind::None;
+  const ViewDef& def = m.views[size_t(view)];
+  if (side == FrameSide::Flip) return LegendKind::Flip;
+  if (side == FrameSide::Difference) return LegendKind::Difference;
+  if (def.visual == Visual::Count) return LegendKind::Count;
+  if (m.referenceError.legends.count(def.name)) return LegendKind::Words;
+  const ViewMapping mapping = viewMapping(def, m.settings[size_t(view)]);
+  if (mapping.mapping == gpu::kViewMapDepth || (mapping.mapping == gpu::kViewMapGrey && (mapping.flags & gpu::kViewFlagFalseColor)))
+    return LegendKind::Ramp;
+  return LegendKind::None;
+}
+static std::string wordsOf(const ViewerModel& m, int view) {
+  const ViewDef& def = m.views[size_t(view)];
+  return def.name + ": " + m.referenceError.legends.at(def.name);
+}
+constexpr double kLegendStrip = 48.0;  // a ramp's box: its unit line, the bar and the tick labels
+static double stripHeight(const ViewerModel& m, int view, FrameSide side, const Rect& r) {
+  const LegendKind k = legendOf(m, view, side, r);
+  if (k == LegendKind::None) return 0.0;
+  if (k != LegendKind::Words) return kLegendStrip;
+  return double(ImGui::CalcTextSize(wordsOf(m, view).c_str(), nullptr, false, float(std::min(r.w - 24, 420.0))).y) + 20.0;
+}
+
+Rect imageRectOf(const ViewerModel& m, const ViewSlot& s) {
+  Rect r = s.rect;
+  r.h = std::max(1.0, r.h - stripHeight(m, s.view, s.side, s.rect));
+  return r;
+}
+
+// The legend in the strip between the image's rectangle `ir` and the slot's bottom.
+static void drawLegend(const ViewerModel& m, int view, FrameSide side, const Rect& r, const Rect& ir, const ResolvedRange& range) {
+  const LegendKind k = legendOf(m, view, side, r);
+  if (k == LegendKind::None) return;
+  const ViewDef& def = m.views[size_t(view)];
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const float top = float(ir.y + ir.h), width = float(std::min(r.w - 24, 240.0));
+  dl->AddRectFilled(ImVec2(float(r.x), top), ImVec2(float(r.x + r.w), float(r.y + r.h)), panelColour(0.08f, 0.08f, 0.08f));
+  const ImVec2 bar(float(r.x) + 12, top + 20);  // the bar's top-left: its unit line above, ticks below
+  switch (k) {
+    case LegendKind::Flip: magmaLegend(dl, bar, width); break;
+    case LegendKind::Difference:
+      heatLegend(dl, bar, width, float(m.differenceMax[size_t(view)]), "|A - B|, max over the selected channels");
+      break;
+    case LegendKind::Count: heatLegend(dl, bar, width, range.white, viewUnit(def, m.stats.method).c_str()); break;
+    case LegendKind::Words: textLegend(dl, r, float(std::min(r.w - 24, 420.0)), wordsOf(m, view)); break;
+    case LegendKind::Ramp:
+      rampLegend(dl, bar, width, viewMapping(def, m.settings[size_t(view)]), range, def.unit.empty() ? def.name : def.unit);
+      break;
+    case LegendKind::None: break;
+  }
+}
+
 // The label box (side, key, name; the range line), the heat legend and the split handle.
 static void drawLabels(const ViewerModel& m, const SlotDraw& v, const ResolvedRange& range) {
   const ViewDef& def = m.views[size_t(v.view)];
@@ -298,25 +354,6 @@ static void drawLabels(const ViewerModel& m, const SlotDraw& v, const ResolvedRa
   if (!line2.empty())
     dl->AddText(ImVec2(float(r.x) + 5, float(r.y) + 3 + ls.y),
                 range.stats.nan || range.stats.inf ? panelColour(1, 0.4f, 1) : panelColour(0.8f, 0.8f, 0.8f), line2.c_str());
-  // Legends where there is room for them beside the image (not over a grid tile, where they would
-  // cover the label and the picture and their ticks would run together).
-  const bool room = r.w > 200 && r.h > 200;
-  if (v.side == FrameSide::Flip && room)
-    magmaLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)));
-  else if (v.side == FrameSide::Difference && room)
-    heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)),
-               float(m.differenceMax[size_t(v.view)]), "|A - B|, max over the selected channels");
-  else if (def.visual == Visual::Count && room)
-    heatLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), range.white,
-               viewUnit(def, m.stats.method).c_str());
-  else if (auto legend = m.referenceError.legends.find(def.name); legend != m.referenceError.legends.end() && room)
-    textLegend(dl, r, float(std::min(r.w - 24, 420.0)), def.name + ": " + legend->second);
-  else if (room) {
-    const ViewMapping mapping = viewMapping(def, m.settings[size_t(v.view)]);
-    if (mapping.mapping == gpu::kViewMapDepth || (mapping.mapping == gpu::kViewMapGrey && (mapping.flags & gpu::kViewFlagFalseColor)))
-      rampLegend(dl, ImVec2(float(r.x) + 12, float(r.y + r.h) - 34), float(std::min(r.w - 24, 240.0)), mapping, range,
-                 def.unit.empty() ? def.name : def.unit);
-  }
   if (v.split) {  // the split line, its handle and which side is which (A blue, B orange, as the labels)
     float x = float(r.x + r.w * m.splitAt);
     dl->AddLine(ImVec2(x, float(r.y)), ImVec2(x, float(r.y + r.h)), panelColour(1, 1, 1), 2.0f);
@@ -344,7 +381,10 @@ static void drawOneView(ViewerModel& m, const SlotDraw& v) {
   const bool hovered = ImGui::IsItemHovered(), active = ImGui::IsItemActive();
   ImGui::PopID();
 
-  Placement pl = placeImage(r, size.x, size.y, m.transform);
+  // The image in the slot above its legend strip: placement, drawing, marks and the mouse use it.
+  SlotDraw vi = v;
+  vi.rect = imageRectOf(m, {v.view, v.side, v.rect, v.split});
+  Placement pl = placeImage(vi.rect, size.x, size.y, m.transform);
   if (v.index == 0) m.texelScale = pl.scale;
   std::string why = m.unavailable[size_t(v.view)];
   if (why.empty() && v.side == FrameSide::Flip && !m.flipPools[size_t(v.view)]) why = m.flipStatus;
@@ -356,13 +396,14 @@ static void drawOneView(ViewerModel& m, const SlotDraw& v) {
                 panelColour(0.8f, 0.8f, 0.8f), why.c_str(), nullptr, float(r.w) - 16.0f);
   } else {
     ResolvedRange range = resolveRange(def, m.settings[size_t(v.view)], &m.ranges[size_t(v.view)]);
-    queueViewDraw(m, v, pl, range);
+    queueViewDraw(m, vi, pl, range);
     // A split slot shows A and B in one rectangle: values would not say which side they are.
-    if (!v.split) drawTexelValues(m, v.view, v.side, r, pl, range);
-    drawMarks(m, v, pl);
-    drawLabels(m, v, range);
+    if (!v.split) drawTexelValues(m, v.view, v.side, vi.rect, pl, range);
+    drawMarks(m, vi, pl);
+    drawLabels(m, vi, range);
+    drawLegend(m, v.view, v.side, r, vi.rect, range);
   }
-  if (hovered || active) handleViewMouse(m, {v.view, v.rect, v.split}, pl, hovered, active);
+  if (hovered || active) handleViewMouse(m, {v.view, vi.rect, v.split}, pl, hovered, active);
 }
 
 void drawViewArea(ViewerModel& m, const Rect& area, ViewDrawCallback callback, std::vector<ViewDraw>& draws) {

@@ -247,6 +247,9 @@ struct ViewSlot {
   bool split = false;
 };
 std::vector<ViewSlot> viewSlots(const ViewerModel& m, const Rect& area);
+// The part of a slot its image is placed in: the slot less the strip below it that holds its legend
+// (views never draw a legend over the picture). Needs an ImGui frame (text sizes).
+Rect imageRectOf(const ViewerModel& m, const ViewSlot& s);
 
 // Keyboard shortcuts: 1 grid, 0 / Return the first view, 2..9 the next ones (view_table.h keys).
 // Returns true if handled.
