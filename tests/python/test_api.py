@@ -161,3 +161,18 @@ def test_save_is_lossless(captures, tmp_path):
     assert saved["lights"] == original["lights"]
     r = gblens.compare(captures["a"], str(tmp_path / "saved"), flip=False)
     assert r.exit_code == 0 and r.json["only_in_a"] == [] and r.json["only_in_b"] == []
+
+
+def test_statistics_cover_the_pixels_they_say(captures):
+    """Each decoded series' figures are over the pixel set its surfaces_only names: every pixel of the
+    rectangle, or the surface pixels; checked against numpy over the module's own arrays."""
+    f = gblens.open(captures["plain"])
+    s = f.stats((0, 0, f.width, f.height))
+    surface = f.mask("surface")
+    assert 0 < s["surface_pixels"] == int(surface.sum()) < s["pixels"]
+    for q in s["quantities"]:
+        expected = s["surface_pixels"] if q["surfaces_only"] else s["pixels"]
+        assert q["count"] + q["nan"] + q["+inf"] + q["-inf"] == expected, (q["series"], q["count"], expected)
+    depth = next(q for q in s["quantities"] if q["series"] == "Depth")
+    assert depth["surfaces_only"] is True
+    assert abs(depth["mean"] - float(np.nanmean(f["Depth"][surface]))) <= 1e-9 * abs(depth["mean"])

@@ -141,7 +141,10 @@ RegionStats regionStats(const FrameSnapshot& f, const RegionRect& r, const std::
         for (const ViewDef& v : views) {
           const Quantity& q = f.layout.quantities[size_t(v.quantity)];
           if (q.target != t || !holds(f, q, x, y)) continue;
-          const bool surfaceOnly = surfaceKnown && surfaceQuantity(q.kind);
+          // Camera depths have no value where nothing was drawn (their background), like normals:
+          // their figures are over the surfaces too, and say so.
+          const bool cameraDepth = v.visual == Visual::Depth && !q.ofSun;
+          const bool surfaceOnly = surfaceKnown && (surfaceQuantity(q.kind) || cameraDepth);
           if (surfaceOnly && !surface) continue;
           decodeAt(f, v, x, y, surfaceOnly, quantities);
         }
