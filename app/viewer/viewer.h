@@ -272,6 +272,18 @@ void updateCaptureRanges(Viewer& v);
 // change, their GPU sources and why a view cannot show now.
 void updateLiveViews(Viewer& v);
 
+// The live frame rendered for the loop (frame_render.cpp): on demand, reduced while input changes it.
+constexpr double kRefineAfterMs = 100.0;  // a reduced frame is refined this long after the last input
+double millisecondsSince(std::chrono::steady_clock::time_point t);
+// Picks the next reduction from the iteration's time (ms) when a reduced frame was shown.
+void adaptReduction(Viewer& v, int reducedBy, double ms);
+// The options the frame on screen should have: the user's, sized to the view area (fbWidth x fbHeight).
+RenderOptions wantedOptions(Viewer& v, int fbWidth, int fbHeight);
+// Renders when the frame on screen is outdated (reduced while input changes it; `refine`: full now).
+void renderIfNeeded(Viewer& v, const RenderOptions& full, bool animating, bool refine = false);
+// The automatic ranges of the views on screen (GPU-reduced for live frames, CPU for captures).
+void updateRanges(Viewer& v);
+
 // live_source.cpp (gblens attach)
 // The attached stream's first frame as the frame shown (openCaptures' work for a stream).
 void openAttached(Viewer& v);
