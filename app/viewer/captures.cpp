@@ -244,8 +244,9 @@ void setCaptureViews(Viewer& v) {
     const FrameSnapshot& f = b ? v.captureB.frame : v.captureA.frame;
     if (d.quantity < 0) return std::nullopt;
     TexelValue out;
-    out.lines = texelValueLines(f, d, uint32_t(t.x), uint32_t(t.y), v.model.settings[size_t(view)].channels);
-    if (const std::optional<std::array<double, 4>> value = viewValue(f, d, uint32_t(t.x), uint32_t(t.y))) {
+    const std::optional<std::array<double, 4>> value = viewValue(f, d, uint32_t(t.x), uint32_t(t.y));
+    out.lines = texelValueLines(f, d, value, v.model.settings[size_t(view)].channels);
+    if (value) {
       for (int c = 0; c < 4; ++c) out.value[size_t(c)] = float((*value)[size_t(c)]);
       out.empty = false;
     }

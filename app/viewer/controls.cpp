@@ -33,10 +33,6 @@ static std::string keyName(int key) {
   }
 }
 
-static unsigned keySession(const ViewerModel& m) {
-  return m.source == FrameSource::Compare ? kCompare : m.attach.on ? kAttach : m.source == FrameSource::Live ? kLive : kCapture;
-}
-
 // Keys, through the one table (views/ui/keys.h) that Help and the README show.
 void handleKeys(Viewer& v) {
   ViewerModel& m = v.model;

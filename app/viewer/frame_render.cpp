@@ -55,12 +55,10 @@ RenderOptions wantedOptions(Viewer& v, int fbWidth, int fbHeight) {
   ViewerModel& m = v.model;
   RenderOptions o = m.wanted;
   if (!m.fixedSize) {
-    ImGuiIO& io = ImGui::GetIO();
     int w = 0, h = 0;
     glfwGetWindowSize(v.window, &w, &h);
     Rect area = viewArea(m, w, h);
     double sx = w ? double(fbWidth) / w : 1.0, sy = h ? double(fbHeight) / h : 1.0;
-    (void)io;
     o.width = uint32_t(std::max(16.0, area.w * sx / m.renderScale));
     o.height = uint32_t(std::max(16.0, area.h * sy / m.renderScale));
   }

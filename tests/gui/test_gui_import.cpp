@@ -53,6 +53,31 @@ nlohmann::json layoutJsonText() {
 class GuiImportTest : public GpuGuiTest {
  protected:
   std::string folderPrefix() const override { return "gui_import_test/"; }
+
+  // `gblens view --capture CAPTURE` (events in dir_/events.jsonl, `extra` after), awaited until it
+  // presents the capture; the window's id, "" when it did not come up.
+  std::string openViewer(const std::string& capture, const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args = {GBLENS_BINARY, "view", "--capture", capture, "--validate", "--window", "1280x720",
+                                     "--event-log", (dir_ / "events.jsonl").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    viewer_ = gui::spawn(args, {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
+    if (waitEvent([](const nlohmann::json& j) { return j["event"] == "ready"; }, 60.0).is_null()) return "";
+    const std::string wid = xdotool("search --onlyvisible --name '^gblens'");
+    return wid.substr(0, wid.find('\n'));
+  }
+  // A capture opens on its layout's first colour view alone: the latest layout event saying so (the
+  // window may have settled after the first one); null when there is none.
+  nlohmann::json baseColorAlone() {
+    size_t fromStart = 0;
+    nlohmann::json one;
+    auto alone = [](const nlohmann::json& j) {
+      return j["event"] == "layout" && j["views"].size() == 1 && j["views"][0]["view"] == "BaseColor";
+    };
+    for (nlohmann::json j; !(j = gui::waitForLine((dir_ / "events.jsonl").string(), one.is_null() ? 30.0 : 1.0, alone,
+                                                   fromStart)).is_null();)
+      one = j;
+    return one;
+  }
 };
 
 // The analytic frame: eye position, the camera, and for each pixel the plane point it sees.
@@ -129,14 +154,8 @@ TEST_F(GuiImportTest, AnImportedCaptureShowsItsViewsAndAClickProbesItsDecodedVal
   std::string error;
   const std::string capture = writePlaneCapture(dir_, scene);
 
-  viewer_ = gui::spawn({GBLENS_BINARY, "view", "--capture", capture, "--validate", "--window", "1280x720", "--event-log",
-                        (dir_ / "events.jsonl").string(), "--probe-log", (dir_ / "probe.jsonl").string()},
-                       {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
-  ASSERT_FALSE(waitEvent([](const nlohmann::json& j) { return j["event"] == "ready"; }, 60.0).is_null())
-      << "the viewer did not present the capture; see " << (dir_ / "viewer.log");
-  std::string wid = xdotool("search --onlyvisible --name '^gblens'");
-  wid = wid.substr(0, wid.find('\n'));
-  ASSERT_FALSE(wid.empty());
+  const std::string wid = openViewer(capture, {"--probe-log", (dir_ / "probe.jsonl").string()});
+  ASSERT_FALSE(wid.empty()) << "the viewer did not present the capture; see " << (dir_ / "viewer.log");
   int winX = 0, winY = 0;
   std::string geometry = xdotool("getwindowgeometry " + wid);
   std::sscanf(geometry.c_str() + geometry.find("Position:"), "Position: %d,%d", &winX, &winY);
@@ -244,24 +263,9 @@ namespace gb {
 TEST_F(GuiImportTest, ACtrlDragSelectsARegionWhoseStatisticsAreGblensStats) {
   PlaneScene scene;
   const std::string capture = writePlaneCapture(dir_, scene);
-  viewer_ = gui::spawn({GBLENS_BINARY, "view", "--capture", capture, "--validate", "--window", "1280x720", "--event-log",
-                        (dir_ / "events.jsonl").string()},
-                       {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
-  ASSERT_FALSE(waitEvent([](const nlohmann::json& j) { return j["event"] == "ready"; }, 60.0).is_null())
-      << "the viewer did not present the capture; see " << (dir_ / "viewer.log");
-  std::string wid = xdotool("search --onlyvisible --name '^gblens'");
-  wid = wid.substr(0, wid.find('\n'));
-  ASSERT_FALSE(wid.empty());
-  // A capture opens on its layout's first colour view alone: its latest layout (the window may have
-  // settled after the first one).
-  size_t fromStart = 0;
-  nlohmann::json one;
-  auto baseColorAlone = [](const nlohmann::json& j) {
-    return j["event"] == "layout" && j["views"].size() == 1 && j["views"][0]["view"] == "BaseColor";
-  };
-  for (nlohmann::json j; !(j = gui::waitForLine((dir_ / "events.jsonl").string(), one.is_null() ? 30.0 : 1.0, baseColorAlone,
-                                                 fromStart)).is_null();)
-    one = j;
+  const std::string wid = openViewer(capture);
+  ASSERT_FALSE(wid.empty()) << "the viewer did not present the capture; see " << (dir_ / "viewer.log");
+  const nlohmann::json one = baseColorAlone();
   ASSERT_FALSE(one.is_null());
   const nlohmann::json& v = one["views"][0];
   auto at = [&](uint32_t px, uint32_t py) {
@@ -320,29 +324,15 @@ TEST_F(GuiImportTest, ZoomedInEachTexelPrintsItsValueAtItsStoragePrecision) {
   PlaneScene scene;
   std::string error;
   const std::string capture = writePlaneCapture(dir_, scene);
-  viewer_ = gui::spawn({GBLENS_BINARY, "view", "--capture", capture, "--validate", "--window", "1280x720", "--event-log",
-                        (dir_ / "events.jsonl").string()},
-                       {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
-  ASSERT_FALSE(waitEvent([](const nlohmann::json& j) { return j["event"] == "ready"; }, 60.0).is_null())
-      << "the viewer did not present the capture; see " << (dir_ / "viewer.log");
-  std::string wid = xdotool("search --onlyvisible --name '^gblens'");
-  wid = wid.substr(0, wid.find('\n'));
-  ASSERT_FALSE(wid.empty());
+  const std::string wid = openViewer(capture);
+  ASSERT_FALSE(wid.empty()) << "the viewer did not present the capture; see " << (dir_ / "viewer.log");
   auto alone = [&](const std::string& key, const std::string& name) {
     xdotool("key --window " + wid + " " + key);
     return waitEvent([name](const nlohmann::json& j) {
       return j["event"] == "layout" && j["views"].size() == 1 && j["views"][0]["view"] == name;
     });
   };
-  // A capture opens on its first colour view alone: the latest layout event saying so.
-  size_t fromStart = 0;
-  nlohmann::json one;
-  auto baseColorAlone = [](const nlohmann::json& j) {
-    return j["event"] == "layout" && j["views"].size() == 1 && j["views"][0]["view"] == "BaseColor";
-  };
-  for (nlohmann::json j; !(j = gui::waitForLine((dir_ / "events.jsonl").string(), one.is_null() ? 30.0 : 1.0, baseColorAlone,
-                                                 fromStart)).is_null();)
-    one = j;
+  const nlohmann::json one = baseColorAlone();
   ASSERT_FALSE(one.is_null());
   // The wheel over pixel (40, 70) of the plane until the values fit in the texels (at most 30 steps).
   const nlohmann::json& v = one["views"][0];

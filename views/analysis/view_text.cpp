@@ -62,13 +62,11 @@ int storageDigits(PixelType t, Encoding e) {
   }
 }
 
-std::vector<std::string> texelValueLines(const FrameSnapshot& f, const ViewDef& v, uint32_t x, uint32_t y, uint32_t shown) {
+std::vector<std::string> texelValueLines(const FrameSnapshot& f, const ViewDef& v,
+                                         const std::optional<std::array<double, 4>>& value, uint32_t shown) {
   std::vector<std::string> lines;
-  const Quantity& q = f.layout.quantities[size_t(v.quantity)];
-  const TargetImage* ti = layoutImage(f, q.target);
-  if (!ti || !ti->contains(x, y)) return lines;
-  const std::optional<std::array<double, 4>> value = viewValue(f, v, x, y);
-  if (!value) return lines;
+  const TargetImage* ti = layoutImage(f, f.layout.quantities[size_t(v.quantity)].target);
+  if (!ti || !value) return lines;
   const int digits = storageDigits(ti->image.type, ti->image.encoding);
   const uint32_t n = std::min(v.components, 4u);
   char buf[64];

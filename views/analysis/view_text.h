@@ -2,6 +2,8 @@
 // target holds them (integer codes, float bits' values) and the decoded value under the layout's names,
 // units and spaces (visualize.h viewValue), for any layout.
 #pragma once
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,9 +19,10 @@ std::string viewValueText(const FrameSnapshot& f, const ViewDef& view, uint32_t 
 // What the viewer prints inside a texel at high zoom (tev's values in texels): one line per component
 // the view shows (`shown`: bit c = component c), "R 0.9216", each with the significant digits its
 // storage holds (float 7, half 4, 8-bit 3 + 1, 10-bit 4, 16-bit 5 + 1; integers whole); no lines where
-// the frame does not hold the texel or the view has no value there.
-std::vector<std::string> texelValueLines(const FrameSnapshot& f, const ViewDef& view, uint32_t x, uint32_t y,
-                                         uint32_t shown);
+// the view has no value at the texel.
+// `value` is viewValue's at the texel (the caller decodes it once; nothing: no lines).
+std::vector<std::string> texelValueLines(const FrameSnapshot& f, const ViewDef& view,
+                                         const std::optional<std::array<double, 4>>& value, uint32_t shown);
 // The significant digits `texelValueLines` prints for a channel of this storage.
 int storageDigits(PixelType t, Encoding e);
 

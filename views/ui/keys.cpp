@@ -3,7 +3,13 @@
 
 #include <cstring>
 
+#include "views/ui/viewer_model.h"
+
 namespace gb {
+
+unsigned keySession(const ViewerModel& m) {
+  return m.source == FrameSource::Compare ? kCompare : m.attach.on ? kAttach : m.source == FrameSource::Live ? kLive : kCapture;
+}
 
 const std::vector<KeyBinding>& keyBindings() {
   using A = KeyAction;

@@ -25,6 +25,10 @@ struct KeyBinding {
   const char* does;
 };
 
+struct ViewerModel;
+// The kind of session the viewer shows (what Help lists and the handler dispatches for).
+unsigned keySession(const ViewerModel& m);
+
 // Every row, in the order Help and the README show them.
 const std::vector<KeyBinding>& keyBindings();
 

@@ -75,10 +75,7 @@ static void helpMenu(const ViewerModel& m) {
   std::string keys = "Views: 1 grid";
   for (const ViewDef& d : m.views)
     if (!d.key.empty()) keys += (d.key == "0" ? ", 0 / Return " : ", " + d.key + " ") + d.name;
-  const unsigned session = m.source == FrameSource::Compare ? kCompare
-                           : m.attach.on                     ? kAttach
-                           : m.source == FrameSource::Live   ? kLive
-                                                             : kCapture;
+  const unsigned session = keySession(m);
   const float width = std::min(900.0f, ImGui::GetIO().DisplaySize.x - 40.0f);
   ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
   ImGui::TextUnformatted(keys.c_str());
