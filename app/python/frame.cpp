@@ -46,12 +46,16 @@ ViewDef findQuantity(const FrameSnapshot& f, const std::string& name) {
   return views[size_t(i)];
 }
 
+// Why the frame has no values of view `v` (its target is not in it).
+std::string missingReason(const FrameSnapshot& f, const ViewDef& v) {
+  return "the frame does not hold target " + f.layout.targets[v.target].name + " (" + absentText(f.absences[v.target]) + ")";
+}
+
 py::array quantityArray(const FramePtr& h, const std::string& name) {
   const FrameSnapshot& f = frameOfHandle(h);
   const ViewDef v = findQuantity(f, name);
   const TargetImage* ti = layoutImage(f, v.target);
-  if (!ti) fail(name + ": the frame does not hold target " + f.layout.targets[v.target].name + " (" +
-                absentText(f.absences[v.target]) + ")");
+  if (!ti) fail(name + ": " + missingReason(f, v));
   std::vector<double> values;
   {
     py::gil_scoped_release release;
@@ -237,9 +241,7 @@ void bindFrame(py::module_& m) {
         py::dict out;
         const FrameSnapshot& f = h->capture.frame;
         for (const ViewDef& v : layoutViews(f.layout))
-          if (!layoutImage(f, v.target))
-            out[py::str(v.name)] = "the frame does not hold target " + f.layout.targets[v.target].name + " (" +
-                                   absentText(f.absences[v.target]) + ")";
+          if (!layoutImage(f, v.target)) out[py::str(v.name)] = missingReason(f, v);
         return out;
       }, doc::kMissingQuantities)
       .def("quantity", &quantityArray, "name"_a, doc::kQuantity)
