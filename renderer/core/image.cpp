@@ -95,8 +95,9 @@ uint32_t CpuImage::raw(uint32_t x, uint32_t y, uint32_t c) const {
   return 0;
 }
 
-double CpuImage::value(uint32_t x, uint32_t y, uint32_t c) const {
-  uint32_t r = raw(x, y, c);
+double CpuImage::value(uint32_t x, uint32_t y, uint32_t c) const { return decodeRaw(type, encoding, c, raw(x, y, c)); }
+
+double decodeRaw(PixelType type, Encoding encoding, uint32_t c, uint32_t r) {
   switch (type) {
     case PixelType::F32: {
       float f;

@@ -34,6 +34,9 @@ struct CpuImage {
 };
 
 size_t pixelTypeSize(PixelType t);
+// What CpuImage::value gives for stored bits `raw` of channel `c` (channel 3 is alpha: sRGB and
+// RGB10A2 store it linearly).
+double decodeRaw(PixelType type, Encoding encoding, uint32_t c, uint32_t raw);
 // One unit in the last place of `v` stored in a channel of this type and encoding: half and float
 // ulps at |v| (half subnormals share the smallest exponent), one code step of normalised integers
 // (their [0, 1] or [-1, 1] range), 1 for plain integers.

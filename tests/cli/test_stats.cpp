@@ -67,7 +67,8 @@ TEST(Stats, JsonCountsPlantedNonFiniteValuesApartFromTheMoments) {
   // --target keeps that target's series only.
   RunResult one = runGblens("stats '" + capture + "' --rect 2,0,8,5 --target normal --json");
   ASSERT_EQ(one.exitCode, 0) << one.output;
-  for (const json& c : json::parse(one.output)["channels"]) EXPECT_EQ(c["target"], "normal");
+  const json parsed = json::parse(one.output);  // alive through the loop: a range-for over parse(...)[...] dangles
+  for (const json& c : parsed["channels"]) EXPECT_EQ(c["target"], "normal");
 
   // The text table says the same.
   RunResult text = runGblens("stats '" + capture + "' --rect 2,0,8,5");

@@ -1,11 +1,14 @@
 """The compare report in a real browser (headless Chromium over the DevTools protocol, network off): no
-console errors or non-file requests; the summary rows equal `compare --json`; the swipe shows A left of
-the mouse and B right of it and follows the mouse; the F key flips between A and B; the hover readout
-at a pixel equals `gblens probe` on both captures. JUnit XML has the schemas' required elements and a
+console errors or non-file requests; the summary rows equal `compare --json`, counts exactly; the hover
+readout gives each side's stored bits and decoded values as `gblens probe` reads them, under each
+side's own channel names; wheel zoom keeps the texel under the mouse, every pane alike, and prints
+values in texels; drag pans; the swipe shows A left of the mouse and B right of it and follows it;
+Space flips; N/P step through the quantities; the docs list the page's keys. JUnit XML has the schemas' required elements and a
 failing quantity is a failing test case; --pairs writes an index page. Screenshots are kept under the
 test's folder (build/pytest) for people to look at."""
 import json
 import math
+import re
 import os
 import xml.etree.ElementTree as ET
 
@@ -67,12 +70,59 @@ COLUMNS = """(id => { const c = document.getElementById(id), t = document.create
   return s; })"""
 
 
-def test_page_summary_views_and_hover(report, browser):
+def show(b, key):
+    x0, y0, w0, h0 = rect(b, f"#summary tr[data-key='{key}'].pick")
+    b.click(x0 + 10, y0 + h0 / 2)
+    b.wait_for(f"document.body.dataset.shown === '{key}|row|a' && document.body.dataset.complete === 'yes'")
+
+
+def hover(b, pane, x, y, w=64, h=36):
+    """Moves the mouse over texel (x, y) of a pane at fit zoom; returns the readout's cells."""
+    left, top, width, height = rect(b, pane)
+    b.mouse(left + (x + 0.5) * width / w, top + (y + 0.5) * height / h)
+    b.wait_for(f"(t => t && t.dataset.x === '{x}' && t.dataset.y === '{y}')(document.getElementById('readout-table'))")
+    return b.evaluate("""[...document.querySelectorAll('#readout-table td[data-what]')].map(td => ({side: td.dataset.side,
+      what: td.dataset.what, index: td.dataset.index, name: td.dataset.name, text: td.textContent}))""")
+
+
+def digits_close(text, value, digits):
+    """`text` is `value` printed to `digits` significant digits (from a float32 copy: one float32 ulp more)."""
+    shown = float(text)
+    if value == 0:
+        return shown == 0
+    unit = 10.0 ** (math.floor(math.log10(abs(value))) - digits + 1)
+    return abs(shown - value) <= 0.51 * unit + 1.2e-7 * abs(value)
+
+
+def check_side(cells, probe, side, quantity, target):
+    """The readout's stored bits and decoded values of one side against `gblens probe` on its capture."""
+    channels = next(t for t in probe["targets"] if t["target"] == target)
+    decoded = next(q for q in probe["quantities"] if q["name"] == quantity)["values"]
+    stored = [c for c in cells if c.get("side") == side and c["what"] == "stored"]
+    assert [c["name"] for c in stored] == [c["name"] for c in channels["channels"][:len(stored)]]
+    for cell, channel in zip(stored, channels["channels"]):
+        if channels["type"] in ("f32", "f16"):  # "VALUE (0xBITS)": the bits exactly, the value to the float's digits
+            value, bits = cell["text"].split(" (")
+            assert bits == channel["bits"] + ")", (cell, channel)
+            kind = np.float32 if channels["type"] == "f32" else np.float16  # the digits tell this float apart
+            assert kind(float(value)) == kind(channel["value"]), (cell, channel)
+        else:  # "RAW -> VALUE"
+            raw, value = cell["text"].split(" -> ")
+            assert int(raw) == int(channel["bits"], 16), (cell, channel)
+            assert digits_close(value, channel["value"], 4 if channels["type"].endswith("8") else 6), (cell, channel)
+    shown = [c for c in cells if c.get("side") == side and c["what"] == "decoded"]
+    assert len(shown) == len(decoded)
+    for cell, value in zip(shown, decoded):
+        digits = {"f32": 7, "f16": 4, "u8": 4, "i8": 4}.get(channels["type"], 6)  # storageDigits, by hand
+        assert digits_close(cell["text"], value, digits), (cell, value)
+
+
+def test_page_summary(report, browser):
     b, r = browser, report["json"]
     b.navigate("file://" + str(report["dir"] / "page" / "index.html"))
     b.wait_for("!!document.body.dataset.shown")
     b.screenshot(report["dir"] / "summary.png")
-    # Summary rows: every group's figures over each pixel set, as compare --json has them.
+    # Summary rows: every group's figures over each pixel set, as compare --json has them; counts exact.
     rows = b.evaluate("""[...document.querySelectorAll('#summary tbody tr')].map(tr => ({key: tr.dataset.key, covers: tr.dataset.covers,
       result: tr.querySelector('[data-field=result]').textContent, pixels: (tr.querySelector('[data-field=pixels]') || {}).textContent,
       metrics: Object.fromEntries([...tr.querySelectorAll('[data-metric]')].map(e => [e.dataset.metric, e.textContent]))}))""")
@@ -82,9 +132,11 @@ def test_page_summary_views_and_hover(report, browser):
                 continue
             row = [x for x in rows if x["key"] == g["key"] and x["covers"] == figures["covers"]]
             assert len(row) == 1, (g["key"], figures["covers"])
-            assert int(row[0]["pixels"]) == figures["pixels"]
+            assert row[0]["pixels"] == str(figures["pixels"])
             for name, value in figures["metrics"].items():
                 if name in row[0]["metrics"]:
+                    if isinstance(value, int):
+                        assert row[0]["metrics"][name] == str(value), (g["key"], name)
                     assert close(number(row[0]["metrics"][name]), value), (g["key"], figures["covers"], name)
             assert sum(1 for m in row[0]["metrics"] if m in figures["metrics"]) >= 2
         first = next(x for x in rows if x["key"] == g["key"])
@@ -95,56 +147,137 @@ def test_page_summary_views_and_hover(report, browser):
         for name in ("mean", "weighted_median", "max"):
             assert close(number(row["metrics"][name]), f[name])
     assert {x["key"] for x in rows} >= {s["target"] for s in r["skipped"]}
+    assert b.problems() == []
 
-    # Albedo (8-bit sRGB) and hdr (float): A and B side by side; hovering a pixel shows both sides'
-    # stored and decoded values, as `gblens probe` gives them.
+
+def test_hover_shows_both_captures_bits_and_values(report, browser):
+    """Albedo (8-bit sRGB) and hdr (float32): each side's stored bits and decoded values at a texel, as
+    `gblens probe` reads them from that side's capture."""
+    b = browser
     for key, quantity, target, pixels in [("albedo_specular.Albedo", "Albedo", "albedo_specular", HOVER[:1]),
-                                          ("hdr", "HDR", "hdr", report["hover"])]:
-        x0, y0, w0, h0 = rect(b, f"#summary tr[data-key='{key}'].pick")
-        b.click(x0 + 10, y0 + h0 / 2)
-        b.wait_for(f"document.body.dataset.shown === '{key}|side|a'")
+                                          ("hdr", "HDR", "hdr", report["hover"]), ("depth", "Depth", "depth", HOVER[1:2])]:
+        show(b, key)
         for x, y in pixels:
-            left, top, width, height = rect(b, "#pane-a")  # again: a full-page screenshot may scroll the page
-            b.mouse(left + (x + 0.5) * width / 64, top + (y + 0.5) * height / 36)
-            b.wait_for(f"(t => t && t.dataset.x === '{x}' && t.dataset.y === '{y}')(document.getElementById('readout-table'))")
-            cells = b.evaluate("""Object.fromEntries([...document.querySelectorAll('#readout-table td[data-side]')].map(
-              td => [td.dataset.side + '.' + td.dataset.what + '.' + td.dataset.index, td.textContent]))""")
+            cells = hover(b, "#pane-a", x, y)
             for side in ("a", "b"):
-                probe = run_json("probe", report[side], x, y, "--json")
-                decoded = next(q for q in probe["quantities"] if q["name"] == quantity)["values"]
-                channels = next(t for t in probe["targets"] if t["target"] == target)["channels"]
-                stored = [c["value"] for c in channels[:len(decoded)]]
-                for k in range(len(decoded)):  # float32 in the data file: six digits shown
-                    assert close(float(cells[f"{side}.decoded.{k}"]), decoded[k]), (key, side, x, y, k)
-                    assert close(float(cells[f"{side}.stored.{k}"]), stored[k]), (key, side, x, y, k)
+                check_side(cells, run_json("probe", report[side], x, y, "--json"), side, quantity, target)
             if (x, y) == report["hover"][0]:
                 b.screenshot(report["dir"] / "hover.png")
+    assert b.problems() == []
 
-    # Swipe: A left of the mouse, B right; moving the mouse moves the split.
+
+def test_each_side_is_read_under_its_own_names(captures, tmp_path, browser):
+    """A's normals octahedral (N.U, N.V), B's rgba16f (N.X, N.Y, N.Z): each side's cells under its names."""
+    other = tmp_path / "rgba16f"
+    run("capture", "--size", "64x36", "--lights", "6", "--shadow-map-size", "256", "--normal-format", "rgba16f", "-o", other)
+    run("compare", captures["plain"], other, "--report", tmp_path / "page", "-q", check=False)
+    b = browser
+    b.navigate("file://" + str(tmp_path / "page" / "index.html"))
+    b.wait_for("!!document.body.dataset.shown")
+    show(b, "normal_shadow.Normal")
+    cells = hover(b, "#pane-b", 40, 20)
+    for side, capture in (("a", captures["plain"]), ("b", str(other))):
+        check_side(cells, run_json("probe", capture, 40, 20, "--json"), side, "Normal", "normal_shadow")
+    names = {s: [c["name"] for c in cells if c.get("side") == s and c["what"] == "stored"] for s in "ab"}
+    assert names["a"][:2] == ["N.U", "N.V"] and names["b"][:3] == ["N.X", "N.Y", "N.Z"], names
+    assert b.problems() == []
+
+
+def view(b):
+    s, ox, oy = map(float, b.evaluate("document.body.dataset.view").split("|"))
+    return s, ox, oy
+
+
+def test_zoom_pan_values_in_texels_swipe_flip_and_keys(report, browser):
+    b = browser
+    b.navigate("file://" + str(report["dir"] / "page" / "index.html"))
+    b.wait_for("!!document.body.dataset.shown")
+    show(b, "hdr")
     a_cols, b_cols = b.evaluate(COLUMNS + "('pane-a')"), b.evaluate(COLUMNS + "('pane-b')")
     assert a_cols != b_cols
-    bx, by, bw, bh = rect(b, "#mode-swipe")
-    b.click(bx + bw / 2, by + bh / 2)
+
+    # Wheel zoom about the mouse: the texel under it stays under it; every pane has the same view.
+    left, top, width, height = rect(b, "#pane-a")
+    s0, _, _ = view(b)
+    mx, my = round(left + width * 0.3), round(top + height * 0.6)  # whole pixels: events carry whole pixels
+    texel = ((mx - left) / s0, (my - top) / s0)
+    b.mouse(mx, my)  # probes the texel under the mouse
+    for _ in range(12):
+        b.call("Input.dispatchMouseEvent", type="mouseWheel", x=mx, y=my, deltaX=0, deltaY=-100)
+    b.wait_for("document.body.dataset.complete === 'yes'")
+    s, ox, oy = view(b)
+    assert s == pytest.approx(s0 * 1.25 ** 12)
+    now = b.evaluate("(() => { const r = document.getElementById('pane-a').getBoundingClientRect(); return [r.left, r.top]; })()")
+    assert (ox + (mx - now[0]) / s, oy + (my - now[1]) / s) == pytest.approx(texel, abs=0.5 / s)
+    marks = b.evaluate("[...document.querySelectorAll('#panes .mark')].map(m => m.style.left + ',' + m.style.top)")
+    assert len(marks) >= 3 and len(set(marks)) == 1, marks
+
+    # Values in texels: the probed texel's text is its decoded value at the storage's precision.
+    probed = b.evaluate("document.getElementById('readout-table').dataset.x + ',' + document.getElementById('readout-table').dataset.y")
+    x, y = map(int, probed.split(","))
+    b.wait_for("!!document.getElementById('pane-a').dataset.probedText")
+    text = b.evaluate("document.getElementById('pane-a').dataset.probedText")
+    decoded = next(q for q in run_json("probe", report["a"], x, y, "--json")["quantities"] if q["name"] == "HDR")["values"]
+    assert len(text.split("|")) == len(decoded)
+    for shown, value in zip(text.split("|"), decoded):
+        assert digits_close(shown, value, 7), (shown, value)
+    b.screenshot(report["dir"] / "zoomed.png")
+
+    # Drag pans every pane alike by the mouse's movement in texels.
+    b.mouse(mx, my, "mousePressed", "left", 1)
+    b.mouse(mx + 2 * s, my + s)  # two texels right and one down: the image follows, so its origin goes back
+    b.mouse(mx + 2 * s, my + s, "mouseReleased", "left", 1)
+    s2, ox2, oy2 = view(b)
+    assert s2 == s and (ox2, oy2) == pytest.approx((ox - 2, oy - 1), abs=1 / s)  # events carry whole pixels
+
+    # Z fits again; swipe (S): A left of the mouse, B right; it follows the mouse.
+    b.key("z", "KeyZ")
+    b.wait_for("document.body.dataset.view.split('|')[1] === '0'")
+    b.key("s", "KeyS")
     b.wait_for("document.body.dataset.shown === 'hdr|swipe|a'")
     left, top, width, height = rect(b, "#pane-view")
     shown = []
-    for split in (16, 48):
+    for split in (16, 48):  # texel columns
         b.mouse(left + split * width / 64, top + height / 2)
+        b.wait_for(f"document.getElementById('tag-b').style.left !== '' && document.getElementById('swipe-line').style.left === '{round(split * width / 64)}px'")
         cols = b.evaluate(COLUMNS + "('pane-view')")
-        assert cols[:split] == a_cols[:split] and cols[split:] == b_cols[split:], split
+        at = round(split * width / 64)
+        assert cols[:at] == a_cols[:at] and cols[at:] == b_cols[at:], split
         shown.append(cols)
     assert shown[0] != shown[1]
     b.screenshot(report["dir"] / "swipe.png")
 
-    # Flip: the F key alternates A and B in place.
+    # Space flips A and B in place.
     sides = []
     for n in range(3):
-        b.key("f", "KeyF")
+        b.key(" ", "Space")
         b.wait_for(f"document.body.dataset.shown === 'hdr|flip|{'ab'[n % 2]}'")
         sides.append(b.evaluate(COLUMNS + "('pane-view')"))
-        b.screenshot(report["dir"] / f"flip_{'ab'[n % 2]}.png")
     assert sides[0] == a_cols and sides[1] == b_cols and sides[2] == a_cols
-    assert b.evaluate("1") == 1 and b.problems() == []
+
+    # N / P: the next and previous quantity in the summary's order; R back to side by side.
+    keys = [g["key"] for g in report["json"]["groups"]]
+    b.key("n", "KeyN")
+    b.wait_for(f"document.body.dataset.shown.startsWith('{keys[(keys.index('hdr') + 1) % len(keys)]}|')")
+    b.key("p", "KeyP")
+    b.wait_for("document.body.dataset.shown.startsWith('hdr|')")
+    b.key("r", "KeyR")
+    b.wait_for("document.body.dataset.shown === 'hdr|row|a'")
+    b.key("?", "Slash")
+    assert b.evaluate("!document.getElementById('help').hidden")
+    assert b.problems() == []
+
+
+def test_the_docs_list_the_pages_keys(report, browser):
+    b = browser
+    b.navigate("file://" + str(report["dir"] / "page" / "index.html"))
+    b.wait_for("!!document.body.dataset.shown")
+    page = b.evaluate("[...document.querySelectorAll('#keys tr')].map(tr => [...tr.children].map(td => td.textContent))")
+    docs = open(os.path.join(os.path.dirname(__file__), "..", "..", "docs", "report.md")).read()
+    table = docs.split("<!-- page keys -->")[1].split("<!-- /page keys -->")[0]
+    cells = lambda line: [c.strip().strip("`").replace("\\|", "|") for c in re.split(r"(?<!\\)\|", line.strip()[1:-1])]
+    rows = [cells(line) for line in table.strip().splitlines()[2:]]
+    assert rows == page
 
 
 def test_junit_has_the_required_elements(report):

@@ -188,6 +188,8 @@ Verdict decide(const Thresholds& t, uint64_t pixels, uint64_t overWarn, uint64_t
 // `error` when the legend cannot be drawn (no font).
 constexpr uint32_t kLegendMinWidth = 360, kLegendMaxWidth = 720, kLegendHeight = 34;
 Rgba8Image heatmapImage(const GroupResult& g, std::string& error);
+// What a group's per-pixel error is measured in (the heat map's and the report's legends).
+std::string errorUnit(const GroupResult& g);
 Rgba8Image flipMapImage(const FlipResult& r, std::string& error);
 
 // Writes into `dir` (created): a heat map with legend per compared group (<key>.png, every group,

@@ -70,7 +70,8 @@ std::string figuresText(MetricKind kind, const GroupFigures& f) {
 
 double percentOf(uint64_t n, uint64_t of) { return 100.0 * double(n) / double(std::max<uint64_t>(of, 1)); }
 
-// What a group's per-pixel error is measured in (the heat map's legend).
+}  // namespace
+
 std::string errorUnit(const GroupResult& g) {
   switch (g.group.kind) {
     case MetricKind::Colour: return "|A-B|";
@@ -81,6 +82,8 @@ std::string errorUnit(const GroupResult& g) {
   }
   return "";
 }
+
+namespace {
 
 // A map of `w` x `h` colours with a legend strip below: a colour bar from 0 to `top` and its labels.
 Rgba8Image withLegend(uint32_t w, uint32_t h, const std::function<void(size_t, uint8_t*)>& pixel,

@@ -1,11 +1,10 @@
-// gblens compare report page (views/report/page.html inlines it): draws report.js's summary, and per
-// group A, B, |A-B| x multiplier (from data/<key>.js), the heat map and FLIP map (img/), side by side,
-// as a swipe (A left of the mouse, B right) or flipped with the F key; hovering shows both sides'
-// stored and decoded values at the pixel. No framework, no network: everything is beside the page.
+// gblens compare report page (views/report/page.html inlines it with texels.js): report.js's summary,
+// and per group A, B, |A-B| and the FLIP map in linked panes (wheel zoom about the mouse, drag to pan,
+// values in texels when zoomed in), a swipe, a flip, both sides' stored bits and decoded values under
+// the mouse, keys for all of it. No framework, no network: everything is beside the page.
 'use strict';
-const G = { report: null, groups: {}, data: {}, waiting: {}, key: null, mode: 'side', side: 'a', mult: 1, exposure: 0,
-            split: 0.5, zoom: 'fit', images: null };
-const COLOUR = ['albedo', 'base_color', 'emission', 'radiance', 'display'];
+const G = { report: null, groups: {}, key: null, mode: 'row', side: 'a', mult: 1, exposure: 0, split: 0.5,
+            view: null, probe: null, values: true, drag: null };
 const $ = (id) => document.getElementById(id);
 
 function el(tag, attrs, ...children) {
@@ -17,11 +16,12 @@ function el(tag, attrs, ...children) {
   for (const c of children) if (c !== null && c !== undefined) e.append(c instanceof Node ? c : String(c));
   return e;
 }
+// Counts exactly, other figures to 6 digits.
 function fmt(v) {
   if (v === null || v === undefined) return '-';
   if (typeof v === 'string') return v;
-  if (!isFinite(v)) return isNaN(v) ? 'nan' : (v > 0 ? 'inf' : '-inf');
-  return String(Number(v.toPrecision(6)));
+  if (Number.isInteger(v) && Math.abs(v) <= Number.MAX_SAFE_INTEGER) return String(v);
+  return gfmt(v, 6);
 }
 const num = (v, metric) => el('td', { class: 'num', data: metric ? { metric } : {} }, fmt(v));
 
@@ -94,7 +94,10 @@ function gblensReport(data) {
                                el('a', { href: r.mask.image }, 'mask image'), ' (red: silhouettes, green: penumbra, blue: mask file)'));
   page.append(el('h2', {}, 'Summary'), summary(r), el('h2', { id: 'view-title' }, 'View'), controls(),
               el('div', { id: 'panes' }), el('div', { id: 'readout' }), el('h2', {}, 'Manifest fields that differ'), differences(r));
-  document.addEventListener('keydown', (e) => { if (e.key === 'f' || e.key === 'F') flip(); });
+  page.append(el('div', { id: 'help', hidden: '' }, el('h2', {}, 'Keys'), keyTable()));
+  document.addEventListener('keydown', onKey);
+  window.addEventListener('mouseup', () => { G.drag = null; });
+  window.addEventListener('mousemove', onDrag);
   const first = r.groups.find((g) => g.result !== 'pass') || r.groups[0];
   if (first) show(first.key);
 }
@@ -112,205 +115,289 @@ function indexPage(page, pairs) {
   page.append(t);
 }
 
-// ---- controls and views --------------------------------------------------------------------------
-function controls() {
-  const mode = (m, label) => el('button', { id: 'mode-' + m, onclick: () => { G.mode = m; draw(); } }, label);
-  const range = (id, min, max, step, value, on) => el('input', { id, type: 'range', min, max, step, value, oninput: (e) => { on(Number(e.target.value)); draw(); } });
-  return el('div', { id: 'controls' }, mode('side', 'side by side'), mode('swipe', 'swipe'), mode('flip', 'flip A/B (F)'),
-    el('label', {}, 'difference x', range('mult', 1, 100, 1, 1, (v) => { G.mult = v; $('mult-value').textContent = v; }), el('span', { id: 'mult-value' }, '1')),
-    el('label', {}, 'zoom ', el('select', { id: 'zoom', onchange: (e) => { G.zoom = e.target.value; draw(); } },
-      ...['fit', '1', '2', '4', '8'].map((z) => el('option', { value: z }, z === 'fit' ? 'fit' : z + ':1')))),
-    el('label', { id: 'exposure-label' }, 'exposure', range('exposure', -8, 8, 0.5, 0, (v) => { G.exposure = v; $('exposure-value').textContent = v; }), el('span', { id: 'exposure-value' }, '0')));
+// ---- keys ----------------------------------------------------------------------------------------
+// The page's keys: one table for the handler and the help list (docs/report.md has the same rows).
+const KEYS = [
+  ['Space', 'flip A and B in place (the same zoom and pan)', () => flip()],
+  ['S', 'swipe: A left of the mouse, B right of it', () => setMode('swipe')],
+  ['R', 'A, B, |A-B| and FLIP side by side', () => setMode('row')],
+  ['D', '|A-B| alone', () => setMode('diff')],
+  ['F', 'the FLIP map alone (final and hdr)', () => setMode('flipmap')],
+  ['N, PageDown', 'the next quantity', () => step(1)],
+  ['P, PageUp', 'the previous quantity', () => step(-1)],
+  ['Z', 'fit: undo zoom and pan', () => { G.view = null; draw(); }],
+  ['+, -', 'zoom in, out about the probed texel', (k) => zoomBy(k === '-' ? 0.5 : 2, null)],
+  ['arrows', 'move the probed texel', (k) => moveProbe(k)],
+  ['G', 'values in texels on / off (zoomed in)', () => { G.values = !G.values; draw(); }],
+  ['?', 'this list', () => { $('help').hidden = !$('help').hidden; }],
+  ['wheel', 'zoom about the mouse, every pane alike', null],
+  ['drag', 'pan, every pane alike', null],
+  ['mouse over a pane', "both sides' stored bits and decoded values at the texel, and |A-B|", null],
+];
+const KEY_NAMES = { ' ': 'Space', PageDown: 'PageDown', PageUp: 'PageUp', ArrowLeft: 'arrows', ArrowRight: 'arrows',
+                    ArrowUp: 'arrows', ArrowDown: 'arrows', '+': '+', '=': '+', '-': '-', '?': '?' };
+
+function keyTable() {
+  return el('table', { id: 'keys' }, ...KEYS.map(([k, what]) => el('tr', {}, el('td', { class: 'mono' }, k), el('td', {}, what))));
 }
 
+function onKey(e) {
+  if (e.target.tagName === 'INPUT' || e.target.tagName === 'SELECT' || e.ctrlKey || e.metaKey || e.altKey) return;
+  const name = KEY_NAMES[e.key] || e.key.toUpperCase();
+  const row = KEYS.find(([k, , act]) => act && k.split(', ').includes(name));
+  if (!row || !G.key) return;
+  e.preventDefault();
+  row[2](e.key);
+}
+
+function setMode(m) {
+  if (m === 'flipmap' && !G.groups[G.key].flip) m = 'diff';  // no FLIP map for this quantity
+  G.mode = m;
+  draw();
+}
 function flip() { G.side = G.mode === 'flip' && G.side === 'a' ? 'b' : 'a'; G.mode = 'flip'; draw(); }
+function step(d) {
+  const keys = G.report.groups.map((g) => g.key), i = keys.indexOf(G.key);
+  show(keys[(i + d + keys.length) % keys.length]);
+}
+
+// ---- controls ------------------------------------------------------------------------------------
+function controls() {
+  const mode = (m, label) => el('button', { id: 'mode-' + m, onclick: () => setMode(m) }, label);
+  const range = (id, min, max, step, value, on) => el('input', { id, type: 'range', min, max, step, value, oninput: (e) => { on(Number(e.target.value)); draw(); } });
+  return el('div', { id: 'controls' }, mode('row', 'side by side (R)'), mode('swipe', 'swipe (S)'),
+    el('button', { id: 'mode-flip', onclick: flip }, 'flip A/B (Space)'), mode('diff', '|A-B| (D)'), mode('flipmap', 'FLIP (F)'),
+    el('label', {}, '|A-B| x', range('mult', 1, 100, 1, 1, (v) => { G.mult = v; $('mult-value').textContent = v; }), el('span', { id: 'mult-value' }, '1')),
+    el('label', { id: 'exposure-label' }, 'exposure', range('exposure', -8, 8, 0.5, 0, (v) => { G.exposure = v; $('exposure-value').textContent = v; }), el('span', { id: 'exposure-value' }, '0')),
+    el('span', { id: 'zoom-label', class: 'mono' }), el('button', { onclick: () => { $('help').hidden = !$('help').hidden; } }, 'keys (?)'));
+}
 
 function show(key) {
   G.key = key;
+  G.view = null;
   for (const tr of document.querySelectorAll('#summary tr.pick')) tr.classList.toggle('shown', tr.dataset.key === key);
   $('view-title').textContent = 'View: ' + key;
-  if (G.data[key]) return draw();
-  $('panes').textContent = 'loading ' + G.groups[key].data + ' ...';
-  G.waiting[key] = true;
-  document.body.append(el('script', { src: G.groups[key].data }));
+  draw();
 }
 
-// report_data.cpp's packing undone: base64 -> inflate -> unshuffle the floats' bytes (when shuffled)
-// -> planes back to `n` components interleaved per pixel.
-async function unpack(b64, n, shuffled) {
-  const bin = atob(b64), bytes = new Uint8Array(bin.length);
-  for (let i = 0; i < bin.length; ++i) bytes[i] = bin.charCodeAt(i);
-  const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream('deflate'));
-  const inflated = new Uint8Array(await new Response(stream).arrayBuffer()), count = inflated.length / 4;
-  const planar = new Uint8Array(inflated.length);
-  if (shuffled) for (let j = 0; j < count; ++j) for (let b = 0; b < 4; ++b) planar[j * 4 + b] = inflated[b * count + j];
-  else planar.set(inflated);
-  const p = new Float32Array(planar.buffer), pixels = count / n, out = new Float32Array(count);
-  for (let k = 0; k < n; ++k) for (let i = 0; i < pixels; ++i) out[i * n + k] = p[k * pixels + i];
-  return out;
+// ---- panes: one view (zoom s, top-left texel ox, oy) shared by every pane ---------------------------
+function fitScale(t) { return t.w >= 640 ? 640 / t.w : Math.max(1, Math.floor(480 / t.w)); }
+function viewOf(t) {
+  const fit = fitScale(t), vw = Math.round(t.w * fit), vh = Math.round(t.h * fit);
+  if (!G.view) G.view = { s: fit, ox: 0, oy: 0 };
+  const v = G.view;
+  v.s = Math.min(Math.max(v.s, fit), 256);
+  v.ox = Math.min(Math.max(v.ox, 0), t.w - vw / v.s), v.oy = Math.min(Math.max(v.oy, 0), t.h - vh / v.s);
+  return { ...v, vw, vh, fit };
 }
 
-async function gblensData(d) {
-  for (const s of ['a', 'b']) {
-    d[s].stored = await unpack(d[s].stored, d[s].channels.length, d.shuffled);
-    d[s].decoded = d[s].decoded === null ? d[s].stored : await unpack(d[s].decoded, d[s].components.length, d.shuffled);
-  }
-  d.error = await unpack(d.error, 1, d.shuffled);
-  G.data[d.key] = d;
-  if (G.key === d.key) draw();
+// Zoom by `k` keeping the texel at pane position (px, py) where it is (null: the probed texel or the centre).
+function zoomBy(k, at) {
+  const t = groupOf(G.key), v = viewOf(t);
+  const [px, py] = at || (G.probe ? [(G.probe.x + 0.5 - v.ox) * v.s, (G.probe.y + 0.5 - v.oy) * v.s] : [v.vw / 2, v.vh / 2]);
+  const tx = v.ox + px / v.s, ty = v.oy + py / v.s, s = Math.min(Math.max(v.s * k, v.fit), 256);
+  G.view = { s, ox: tx - px / s, oy: ty - py / s };
+  draw();
 }
 
-// Display colour of one decoded pixel (components v) of a quantity kind, as bytes.
-function srgb(c) { c = Math.min(Math.max(c, 0), 1); return 255 * (c <= 0.0031308 ? 12.92 * c : 1.055 * Math.pow(c, 1 / 2.4) - 0.055); }
-function hue(n) { const h = (n * 0.618034) % 1, f = (k) => 255 * Math.max(0, Math.min(1, Math.abs(((h * 6 + k) % 6) - 3) - 1)); return [f(0), f(4), f(2)]; }
-function pixelColour(kind, v, n, span, exposure) {
-  if (COLOUR.includes(kind)) {
-    if (v.some((c) => isNaN(c))) return [255, 0, 255];
-    const k = Math.pow(2, exposure);
-    return n >= 3 ? [srgb(v[0] * k), srgb(v[1] * k), srgb(v[2] * k)] : [srgb(v[0] * k), srgb(v[0] * k), srgb(v[0] * k)];
-  }
-  if (isNaN(v[0])) return [0, 0, 0];  // depth or position where no surface was drawn
-  if (kind === 'normal') return [127.5 * (v[0] + 1), 127.5 * (v[1] + 1), 127.5 * (v[2] + 1)];
-  if (['id', 'stencil', 'count'].includes(kind)) return v[0] === 0 ? [0, 0, 0] : hue(v[0]);
-  const t = (k) => (v[k] - span[k][0]) / Math.max(span[k][1] - span[k][0], 1e-30);
-  if (kind === 'depth') { const g = 255 * (1 - t(0)); return [g, g, g]; }  // near bright
-  if (n >= 3) return [255 * t(0), 255 * t(1), 255 * t(2)];
-  if (n === 2) return [255 * t(0), 255 * t(1), 0];
-  return [255 * t(0), 255 * t(0), 255 * t(0)];
+function moveProbe(k) {
+  const t = groupOf(G.key), p = G.probe || { x: 0, y: 0 };
+  const d = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, -1], ArrowDown: [0, 1] }[k];
+  probe(Math.min(Math.max(p.x + d[0], 0), t.w - 1), Math.min(Math.max(p.y + d[1], 0), t.h - 1));
 }
 
-// The display ranges of a group: both sides' finite ranges; unit-range quantities keep [0, 1].
-function spans(d) {
-  return d.a.components.map((_, k) => {
-    const r = [d.a.ranges[k], d.b.ranges[k]].filter((x) => x);
-    let lo = Math.min(...r.map((x) => x[0])), hi = Math.max(...r.map((x) => x[1]));
-    if (!isFinite(lo)) lo = 0, hi = 1;
-    if (!['depth', 'position', 'motion'].includes(d.a.kind)) lo = Math.min(lo, 0), hi = Math.max(hi, 1);
-    return [lo, hi];
-  });
+// The chunks what is shown needs: the coarse pass always (first, alone), the half-resolution passes
+// from 1/4 zoom on, the bands of rows in view from 1/2 on, the probed texel's chunk.
+function neededChunks(t, v) {
+  const ids = ['0'];
+  if (v.s > 0.25) ids.push('1');
+  if (v.s > 0.5)
+    for (let b = Math.floor(v.oy / 128); b <= Math.floor(Math.min(t.h - 1, v.oy + v.vh / v.s) / 128); ++b) ids.push('2.' + b);
+  return ids;
+}
+function requestShown(t, v) {
+  requestChunk(G.key, '0');
+  if (!t.loaded.has('0')) return;  // the coarse image first: on screen before anything finer is read
+  for (const id of neededChunks(t, v)) requestChunk(G.key, id);
+  if (G.probe) requestChunk(G.key, chunkOf(G.probe.x, G.probe.y));
 }
 
-function canvasOf(d, side) {
-  const c = el('canvas', { width: d.width, height: d.height }), ctx = c.getContext('2d');
-  const img = ctx.createImageData(d.width, d.height), s = d[side], n = s.components.length, span = spans(d);
-  const v = new Array(n);
-  for (let i = 0; i < d.width * d.height; ++i) {
-    for (let k = 0; k < n; ++k) v[k] = s.decoded[i * n + k];
-    const [r, g, b] = pixelColour(d.a.kind, v, n, span, G.exposure);
-    img.data.set([r, g, b, 255], i * 4);
-  }
-  ctx.putImageData(img, 0, 0);
-  return c;
+function chunkArrived(key) { if (key === G.key) draw(); }
+
+function paneBox(id, label, v) {
+  const c = el('canvas', { id, width: v.vw, height: v.vh });
+  c.style.width = v.vw + 'px', c.style.height = v.vh + 'px';
+  c.addEventListener('wheel', (e) => { e.preventDefault(); zoomBy(e.deltaY < 0 ? 1.25 : 0.8, local(e, c)); }, { passive: false });
+  c.addEventListener('mousedown', (e) => { if (e.button === 0) G.drag = { x: e.clientX, y: e.clientY, moved: false }; e.preventDefault(); });
+  c.addEventListener('mousemove', (e) => onMove(e, c));
+  return el('div', { class: 'pane' }, el('div', { class: 'label', id: id + '-label' }, label), el('div', { class: 'frame' }, c));
+}
+function local(e, c) { const r = c.getBoundingClientRect(); return [e.clientX - r.left, e.clientY - r.top]; }
+
+// A drag pans wherever the mouse goes (the window listens), not only over the pane it began in.
+function onDrag(e) {
+  if (!G.drag || !G.view) return;
+  const v = G.view;
+  G.view = { s: v.s, ox: v.ox - (e.clientX - G.drag.x) / v.s, oy: v.oy - (e.clientY - G.drag.y) / v.s };
+  G.drag.x = e.clientX, G.drag.y = e.clientY;
+  draw();
 }
 
-function diffCanvas(d) {
-  const c = el('canvas', { width: d.width, height: d.height }), ctx = c.getContext('2d');
-  const img = ctx.createImageData(d.width, d.height), unit = d.kind === 'normal' ? 180 : 1;
-  for (let i = 0; i < d.width * d.height; ++i) {
-    const e = d.error[i], g = isNaN(e) ? 0 : 255 * Math.min(1, (e * G.mult) / unit);
-    img.data.set([g, g, g, 255], i * 4);
-  }
-  ctx.putImageData(img, 0, 0);
-  return c;
+function onMove(e, c) {
+  const v = G.view, [px, py] = local(e, c);
+  if (G.drag) return;
+  if (G.mode === 'swipe') G.split = px / c.width;
+  const t = groupOf(G.key);
+  probe(Math.min(t.w - 1, Math.floor(v.ox + px / v.s)), Math.min(t.h - 1, Math.floor(v.oy + py / v.s)));
 }
 
-function pane(id, label, node, w, h, zoom) {
-  node.id = id;
-  node.style.width = w * zoom + 'px';
-  node.style.height = h * zoom + 'px';
-  node.addEventListener('mousemove', (e) => hover(e, node, w, h));
-  return el('div', { class: 'pane' }, el('div', { class: 'label', id: id + '-label' }, label), node);
+function probe(x, y) { G.probe = { x, y }; draw(); }
+
+// One pane's image through the view, texel values on top. `side`: a, b or diff (their levels drawn
+// coarse to fine), or null with `image` (the FLIP map) instead.
+function paint(c, side, v, t, clipLeft, image) {
+  const ctx = c.getContext('2d');
+  ctx.imageSmoothingEnabled = false;
+  const sx = Math.floor(v.ox), sy = Math.floor(v.oy);
+  const sw = Math.min(t.w - sx, Math.ceil(v.vw / v.s) + 2), sh = Math.min(t.h - sy, Math.ceil(v.vh / v.s) + 2);
+  ctx.save();
+  if (clipLeft !== undefined) { ctx.beginPath(); ctx.rect(clipLeft, 0, v.vw - clipLeft, v.vh); ctx.clip(); }
+  const dest = [(sx - v.ox) * v.s, (sy - v.oy) * v.s, sw * v.s, sh * v.s];
+  if (image) ctx.drawImage(image, sx, sy, sw, sh, ...dest);
+  else for (const l of t.images[side]) ctx.drawImage(l.canvas, sx / l.f, sy / l.f, sw / l.f, sh / l.f, ...dest);
+  delete c.dataset.probedText;
+  if (side && G.values && v.s >= 40) texelValues(ctx, t, v, side, sx, sy, sw, sh);
+  ctx.restore();
 }
 
-// A heat map PNG (img/): its top-left width x height pixels (the map) at the views' zoom, its legend
-// strip below them at its own size.
-function mapPane(id, label, src, d, zoom) {
-  const map = el('canvas', { width: d.width, height: d.height }), legend = el('canvas', { class: 'legend' });
-  const img = el('img', { src });
-  img.addEventListener('load', () => {
-    map.getContext('2d').drawImage(img, 0, 0);
-    // The legend at 1:1, as wide as its bar and labels (compare.h: 360 to 720 pixels from the left).
-    legend.width = Math.min(img.naturalWidth, 720), legend.height = img.naturalHeight - d.height;
-    legend.getContext('2d').drawImage(img, 0, d.height, legend.width, legend.height, 0, 0, legend.width, legend.height);
-  });
-  const box = pane(id, label, map, d.width, d.height, zoom);
-  box.append(legend);
-  return box;
+// Each texel's value in it, at its storage's precision, in black or white against its colour.
+function texelValues(ctx, t, v, what, sx, sy, sw, sh) {
+  const size = Math.min(12, Math.floor(v.s / 5));
+  ctx.font = `${size}px ui-monospace, monospace`;
+  ctx.textAlign = 'center', ctx.textBaseline = 'middle';
+  for (let y = sy; y < sy + sh; ++y)
+    for (let x = sx; x < sx + sw; ++x) {
+      const i = y * t.w + x;
+      if (!t.loaded.has(chunkOf(x, y))) continue;
+      const lines = what === 'diff' ? [gfmt(t.errorF[i], 4)] : decodedValues(t, what, i).map((d) => decodedText(t, what, d));
+      const fine = t.images[what][2].data.data, lum = 0.3 * fine[4 * i] + 0.59 * fine[4 * i + 1] + 0.11 * fine[4 * i + 2];
+      ctx.fillStyle = lum > 128 ? '#000' : '#fff';
+      const cx = (x + 0.5 - v.ox) * v.s, cy = (y + 0.5 - v.oy) * v.s, h = size + 1;
+      if (lines.some((l) => ctx.measureText(l).width > v.s - 2) || lines.length * h > v.s - 2) continue;  // never clipped
+      lines.forEach((l, k) => ctx.fillText(l, cx, cy + (k - (lines.length - 1) / 2) * h));
+      if (G.probe && G.probe.x === x && G.probe.y === y) ctx.canvas.dataset.probedText = lines.join('|');  // what the probed texel says
+    }
+}
+
+function legend(t) {
+  const c = el('canvas', { id: 'diff-legend', class: 'legend', width: 360, height: 34 }), ctx = c.getContext('2d');
+  for (let x = 0; x < 300; ++x) { const g = Math.round((255 * x) / 299); ctx.fillStyle = `rgb(${g},${g},${g})`; ctx.fillRect(x, 0, 1, 14); }
+  ctx.fillStyle = '#ddd', ctx.font = '11px system-ui, sans-serif', ctx.textBaseline = 'top';
+  const top = t.meta.error.max / G.mult;
+  ctx.textAlign = 'left', ctx.fillText('0', 0, 17);
+  ctx.textAlign = 'center', ctx.fillText(gfmt(top / 2, 4), 150, 17);
+  ctx.textAlign = 'right', ctx.fillText(gfmt(top, 4), 300, 17);
+  const note = el('div', { class: 'dim legend-note' }, `${t.meta.error.unit}; white: ${gfmt(top, 7)} (the largest / ${G.mult}) and over`,
+    t.meta.error.infinite ? '; magenta: infinite' : '', '; dark blue: not compared');
+  return el('div', {}, c, note);
 }
 
 function draw() {
-  const d = G.data[G.key];
-  if (!d) return;
-  const g = G.report.groups.find((x) => x.key === G.key), extra = G.groups[G.key];
-  d.kind = g.kind;
-  for (const m of ['side', 'swipe', 'flip']) $('mode-' + m).classList.toggle('on', G.mode === m);
-  $('exposure-label').style.display = COLOUR.includes(d.a.kind) ? '' : 'none';
-  const key = `${G.key}|${G.exposure}`;
-  if (!G.images || G.images.key !== key) G.images = { key, a: canvasOf(d, 'a'), b: canvasOf(d, 'b') };
-  // fit: small frames at the largest whole zoom up to 480 pixels wide, large ones scaled to 640.
-  const zoom = G.zoom !== 'fit' ? Number(G.zoom) : d.width >= 640 ? 640 / d.width : Math.max(1, Math.floor(480 / d.width));
+  if (!G.key) return;
+  const t = groupOf(G.key), g = G.report.groups.find((x) => x.key === G.key), extra = G.groups[G.key];
+  if (!t.images || t.settings !== `${G.exposure}|${G.mult}`) resetImages(t);
+  const v = viewOf(t);
+  requestShown(t, v);
+  for (const m of ['row', 'swipe', 'flip', 'diff', 'flipmap']) $('mode-' + m).classList.toggle('on', G.mode === m);
+  $('mode-flipmap').disabled = !extra.flip;
+  $('exposure-label').style.display = COLOUR.includes(t.meta.a.kind) ? '' : 'none';
+  $('zoom-label').textContent = v.s >= 1 ? `${gfmt(v.s, 3)} px per texel` : `1 px per ${gfmt(1 / v.s, 3)} texels`;
   const panes = $('panes');
-  panes.textContent = '';
-  if (G.mode === 'side') {
-    const copy = (src) => { const c = el('canvas', { width: d.width, height: d.height }); c.getContext('2d').drawImage(src, 0, 0); return c; };
-    panes.append(pane('pane-a', 'A ' + d.a.target, copy(G.images.a), d.width, d.height, zoom),
-                 pane('pane-b', 'B ' + d.b.target, copy(G.images.b), d.width, d.height, zoom),
-                 pane('pane-diff', `|A-B| x ${G.mult} (white: ${fmt((g.kind === 'normal' ? 180 : 1) / G.mult)}${g.kind === 'normal' ? ' deg' : ''})`, diffCanvas(d), d.width, d.height, zoom));
-    panes.append(mapPane('pane-heat', 'heat map', extra.heatmap, d, zoom));
-    if (extra.flip) panes.append(mapPane('pane-flipmap', 'FLIP', extra.flip, d, zoom));
-  } else {
-    const c = el('canvas', { width: d.width, height: d.height });
-    const box = pane('pane-view', '', c, d.width, d.height, zoom);
-    panes.append(box);
-    if (G.mode === 'swipe') {
-      box.append(el('div', { id: 'swipe-line' }));
-      c.addEventListener('mousemove', (e) => { const r = c.getBoundingClientRect(); G.split = (e.clientX - r.left) / r.width; swipe(c, d); });
-      swipe(c, d);
+  if (panes.dataset.layout !== `${G.key}|${G.mode}|${v.vw}`) {  // rebuilt when what is shown changes, else repainted
+    panes.textContent = '';
+    panes.dataset.layout = `${G.key}|${G.mode}|${v.vw}`;
+    if (G.mode === 'row') {
+      panes.append(paneBox('pane-a', 'A ' + t.meta.a.target, v), paneBox('pane-b', 'B ' + t.meta.b.target, v));
+      const d = paneBox('pane-diff', `|A-B| (${t.meta.error.unit})`, v);
+      d.append(legend(t));
+      panes.append(d);
+      if (extra.flip) panes.append(paneBox('pane-flipmap', 'FLIP', v));
     } else {
-      c.getContext('2d').drawImage(G.images[G.side], 0, 0);
-      $('pane-view-label').textContent = G.side === 'a' ? 'A (press F for B): ' + G.report.a : 'B (press F for A): ' + G.report.b;
+      const box = paneBox('pane-view', '', v);
+      if (G.mode === 'diff') box.append(legend(t));
+      box.querySelector('.frame').append(el('div', { id: 'swipe-line' }), el('div', { class: 'tag', id: 'tag-a' }, 'A'), el('div', { class: 'tag', id: 'tag-b' }, 'B'));
+      panes.append(box);
     }
+    if (extra.flip) G.flipImage = G.flipImage && G.flipImage.key === extra.flip ? G.flipImage : Object.assign(el('img', { src: extra.flip }), { key: extra.flip, onload: () => draw() });
   }
-  document.body.dataset.shown = `${G.key}|${G.mode}|${G.side}`;
+  const flipReady = extra.flip && G.flipImage && G.flipImage.complete && G.flipImage.naturalWidth;
+  const swipe = $('swipe-line');
+  if (swipe) swipe.style.display = $('tag-a').style.display = $('tag-b').style.display = G.mode === 'swipe' ? '' : 'none';
+  if (G.mode === 'row') {
+    paint($('pane-a'), 'a', v, t);
+    paint($('pane-b'), 'b', v, t);
+    paint($('pane-diff'), 'diff', v, t);
+    if (flipReady && $('pane-flipmap')) paint($('pane-flipmap'), null, v, t, undefined, G.flipImage);
+  } else if (G.mode === 'swipe') {
+    const x = Math.round(G.split * v.vw);
+    paint($('pane-view'), 'a', v, t);
+    paint($('pane-view'), 'b', v, t, x);
+    Object.assign(swipe.style, { left: x + 'px', height: v.vh + 'px' });
+    $('tag-a').style.left = Math.max(0, x - 22) + 'px', $('tag-b').style.left = Math.min(v.vw - 16, x + 6) + 'px';
+    $('pane-view-label').textContent = `swipe: A left of the line, B right of it`;
+  } else if (G.mode === 'flip') {
+    paint($('pane-view'), G.side, v, t);
+    $('pane-view-label').textContent = G.side === 'a' ? 'A (Space for B): ' + G.report.a : 'B (Space for A): ' + G.report.b;
+  } else if (G.mode === 'diff') {
+    paint($('pane-view'), 'diff', v, t);
+    $('pane-view-label').textContent = `|A-B| (${t.meta.error.unit})`;
+  } else if (flipReady) {
+    paint($('pane-view'), null, v, t, undefined, G.flipImage);
+    $('pane-view-label').textContent = 'FLIP';
+  }
+  mark(v);
+  readout();
+  // shown: the coarse image is on screen; complete: everything the zoom asks for is drawn.
+  const complete = neededChunks(t, v).every((id) => t.loaded.has(id));
+  document.body.dataset.shown = t.loaded.has('0') ? `${G.key}|${G.mode}|${G.side}` : '';
+  document.body.dataset.complete = complete ? 'yes' : '';
+  document.body.dataset.view = `${v.s}|${v.ox}|${v.oy}`;
 }
 
-function swipe(c, d) {
-  const x = Math.max(0, Math.min(d.width, Math.round(G.split * d.width))), ctx = c.getContext('2d');
-  ctx.drawImage(G.images.a, 0, 0);
-  if (x < d.width) ctx.drawImage(G.images.b, x, 0, d.width - x, d.height, x, 0, d.width - x, d.height);
-  const line = $('swipe-line');
-  line.style.left = (x / d.width) * c.getBoundingClientRect().width + 'px';
-  line.style.top = c.offsetTop + 'px';
-  line.style.height = c.getBoundingClientRect().height + 'px';
-  $('pane-view-label').textContent = `swipe: A left of x = ${x}, B right`;
-}
-
-// A box around the hovered pixel in every pane, so the readout's pixel is seen in A, B and the maps.
-function mark(x, y, w, h) {
-  for (const c of document.querySelectorAll('#panes .pane > canvas:not(.legend)')) {
-    let m = c.parentNode.querySelector('.mark');
-    if (!m) c.parentNode.append(m = el('div', { class: 'mark' }));
-    const s = c.clientWidth / w;
-    Object.assign(m.style, { left: c.offsetLeft + x * s - 1 + 'px', top: c.offsetTop + y * s - 1 + 'px', width: s + 'px', height: s + 'px' });
+// A box around the probed texel in every pane.
+function mark(v) {
+  for (const c of document.querySelectorAll('#panes canvas:not(.legend)')) {
+    const f = c.parentNode;
+    let m = f.querySelector('.mark');
+    if (!G.probe) { if (m) m.remove(); continue; }
+    if (!m) f.append(m = el('div', { class: 'mark' }));
+    Object.assign(m.style, { left: (G.probe.x - v.ox) * v.s - 1 + 'px', top: (G.probe.y - v.oy) * v.s - 1 + 'px',
+                             width: Math.max(v.s, 1) + 'px', height: Math.max(v.s, 1) + 'px' });
   }
 }
 
-// The readout: both sides' stored channels and decoded components at the pixel under the mouse.
-function hover(e, node, w, h) {
-  const r = node.getBoundingClientRect();
-  const x = Math.floor(((e.clientX - r.left) * w) / r.width), y = Math.floor(((e.clientY - r.top) * h) / r.height);
-  if (x < 0 || y < 0 || x >= w || y >= h) return;
-  const d = G.data[G.key], i = y * w + x;
-  mark(x, y, w, h);
-  const t = el('table', { id: 'readout-table', data: { x, y } }, el('tr', {}, el('th', {}, `pixel ${x}, ${y}`), el('th', {}, 'A ' + d.a.target), el('th', {}, 'B ' + d.b.target)));
-  const value = (side, s, k) => d[side][s][i * d[side][s === 'stored' ? 'channels' : 'components'].length + k];
-  const rows = (what, names, s) => names.forEach((name, k) => {
-    const differs = fmt(value('a', s, k)) !== fmt(value('b', s, k)) ? 'differs' : '';  // A and B apart: highlighted
-    t.append(el('tr', {}, el('td', {}, `${what} ${name}`),
-      ...['a', 'b'].map((side) => el('td', { class: differs, data: { side, what, index: k } }, fmt(value(side, s, k))))));
-  });
-  rows('stored', d.a.channels, 'stored');
-  rows('decoded', d.a.components, 'decoded');
-  t.append(el('tr', {}, el('td', {}, `error (${d.kind})`), el('td', { colspan: 2, data: { what: 'error' } }, fmt(d.error[i]))));
-  $('readout').replaceChildren(t);
+// Both sides at the probed texel, each under its own channel and component names; |A-B| per component.
+function readout() {
+  const out = $('readout');
+  if (!G.probe) return out.replaceChildren(el('p', { class: 'dim' }, 'Move the mouse over a pane: both sides\' values at the texel.'));
+  const t = groupOf(G.key), { x, y } = G.probe, i = y * t.w + x, id = chunkOf(x, y);
+  if (t.failed) return out.replaceChildren(el('p', { class: 'error' }, t.failed));
+  if (!t.loaded.has(id)) return out.replaceChildren(el('p', { class: 'dim' }, `texel ${x}, ${y}: loading its values ...`));
+  const block = (s) => {
+    const m = t.meta[s], tab = el('table', { class: 'side', data: { side: s } });
+    tab.append(el('tr', {}, el('th', { colspan: 2 }, `${s.toUpperCase()}: ${m.target} (${m.format})`)));
+    m.channels.forEach((name, k) => tab.append(el('tr', {}, el('td', {}, 'stored ' + name),
+      el('td', { data: { side: s, what: 'stored', index: k, name } }, storedText(t, s, k, i)))));
+    tab.append(el('tr', {}, el('th', { colspan: 2 }, `${m.quantity}${m.space ? ' (' + m.space + ')' : ''}`)));
+    decodedValues(t, s, i).forEach((d, k) => tab.append(el('tr', {}, el('td', {}, m.components[k]),
+      el('td', { data: { side: s, what: 'decoded', index: k, name: m.components[k] } }, decodedText(t, s, d)))));
+    return tab;
+  };
+  const da = decodedValues(t, 'a', i), db = decodedValues(t, 'b', i), diff = el('table', { class: 'side' }, el('tr', {}, el('th', { colspan: 2 }, '|A-B|')));
+  if (da.length === db.length)
+    da.forEach((a, k) => diff.append(el('tr', {}, el('td', {}, t.meta.a.components[k]),
+      el('td', { class: a === db[k] ? '' : 'differs', data: { what: 'absdiff', index: k } }, gfmt(Math.abs(a - db[k]), 7)))));
+  diff.append(el('tr', {}, el('td', {}, `error (${t.meta.error.unit})`), el('td', { data: { what: 'error' } }, isNaN(t.errorF[i]) ? 'not compared' : gfmt(t.errorF[i], 7))));
+  out.replaceChildren(el('div', { id: 'readout-table', data: { x, y } }, el('div', { class: 'mono' }, `texel ${x}, ${y}`),
+                                el('div', { class: 'sides' }, block('a'), block('b'), diff)));
 }

@@ -7,13 +7,14 @@
 
 namespace gb {
 
-// The page's text, carried inside the binary (views/report/page.html and page.js, cmake/EmbedText.cmake).
+// The page's text, carried inside the binary (views/report/page.html, page.js and texels.js, cmake/EmbedText.cmake).
 const char* reportPageHtml();
 const char* reportPageJs();
+const char* reportTexelsJs();
 
-// data/<key>.js for one group (report_data.cpp).
-bool writeGroupData(const Capture& a, const Capture& b, const GroupResult& g, const std::string& file,
-                    std::string& error);
+// One group's chunk files STEM.<chunk>.js and, in `meta`, what report.js says of it (report_data.cpp).
+bool writeGroupData(const Capture& a, const Capture& b, const GroupResult& g, const std::string& stem,
+                    nlohmann::json& meta, std::string& error);
 // Everything of one pair's report into the existing folder `dir` (report_page.cpp).
 bool writeReportContents(const Capture& a, const Capture& b, const CompareReport& report, const std::string& dir,
                          std::string& error);

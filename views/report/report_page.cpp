@@ -1,6 +1,6 @@
 // One pair's report folder: index.html (the page, static), report.js (what it shows), report.json (the
-// same report as `compare --json`, file names relative to the folder), img/ (heat maps with legends,
-// FLIP maps, the mask) and data/ (per group, for the views and the hover readout).
+// same report as `compare --json`, file names relative to the folder), img/ (FLIP maps, the
+// mask) and data/ (per group: the texels the views, the values in texels and the hover readout read).
 #include <filesystem>
 
 #include "renderer/core/assert.h"
@@ -14,10 +14,11 @@ namespace fs = std::filesystem;
 
 bool writePage(const std::string& dir, const nlohmann::json& data, std::string& error) {
   std::string html = reportPageHtml();
-  const std::string slot = "/*gblens:page.js*/";
-  const size_t at = html.find(slot);
-  GB_ASSERT(at != std::string::npos);
-  html.replace(at, slot.size(), reportPageJs());
+  for (const auto& [slot, text] : {std::pair{"/*gblens:texels.js*/", reportTexelsJs()}, std::pair{"/*gblens:page.js*/", reportPageJs()}}) {
+    const size_t at = html.find(slot);
+    GB_ASSERT(at != std::string::npos);
+    html.replace(at, std::string(slot).size(), text);
+  }
   // The data as a script: a page opened from disk may load scripts beside it, not read files.
   return writeTextAtomically((fs::path(dir) / "report.js").string(), "gblensReport(" + data.dump() + ");\n", error) &&
          writeTextAtomically((fs::path(dir) / "index.html").string(), html, error);
@@ -42,9 +43,16 @@ bool writeReportContents(const Capture& a, const Capture& b, const CompareReport
   for (size_t i = 0; i < report.groups.size(); ++i) {
     const GroupResult& g = report.groups[i];
     const std::string file = compareFileName(g.group.key, "");
-    if (!png(file + ".png", heatmapImage(g, error), j["groups"][i]["heatmap"])) return false;
-    if (!writeGroupData(a, b, g, (fs::path(dir) / "data" / (file + ".js")).string(), error)) return false;
-    groups[g.group.key] = {{"data", "data/" + file + ".js"}, {"heatmap", j["groups"][i]["heatmap"]}};
+    if (file.empty()) {
+      error = "a group key cannot be a file name (use a-z, A-Z, 0-9, _, . and -)";
+      return false;
+    }
+    // No heat map image: the page draws |A-B| from the error in the data, scaled to the group's
+    // largest, with its legend (`compare -o DIR` writes the heat map images).
+    nlohmann::json meta;
+    if (!writeGroupData(a, b, g, (fs::path(dir) / "data" / file).string(), meta, error)) return false;
+    meta["stem"] = "data/" + file;
+    groups[g.group.key] = meta;
   }
   for (size_t i = 0; i < report.flips.size(); ++i) {
     const FlipResult& f = report.flips[i];
