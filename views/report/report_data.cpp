@@ -98,6 +98,8 @@ Side side(const FrameSnapshot& f, const Quantity& q) {
   const LayoutTarget& lt = f.layout.targets[q.target];
   nlohmann::json names = nlohmann::json::array(), components = nlohmann::json::array(), rules = nlohmann::json::array();
   for (uint32_t c : q.channels) names.push_back(image.channels[c]), rules.push_back(valueRule(image, c));
+  // sRGB codes compare as code / 255 (storedUnit): the page's error rule reads them so.
+  const nlohmann::json units = image.encoding == Encoding::Srgb ? nlohmann::json({{"divisor", 255.0}, {"signed", false}}) : nlohmann::json(nullptr);
   for (uint32_t k = 0; k < n; ++k) components.push_back(k < view.componentNames.size() ? view.componentNames[k] : std::to_string(k));
   s.meta = {{"target", lt.name},
             {"format", lt.format.name},
@@ -111,6 +113,7 @@ Side side(const FrameSnapshot& f, const Quantity& q) {
             {"digits", storageDigits(image.type, image.encoding)},
             {"channels", names},
             {"rules", rules},
+            {"units", units},
             {"components", components},
             {"decoded", !same},
             {"ranges", ranges(decoded, n)}};
@@ -130,6 +133,37 @@ std::vector<Chunk> chunks(uint32_t height) {
   return out;
 }
 
+// The stored units the colour and exact metrics compare (compare.cpp storedUnits): the values, but
+// sRGB channels as code / 255.
+double storedUnit(const CpuImage& img, uint32_t c, uint32_t raw) {
+  return img.encoding == Encoding::Srgb ? raw / 255.0 : decodeRaw(img.type, img.encoding, c, raw);
+}
+
+// Whether the page can compute the group's error itself, bit for bit: the largest |A-B| of the stored
+// units (what colour and exact metrics measure where both sides store alike). Checked on every pixel;
+// where it holds the error costs nothing in the data.
+bool errorIsStoredUnitDifference(const Capture& a, const Capture& b, const Quantity& qa, const Quantity& qb,
+                                 const GroupResult& g) {
+  if (g.group.kind != MetricKind::Colour && g.group.kind != MetricKind::Exact) return false;
+  const CpuImage &ia = a.frame.images[qa.target].image, &ib = b.frame.images[qb.target].image;
+  const size_t n = std::min({qa.channels.size(), qb.channels.size(), size_t(4)});
+  for (uint32_t y = 0; y < g.height; ++y)
+    for (uint32_t x = 0; x < g.width; ++x) {
+      double e = 0.0;
+      for (size_t k = 0; k < n; ++k) {
+        const double u = storedUnit(ia, qa.channels[k], ia.raw(x, y, qa.channels[k]));
+        const double v = storedUnit(ib, qb.channels[k], ib.raw(x, y, qb.channels[k]));
+        const double d = std::isnan(u) || std::isnan(v) ? (std::isnan(u) && std::isnan(v) ? 0.0 : INFINITY)
+                         : u == v                     ? 0.0
+                                                      : std::abs(u - v);
+        e = std::max(e, d);
+      }
+      const float want = g.errors[size_t(y) * g.width + x], got = float(e);
+      if (std::memcmp(&want, &got, sizeof got) != 0) return false;
+    }
+  return true;
+}
+
 }  // namespace
 
 bool writeGroupData(const Capture& a, const Capture& b, const GroupResult& g, const std::string& stem,
@@ -137,7 +171,8 @@ bool writeGroupData(const Capture& a, const Capture& b, const GroupResult& g, co
   const Quantity &qa = *a.frame.layout.findByName(g.group.group), &qb = *b.frame.layout.findByName(g.group.group);
   Side sa = side(a.frame, qa), sb = side(b.frame, qb);
   GB_ASSERT(g.errors.size() == size_t(g.width) * g.height && sa.stored.values.size() == g.errors.size() * sa.stored.planes);
-  const TexelArray err = floatPlanes(g.errors, 1);
+  const bool errorRule = errorIsStoredUnitDifference(a, b, qa, qb, g);
+  const TexelArray err = errorRule ? TexelArray{4, 1, {}} : floatPlanes(g.errors, 1);
   // B against A where the arrays line up: what they share costs nothing.
   const bool storedRef = sb.stored.bytes == sa.stored.bytes && sb.stored.planes == sa.stored.planes;
   const bool decodedRef = !sa.decoded.values.empty() && !sb.decoded.values.empty() && sa.decoded.planes == sb.decoded.planes;
@@ -170,7 +205,8 @@ bool writeGroupData(const Capture& a, const Capture& b, const GroupResult& g, co
           {"b", sb.meta},
           {"b_stored_against_a", storedRef},
           {"b_decoded_against_a", decodedRef},
-          {"error", {{"unit", errorUnit(g)}, {"max", top}, {"infinite", infinite}}}};
+          {"error", {{"unit", errorUnit(g)}, {"max", top}, {"infinite", infinite},
+                     {"rule", errorRule ? nlohmann::json("max_abs_stored_units") : nlohmann::json(nullptr)}}}};
   return true;
 }
 

@@ -81,8 +81,9 @@ function decodeChunk(t, chunk, buf) {
     const geom = { x0, dx, rows, cols };
     const arrays = [[t.a.stored, BYTES[m.a.type], null], [t.a.decoded, 4, null],
       [t.b.stored, BYTES[m.b.type], m.b_stored_against_a ? t.a.stored : null],
-      [t.b.decoded, 4, m.b_decoded_against_a ? t.a.decoded : null], [[t.error], 4, null]];
+      [t.b.decoded, 4, m.b_decoded_against_a ? t.a.decoded : null], [m.error.rule ? null : [t.error], 4, null]];
     for (const [planes, bytes, ref] of arrays) if (planes) off = decodeArray(buf, off, bytes, planes, ref, geom, t.w);
+    if (m.error.rule) for (const y of rows) for (let x = x0; x < t.w; x += dx) t.errorF[y * t.w + x] = unitError(t, y * t.w + x);
   }
   if (off !== buf.length) throw new Error(`${buf.length} bytes, ${off} read`);
 }
@@ -111,6 +112,19 @@ function decodeArray(buf, off, bytes, planes, ref, { x0, dx, rows, cols }, width
     }
   }
   return off + bytes * stride;
+}
+
+// The error where report_data.cpp found it to be the largest |A-B| of the stored units (compare.cpp's
+// colour and exact metrics; sRGB codes as code / 255), rounded to float32 as compare stores it.
+function unitError(t, i) {
+  const n = Math.min(t.meta.a.channels.length, t.meta.b.channels.length, 4);
+  let e = 0;
+  for (let k = 0; k < n; ++k) {
+    const u = storedValue(t.meta.a.units || t.meta.a.rules[k], t.a.stored[k][i]), v = storedValue(t.meta.b.units || t.meta.b.rules[k], t.b.stored[k][i]);
+    const d = isNaN(u) || isNaN(v) ? (isNaN(u) && isNaN(v) ? 0 : Infinity) : u === v ? 0 : Math.abs(u - v);
+    e = Math.max(e, d);
+  }
+  return Math.fround(e);
 }
 
 // ---- values ---------------------------------------------------------------------------------------
