@@ -154,13 +154,27 @@ def test_hover_shows_both_captures_bits_and_values(report, browser):
     """Albedo (8-bit sRGB) and hdr (float32): each side's stored bits and decoded values at a texel, as
     `gblens probe` reads them from that side's capture."""
     b = browser
+    b.navigate("file://" + str(report["dir"] / "page" / "index.html"))
+    b.wait_for("!!document.body.dataset.shown")
     for key, quantity, target, pixels in [("albedo_specular.Albedo", "Albedo", "albedo_specular", HOVER[:1]),
                                           ("hdr", "HDR", "hdr", report["hover"]), ("depth", "Depth", "depth", HOVER[1:2])]:
         show(b, key)
         for x, y in pixels:
             cells = hover(b, "#pane-a", x, y)
+            probes = {side: run_json("probe", report[side], x, y, "--json") for side in "ab"}
             for side in ("a", "b"):
-                check_side(cells, run_json("probe", report[side], x, y, "--json"), side, quantity, target)
+                check_side(cells, probes[side], side, quantity, target)
+            # |A-B| per component, from the two probes here; the error as compare --json's largest bounds it.
+            values = [next(q for q in probes[s]["quantities"] if q["name"] == quantity)["values"] for s in "ab"]
+            diffs = [c for c in cells if c["what"] == "absdiff"]
+            assert len(diffs) == len(values[0])
+            for cell, va, vb in zip(diffs, *values):
+                assert digits_close(cell["text"], abs(va - vb), 7) or abs(va - vb) < 1e-6 * max(abs(va), 1e-30), (cell, va, vb)
+            error = next(c for c in cells if c["what"] == "error")["text"]
+            group = next(g for g in report["json"]["groups"] if g["key"] == key)
+            if key != "depth":  # colour: the largest channel difference
+                assert digits_close(error, max(abs(va - vb) for va, vb in zip(*values)), 7) or float(error) == 0
+            assert float(error) <= group["all"]["metrics"]["max_abs" if key != "depth" else "max_rel"] * (1 + 1e-6) + 1e-12
             if (x, y) == report["hover"][0]:
                 b.screenshot(report["dir"] / "hover.png")
     assert b.problems() == []
