@@ -2,6 +2,7 @@
 // same report as `compare --json`, file names relative to the folder), img/ (heat maps with legends,
 // FLIP maps, the mask) and data/ (per group, for the views and the hover readout).
 #include <filesystem>
+#include <utility>
 
 #include "renderer/core/assert.h"
 #include "views/capture/image_io.h"
@@ -14,10 +15,13 @@ namespace fs = std::filesystem;
 
 bool writePage(const std::string& dir, const nlohmann::json& data, std::string& error) {
   std::string html = reportPageHtml();
-  const std::string slot = "/*gblens:page.js*/";
-  const size_t at = html.find(slot);
-  GB_ASSERT(at != std::string::npos);
-  html.replace(at, slot.size(), reportPageJs());
+  // index.js after page.js: its indexPage is the one the page calls (the later definition wins).
+  for (auto [slot, text] : {std::pair<std::string, const char*>{"/*gblens:page.js*/", reportPageJs()},
+                            {"/*gblens:index.js*/", reportIndexJs()}}) {
+    const size_t at = html.find(slot);
+    GB_ASSERT(at != std::string::npos);
+    html.replace(at, slot.size(), text);
+  }
   // The data as a script: a page opened from disk may load scripts beside it, not read files.
   return writeTextAtomically((fs::path(dir) / "report.js").string(), "gblensReport(" + data.dump() + ");\n", error) &&
          writeTextAtomically((fs::path(dir) / "index.html").string(), html, error);
