@@ -102,18 +102,7 @@ function gblensReport(data) {
   if (first) show(first.key);
 }
 
-function indexPage(page, pairs) {
-  const worst = pairs.reduce((w, p) => Math.max(w, p.exit_code), 0);
-  page.append(el('h1', {}, `gblens compare: ${pairs.length} pairs, worst exit ${worst}`));
-  const t = el('table', { id: 'pairs' }, el('tr', {}, ...['pair', 'result', 'A', 'B', 'not passing'].map((h) => el('th', {}, h))));
-  for (const p of pairs) {
-    const bad = p.groups.filter((g) => g.result !== 'pass').map((g) => g.key).concat(p.mismatches.map((m) => m.target));
-    t.append(el('tr', { data: { key: p.name } }, el('td', {}, p.page ? el('a', { href: p.page }, p.name) : p.name),
-      el('td', { class: p.result.replace(' ', ''), data: { field: 'result' } }, p.result.toUpperCase()),
-      el('td', { class: 'mono' }, p.a), el('td', { class: 'mono' }, p.b), el('td', {}, p.error || bad.join(', '))));
-  }
-  page.append(t);
-}
+// The pairs index page: indexPage in index.js.
 
 // ---- keys ----------------------------------------------------------------------------------------
 // The page's keys: one table for the handler and the help list (docs/report.md has the same rows).

@@ -65,6 +65,7 @@ struct Done {
   Pair pair;
   CompareReport report;  // errors dropped
   std::string loadError;
+  nlohmann::json thumbnails;  // the index page's pictures of it (null: it did not load)
 };
 
 void comparePair(const Pair& p, const CompareSettings& settings, const std::string& dir, Done& d, std::string& fatal) {
@@ -86,7 +87,9 @@ void comparePair(const Pair& p, const CompareSettings& settings, const std::stri
   if (!dir.empty()) {
     std::error_code ec;
     fs::create_directories(fs::path(dir) / p.name, ec);
-    if (!writeReportContents(a, b, d.report, (fs::path(dir) / p.name).string(), error)) fatal = error;
+    if (!writeReportContents(a, b, d.report, (fs::path(dir) / p.name).string(), error) ||
+        !writeThumbnails(a, d.report, (fs::path(dir) / p.name).string(), p.name + "/", d.thumbnails, error))
+      fatal = error;
   }
   for (GroupResult& g : d.report.groups) g.errors = {};
   for (FlipResult& f : d.report.flips) f.errors = {};
@@ -112,7 +115,7 @@ bool comparePairs(const std::string& list, const CompareSettings& settings, cons
       index.push_back({{"name", d.pair.name}, {"a", d.pair.a}, {"b", d.pair.b}, {"result", j["result"]},
                        {"exit_code", d.report.exitCode}, {"error", d.loadError},
                        {"page", d.loadError.empty() ? d.pair.name + "/index.html" : ""}, {"groups", j["groups"]},
-                       {"flip", j["flip"]}, {"mismatches", j["mismatches"]}});
+                       {"flip", j["flip"]}, {"mismatches", j["mismatches"]}, {"thumbnails", d.thumbnails}});
     }
     return dir.empty() || writePage(dir, {{"kind", "index"}, {"pairs", index}}, e);
   };

@@ -2,6 +2,7 @@
 // same report as `compare --json`, file names relative to the folder), img/ (FLIP maps, the
 // mask) and data/ (per group: the texels the views, the values in texels and the hover readout read).
 #include <filesystem>
+#include <utility>
 
 #include "renderer/core/assert.h"
 #include "views/capture/image_io.h"
@@ -14,10 +15,12 @@ namespace fs = std::filesystem;
 
 bool writePage(const std::string& dir, const nlohmann::json& data, std::string& error) {
   std::string html = reportPageHtml();
-  for (const auto& [slot, text] : {std::pair{"/*gblens:texels.js*/", reportTexelsJs()}, std::pair{"/*gblens:page.js*/", reportPageJs()}}) {
+  // index.js after page.js: its indexPage is the one the page calls (the later definition wins).
+  for (auto [slot, text] : {std::pair<std::string, const char*>{"/*gblens:texels.js*/", reportTexelsJs()},
+                            {"/*gblens:page.js*/", reportPageJs()}, {"/*gblens:index.js*/", reportIndexJs()}}) {
     const size_t at = html.find(slot);
     GB_ASSERT(at != std::string::npos);
-    html.replace(at, std::string(slot).size(), text);
+    html.replace(at, slot.size(), text);
   }
   // The data as a script: a page opened from disk may load scripts beside it, not read files.
   return writeTextAtomically((fs::path(dir) / "report.js").string(), "gblensReport(" + data.dump() + ");\n", error) &&
