@@ -201,14 +201,14 @@ function neededChunks(t, v) {
   const ids = ['0'];
   if (v.s > 0.25) ids.push('1');
   if (v.s > 0.5)
-    for (let b = Math.floor(v.oy / 128); b <= Math.floor(Math.min(t.h - 1, v.oy + v.vh / v.s) / 128); ++b) ids.push('2.' + b);
+    for (let b = Math.floor(v.oy / t.meta.band); b <= Math.floor(Math.min(t.h - 1, v.oy + v.vh / v.s) / t.meta.band); ++b) ids.push('2.' + b);
   return ids;
 }
 function requestShown(t, v) {
   requestChunk(G.key, '0');
   if (!t.loaded.has('0')) return;  // the coarse image first: on screen before anything finer is read
   for (const id of neededChunks(t, v)) requestChunk(G.key, id);
-  if (G.probe) requestChunk(G.key, chunkOf(G.probe.x, G.probe.y));
+  if (G.probe) requestChunk(G.key, chunkOf(t, G.probe.x, G.probe.y));
 }
 
 function chunkArrived(key) { if (key === G.key) draw(); }
@@ -267,7 +267,7 @@ function texelValues(ctx, t, v, what, sx, sy, sw, sh) {
   for (let y = sy; y < sy + sh; ++y)
     for (let x = sx; x < sx + sw; ++x) {
       const i = y * t.w + x;
-      if (!t.loaded.has(chunkOf(x, y))) continue;
+      if (!t.loaded.has(chunkOf(t, x, y))) continue;
       const lines = what === 'diff' ? [gfmt(t.errorF[i], 4)] : decodedValues(t, what, i).map((d) => decodedText(t, what, d));
       const fine = t.images[what][2].data.data, lum = 0.3 * fine[4 * i] + 0.59 * fine[4 * i + 1] + 0.11 * fine[4 * i + 2];
       ctx.fillStyle = lum > 128 ? '#000' : '#fff';
@@ -369,7 +369,7 @@ function mark(v) {
 function readout() {
   const out = $('readout');
   if (!G.probe) return out.replaceChildren(el('p', { class: 'dim' }, 'Move the mouse over a pane: both sides\' values at the texel.'));
-  const t = groupOf(G.key), { x, y } = G.probe, i = y * t.w + x, id = chunkOf(x, y);
+  const t = groupOf(G.key), { x, y } = G.probe, i = y * t.w + x, id = chunkOf(t, x, y);
   if (t.failed) return out.replaceChildren(el('p', { class: 'error' }, t.failed));
   if (!t.loaded.has(id)) return out.replaceChildren(el('p', { class: 'dim' }, `texel ${x}, ${y}: loading its values ...`));
   const block = (s) => {

@@ -200,6 +200,7 @@ bool writeGroupData(const Capture& a, const Capture& b, const GroupResult& g, co
   }
   meta = {{"width", g.width},
           {"height", g.height},
+          {"band", kTexelBand},
           {"chunks", ids},
           {"a", sa.meta},
           {"b", sb.meta},

@@ -37,10 +37,10 @@ function groupOf(key) {
   return t;
 }
 
-// The chunk holding texel (x, y): its pass decides (texel_chunks.h).
-function chunkOf(x, y) {
+// The chunk of group t holding texel (x, y): its pass decides, and for the fine passes its band (texel_chunks.h).
+function chunkOf(t, x, y) {
   const pass = y & 1 ? 4 : x & 1 ? 3 : y % 4 === 2 ? 2 : x % 4 === 2 ? 1 : 0;
-  return pass === 0 ? '0' : pass <= 2 ? '1' : '2.' + Math.floor(y / 128);
+  return pass === 0 ? '0' : pass <= 2 ? '1' : '2.' + Math.floor(y / t.meta.band);
 }
 
 function requestChunk(key, id) {
