@@ -1,8 +1,8 @@
 // Issue 36 through gblens attach:
 // - --stats with an application that never makes a Vulkan device (/bin/true), or that is killed
 //   mid-stream, prints its figures and exits 2 with why, never `terminate called ...` (item 1);
-// - a killed attach's /tmp/gblens-attach-PID-START-* folder and socket are removed by the next
-//   attach, which says so (item 4);
+// - a killed attach's $TMPDIR/gblens-attach-PID-START-* folder and socket are removed by the next
+//   attach there, which says so (item 4); a TMPDIR too long for a socket is refused by name;
 // - a live capture states only what its source said: compared with `gblens capture` of the same
 //   frame, every texel passes and so does the verdict; what only one side holds (the capture's
 //   lights, sun, options; targets the application did not draw in that frame) is reported apart (item 8).
@@ -57,24 +57,25 @@ TEST(RobustAttach, StatsWithoutAFrameExitTwoWithWhy) {
   EXPECT_TRUE(statsOf(killed.output).is_object()) << killed.output;
 }
 
-// Socket folders of this user's attach processes.
-std::vector<std::string> socketFolders() {
+// Socket folders of attach processes in `tmp`.
+std::vector<std::string> socketFolders(const std::string& tmp) {
   std::vector<std::string> out;
-  for (const auto& e : fs::directory_iterator("/tmp"))
+  for (const auto& e : fs::directory_iterator(tmp))
     if (e.path().filename().string().rfind("gblens-attach-", 0) == 0) out.push_back(e.path().string());
   return out;
 }
 
 TEST(RobustAttach, AKilledAttachsSocketFolderIsRemovedByTheNext) {
-  const std::string dir = freshDir("robust_attach_debris");
-  const std::vector<std::string> before = socketFolders();
+  // Both attaches in a TMPDIR of their own: under ctest -j the attaches of other tests, which
+  // clean /tmp, never see (and remove) this debris first.
+  const std::string dir = freshDir("robust_attach_debris"), tmp = dir + "/tmp";
+  fs::create_directories(tmp);
   const pid_t attach = gui::spawn({GBLENS_BINARY, "attach", "--layout", "builtin:gblens", "--frames", "1", "--", "sleep", "2"},
-                                  {}, dir + "/attach.log");
+                                  {"TMPDIR=" + tmp}, dir + "/attach.log");
   std::string left;  // its folder, once made
   for (int i = 0; i < 500 && left.empty(); ++i) {
-    for (const std::string& f : socketFolders())
-      if (std::find(before.begin(), before.end(), f) == before.end() &&
-          f.find("gblens-attach-" + std::to_string(attach) + "-") != std::string::npos && fs::exists(f + "/socket"))
+    for (const std::string& f : socketFolders(tmp))
+      if (f.find("gblens-attach-" + std::to_string(attach) + "-") != std::string::npos && fs::exists(f + "/socket"))
         left = f;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
@@ -83,11 +84,20 @@ TEST(RobustAttach, AKilledAttachsSocketFolderIsRemovedByTheNext) {
   int status = 0;
   gui::waitExit(attach, 10.0, status);
   ASSERT_TRUE(fs::exists(left)) << "a killed attach leaves its folder";
-  const RunResult next = runGblens("attach --layout builtin:gblens --frames 1 -- /bin/true");
+  const RunResult next = runShell("TMPDIR='" + tmp + "' " + app("attach --layout builtin:gblens --frames 1 -- /bin/true"));
   EXPECT_FALSE(fs::exists(left));
   EXPECT_NE(next.output.find("gblens attach: removed " + left + " (left by process " + std::to_string(attach) +
                              ", which is gone)"),
             std::string::npos) << next.output;
+}
+
+TEST(RobustAttach, ATmpdirTooLongForASocketIsRefusedByName) {
+  const std::string dir = freshDir("robust_attach_tmpdir"), tmp = dir + "/" + std::string(110, 't');
+  fs::create_directories(tmp);
+  const RunResult r = runShell("TMPDIR='" + tmp + "' " + app("attach --layout builtin:gblens --frames 1 -- /bin/true"));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("TMPDIR: " + tmp + " is too long a path for a socket"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::is_empty(tmp)) << "nothing made there";
 }
 
 TEST(RobustAttach, ALiveCaptureStatesOnlyWhatItsSourceSaid) {

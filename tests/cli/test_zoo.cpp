@@ -36,7 +36,9 @@ TEST_P(ZooSuggest, TheDraftIsTheTruthAndItsFrameChecksClean) {
   const zoo::Verdict v = zoo::compare(truth, draft, zoo::importTargets(draft));
   EXPECT_TRUE(v.wrong.empty()) << v.text() << "\n" << r.output;
   EXPECT_GT(v.right, 3) << v.text();
-  if (!truth["gbuffer_pass"].is_null() || draft.contains("camera")) EXPECT_EQ(zoo::compareCamera(truth, draft), "") << r.output;
+  if (!truth["gbuffer_pass"].is_null() || draft.contains("camera")) {
+    EXPECT_EQ(zoo::compareCamera(truth, draft), "") << r.output;
+  }
   RunResult imported = runGblens("import '" + kCaptures + "/" + mode + ".rdc' --layout '" + dir + "/draft.json' -o '" + dir + "/frame'");
   ASSERT_EQ(imported.exitCode, 0) << imported.output;
   RunResult check = runGblens("check '" + dir + "/frame'");

@@ -80,7 +80,7 @@ TargetOf liveTargets(const json& draft) {
   };
 }
 
-Verdict compare(const json& truth, const json& draft, const TargetOf& targetOf) {
+Verdict compare(const json& truth, const json& /*draft, read through targetOf*/, const TargetOf& targetOf) {
   Verdict v;
   const json gbuffer = truth["gbuffer_pass"];
   for (const json& p : truth["passes"])

@@ -1,5 +1,5 @@
 // What an interrupted run leaves behind (a capture's .NAME.partial-STAMP-N folder, its .NAME.old-
-// folder, a file's .NAME.tmp-STAMP-N, attach's /tmp/gblens-attach-STAMP-XXXXXX): each is named by the
+// folder, a file's .NAME.tmp-STAMP-N, attach's $TMPDIR/gblens-attach-STAMP-XXXXXX): each is named by the
 // process that made it, its pid and start time, so a later run removes what a gone process left and
 // never what a running one still writes (a reused pid has another start time).
 #pragma once

@@ -93,11 +93,23 @@ bool LiveSession::start(const LiveOptions& o, std::string& error) {
     error = manifest + ": the gblens layer is not built (cmake --build build --target gblens_layer)";
     return false;
   }
-  // Named by this process (pid and start time, debris.h): what a killed attach left is removed here.
-  for (const std::string& line : removeDebrisNamed("/tmp", "gblens-attach-")) addReport(line);
-  std::string tmpl = "/tmp/gblens-attach-" + processStamp() + "-XXXXXX";
+  // In $TMPDIR (else /tmp), named by this process (pid and start time, debris.h): what a killed
+  // attach left there is removed here.
+  std::error_code ec;
+  const std::string tmp = fs::temp_directory_path(ec).string();
+  if (ec) {
+    error = "TMPDIR: " + ec.message();
+    return false;
+  }
+  for (const std::string& line : removeDebrisNamed(tmp, "gblens-attach-")) addReport(line);
+  std::string tmpl = (fs::path(tmp) / ("gblens-attach-" + processStamp() + "-XXXXXX")).string();
+  if (tmpl.size() + sizeof("/socket") > sizeof(sockaddr_un::sun_path)) {
+    error = "TMPDIR: " + tmp + " is too long a path for a socket (at most " +
+            std::to_string(sizeof(sockaddr_un::sun_path) - sizeof("/socket") - (tmpl.size() - tmp.size())) + " characters)";
+    return false;
+  }
   if (!mkdtemp(tmpl.data())) {
-    error = std::string("cannot make a folder for the socket: ") + std::strerror(errno);
+    error = "cannot make a folder for the socket in " + tmp + ": " + std::strerror(errno);
     return false;
   }
   dir_ = tmpl.c_str();
