@@ -98,7 +98,6 @@ double sceneScale(const FrameSnapshot& f) {
 // of S per operation; 16 of them.
 double floatBound(const FrameSnapshot& f) { return 16.0 * std::ldexp(1.0, -24) * sceneScale(f); }
 
-}  // namespace
 
 TEST_F(BlenderImport, ReadsEveryPassAtTheRenderedSize) {
   const FrameSnapshot& f = frame();
@@ -284,5 +283,7 @@ TEST(ImportDocs, EveryLayoutInImportMdParses) {
   }
   EXPECT_GE(layouts, 2);
 }
+
+}  // namespace
 
 }  // namespace gb

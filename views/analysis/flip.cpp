@@ -297,9 +297,9 @@ FlipPool poolFlip(const std::vector<float>& errors, const std::vector<uint8_t>& 
   return p;
 }
 
-void magmaColor(double v, uint8_t out[3]) {
+const std::vector<uint8_t>& magmaPalette() {
   // matplotlib's magma (van der Walt and Smith), 256 entries as sRGB bytes.
-  static const uint8_t kMagma[256 * 3] = {
+  static const std::vector<uint8_t> kMagma = {
       0,   0,   4,   1,   0,   5,   1,   1,   6,   1,   1,   8,   2,   1,   9,   2,   2,  11,   2,   2,  13,   3,   3,  15,
       3,   3,  18,   4,   4,  20,   5,   4,  22,   6,   5,  24,   6,   5,  26,   7,   6,  28,   8,   7,  30,   9,   7,  32,
      10,   8,  34,  11,   9,  36,  12,   9,  38,  13,  10,  41,  14,  11,  43,  16,  11,  45,  17,  12,  47,  18,  13,  49,
@@ -333,8 +333,14 @@ void magmaColor(double v, uint8_t out[3]) {
     253, 226, 163, 253, 227, 165, 253, 229, 167, 253, 231, 169, 253, 233, 170, 253, 235, 172, 252, 236, 174, 252, 238, 176,
     252, 240, 178, 252, 242, 180, 252, 244, 182, 252, 246, 184, 252, 247, 185, 252, 249, 187, 252, 251, 189, 252, 253, 191,
   };
-  const size_t i = size_t(std::lround(clamp01(v) * 255.0));
-  for (int c = 0; c < 3; ++c) out[c] = kMagma[i * 3 + c];
+  return kMagma;
+}
+
+uint8_t magmaIndex(double v) { return uint8_t(std::lround(clamp01(v) * 255.0)); }
+
+void magmaColor(double v, uint8_t out[3]) {
+  const size_t i = magmaIndex(v);
+  for (int c = 0; c < 3; ++c) out[c] = magmaPalette()[i * 3 + c];
 }
 
 }  // namespace gb

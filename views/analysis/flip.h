@@ -45,7 +45,10 @@ struct FlipPool {
 };
 FlipPool poolFlip(const std::vector<float>& errors, const std::vector<uint8_t>& skip = {});
 
-// The magma colour map at v in [0, 1] (sRGB bytes), as the FLIP tool draws its error maps.
+// The magma colour map at v in [0, 1] (sRGB bytes), as the FLIP tool draws its error maps: entry
+// magmaIndex(v) of magmaPalette() (256 entries, RGB each).
 void magmaColor(double v, uint8_t out[3]);
+uint8_t magmaIndex(double v);
+const std::vector<uint8_t>& magmaPalette();
 
 }  // namespace gb

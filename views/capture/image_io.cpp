@@ -1,9 +1,10 @@
-// PNG output through OpenImageIO, atomic by temporary file + rename.
+// PNG output (RGBA through OpenImageIO, palette through libpng), atomic by temporary file + rename.
 #include "views/capture/image_io.h"
 
 #include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
+#include <png.h>
 
 #include <atomic>
 #include <cerrno>
@@ -12,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "renderer/core/assert.h"
 #include "views/capture/debris.h"
 
 namespace gb {
@@ -63,6 +65,61 @@ bool writePng(const std::string& path, const Rgba8Image& image, std::string& err
       return false;
     }
     return out->close();
+  });
+  if (!ok) error = path + ": cannot write PNG" + (detail.empty() ? "" : " (" + detail + ")");
+  return ok;
+}
+
+namespace {
+
+// libpng's errors end the write here (its documented longjmp), with the message kept.
+[[noreturn]] void pngFailed(png_structp png, png_const_charp message) {
+  *static_cast<std::string*>(png_get_error_ptr(png)) = message;
+  png_longjmp(png, 1);
+}
+
+// No C++ object lives in this frame: libpng's longjmp skips no destructor.
+bool writeIndexed(FILE* file, uint32_t width, uint32_t height, const uint8_t* indices, const png_color* colours,
+                  int count, std::string* detail) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, detail, pngFailed, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!info) {
+    png_destroy_write_struct(&png, nullptr);
+    *detail = "out of memory";
+    return false;
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return false;
+  }
+  png_init_io(png, file);
+  png_set_IHDR(png, info, width, height, 8, PNG_COLOR_TYPE_PALETTE, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
+  png_set_PLTE(png, info, colours, count);
+  png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+  png_write_info(png, info);
+  for (uint32_t y = 0; y < height; ++y) png_write_row(png, indices + size_t(y) * width);
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return true;
+}
+
+}  // namespace
+
+bool writeIndexedPng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& indices,
+                     const std::vector<uint8_t>& palette, std::string& error) {
+  GB_ASSERT(indices.size() == size_t(width) * height && palette.size() % 3 == 0 && palette.size() <= 256 * 3);
+  std::string detail;
+  const bool ok = writeAtomically(path, ".png", [&](const std::string& tmp) {
+    FILE* file = std::fopen(tmp.c_str(), "wb");
+    if (!file) {
+      detail = std::strerror(errno);
+      return false;
+    }
+    std::vector<png_color> colours(palette.size() / 3);
+    for (size_t i = 0; i < colours.size(); ++i) colours[i] = {palette[3 * i], palette[3 * i + 1], palette[3 * i + 2]};
+    const bool written = writeIndexed(file, width, height, indices.data(), colours.data(), int(colours.size()), &detail);
+    return (std::fclose(file) == 0) && written;
   });
   if (!ok) error = path + ": cannot write PNG" + (detail.empty() ? "" : " (" + detail + ")");
   return ok;

@@ -1,4 +1,4 @@
-// Writing images for people (PNG) atomically: a temporary file in the same folder, then rename,
+// Writing images for people (PNG: RGBA through OpenImageIO, palette through libpng) atomically: a temporary file in the same folder, then rename,
 // so an interrupted write never leaves a half file under the real name.
 #pragma once
 #include <cstdint>
@@ -15,6 +15,11 @@ struct Rgba8Image {
 
 // Returns false and fills `error` (naming the file) on failure.
 bool writePng(const std::string& path, const Rgba8Image& image, std::string& error);
+// An 8-bit palette PNG (libpng): `indices` (width x height, rows top to bottom) into `palette`
+// (sRGB bytes, RGB per entry, at most 256 entries). A colour map's image at a quarter of RGBA's bytes
+// and a fraction of its size deflated (smooth indices, where the colours' bytes are not).
+bool writeIndexedPng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& indices,
+                     const std::vector<uint8_t>& palette, std::string& error);
 
 // Runs `write(tmpPath)`, then renames tmpPath to `path`. Removes the temporary on failure.
 bool writeAtomically(const std::string& path, const std::string& suffix,

@@ -87,7 +87,7 @@ function gblensReport(data) {
   page.textContent = '';
   if (data.kind === 'index') return indexPage(page, data.pairs);
   const r = G.report = data.report;
-  G.groups = data.groups;
+  G.groups = data.groups, G.magma = data.magma;
   page.append(el('h1', {}, 'gblens compare: ', el('span', { class: r.result.replace(' ', '') }, r.result.toUpperCase()), ` (exit ${r.exit_code})`),
     el('div', { class: 'mono' }, 'A ' + r.a), el('div', { class: 'mono' }, 'B ' + r.b));
   if (r.mask) page.append(el('p', { id: 'mask' }, `mask ${r.mask.parts.join(',')}: ${r.mask.pixels} of ${r.mask.of} pixels (${fmt(100 * r.mask.pixels / r.mask.of)}%) reported apart; `,
@@ -291,6 +291,22 @@ function legend(t) {
   return el('div', {}, c, note);
 }
 
+// The FLIP pane's legend: magma from 0 to 1 (the palette the map's PNG indexes), under the method
+// of the FLIP entry whose map it is.
+function flipLegend(map) {
+  const method = G.report.flip.find((f) => f.heatmap === map).method;
+  const c = el('canvas', { id: 'flip-legend', class: 'legend', width: 360, height: 34 }), ctx = c.getContext('2d');
+  for (let x = 0; x < 300; ++x) {
+    const i = 3 * Math.round((255 * x) / 299), m = G.magma;
+    ctx.fillStyle = `rgb(${m[i]},${m[i + 1]},${m[i + 2]})`, ctx.fillRect(x, 0, 1, 14);
+  }
+  ctx.fillStyle = '#ddd', ctx.font = '11px system-ui, sans-serif', ctx.textBaseline = 'top';
+  ctx.textAlign = 'left', ctx.fillText('0', 0, 17);
+  ctx.textAlign = 'center', ctx.fillText(method, 150, 17);
+  ctx.textAlign = 'right', ctx.fillText('1', 300, 17);
+  return el('div', {}, c, el('div', { class: 'dim legend-note' }, `${method}: 0 equal, 1 the largest difference FLIP tells`));
+}
+
 function draw() {
   if (!G.key) return;
   const t = groupOf(G.key), g = G.report.groups.find((x) => x.key === G.key), extra = G.groups[G.key];
@@ -310,10 +326,15 @@ function draw() {
       const d = paneBox('pane-diff', `|A-B| (${t.meta.error.unit})`, v);
       d.append(legend(t));
       panes.append(d);
-      if (extra.flip) panes.append(paneBox('pane-flipmap', 'FLIP', v));
+      if (extra.flip) {
+        const f = paneBox('pane-flipmap', 'FLIP', v);
+        f.append(flipLegend(extra.flip));
+        panes.append(f);
+      }
     } else {
       const box = paneBox('pane-view', '', v);
       if (G.mode === 'diff') box.append(legend(t));
+      if (G.mode === 'flipmap') box.append(flipLegend(extra.flip));
       box.querySelector('.frame').append(el('div', { id: 'swipe-line' }), el('div', { class: 'tag', id: 'tag-a' }, 'A'), el('div', { class: 'tag', id: 'tag-b' }, 'B'));
       panes.append(box);
     }

@@ -185,7 +185,7 @@ bool writeGroupData(const Capture& a, const Capture& b, const GroupResult& g, co
     std::vector<uint8_t> bytes;
     for (uint32_t p : c.passes)
       for (const auto& [array, ref] : arrays)
-        if (!array->values.empty()) encodeTexels(*array, ref, g.width, g.height, kTexelPasses[p], c.row0, c.row1, bytes);
+        if (!array->values.empty()) encodeTexels(*array, ref, g.width, g.height, p, c.row0, c.row1, bytes);
     const std::string file = stem + "." + c.id + ".js";
     const std::string script = "gblensChunk(" + nlohmann::json(g.group.key).dump() + ", \"" + c.id + "\", " +
                                std::to_string(bytes.size()) + ", " + deflatedLiteral(bytes) + ");\n";

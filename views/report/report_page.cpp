@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "renderer/core/assert.h"
+#include "views/analysis/flip.h"
 #include "views/capture/image_io.h"
 #include "views/report/report.h"
 #include "views/report/report_internal.h"
@@ -59,13 +60,20 @@ bool writeReportContents(const Capture& a, const Capture& b, const CompareReport
   }
   for (size_t i = 0; i < report.flips.size(); ++i) {
     const FlipResult& f = report.flips[i];
-    if (!png("flip_" + f.target + ".png", flipMapImage(f, error), j["flip"][i]["heatmap"])) return false;
+    // The map alone, as palette indices (a fraction of the RGBA image's size); the page draws the
+    // legend from the palette (`compare -o DIR` writes the map with its legend).
+    const std::string name = "flip_" + f.target + ".png";
+    std::vector<uint8_t> indices(f.errors.size());
+    for (size_t k = 0; k < indices.size(); ++k) indices[k] = magmaIndex(f.errors[k]);
+    if (!writeIndexedPng((fs::path(dir) / "img" / name).string(), f.width, f.height, indices, magmaPalette(), error))
+      return false;
+    j["flip"][i]["heatmap"] = "img/" + name;
     for (const GroupResult& g : report.groups)  // the FLIP map is shown with the target's group
       if (g.target == f.target && groups.contains(g.group.key)) groups[g.group.key]["flip"] = j["flip"][i]["heatmap"];
   }
   if (!report.mask.empty() && !png("mask.png", maskImage(report.mask), j["mask"]["image"])) return false;
   return writeTextAtomically((fs::path(dir) / "report.json").string(), j.dump(2) + "\n", error) &&
-         writePage(dir, {{"kind", "pair"}, {"report", j}, {"groups", groups}}, error);
+         writePage(dir, {{"kind", "pair"}, {"report", j}, {"groups", groups}, {"magma", magmaPalette()}}, error);
 }
 
 bool writeReport(const Capture& a, const Capture& b, const CompareReport& report, const std::string& dir,

@@ -11,9 +11,13 @@ namespace gb {
 
 struct TexelPass {
   uint32_t x0, y0, dx, dy;  // texels x0 + i dx, y0 + j dy
+  uint32_t ox, oy;          // a finer pass's texel lies midway between the known ones at -+(ox, oy)
 };
-// Pass 0: one texel per 4x4 cell; 1 and 2 make it one per 2x2; 3 and 4 every texel.
-inline constexpr TexelPass kTexelPasses[5] = {{0, 0, 4, 4}, {2, 0, 4, 4}, {0, 2, 2, 4}, {1, 0, 2, 2}, {0, 1, 1, 2}};
+// Pass 0: one texel per 4x4 cell; 1 and 2 make it one per 2x2; 3 and 4 every texel. Each finer pass
+// fills the midpoints of what the passes before it hold: pass 1 between pass 0's texels in a row,
+// pass 2 between the rows so far, 3 between texels in a row, 4 between rows.
+inline constexpr TexelPass kTexelPasses[5] = {
+    {0, 0, 4, 4, 0, 0}, {2, 0, 4, 4, 2, 0}, {0, 2, 2, 4, 0, 2}, {1, 0, 2, 2, 1, 0}, {0, 1, 1, 2, 0, 1}};
 // Rows per band of the fine chunks (passes 3 and 4): what one hover or a zoomed-in pane loads.
 inline constexpr uint32_t kTexelBand = 128;
 
@@ -24,11 +28,14 @@ struct TexelArray {
   std::vector<uint32_t> values;
 };
 
-// Appends the texels of `pass` whose rows lie in [row0, row1) of array `a` to `out`: each value minus
-// the same texel of `ref` (when given: B coded against A, nothing left where they agree), minus the
-// prediction left + up - up-left within the pass (modulo 2^(8 bytes)), zig-zag folded, then the
-// values' lowest bytes, then their next bytes, ... (slowly varying high bytes deflate together).
-void encodeTexels(const TexelArray& a, const TexelArray* ref, uint32_t width, uint32_t height, const TexelPass& pass,
+// Appends the texels of pass `pass` (kTexelPasses) whose rows lie in [row0, row1) of array `a` to
+// `out`. Each value less the same texel of `ref` (when given: B coded against A, nothing left where
+// they agree) is predicted, modulo 2^(8 bytes) with the values read as signed: in pass 0 by left + up -
+// up-left within the pass; in a finer pass by the mean (rounded down) of the two known texels it lies
+// between, or the first alone where the second is outside the image or [row0, row1), less the residual
+// of the texel before it in the pass's row. What is left is zig-zag folded and written as the values'
+// lowest bytes, then their next bytes, ... (slowly varying high bytes deflate together).
+void encodeTexels(const TexelArray& a, const TexelArray* ref, uint32_t width, uint32_t height, uint32_t pass,
                   uint32_t row0, uint32_t row1, std::vector<uint8_t>& out);
 
 // zlib-deflated `bytes` as a JavaScript string literal whose characters' low bytes are the bytes,
