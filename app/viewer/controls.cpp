@@ -62,6 +62,7 @@ void handleKeys(Viewer& v) {
       case KeyAction::ResetCamera: m.resetCamera = true; break;
       case KeyAction::TexelGrid: m.grid = !m.grid; break;
       case KeyAction::Fit: m.transform = ViewTransform{}; break;
+      case KeyAction::ZoomToMarks: zoomToShadowMarks(m); break;
       case KeyAction::MoveProbe: {
         const glm::ivec2 step(name == "Right" ? 1 : name == "Left" ? -1 : 0, name == "Down" ? 1 : name == "Up" ? -1 : 0);
         const glm::ivec2 from = m.probePixel ? *m.probePixel : glm::ivec2(viewImageSize(m, m.primary) / 2u);

@@ -79,6 +79,7 @@ void showFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info) {
   ViewerModel& m = v.model;
   const auto start = std::chrono::steady_clock::now();
   v.captureA.frame = std::move(frame);
+  ++v.framesShown;
   v.attachInfo = info;
   const FrameSnapshot& f = v.captureA.frame;
   v.renderer.camera = f.camera;

@@ -114,33 +114,43 @@ void refreshProbe(Viewer& v) {
 
 void countMarkedPixels(Viewer& v) {
   ViewerModel& m = v.model;
-  if (!m.shadowMark || m.source != FrameSource::Live || m.reducedBy > 1) {
-    if (!m.shadowMark) m.shadowMarkCount = -1;
+  if (!m.shadowMark) {
+    m.shadowMarks.reset(), m.shadowMarkNote.clear();
+    v.markCountKey.clear();
+    return;
+  }
+  const bool live = m.source == FrameSource::Live;
+  if (live && m.reducedBy > 1) {  // a reduced frame's lookups are not the full frame's
+    m.shadowMarks.reset();
+    m.shadowMarkNote = "counted when the full frame is drawn";
     return;
   }
   const std::string key = std::to_string(m.shadowMark->x) + "," + std::to_string(m.shadowMark->y) + "@" +
-                          std::to_string(m.framesRendered);
+                          (live ? "live " + std::to_string(m.framesRendered) : "shown " + std::to_string(v.framesShown));
   if (key == v.markCountKey) return;
   v.markCountKey = key;
-  // Where each pixel's lookup falls, from its depth (the same rule as the shader's mark and the probe).
-  Renderer& r = v.renderer;
-  const std::vector<Target> readable = readableTargets(r, r.options);
-  std::vector<RegionRequest> requests;
-  for (Target t : {Target::Depth, Target::DepthStencil, Target::Position})
-    if (std::find(readable.begin(), readable.end(), t) != readable.end())
-      requests.push_back({t, 0, 0, r.options.width, r.options.height});
-  FrameSnapshot snapshot = snapshotFromRenderer(r, {});
-  addRegions(snapshot, readbackRegions(r, requests, readable));
-  int64_t count = 0;
-  for (uint32_t y = 0; y < r.options.height; ++y)
-    for (uint32_t x = 0; x < r.options.width; ++x) {
-      int32_t x0 = 0, y0 = 0;
-      if (!shadowMapFootprint(snapshot, x, y, x0, y0)) continue;
-      const glm::ivec2 k = *m.shadowMark - glm::ivec2(x0, y0);
-      count += k.x >= 0 && k.x <= 1 && k.y >= 0 && k.y <= 1;
-    }
-  m.shadowMarkCount = count;
-  logLine(v.eventLog, {{"event", "shadow_mark"}, {"texel", {m.shadowMark->x, m.shadowMark->y}}, {"pixels", count}});
+  // Where each pixel's lookup falls, from its depth (the rule of the shader's mark and of the probe).
+  if (live) {
+    Renderer& r = v.renderer;
+    const std::vector<Target> readable = readableTargets(r, r.options);
+    std::vector<RegionRequest> requests;
+    for (Target t : {Target::Depth, Target::DepthStencil, Target::Position})
+      if (std::find(readable.begin(), readable.end(), t) != readable.end())
+        requests.push_back({t, 0, 0, r.options.width, r.options.height});
+    FrameSnapshot snapshot = snapshotFromRenderer(r, {});
+    addRegions(snapshot, readbackRegions(r, requests, readable));
+    m.shadowMarks = shadowMarks(snapshot, *m.shadowMark);
+  } else {
+    m.shadowMarks = shadowMarks(v.captureA.frame, *m.shadowMark);
+  }
+  m.shadowMarkNote = m.shadowMarks->note;
+  nlohmann::json line = {{"event", "shadow_mark"}, {"texel", {m.shadowMark->x, m.shadowMark->y}}, {"pixels", m.shadowMarks->pixels}};
+  if (m.shadowMarks->box) {
+    const RegionRect& b = *m.shadowMarks->box;
+    line["box"] = {b.x, b.y, b.width, b.height};
+  }
+  if (!m.shadowMarkNote.empty()) line["note"] = m.shadowMarkNote;
+  logLine(v.eventLog, line);
 }
 
 void readHover(Viewer& v) {

@@ -174,6 +174,7 @@ struct Viewer {
   std::string loggedHover;         // the hover text last written to --event-log
   std::vector<TexelValuesDrawn> loggedTexelValues;  // the texel values last written to --event-log
   std::string markCountKey;        // the mark and frame the marked pixels were counted for
+  uint64_t framesShown = 0;        // frames of an attached application shown so far (a new one: count again)
   std::optional<glm::ivec2> dossierShownFor;  // the probed pixel whose dossier the panel has settled on
   std::string layoutKey;           // logged layout, to log changes only
   std::ofstream probeLog, eventLog;

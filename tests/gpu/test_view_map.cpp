@@ -13,6 +13,7 @@
 #include "tests/gpu/gpu_test.h"
 #include "tests/gpu/view_canvas.h"
 #include "views/analysis/probe.h"
+#include "views/analysis/shadow_marks.h"
 #include "views/analysis/visualize.h"
 #include "views/ui/view_params.h"
 
@@ -345,6 +346,35 @@ TEST_F(GpuTest, ShadowTexelMarksThePixelsThatSampleIt) {
   for (uint32_t y = 0; y < o.height; ++y)
     for (uint32_t x = 0; x < o.width; ++x) markedPixels += std::memcmp(at(plain, x, y), at(marked, x, y), 3) != 0;
   EXPECT_LT(markedPixels, int(o.width * o.height / 4)) << "one texel is read by a few pixels, not most";
+
+  // The viewer's count, box and reason (views/analysis/shadow_marks.h, double precision on the CPU)
+  // against the shader's marks (float on the GPU): the same pixels, but for lookups on a texel's edge.
+  const glm::ivec2 texel(d.shadowMap.x0, d.shadowMap.y0);
+  const ShadowMarks cpu = shadowMarks(snap, texel);
+  ASSERT_TRUE(cpu.box.has_value());
+  EXPECT_NEAR(double(cpu.pixels), double(markedPixels), std::max(2.0, 0.1 * markedPixels));
+  int gpuOutsideBox = 0, cpuUnmarkedOnGpu = 0;
+  for (uint32_t y = 0; y < o.height; ++y)
+    for (uint32_t x = 0; x < o.width; ++x) {
+      const bool gpu = std::memcmp(at(plain, x, y), at(marked, x, y), 3) != 0;
+      const RegionRect& b = *cpu.box;
+      gpuOutsideBox += gpu && (x + 1 < b.x || x > b.x + b.width || y + 1 < b.y || y > b.y + b.height);
+    }
+  for (const glm::ivec2& q : cpu.some) cpuUnmarkedOnGpu += std::memcmp(at(plain, q.x, q.y), at(marked, q.x, q.y), 3) == 0;
+  EXPECT_EQ(gpuOutsideBox, 0) << "the box holds every pixel the shader marks (one pixel of slack)";
+  EXPECT_LE(cpuUnmarkedOnGpu, std::max(1, int(cpu.some.size() / 10)));
+  EXPECT_EQ(cpu.note, "");
+  // A texel past every lookup of the frame: none marked, and the sentence says why.
+  const bool after = cpu.readMax.x + 3 < int(o.shadowMapSize) && cpu.readMax.y + 3 < int(o.shadowMapSize);
+  ASSERT_TRUE(after || (cpu.readMin.x >= 3 && cpu.readMin.y >= 3)) << "the frame reads the whole shadow map";
+  const glm::ivec2 past = after ? cpu.readMax + 3 : cpu.readMin - 3;
+  {
+    const ShadowMarks none = shadowMarks(snap, past);
+    EXPECT_EQ(none.pixels, 0);
+    EXPECT_FALSE(none.box.has_value());
+    EXPECT_NE(none.note.find("outside the texels the frame's surfaces read (x " + std::to_string(cpu.readMin.x) + ".."),
+              std::string::npos) << none.note;
+  }
   canvas.destroy(ctx());
   destroyViewMapper(mapper, r);
 }

@@ -24,37 +24,6 @@ class GuiCompareTest : public GpuGuiTest {
  protected:
   std::string folderPrefix() const override { return "gui_test/"; }
 
-  // Starts `gblens view ARGS --validate --window 1280x720 --event-log` and waits for its first frame
-  // (its layout in firstLayout_); the window's id (xdotool) in wid_.
-  void startViewer(std::vector<std::string> args) {
-    args.insert(args.begin(), {GBLENS_BINARY, "view"});
-    for (const char* a : {"--validate", "--window", "1280x720", "--event-log"}) args.push_back(a);
-    args.push_back((dir_ / "events.jsonl").string());
-    // The pointer off the views (Xvfb starts it at the screen's centre, over the pane): a hover mark
-    // drawn in some screenshots of the pane and not in others would tell A from A.
-    xdotool("mousemove 2 718");
-    viewer_ = gui::spawn(args, {"DISPLAY=" + xvfb_.display}, (dir_ / "viewer.log").string());
-    firstLayout_ = waitEvent([](const json& j) { return j["event"] == "layout"; }, 60.0);
-    ASSERT_FALSE(waitEvent([](const json& j) { return j["event"] == "ready"; }).is_null())
-        << "the viewer did not present a frame; see " << (dir_ / "viewer.log");
-    wid_ = xdotool("search --onlyvisible --name '^gblens'");
-    wid_ = wid_.substr(0, wid_.find('\n'));
-    ASSERT_FALSE(wid_.empty());
-    xdotool("mousemove --window " + wid_ + " 640 715");  // the pointer on the status bar, off the views
-  }
-  // Quits with ctrl+Q: exit status 0 (no validation message).
-  void quit() {
-    xdotool("key --window " + wid_ + " ctrl+q");
-    int status = -1;
-    ASSERT_TRUE(gui::waitExit(viewer_, 30.0, status)) << "the viewer did not quit";
-    viewer_ = -1;
-    EXPECT_EQ(status, 0) << "validation messages or a failure; see " << (dir_ / "viewer.log");
-  }
-  // The first event of the whole log that `pred` accepts (whenever it came).
-  json findEvent(const std::function<bool(const json&)>& pred, double seconds = 30.0) {
-    size_t cursor = 0;
-    return gui::waitForLine((dir_ / "events.jsonl").string(), seconds, pred, cursor);
-  }
   // `gblens capture builtin:temple` at 192x108, time 1.5, with extra options.
   std::string capture(const std::string& name, const std::string& options) {
     const std::string out = (dir_ / name).string();
@@ -65,8 +34,6 @@ class GuiCompareTest : public GpuGuiTest {
     return out;
   }
 
-  std::string wid_;
-  json firstLayout_;
 };
 
 namespace {

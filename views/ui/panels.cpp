@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "views/ui/keys.h"
+#include "views/ui/fitted_text.h"
 #include "views/ui/viewer_model.h"
 
 namespace gb {
@@ -388,6 +389,11 @@ static void controlsPanel(ViewerModel& m, const Rect& at) {
   ImGui::SetNextWindowSize(ImVec2(float(at.w), float(at.h)));
   ImGui::Begin("Controls", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                                         ImGuiWindowFlags_NoSavedSettings);
+  // Nothing cut off at the panel's edge: text wraps there, and widgets leave their labels half the
+  // panel ("reduce while moving" is the longest).
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::PushItemWidth(std::max(ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("reduce while moving").x -
+                                    ImGui::GetStyle().ItemInnerSpacing.x * 2, ImGui::GetContentRegionAvail().x * 0.4f));
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) viewSettings(m);
   if (m.source == FrameSource::Compare && ImGui::CollapsingHeader("Compare", ImGuiTreeNodeFlags_DefaultOpen))
     compareControls(m);
@@ -423,6 +429,8 @@ static void controlsPanel(ViewerModel& m, const Rect& at) {
                                           "Launch Application) to capture the frame in RenderDoc too");
   }
   if (!m.captureStatus.empty()) ImGui::TextWrapped("%s", m.captureStatus.c_str());
+  ImGui::PopItemWidth();
+  ImGui::PopTextWrapPos();
   ImGui::End();
 }
 
@@ -446,21 +454,27 @@ static void statusBar(ViewerModel& m, double w, double h) {
   ImGui::Begin("##status", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
                                          ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImGui::PopStyleVar();
-  if (m.attach.on)
-    ImGui::TextUnformatted(attachStatusLine(m).c_str());
-  else if (m.source == FrameSource::Live && m.reducedBy > 1)
-    ImGui::Text("%s | %s | %ux%u: reduced 1/%d while moving (full %ux%u when input stops) | %s | %.1f ms",
-                m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height, m.reducedBy,
-                m.fullSize.x, m.fullSize.y, m.stats.methodReason.c_str(), m.stats.frameMs);
-  else if (m.source == FrameSource::Live)
-    ImGui::Text("%s | %s | %ux%u | %s | %.1f ms", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width,
-                m.rendered.height, m.stats.methodReason.c_str(), m.stats.frameMs);
-  else
-    ImGui::Text("%s | %s | %ux%u", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height);
-  if (!m.hoverText.empty()) {
-    ImGui::SameLine();
-    ImGui::TextUnformatted(("| " + m.hoverText).c_str());
+  char buf[1024];
+  std::string line;
+  if (m.attach.on) {
+    line = attachStatusLine(m);
+  } else if (m.source == FrameSource::Live && m.reducedBy > 1) {
+    std::snprintf(buf, sizeof buf, "%s | %s | %ux%u: reduced 1/%d while moving (full %ux%u when input stops) | %s | %.1f ms",
+                  m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height, m.reducedBy,
+                  m.fullSize.x, m.fullSize.y, m.stats.methodReason.c_str(), m.stats.frameMs);
+    line = buf;
+  } else if (m.source == FrameSource::Live) {
+    std::snprintf(buf, sizeof buf, "%s | %s | %ux%u | %s | %.1f ms", m.sceneName.c_str(), m.deviceName.c_str(),
+                  m.rendered.width, m.rendered.height, m.stats.methodReason.c_str(), m.stats.frameMs);
+    line = buf;
+  } else {
+    std::snprintf(buf, sizeof buf, "%s | %s | %ux%u", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height);
+    line = buf;
   }
+  // The hovered values first where the line is too long for the window: they change under the
+  // mouse, the rest does not (and the whole line is in the tooltip).
+  if (!m.hoverText.empty()) line = m.hoverText + " | " + line;
+  fittedText(line);
   ImGui::End();
 }
 

@@ -295,6 +295,32 @@ static void dossierSections(const PixelDossier& d) {
 void referenceSection(ViewerModel& m);  // reference_panel.cpp
 void compareDossiers(ViewerModel& m);   // compare_panel.cpp
 
+// The clicked shadow-map texel: how many pixels read it, where (zoom to them), or why none do.
+static void shadowMarkLine(ViewerModel& m) {
+  const ImVec4 magenta(1, 0, 1, 1);
+  const glm::ivec2 t = *m.shadowMark;
+  char line[256];
+  if (!m.shadowMarks) {
+    std::snprintf(line, sizeof line, "marked: pixels reading shadow texel (%d, %d): %s", t.x, t.y,
+                  m.shadowMarkNote.empty() ? "counting" : m.shadowMarkNote.c_str());
+  } else if (m.shadowMarks->pixels > 0) {
+    const RegionRect& b = *m.shadowMarks->box;
+    std::snprintf(line, sizeof line, "marked: %lld pixels read shadow texel (%d, %d), within %u,%u %ux%u",
+                  (long long)m.shadowMarks->pixels, t.x, t.y, b.x, b.y, b.width, b.height);
+  } else {
+    std::snprintf(line, sizeof line, "marked: 0 pixels read shadow texel (%d, %d): %s", t.x, t.y, m.shadowMarkNote.c_str());
+  }
+  // Wrapped to the panel, the buttons below: nothing cut off at the panel's edge.
+  ImGui::PushStyleColor(ImGuiCol_Text, magenta);
+  ImGui::TextWrapped("%s", line);
+  ImGui::PopStyleColor();
+  if (m.shadowMarks && m.shadowMarks->pixels > 0) {
+    if (ImGui::SmallButton("zoom to marks (M)")) zoomToShadowMarks(m);
+    ImGui::SameLine();
+  }
+  if (ImGui::SmallButton("clear mark")) m.shadowMark.reset();
+}
+
 void drawDossier(ViewerModel& m) {
   // The readout under the mouse keeps a fixed height, so what follows (the dossier, its buttons)
   // does not move as the mouse goes from pixel to pixel.
@@ -309,15 +335,7 @@ void drawDossier(ViewerModel& m) {
     ImGui::TextDisabled("mouse outside the image");
   if (!m.hoverText.empty()) ImGui::TextWrapped("%s", m.hoverText.c_str());
   ImGui::EndChild();
-  if (m.shadowMark) {
-    if (m.shadowMarkCount >= 0)
-      ImGui::TextColored(ImVec4(1, 0, 1, 1), "marked: %lld pixels sample shadow texel (%d, %d)", (long long)m.shadowMarkCount,
-                         m.shadowMark->x, m.shadowMark->y);
-    else
-      ImGui::TextColored(ImVec4(1, 0, 1, 1), "marked: pixels sampling shadow texel (%d, %d)", m.shadowMark->x, m.shadowMark->y);
-    ImGui::SameLine();
-    if (ImGui::SmallButton("clear")) m.shadowMark.reset();
-  }
+  if (m.shadowMark) shadowMarkLine(m);
   ImGui::Separator();
   if (!m.probePixel || !m.dossier) {
     // Another renderer's frame has only its layout's quantities: no shadow map or lights to promise.

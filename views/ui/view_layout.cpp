@@ -48,6 +48,14 @@ Placement placeImage(const Rect& r, uint32_t width, uint32_t height, const ViewT
   return p;
 }
 
+ViewTransform framing(double x, double y, double w, double h, uint32_t width, uint32_t height) {
+  const double iw = std::max(width, 1u), ih = std::max(height, 1u);
+  ViewTransform t;
+  t.zoom = std::clamp(0.5 * std::min(iw / std::max(w, 1.0), ih / std::max(h, 1.0)), 1.0, 256.0);
+  t.center = {(x + 0.5 * w) / iw, (y + 0.5 * h) / ih};
+  return t;
+}
+
 glm::dvec2 texelAt(const Placement& p, glm::dvec2 w) { return {(w.x - p.originX) / p.scale, (w.y - p.originY) / p.scale}; }
 glm::dvec2 windowAt(const Placement& p, glm::dvec2 t) { return {p.originX + t.x * p.scale, p.originY + t.y * p.scale}; }
 

@@ -30,6 +30,9 @@ struct ViewTransform {
 // Where an image of `width` x `height` texels lies in `rect`. Scales that are whole numbers
 // (or 1/n) stay exact when the fit is close to one, so texels do not shimmer at 1:1.
 Placement placeImage(const Rect& rect, uint32_t width, uint32_t height, const ViewTransform& t);
+// The transform that shows texels [x, x + w) x [y, y + h) of a width x height image centred, at half
+// the fitted image's extent (zoom 1 to 256): "zoom to marks".
+ViewTransform framing(double x, double y, double w, double h, uint32_t width, uint32_t height);
 // Texel coordinates (continuous) under a window point, and back.
 glm::dvec2 texelAt(const Placement& p, glm::dvec2 window);
 glm::dvec2 windowAt(const Placement& p, glm::dvec2 texel);

@@ -201,6 +201,37 @@ static void queueViewDraw(ViewerModel& m, const SlotDraw& v, const Placement& pl
   dl->PopClipRect();
 }
 
+bool zoomToShadowMarks(ViewerModel& m) {
+  if (!m.shadowMark || !m.shadowMarks || !m.shadowMarks->box) return false;
+  const RegionRect& b = *m.shadowMarks->box;
+  m.transform = framing(b.x, b.y, b.width, b.height, m.rendered.width, m.rendered.height);
+  m.uiChanged = true;
+  return true;
+}
+
+// The pixels a clicked shadow-map texel marks, seen at any zoom: their box, never smaller than
+// 12 window pixels; in a capture (the live frame's shader marks the pixels themselves) each pixel,
+// never smaller than 2.
+static void drawShadowMarks(const ViewerModel& m, ImDrawList* dl, const Placement& pl, const Rect& r) {
+  const ShadowMarks& s = *m.shadowMarks;
+  const RegionRect& g = *s.box;
+  const ImU32 magenta = panelColour(1, 0, 1);
+  dl->PushClipRect(ImVec2(float(r.x), float(r.y)), ImVec2(float(r.x + r.w), float(r.y + r.h)), true);
+  if (m.source != FrameSource::Live) {
+    const float size = float(std::max(pl.scale, 2.0));
+    for (const glm::ivec2& p : s.some) {
+      const glm::dvec2 c = windowAt(pl, glm::dvec2(p) + 0.5);
+      dl->AddRectFilled(ImVec2(float(c.x) - size / 2, float(c.y) - size / 2), ImVec2(float(c.x) + size / 2, float(c.y) + size / 2), magenta);
+    }
+  }
+  glm::dvec2 a = windowAt(pl, glm::dvec2(g.x, g.y)), b = windowAt(pl, glm::dvec2(g.x + g.width, g.y + g.height));
+  const glm::dvec2 centre = (a + b) * 0.5, half = glm::max((b - a) * 0.5, glm::dvec2(6.0)) + 3.0;
+  a = centre - half, b = centre + half;
+  dl->AddRect(ImVec2(float(a.x), float(a.y)), ImVec2(float(b.x), float(b.y)), panelColour(0, 0, 0), 0, 0, 3.0f);
+  dl->AddRect(ImVec2(float(a.x), float(a.y)), ImVec2(float(b.x), float(b.y)), magenta, 0, 0, 1.5f);
+  dl->PopClipRect();
+}
+
 // Marks: the hovered pixel on every screen view; on the shadow map, the texel the hovered (or
 // probed) pixel's lookup reads, and the clicked texel.
 static void drawMarks(const ViewerModel& m, const SlotDraw& v, const Placement& pl) {
@@ -209,6 +240,7 @@ static void drawMarks(const ViewerModel& m, const SlotDraw& v, const Placement& 
   if (!m.views[size_t(v.view)].sun) {
     if (v.hover.texel) markTexel(dl, pl, *v.hover.texel, panelColour(1, 1, 1), r);
     if (m.probePixel) markTexel(dl, pl, *m.probePixel, panelColour(0.2f, 1.0f, 0.4f), r);
+    if (m.shadowMark && m.shadowMarks && m.shadowMarks->box) drawShadowMarks(m, dl, pl, r);
     if (m.region) {  // the region statistics' rectangle, in every screen view
       const RegionRect& g = *m.region;
       glm::dvec2 a = windowAt(pl, glm::dvec2(g.x, g.y)), b = windowAt(pl, glm::dvec2(g.x + g.width, g.y + g.height));

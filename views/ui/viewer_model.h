@@ -17,6 +17,7 @@
 #include "views/analysis/probe.h"
 #include "views/analysis/probe_reference.h"
 #include "views/analysis/region_stats.h"
+#include "views/analysis/shadow_marks.h"
 #include "views/ui/view_layout.h"
 
 struct ImDrawList;
@@ -144,7 +145,8 @@ struct ViewerModel {
   std::optional<glm::ivec2> probeRequest;   // a click or an arrow key: the app probes it
   std::optional<glm::ivec2> probePixel;     // the pixel of the dossier shown
   std::optional<glm::ivec2> shadowMark;     // shadow-map texel clicked: the pixels sampling it are marked
-  int64_t shadowMarkCount = -1;             // how many (-1: not counted yet)
+  std::optional<ShadowMarks> shadowMarks;   // those pixels in the frame shown (none: not counted yet)
+  std::string shadowMarkNote;               // why none are marked, or why they are not counted yet
   std::optional<glm::ivec2> shadowTexelOfProbe;  // the texel the probed pixel's shadow lookup read
   std::optional<PixelDossier> dossier;      // the shared dossier (views/probe.h) of probePixel
   nlohmann::json dossierJson;               // the same as JSON (copy, --probe-log)
@@ -254,5 +256,9 @@ Rect imageRectOf(const ViewerModel& m, const ViewSlot& s);
 // Keyboard shortcuts: 1 grid, 0 / Return the first view, 2..9 the next ones (view_table.h keys).
 // Returns true if handled.
 bool applyViewKey(ViewerModel& m, int digit);
+
+// "Zoom to marks": every view (linked) frames the pixels the clicked shadow-map texel marks; false
+// when none are marked.
+bool zoomToShadowMarks(ViewerModel& m);
 
 }  // namespace gb
