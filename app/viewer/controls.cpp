@@ -65,7 +65,10 @@ void handleKeys(Viewer& v) {
       case KeyAction::ZoomToMarks: zoomToShadowMarks(m); break;
       case KeyAction::MoveProbe: {
         const glm::ivec2 step(name == "Right" ? 1 : name == "Left" ? -1 : 0, name == "Down" ? 1 : name == "Up" ? -1 : 0);
-        const glm::ivec2 from = m.probePixel ? *m.probePixel : glm::ivec2(viewImageSize(m, m.primary) / 2u);
+        // From the pixel asked for already in this frame: presses that arrive together all count.
+        const glm::ivec2 from = m.probeRequest ? *m.probeRequest
+                                : m.probePixel ? *m.probePixel
+                                               : glm::ivec2(viewImageSize(m, m.primary) / 2u);
         m.probeRequest = from + step;
         break;
       }
