@@ -104,7 +104,9 @@ void expectDraft(const std::string& stem, const std::string& dumpDir, bool ortho
         ASSERT_TRUE(qb);
         const std::optional<glm::dvec3> pa = decodePosition(fa, *qa, x, y), pb = decodePosition(fb, *qb, x, y);
         ASSERT_EQ(pa.has_value(), pb.has_value()) << qa->name << " " << x << "," << y;
-        if (pa) EXPECT_EQ(*pa, *pb) << qa->name << " " << x << "," << y;
+        if (pa) {
+          EXPECT_EQ(*pa, *pb) << qa->name << " " << x << "," << y;
+        }
       }
       if (!hasSurface(fa, x, y)) continue;
       ++surfaces;
