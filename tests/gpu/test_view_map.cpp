@@ -379,4 +379,19 @@ TEST_F(GpuTest, ShadowTexelMarksThePixelsThatSampleIt) {
   destroyViewMapper(mapper, r);
 }
 
+// The viewer's reference maps are views of no quantity (-1): they have no live target (under
+// `make test-asan` the viewer read past the layout's quantities here once the maps were shown).
+TEST(ViewMap, AViewOfNoQuantityHasNoNativeSource) {
+  const Layout& layout = nativeLayout(smallFrame());
+  ViewDef map;
+  map.name = "error/shadow";
+  EXPECT_FALSE(nativeSource(layout, map).has_value());
+  map.quantity = int(layout.quantities.size());
+  EXPECT_FALSE(nativeSource(layout, map).has_value());
+  ViewDef normal = liveView(smallFrame(), "Normal").def;
+  EXPECT_TRUE(nativeSource(layout, normal).has_value());
+  normal.target = uint32_t(layout.targets.size());
+  EXPECT_FALSE(nativeSource(layout, normal).has_value());
+}
+
 }  // namespace gb

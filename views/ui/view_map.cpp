@@ -74,6 +74,9 @@ ViewImage targetImage(const Renderer& r, const ViewSource& s) {
 }
 
 std::optional<ViewSource> nativeSource(const Layout& layout, const ViewDef& view, ViewGpuSource* gpu) {
+  // A reference map (quantity -1: the viewer's error maps) or a view of another layout: no target here.
+  if (view.quantity < 0 || size_t(view.quantity) >= layout.quantities.size() || view.target >= layout.targets.size())
+    return std::nullopt;
   const LayoutTarget& lt = layout.targets[view.target];
   Target t;
   if (!parseTarget(lt.name, t)) return std::nullopt;

@@ -38,7 +38,8 @@ struct ViewSource {
   bool stencil = false;
 };
 // The live target holding a view of gblens's own layout (its layout target's name is the target's),
-// with the channels its components are in; nothing when the view's target is not one of gblens's.
+// with the channels its components are in; nothing when the view's target is not one of gblens's,
+// or the view is none of the layout's quantities (a reference map).
 std::optional<ViewSource> nativeSource(const Layout& layout, const ViewDef& view, ViewGpuSource* gpu = nullptr);
 
 // What the GPU samples for a view: an image view in a layout readable by fragment shaders.
