@@ -100,6 +100,7 @@ static void initModel(Viewer& v, bool live) {
     updateLiveViews(v);
     for (size_t i = 0; i + 1 < v.scene.cameras.size(); ++i)
       m.cameraNames.push_back(v.scene.cameras[i].name.empty() ? "camera " + std::to_string(i) : v.scene.cameras[i].name);
+    installLiveTexelValues(v);
     m.captureAvailable = true;
     m.renderDocAvailable = underRenderDoc();
     m.captureHint = "Writes this frame, every target at full precision, to ./gblens-capture-<date>-<time>/\n"

@@ -236,6 +236,10 @@ void refreshProbe(Viewer& v);
 // Read-back windows (texel (x0, y0) of the target is image texel (0, 0)) placed into a snapshot.
 void addRegions(FrameSnapshot& s, const std::vector<RegionImage>& regions);
 
+// live_texels.cpp
+// ViewerModel::texelValue for the live frame: values in texels at high zoom, read back in tiles.
+void installLiveTexelValues(Viewer& v);
+
 // region.cpp
 // The statistics of the selected region (ViewerModel::region) when it is new or the frame changed.
 void updateRegion(Viewer& v);

@@ -2,13 +2,18 @@
 // (under a screen pixel per texel), a click on a shadow-map texel that `gblens probe` says a pixel's
 // lookup reads; the Final view then shows the marked pixels' box in magenta at fit zoom, the event log
 // counts them with a box holding that pixel, M zooms every view to the box, and a texel no lookup
-// reads says why none are marked.
+// reads says why none are marked. And the live frame zoomed in prints each texel's value, read back
+// from the GPU, as a capture of the same frame gives it.
 #include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <string>
 
 #include "tests/gui/gpu_session.h"
+#include "views/analysis/view_table.h"
+#include "views/analysis/view_text.h"
+#include "views/analysis/visualize.h"
+#include "views/capture/capture.h"
 
 namespace gb {
 namespace {
@@ -109,6 +114,48 @@ TEST_F(GuiMarksTest, AClickedShadowTexelMarksItsPixelsVisiblyAndMZoomsToThem) {
   ASSERT_FALSE(none.is_null());
   EXPECT_EQ(none["pixels"], 0);
   EXPECT_NE(none.value("note", "").find("no pixel's lookup reads it"), std::string::npos) << none.dump();
+  quit();
+}
+
+TEST_F(GuiMarksTest, TheLiveFrameZoomedInPrintsEachTexelsValueAsItsCaptureHasIt) {
+  const std::string capture = (dir_ / "capture").string();
+  int status = -1;
+  gui::run(std::string(GBLENS_BINARY) + " capture builtin:temple --size 192x108 --time 1.5 -o " + capture + " 2>&1", &status);
+  ASSERT_EQ(status, 0);
+  Capture c;
+  std::string error;
+  ASSERT_TRUE(loadCapture(capture, c, error)) << error;
+  const std::vector<ViewDef> views = layoutViews(c.frame.layout);
+
+  startViewer({"builtin:temple", "--size", "192x108", "--time", "1.5", "--paused", "--reduce-while-moving", "off"});
+  for (const auto& [key, name] : {std::pair<std::string, std::string>{"6", "Depth"}, {"4", "Normal"}}) {
+    SCOPED_TRACE(name);
+    xdotool("key --window " + wid_ + " " + key);
+    const json layout = waitLayout(name);
+    ASSERT_FALSE(layout.is_null());
+    if (name == "Depth") {  // the wheel over texel (104, 80) until values fit (the zoom is shared)
+      const json& v = layout["views"][0];
+      const int sx = int(double(v["origin"][0]) + 104.5 * double(v["scale"])), sy = int(double(v["origin"][1]) + 80.5 * double(v["scale"]));
+      xdotool("mousemove --window " + wid_ + " " + std::to_string(sx) + " " + std::to_string(sy));
+    }
+    json values;
+    for (int step = 0; step < 30 && values.is_null(); ++step) {
+      xdotool("click --window " + wid_ + " 4");  // normals need more room (three lines) than depths
+      values = waitEvent([&](const json& j) { return j["event"] == "texel_values" && j["view"] == name && !j["texels"].empty(); }, 1.5);
+    }
+    ASSERT_FALSE(values.is_null()) << "no values in the live frame's texels";
+    const ViewDef& def = views[size_t(findView(views, name))];
+    int checked = 0;
+    for (const json& t : values["texels"]) {
+      const uint32_t x = t["texel"][0], y = t["texel"][1];
+      const std::vector<std::string> want = texelValueLines(c.frame, def, viewValue(c.frame, def, x, y), 0xF);
+      EXPECT_EQ(t["lines"].get<std::vector<std::string>>(), want) << "texel " << x << "," << y;
+      ++checked;
+    }
+    EXPECT_GT(checked, 4);
+  }
+  gui::Screenshot shot;
+  ASSERT_TRUE(gui::screenshot(xvfb_.display, (dir_ / "live_values.png").string(), shot, error)) << error;
   quit();
 }
 
