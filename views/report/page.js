@@ -88,6 +88,9 @@ function gblensReport(data) {
   if (data.kind === 'index') return indexPage(page, data.pairs);
   const r = G.report = data.report;
   G.groups = data.groups, G.magma = data.magma;
+  // The first quantity's coarse chunk loads while the page is built (it is what is drawn first).
+  const first = r.groups.find((g) => g.result !== 'pass') || r.groups[0];
+  if (first && G.groups[first.key]) requestChunk(first.key, '0');
   page.append(el('h1', {}, 'gblens compare: ', el('span', { class: r.result.replace(' ', '') }, r.result.toUpperCase()), ` (exit ${r.exit_code})`),
     el('div', { class: 'mono' }, 'A ' + r.a), el('div', { class: 'mono' }, 'B ' + r.b));
   if (r.mask) page.append(el('p', { id: 'mask' }, `mask ${r.mask.parts.join(',')}: ${r.mask.pixels} of ${r.mask.of} pixels (${fmt(100 * r.mask.pixels / r.mask.of)}%) reported apart; `,
@@ -98,7 +101,6 @@ function gblensReport(data) {
   document.addEventListener('keydown', onKey);
   window.addEventListener('mouseup', () => { G.drag = null; });
   window.addEventListener('mousemove', onDrag);
-  const first = r.groups.find((g) => g.result !== 'pass') || r.groups[0];
   if (first) show(first.key);
 }
 
