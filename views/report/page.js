@@ -306,7 +306,7 @@ function flipLegend(map) {
   ctx.textAlign = 'left', ctx.fillText('0', 0, 17);
   ctx.textAlign = 'center', ctx.fillText(method, 150, 17);
   ctx.textAlign = 'right', ctx.fillText('1', 300, 17);
-  return el('div', {}, c, el('div', { class: 'dim legend-note' }, `${method}: 0 equal, 1 the largest difference FLIP tells`));
+  return el('div', {}, c, el('div', { class: 'dim legend-note' }, `${method}: 0 no difference seen, 1 the largest FLIP measures`));
 }
 
 function draw() {
