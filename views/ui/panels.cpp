@@ -297,7 +297,10 @@ static void frameOptions(ViewerModel& m) {
   ImGui::SliderFloat("light radius", &m.lightRadiusScale, 0.1f, 4.0f, "x%.2f", ImGuiSliderFlags_Logarithmic);
   ImGui::Text("render size %ux%u", m.fullSize.x ? m.fullSize.x : m.rendered.width, m.fullSize.y ? m.fullSize.y : m.rendered.height);
   bool follow = !m.fixedSize;
-  ImGui::SameLine();
+  ImGui::SameLine();  // beside the size where it fits, else below it (never cut at the panel's edge)
+  if (ImGui::GetContentRegionAvail().x < ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
+                                             ImGui::CalcTextSize("follow the view area").x)
+    ImGui::NewLine();
   if (ImGui::Checkbox("follow the view area", &follow)) m.fixedSize = !follow;
   tooltip("off (default): the size of --size (or 1280x720), letterboxed: pixel coordinates match gblens render and capture;\n"
           "on: render at the view area's size (or a fraction of it)");
