@@ -5,8 +5,6 @@
 #include <vector>
 
 #include "app/viewer/viewer.h"
-#include "renderer/frame/region_readback.h"
-#include "renderer/gpu/render_targets.h"
 #include "views/analysis/view_text.h"
 #include "views/analysis/visualize.h"
 
@@ -37,14 +35,8 @@ void installLiveTexelValues(Viewer& v) {
       if (k.frame == m.framesRendered && k.origin == origin) tile = &k;
     if (!tile) {
       std::erase_if(*tiles, [&](const Tile& k) { return k.frame != m.framesRendered; });
-      const std::vector<Target> readable = readableTargets(r, r.options);
       const int w = std::min(kTile, int(r.options.width) - origin.x), h = std::min(kTile, int(r.options.height) - origin.y);
-      std::vector<RegionRequest> requests;
-      for (Target target : readable)
-        if (screenSpaceTarget(target)) requests.push_back({target, origin.x, origin.y, w, h});
-      Tile fresh{m.framesRendered, origin, snapshotFromRenderer(r, {})};
-      addRegions(fresh.snapshot, readbackRegions(r, requests, readable));
-      tiles->push_back(std::move(fresh));
+      tiles->push_back({m.framesRendered, origin, screenRegionSnapshot(r, origin.x, origin.y, w, h)});
       tile = &tiles->back();
     }
     TexelValue out;

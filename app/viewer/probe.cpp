@@ -49,6 +49,16 @@ static void probeReference(Viewer& v, const FrameSnapshot& snapshot, const Pixel
   m.dossierJson["reference"] = referenceJson(*m.reference);
 }
 
+FrameSnapshot screenRegionSnapshot(Renderer& r, int x, int y, int width, int height) {
+  const std::vector<Target> readable = readableTargets(r, r.options);
+  std::vector<RegionRequest> requests;
+  for (Target t : readable)
+    if (screenSpaceTarget(t)) requests.push_back({t, x, y, uint32_t(width), uint32_t(height)});
+  FrameSnapshot snapshot = snapshotFromRenderer(r, {});
+  addRegions(snapshot, readbackRegions(r, requests, readable));
+  return snapshot;
+}
+
 void probeViewerPixel(Viewer& v, glm::ivec2 p, bool logged) {
   auto start = v.clickPending && logged ? v.clickTime : std::chrono::steady_clock::now();
   if (logged) {
@@ -67,13 +77,9 @@ void probeViewerPixel(Viewer& v, glm::ivec2 p, bool logged) {
     return;
   }
   const uint32_t x = uint32_t(p.x), y = uint32_t(p.y);
-  std::vector<Target> readable = readableTargets(r, r.options);
+  const std::vector<Target> readable = readableTargets(r, r.options);
   // 1. The pixel in every screen-space target (1x1 windows).
-  std::vector<RegionRequest> requests;
-  for (Target t : readable)
-    if (screenSpaceTarget(t)) requests.push_back({t, p.x, p.y, 1, 1});
-  FrameSnapshot snapshot = snapshotFromRenderer(r, {});
-  addRegions(snapshot, readbackRegions(r, requests, readable));
+  FrameSnapshot snapshot = screenRegionSnapshot(r, p.x, p.y, 1, 1);
   // 2. The 2x2 shadow-map block its lookup reads, placed from the depth just read.
   int32_t sx = 0, sy = 0;
   bool hasShadowTexels = std::find(readable.begin(), readable.end(), Target::ShadowMap) != readable.end() &&

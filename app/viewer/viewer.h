@@ -235,6 +235,9 @@ void countMarkedPixels(Viewer& v);
 void refreshProbe(Viewer& v);
 // Read-back windows (texel (x0, y0) of the target is image texel (0, 0)) placed into a snapshot.
 void addRegions(FrameSnapshot& s, const std::vector<RegionImage>& regions);
+// The live frame's snapshot with every readable screen-space target read back in the rectangle
+// (x, y, width, height): the probe's pixel, the live values in texels' tiles.
+FrameSnapshot screenRegionSnapshot(Renderer& r, int x, int y, int width, int height);
 
 // live_texels.cpp
 // ViewerModel::texelValue for the live frame: values in texels at high zoom, read back in tiles.

@@ -47,6 +47,12 @@ double angleDegrees(const glm::dvec3& a, const glm::dvec3& b) {
   return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)) * (180.0 / M_PI);
 }
 
+double absDifference(double a, double b) {
+  if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b) ? 0.0 : INFINITY;
+  if (a == b) return 0.0;  // equal infinities
+  return std::abs(a - b);
+}
+
 namespace {
 
 using Side = CompareSide;
@@ -112,12 +118,6 @@ std::array<double, 4> decodedComponents(const Side& s, uint32_t x, uint32_t y) {
   }
 }
 
-double absDiff(double a, double b) {
-  if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b) ? 0.0 : INFINITY;
-  if (a == b) return 0.0;  // equal infinities
-  return std::abs(a - b);
-}
-
 // Running sums over a group's compared pixels (colour/exact: per component; others: per pixel);
 // one per pixel set, so every figure of a set covers the same pixels.
 struct ErrorSums {
@@ -138,7 +138,7 @@ double componentError(const Side& a, const Side& b, bool stored, uint32_t x, uin
   const size_t n = std::min({a.q.channels.size(), b.q.channels.size(), size_t(4)});
   double e = 0.0;
   for (size_t k = 0; k < n; ++k) {
-    double d = absDiff(va[k], vb[k]);
+    double d = absDifference(va[k], vb[k]);
     e = std::max(e, d);
     s.sumAbs += d;
     s.sumSq += d * d;
@@ -152,7 +152,7 @@ double distanceError(const std::array<double, 4>& va, const std::array<double, 4
                      ErrorSums& s) {
   double dist2 = 0.0, rel = 0.0;
   for (size_t k = 0; k < n; ++k) {
-    double d = absDiff(va[k], vb[k]);
+    double d = absDifference(va[k], vb[k]);
     dist2 += d * d;
     if (d > 0.0) rel = std::max(rel, d / std::max(std::abs(va[k]), std::abs(vb[k])));
   }

@@ -190,6 +190,9 @@ constexpr uint32_t kLegendMinWidth = 360, kLegendMaxWidth = 720, kLegendHeight =
 Rgba8Image heatmapImage(const GroupResult& g, std::string& error);
 // What a group's per-pixel error is measured in (the heat map's and the report's legends).
 std::string errorUnit(const GroupResult& g);
+// |a - b| as compare measures it per component: 0 for two NaNs or equal infinities, infinite for
+// NaN against a number (the report's page repeats this rule).
+double absDifference(double a, double b);
 Rgba8Image flipMapImage(const FlipResult& r, std::string& error);
 
 // Writes into `dir` (created): a heat map with legend per compared group (<key>.png, every group,

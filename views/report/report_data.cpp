@@ -153,10 +153,7 @@ bool errorIsStoredUnitDifference(const Capture& a, const Capture& b, const Quant
       for (size_t k = 0; k < n; ++k) {
         const double u = storedUnit(ia, qa.channels[k], ia.raw(x, y, qa.channels[k]));
         const double v = storedUnit(ib, qb.channels[k], ib.raw(x, y, qb.channels[k]));
-        const double d = std::isnan(u) || std::isnan(v) ? (std::isnan(u) && std::isnan(v) ? 0.0 : INFINITY)
-                         : u == v                     ? 0.0
-                                                      : std::abs(u - v);
-        e = std::max(e, d);
+        e = std::max(e, absDifference(u, v));
       }
       const float want = g.errors[size_t(y) * g.width + x], got = float(e);
       if (std::memcmp(&want, &got, sizeof got) != 0) return false;
