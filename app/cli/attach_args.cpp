@@ -12,8 +12,8 @@ void addAttachOptions(CLI::App* cmd, AttachOptions& o) {
   cmd->add_option("--param", o.params, "NAME=VALUE: an option value for a parameterised layout (e.g. normal_format=oct-rg16)")
       ->allow_extra_args(false)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  cmd->add_option("--capture-frame", o.captureFrame, "write the Nth streamed frame (1: the first) as a capture, then detach")
-      ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));
+  cmd->add_option("--capture-frame", o.captureFrame, "write the application's frame N (0: its first) as a capture, then detach")
+      ->check(CLI::Range(int64_t(0), int64_t(1) << 40));
   cmd->add_option("-o,--output", o.output, "the capture folder --capture-frame writes (atomically); --suggest: the draft layout's file");
   cmd->add_option("--frames", o.frames, "receive and decode K streamed frames, write nothing (with --stats: the costs)")
       ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));
@@ -32,7 +32,7 @@ void addAttachOptions(CLI::App* cmd, AttachOptions& o) {
 
 bool checkAttachOptions(const AttachOptions& o, LiveOptions& lo, std::string& error) {
   const bool draft = o.suggest && o.layout.empty();  // --suggest drafting the layout
-  const bool viewer = !o.captureFrame && !o.frames && !draft;
+  const bool viewer = !o.capturing() && !o.frames && !draft;
   auto refuse = [&](const std::string& why) {
     error = why;
     return false;
@@ -42,18 +42,19 @@ bool checkAttachOptions(const AttachOptions& o, LiveOptions& lo, std::string& er
                   "to draft one");
   if (!viewer && !(draft && o.output.empty()) && (!o.eventLog.empty() || !o.probeLog.empty() || o.paused))
     return refuse("--event-log, --probe-log and --paused are the viewer's");
-  if (draft && (o.captureFrame || o.frames)) return refuse("--suggest: drafts a layout; --capture-frame and --frames need --layout");
-  if (o.captureFrame && o.output.empty()) return refuse("-o: required with --capture-frame (the capture folder to write)");
-  if (!o.captureFrame && !draft && !o.output.empty())
+  if (draft && (o.capturing() || o.frames)) return refuse("--suggest: drafts a layout; --capture-frame and --frames need --layout");
+  if (o.capturing() && o.output.empty()) return refuse("-o: required with --capture-frame (the capture folder to write)");
+  if (!o.capturing() && !draft && !o.output.empty())
     return refuse("-o: writes the frame --capture-frame names, or the layout --suggest drafts");
-  if ((o.captureFrame || o.frames) && o.layout.empty())
+  if ((o.capturing() || o.frames) && o.layout.empty())
     return refuse("--layout: required (a layout file, docs/layout-format.md, or builtin:NAME)");
+  if (o.capturing() && o.every != 1) return refuse("--every: --capture-frame names one frame of the application");
   if (!(o.timeout > 0.0) || !std::isfinite(o.timeout)) return refuse("--timeout: expected a positive number of seconds");
   lo = LiveOptions{};
   lo.layout = o.layout;
   lo.argv = o.app;
   lo.every = o.every;
-  lo.onlyFrame = o.captureFrame;
+  lo.captureFrame = o.captureFrame;
   lo.suggest = o.suggest;
   return parseLayoutParameters(o.params, lo.options, error, &lo.given);
 }

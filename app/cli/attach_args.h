@@ -16,7 +16,9 @@ struct AttachOptions {
   std::string layout, output;
   std::vector<std::string> params, app;
   uint32_t every = 1;
-  uint64_t captureFrame = 0, frames = 0;
+  int64_t captureFrame = -1;  // the application's frame --capture-frame writes (0: its first); -1: none
+  uint64_t frames = 0;
+  bool capturing() const { return captureFrame >= 0; }
   bool suggest = false, stats = false;
   double timeout = 300.0;
   std::string window = "1280x800", eventLog, probeLog;  // the viewer's

@@ -178,12 +178,12 @@ int runSuggestLive(const AttachOptions& o, const LiveOptions& lo) {
 
 int runAttach(const AttachOptions& o) {
   const bool draft = o.suggest && o.layout.empty();  // --suggest drafting the layout (runSuggestLive)
-  const bool viewer = !o.captureFrame && !o.frames && !draft;
+  const bool viewer = !o.capturing() && !o.frames && !draft;
   LiveOptions lo;
   std::string error;
   if (!checkAttachOptions(o, lo, error)) return attachFail(error);
   if (draft) return runSuggestLive(o, lo);
-  if (o.captureFrame) removeDebrisOf("attach", o.output);
+  if (o.capturing()) removeDebrisOf("attach", o.output);
   LiveSession s;
   if (!s.start(lo, error)) return attachFail(error);
   if (viewer) return runViewerOnStream(o, s);
@@ -197,7 +197,7 @@ int runAttach(const AttachOptions& o) {
     LiveFrameInfo info;
     const bool got = s.wait(frame, 0.2, &info);
     printReports(s);
-    if (got && o.captureFrame) {
+    if (got && o.capturing()) {
       status = writeFrame(o, s, frame, info);
       break;
     }
@@ -212,7 +212,8 @@ int runAttach(const AttachOptions& o) {
     if (!s.running() && !s.attached()) {
       why = s.hello().is_null() ? "the application ended without creating a Vulkan device under the layer"
                                 : "the application ended after " + std::to_string(s.counts().received) +
-                                      " streamed frame(s), before the one asked for";
+                                      " streamed frame(s)" +
+                                      (o.capturing() ? ", before its frame " + std::to_string(o.captureFrame) : std::string());
       break;
     }
     if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > o.timeout) {

@@ -78,9 +78,14 @@ std::string refusal(const ImageInfo& image, const std::string& want) {
   if (!want.empty() && want != f.storage)
     return "is " + std::string(f.storage) + " (" + formatName(image.format) + "), the layout says " + want;
   if (image.samples != VK_SAMPLE_COUNT_1_BIT)
-    return "is multisampled (" + std::to_string(int(image.samples)) + " samples): pick its resolve attachment";
+    return "is multisampled (" + std::to_string(int(image.samples)) +
+           " samples): gblens does not stream a multisampled attachment's samples yet (a resolve attachment of the "
+           "pass, where there is one, streams)";
+  if (image.transient && !(image.usage & VK_IMAGE_USAGE_TRANSFER_SRC_BIT))
+    return "is a transient attachment on a device with lazily allocated memory: create it without "
+           "VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT (and in ordinary device memory) for gblens to copy it";
   if (!(image.usage & VK_IMAGE_USAGE_TRANSFER_SRC_BIT))
-    return "cannot be copied (a transient attachment, or a format the device cannot copy)";
+    return "cannot be copied (a format the device cannot copy from)";
   return "";
 }
 

@@ -91,6 +91,7 @@ struct ImageInfo {
   VkImageUsageFlags usage = 0;
   std::string name;
   VkSwapchainKHR swapchain = VK_NULL_HANDLE;  // a swapchain's image (not the application's to destroy)
+  bool transient = false;  // the application made it TRANSIENT_ATTACHMENT (track.cpp: the layer may drop the flag)
 };
 struct ViewInfo {
   VkImage image = VK_NULL_HANDLE;
@@ -162,7 +163,7 @@ struct Request {
   std::string cameraBuffer;        // debug name of the buffer holding the matrices ("" : none)
   VkDeviceSize cameraBytes = 0;    // bytes of it to read (the matrices' last offset + 64)
   uint32_t every = 1;              // stream frames whose number is a multiple of this
-  uint64_t only = 0;               // stream only this streamed frame (1-based; 0: all)
+  int64_t onlyFrame = -1;          // --capture-frame: stream only the application's frame of this number (0: its first)
   bool suggest = false;            // report the passes and attachments of one frame
   uint32_t giveUp = 120;           // frames with passes but no match before "nomatch"
 };
@@ -315,6 +316,12 @@ struct DeviceData {
   // PCIe); two in flight keep up with an application's frames in flight when the receiver is quick.
   std::atomic<int> toReceiver{0};
   std::atomic<bool> receiverBusy{false};
+  // --capture-frame N: once frame N ended with copies, a later submission that copies (a reusable
+  // recording writes the same ring buffers) waits until the receiver has read frame N, so that the
+  // frame written is exactly N (capture.cpp waitForCapture).
+  std::mutex captureLock;
+  std::condition_variable captureRead;
+  bool captureHeld = false;
   uint32_t framesWithoutMatch = 0;
   uint64_t lastFrameEndNs = 0, frameNsSum = 0, frameIntervals = 0;
 
@@ -389,6 +396,14 @@ std::vector<BufferCopy> bufferCopies(DeviceData& d, const CmdState& s, const Req
 std::string pickText(const Pick& p);                               // "colour attachment 0 of render pass 1"
 CmdState* cmdState(DeviceData& d, VkCommandBuffer cmd);
 
+
+// Frame `number` is one the request wants streamed (every N, or only the frame --capture-frame names).
+inline bool frameDue(const Request& r, uint64_t number) {
+  return r.onlyFrame >= 0 ? number == uint64_t(r.onlyFrame) : number % r.every == 0;
+}
+// --capture-frame: frame N is held (its copies not yet read) / read or given up (submit.cpp).
+void holdCapture(DeviceData& d);
+void releaseCapture(DeviceData& d);
 
 // ---- the stream (stream.cpp)
 // At vkCreateDevice: the connection to the receiver and its request, before the device is made

@@ -143,16 +143,20 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
   DeviceData& d = *st.d;
   std::shared_ptr<const Request> req = currentRequest(d);
   if (!d.streaming || st.socket < 0 || !f->due || !req) return;
-  // --capture-frame N: the Nth frame the layer reads whole. A frame whose ring buffer a reused
-  // command buffer wrote again before it was read does not count; the next one is taken.
-  if (req->only && (st.intact >= req->only || !unchanged(*f) || ++st.intact < req->only)) return;
-  if (!req->only && !unchanged(*f)) {
+  const bool only = req->onlyFrame >= 0;
+  // --capture-frame N: frame N alone is due, and submissions that would write its ring buffers again
+  // wait until it is read (submit.cpp); one found written again all the same is said, not sent.
+  if (only && !unchanged(*f)) {
+    report(d, "torn", "frame " + std::to_string(f->appFrame) + ": its copies were written again before the layer read them");
+    return releaseCapture(d);
+  }
+  if (!only && !unchanged(*f)) {
     GBL_LOG("frame %llu (streamed %llu): dropped, its ring buffer was submitted again", (unsigned long long)f->appFrame,
             (unsigned long long)f->stream);
     ++st.dropped, ++st.torn;
     return;
   }
-  if (!req->only && st.receiverBusy) {  // it waits for the receiver's ack; a newer one takes its place
+  if (!only && st.receiverBusy) {  // it waits for the receiver's ack; a newer one takes its place
     if (st.waiting) {
       GBL_LOG("frame %llu: dropped, a newer one waits for the receiver", (unsigned long long)st.waiting->appFrame);
       ++st.dropped;
@@ -173,14 +177,15 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
   if (!shared && !unchanged(*f)) {  // the application submitted the ring's buffer again while it was read
     GBL_LOG("frame %llu: dropped, its ring buffer was submitted again while it was read", (unsigned long long)f->appFrame);
     ++st.dropped, ++st.torn;
-    if (req->only) --st.intact;  // the next whole frame is the one
+    if (only) releaseCapture(d);
     return;
   }
   st.copyMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   ++st.sent;
   GBL_LOG("frame %llu (streamed %llu): sent, %zu copies%s", (unsigned long long)f->appFrame, (unsigned long long)f->stream,
           f->copies.size(), shared ? " (read in place)" : "");
-  const uint64_t number = req->only ? st.intact : f->stream;
+  if (only && !shared) releaseCapture(d);  // copied out: the ring may be written again
+  const uint64_t number = f->stream;
   json m = {{"type", gb::wire::kFrame}, {"stream", number}, {"app_frame", f->appFrame}, {"end_ns", f->endNs},
             {"ready_ns", ready},       {"targets", targets},   {"camera", camera},         {"writes", counts},
             {"stats", statsJson(st)}};

@@ -44,7 +44,7 @@ bool parseRequest(const std::string& text, Request& r) {
   json j = json::parse(text, nullptr, false);
   if (!j.is_object() || j.value("type", "") != gb::wire::kRequest) return false;
   r.every = std::max(1u, j.value("every", 1u));
-  r.only = j.value("only", uint64_t(0));
+  r.onlyFrame = j.contains("only_frame") && j["only_frame"].is_number_integer() ? j["only_frame"].get<int64_t>() : -1;
   r.suggest = j.value("suggest", false);
   r.giveUp = std::max(1u, j.value("give_up", 120u));
   if (j.contains("camera") && j["camera"].is_object()) {
@@ -95,6 +95,7 @@ void sendOnce(DeviceData& d, const std::string& key, const std::string& message)
 
 void goIdle(Stream& st) {
   st.d->streaming = false;
+  releaseCapture(*st.d);
   if (st.socket >= 0) close(st.socket), st.socket = -1;
   st.atReceiver.reset();
   if (st.waiting) st.waiting.reset(), --st.d->toReceiver;
@@ -119,6 +120,7 @@ void readMessages(Stream& st) {
     if (type == gb::wire::kAck) {  // the receiver's buffers are free again: the frame waiting goes now
       st.receiverBusy = st.d->receiverBusy = false;
       st.atReceiver.reset();
+      releaseCapture(*st.d);  // --capture-frame: its frame is read
       if (st.waiting) {
         process(st, std::move(st.waiting));
         --st.d->toReceiver;

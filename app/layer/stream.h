@@ -25,7 +25,6 @@ struct Stream {
   std::unique_ptr<PendingFrame> atReceiver;    // the frame the receiver reads in place (its buffers held)
   std::unique_ptr<PendingFrame> waiting;       // done, to be sent at the receiver's ack (the newest such)
   uint64_t sent = 0, dropped = 0, torn = 0;
-  uint64_t intact = 0;  // --capture-frame: due frames found whole so far
   double copyMs = 0.0;
   std::shared_ptr<const Request> request;  // as the receiver sent it (to the device at startStream)
 };

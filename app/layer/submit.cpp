@@ -100,15 +100,16 @@ void endFrame(DeviceData& d, const std::vector<uint32_t>& presentedNow = {}) {
     d.passesThisFrame = false;
     skipped = d.skippedThisFrame;
     d.skippedThisFrame = false;
-    if (d.pacedThisFrame && req && number % req->every == 0 && !f) ++d.droppedAtSource;  // due, not taken
+    if (d.pacedThisFrame && req && frameDue(*req, number) && !f) ++d.droppedAtSource;  // due, not taken
     d.pacedThisFrame = false;
     suggest = req && req->suggest && !d.suggestSent && !reports.empty();
     if (suggest) d.suggestSent = true;
     if (f) {
       f->appFrame = number;
       f->endNs = now;
-      f->due = req && number % req->every == 0 && !f->broken;
+      f->due = req && frameDue(*req, number) && !f->broken;
       if (f->due) f->stream = ++d.streamed;
+      if (f->due && req->onlyFrame >= 0) holdCapture(d);
     }
   }
   if (suggest) streamPasses(d, reports, presented, number);
@@ -133,9 +134,28 @@ void endFrame(DeviceData& d, const std::vector<uint32_t>& presentedNow = {}) {
   if (f) streamFrame(d, std::move(f));
 }
 
+// --capture-frame N: a submission that copies after frame N ended (a reusable recording, writing
+// the ring buffers frame N's copies are in) waits until the receiver has read frame N; at most 20 s
+// (a receiver that never answers), then it is said and the application goes on.
+void waitForCapture(DeviceData& d) {
+  std::unique_lock lock(d.captureLock);
+  if (!d.captureHeld) return;
+  if (!d.captureRead.wait_for(lock, std::chrono::seconds(20), [&] { return !d.captureHeld; })) {
+    d.captureHeld = false;
+    lock.unlock();
+    report(d, "capture-wait", "the receiver did not read the frame --capture-frame names within 20 s: the application goes on");
+  }
+}
+
 template <class Call>
 VkResult submit(DeviceData& d, VkQueue queue, const std::vector<VkCommandBuffer>& cmds, Call&& call) {
   auto start = std::chrono::steady_clock::now();
+  // Before gather counts this submission on the ring buffers frame N's copies may be in.
+  if (std::any_of(cmds.begin(), cmds.end(), [&](VkCommandBuffer cb) {
+        const CmdState* s = cmdState(d, cb);
+        return s && !s->copiesMade.empty();
+      }))
+    waitForCapture(d);
   const Submitted got = gather(d, cmds);
   const auto before = std::chrono::steady_clock::now();
   VkResult r = call();
@@ -210,6 +230,19 @@ VKAPI_ATTR VkResult VKAPI_CALL QueuePresentKHR(VkQueue queue, const VkPresentInf
 }
 
 }  // namespace
+
+void holdCapture(DeviceData& d) {
+  std::lock_guard lock(d.captureLock);
+  d.captureHeld = true;
+}
+
+void releaseCapture(DeviceData& d) {
+  {
+    std::lock_guard lock(d.captureLock);
+    d.captureHeld = false;
+  }
+  d.captureRead.notify_all();
+}
 
 std::vector<Hook> submitHooks() {
   return {GBL_HOOK(QueueSubmit), GBL_HOOK(QueueSubmit2), GBL_HOOK(QueueSubmit2KHR), GBL_HOOK(QueuePresentKHR)};

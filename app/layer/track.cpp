@@ -30,13 +30,22 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateImage(VkDevice device, const VkImageCreateI
   DeviceData& d = *deviceOf(device);
   VkImageCreateInfo patched = *info;
   const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-  if ((info->usage & attachment) && !(info->usage & VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT) &&
-      canCopyFrom(d, info->format, info->tiling))
+  // A transient attachment (a tiler keeps it in tile memory) cannot be copied. On a device with no
+  // lazily allocated memory the flag changes nothing but the usage allowed: the layer drops it and
+  // copies the image; where such memory exists the application may bind it, so it stays transient
+  // and a pick of it is refused with what to change (copy.cpp).
+  const bool transient = info->usage & VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT;
+  bool lazy = false;
+  for (uint32_t i = 0; i < d.memory.memoryTypeCount; ++i)
+    lazy |= (d.memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_LAZILY_ALLOCATED_BIT) != 0;
+  if ((info->usage & attachment) && (!transient || !lazy) && canCopyFrom(d, info->format, info->tiling)) {
+    patched.usage &= ~VkImageUsageFlags(VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT);
     patched.usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  }
   VkResult r = d.vk.CreateImage(device, &patched, alloc, image);
   if (r == VK_SUCCESS && (info->usage & attachment)) {
     std::unique_lock lock(d.objects);
-    d.images[*image] = ImageInfo{info->format, info->extent, info->samples, patched.usage, {}, VK_NULL_HANDLE};
+    d.images[*image] = ImageInfo{info->format, info->extent, info->samples, patched.usage, {}, VK_NULL_HANDLE, transient};
   }
   return r;
 }
@@ -177,9 +186,12 @@ RenderPassInfo describeRenderPass(Attachment* attachments, uint32_t count, const
       const uint32_t a = last.pColorAttachments[c].attachment;
       rp.colors.push_back(a < count ? int(a) : -1);
     }
-    if (last.pDepthStencilAttachment && last.pDepthStencilAttachment->attachment < count)
-      rp.depth = int(last.pDepthStencilAttachment->attachment);
   }
+  // The depth attachment: the last subpass's, else the last one any subpass draws with (a deferred
+  // render pass whose lighting subpass reads the depth as an input attachment has none in its last).
+  for (uint32_t s = subpassCount; s-- > 0 && rp.depth < 0;)
+    if (subpasses[s].pDepthStencilAttachment && subpasses[s].pDepthStencilAttachment->attachment < count)
+      rp.depth = int(subpasses[s].pDepthStencilAttachment->attachment);
   for (uint32_t a = 0; a < count; ++a) {
     if (!rp.attachments[a].written) continue;
     const FormatInfo& f = formatInfo(attachments[a].format);

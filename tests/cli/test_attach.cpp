@@ -39,7 +39,7 @@ TEST(Attach, GblensStreamEqualsItsCapture) {
   const std::string dir = freshDir("attach_gblens");
   // The first streamed frame is the application's first: the only one that renders the shadow map
   // (a static scene reuses it), so every target gblens capture reads back is in it.
-  RunResult r = runGblens("attach --layout builtin:gblens --capture-frame 1 -o " + dir + "/live -- " +
+  RunResult r = runGblens("attach --layout builtin:gblens --capture-frame 0 -o " + dir + "/live -- " +
                           app("render " + kFrame + " --frames 3 --validate -o " + dir + "/frame.png"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_EQ(r.output.find("exited with status"), std::string::npos) << r.output;  // validation clean
@@ -66,11 +66,11 @@ TEST(Attach, GblensStreamEqualsItsCapture) {
 
 TEST(Attach, EveryNthFrameAndStats) {
   const std::string dir = freshDir("attach_every");
-  RunResult r = runGblens("attach --layout builtin:gblens --every 2 --capture-frame 2 --stats -o " + dir + "/live -- " +
+  RunResult r = runGblens("attach --layout builtin:gblens --capture-frame 4 --stats -o " + dir + "/live -- " +
                           app("render " + kFrame + " --frames 6 -o " + dir + "/frame.png"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  // Streamed frames are the application's 0, 2, 4...: the second is its frame 2.
-  EXPECT_NE(r.output.find("wrote application frame 2 (streamed frame 2)"), std::string::npos) << r.output;
+  // --capture-frame N is the application's frame N (0: its first), the only one streamed.
+  EXPECT_NE(r.output.find("wrote application frame 4 (streamed frame 1)"), std::string::npos) << r.output;
   const size_t json = r.output.find("{\n");
   ASSERT_NE(json, std::string::npos) << r.output;
   nlohmann::json stats = nlohmann::json::parse(r.output.substr(json, r.output.rfind('}') - json + 1), nullptr, false);
@@ -127,7 +127,7 @@ TEST(Attach, MissingImageAndWrongFormatAreReportedOnce) {
      "quantities": [{"quantity": "normal", "channels": [0, 1, 2]}]},
     {"name": "ghost", "format": "r8_unorm", "source": {"live": "no_such_image"},
      "quantities": [{"quantity": "scalar", "channels": [0]}]}]})";
-  RunResult r = runGblens("attach --layout " + dir + "/layout.json --capture-frame 3 -o " + dir + "/live -- " +
+  RunResult r = runGblens("attach --layout " + dir + "/layout.json --capture-frame 2 -o " + dir + "/live -- " +
                           app("render " + kFrame + " --frames 6 -o " + dir + "/frame.png"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   // gblens's normals are rgba16_snorm by default: named, not decoded as half floats.
@@ -147,11 +147,11 @@ TEST(Attach, NothingMatchedExitsTwoWithWhy) {
   std::ofstream(dir + "/layout.json") << R"({"format": "gblens-layout", "version": 1, "targets": [
     {"name": "ghost", "format": "r8_unorm", "source": {"live": "no_such_image"},
      "quantities": [{"quantity": "scalar", "channels": [0]}]}]})";
-  RunResult r = runGblens("attach --layout " + dir + "/layout.json --capture-frame 1 -o " + dir + "/live -- " +
+  RunResult r = runGblens("attach --layout " + dir + "/layout.json --capture-frame 0 -o " + dir + "/live -- " +
                           app("render " + kFrame + " --frames 4 -o " + dir + "/frame.png"));
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("no_such_image"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("the application ended after 0 streamed frame(s)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the application ended after 0 streamed frame(s), before its frame 0"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir + "/live"));
 }
 
@@ -180,6 +180,9 @@ TEST(Attach, UsageMistakes) {
   EXPECT_EQ(both.exitCode, 2);
   EXPECT_NE(both.output.find("--suggest: drafts a layout; --capture-frame and --frames need --layout"), std::string::npos)
       << both.output;
+  RunResult every = runGblens("attach --layout builtin:gblens --every 2 --capture-frame 4 -o " + dir + "/x -- true");
+  EXPECT_EQ(every.exitCode, 2);
+  EXPECT_NE(every.output.find("--every: --capture-frame names one frame of the application"), std::string::npos) << every.output;
   RunResult nothing = runGblens("attach --suggest -o " + dir + "/draft.json -- true");
   EXPECT_EQ(nothing.exitCode, 2);
   EXPECT_NE(nothing.output.find("the application ended without creating a Vulkan device under the layer"), std::string::npos)

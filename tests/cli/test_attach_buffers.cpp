@@ -64,7 +64,7 @@ TEST(AttachStructure, BoundBuffersAreTheUniformBufferAndTheLastObjectsPushConsta
   o.argv = {FOREIGN_DEFERRED_BINARY, "--frames", "3", "--dump", dir + "/dump"};
   o.environment = {"GBLENS_VALIDATE=1"};
   o.log = dir + "/app.log";
-  o.onlyFrame = 3;  // the application's last frame, the one it dumps
+  o.captureFrame = 2;  // the application's last frame, the one it dumps
   o.boundBuffersPass = 0;
   LiveSession s;
   std::string error;
@@ -108,7 +108,7 @@ TEST(AttachStructure, CameraLiveIsTheCameraTheApplicationDumps) {
   const std::string dir = freshDir("attach_camera_live");
   std::ofstream(dir + "/live.json") << withLiveCamera(foreignLiveLayout()).dump(2);
   auto stream = [&](const std::string& layout, const std::string& out) {
-    return runShell("GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout " + layout + " --capture-frame 3 -o " +
+    return runShell("GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout " + layout + " --capture-frame 2 -o " +
                     out + " -- '" + FOREIGN_DEFERRED_BINARY + "' --frames 3 --dump " + out + "_dump");
   };
   RunResult a = stream(dir + "/live.json", dir + "/live");

@@ -64,7 +64,7 @@ TEST(ForeignAttach, StreamsWhatRenderDocCaptured) {
   live["camera"]["sidecar"] = dir + "/camera.json";
   std::ofstream(dir + "/live.json") << live.dump(2);
   RunResult streamed = runShell("GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout " + dir +
-                                "/live.json --capture-frame 3 -o " + dir + "/live -- '" + FOREIGN_DEFERRED_BINARY +
+                                "/live.json --capture-frame 2 -o " + dir + "/live -- '" + FOREIGN_DEFERRED_BINARY +
                                 "' --frames 3");
   ASSERT_EQ(streamed.exitCode, 0) << streamed.output;
   EXPECT_EQ(streamed.output.find("exited with status"), std::string::npos) << streamed.output;  // validation clean
@@ -125,7 +125,7 @@ TEST(ForeignAttach, SuggestDraftsWhatImportDraftsAndItsTargetsAreTheAppsAttachme
   // Streamed under the draft as written: each target is the attachment the app dumps (its camera.json
   // says which render pass, 1-based, and attachment each file is).
   RunResult streamed = runShell("GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout " + dir +
-                                "/draft.json --capture-frame 3 -o " + dir + "/live -- '" + FOREIGN_DEFERRED_BINARY + "' --frames 3");
+                                "/draft.json --capture-frame 2 -o " + dir + "/live -- '" + FOREIGN_DEFERRED_BINARY + "' --frames 3");
   ASSERT_EQ(streamed.exitCode, 0) << streamed.output;
   Capture c;
   std::string error;

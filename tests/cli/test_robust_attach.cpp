@@ -35,7 +35,7 @@ json statsOf(const std::string& output) {
 
 TEST(RobustAttach, StatsWithoutAFrameExitTwoWithWhy) {
   const std::string dir = freshDir("robust_attach_stats");
-  for (const std::string& args : {std::string("--frames 5 --stats"), "--capture-frame 2 -o '" + dir + "/D' --stats"}) {
+  for (const std::string& args : {std::string("--frames 5 --stats"), "--capture-frame 1 -o '" + dir + "/D' --stats"}) {
     SCOPED_TRACE(args);
     const RunResult r = runGblens("attach --layout builtin:gblens " + args + " -- /bin/true");
     EXPECT_EQ(r.exitCode, 2) << r.output;
@@ -103,7 +103,7 @@ TEST(RobustAttach, ATmpdirTooLongForASocketIsRefusedByName) {
 TEST(RobustAttach, ALiveCaptureStatesOnlyWhatItsSourceSaid) {
   const std::string dir = freshDir("robust_attach_live");
   const std::string frame = "--size 48x27 --lights 4 --time 1 --shadow-map-size 64";
-  const RunResult live = runGblens("attach --layout builtin:gblens --capture-frame 3 -o '" + dir + "/live' -- " +
+  const RunResult live = runGblens("attach --layout builtin:gblens --capture-frame 2 -o '" + dir + "/live' -- " +
                                    app("render " + frame + " --frames 6 -o '" + dir + "/f.png'"));
   ASSERT_EQ(live.exitCode, 0) << live.output;
   ASSERT_EQ(runGblens("capture " + frame + " -o '" + dir + "/ref'").exitCode, 0);

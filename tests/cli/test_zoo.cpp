@@ -67,7 +67,7 @@ TEST_P(LiveZoo, TheLiveDraftIsTheTruthAndItsFrameChecksClean) {
     ASSERT_TRUE(draft["camera"].contains("live")) << draft["camera"].dump();  // read each frame, from the app's binding
   }
   RunResult streamed = runShell("GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout '" + dir +
-                                "/draft.json' --capture-frame 3 -o '" + dir + "/frame' -- " + app + " --frames 5");
+                                "/draft.json' --capture-frame 2 -o '" + dir + "/frame' -- " + app + " --frames 5");
   ASSERT_EQ(streamed.exitCode, 0) << streamed.output;
   RunResult check = runGblens("check '" + dir + "/frame'");
   EXPECT_EQ(check.exitCode, 0) << check.output;

@@ -35,7 +35,7 @@ bool suggestLive(const LiveOptions& o, double timeout, LiveSession& session, Liv
   first.layout.clear();
   first.layoutJson = nullptr;
   first.suggest = true;
-  first.onlyFrame = 0;
+  first.captureFrame = -1;
   std::vector<LiveTargetFacts> later;
   {
     LiveSession s;

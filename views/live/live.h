@@ -28,7 +28,7 @@ struct LiveOptions {
   std::vector<std::string> given;        // the options of those the user gave (the rest are defaults)
   std::vector<std::string> argv;         // the application and its arguments
   uint32_t every = 1;                    // stream the application's frames 0, N, 2N, ...
-  uint64_t onlyFrame = 0;                // stream only this streamed frame (1: the first; 0: all)
+  int64_t captureFrame = -1;             // stream only the application's frame of this number (0: its first; -1: all)
   bool suggest = false;                  // the layer reports one frame's render passes and attachments
   uint32_t giveUpFrames = 120;           // frames with render passes and no target before the layer says so
   // bound_buffers: in each streamed frame the layer also copies, at the end of this render pass (its

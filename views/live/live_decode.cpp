@@ -68,8 +68,9 @@ nlohmann::json liveRequest(const Layout& original, const LiveOptions& o) {
                            {"set", b->set}, {"binding", b->binding}, {"index", b->index}, {"push_constants", b->pushConstants}};
     camera = {{"live", live}, {"bytes", std::max(b->matrices.viewOffset, b->matrices.clipOffset) + 64}};
   }
-  nlohmann::json r = {{"type", wire::kRequest}, {"version", wire::kVersion}, {"every", o.every}, {"only", o.onlyFrame},
+  nlohmann::json r = {{"type", wire::kRequest}, {"version", wire::kVersion}, {"every", o.every},
                       {"suggest", o.suggest}, {"give_up", o.giveUpFrames}, {"camera", camera}, {"targets", targets}};
+  if (o.captureFrame >= 0) r["only_frame"] = o.captureFrame;
   if (o.boundBuffersPass >= 0) r["bound_buffers"] = {{"pass", o.boundBuffersPass}, {"max_bytes", o.boundBuffersMaxBytes}};
   return r;
 }

@@ -1,0 +1,106 @@
+// gblens attach on tests/subjects/tiler_deferred: a Vulkan 1.0 application (no device extension,
+// render pass 1) whose G-buffer lives in one render pass of two subpasses, written by subpass 0 with
+// DONT_CARE stores into transient images and read by subpass 1 as input attachments. Streamed with
+// validation on, every attachment of the captured frame equals, bit for bit, the application's own
+// read-back of that frame (its --dump, a run that stores and copies the G-buffer itself), and the
+// frame is exactly the one --capture-frame names (the id target's clear value holds the frame index).
+// The MSAA mode's multisampled G-buffer is not streamed yet: refused by name, its lighting streamed.
+#include "tests/support/test_paths.h"
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "tests/support/capture_util.h"
+#include "views/capture/capture.h"
+
+namespace gb {
+namespace {
+
+using nlohmann::json;
+
+std::string tiler() { return GBLENS_BUILD_DIR + "/tests/subjects/tiler_deferred/tiler_deferred"; }
+std::string tilerDir() { return GBLENS_SOURCE_DIR + "/tests/subjects/tiler_deferred"; }
+
+std::string tilerBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// attach --capture-frame `frame` of a 4-frame run in `mode` with the subject's own layout.
+RunResult attachTiler(const std::string& dir, const std::string& mode, int frame) {
+  return runShell("GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout '" + tilerDir() + "/layout_" +
+                  mode + ".json' --capture-frame " + std::to_string(frame) + " -o '" + dir + "/live' -- '" + tiler() +
+                  "' --mode " + mode + " --frames 4");
+}
+
+// The capture's texels of `target` equal the dump's file `file`.
+void expectDumped(const Capture& c, const std::string& target, const std::string& file) {
+  SCOPED_TRACE(target);
+  const int i = c.frame.indexOf(target);
+  ASSERT_GE(i, 0);
+  ASSERT_TRUE(c.frame.images[size_t(i)].present());
+  std::string bytes = tilerBytes(file);
+  const CpuImage& img = c.frame.images[size_t(i)].image;
+  if (c.frame.layout.targets[size_t(i)].format.name == "rgb10a2_unorm") {  // a capture holds it as 4 x u16 codes
+    std::string unpacked(bytes.size() * 2, '\0');
+    for (size_t t = 0; t + 4 <= bytes.size(); t += 4) {
+      uint32_t v;
+      std::memcpy(&v, bytes.data() + t, 4);
+      const uint16_t codes[4] = {uint16_t(v & 1023), uint16_t(v >> 10 & 1023), uint16_t(v >> 20 & 1023), uint16_t(v >> 30)};
+      std::memcpy(unpacked.data() + t * 2, codes, 8);
+    }
+    bytes = unpacked;
+  }
+  ASSERT_EQ(img.data.size(), bytes.size());
+  EXPECT_EQ(std::memcmp(img.data.data(), bytes.data(), bytes.size()), 0);
+}
+
+TEST(TilerAttach, ASubpassGBufferOfAVulkan10ApplicationIsItsOwnDumpOfTheFrameAskedFor) {
+  const std::string dir = freshDir("attach_tiler_subpass");
+  const RunResult dump = runShell("GBLENS_VALIDATE=1 '" + tiler() + "' --mode subpass --frames 4 --dump '" + dir +
+                                  "/dump' --dump-frame 2");
+  ASSERT_EQ(dump.exitCode, 0) << dump.output;
+  const RunResult r = attachTiler(dir, "subpass", 2);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("exited with status"), std::string::npos) << r.output;  // validation clean
+  EXPECT_NE(r.output.find("wrote application frame 2"), std::string::npos) << r.output;
+  Capture c;
+  std::string error;
+  ASSERT_TRUE(loadCapture(dir + "/live", c, error)) << error;
+  const json frame = json::parse(std::ifstream(dir + "/dump/frame.json"));
+  ASSERT_EQ(frame["frame"], 2);
+  size_t compared = 0;
+  for (const json& t : frame["targets"]) {
+    expectDumped(c, t["name"], dir + "/dump/" + t["files"][0].get<std::string>());
+    ++compared;
+  }
+  EXPECT_EQ(compared, 6u);
+  // The frame asked for, by the application's own count: the id target's background is 0xF0000000 | k.
+  const int id = c.frame.indexOf("id");
+  ASSERT_GE(id, 0);
+  uint32_t corner = 0;
+  std::memcpy(&corner, c.frame.images[size_t(id)].image.data.data(), 4);
+  EXPECT_EQ(corner, 0xF0000002u);
+}
+
+TEST(TilerAttach, AMultisampledGBufferIsRefusedByNameAndItsLightingStreams) {
+  const std::string dir = freshDir("attach_tiler_msaa");
+  const RunResult dump = runShell("GBLENS_VALIDATE=1 '" + tiler() + "' --mode msaa --frames 4 --dump '" + dir +
+                                  "/dump' --dump-frame 1");
+  ASSERT_EQ(dump.exitCode, 0) << dump.output;
+  const RunResult r = attachTiler(dir, "msaa", 1);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("exited with status"), std::string::npos) << r.output;
+  for (const char* t : {"albedo", "normal", "id", "depth"})
+    EXPECT_NE(r.output.find(std::string("target \"") + t + "\": "), std::string::npos) << t << "\n" << r.output;
+  EXPECT_NE(r.output.find("is multisampled (4 samples)"), std::string::npos) << r.output;
+  Capture c;
+  std::string error;
+  ASSERT_TRUE(loadCapture(dir + "/live", c, error)) << error;
+  expectDumped(c, "lit", dir + "/dump/lit.bin");
+}
+
+}  // namespace
+}  // namespace gb
