@@ -21,6 +21,8 @@ void addAttachOptions(CLI::App* cmd, AttachOptions& o) {
   cmd->add_flag("--suggest", o.suggest,
                 "without --layout: draft a layout from the render passes and texels the layer sees and stream under it "
                 "(the viewer; -o or no display: write the draft); with --layout: show the passes beside the stream");
+  cmd->add_flag("--keep-running", o.keepRunning,
+                "--suggest -o: let the application run on once the draft is written (default: it is ended)");
   cmd->add_flag("--stats", o.stats, "print the layer's costs (frame time, memory, drops, latency) as JSON");
   cmd->add_option("--timeout", o.timeout, "give up when no frame came within this many seconds")->capture_default_str();
   cmd->add_option("--window", o.window, "the viewer's window size WxH")->capture_default_str();
@@ -48,6 +50,7 @@ bool checkAttachOptions(const AttachOptions& o, LiveOptions& lo, std::string& er
     return refuse("-o: writes the frame --capture-frame names, or the layout --suggest drafts");
   if ((o.capturing() || o.frames) && o.layout.empty())
     return refuse("--layout: required (a layout file, docs/layout-format.md, or builtin:NAME)");
+  if (o.keepRunning && !(draft && !o.output.empty())) return refuse("--keep-running: goes with --suggest -o");
   if (o.capturing() && o.every != 1) return refuse("--every: --capture-frame names one frame of the application");
   if (!(o.timeout > 0.0) || !std::isfinite(o.timeout)) return refuse("--timeout: expected a positive number of seconds");
   lo = LiveOptions{};

@@ -19,7 +19,7 @@ struct AttachOptions {
   int64_t captureFrame = -1;  // the application's frame --capture-frame writes (0: its first); -1: none
   uint64_t frames = 0;
   bool capturing() const { return captureFrame >= 0; }
-  bool suggest = false, stats = false;
+  bool suggest = false, stats = false, keepRunning = false;
   double timeout = 300.0;
   std::string window = "1280x800", eventLog, probeLog;  // the viewer's
   bool paused = false;

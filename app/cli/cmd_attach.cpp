@@ -171,6 +171,17 @@ int runSuggestLive(const AttachOptions& o, const LiveOptions& lo) {
   std::fprintf(stderr, "gblens attach: draft%s%s; check every \"guess\", then: gblens attach --layout %s -- %s\n",
                o.output.empty() ? " on stdout" : " written to ", o.output.c_str(),
                o.output.empty() ? "DRAFT.json" : o.output.c_str(), appText(o).c_str());
+  // The draft is what was asked for: the application is ended (scripts wait for gblens, not for it).
+  if (!o.output.empty() && !o.keepRunning) {
+    s.stop();
+    std::fprintf(stderr, "gblens attach: ended %s (pid %d) once the draft was written (--keep-running lets it run on)\n",
+                 o.app[0].c_str(), int(s.pid()));
+    return 0;
+  }
+  if (!o.output.empty()) {
+    std::fprintf(stderr, "gblens attach: detached; %s (pid %d) runs on\n", o.app[0].c_str(), int(s.pid()));
+    return 0;
+  }
   const int app = s.waitApplication();
   if (app != 0) std::fprintf(stderr, "gblens attach: %s exited with status %d\n", o.app[0].c_str(), app);
   return 0;

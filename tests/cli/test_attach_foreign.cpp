@@ -100,9 +100,13 @@ std::string readBytes(const std::string& path) {
 // every target is the attachment the application itself dumps for that frame.
 TEST(ForeignAttach, SuggestDraftsWhatImportDraftsAndItsTargetsAreTheAppsAttachments) {
   const std::string dir = freshDir("attach_foreign_suggest");
-  RunResult suggested = runShell("cd '" + dir + "' && DISPLAY= WAYLAND_DISPLAY= GBLENS_VALIDATE=1 '" + GBLENS_BINARY +
-                                 "' attach --suggest -o draft.json -- '" + FOREIGN_DEFERRED_BINARY + "' --frames 30");
+  // 5000 frames (a minute or more): gblens returns once the draft is written, ending the application.
+  RunResult suggested = runShell("cd '" + dir + "' && DISPLAY= WAYLAND_DISPLAY= GBLENS_VALIDATE=1 timeout 120 '" +
+                                 GBLENS_BINARY + "' attach --suggest -o draft.json -- '" + FOREIGN_DEFERRED_BINARY +
+                                 "' --frames 5000");
   ASSERT_EQ(suggested.exitCode, 0) << suggested.output;
+  EXPECT_NE(suggested.output.find("once the draft was written (--keep-running lets it run on)"), std::string::npos)
+      << suggested.output;
   EXPECT_NE(suggested.output.find("passes       4"), std::string::npos) << suggested.output;  // the layer's report
   RunResult imported = runGblens("import '" + kOut + "/foreign.rdc' --suggest-layout -o " + dir + "/rdc_draft.json");
   ASSERT_EQ(imported.exitCode, 0) << imported.output;
