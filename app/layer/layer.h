@@ -318,7 +318,7 @@ struct DeviceData {
   std::atomic<bool> receiverBusy{false};
   // --capture-frame N: once frame N ended with copies, a later submission that copies (a reusable
   // recording writes the same ring buffers) waits until the receiver has read frame N, so that the
-  // frame written is exactly N (capture.cpp waitForCapture).
+  // frame written is exactly N (submit.cpp waitForCapture).
   std::mutex captureLock;
   std::condition_variable captureRead;
   bool captureHeld = false;
