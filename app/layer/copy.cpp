@@ -19,11 +19,13 @@ struct Looked {  // an attachment with what the layer knows of its image
   uint32_t viewMip = 0, viewLayer = 0;
 };
 
-struct Region {  // one copy command
+struct Region {  // one copy command: to the ring, or (a multisampled attachment) to the layer's image
   VkImage image;
   VkImageLayout layout;
   VkBuffer buffer;
   VkBufferImageCopy copy;
+  VkImage stage = VK_NULL_HANDLE;
+  VkImageCopy samples{};
 };
 
 bool passMatches(const Pick& p, const OpenPass& pass) {
@@ -72,15 +74,13 @@ const Looked* select(DeviceData& d, const Pick& p, const OpenPass& pass, const s
 
 // Why an attachment cannot be streamed as a target of storage format `want` ("" : it can; want ""
 // accepts any format a layout can hold).
-std::string refusal(const ImageInfo& image, const std::string& want) {
+std::string refusal(DeviceData& d, const ImageInfo& image, const std::string& want) {
   const FormatInfo& f = formatInfo(image.format);
   if (!*f.storage) return "is " + formatName(image.format) + ", which no layout storage format holds";
   if (!want.empty() && want != f.storage)
     return "is " + std::string(f.storage) + " (" + formatName(image.format) + "), the layout says " + want;
   if (image.samples != VK_SAMPLE_COUNT_1_BIT)
-    return "is multisampled (" + std::to_string(int(image.samples)) +
-           " samples): gblens does not stream a multisampled attachment's samples yet (a resolve attachment of the "
-           "pass, where there is one, streams)";
+    if (std::string why = sampleRefusal(d, image); !why.empty()) return why;
   if (image.transient && !(image.usage & VK_IMAGE_USAGE_TRANSFER_SRC_BIT))
     return "is a transient attachment on a device with lazily allocated memory: create it without "
            "VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT (and in ordinary device memory) for gblens to copy it";
@@ -139,7 +139,11 @@ void recordTransfers(DeviceData& d, VkCommandBuffer cmd, const std::vector<VkIma
   memory.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
   vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &memory, 0, nullptr,
                         uint32_t(there.size()), there.data());
-  for (const Region& r : regions) vk.CmdCopyImageToBuffer(cmd, r.image, r.layout, r.buffer, 1, &r.copy);
+  for (const Region& r : regions)
+    if (r.stage)
+      vk.CmdCopyImage(cmd, r.image, r.layout, r.stage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r.samples);
+    else
+      vk.CmdCopyImageToBuffer(cmd, r.image, r.layout, r.buffer, 1, &r.copy);
   for (const BufferCopy& b : buffers) {
     if (b.source) {
       VkBufferCopy bc{b.offset, b.copy.offset, b.size};
@@ -202,7 +206,7 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
     if (!passMatches(p, s.open)) continue;
     const Looked* l = select(d, p, s.open, all);
     if (!l) continue;
-    if (std::string why = refusal(l->image, p.format); !why.empty()) {
+    if (std::string why = refusal(d, l->image, p.format); !why.empty()) {
       report(d, "refused:" + p.targetName, "target \"" + p.targetName + "\": " + pickText(p) + " " + why);
       continue;
     }
@@ -216,7 +220,17 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
     c.pass = !s.open.labels.empty() ? s.open.labels.back() : s.open.renderPass;
     const VkDeviceSize plane = VkDeviceSize(c.width) * c.height * f.bytes;
     const VkDeviceSize stencilAt = (plane + 3) / 4 * 4;
-    const VkDeviceSize bytes = f.stencil && f.depth ? stencilAt + VkDeviceSize(c.width) * c.height : plane;
+    VkDeviceSize bytes = f.stencil && f.depth ? stencilAt + VkDeviceSize(c.width) * c.height : plane;
+    if (l->image.samples != VK_SAMPLE_COUNT_1_BIT) {  // one plane per sample, each whole words (samples.cpp)
+      c.stage = sampleStage(d, l->a->image, l->viewMip, l->viewLayer, l->image);
+      if (!c.stage) {
+        report(d, "samples:memory:" + p.targetName, "target \"" + p.targetName + "\": no device memory for a copy of its samples");
+        continue;
+      }
+      c.samples = uint32_t(l->image.samples);
+      c.sampleStride = stencilAt;
+      bytes = c.sampleStride * c.samples;
+    }
     // The same target again in this recording (a later pass writes it too): the same place.
     auto earlier = std::find_if(s.copiesMade.begin(), s.copiesMade.end(), [&](const Copy& e) {
       return e.target == c.target && e.width == c.width && e.height == c.height && e.format == c.format;
@@ -244,8 +258,26 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
       r.copy.imageExtent = {c.width, c.height, 1};
       regions.push_back(r);
     };
-    if (f.depth || !f.stencil) region(f.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, c.offset);
-    if (f.stencil && f.depth) region(VK_IMAGE_ASPECT_STENCIL_BIT, c.stencilOffset);
+    if (c.stage) {  // sample for sample into the layer's image, which the unpacking after the submission reads
+      Region r{l->a->image, l->a->layout == VK_IMAGE_LAYOUT_GENERAL ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+               VK_NULL_HANDLE, {}, stageImage(*c.stage), {}};
+      const VkImageAspectFlags aspect = f.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
+      r.samples.srcSubresource = {aspect, l->viewMip, l->viewLayer, 1};
+      r.samples.dstSubresource = {aspect, 0, 0, 1};
+      r.samples.extent = {c.width, c.height, 1};
+      regions.push_back(r);
+      VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+      b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;  // its last contents (an earlier frame's) are not needed
+      b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+      b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+      b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      b.image = r.stage;
+      b.subresourceRange = {aspect, 0, 1, 0, 1};
+      there.push_back(b);
+    } else {
+      if (f.depth || !f.stencil) region(f.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, c.offset);
+      if (f.stencil && f.depth) region(VK_IMAGE_ASPECT_STENCIL_BIT, c.stencilOffset);
+    }
     made.push_back(c);
   }
   // The camera's bytes and the bound buffers, each where the ring has room.
@@ -289,7 +321,7 @@ PassReport reportPass(DeviceData& d, const OpenPass& pass) {
     e.stencil = formatInfo(img->second.format).stencil;
     e.presented = img->second.swapchain != VK_NULL_HANDLE;
     e.imageId = imageId(d, a.image);
-    e.why = refusal(img->second, "");
+    e.why = refusal(d, img->second, "");
     r.attachments.push_back(e);
   }
   return r;

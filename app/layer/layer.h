@@ -48,7 +48,10 @@ namespace gbl {
   X(CmdResolveImage2) X(CmdResolveImage2KHR) X(CmdCopyImageToBuffer2) X(CmdCopyImageToBuffer2KHR)                 \
   X(CmdPushDescriptorSetKHR) X(CmdPushDescriptorSetWithTemplateKHR) X(CmdDraw) X(CmdDrawIndexed) X(CmdDrawIndirect)  \
   X(CmdDrawIndexedIndirect) X(CmdDrawIndirectCount) X(CmdDrawIndirectCountKHR) X(CmdDrawIndexedIndirectCount)         \
-  X(CmdDrawIndexedIndirectCountKHR) X(CmdDrawMeshTasksEXT) X(CmdDrawMeshTasksIndirectEXT)
+  X(CmdDrawIndexedIndirectCountKHR) X(CmdDrawMeshTasksEXT) X(CmdDrawMeshTasksIndirectEXT)                            \
+  X(GetDeviceQueue) X(GetDeviceQueue2) X(GetImageMemoryRequirements) X(BindImageMemory) X(CreateSampler)               \
+  X(DestroySampler) X(CreateShaderModule) X(DestroyShaderModule) X(CreatePipelineLayout) X(DestroyPipelineLayout)      \
+  X(CreateComputePipelines) X(DestroyPipeline) X(CreateDescriptorPool) X(CreateCommandPool) X(CmdBindPipeline)        \
 
 struct DeviceTable {
 #define GBL_MEMBER(name) PFN_vk##name name = nullptr;
@@ -64,6 +67,7 @@ struct InstanceData {
   PFN_vkGetPhysicalDeviceMemoryProperties memoryProperties = nullptr;
   PFN_vkGetPhysicalDeviceProperties properties = nullptr;
   PFN_vkGetPhysicalDeviceFormatProperties formatProperties = nullptr;
+  PFN_vkGetPhysicalDeviceImageFormatProperties imageFormatProperties = nullptr;
   PFN_vkGetPhysicalDeviceSurfaceCapabilitiesKHR surfaceCapabilities = nullptr;
   PFN_vkEnumerateDeviceExtensionProperties deviceExtensions = nullptr;
   PFN_vkGetPhysicalDeviceProperties2 properties2 = nullptr;
@@ -259,6 +263,7 @@ struct CmdState {
 };
 
 struct Stream;  // stream.cpp
+struct SampleState;  // samples.cpp
 
 struct DeviceData {
   VkDevice device = VK_NULL_HANDLE;
@@ -341,6 +346,12 @@ struct DeviceData {
   Stream* stream = nullptr;
   std::atomic<uint64_t> hookNs{0};   // time the layer spent in the application's threads (copies, submissions)
   std::atomic<uint64_t> allocNs{0};  // of which allocating ring buffers (the first frames, resizes)
+
+  // Multisampled attachments (samples.cpp): each queue's family (vkGetDeviceQueue), the families
+  // the device was made with, and the layer's images, pipelines and recordings that unpack samples.
+  std::unordered_map<VkQueue, uint32_t> queueFamilies;  // under `objects`
+  std::vector<uint32_t> createdFamilies;
+  SampleState* sampling = nullptr;
 };
 
 // ---- a trace of frames, copies and drops on stderr when GBLENS_LAYER_LOG=1 (layer_main.cpp)
@@ -404,6 +415,19 @@ inline bool frameDue(const Request& r, uint64_t number) {
 // --capture-frame: frame N is held (its copies not yet read) / read or given up (submit.cpp).
 void holdCapture(DeviceData& d);
 void releaseCapture(DeviceData& d);
+
+// ---- multisampled attachments (samples.cpp): every sample, copied at the pass's end into an image
+// of the layer's (the application's command buffer), then unpacked into the ring by a compute
+// recording of the layer's own, submitted right after the application's submission.
+std::string sampleRefusal(DeviceData& d, const ImageInfo& image);  // "" : its samples can be streamed
+// The layer's image this attachment's samples are copied into (made on first use; null: out of memory).
+std::shared_ptr<SampleStage> sampleStage(DeviceData& d, VkImage image, uint32_t mip, uint32_t layer, const ImageInfo& info);
+VkImage stageImage(const SampleStage& stage);
+// The layer's fence after the application's submission, with the unpacking of `copies` before it.
+VkResult submitFence(DeviceData& d, VkQueue queue, const std::vector<Copy>& copies, VkFence fence);
+void releaseSamples(DeviceData& d, VkFence fence);  // the fence's frame is read: its recording goes
+void destroySamples(DeviceData& d);
+std::vector<Hook> queueHooks();  // vkGetDeviceQueue(2): each queue's family
 
 // ---- the stream (stream.cpp)
 // At vkCreateDevice: the connection to the receiver and its request, before the device is made

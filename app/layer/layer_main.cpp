@@ -40,7 +40,7 @@ const T* findChain(const void* next, VkStructureType type, VkLayerFunction funct
 const std::unordered_map<std::string, PFN_vkVoidFunction>& hookTable() {
   static auto* table = [] {
     auto* t = new std::unordered_map<std::string, PFN_vkVoidFunction>;
-    for (auto hooks : {trackHooks(), recordHooks(), descriptorHooks(), bindHooks(), submitHooks()})
+    for (auto hooks : {trackHooks(), recordHooks(), descriptorHooks(), bindHooks(), submitHooks(), queueHooks()})
       for (const Hook& h : hooks) (*t)[h.name] = h.function;
     return t;
   }();
@@ -66,6 +66,7 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateInstance(const VkInstanceCreateInfo* info, 
   GBL_LOAD(memoryProperties, "vkGetPhysicalDeviceMemoryProperties");
   GBL_LOAD(properties, "vkGetPhysicalDeviceProperties");
   GBL_LOAD(formatProperties, "vkGetPhysicalDeviceFormatProperties");
+  GBL_LOAD(imageFormatProperties, "vkGetPhysicalDeviceImageFormatProperties");
   GBL_LOAD(surfaceCapabilities, "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
   GBL_LOAD(deviceExtensions, "vkEnumerateDeviceExtensionProperties");
   GBL_LOAD(properties2, "vkGetPhysicalDeviceProperties2");
@@ -167,6 +168,7 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateDevice(VkPhysicalDevice physical, const VkD
   inst->memoryProperties(physical, &d->memory);
   d->hostImport = hostAlignment != 0 && d->vk.GetMemoryHostPointerPropertiesEXT;
   d->hostAlignment = std::max<VkDeviceSize>(hostAlignment, 1);
+  for (uint32_t q = 0; q < info->queueCreateInfoCount; ++q) d->createdFamilies.push_back(info->pQueueCreateInfos[q].queueFamilyIndex);
   {
     std::unique_lock lock(globals().lock);
     globals().devices[dispatchKey(*device)] = d;
@@ -191,6 +193,7 @@ VKAPI_ATTR void VKAPI_CALL DestroyDevice(VkDevice device, const VkAllocationCall
       d->cmds.clear();  // releases the recordings' ring buffers
     }
     destroyRing(*d);
+    destroySamples(*d);
   }
   PFN_vkDestroyDevice destroy = d->vk.DestroyDevice;
   {

@@ -48,7 +48,7 @@ RingRef allocateShared(DeviceData& d, VkDeviceSize size) {
   const VkDeviceSize align = std::max<VkDeviceSize>(d.hostAlignment, uint64_t(sysconf(_SC_PAGESIZE)));
   VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, &external};
   bi.size = (size + kHeader + align - 1) / align * align;
-  bi.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  bi.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;  // samples.cpp writes it too
   if (d.vk.CreateBuffer(d.device, &bi, nullptr, &r->buffer) != VK_SUCCESS) return nullptr;
   r->size = bi.size;
   VkMemoryRequirements req{};
@@ -102,7 +102,7 @@ RingRef allocate(DeviceData& d, VkDeviceSize size) {
   r->size = size;
   VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bi.size = size;
-  bi.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  bi.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;  // samples.cpp writes it too
   if (d.vk.CreateBuffer(d.device, &bi, nullptr, &r->buffer) != VK_SUCCESS) return nullptr;
   VkMemoryRequirements req{};
   d.vk.GetBufferMemoryRequirements(d.device, r->buffer, &req);
@@ -204,6 +204,7 @@ VkFence takeFence(DeviceData& d) {
 }
 
 void returnFence(DeviceData& d, VkFence f) {
+  releaseSamples(d, f);
   d.vk.ResetFences(d.device, 1, &f);
   std::lock_guard lock(d.ringLock);
   d.freeFences.push_back(f);

@@ -68,6 +68,8 @@ struct BoundInfo {
 constexpr int kCameraCopy = -1, kBoundCopy = -2;
 
 // One attachment (or the camera's bytes) copied into a ring buffer by a recorded command buffer.
+struct SampleStage;  // samples.cpp: the layer's copy of a multisampled attachment
+
 struct Copy {
   int target = -1;          // index into Request::picks, or kCameraCopy, kBoundCopy
   RingRef buffer;
@@ -78,6 +80,10 @@ struct Copy {
   int passOrdinal = 0;
   std::string pass;         // innermost label or render pass name, for people
   BoundInfo bound;          // kBoundCopy
+  // A multisampled attachment: `samples` planes, each `sampleStride` bytes, from `stage`'s samples.
+  uint32_t samples = 1;
+  VkDeviceSize sampleStride = 0;
+  std::shared_ptr<SampleStage> stage;
 };
 
 // A buffer range (or push constant bytes) a pass's end copies into the ring (copy_buffers.cpp).

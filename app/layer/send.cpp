@@ -22,6 +22,7 @@ namespace {
 
 size_t copyBytes(const Copy& c) {
   if (c.target < 0) return size_t(c.bytes);
+  if (c.samples > 1) return size_t(c.sampleStride) * c.samples;
   const FormatInfo& f = formatInfo(c.format);
   const size_t texels = size_t(c.width) * c.height;
   return texels * f.bytes + (f.stencil && f.depth ? texels : 0);
@@ -31,7 +32,8 @@ json targetJson(const Request& req, const Copy& c, uint32_t buffer, size_t offse
   const FormatInfo& f = formatInfo(c.format);
   return {{"index", c.target},  {"name", req.picks[size_t(c.target)].targetName}, {"format", f.storage},
           {"vk_format", f.vkName}, {"bgra", f.bgra}, {"width", c.width}, {"height", c.height}, {"buffer", buffer},
-          {"offset", offset}, {"bytes", copyBytes(c)}, {"pass", c.passOrdinal}, {"pass_name", c.pass}};
+          {"offset", offset}, {"bytes", copyBytes(c)}, {"pass", c.passOrdinal}, {"pass_name", c.pass},
+          {"samples", c.samples}, {"sample_stride", c.samples > 1 ? c.sampleStride : 0}};
 }
 
 // A bound buffer's range (or the push constants) and where its bytes are.

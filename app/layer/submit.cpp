@@ -16,6 +16,7 @@ namespace {
 
 struct Submitted {
   bool pass = false, copies = false, skipped = false, paced = false;
+  std::vector<Copy> multisampled;  // copies of multisampled attachments, to unpack after the submission
 };
 
 void addOnce(std::vector<uint32_t>& ids, const std::vector<uint32_t>& more) {
@@ -59,6 +60,7 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
     if (std::any_of(s->copiesMade.begin(), s->copiesMade.end(), [](const Copy& c) { return c.target == kBoundCopy; }))
       std::erase_if(f.copies, [](const Copy& e) { return e.target == kBoundCopy; });
     for (const Copy& c : s->copiesMade) {
+      if (c.samples > 1) got.multisampled.push_back(c);
       if (c.target != kBoundCopy) std::erase_if(f.copies, [&](const Copy& e) { return e.target == c.target; });
       f.copies.push_back(c);
       auto w = std::find_if(f.writes.begin(), f.writes.end(), [&](const auto& e) { return e.first == c.buffer; });
@@ -163,8 +165,9 @@ VkResult submit(DeviceData& d, VkQueue queue, const std::vector<VkCommandBuffer>
   start = std::chrono::steady_clock::now();  // the application's own submission is not the layer's time
   if (got.copies) {
     // The layer's fence, signalled once everything submitted so far on this queue is done.
+    // Multisampled targets' samples are unpacked into the ring before it (samples.cpp).
     VkFence fence = r == VK_SUCCESS ? takeFence(d) : VK_NULL_HANDLE;
-    if (fence && d.vk.QueueSubmit(queue, 0, nullptr, fence) != VK_SUCCESS) returnFence(d, fence), fence = VK_NULL_HANDLE;
+    if (fence && submitFence(d, queue, got.multisampled, fence) != VK_SUCCESS) returnFence(d, fence), fence = VK_NULL_HANDLE;
     std::lock_guard lock(d.frameLock);
     if (d.building && fence)
       d.building->fences.push_back(fence);

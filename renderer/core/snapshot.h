@@ -23,6 +23,8 @@ namespace gb {
 // 1x1 region around the clicked pixel as on the whole frame.
 struct TargetImage {
   CpuImage image;                         // empty: not read back (see FrameSnapshot::absent)
+  // A multisampled target: every sample's plane, `image` being sample 0 (empty: one sample).
+  std::vector<CpuImage> samples;
   uint32_t x0 = 0, y0 = 0;                // target coordinates of image texel (0, 0)
   uint32_t targetWidth = 0, targetHeight = 0;  // size of the whole target
 

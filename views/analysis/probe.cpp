@@ -35,6 +35,17 @@ static ProbeTarget rawTarget(const FrameSnapshot& f, uint32_t t, uint32_t x, uin
   }
   p.present = true;
   for (uint32_t c = 0; c < ti.image.channelCount(); ++c) p.channels.push_back({ti.image.channels[c], ti.raw(x, y, c), ti.value(x, y, c)});
+  for (const CpuImage& s : ti.samples) {  // whole planes, as the image they go with
+    if (s.width != ti.image.width || s.height != ti.image.height) break;
+    std::vector<ProbeChannel>& ch = p.samples.emplace_back();
+    for (uint32_t c = 0; c < s.channelCount(); ++c) ch.push_back({s.channels[c], s.raw(x - ti.x0, y - ti.y0, c), s.value(x - ti.x0, y - ti.y0, c)});
+  }
+  if (p.samples.size() != ti.samples.size()) p.samples.clear();
+  for (size_t c = 0; !p.samples.empty() && c < p.channels.size(); ++c) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const auto& ch : p.samples) lo = std::min(lo, ch[c].value), hi = std::max(hi, ch[c].value);
+    p.spread.push_back(hi - lo);
+  }
   return p;
 }
 

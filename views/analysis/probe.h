@@ -30,6 +30,10 @@ struct ProbeTarget {
   bool present = false;
   std::string absent;                  // why not (not computed, not read back, ...)
   std::vector<ProbeChannel> channels;
+  // A multisampled target: every sample's channels (channels are sample 0's), and per channel the
+  // spread of the decoded values (largest minus smallest) over the samples.
+  std::vector<std::vector<ProbeChannel>> samples;
+  std::vector<double> spread;
 };
 
 // One quantity of the frame's layout at the pixel, decoded (renderer/core/decode.h): what the

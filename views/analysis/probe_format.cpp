@@ -36,6 +36,16 @@ static nlohmann::json targetsJson(const PixelDossier& d) {
       nlohmann::json ch = nlohmann::json::array();
       for (const ProbeChannel& c : t.channels) ch.push_back({{"name", c.name}, {"bits", hex(c.bits, t.type)}, {"value", c.value}});
       e["channels"] = ch;
+      if (!t.samples.empty()) {  // a multisampled target: each sample's channels, and their spread
+        nlohmann::json samples = nlohmann::json::array();
+        for (const auto& s : t.samples) {
+          nlohmann::json sc = nlohmann::json::array();
+          for (const ProbeChannel& c : s) sc.push_back({{"name", c.name}, {"bits", hex(c.bits, t.type)}, {"value", c.value}});
+          samples.push_back(sc);
+        }
+        e["samples"] = samples;
+        e["spread"] = t.spread;
+      }
     }
     targets.push_back(e);
   }
@@ -207,6 +217,16 @@ static std::string targetsText(const PixelDossier& d) {
     for (const ProbeChannel& c : t.channels) {
       std::snprintf(line, sizeof(line), "    %-10s %-10s = %s\n", c.name.c_str(), hex(c.bits, t.type).c_str(), f9(c.value).c_str());
       o += line;
+    }
+    for (size_t k = 0; k < t.samples.size(); ++k) {  // a multisampled target: every sample, then the spread
+      o += "    sample " + std::to_string(k) + ":";
+      for (const ProbeChannel& c : t.samples[k]) o += " " + hex(c.bits, t.type) + " (" + f9(c.value) + ")";
+      o += "\n";
+    }
+    if (!t.spread.empty()) {
+      o += "    spread:  ";
+      for (double s : t.spread) o += " " + f9(s);
+      o += "\n";
     }
   }
   return o;

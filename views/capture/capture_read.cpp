@@ -114,6 +114,12 @@ bool loadCapture(const std::string& dirText, Capture& out, std::string& error, C
   for (ManifestTarget& t : targets) {
     if (!readExr((dir / t.file).string(), t.image, error)) return fail(CaptureProblem::Corrupt, dirText + ": " + error);
     TargetImage& ti = f.images[size_t(t.index)];
+    for (size_t k = 0; k < t.sampleFiles.size(); ++k) {  // a multisampled target: every sample, each as sample 0 is
+      CpuImage sample = t.image;
+      if (k > 0 && !readExr((dir / t.sampleFiles[k]).string(), sample, error))
+        return fail(CaptureProblem::Corrupt, dirText + ": " + error);
+      ti.samples.push_back(std::move(sample));
+    }
     ti.image = std::move(t.image);
     ti.targetWidth = ti.image.width;
     ti.targetHeight = ti.image.height;

@@ -131,6 +131,15 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
                        {"height", ti.image.height}, {"type", name(ti.image.type)},
                        {"encoding", name(ti.image.encoding)}, {"channels", ti.image.channels},
                        {"exr_channels", exr}});
+    if (!ti.samples.empty()) {  // a multisampled target: sample 0 is `file`, sample k NAME.sK.exr
+      nlohmann::json sampleFiles = {file};
+      for (size_t k = 1; k < ti.samples.size(); ++k) {
+        const std::string sf = targetName + ".s" + std::to_string(k) + ".exr";
+        if (!writeExr((tmp / sf).string(), ti.samples[k], error) || !record(tmp, sf, files, error)) return false;
+        sampleFiles.push_back(sf);
+      }
+      targets.back()["sample_files"] = sampleFiles;
+    }
     if (int(i) == f.indexOf(Target::Final)) {  // the tone-mapped sRGB bytes, exactly
       Rgba8Image png{ti.image.width, ti.image.height, ti.image.data};
       if (ti.image.type != PixelType::U8 || ti.image.channelCount() != 4) {

@@ -171,6 +171,13 @@ void targetsIn(const JsonIn& m, FrameSnapshot& f, std::vector<ManifestTarget>& o
       e["channels"].fail(jsonBrief(e["channels"].json()) + " differ from its layout's " + jsonBrief(nlohmann::json(img.channels)));
     t.file = e["file"].string();
     if (!files.has(t.file.c_str())) e["file"].fail(t.file + " has no checksum in the file list");
+    if (e.has("sample_files")) {
+      t.sampleFiles = e["sample_files"].strings();
+      if (t.sampleFiles.size() < 2 || t.sampleFiles.size() > 64 || t.sampleFiles[0] != t.file)
+        e["sample_files"].fail("is not 2 to 64 files, the first of them \"" + t.file + "\"");
+      for (const std::string& sf : t.sampleFiles)
+        if (!files.has(sf.c_str())) e["sample_files"].fail(sf + " has no checksum in the file list");
+    }
     img.width = uint32_t(e["width"].integer(1, 65536));
     img.height = uint32_t(e["height"].integer(1, 65536));
     if (uint64_t(img.width) * img.height > kMaxCaptureTexels)

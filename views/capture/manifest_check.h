@@ -22,6 +22,7 @@ struct ManifestTarget {
   int index = -1;
   std::string file;
   CpuImage image;
+  std::vector<std::string> sampleFiles;  // a multisampled target: every sample's file (the first is `file`)
 };
 
 // The largest whole target a capture holds (texels): what readExr may allocate for one.

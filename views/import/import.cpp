@@ -183,8 +183,25 @@ void flipRows(CpuImage& img) {
 }
 
 // One target's texels; `lt` (the frame's copy of the layout's target) gets the format a file holds.
+// A multisampled attachment's planes, one per sample (app/layer/samples.cpp); `img` is sample 0.
+bool readLiveSamples(const ImportInput::LiveTexels& live, const LayoutTarget& lt, uint32_t w, uint32_t h,
+                     const std::string& where, CpuImage& img, std::vector<CpuImage>& samples, std::string& error) {
+  if (live.sampleStride == 0 || live.bytes / live.sampleStride < live.samples) {
+    error = where + ": source.live: " + std::to_string(live.samples) + " samples do not fit the " + std::to_string(live.bytes) +
+            " bytes streamed";
+    return false;
+  }
+  samples.resize(live.samples);
+  for (uint32_t k = 0; k < live.samples; ++k)
+    if (!unpackDump(live.data + k * live.sampleStride, live.sampleStride, lt, w, h,
+                    where + ": source.live (sample " + std::to_string(k) + ")", samples[k], error))
+      return false;
+  img = samples[0];
+  return true;
+}
+
 bool readTarget(const ImportInput& in, uint32_t t, LayoutTarget& lt, uint32_t w, uint32_t h, CpuImage& img,
-                std::string& error) {
+                std::vector<CpuImage>& samples, std::string& error) {
   const Layout& l = in.layout;
   const std::string where = targetWhere(l, t);
   const TargetSource& s = lt.source;
@@ -207,7 +224,9 @@ bool readTarget(const ImportInput& in, uint32_t t, LayoutTarget& lt, uint32_t w,
       error = where + ": source.live: an attachment of a running application: stream it with gblens attach";
       return false;
     }
-    return unpackDump(it->second.data, it->second.bytes, lt, w, h, where + ": source.live", img, error);
+    const ImportInput::LiveTexels& live = it->second;
+    if (live.samples <= 1) return unpackDump(live.data, live.bytes, lt, w, h, where + ": source.live", img, error);
+    return readLiveSamples(live, lt, w, h, where, img, samples, error);
   }
   const std::string path = sourcePath(in, lt);
   if (path.empty()) {
@@ -333,6 +352,7 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
   Layout frameLayout = l;  // with the formats files were found to hold (a target's list of formats)
   out = FrameSnapshot{};
   std::vector<CpuImage> images(l.targets.size());
+  std::vector<std::vector<CpuImage>> sampleImages(l.targets.size());  // multisampled targets: every sample
   uint32_t w = l.width, h = l.height;
   for (uint32_t t = 0; t < l.targets.size(); ++t) {
     const LayoutTarget& lt = l.targets[t];
@@ -371,18 +391,22 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
     }
     if (!checkImportSize(targetWhere(l, t), tw, th, error)) return false;
     if (!w) w = tw, h = th;
-    if (!readTarget(in, t, frameLayout.targets[t], tw, th, images[t], error)) return false;
+    if (!readTarget(in, t, frameLayout.targets[t], tw, th, images[t], sampleImages[t], error)) return false;
     frameLayout.targets[t].formatChoices.clear();
     // A target of another size than the frame's says so in the frame's layout (the manifest check
     // holds every other target to the frame's size).
     if (tw != w || th != h) frameLayout.targets[t].width = tw, frameLayout.targets[t].height = th;
     images[t].name = l.targets[t].name;
+    for (CpuImage& sample : sampleImages[t]) sample.name = l.targets[t].name;
   }
   out.setLayout(frameLayout);
   LayoutCamera camera = l.camera;
   if (!frameCamera(in, w, h, camera, out.camera, error)) return false;
   if (camera.bottomOrigin)  // after the camera is resolved: a sidecar may say so
-    for (CpuImage& image : images) flipRows(image);
+    for (size_t t = 0; t < images.size(); ++t) {
+      flipRows(images[t]);
+      for (CpuImage& sample : sampleImages[t]) flipRows(sample);
+    }
   // The manifest embeds the camera as imported: its matrices in the layout's conventions, where they
   // were read from (`from`), and rows top first (the images were flipped just above).
   camera.sidecar.clear();
@@ -399,6 +423,7 @@ bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) 
     }
     TargetImage& ti = out.images[t];
     ti.image = std::move(images[t]);
+    ti.samples = std::move(sampleImages[t]);
     ti.targetWidth = ti.image.width;
     ti.targetHeight = ti.image.height;
     out.absences[t] = Absent::No;

@@ -38,6 +38,8 @@ struct ImportInput {
     const uint8_t* data = nullptr;
     size_t bytes = 0;
     uint32_t width = 0, height = 0;
+    uint32_t samples = 1;     // a multisampled attachment: this many planes, each `sampleStride` bytes
+    size_t sampleStride = 0;
   };
   std::map<std::string, LiveTexels> liveTexels;
   // Targets the source does not hold (e.g. a target without a source whose name no texture of the

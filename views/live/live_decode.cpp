@@ -171,6 +171,15 @@ bool LiveSession::decodeBoundBuffers(const nlohmann::json& frame, std::string& e
   return true;
 }
 
+namespace {
+std::vector<CpuImage*> planes(TargetImage& t) {  // the image and every sample's plane
+  std::vector<CpuImage*> all{&t.image};
+  for (size_t k = 1; k < t.samples.size(); ++k) all.push_back(&t.samples[k]);
+  if (!t.samples.empty()) all.push_back(&t.samples[0]);
+  return all;
+}
+}  // namespace
+
 bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFrameInfo* info, std::string& error) {
   ImportInput in;
   in.layout = layout_;
@@ -192,7 +201,8 @@ bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFr
       error = "frame " + std::to_string(frame.value("stream", 0)) + ": target \"" + lt.name + "\" lies outside the shared memory";
       return false;
     }
-    in.liveTexels[lt.name] = {texels, bytes, t.value("width", 0u), t.value("height", 0u)};
+    in.liveTexels[lt.name] = {texels, bytes, t.value("width", 0u), t.value("height", 0u), std::max(1u, t.value("samples", 1u)),
+                              t.value("sample_stride", size_t(0))};
     const std::string pass = t.value("pass_name", "");
     sources[index] = "render pass " + std::to_string(t.value("pass", 0)) + (pass.empty() ? "" : " \"" + pass + "\"") +
                              ", " + t.value("vk_format", "");
@@ -242,8 +252,9 @@ bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFr
   // B8G8R8A8 attachments come as the GPU stored them: R and B swapped back here (rgba8 in the layout).
   for (const nlohmann::json& t : frame.value("targets", nlohmann::json::array()))
     if (t.value("bgra", false) && out.indexOf(t.value("name", "")) >= 0) {
-      CpuImage& image = out.images[size_t(out.indexOf(t.value("name", "")))].image;
-      for (size_t i = 0; i + 3 < image.data.size(); i += 4) std::swap(image.data[i], image.data[i + 2]);
+      TargetImage& ti = out.images[size_t(out.indexOf(t.value("name", "")))];
+      for (CpuImage* image : planes(ti))
+        for (size_t i = 0; i + 3 < image->data.size(); i += 4) std::swap(image->data[i], image->data[i + 2]);
     }
   if (info) {
     info->stream = frame.value("stream", uint64_t(0));

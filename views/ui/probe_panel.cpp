@@ -220,8 +220,39 @@ static void lightsSection(const PixelDossier& d) {
   ImGui::Text("directional + ambient %s", v3(d.directional).c_str());
 }
 
+// A multisampled target: each sample's decoded values and bits, then their spread per channel.
+static void samplesRows(const ProbeTarget& t) {
+  for (size_t k = 0; k < t.samples.size(); ++k) {
+    std::string values, bits;
+    for (const ProbeChannel& c : t.samples[k]) {
+      values += (values.empty() ? "" : ", ") + g5(c.value);
+      char b[16];
+      std::snprintf(b, sizeof(b), "%s%x", bits.empty() ? "" : " ", c.bits);
+      bits += b;
+    }
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::Text("  sample %zu", k);
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(values.c_str());
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(bits.c_str());
+  }
+  if (t.spread.empty()) return;
+  std::string spread;
+  for (double v : t.spread) spread += (spread.empty() ? "" : ", ") + g5(v);
+  ImGui::TableNextRow();
+  ImGui::TableNextColumn();
+  ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "  spread");
+  ImGui::TableNextColumn();
+  ImGui::TextUnformatted(spread.c_str());
+  ImGui::TableNextColumn();
+}
+
 static void storedSection(const PixelDossier& d) {
-  if (!ImGui::CollapsingHeader("Stored values")) return;
+  // Open from the start where a target is multisampled: its samples are what the probe is for there.
+  const bool multi = std::any_of(d.targets.begin(), d.targets.end(), [](const ProbeTarget& t) { return !t.samples.empty(); });
+  if (!ImGui::CollapsingHeader("Stored values", multi ? ImGuiTreeNodeFlags_DefaultOpen : 0)) return;
   if (!ImGui::BeginTable("stored", 3, kTable)) return;
   for (const char* h : {"channel", "value", "bits"}) ImGui::TableSetupColumn(h);
   ImGui::TableHeadersRow();
@@ -241,6 +272,7 @@ static void storedSection(const PixelDossier& d) {
       ImGui::TableNextColumn();
       ImGui::Text("0x%08x", c.bits);
     }
+    samplesRows(t);
   }
   ImGui::EndTable();
 }
