@@ -16,6 +16,7 @@
 #include "renderer/vk/renderdoc_capture.h"
 #include "views/analysis/compare.h"
 #include "views/analysis/probe.h"
+#include "views/analysis/sample_views.h"
 #include "views/analysis/view_text.h"
 #include "views/analysis/visualize.h"
 #include "views/capture/capture.h"
@@ -205,11 +206,40 @@ void stopCompareFlip(Viewer& v) {
 }
 
 // What the views can show: A's layout's views, B's of the same names beside them.
+std::vector<ViewDef> frameViews(const FrameSnapshot& f) {
+  std::vector<ViewDef> views = layoutViews(f.layout);
+  for (ViewDef& d : spreadViews(f)) views.push_back(std::move(d));
+  return views;
+}
+
+// What the capture panel says of a multisampled frame: the sample shown and how to change it.
+std::string samplesNote(const FrameSnapshot& f) {
+  const size_t n = frameSamples(f);
+  if (n < 2) return "";
+  return "multisampled: showing sample " + std::to_string(f.sampleShown) + " of " + std::to_string(n) +
+         " (X: the next); the spread views show where samples differ";
+}
+
+void showNextSample(Viewer& v) {
+  FrameSnapshot& f = v.captureA.frame;
+  const size_t n = frameSamples(f);
+  if (n < 2) return;
+  v.model.sampleShown = (f.sampleShown + 1) % uint32_t(n);
+  showSample(f, v.model.sampleShown);
+  setCaptureViews(v);
+  if (v.model.probePixel && v.model.dossier) {
+    v.model.dossier = probePixel(f, uint32_t(v.model.probePixel->x), uint32_t(v.model.probePixel->y));
+    v.model.dossierJson = dossierJson(*v.model.dossier);
+  }
+  v.model.regionDirty = v.model.region.has_value();
+}
+
 void setCaptureViews(Viewer& v) {
   ViewerModel& m = v.model;
   const FrameSnapshot& a = v.captureA.frame;
   m.frameLayout = a.layout;
-  setViews(m, layoutViews(a.layout));
+  m.samplesNote = samplesNote(a);
+  setViews(m, frameViews(a));
   v.decodedA = decodeViews(a, m.views);
   v.viewsB.clear();
   if (v.hasB) {

@@ -63,6 +63,7 @@ void handleKeys(Viewer& v) {
       case KeyAction::TexelGrid: m.grid = !m.grid; break;
       case KeyAction::Fit: m.transform = ViewTransform{}; break;
       case KeyAction::ZoomToMarks: zoomToShadowMarks(m); break;
+      case KeyAction::NextSample: showNextSample(v); break;
       case KeyAction::MoveProbe: {
         const glm::ivec2 step(name == "Right" ? 1 : name == "Left" ? -1 : 0, name == "Down" ? 1 : name == "Up" ? -1 : 0);
         // From the pixel asked for already in this frame: presses that arrive together all count.

@@ -12,6 +12,7 @@
 #include "views/infer/suggest_live.h"
 #include "renderer/core/decode.h"
 #include "views/analysis/probe.h"
+#include "views/analysis/sample_views.h"
 #include "views/analysis/visualize.h"
 #include "views/capture/image_io.h"
 #include "views/live/live_wire.h"
@@ -79,12 +80,14 @@ void showFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info) {
   ViewerModel& m = v.model;
   const auto start = std::chrono::steady_clock::now();
   v.captureA.frame = std::move(frame);
+  showSample(v.captureA.frame, m.sampleShown);  // X's choice holds from frame to frame
+  m.samplesNote = samplesNote(v.captureA.frame);
   ++v.framesShown;
   v.attachInfo = info;
   const FrameSnapshot& f = v.captureA.frame;
   v.renderer.camera = f.camera;
   m.rendered = f.options;
-  if (!sameViews(layoutViews(f.layout), m.views) || v.decodedA.empty()) {
+  if (!sameViews(frameViews(f), m.views) || v.decodedA.empty()) {
     setCaptureViews(v);  // every view decoded, the unavailable ones named
     v.attachShown = visibleViews(m);
   } else {

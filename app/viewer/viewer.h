@@ -307,6 +307,11 @@ void attachedFramePresented(Viewer& v);
 bool saveAttachedDraft(const std::string& draft, std::string& written, std::string& error);
 // The views of capture A's layout decoded and uploaded again (captures.cpp; a new frame of a stream).
 void setCaptureViews(Viewer& v);
+// X: multisampled targets show their next sample (captures.cpp); the views, probe and statistics follow.
+void showNextSample(Viewer& v);
+// The frame's views: its layout's, then a spread view per multisampled target (sample_views.h).
+std::vector<ViewDef> frameViews(const FrameSnapshot& f);
+std::string samplesNote(const FrameSnapshot& f);  // "multisampled: showing sample 1 of 4 ..." ("" : not)
 
 // Appends one JSON line to a log file (no-op when the file is not open).
 void logLine(std::ofstream& f, const nlohmann::json& j);

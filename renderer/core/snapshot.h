@@ -58,6 +58,7 @@ struct FrameSnapshot {
   std::vector<uint32_t> layerStarts;
   // One image and one reason per layout target, in layout order.
   std::vector<TargetImage> images;
+  uint32_t sampleShown = 0;  // multisampled targets: the sample their images are (views/analysis/sample_views.h)
   std::vector<Absent> absences;  // why a target is not here (Absent::No when present)
   // The point lights' descriptions (world space, animation) when the frame came from a scene.
   std::vector<PointLightDesc> lightDescs;

@@ -121,6 +121,35 @@ TEST(TilerAttach, EverySampleOfAMultisampledGBufferIsItsOwnDumpOfThatSample) {
   const TargetImage& albedo = c.frame.images[size_t(c.frame.indexOf("albedo"))];
   ASSERT_EQ(albedo.samples.size(), 4u);
   EXPECT_NE(albedo.samples[0].data, albedo.samples[3].data);
+  // The probe at an edge texel (found in the dump: its id samples differ) shows each sample's stored
+  // bits as the dump has them, and the spread of the id's samples (two distinct values: 1).
+  const std::string ids[2] = {tilerBytes(dir + "/dump/id.s0.bin"), tilerBytes(dir + "/dump/id.s3.bin")};
+  const uint32_t width = frame["width"];
+  size_t edge = 0;
+  while (edge * 4 + 4 <= ids[0].size() && std::memcmp(ids[0].data() + edge * 4, ids[1].data() + edge * 4, 4) == 0) ++edge;
+  ASSERT_LT(edge * 4 + 4, ids[0].size());
+  const uint32_t x = uint32_t(edge % width), y = uint32_t(edge / width);
+  const RunResult probe = runShell("'" + std::string(GBLENS_BINARY) + "' probe --json '" + dir + "/live' " + std::to_string(x) +
+                                   " " + std::to_string(y));
+  ASSERT_EQ(probe.exitCode, 0) << probe.output;
+  const json dossier = json::parse(probe.output, nullptr, false);
+  ASSERT_TRUE(dossier.is_object()) << probe.output;
+  bool sawId = false;
+  for (const json& t : dossier["targets"]) {
+    if (t["target"] != "id") continue;
+    sawId = true;
+    ASSERT_EQ(t["samples"].size(), 4u) << t.dump();
+    for (int k = 0; k < 4; ++k) {
+      uint32_t stored = 0;
+      const std::string bytes = tilerBytes(dir + "/dump/id.s" + std::to_string(k) + ".bin");
+      std::memcpy(&stored, bytes.data() + edge * 4, 4);
+      char hex[16];
+      std::snprintf(hex, sizeof hex, "0x%08x", stored);
+      EXPECT_EQ(t["samples"][size_t(k)][0]["bits"], hex) << k;
+    }
+    EXPECT_EQ(t["spread"][0], 1.0);
+  }
+  EXPECT_TRUE(sawId) << probe.output;
 }
 
 }  // namespace

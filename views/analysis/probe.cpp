@@ -41,12 +41,50 @@ static ProbeTarget rawTarget(const FrameSnapshot& f, uint32_t t, uint32_t x, uin
     for (uint32_t c = 0; c < s.channelCount(); ++c) ch.push_back({s.channels[c], s.raw(x - ti.x0, y - ti.y0, c), s.value(x - ti.x0, y - ti.y0, c)});
   }
   if (p.samples.size() != ti.samples.size()) p.samples.clear();
+  // As the spread views (sample_views.h): integer channels count their distinct values less one.
   for (size_t c = 0; !p.samples.empty() && c < p.channels.size(); ++c) {
     double lo = INFINITY, hi = -INFINITY;
-    for (const auto& ch : p.samples) lo = std::min(lo, ch[c].value), hi = std::max(hi, ch[c].value);
-    p.spread.push_back(hi - lo);
+    std::vector<uint32_t> distinct;
+    for (const auto& ch : p.samples) {
+      lo = std::min(lo, ch[c].value), hi = std::max(hi, ch[c].value);
+      if (std::find(distinct.begin(), distinct.end(), ch[c].bits) == distinct.end()) distinct.push_back(ch[c].bits);
+    }
+    p.spread.push_back(ti.image.encoding == Encoding::Uint ? double(distinct.size() - 1) : hi - lo);
   }
   return p;
+}
+
+// Multisampled targets: each quantity they hold decoded per sample, from a frame whose targets are
+// that sample's texel at (x, y) (a 1x1 window: what a region read-back gives the probe too).
+static void decodeSamples(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelDossier& d) {
+  size_t samples = 0;
+  for (const TargetImage& ti : f.images)
+    if (ti.contains(x, y) && ti.samples.size() > 1) samples = std::max(samples, ti.samples.size());
+  if (samples < 2) return;
+  FrameSnapshot one = f;
+  for (size_t k = 0; k < samples; ++k) {
+    for (size_t t = 0; t < f.images.size(); ++t) {
+      const TargetImage& ti = f.images[t];
+      if (!ti.contains(x, y)) continue;
+      const CpuImage& plane = k < ti.samples.size() && ti.samples[k].width == ti.image.width ? ti.samples[k] : ti.image;
+      TargetImage& w = one.images[t];
+      w.samples.clear();
+      w.image = plane;
+      w.image.width = w.image.height = 1;
+      const size_t bytes = plane.texelBytes();
+      const size_t at = (size_t(y - ti.y0) * plane.width + (x - ti.x0)) * bytes;
+      w.image.data.assign(plane.data.begin() + long(at), plane.data.begin() + long(at + bytes));
+      w.x0 = x, w.y0 = y;
+    }
+    PixelDossier per;
+    decodeQuantities(one, x, y, per);
+    for (size_t q = 0; q < d.quantities.size() && q < per.quantities.size(); ++q) {
+      const int t = f.layout.findTarget(d.quantities[q].target);
+      if (t < 0 || f.images[size_t(t)].samples.size() < 2) continue;
+      d.quantities[q].sampleValues.push_back(per.quantities[q].values);
+      d.quantities[q].sampleNotes.push_back(per.quantities[q].note);
+    }
+  }
 }
 
 // A target holding only the sun's depth (the shadow map): the shadow-map lookup shows it.
@@ -337,6 +375,7 @@ PixelDossier probePixel(const FrameSnapshot& f, uint32_t x, uint32_t y) {
     if (!sunDepthTarget(f.layout, t)) d.targets.push_back(rawTarget(f, t, x, y));
   decodeGBuffer(f, x, y, d);
   decodeQuantities(f, x, y, d);
+  decodeSamples(f, x, y, d);
   glm::dvec3 P(0.0);
   d.geometry = usedPosition(f, x, y, P);
   const Quantity* used = lightingDepth(f);

@@ -49,6 +49,9 @@ struct ProbeQuantity {
   std::vector<double> values;
   std::optional<double> eyeDepth;  // depths: the eye depth they give
   std::string note;                // an id's name, stencil bits set, "no surface", a normal's length error
+  // Its target multisampled: each sample decoded as `values` is (sample 0's), with its note.
+  std::vector<std::vector<double>> sampleValues;
+  std::vector<std::string> sampleNotes;
 };
 
 // A position the layout lets the probe reconstruct (from each depth quantity) or read (stored).

@@ -118,6 +118,14 @@ static nlohmann::json quantitiesJson(const PixelDossier& d) {
                         {"space", q.space}, {"present", q.present}, {"values", q.values}};
     if (q.eyeDepth) e["eye_depth"] = *q.eyeDepth;
     if (!q.note.empty()) e["note"] = q.note;
+    if (!q.sampleValues.empty()) {
+      e["samples"] = nlohmann::json::array();
+      for (size_t k = 0; k < q.sampleValues.size(); ++k) {
+        nlohmann::json sample = {{"values", q.sampleValues[k]}};
+        if (!q.sampleNotes[k].empty()) sample["note"] = q.sampleNotes[k];
+        e["samples"].push_back(sample);
+      }
+    }
     qs.push_back(e);
   }
   return qs;
@@ -243,6 +251,12 @@ static std::string quantitiesText(const PixelDossier& d) {
                           (q.note.empty() ? "" : "  " + q.note)
                     : std::string("-")) +
          "\n";
+    for (size_t k = 0; k < q.sampleValues.size(); ++k) {
+      std::string sv;
+      for (double x : q.sampleValues[k]) sv += (sv.empty() ? "" : ", ") + f9(x);
+      o += "    sample " + std::to_string(k) + ": " + (sv.empty() ? "" : "(" + sv + ")") +
+           (q.sampleNotes[k].empty() ? "" : "  " + q.sampleNotes[k]) + "\n";
+    }
   }
   bool any = false;
   for (const ProbeReconstruction& r : d.reconstructions) {

@@ -40,6 +40,9 @@ struct ViewDef {
   uint32_t predicate = gpu::kRangeAll;  // which texels count for the automatic range (and are drawn)
   std::optional<double> background;     // depth: the stored value where nothing was drawn
   std::string key;          // keyboard shortcut: "0" the first view, "2".."9" the next ones; "" none
+  // A multisampled target's sample spread (sample_views.h), not a layout quantity's view: its
+  // target's index (`quantity` is one the target holds).
+  int spreadOf = -1;
 };
 
 // Every view of the layout, in layout order, the first colour view first (display, else radiance,

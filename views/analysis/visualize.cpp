@@ -1,5 +1,6 @@
 // A view's decoded values and their CPU mapping (see visualize.h); the shader mirrors mapTexel.
 #include "views/analysis/visualize.h"
+#include "views/analysis/sample_views.h"
 
 #include <algorithm>
 #include <bit>
@@ -25,6 +26,7 @@ ViewSettings defaultSettings(const ViewDef& d) {
 }
 
 std::optional<std::array<double, 4>> viewValue(const FrameSnapshot& f, const ViewDef& view, uint32_t x, uint32_t y) {
+  if (view.spreadOf >= 0) return sampleSpread(f, uint32_t(view.spreadOf), x, y);
   GB_ASSERT(view.quantity >= 0 && size_t(view.quantity) < f.layout.quantities.size());
   const Quantity& q = f.layout.quantities[size_t(view.quantity)];
   if (!holds(f, q, x, y)) return std::nullopt;

@@ -124,7 +124,8 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
       return false;
     }
     std::string file = targetName + ".exr";
-    if (!writeExr((tmp / file).string(), ti.image, error) || !record(tmp, file, files, error)) return false;
+    // A multisampled target's file is sample 0 whichever sample the frame shows.
+    if (!writeExr((tmp / file).string(), ti.samples.empty() ? ti.image : ti.samples[0], error) || !record(tmp, file, files, error)) return false;
     nlohmann::json exr = nlohmann::json::array();
     for (const ExrChannel& c : exrChannels(ti.image)) exr.push_back({{"name", c.name}, {"type", c.type}});
     targets.push_back({{"name", targetName}, {"file", file}, {"width", ti.image.width},

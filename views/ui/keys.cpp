@@ -34,6 +34,8 @@ const std::vector<KeyBinding>& keyBindings() {
       {"Escape", A::CancelReference, kLive, "cancel the reference error's computation"},
       {"G", A::TexelGrid, kEverywhere, "texel grid on / off (zoomed in: values in texels)"},
       {"Z", A::Fit, kEverywhere, "fit the views (undo zoom and pan)"},
+      {"X", A::NextSample, kCapture | kAttach,
+       "multisampled targets: show their next sample (after the last, sample 0 again); each has a spread view"},
       {"M", A::ZoomToMarks, kEverywhere, "zoom to the pixels a clicked shadow-map texel marks"},
       {"arrows", A::MoveProbe, kEverywhere, "move the probed pixel"},
       {"W A S D Q E", A::MoveCamera, kLive, "move the camera while held (shift: faster)"},

@@ -15,7 +15,7 @@ enum KeySession : unsigned { kLive = 1, kCapture = 2, kCompare = 4, kAttach = 8,
 enum class KeyAction {
   Quit, SaveDraft, Grid, FirstView, ViewKey, FlipCompare, PlayPause, PauseStream, CancelReference, CaptureShown,
   StepForward, StepBack, ResetCamera, TexelGrid, Fit, MoveProbe, MoveCamera, CompareSwipe, CompareDifference,
-  CompareFlip, CompareRow, ZoomToMarks, Mouse
+  CompareFlip, CompareRow, ZoomToMarks, NextSample, Mouse
 };
 
 struct KeyBinding {

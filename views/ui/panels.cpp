@@ -404,9 +404,12 @@ static void controlsPanel(ViewerModel& m, const Rect& at) {
     referenceErrorSection(m);
   if (m.attach.on) {
     attachSection(m);
+    if (!m.samplesNote.empty()) ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "%s", m.samplesNote.c_str());
   } else if (m.source != FrameSource::Live) {
-    if (ImGui::CollapsingHeader(m.source == FrameSource::Compare ? "Captures" : "Capture", ImGuiTreeNodeFlags_DefaultOpen))
+    if (ImGui::CollapsingHeader(m.source == FrameSource::Compare ? "Captures" : "Capture", ImGuiTreeNodeFlags_DefaultOpen)) {
       ImGui::TextWrapped("%s", m.captureInfo.c_str());
+      if (!m.samplesNote.empty()) ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "%s", m.samplesNote.c_str());
+    }
   } else {
     if (ImGui::CollapsingHeader("Frame", ImGuiTreeNodeFlags_DefaultOpen)) frameOptions(m);
     if (ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) animation(m);

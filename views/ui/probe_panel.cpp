@@ -289,6 +289,11 @@ static void quantitiesSection(const PixelDossier& d) {
       if (q.eyeDepth && q.kind == "depth" && q.encoding != "eye") text += "  eye depth " + g5(*q.eyeDepth);
       row(q.name.c_str(), text);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s.%s: %s, %s", q.target.c_str(), q.name.c_str(), q.kind.c_str(), q.encoding.c_str());
+      for (size_t k = 0; k < q.sampleValues.size(); ++k) {  // a multisampled target: each sample decoded
+        std::string sv;
+        for (double x : q.sampleValues[k]) sv += (sv.empty() ? "" : ", ") + g5(x);
+        row(("  sample " + std::to_string(k)).c_str(), sv.empty() ? q.sampleNotes[k] : sv + (q.sampleNotes[k].empty() ? "" : "  (" + q.sampleNotes[k] + ")"));
+      }
     }
     ImGui::EndTable();
   }

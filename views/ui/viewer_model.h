@@ -73,6 +73,8 @@ struct ViewerModel {
   FrameSource source = FrameSource::Live;
   std::string captureA, captureB;    // directories (capture modes)
   std::string captureInfo;           // what the capture(s) hold, for the panel
+  std::string samplesNote;           // a multisampled frame: the sample shown (X: the next)
+  uint32_t sampleShown = 0;          // ... which X chose (a stream's frames keep it)
   std::string compareSummary;        // `gblens compare`'s report of A vs B (text), or why there is none
   std::shared_ptr<const CompareReport> compareReport;  // the same, shown as tables
   CompareMode compareMode = CompareMode::Alternate;
