@@ -73,6 +73,9 @@ struct InstanceData {
   PFN_vkGetPhysicalDeviceProperties2 properties2 = nullptr;
   std::string application, engine;
   uint32_t apiVersion = VK_API_VERSION_1_0;  // the application's (VkApplicationInfo)
+  // VK_KHR_get_physical_device_properties2 and VK_KHR_external_memory_capabilities are there (core
+  // from 1.1; a 1.0 application under attach: enabled by the layer, `addedExtensions`).
+  bool externalMemory = false, addedExtensions = false;
 };
 
 // ---- formats (formats.cpp)

@@ -10,6 +10,7 @@
 #include <algorithm>
 
 #include "app/layer/layer.h"
+#include "views/live/live_wire.h"
 
 #define GBL_EXPORT extern "C" __attribute__((visibility("default")))
 
@@ -55,11 +56,35 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateInstance(const VkInstanceCreateInfo* info, 
   PFN_vkGetInstanceProcAddr gipa = chain->u.pLayerInfo->pfnNextGetInstanceProcAddr;
   chain->u.pLayerInfo = chain->u.pLayerInfo->pNext;
   auto create = reinterpret_cast<PFN_vkCreateInstance>(gipa(VK_NULL_HANDLE, "vkCreateInstance"));
-  VkResult r = create(info, alloc, instance);
+  // A Vulkan 1.0 application under gblens attach: the instance extensions VK_EXT_external_memory_host
+  // needs (so that its ring is memory gblens reads in place, as a 1.1 application's is), where the
+  // implementation has them; without them the instance is made as the application asked.
+  const uint32_t api = info->pApplicationInfo && info->pApplicationInfo->apiVersion ? info->pApplicationInfo->apiVersion
+                                                                                      : VK_API_VERSION_1_0;
+  std::vector<const char*> extensions(info->ppEnabledExtensionNames, info->ppEnabledExtensionNames + info->enabledExtensionCount);
+  auto has = [&](const char* name) {
+    return std::any_of(extensions.begin(), extensions.end(), [&](const char* e) { return !std::strcmp(e, name); });
+  };
+  const size_t asked = extensions.size();
+  if (api < VK_API_VERSION_1_1 && std::getenv(gb::wire::kSocketEnv))
+    for (const char* e : {VK_KHR_GET_PHYSICAL_DEVICE_PROPERTIES_2_EXTENSION_NAME, VK_KHR_EXTERNAL_MEMORY_CAPABILITIES_EXTENSION_NAME})
+      if (!has(e)) extensions.push_back(e);
+  VkInstanceCreateInfo patched = *info;
+  patched.enabledExtensionCount = uint32_t(extensions.size());
+  patched.ppEnabledExtensionNames = extensions.data();
+  VkResult r = create(&patched, alloc, instance);
+  if (r == VK_ERROR_EXTENSION_NOT_PRESENT && extensions.size() > asked) {
+    extensions.resize(asked);
+    patched.enabledExtensionCount = uint32_t(asked);
+    r = create(&patched, alloc, instance);
+  }
   if (r != VK_SUCCESS) return r;
   auto* d = new InstanceData;
   d->instance = *instance;
   d->gipa = gipa;
+  d->externalMemory = api >= VK_API_VERSION_1_1 || (has(VK_KHR_GET_PHYSICAL_DEVICE_PROPERTIES_2_EXTENSION_NAME) &&
+                                                     has(VK_KHR_EXTERNAL_MEMORY_CAPABILITIES_EXTENSION_NAME));
+  d->addedExtensions = extensions.size() > asked;
 #define GBL_LOAD(member, name) d->member = reinterpret_cast<decltype(d->member)>(gipa(*instance, name))
   GBL_LOAD(destroyInstance, "vkDestroyInstance");
   GBL_LOAD(createDevice, "vkCreateDevice");
@@ -70,6 +95,7 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateInstance(const VkInstanceCreateInfo* info, 
   GBL_LOAD(surfaceCapabilities, "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
   GBL_LOAD(deviceExtensions, "vkEnumerateDeviceExtensionProperties");
   GBL_LOAD(properties2, "vkGetPhysicalDeviceProperties2");
+  if (api < VK_API_VERSION_1_1) GBL_LOAD(properties2, "vkGetPhysicalDeviceProperties2KHR");  // the extension's
 #undef GBL_LOAD
   if (const VkApplicationInfo* a = info->pApplicationInfo) {
     d->application = a->pApplicationName ? a->pApplicationName : "";
@@ -95,21 +121,21 @@ VKAPI_ATTR void VKAPI_CALL DestroyInstance(VkInstance instance, const VkAllocati
 // copies into imported host pages more slowly than into its driver's own host memory (H100: the
 // copies of four 1080p targets 2.1 ms a frame against 1.4, docs/attach.md), and the application's
 // frame time comes first: there the layer's thread copies finished frames out instead. An
-// application of Vulkan 1.0 lacks the instance extensions it needs: its frames are copied out too.
+// application of Vulkan 1.0 gets the instance extensions from CreateInstance and VK_KHR_external_memory
+// from CreateDevice; where the implementation lacks them its frames are copied out too.
 VkDeviceSize hostImportAlignment(InstanceData& inst, VkPhysicalDevice physical) {
   VkPhysicalDeviceProperties props{};
   inst.properties(physical, &props);
   if (props.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU && props.deviceType != VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU) return 0;
   uint32_t n = 0;
-  if (inst.apiVersion < VK_API_VERSION_1_1 || !inst.deviceExtensions || !inst.properties2 ||
+  if (!inst.externalMemory || !inst.deviceExtensions || !inst.properties2 ||
       inst.deviceExtensions(physical, nullptr, &n, nullptr) != VK_SUCCESS)
     return 0;
   std::vector<VkExtensionProperties> all(n);
   inst.deviceExtensions(physical, nullptr, &n, all.data());
-  if (std::none_of(all.begin(), all.end(), [](const VkExtensionProperties& e) {
-        return !std::strcmp(e.extensionName, VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
-      }))
-    return 0;
+  for (const char* needed : {VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME, VK_KHR_EXTERNAL_MEMORY_EXTENSION_NAME})
+    if (std::none_of(all.begin(), all.end(), [&](const VkExtensionProperties& e) { return !std::strcmp(e.extensionName, needed); }))
+      return 0;
   VkPhysicalDeviceExternalMemoryHostPropertiesEXT host{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_MEMORY_HOST_PROPERTIES_EXT};
   VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &host};
   inst.properties2(physical, &props2);
@@ -140,9 +166,11 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateDevice(VkPhysicalDevice physical, const VkD
   std::vector<const char*> extensions(info->ppEnabledExtensionNames, info->ppEnabledExtensionNames + info->enabledExtensionCount);
   VkDeviceSize hostAlignment = 0;
   if (stream && (hostAlignment = hostImportAlignment(*inst, physical)) != 0) {
-    if (std::none_of(extensions.begin(), extensions.end(),
-                     [](const char* e) { return !std::strcmp(e, VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME); }))
-      extensions.push_back(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
+    // VK_KHR_external_memory is core from 1.1; a 1.0 application's device enables it by name.
+    for (const char* needed : {VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME, VK_KHR_EXTERNAL_MEMORY_EXTENSION_NAME})
+      if ((needed == std::string(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME) || inst->apiVersion < VK_API_VERSION_1_1) &&
+          std::none_of(extensions.begin(), extensions.end(), [&](const char* e) { return !std::strcmp(e, needed); }))
+        extensions.push_back(needed);
     patched.enabledExtensionCount = uint32_t(extensions.size());
     patched.ppEnabledExtensionNames = extensions.data();
   }

@@ -89,6 +89,21 @@ TEST(TilerAttach, ASubpassGBufferOfAVulkan10ApplicationIsItsOwnDumpOfTheFrameAsk
   EXPECT_EQ(corner, 0xF0000002u);
 }
 
+// A Vulkan 1.0 application's ring is shared memory too (the layer enables the instance and device
+// extensions VK_EXT_external_memory_host needs): the layer's thread copies nothing out of it.
+TEST(TilerAttach, AVulkan10ApplicationsRingIsSharedMemory) {
+  const RunResult r = runShell("GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout '" + tilerDir() +
+                               "/layout_subpass.json' --frames 3 --stats -- '" + tiler() + "' --mode subpass --frames 8");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const size_t brace = r.output.find("{\n");
+  ASSERT_NE(brace, std::string::npos) << r.output;
+  const json stats = json::parse(r.output.substr(brace, r.output.rfind('}') - brace + 1), nullptr, false);
+  ASSERT_TRUE(stats.is_object()) << r.output;
+  EXPECT_EQ(stats["received"], 3) << r.output;
+  EXPECT_EQ(stats["layer"]["ring_shared"], true) << r.output;
+  EXPECT_EQ(stats["layer"]["shm_bytes"], 0) << r.output;  // no file of the layer's own for copied-out frames
+}
+
 TEST(TilerAttach, EverySampleOfAMultisampledGBufferIsItsOwnDumpOfThatSample) {
   const std::string dir = freshDir("attach_tiler_msaa");
   const RunResult dump = runShell("GBLENS_VALIDATE=1 '" + tiler() + "' --mode msaa --frames 4 --dump '" + dir +
