@@ -99,6 +99,7 @@ Attached runAttached(const std::string& layout, int every, const std::vector<std
   o.layout = layout;
   o.argv = argv;
   o.every = uint32_t(every);
+  o.ringOffThread = true;  // as the viewer streams
   o.log = log;
   LiveSession s;
   std::string error;

@@ -194,6 +194,7 @@ int runAttach(const AttachOptions& o) {
   std::string error;
   if (!checkAttachOptions(o, lo, error)) return attachFail(error);
   if (draft) return runSuggestLive(o, lo);
+  lo.ringOffThread = !o.capturing();  // a stream (the viewer, --frames): the application never waits for the ring
   if (o.capturing()) removeDebrisOf("attach", o.output);
   LiveSession s;
   if (!s.start(lo, error)) return attachFail(error);

@@ -238,6 +238,7 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
     if (earlier != s.copiesMade.end()) {
       c.buffer = earlier->buffer, c.offset = earlier->offset;
     } else if (!reserve(d, s, bytes, c.buffer, c.offset)) {
+      if (s.ringPending) continue;  // the thread makes the ring: the rest of the pass still counts its size
       if (s.slot >= 0) {  // a slot, but no memory for it
         report(d, "memory", "out of host-visible memory for the copies: streaming stops");
         d.streaming = false;
@@ -279,6 +280,11 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
       if (f.stencil && f.depth) region(VK_IMAGE_ASPECT_STENCIL_BIT, c.stencilOffset);
     }
     made.push_back(c);
+  }
+  if (s.ringPending) {  // no copies until the layer's thread has made the ring (ring.cpp reserve)
+    s.copies = false;
+    s.skipped = true;
+    return;
   }
   // The camera's bytes and the bound buffers, each where the ring has room.
   std::vector<BufferCopy> buffers;

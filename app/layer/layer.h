@@ -172,6 +172,7 @@ struct Request {
   uint32_t every = 1;              // stream frames whose number is a multiple of this
   int64_t onlyFrame = -1;          // --capture-frame: stream only the application's frame of this number (0: its first)
   bool suggest = false;            // report the passes and attachments of one frame
+  bool ringOffThread = false;      // the layer's thread makes the ring; frames before it go without copies
   uint32_t giveUp = 120;           // frames with passes but no match before "nomatch"
 };
 
@@ -252,6 +253,7 @@ struct CmdState {
   bool inPass = false;
   VkBuffer cameraBuffer = VK_NULL_HANDLE;  // the last bound buffer of the camera's name
   int slot = -1;                // the ring slot this recording copies into
+  bool ringPending = false;     // its slot's buffer is being made by the layer's thread (no copies)
   RingRef buffer;               // its buffer as this recording found it
   std::vector<HeldRing> held;   // every buffer this recording copies into
   VkDeviceSize used = 0;        // bytes used of it
@@ -345,6 +347,9 @@ struct DeviceData {
   VkDeviceSize hostAlignment = 4096;
   std::atomic<uint32_t> nextRingId{0};
   std::atomic<uint64_t> ringBytes{0};
+  VkDeviceSize ringWanted = 0;                // a slot's buffer the layer's thread is to make (growRing)
+  std::atomic<uint64_t> droppedForRing{0};    // recordings that went without copies meanwhile
+  std::atomic<uint64_t> threadAllocNs{0};     // the thread's time making ring buffers (not the application's)
 
   Stream* stream = nullptr;
   std::atomic<uint64_t> hookNs{0};   // time the layer spent in the application's threads (copies, submissions)
@@ -398,6 +403,9 @@ bool passMatches(const PassPick& p, const OpenPass& pass);
 bool reserve(DeviceData& d, CmdState& s, VkDeviceSize bytes, RingRef& buffer, VkDeviceSize& offset);
 int takeSlot(DeviceData& d, bool reusable);  // -1: none free for a recording submitted once
 VkFence takeFence(DeviceData& d);
+// The layer's thread: every slot's buffer at least the size a recording asked for (reserve).
+void growRing(DeviceData& d);
+void wakeStream(DeviceData& d);  // stream.cpp: the thread looks at its work now
 void returnFence(DeviceData& d, VkFence f);
 void destroyRing(DeviceData& d);
 

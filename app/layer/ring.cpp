@@ -82,13 +82,15 @@ RingRef allocateShared(DeviceData& d, VkDeviceSize size) {
   return r;
 }
 
-RingRef allocate(DeviceData& d, VkDeviceSize size) {
+// A ring buffer of `size` bytes; its time counts as the application's (allocNs) unless the layer's
+// thread makes it (`onThread`: threadAllocNs).
+RingRef allocate(DeviceData& d, VkDeviceSize size, bool onThread = false) {
   const auto start = std::chrono::steady_clock::now();
   struct Timed {  // allocations are counted apart from the per-frame time (they happen once, or on a resize)
-    DeviceData& d;
+    std::atomic<uint64_t>& ns;
     std::chrono::steady_clock::time_point start;
-    ~Timed() { d.allocNs += uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count()); }
-  } timed{d, start};
+    ~Timed() { ns += uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count()); }
+  } timed{onThread ? d.threadAllocNs : d.allocNs, start};
   if (d.hostImport) {
     if (RingRef shared = allocateShared(d, size)) {
       d.ringBytes += shared->size;
@@ -162,6 +164,13 @@ int takeSlot(DeviceData& d, bool reusable) {
 
 bool reserve(DeviceData& d, CmdState& s, VkDeviceSize bytes, RingRef& buffer, VkDeviceSize& offset) {
   const VkDeviceSize need = (bytes + kAlign - 1) / kAlign * kAlign;
+  if (s.ringPending) {  // no copies this frame: what the rest of it needs counts for the buffers the thread makes
+    s.total += need;
+    std::lock_guard lock(d.ringLock);
+    d.largestRecording = std::max(d.largestRecording, s.total);
+    d.ringWanted = std::max(d.ringWanted, d.largestRecording / 4 * 5 / kAlign * kAlign + kAlign);
+    return false;
+  }
   if (s.slot < 0 && (s.slot = takeSlot(d, s.reusable)) < 0) return false;
   s.total += need;
   if (s.buffer && s.used + need <= s.buffer->size - s.buffer->base) {
@@ -176,7 +185,19 @@ bool reserve(DeviceData& d, CmdState& s, VkDeviceSize bytes, RingRef& buffer, Vk
   if (!slot || slot == s.buffer || slot->size - slot->base < need) {
     // A new buffer for the slot, sized for the largest recording seen (a quarter more), so that a
     // recording's whole frame soon fits one buffer and resizes allocate once, not every frame.
-    RingRef grown = allocate(d, std::max(need, d.largestRecording) / 4 * 5 / kAlign * kAlign + kAlign);
+    const VkDeviceSize size = std::max(need, d.largestRecording) / 4 * 5 / kAlign * kAlign + kAlign;
+    // A recording submitted once, streaming (not one frame asked for exactly): the layer's thread
+    // makes every slot's buffer (growRing) and this frame goes without copies, so the application
+    // never waits for an allocation (at 4K on an H200 a quarter of a second when the receiver connects).
+    std::shared_ptr<const Request> req = currentRequest(d);
+    if (!s.reusable && d.stream && req && req->ringOffThread && req->onlyFrame < 0) {
+      d.ringWanted = std::max(d.ringWanted, size);
+      s.ringPending = true;
+      ++d.droppedForRing;
+      wakeStream(d);
+      return false;
+    }
+    RingRef grown = allocate(d, size);
     if (!grown) return false;
     slot = grown;
   }
@@ -186,6 +207,31 @@ bool reserve(DeviceData& d, CmdState& s, VkDeviceSize bytes, RingRef& buffer, Vk
   buffer = slot;
   offset = slot->base;
   return true;
+}
+
+void growRing(DeviceData& d) {
+  VkDeviceSize want = 0;
+  {
+    std::lock_guard lock(d.ringLock);
+    want = d.ringWanted;
+  }
+  if (!want) return;
+  for (int k = 0; k < 3; ++k) {
+    {
+      std::lock_guard lock(d.ringLock);
+      if (d.slots[k] && d.slots[k]->size - d.slots[k]->base >= want) continue;
+    }
+    RingRef grown = allocate(d, want, true);  // without the lock: recordings go on meanwhile
+    if (!grown) {
+      report(d, "memory", "out of host-visible memory for the copies: streaming stops");
+      d.streaming = false;
+      break;
+    }
+    std::lock_guard lock(d.ringLock);
+    if (!d.slots[k] || d.slots[k]->size - d.slots[k]->base < want) d.slots[k] = grown;  // a holder keeps the old one
+  }
+  std::lock_guard lock(d.ringLock);
+  if (d.ringWanted == want) d.ringWanted = 0;
 }
 
 VkFence takeFence(DeviceData& d) {

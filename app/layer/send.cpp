@@ -137,7 +137,9 @@ json statsJson(Stream& st) {
           {"shm_bytes", st.mapSize},
           {"frame_ms", d.frameIntervals ? double(d.frameNsSum) / double(d.frameIntervals) * 1e-6 : 0.0},
           {"layer_ms_per_frame", d.frame ? double(hook - alloc) / double(d.frame) * 1e-6 : 0.0},
-          {"ring_allocation_ms", double(d.allocNs.load()) * 1e-6},
+          {"ring_allocation_ms", double(d.allocNs.load()) * 1e-6},  // in the application's threads
+          {"ring_allocation_thread_ms", double(d.threadAllocNs.load()) * 1e-6},
+          {"frames_waiting_for_ring", d.droppedForRing.load()},
           {"thread_copy_ms", st.sent ? st.copyMs / double(st.sent) : 0.0}};
 }
 

@@ -46,6 +46,7 @@ bool parseRequest(const std::string& text, Request& r) {
   r.every = std::max(1u, j.value("every", 1u));
   r.onlyFrame = j.contains("only_frame") && j["only_frame"].is_number_integer() ? j["only_frame"].get<int64_t>() : -1;
   r.suggest = j.value("suggest", false);
+  r.ringOffThread = j.value("ring_off_thread", false);
   r.giveUp = std::max(1u, j.value("give_up", 120u));
   if (j.contains("camera") && j["camera"].is_object()) {
     r.cameraBuffer = j["camera"].value("buffer", "");
@@ -81,6 +82,10 @@ bool parseRequest(const std::string& text, Request& r) {
 }
 
 }  // namespace
+
+void wakeStream(DeviceData& d) {
+  if (d.stream) wakeUp(*d.stream);
+}
 
 void sendOnce(DeviceData& d, const std::string& key, const std::string& message) {
   Stream* st = d.stream;
@@ -134,6 +139,7 @@ void run(Stream& st) {
   DeviceData& d = *st.d;
   while (!st.stop) {
     readMessages(st);
+    growRing(d);
     std::vector<std::string> out;
     std::unique_ptr<PendingFrame> front;
     {

@@ -109,7 +109,9 @@ void endFrame(DeviceData& d, const std::vector<uint32_t>& presentedNow = {}) {
     if (f) {
       f->appFrame = number;
       f->endNs = now;
-      f->due = req && frameDue(*req, number) && !f->broken;
+      // A frame one of whose recordings skipped its copies (every slot held, the ring being made)
+      // would hold only some targets: never sent as if it were whole.
+      f->due = req && frameDue(*req, number) && !f->broken && !skipped;
       if (f->due) f->stream = ++d.streamed;
       if (f->due && req->onlyFrame >= 0) holdCapture(d);
     }

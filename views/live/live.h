@@ -30,6 +30,10 @@ struct LiveOptions {
   uint32_t every = 1;                    // stream the application's frames 0, N, 2N, ...
   int64_t captureFrame = -1;             // stream only the application's frame of this number (0: its first; -1: all)
   bool suggest = false;                  // the layer reports one frame's render passes and attachments
+  // A stream (the viewer, --frames, the bench): the layer's thread makes the ring when the first
+  // frames need it, and those frames go without copies, so the application never waits for it.
+  // Off: the first frame due is copied, the ring made in the application's thread (a capture, a draft).
+  bool ringOffThread = false;
   uint32_t giveUpFrames = 120;           // frames with render passes and no target before the layer says so
   // bound_buffers: in each streamed frame the layer also copies, at the end of this render pass (its
   // ordinal in its command buffer; -1: none), every buffer range the descriptor sets bound at the
