@@ -146,6 +146,25 @@ std::string writeLayout(const std::string& dir) {
   return path;
 }
 
+// A run's frames apart: the connect (the first kConnectFrames counted frames, where a receiver's
+// ring is made) and the steady state after it (the median interval); the hitch is the longest
+// connect frame over the steady median.
+constexpr size_t kConnectFrames = 8;
+struct Phases {
+  double steadyMs = 0.0, hitchMs = 0.0;
+};
+Phases phases(const nlohmann::json& stats) {
+  Phases p;
+  if (!stats.is_object() || !stats.contains("frame_intervals_ms")) return p;
+  std::vector<double> all = stats["frame_intervals_ms"].get<std::vector<double>>();
+  if (all.size() <= kConnectFrames + 2) return p;
+  std::vector<double> steady(all.begin() + long(kConnectFrames), all.end());
+  std::sort(steady.begin(), steady.end());
+  p.steadyMs = steady[steady.size() / 2];
+  p.hitchMs = *std::max_element(all.begin(), all.begin() + long(kConnectFrames)) - p.steadyMs;
+  return p;
+}
+
 nlohmann::json ratioJson(const std::vector<double>& ratios) {
   const AbResult ab = abStatistics(ratios);
   return {{"median", ab.median}, {"min", ab.ratios.front()}, {"max", ab.ratios.back()}, {"ci_low", ab.ciLow},
@@ -163,6 +182,7 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
                                         std::to_string(s.frames), "--stats", "-o", (dir / "frame.png").string()};
   const std::vector<std::string> names = {"without", "idle", "every frame", "every " + std::to_string(s.every) + "th frame"};
   std::vector<std::vector<double>> ms(names.size());
+  std::vector<std::vector<Phases>> phase(names.size());
   std::vector<double> latencyMs, latencyFrames, readyFrames;
   nlohmann::json streaming;
   for (int r = 0; r < s.rounds; ++r)
@@ -183,6 +203,7 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
         }
       }
       ms[v].push_back(stats.is_object() ? stats.value("frame_ms", 0.0) : 0.0);
+      phase[v].push_back(phases(stats));
     }
   nlohmann::json variants = nlohmann::json::array();
   for (size_t v = 0; v < names.size(); ++v) {
@@ -191,6 +212,17 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
     for (int r = 0; r < s.rounds; ++r)
       if (ms[0][size_t(r)] > 0.0 && ms[v][size_t(r)] > 0.0) ratios.push_back(ms[v][size_t(r)] / ms[0][size_t(r)]);
     if (v > 0 && !ratios.empty()) row["ratio"] = ratioJson(ratios);
+    // The steady state apart from the connect: the median frame after the first kConnectFrames, over
+    // the same round's without the layer; the hitch: the longest connect frame over that median.
+    std::vector<double> steady, hitch;
+    for (int r = 0; r < s.rounds; ++r) {
+      const Phases& p = phase[v][size_t(r)];
+      const Phases& base = phase[0][size_t(r)];
+      if (p.steadyMs > 0.0 && base.steadyMs > 0.0) steady.push_back(p.steadyMs / base.steadyMs);
+      if (p.steadyMs > 0.0) hitch.push_back(p.hitchMs);
+    }
+    if (v > 0 && !steady.empty()) row["steady_ratio"] = ratioJson(steady);
+    if (!hitch.empty()) row["connect_hitch_ms"] = hitch;
     variants.push_back(row);
   }
   const auto median = [](std::vector<double> v) {
@@ -237,7 +269,11 @@ std::string attachMarkdown(const nlohmann::json& a) {
      << "camera; the receiver decodes every frame it gets. " << a.value("rounds", 0)
      << " interleaved rounds, variants rotated; ratio = the variant's frame time / the same round's without the layer "
      << "(median, and the interval of the median at the stated confidence).\n\n";
-  md << "| variant | frame ms (per round) | ratio median | interval | target |\n| --- | --- | --- | --- | --- |\n";
+  md << "Steady: the median frame after the first " << kConnectFrames << " counted ones, over the same round's without the "
+        "layer; hitch: the longest of those first frames (where a receiver's ring is made) over that median, the largest of "
+        "the rounds.\n\n";
+  md << "| variant | frame ms (per round) | ratio median | interval | steady ratio | hitch ms | target |\n"
+        "| --- | --- | --- | --- | --- | --- | --- |\n";
   for (const nlohmann::json& v : a["variants"]) {
     std::string ms;
     for (const nlohmann::json& m : v["frame_ms"]) {
@@ -246,12 +282,15 @@ std::string attachMarkdown(const nlohmann::json& a) {
     }
     const std::string name = v.value("name", "");
     const char* target = name == "idle" ? "< 1.01" : name == "every frame" ? "<= 1.10" : "";
+    double hitch = 0.0;
+    for (const nlohmann::json& h : v.value("connect_hitch_ms", nlohmann::json::array())) hitch = std::max(hitch, h.get<double>());
+    const std::string steady = v.contains("steady_ratio") ? std::to_string(v["steady_ratio"].value("median", 0.0)).substr(0, 5) : "";
     if (v.contains("ratio"))
-      std::snprintf(line, sizeof(line), "| %s | %s | %.3f | %.3f..%.3f (%.0f%%) | %s |\n", name.c_str(), ms.c_str(),
+      std::snprintf(line, sizeof(line), "| %s | %s | %.3f | %.3f..%.3f (%.0f%%) | %s | %.1f | %s |\n", name.c_str(), ms.c_str(),
                     v["ratio"].value("median", 0.0), v["ratio"].value("ci_low", 0.0), v["ratio"].value("ci_high", 0.0),
-                    100.0 * v["ratio"].value("confidence", 0.0), target);
+                    100.0 * v["ratio"].value("confidence", 0.0), steady.c_str(), hitch, target);
     else
-      std::snprintf(line, sizeof(line), "| %s | %s | 1 | | |\n", name.c_str(), ms.c_str());
+      std::snprintf(line, sizeof(line), "| %s | %s | 1 | | | %.1f | |\n", name.c_str(), ms.c_str(), hitch);
     md << line;
   }
   const nlohmann::json& st = a["streaming"];

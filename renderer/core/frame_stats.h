@@ -74,6 +74,10 @@ struct FrameBurst {
   std::vector<FrameStats> frames;  // the counted frames, oldest first
   double msPerFrame = 0.0;
   int inFlight = 0;  // frames submitted at once at most (the renderer's frame slots)
+  // Each counted frame's wall time: from one frame's submission call returning to the next one's
+  // (the last: to the burst's end). In flight, a frame waits there for its slot, so a frame that
+  // stalls (an attached layer's connect) shows as one long interval where the mean would hide it.
+  std::vector<double> intervalMs;
 };
 
 }  // namespace gb

@@ -246,9 +246,17 @@ FrameBurst renderBurst(Renderer& r, const RenderOptions& options, int frames) {
   submitFrame(r, options);
   burst.first = finishFrames(r).at(0);  // targets, pipelines, the light upload; not counted
   const Clock::time_point start = Clock::now();
-  for (int i = 1; i < frames; ++i) submitFrame(r, options);
+  Clock::time_point last = start;
+  for (int i = 1; i < frames; ++i) {
+    submitFrame(r, options);
+    const Clock::time_point now = Clock::now();
+    if (i > 1) burst.intervalMs.push_back(msBetween(last, now));
+    last = now;
+  }
   burst.frames = finishFrames(r);
-  burst.msPerFrame = msBetween(start, Clock::now()) / double(frames - 1);
+  const Clock::time_point end = Clock::now();
+  burst.intervalMs.push_back(msBetween(last, end));
+  burst.msPerFrame = msBetween(start, end) / double(frames - 1);
   GB_ASSERT(burst.frames.size() == size_t(frames - 1));
   return burst;
 }

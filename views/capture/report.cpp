@@ -150,6 +150,7 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSourc
   if (burst) {
     j["frame_ms"] = burst->msPerFrame;
     j["frames_in_flight"] = burst->inFlight;
+    j["frame_intervals_ms"] = burst->intervalMs;
     j["frame_ms_measured"] = "throughput of frames in flight: wall time per frame of " +
                              std::to_string(burst->frames.size()) +
                              " timed after one waited for (a frame read back after them is waited for apart); "
