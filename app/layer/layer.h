@@ -71,6 +71,7 @@ struct InstanceData {
   PFN_vkGetPhysicalDeviceSurfaceCapabilitiesKHR surfaceCapabilities = nullptr;
   PFN_vkEnumerateDeviceExtensionProperties deviceExtensions = nullptr;
   PFN_vkGetPhysicalDeviceProperties2 properties2 = nullptr;
+  PFN_vkGetPhysicalDeviceQueueFamilyProperties queueFamilies = nullptr;
   std::string application, engine;
   uint32_t apiVersion = VK_API_VERSION_1_0;  // the application's (VkApplicationInfo)
   // VK_KHR_get_physical_device_properties2 and VK_KHR_external_memory_capabilities are there (core
@@ -269,6 +270,16 @@ struct CmdState {
 
 struct Stream;  // stream.cpp
 struct SampleState;  // samples.cpp
+struct StagingState;  // staging.cpp
+
+// The staged ring (staging.cpp): whether the device gets it, and the queue the layer adds for its
+// downloads (the application's queue infos with one more queue).
+struct QueuePlan {
+  bool staged = false, ownQueue = false;
+  uint32_t family = 0, index = 0;
+  std::vector<VkDeviceQueueCreateInfo> infos;
+  std::vector<float> priorities;
+};
 
 struct DeviceData {
   VkDevice device = VK_NULL_HANDLE;
@@ -360,6 +371,9 @@ struct DeviceData {
   std::unordered_map<VkQueue, uint32_t> queueFamilies;  // under `objects`
   std::vector<uint32_t> createdFamilies;
   SampleState* sampling = nullptr;
+  // The staged ring (staging.cpp): device-local ring buffers, downloaded for the frames sent.
+  StagingState* staging = nullptr;
+  std::vector<uint32_t> ringFamilies;  // the queue families that use the ring (concurrent sharing)
 };
 
 // ---- a trace of frames, copies and drops on stderr when GBLENS_LAYER_LOG=1 (layer_main.cpp)
@@ -434,11 +448,24 @@ std::string sampleRefusal(DeviceData& d, const ImageInfo& image);  // "" : its s
 // The layer's image this attachment's samples are copied into (made on first use; null: out of memory).
 std::shared_ptr<SampleStage> sampleStage(DeviceData& d, VkImage image, uint32_t mip, uint32_t layer, const ImageInfo& info);
 VkImage stageImage(const SampleStage& stage);
-// The layer's fence after the application's submission, with the unpacking of `copies` before it.
-VkResult submitFence(DeviceData& d, VkQueue queue, const std::vector<Copy>& copies, VkFence fence);
+// The layer's fence after the application's submission, with the unpacking of the multisampled
+// `copies` and the staged ring's `download` (staging.cpp) before it.
+VkResult submitFence(DeviceData& d, VkQueue queue, const std::vector<Copy>& copies, const std::vector<Copy>& download,
+                     VkFence fence);
 void releaseSamples(DeviceData& d, VkFence fence);  // the fence's frame is read: its recording goes
 void destroySamples(DeviceData& d);
 std::vector<Hook> queueHooks();  // vkGetDeviceQueue(2): each queue's family
+
+// ---- the staged ring (staging.cpp)
+bool planStaging(InstanceData& inst, VkPhysicalDevice physical, const VkDeviceCreateInfo& info, QueuePlan& plan);
+void startStaging(DeviceData& d, const QueuePlan& plan);  // after vkCreateDevice
+bool stagedOwnQueue(const DeviceData& d);                 // downloads on the layer's queue (else in its batch)
+// The commands that bring `copies` from the device-local ring to its host buffers, and the layer's
+// thread doing so on its own queue (waits for it).
+void recordDownload(DeviceData& d, VkCommandBuffer cmd, const std::vector<Copy>& copies);
+bool downloadFrame(DeviceData& d, const std::vector<Copy>& copies);
+void destroyStaging(DeviceData& d);
+VkDeviceSize copySize(const Copy& c);  // send.cpp: the bytes a copy wrote into the ring
 
 // ---- the stream (stream.cpp)
 // At vkCreateDevice: the connection to the receiver and its request, before the device is made

@@ -95,6 +95,7 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateInstance(const VkInstanceCreateInfo* info, 
   GBL_LOAD(surfaceCapabilities, "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
   GBL_LOAD(deviceExtensions, "vkEnumerateDeviceExtensionProperties");
   GBL_LOAD(properties2, "vkGetPhysicalDeviceProperties2");
+  GBL_LOAD(queueFamilies, "vkGetPhysicalDeviceQueueFamilyProperties");
   if (api < VK_API_VERSION_1_1) GBL_LOAD(properties2, "vkGetPhysicalDeviceProperties2KHR");  // the extension's
 #undef GBL_LOAD
   if (const VkApplicationInfo* a = info->pApplicationInfo) {
@@ -174,8 +175,21 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateDevice(VkPhysicalDevice physical, const VkD
     patched.enabledExtensionCount = uint32_t(extensions.size());
     patched.ppEnabledExtensionNames = extensions.data();
   }
+  // A discrete GPU's ring is staged in device memory, with a queue of the layer's for its downloads.
+  QueuePlan staging;
+  if (stream && planStaging(*inst, physical, patched, staging)) {
+    hostAlignment = 0;  // the staged ring is the driver's memory, not shared pages
+    patched.queueCreateInfoCount = uint32_t(staging.infos.size());
+    patched.pQueueCreateInfos = staging.infos.data();
+  }
   auto create = reinterpret_cast<PFN_vkCreateDevice>(gipa(inst->instance, "vkCreateDevice"));
   VkResult r = create(physical, &patched, alloc, device);
+  if (r != VK_SUCCESS && staging.ownQueue) {  // the device refused one more queue: downloads in the layer's batch
+    staging.ownQueue = false;
+    patched.queueCreateInfoCount = info->queueCreateInfoCount;
+    patched.pQueueCreateInfos = info->pQueueCreateInfos;
+    r = create(physical, &patched, alloc, device);
+  }
   if (r != VK_SUCCESS) {
     if (stream) closeStream(stream);
     return r;
@@ -202,6 +216,7 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateDevice(VkPhysicalDevice physical, const VkD
     globals().devices[dispatchKey(*device)] = d;
   }
   d->connected = stream != nullptr;
+  startStaging(*d, staging);
   if (stream) startStream(*d, stream);
   return r;
 }
@@ -222,6 +237,7 @@ VKAPI_ATTR void VKAPI_CALL DestroyDevice(VkDevice device, const VkAllocationCall
     }
     destroyRing(*d);
     destroySamples(*d);
+    destroyStaging(*d);
   }
   PFN_vkDestroyDevice destroy = d->vk.DestroyDevice;
   {

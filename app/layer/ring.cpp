@@ -82,6 +82,46 @@ RingRef allocateShared(DeviceData& d, VkDeviceSize size) {
   return r;
 }
 
+// The staged ring (staging.cpp): the buffer the GPU copies into in device-local memory, shared by
+// the queue families that use it, and its host copy, mapped.
+RingRef allocateStaged(DeviceData& d, VkDeviceSize size) {
+  auto r = std::make_shared<RingBuffer>();
+  r->device = &d;
+  r->size = size;
+  auto make = [&](VkBufferUsageFlags usage, bool host, VkBuffer& buffer, VkDeviceMemory& memory) {
+    VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    bi.size = size;
+    bi.usage = usage;
+    if (d.ringFamilies.size() > 1) {  // the application's queues write it, the layer's reads it
+      bi.sharingMode = VK_SHARING_MODE_CONCURRENT;
+      bi.queueFamilyIndexCount = uint32_t(d.ringFamilies.size());
+      bi.pQueueFamilyIndices = d.ringFamilies.data();
+    }
+    if (d.vk.CreateBuffer(d.device, &bi, nullptr, &buffer) != VK_SUCCESS) return false;
+    VkMemoryRequirements req{};
+    d.vk.GetBufferMemoryRequirements(d.device, buffer, &req);
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    ai.allocationSize = req.size;
+    ai.memoryTypeIndex = host ? memoryType(d, req.memoryTypeBits, r->coherent) : UINT32_MAX;
+    for (uint32_t i = 0; !host && i < d.memory.memoryTypeCount; ++i)
+      if ((req.memoryTypeBits & (1u << i)) && (d.memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
+        ai.memoryTypeIndex = i;
+        break;
+      }
+    return ai.memoryTypeIndex != UINT32_MAX && d.vk.AllocateMemory(d.device, &ai, nullptr, &memory) == VK_SUCCESS &&
+           d.vk.BindBufferMemory(d.device, buffer, memory, 0) == VK_SUCCESS;
+  };
+  void* p = nullptr;
+  if (!make(VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false,
+            r->buffer, r->memory) ||
+      !make(VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, r->hostBuffer, r->hostMemory) ||
+      d.vk.MapMemory(d.device, r->hostMemory, 0, VK_WHOLE_SIZE, 0, &p) != VK_SUCCESS)
+    return nullptr;  // the destructor frees what was made
+  r->mapped = static_cast<uint8_t*>(p);
+  d.ringBytes += 2 * size;
+  return r;
+}
+
 // A ring buffer of `size` bytes; its time counts as the application's (allocNs) unless the layer's
 // thread makes it (`onThread`: threadAllocNs).
 RingRef allocate(DeviceData& d, VkDeviceSize size, bool onThread = false) {
@@ -98,6 +138,10 @@ RingRef allocate(DeviceData& d, VkDeviceSize size, bool onThread = false) {
     }
     d.hostImport = false;  // this device cannot share its host memory after all: frames are copied out
     GBL_LOG("a shared ring buffer could not be made: frames are copied out of the ring from now on");
+  }
+  if (d.staging) {
+    RingRef staged = allocateStaged(d, size);
+    return staged;
   }
   auto r = std::make_shared<RingBuffer>();
   r->device = &d;
@@ -128,12 +172,14 @@ RingBuffer::~RingBuffer() {
   DeviceData& d = *device;
   if (buffer) d.vk.DestroyBuffer(d.device, buffer, nullptr);
   if (memory) d.vk.FreeMemory(d.device, memory, nullptr);  // unmaps it, unless it is a shared file's
+  if (hostBuffer) d.vk.DestroyBuffer(d.device, hostBuffer, nullptr);
+  if (hostMemory) d.vk.FreeMemory(d.device, hostMemory, nullptr);
   if (fd >= 0) {
     if (mapped) munmap(mapped, mappedBytes);
     close(fd);
     if (id) sendOnce(d, "retire:" + std::to_string(id), nlohmann::json{{"type", gb::wire::kRetire}, {"id", id}}.dump());
   }
-  if (mapped && (fd < 0 || base)) d.ringBytes -= size;
+  if (mapped && (fd < 0 || base)) d.ringBytes -= hostMemory ? 2 * size : size;
 }
 
 int takeSlot(DeviceData& d, bool reusable) {

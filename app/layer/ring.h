@@ -18,6 +18,9 @@ struct RingBuffer {
   DeviceData* device = nullptr;
   VkBuffer buffer = VK_NULL_HANDLE;
   VkDeviceMemory memory = VK_NULL_HANDLE;
+  // The staged ring (staging.cpp): `buffer` is device-local, and the host's copy of it is here.
+  VkBuffer hostBuffer = VK_NULL_HANDLE;
+  VkDeviceMemory hostMemory = VK_NULL_HANDLE;
   uint8_t* mapped = nullptr;
   VkDeviceSize size = 0;
   VkDeviceSize base = 0;  // the first byte copies may use (a shared buffer starts with its header)

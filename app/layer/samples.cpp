@@ -270,15 +270,16 @@ std::shared_ptr<SampleStage> sampleStage(DeviceData& d, VkImage app, uint32_t mi
 
 VkImage stageImage(const SampleStage& stage) { return stage.image; }
 
-VkResult submitFence(DeviceData& d, VkQueue queue, const std::vector<Copy>& copies, VkFence fence) {
+VkResult submitFence(DeviceData& d, VkQueue queue, const std::vector<Copy>& copies, const std::vector<Copy>& download,
+                     VkFence fence) {
   std::vector<const Copy*> multi;
   for (const Copy& c : copies)
     if (c.samples > 1 && c.stage) multi.push_back(&c);
-  if (multi.empty()) return d.vk.QueueSubmit(queue, 0, nullptr, fence);
+  if (multi.empty() && download.empty()) return d.vk.QueueSubmit(queue, 0, nullptr, fence);
   SampleState& s = state(d);
   std::lock_guard lock(s.lock);
   const uint32_t family = familyOf(d, queue);
-  VkCommandPool pool = family == UINT32_MAX || !makePipelines(d, s) ? VK_NULL_HANDLE : commandPool(d, s, family);
+  VkCommandPool pool = family == UINT32_MAX || (!multi.empty() && !makePipelines(d, s)) ? VK_NULL_HANDLE : commandPool(d, s, family);
   if (!pool) {
     report(d, "samples:pipeline", "multisampled targets: the layer could not make its unpacking shader on this queue");
     return VK_ERROR_INITIALIZATION_FAILED;
@@ -300,8 +301,10 @@ VkResult submitFence(DeviceData& d, VkQueue queue, const std::vector<Copy>& copi
   VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   toHost.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
   toHost.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  d.vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0,
-                          nullptr);
+  if (!multi.empty())
+    d.vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0,
+                            nullptr);
+  if (!download.empty()) recordDownload(d, cmd, download);  // after the unpacking: its planes are in the ring
   d.vk.EndCommandBuffer(cmd);
   VkResult r = VK_ERROR_OUT_OF_POOL_MEMORY;
   if (ok) {

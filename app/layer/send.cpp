@@ -20,13 +20,19 @@ using json = nlohmann::json;
 
 namespace {
 
-size_t copyBytes(const Copy& c) {
-  if (c.target < 0) return size_t(c.bytes);
-  if (c.samples > 1) return size_t(c.sampleStride) * c.samples;
+size_t copyBytes(const Copy& c) { return size_t(copySize(c)); }
+
+}  // namespace
+
+VkDeviceSize copySize(const Copy& c) {
+  if (c.target < 0) return c.bytes;
+  if (c.samples > 1) return c.sampleStride * c.samples;
   const FormatInfo& f = formatInfo(c.format);
-  const size_t texels = size_t(c.width) * c.height;
-  return texels * f.bytes + (f.stencil && f.depth ? texels : 0);
+  const VkDeviceSize texels = VkDeviceSize(c.width) * c.height, plane = texels * f.bytes;
+  return f.stencil && f.depth ? (plane + 3) / 4 * 4 + texels : plane;  // the stencil plane at a multiple of 4
 }
+
+namespace {
 
 json targetJson(const Request& req, const Copy& c, uint32_t buffer, size_t offset) {
   const FormatInfo& f = formatInfo(c.format);
@@ -106,7 +112,8 @@ bool fill(Stream& st, const PendingFrame& f, const Request& req, json& targets, 
   for (size_t i = 0; i < f.copies.size(); ++i) {
     const Copy& c = f.copies[i];
     if (!c.buffer->coherent) {
-      VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr, c.buffer->memory, 0, VK_WHOLE_SIZE};
+      VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, nullptr,
+                                c.buffer->hostMemory ? c.buffer->hostMemory : c.buffer->memory, 0, VK_WHOLE_SIZE};
       d.vk.InvalidateMappedMemoryRanges(d.device, 1, &range);
     }
     std::memcpy(st.map + at[i], c.buffer->mapped + c.offset, copyBytes(c));
@@ -140,7 +147,10 @@ json statsJson(Stream& st) {
           {"ring_allocation_ms", double(d.allocNs.load()) * 1e-6},  // in the application's threads
           {"ring_allocation_thread_ms", double(d.threadAllocNs.load()) * 1e-6},
           {"frames_waiting_for_ring", d.droppedForRing.load()},
-          {"thread_copy_ms", st.sent ? st.copyMs / double(st.sent) : 0.0}};
+          {"thread_copy_ms", st.sent ? st.copyMs / double(st.sent) : 0.0},
+          {"ring_staged", d.staging != nullptr},
+          {"ring_download", !d.staging ? "none" : stagedOwnQueue(d) ? "layer queue" : "application queue"},
+          {"download_ms", st.sent ? st.downloadMs / double(st.sent) : 0.0}};
 }
 
 void process(Stream& st, std::unique_ptr<PendingFrame> f) {
@@ -174,6 +184,16 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
   const auto start = std::chrono::steady_clock::now();
   json targets = json::array(), camera = nullptr, bound = json::array(), counts = json::array();
   const bool shared = allShared(*f);
+  // The staged ring on a queue of the layer's: this frame's bytes cross to the host now (only the
+  // frames sent ever do).
+  if (!shared && stagedOwnQueue(d)) {
+    const auto down = std::chrono::steady_clock::now();
+    if (!downloadFrame(d, f->copies)) {
+      report(d, "download", "the layer's queue did not bring a frame's copies to the host: streaming stops");
+      return goIdle(st);
+    }
+    st.downloadMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - down).count();
+  }
   if (!(shared ? describeShared(st, *f, *req, targets, camera, bound, counts) : fill(st, *f, *req, targets, camera, bound))) {
     report(d, "shm", "cannot share a frame's memory with the receiver: streaming stops");
     return goIdle(st);

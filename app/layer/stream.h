@@ -26,6 +26,7 @@ struct Stream {
   std::unique_ptr<PendingFrame> waiting;       // done, to be sent at the receiver's ack (the newest such)
   uint64_t sent = 0, dropped = 0, torn = 0;
   double copyMs = 0.0;
+  double downloadMs = 0.0;  // of which the staged ring's downloads on the layer's queue
   std::shared_ptr<const Request> request;  // as the receiver sent it (to the device at startStream)
 };
 

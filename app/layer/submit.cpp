@@ -17,6 +17,7 @@ namespace {
 struct Submitted {
   bool pass = false, copies = false, skipped = false, paced = false;
   std::vector<Copy> multisampled;  // copies of multisampled attachments, to unpack after the submission
+  std::vector<Copy> download;      // the staged ring without a queue of the layer's: every copy, brought to the host after it
 };
 
 void addOnce(std::vector<uint32_t>& ids, const std::vector<uint32_t>& more) {
@@ -61,6 +62,7 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
       std::erase_if(f.copies, [](const Copy& e) { return e.target == kBoundCopy; });
     for (const Copy& c : s->copiesMade) {
       if (c.samples > 1) got.multisampled.push_back(c);
+      if (d.staging && !stagedOwnQueue(d)) got.download.push_back(c);
       if (c.target != kBoundCopy) std::erase_if(f.copies, [&](const Copy& e) { return e.target == c.target; });
       f.copies.push_back(c);
       auto w = std::find_if(f.writes.begin(), f.writes.end(), [&](const auto& e) { return e.first == c.buffer; });
@@ -169,7 +171,8 @@ VkResult submit(DeviceData& d, VkQueue queue, const std::vector<VkCommandBuffer>
     // The layer's fence, signalled once everything submitted so far on this queue is done.
     // Multisampled targets' samples are unpacked into the ring before it (samples.cpp).
     VkFence fence = r == VK_SUCCESS ? takeFence(d) : VK_NULL_HANDLE;
-    if (fence && submitFence(d, queue, got.multisampled, fence) != VK_SUCCESS) returnFence(d, fence), fence = VK_NULL_HANDLE;
+    if (fence && submitFence(d, queue, got.multisampled, got.download, fence) != VK_SUCCESS)
+      returnFence(d, fence), fence = VK_NULL_HANDLE;
     std::lock_guard lock(d.frameLock);
     if (d.building && fence)
       d.building->fences.push_back(fence);

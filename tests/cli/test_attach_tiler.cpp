@@ -31,8 +31,8 @@ std::string tilerBytes(const std::string& path) {
 }
 
 // attach --capture-frame `frame` of a 4-frame run in `mode` with the subject's own layout.
-RunResult attachTiler(const std::string& dir, const std::string& mode, int frame) {
-  return runShell("GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout '" + tilerDir() + "/layout_" +
+RunResult attachTiler(const std::string& dir, const std::string& mode, int frame, const std::string& env = "") {
+  return runShell(env + " GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout '" + tilerDir() + "/layout_" +
                   mode + ".json' --capture-frame " + std::to_string(frame) + " -o '" + dir + "/live' -- '" + tiler() +
                   "' --mode " + mode + " --frames 4");
 }
@@ -104,12 +104,12 @@ TEST(TilerAttach, AVulkan10ApplicationsRingIsSharedMemory) {
   EXPECT_EQ(stats["layer"]["shm_bytes"], 0) << r.output;  // no file of the layer's own for copied-out frames
 }
 
-TEST(TilerAttach, EverySampleOfAMultisampledGBufferIsItsOwnDumpOfThatSample) {
-  const std::string dir = freshDir("attach_tiler_msaa");
+// The MSAA frame 1 attached with `env`: every sample of every target is the dump's.
+void expectEverySample(const std::string& dir, const std::string& env) {
   const RunResult dump = runShell("GBLENS_VALIDATE=1 '" + tiler() + "' --mode msaa --frames 4 --dump '" + dir +
                                   "/dump' --dump-frame 1");
   ASSERT_EQ(dump.exitCode, 0) << dump.output;
-  const RunResult r = attachTiler(dir, "msaa", 1);
+  const RunResult r = attachTiler(dir, "msaa", 1, env);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_EQ(r.output.find("exited with status"), std::string::npos) << r.output;  // validation clean
   EXPECT_EQ(r.output.find("multisampled"), std::string::npos) << r.output;        // nothing refused
@@ -165,6 +165,26 @@ TEST(TilerAttach, EverySampleOfAMultisampledGBufferIsItsOwnDumpOfThatSample) {
     EXPECT_EQ(t["spread"][0], 1.0);
   }
   EXPECT_TRUE(sawId) << probe.output;
+}
+
+TEST(TilerAttach, EverySampleOfAMultisampledGBufferIsItsOwnDumpOfThatSample) {
+  expectEverySample(freshDir("attach_tiler_msaa"), "");
+}
+
+// The staged ring of a discrete GPU (device-local ring buffers brought to the host after the frame;
+// lavapipe has no queue to spare, so the download runs in the layer's batch on the application's
+// queue): the same bits.
+TEST(TilerAttach, TheStagedRingStreamsTheSameBits) {
+  expectEverySample(freshDir("attach_tiler_staged"), "GBLENS_LAYER_STAGED=1");
+  const RunResult r = runShell("GBLENS_LAYER_STAGED=1 GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout '" +
+                               tilerDir() + "/layout_msaa.json' --frames 2 --stats -- '" + tiler() + "' --mode msaa --frames 8");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const size_t brace = r.output.find("{\n");
+  ASSERT_NE(brace, std::string::npos) << r.output;
+  const json stats = json::parse(r.output.substr(brace, r.output.rfind('}') - brace + 1), nullptr, false);
+  ASSERT_TRUE(stats.is_object()) << r.output;
+  EXPECT_EQ(stats["layer"]["ring_staged"], true) << r.output;
+  EXPECT_EQ(stats["layer"]["ring_download"], "application queue") << r.output;  // lavapipe: one queue
 }
 
 }  // namespace
