@@ -3,7 +3,8 @@
 // sample for sample) into an image of the layer's, and right after the application's submission a
 // recording of the layer's own runs shaders/layer_samples.comp, which writes each sample's bits into
 // the ring, one plane per sample, before the layer's fence. The application's images, layouts and
-// bound state are never touched by the shader.
+// bound state are never touched by the shader. The same batch downloads a staged ring where the
+// layer has no queue of its own (staging.cpp).
 #include <algorithm>
 #include <cstring>
 
