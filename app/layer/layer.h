@@ -355,6 +355,7 @@ struct DeviceData {
   VkDeviceSize largestRecording = 0;  // the most bytes one recording copied: a slot's size
   std::atomic<uint64_t> droppedAtSource{0};  // recordings that found every slot held
   bool hostImport = false;          // ring buffers are shared memory (VK_EXT_external_memory_host)
+  bool stagedShared = false;        // the staged ring's host buffers are shared memory (staging.cpp)
   VkDeviceSize hostAlignment = 4096;
   std::atomic<uint32_t> nextRingId{0};
   std::atomic<uint64_t> ringBytes{0};

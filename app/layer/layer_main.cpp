@@ -124,10 +124,13 @@ VKAPI_ATTR void VKAPI_CALL DestroyInstance(VkInstance instance, const VkAllocati
 // frame time comes first: there the layer's thread copies finished frames out instead. An
 // application of Vulkan 1.0 gets the instance extensions from CreateInstance and VK_KHR_external_memory
 // from CreateDevice; where the implementation lacks them its frames are copied out too.
-VkDeviceSize hostImportAlignment(InstanceData& inst, VkPhysicalDevice physical) {
+// `anyDevice`: the staged ring's host buffers (staging.cpp), which the layer's own queue writes, are
+// imported host pages on a discrete GPU too.
+VkDeviceSize hostImportAlignment(InstanceData& inst, VkPhysicalDevice physical, bool anyDevice = false) {
   VkPhysicalDeviceProperties props{};
   inst.properties(physical, &props);
-  if (props.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU && props.deviceType != VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU) return 0;
+  if (!anyDevice && props.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU && props.deviceType != VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU)
+    return 0;
   uint32_t n = 0;
   if (!inst.externalMemory || !inst.deviceExtensions || !inst.properties2 ||
       inst.deviceExtensions(physical, nullptr, &n, nullptr) != VK_SUCCESS)
@@ -165,8 +168,20 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateDevice(VkPhysicalDevice physical, const VkD
   Stream* stream = first ? openStream(*inst, physical) : nullptr;
   VkDeviceCreateInfo patched = *info;
   std::vector<const char*> extensions(info->ppEnabledExtensionNames, info->ppEnabledExtensionNames + info->enabledExtensionCount);
-  VkDeviceSize hostAlignment = 0;
-  if (stream && (hostAlignment = hostImportAlignment(*inst, physical)) != 0) {
+  // A discrete GPU's ring is staged in device memory, with a queue of the layer's for its downloads
+  // into host buffers that are shared pages where the device can import them.
+  QueuePlan staging;
+  const bool staged = stream && planStaging(*inst, physical, patched, staging);
+  VkDeviceSize hostAlignment = 0, stagedAlignment = 0;
+  if (staged) {
+    patched.queueCreateInfoCount = uint32_t(staging.infos.size());
+    patched.pQueueCreateInfos = staging.infos.data();
+    if (std::getenv("GBLENS_LAYER_STAGED_SHARED") == nullptr || std::strcmp(std::getenv("GBLENS_LAYER_STAGED_SHARED"), "0"))
+      stagedAlignment = hostImportAlignment(*inst, physical, true);
+  } else if (stream) {
+    hostAlignment = hostImportAlignment(*inst, physical);
+  }
+  if (hostAlignment || stagedAlignment) {
     // VK_KHR_external_memory is core from 1.1; a 1.0 application's device enables it by name.
     for (const char* needed : {VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME, VK_KHR_EXTERNAL_MEMORY_EXTENSION_NAME})
       if ((needed == std::string(VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME) || inst->apiVersion < VK_API_VERSION_1_1) &&
@@ -174,13 +189,6 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateDevice(VkPhysicalDevice physical, const VkD
         extensions.push_back(needed);
     patched.enabledExtensionCount = uint32_t(extensions.size());
     patched.ppEnabledExtensionNames = extensions.data();
-  }
-  // A discrete GPU's ring is staged in device memory, with a queue of the layer's for its downloads.
-  QueuePlan staging;
-  if (stream && planStaging(*inst, physical, patched, staging)) {
-    hostAlignment = 0;  // the staged ring is the driver's memory, not shared pages
-    patched.queueCreateInfoCount = uint32_t(staging.infos.size());
-    patched.pQueueCreateInfos = staging.infos.data();
   }
   auto create = reinterpret_cast<PFN_vkCreateDevice>(gipa(inst->instance, "vkCreateDevice"));
   VkResult r = create(physical, &patched, alloc, device);
@@ -209,7 +217,8 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateDevice(VkPhysicalDevice physical, const VkD
 #undef GBL_LOAD
   inst->memoryProperties(physical, &d->memory);
   d->hostImport = hostAlignment != 0 && d->vk.GetMemoryHostPointerPropertiesEXT;
-  d->hostAlignment = std::max<VkDeviceSize>(hostAlignment, 1);
+  d->stagedShared = stagedAlignment != 0 && d->vk.GetMemoryHostPointerPropertiesEXT;
+  d->hostAlignment = std::max<VkDeviceSize>(std::max(hostAlignment, stagedAlignment), 1);
   for (uint32_t q = 0; q < info->queueCreateInfoCount; ++q) d->createdFamilies.push_back(info->pQueueCreateInfos[q].queueFamilyIndex);
   {
     std::unique_lock lock(globals().lock);

@@ -111,9 +111,26 @@ RingRef allocateStaged(DeviceData& d, VkDeviceSize size) {
     return ai.memoryTypeIndex != UINT32_MAX && d.vk.AllocateMemory(d.device, &ai, nullptr, &memory) == VK_SUCCESS &&
            d.vk.BindBufferMemory(d.device, buffer, memory, 0) == VK_SUCCESS;
   };
+  const VkBufferUsageFlags gpu = VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  if (d.stagedShared) {  // the host side a shared file gblens reads in place (its header included)
+    if (RingRef shared = allocateShared(d, size)) {
+      shared->hostBuffer = shared->buffer, shared->hostMemory = shared->memory;
+      shared->buffer = VK_NULL_HANDLE, shared->memory = VK_NULL_HANDLE;
+      r = shared;
+      r->size = shared->size;
+      size = shared->size;  // the device buffer mirrors the whole file: the copies' offsets are the same
+      if (!make(gpu, false, r->buffer, r->memory)) return nullptr;
+      if (stagedOwnQueue(d)) {  // downloads only for the frames sent: the thread publishes their counts
+        r->published = r->submissions;
+        r->submissions = &r->localSubmissions;
+      }  // else every submission's batch downloads: the header counts submissions, as a shared ring's
+      d.ringBytes += 2 * size;
+      return r;
+    }
+    d.stagedShared = false;  // this device cannot share its host memory after all: frames are copied out
+  }
   void* p = nullptr;
-  if (!make(VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false,
-            r->buffer, r->memory) ||
+  if (!make(gpu, false, r->buffer, r->memory) ||
       !make(VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, r->hostBuffer, r->hostMemory) ||
       d.vk.MapMemory(d.device, r->hostMemory, 0, VK_WHOLE_SIZE, 0, &p) != VK_SUCCESS)
     return nullptr;  // the destructor frees what was made

@@ -33,6 +33,9 @@ struct RingBuffer {
   // Submissions that write it (a read is torn if this moves): in the shared header when shared.
   std::atomic<uint64_t> localSubmissions{0};
   std::atomic<uint64_t>* submissions = &localSubmissions;
+  // A staged ring's shared host buffer downloaded on the layer's queue: the header's count, which
+  // the thread sets to the frame's after each download (the receiver checks it as a submission count).
+  std::atomic<uint64_t>* published = nullptr;
   std::atomic<int> holds{0};             // recordings that copy into it and frames not yet read from it
   ~RingBuffer();
 };

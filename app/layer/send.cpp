@@ -149,6 +149,7 @@ json statsJson(Stream& st) {
           {"frames_waiting_for_ring", d.droppedForRing.load()},
           {"thread_copy_ms", st.sent ? st.copyMs / double(st.sent) : 0.0},
           {"ring_staged", d.staging != nullptr},
+          {"ring_staged_shared", d.staging != nullptr && d.stagedShared},
           {"ring_download", !d.staging ? "none" : stagedOwnQueue(d) ? "layer queue" : "application queue"},
           {"download_ms", st.sent ? st.downloadMs / double(st.sent) : 0.0}};
 }
@@ -186,13 +187,20 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
   const bool shared = allShared(*f);
   // The staged ring on a queue of the layer's: this frame's bytes cross to the host now (only the
   // frames sent ever do).
-  if (!shared && stagedOwnQueue(d)) {
+  if (stagedOwnQueue(d)) {
     const auto down = std::chrono::steady_clock::now();
     if (!downloadFrame(d, f->copies)) {
       report(d, "download", "the layer's queue did not bring a frame's copies to the host: streaming stops");
       return goIdle(st);
     }
     st.downloadMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - down).count();
+    if (!unchanged(*f)) {  // the application wrote the device ring again before the download had it
+      ++st.dropped, ++st.torn;
+      if (only) releaseCapture(d);
+      return;
+    }
+    for (const auto& [buffer, count] : f->writes)
+      if (buffer->published) buffer->published->store(count);  // what the receiver will check
   }
   if (!(shared ? describeShared(st, *f, *req, targets, camera, bound, counts) : fill(st, *f, *req, targets, camera, bound))) {
     report(d, "shm", "cannot share a frame's memory with the receiver: streaming stops");

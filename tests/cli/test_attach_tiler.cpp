@@ -173,9 +173,10 @@ TEST(TilerAttach, EverySampleOfAMultisampledGBufferIsItsOwnDumpOfThatSample) {
 
 // The staged ring of a discrete GPU (device-local ring buffers brought to the host after the frame;
 // lavapipe has no queue to spare, so the download runs in the layer's batch on the application's
-// queue): the same bits.
+// queue): the same bits, its host buffers read in place (shared pages) or copied out.
 TEST(TilerAttach, TheStagedRingStreamsTheSameBits) {
   expectEverySample(freshDir("attach_tiler_staged"), "GBLENS_LAYER_STAGED=1");
+  expectEverySample(freshDir("attach_tiler_staged_copied"), "GBLENS_LAYER_STAGED=1 GBLENS_LAYER_STAGED_SHARED=0");
   const RunResult r = runShell("GBLENS_LAYER_STAGED=1 GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout '" +
                                tilerDir() + "/layout_msaa.json' --frames 2 --stats -- '" + tiler() + "' --mode msaa --frames 8");
   ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -185,6 +186,7 @@ TEST(TilerAttach, TheStagedRingStreamsTheSameBits) {
   ASSERT_TRUE(stats.is_object()) << r.output;
   EXPECT_EQ(stats["layer"]["ring_staged"], true) << r.output;
   EXPECT_EQ(stats["layer"]["ring_download"], "application queue") << r.output;  // lavapipe: one queue
+  EXPECT_EQ(stats["layer"]["ring_staged_shared"], true) << r.output;
 }
 
 }  // namespace
