@@ -39,10 +39,12 @@ bool passMatches(const Pick& p, const OpenPass& pass) {
 }  // namespace
 
 std::string pickText(const Pick& p) {
-  std::string t = !p.name.empty() ? "the image named \"" + p.name + "\""
-                  : p.color >= 0  ? "colour attachment " + std::to_string(p.color)
-                  : p.depth       ? std::string("the depth attachment")
-                                  : "the " + p.byFormat + " attachment";
+  std::string t = !p.name.empty()    ? "the image named \"" + p.name + "\""
+                  : p.attachment >= 0 ? "attachment " + std::to_string(p.attachment)
+                  : p.color >= 0      ? "colour attachment " + std::to_string(p.color)
+                  : p.depth           ? std::string("the depth attachment")
+                                      : "the " + p.byFormat + " attachment";
+  if (p.subpass >= 0) t += " of subpass " + std::to_string(p.subpass);
   if (!p.pass.empty()) t += " of pass \"" + p.pass + "\"";
   if (p.passIndex >= 0) t += " of render pass " + std::to_string(p.passIndex);
   return t;
@@ -52,9 +54,22 @@ namespace {
 
 // The attachment a pick selects in this pass, or null.
 const Looked* select(DeviceData& d, const Pick& p, const OpenPass& pass, const std::vector<Looked>& all) {
+  int index = p.attachment;  // a pick by the render pass's attachment index, or by a subpass's
+  if (p.subpass >= 0) {
+    if (size_t(p.subpass) >= pass.subpassColors.size()) {
+      report(d, "subpass:" + p.targetName, "target \"" + p.targetName + "\": render pass " + std::to_string(pass.ordinal) + " has " +
+                                              std::to_string(pass.subpassColors.size()) + " subpasses, the layout names subpass " +
+                                              std::to_string(p.subpass));
+      return nullptr;
+    }
+    const std::vector<int>& colors = pass.subpassColors[size_t(p.subpass)];
+    index = p.depth ? pass.subpassDepth[size_t(p.subpass)] : size_t(p.color) < colors.size() ? colors[size_t(p.color)] : -1;
+    if (index < 0) return nullptr;
+  }
   std::vector<const Looked*> found;
   for (const Looked& l : all) {
-    const bool hit = !p.name.empty() ? (l.image.name == p.name || l.viewName == p.name)
+    const bool hit = index >= 0       ? l.a->attachment == index
+                     : !p.name.empty() ? (l.image.name == p.name || l.viewName == p.name)
                      : p.color >= 0  ? l.a->color == p.color
                      : p.depth       ? l.a->depth
                                      : formatInfo(l.image.format).storage == p.byFormat;

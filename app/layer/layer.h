@@ -126,6 +126,8 @@ struct RenderPassInfo {
   std::vector<Attachment> attachments;
   std::vector<int> colors;  // the last subpass's colour attachments (-1: unused)
   int depth = -1;           // and its depth/stencil attachment
+  std::vector<std::vector<int>> subpassColors;  // every subpass's colour attachments
+  std::vector<int> subpassDepth;                // and depth attachment (-1: none)
 };
 struct FramebufferInfo {
   std::vector<VkImageView> views;  // empty: imageless (views given at vkCmdBeginRenderPass)
@@ -150,6 +152,8 @@ struct Pick {  // one target of the layout: which attachment of which pass
   int color = -1;
   bool depth = false;
   std::string byFormat;
+  int subpass = -1;     // color / depth of this subpass
+  int attachment = -1;  // the render pass's attachment index
 };
 // Which render pass: its ordinal in its command buffer, or a label / render pass name.
 struct PassPick {
@@ -203,6 +207,7 @@ struct PassReport {
 struct PassAttachment {
   VkImage image = VK_NULL_HANDLE;
   VkImageView view = VK_NULL_HANDLE;
+  int attachment = -1;  // its index in the render pass (dynamic rendering: colours 0.., then depth)
   int color = -1;
   bool depth = false, written = false;
   AttachmentOps ops;
@@ -214,6 +219,9 @@ struct OpenPass {
   std::string renderPass;
   std::vector<std::string> labels;
   std::vector<PassAttachment> attachments;
+  // Each subpass's colour attachments and depth attachment (render pass indices, -1: unused).
+  std::vector<std::vector<int>> subpassColors;
+  std::vector<int> subpassDepth;
 };
 
 // Push constants as the graphics stages see them: the bytes and the range written so far.

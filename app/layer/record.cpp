@@ -108,6 +108,8 @@ void beginRenderPass(DeviceData& d, VkCommandBuffer cmd, const VkRenderPassBegin
   auto fb = d.framebuffers.find(info->framebuffer);
   if (rp == d.renderPasses.end() || fb == d.framebuffers.end()) return;
   s->open.renderPass = rp->second.name;
+  s->open.subpassColors = rp->second.subpassColors;
+  s->open.subpassDepth = rp->second.subpassDepth;
   std::vector<VkImageView> views = fb->second.views;
   for (auto* n = static_cast<const VkBaseInStructure*>(info->pNext); n; n = n->pNext)
     if (n->sType == VK_STRUCTURE_TYPE_RENDER_PASS_ATTACHMENT_BEGIN_INFO) {  // an imageless framebuffer
@@ -121,6 +123,7 @@ void beginRenderPass(DeviceData& d, VkCommandBuffer cmd, const VkRenderPassBegin
     PassAttachment pa;
     pa.image = v->second.image;
     pa.view = views[a];
+    pa.attachment = int(a);
     auto c = std::find(r.colors.begin(), r.colors.end(), int(a));
     pa.color = c == r.colors.end() ? -1 : int(c - r.colors.begin());
     pa.depth = r.depth == int(a);
@@ -226,6 +229,7 @@ void beginRendering(DeviceData& d, VkCommandBuffer cmd, const VkRenderingInfo* i
     PassAttachment pa;
     pa.image = v->second.image;
     pa.view = a.imageView;
+    pa.attachment = color >= 0 ? color : int(colors.size());  // dynamic rendering: colours, then depth
     pa.color = color;
     pa.depth = isDepth || isStencil;
     pa.written = written;

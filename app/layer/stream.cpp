@@ -76,6 +76,8 @@ bool parseRequest(const std::string& text, Request& r) {
     p.color = live.value("color", -1);
     p.depth = live.value("depth", false);
     p.byFormat = live.value("format", "");
+    p.subpass = live.value("subpass", -1);
+    p.attachment = live.value("attachment", -1);
     r.picks.push_back(p);
   }
   return true;

@@ -180,6 +180,13 @@ RenderPassInfo describeRenderPass(Attachment* attachments, uint32_t count, const
         !readOnly(sp.pDepthStencilAttachment->layout))
       rp.attachments[sp.pDepthStencilAttachment->attachment].written = true;
   }
+  for (uint32_t s = 0; s < subpassCount; ++s) {
+    std::vector<int>& colors = rp.subpassColors.emplace_back();
+    for (uint32_t c = 0; c < subpasses[s].colorAttachmentCount; ++c)
+      colors.push_back(subpasses[s].pColorAttachments[c].attachment < count ? int(subpasses[s].pColorAttachments[c].attachment) : -1);
+    const auto* ds = subpasses[s].pDepthStencilAttachment;
+    rp.subpassDepth.push_back(ds && ds->attachment < count ? int(ds->attachment) : -1);
+  }
   if (subpassCount) {
     const Subpass& last = subpasses[subpassCount - 1];
     for (uint32_t c = 0; c < last.colorAttachmentCount; ++c) {

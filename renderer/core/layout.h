@@ -85,9 +85,12 @@ struct TargetSource {
     std::string pass;                // a debug label around the render pass, or the render pass's name
     int passIndex = -1;              // or the render pass's ordinal in its command buffer (0: the first)
     std::string name;                // the attachment's image (or image view) debug name
-    int color = -1;                  // colour attachment N (of the pass's last subpass)
-    bool depth = false;              // the depth/stencil attachment
+    int color = -1;                  // colour attachment N (of the pass's last subpass, or of `subpass`)
+    bool depth = false;              // the depth/stencil attachment (of the last subpass drawing with one, or of `subpass`)
     std::string format;              // the one attachment of this storage format
+    int subpass = -1;                // with color or depth: that subpass's (a G-buffer read as input attachments later)
+    int attachment = -1;             // the render pass's attachment N (VkRenderPassCreateInfo::pAttachments;
+                                     // dynamic rendering: colour attachments 0.., then depth)
   } live;
 };
 

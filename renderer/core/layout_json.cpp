@@ -305,7 +305,8 @@ bool readQuantity(Reader& r, const json& jIn, const Where& w, Layout& l, uint32_
   return true;
 }
 
-// {"live": "NAME"} or {"live": {"pass": LABEL | N, "name" | "color" | "depth" | "format": ...}}.
+// {"live": "NAME"} or {"live": {"pass": LABEL | N, "name" | "color" | "depth" | "format" | "attachment": ...,
+// "subpass": S (with color or depth)}}.
 bool readLiveSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
   s.kind = TargetSource::Kind::Live;
   TargetSource::LivePick& p = s.live;
@@ -323,19 +324,29 @@ bool readLiveSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
     else
       return r.fail(wl, "pass", "expected a label (text) or the render pass's ordinal in its command buffer (0, 1, ...)");
   }
-  double color = -1.0;
+  double color = -1.0, subpass = -1.0, attachment = -1.0;
   if (!r.string(j, wl, "name", p.name, false) || !r.number(j, wl, "color", color) || !r.boolean(j, wl, "depth", p.depth) ||
-      !r.string(j, wl, "format", p.format, false))
+      !r.string(j, wl, "format", p.format, false) || !r.number(j, wl, "subpass", subpass) ||
+      !r.number(j, wl, "attachment", attachment))
     return false;
   if (j.contains("color") && (color < 0.0 || color > 7.0 || color != std::floor(color)))
     return r.fail(wl, "color", "expected a colour attachment index 0..7");
+  if (j.contains("subpass") && (subpass < 0.0 || subpass > 63.0 || subpass != std::floor(subpass)))
+    return r.fail(wl, "subpass", "expected a subpass index 0..63");
+  if (j.contains("attachment") && (attachment < 0.0 || attachment > 63.0 || attachment != std::floor(attachment)))
+    return r.fail(wl, "attachment", "expected the render pass's attachment index 0..63");
   p.color = int(color);
+  p.subpass = int(subpass);
+  p.attachment = int(attachment);
+  if (p.subpass >= 0 && p.color < 0 && !p.depth)
+    return r.fail(wl, "subpass", "goes with \"color\": N or \"depth\": true (that subpass's attachment)");
   StorageFormat f;
   if (!p.format.empty() && !parseStorageFormat(p.format, f))
     return r.fail(wl, "format", "unknown storage format \"" + p.format + "\"");
-  const int picks = int(!p.name.empty()) + int(p.color >= 0) + int(p.depth) + int(!p.format.empty());
-  if (picks != 1) return r.fail(wl, "name", "give exactly one of \"name\", \"color\", \"depth\": true and \"format\"");
-  return r.unknownKeys(j, wl, {"pass", "name", "color", "depth", "format"});
+  const int picks = int(!p.name.empty()) + int(p.color >= 0) + int(p.depth) + int(!p.format.empty()) + int(p.attachment >= 0);
+  if (picks != 1)
+    return r.fail(wl, "name", "give exactly one of \"name\", \"color\", \"depth\": true, \"format\" and \"attachment\"");
+  return r.unknownKeys(j, wl, {"pass", "name", "color", "depth", "format", "subpass", "attachment"});
 }
 
 bool readSource(Reader& r, const json& j, const Where& w, TargetSource& s) {

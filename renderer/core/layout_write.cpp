@@ -83,6 +83,8 @@ json livePickJson(const TargetSource::LivePick& p) {
   if (p.color >= 0) l["color"] = p.color;
   if (p.depth) l["depth"] = true;
   if (!p.format.empty()) l["format"] = p.format;
+  if (p.subpass >= 0) l["subpass"] = p.subpass;
+  if (p.attachment >= 0) l["attachment"] = p.attachment;
   return l;
 }
 

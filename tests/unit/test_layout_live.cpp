@@ -40,6 +40,13 @@ TEST(LayoutLive, EveryFormParses) {
   EXPECT_TRUE(l.targets[0].source.live.depth);
   ASSERT_TRUE(parse(withSource({{"live", {{"pass", 0}, {"format", "rgba16f"}}}}), l, error)) << error;
   EXPECT_EQ(l.targets[0].source.live.format, "rgba16f");
+  // A subpass's colour attachment (a G-buffer read as input attachments later), the render pass's attachment N.
+  ASSERT_TRUE(parse(withSource({{"live", {{"pass", 0}, {"subpass", 0}, {"color", 2}}}}), l, error)) << error;
+  EXPECT_EQ(l.targets[0].source.live.subpass, 0);
+  EXPECT_EQ(l.targets[0].source.live.color, 2);
+  ASSERT_TRUE(parse(withSource({{"live", {{"pass", 0}, {"attachment", 5}}}}), l, error)) << error;
+  EXPECT_EQ(l.targets[0].source.live.attachment, 5);
+  EXPECT_EQ(l.targets[0].source.live.subpass, -1);
 }
 
 TEST(LayoutLive, MistakesNameTheField) {
@@ -50,7 +57,11 @@ TEST(LayoutLive, MistakesNameTheField) {
       {{{"live", {{"color", 1.5}}}}, "source: live: color: expected a colour attachment index 0..7"},
       {{{"live", {{"pass", -1}, {"color", 0}}}}, "source: live: pass: expected a label"},
       {{{"live", {{"format", "rgb99"}}}}, "source: live: format: unknown storage format \"rgb99\""},
-      {{{"live", {{"name", "a"}, {"subpass", 1}}}}, "source: live: subpass: unknown field"},
+      {{{"live", {{"name", "a"}, {"subpass", 1}}}}, "source: live: subpass: goes with \"color\": N or \"depth\": true"},
+      {{{"live", {{"subpass", 64}, {"color", 0}}}}, "source: live: subpass: expected a subpass index 0..63"},
+      {{{"live", {{"attachment", 2}, {"color", 0}}}}, "source: live: name: give exactly one of"},
+      {{{"live", {{"attachment", -1}}}}, "source: live: attachment: expected the render pass's attachment index 0..63"},
+      {{{"live", {{"name", "a"}, {"samples", 1}}}}, "source: live: samples: unknown field"},
       {{{"live", "a"}, {"file", "a.exr"}}, "source: live: a live source has no other fields"},
       {{{"live", ""}}, "source: live: expected an attachment's debug name"},
       {{{"live", 3}}, "source: live: expected a debug name or"},
@@ -65,7 +76,8 @@ TEST(LayoutLive, MistakesNameTheField) {
 
 TEST(LayoutLive, RoundTripsThroughJson) {
   for (const json& source : {json{{"live", "a"}}, json{{"live", {{"pass", "L"}, {"color", 1}}}},
-                             json{{"live", {{"pass", 2}, {"depth", true}}}}, json{{"live", {{"format", "r32f"}}}}}) {
+                             json{{"live", {{"pass", 2}, {"depth", true}}}}, json{{"live", {{"format", "r32f"}}}},
+                             json{{"live", {{"pass", 0}, {"subpass", 1}, {"depth", true}}}}, json{{"live", {{"attachment", 3}}}}}) {
     Layout a, b;
     std::string error;
     ASSERT_TRUE(parse(withSource(source), a, error)) << error;
@@ -73,7 +85,7 @@ TEST(LayoutLive, RoundTripsThroughJson) {
     const TargetSource::LivePick &x = a.targets[0].source.live, &y = b.targets[0].source.live;
     EXPECT_EQ(b.targets[0].source.kind, TargetSource::Kind::Live);
     EXPECT_TRUE(x.pass == y.pass && x.passIndex == y.passIndex && x.name == y.name && x.color == y.color &&
-                x.depth == y.depth && x.format == y.format)
+                x.depth == y.depth && x.format == y.format && x.subpass == y.subpass && x.attachment == y.attachment)
         << source.dump();
   }
 }
