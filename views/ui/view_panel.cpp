@@ -274,6 +274,8 @@ static std::string rangeLine(const ViewerModel& m, const SlotDraw& v, const Reso
   } else if (m.settings[size_t(v.view)].autoRange) {
     if (range.fromData)
       std::snprintf(buf, sizeof buf, "auto %.6g .. %.6g", range.black, range.white);
+    else if (m.ranges[size_t(v.view)].empty())  // not measured yet: its texels are being decoded
+      std::snprintf(buf, sizeof buf, "auto: decoding...");
     else
       std::snprintf(buf, sizeof buf, "auto: no valid texels");
     line = buf;
