@@ -5,6 +5,8 @@
 // copy, so the application's own synchronisation sees its images as it left them.
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
 
 #include "app/layer/layer.h"
 
@@ -142,10 +144,22 @@ namespace {
 
 // The commands: every earlier write before the copies, the attachments to TRANSFER_SRC, the
 // copies, then the ring's bytes to the host and the attachments back to the application's layouts.
+// GBLENS_LAYER_MEASURE (docs/attach.md "Cost"): "barriers" records the transitions and no copies,
+// "none" records nothing (the ring, fences and frames as usual): what a copied frame costs the
+// application, taken apart. The frames streamed then hold garbage; for the bench only.
+int measureMode() {
+  static const int mode = [] {
+    const char* e = std::getenv("GBLENS_LAYER_MEASURE");
+    return !e ? 0 : !std::strcmp(e, "barriers") ? 1 : !std::strcmp(e, "none") ? 2 : 0;
+  }();
+  return mode;
+}
+
 void recordTransfers(DeviceData& d, VkCommandBuffer cmd, const std::vector<VkImageMemoryBarrier>& there,
                      const std::vector<VkImageMemoryBarrier>& back, const std::vector<Region>& regions,
                      const std::vector<Copy>& made, const std::vector<BufferCopy>& buffers) {
   const DeviceTable& vk = d.vk;
+  if (measureMode() == 2) return;
   // Every earlier write before these copies: the buffers' (whoever made them), and the ring's own
   // from an earlier pass or an earlier submission of this command buffer (the copies write the same
   // bytes again).
@@ -155,7 +169,9 @@ void recordTransfers(DeviceData& d, VkCommandBuffer cmd, const std::vector<VkIma
   vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &memory, 0, nullptr,
                         uint32_t(there.size()), there.data());
   for (const Region& r : regions)
-    if (r.stage)
+    if (measureMode() == 1)
+      continue;
+    else if (r.stage)
       vk.CmdCopyImage(cmd, r.image, r.layout, r.stage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r.samples);
     else
       vk.CmdCopyImageToBuffer(cmd, r.image, r.layout, r.buffer, 1, &r.copy);
