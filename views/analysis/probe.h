@@ -183,7 +183,7 @@ PixelDossier probePixel(const FrameSnapshot& frame, uint32_t x, uint32_t y);
 // the text `gblens probe` prints. The JSON is an interface (docs/schemas/probe.schema.json,
 // "format": "gblens-probe", kProbeJsonVersion): every key is present for every layout, null where
 // the frame does not hold it; a change of shape bumps the version.
-constexpr int kProbeJsonVersion = 2;
+constexpr int kProbeJsonVersion = 3;
 nlohmann::json dossierJson(const PixelDossier& d);
 std::string dossierText(const PixelDossier& d);
 

@@ -23,7 +23,14 @@ static nlohmann::json position(const ProbePosition& p) {
 
 static nlohmann::json opt(bool has, nlohmann::json v) { return has ? v : nlohmann::json(nullptr); }
 
-// Every screen target's raw channels (bits and value), or why it is absent.
+static nlohmann::json channelsJson(const std::vector<ProbeChannel>& channels, const std::string& type) {
+  nlohmann::json ch = nlohmann::json::array();
+  for (const ProbeChannel& c : channels) ch.push_back({{"name", c.name}, {"bits", hex(c.bits, type)}, {"value", c.value}});
+  return ch;
+}
+
+// Every screen target's raw channels (bits and value), or why it is absent; a multisampled
+// target's every sample and their spread (null for one sample).
 static nlohmann::json targetsJson(const PixelDossier& d) {
   nlohmann::json targets = nlohmann::json::array();
   for (const ProbeTarget& t : d.targets) {
@@ -33,17 +40,11 @@ static nlohmann::json targetsJson(const PixelDossier& d) {
     } else {
       e["type"] = t.type;
       e["encoding"] = t.encoding;
-      nlohmann::json ch = nlohmann::json::array();
-      for (const ProbeChannel& c : t.channels) ch.push_back({{"name", c.name}, {"bits", hex(c.bits, t.type)}, {"value", c.value}});
-      e["channels"] = ch;
-      if (!t.samples.empty()) {  // a multisampled target: each sample's channels, and their spread
-        nlohmann::json samples = nlohmann::json::array();
-        for (const auto& s : t.samples) {
-          nlohmann::json sc = nlohmann::json::array();
-          for (const ProbeChannel& c : s) sc.push_back({{"name", c.name}, {"bits", hex(c.bits, t.type)}, {"value", c.value}});
-          samples.push_back(sc);
-        }
-        e["samples"] = samples;
+      e["channels"] = channelsJson(t.channels, t.type);
+      e["samples"] = e["spread"] = nullptr;
+      if (!t.samples.empty()) {
+        e["samples"] = nlohmann::json::array();
+        for (const auto& s : t.samples) e["samples"].push_back(channelsJson(s, t.type));
         e["spread"] = t.spread;
       }
     }
@@ -118,6 +119,7 @@ static nlohmann::json quantitiesJson(const PixelDossier& d) {
                         {"space", q.space}, {"present", q.present}, {"values", q.values}};
     if (q.eyeDepth) e["eye_depth"] = *q.eyeDepth;
     if (!q.note.empty()) e["note"] = q.note;
+    e["samples"] = nullptr;  // its target multisampled: each sample decoded
     if (!q.sampleValues.empty()) {
       e["samples"] = nlohmann::json::array();
       for (size_t k = 0; k < q.sampleValues.size(); ++k) {

@@ -13,7 +13,10 @@
 
 namespace gb {
 
-constexpr int kCaptureFormatVersion = 1;
+// 2: a multisampled target's `sample_files`. A capture is written in the oldest version that holds
+// it (1 without multisampled targets), so that a gblens of version 1 refuses, rather than shows as
+// one sample, a capture whose targets it cannot read whole.
+constexpr int kCaptureFormatVersion = 2;
 
 // What a capture records beyond the frame snapshot.
 struct CaptureMeta {

@@ -157,7 +157,8 @@ static bool writeContents(const fs::path& tmp, const FrameSnapshot& f, const Cap
   uint32_t culled = uint32_t(f.eyeLights.size() - f.visibleLights.size());
   nlohmann::json m = {
       {"format", "gblens-capture"},
-      {"format_version", kCaptureFormatVersion},
+      {"format_version", std::any_of(f.images.begin(), f.images.end(), [](const TargetImage& t) { return !t.samples.empty(); })
+                             ? kCaptureFormatVersion : 1},
       {"gblens", {{"version", GBLENS_VERSION}, {"git", gitHash()}}},
       {"created_utc", utcNow()},
       {"command", meta.commandLine},

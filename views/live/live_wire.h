@@ -14,7 +14,10 @@ constexpr const char* kLayerName = "VK_LAYER_GBLENS_live";
 // debug messenger, as VK_INSTANCE_LAYERS would): found through XDG_DATA_DIRS, enabled by this variable.
 constexpr const char* kLayerManifest = "vulkan/implicit_layer.d/VkLayer_gblens_live.json";
 constexpr const char* kEnableEnv = "ENABLE_GBLENS_LIVE";
-constexpr int kVersion = 2;  // 2: the request's "only" (Nth streamed frame) became "only_frame" (the application's frame)
+// 2: the request's "only" (Nth streamed frame) became "only_frame" (the application's frame);
+// 3: a frame's targets carry "samples" and "sample_stride" (planes per sample), the request
+// "ring_off_thread", live picks "subpass" and "attachment".
+constexpr int kVersion = 3;
 
 // Message "type" values. Layer -> receiver: hello, report, passes, buffer (a shared-memory file to
 // map, sent with its descriptor: id 0 the layer's copy of a frame, others ring buffers read in
