@@ -475,6 +475,7 @@ void recordDownload(DeviceData& d, VkCommandBuffer cmd, const std::vector<Copy>&
 bool downloadFrame(DeviceData& d, const std::vector<Copy>& copies);
 void destroyStaging(DeviceData& d);
 VkDeviceSize copySize(const Copy& c);  // send.cpp: the bytes a copy wrote into the ring
+uint32_t deviceLocalMemoryType(const DeviceData& d, uint32_t bits);  // ring.cpp (UINT32_MAX: none)
 
 // ---- the stream (stream.cpp)
 // At vkCreateDevice: the connection to the receiver and its request, before the device is made

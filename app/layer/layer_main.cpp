@@ -176,7 +176,8 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateDevice(VkPhysicalDevice physical, const VkD
   if (staged) {
     patched.queueCreateInfoCount = uint32_t(staging.infos.size());
     patched.pQueueCreateInfos = staging.infos.data();
-    if (std::getenv("GBLENS_LAYER_STAGED_SHARED") == nullptr || std::strcmp(std::getenv("GBLENS_LAYER_STAGED_SHARED"), "0"))
+    const char* shared = std::getenv("GBLENS_LAYER_STAGED_SHARED");  // "0": the host buffers copied out
+    if (!shared || std::strcmp(shared, "0"))
       stagedAlignment = hostImportAlignment(*inst, physical, true);
   } else if (stream) {
     hostAlignment = hostImportAlignment(*inst, physical);

@@ -35,6 +35,18 @@ uint32_t memoryType(const DeviceData& d, uint32_t bits, bool& coherent) {
   return UINT32_MAX;
 }
 
+}  // namespace
+
+uint32_t deviceLocalMemoryType(const DeviceData& d, uint32_t bits) {
+  for (uint32_t i = 0; i < d.memory.memoryTypeCount; ++i)
+    if ((bits & (1u << i)) && (d.memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) return i;
+  for (uint32_t i = 0; i < d.memory.memoryTypeCount; ++i)  // every device has one; kept for a device that lies
+    if (bits & (1u << i)) return i;
+  return UINT32_MAX;
+}
+
+namespace {
+
 // A buffer whose memory is a shared file's mapping, imported with VK_EXT_external_memory_host:
 // the receiver maps the same file. Its first kHeader bytes hold the submission count.
 constexpr VkDeviceSize kHeader = 256;
@@ -102,12 +114,7 @@ RingRef allocateStaged(DeviceData& d, VkDeviceSize size) {
     d.vk.GetBufferMemoryRequirements(d.device, buffer, &req);
     VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     ai.allocationSize = req.size;
-    ai.memoryTypeIndex = host ? memoryType(d, req.memoryTypeBits, r->coherent) : UINT32_MAX;
-    for (uint32_t i = 0; !host && i < d.memory.memoryTypeCount; ++i)
-      if ((req.memoryTypeBits & (1u << i)) && (d.memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
-        ai.memoryTypeIndex = i;
-        break;
-      }
+    ai.memoryTypeIndex = host ? memoryType(d, req.memoryTypeBits, r->coherent) : deviceLocalMemoryType(d, req.memoryTypeBits);
     return ai.memoryTypeIndex != UINT32_MAX && d.vk.AllocateMemory(d.device, &ai, nullptr, &memory) == VK_SUCCESS &&
            d.vk.BindBufferMemory(d.device, buffer, memory, 0) == VK_SUCCESS;
   };

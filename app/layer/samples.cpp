@@ -83,14 +83,6 @@ uint32_t depthKind(VkFormat f) {
   return 0;
 }
 
-uint32_t deviceLocal(const DeviceData& d, uint32_t bits) {
-  for (uint32_t i = 0; i < d.memory.memoryTypeCount; ++i)
-    if ((bits & (1u << i)) && (d.memory.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) return i;
-  for (uint32_t i = 0; i < d.memory.memoryTypeCount; ++i)
-    if (bits & (1u << i)) return i;
-  return UINT32_MAX;
-}
-
 VkShaderModule module(DeviceData& d, const uint32_t* code, size_t bytes) {
   VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   mi.codeSize = bytes;
@@ -254,7 +246,7 @@ std::shared_ptr<SampleStage> sampleStage(DeviceData& d, VkImage app, uint32_t mi
   d.vk.GetImageMemoryRequirements(d.device, st->image, &req);
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   ai.allocationSize = req.size;
-  ai.memoryTypeIndex = deviceLocal(d, req.memoryTypeBits);
+  ai.memoryTypeIndex = deviceLocalMemoryType(d, req.memoryTypeBits);
   if (ai.memoryTypeIndex == UINT32_MAX || d.vk.AllocateMemory(d.device, &ai, nullptr, &st->memory) != VK_SUCCESS ||
       d.vk.BindImageMemory(d.device, st->image, st->memory, 0) != VK_SUCCESS)
     return nullptr;

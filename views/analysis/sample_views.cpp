@@ -14,6 +14,7 @@ size_t frameSamples(const FrameSnapshot& f) {
 }
 
 void showSample(FrameSnapshot& f, size_t k) {
+  if (f.sampleShown == k) return;  // a frame as read shows sample 0 (its image is samples[0])
   for (TargetImage& t : f.images)
     if (t.samples.size() > 1) t.image = t.samples[std::min(k, t.samples.size() - 1)];
   f.sampleShown = uint32_t(k);
