@@ -6,6 +6,7 @@
 #include "renderer/core/json_read.h"
 #include "renderer/core/sha256.h"
 #include "views/capture/capture.h"
+#include "views/capture/sequence.h"
 #include "views/capture/exr.h"
 #include "views/capture/manifest_check.h"
 
@@ -87,9 +88,15 @@ bool loadCapture(const std::string& dirText, Capture& out, std::string& error, C
     error = message;
     return false;
   };
+  // SEQ@N: frame N of a sequence (views/capture/sequence.h).
+  std::string frameDir;
+  if (resolveSequenceFrame(dirText, frameDir, error)) return loadCapture(frameDir, out, error, problemOut);
+  if (!error.empty()) return fail(CaptureProblem::Missing, error);
   const fs::path dir(dirText);
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return fail(CaptureProblem::Missing, dirText + ": no such capture directory");
+  if (isSequence(dirText) && !fs::exists(dir / "manifest.json", ec))
+    return fail(CaptureProblem::Missing, dirText + ": a sequence, not one capture (name a frame of it: " + dirText + "@N)");
   const fs::path manifestPath = dir / "manifest.json", lightsPath = dir / "lights.json";
   if (!fs::exists(fs::symlink_status(manifestPath, ec)))
     return fail(CaptureProblem::Missing, dirText + ": no manifest.json (not a capture, or an interrupted one)");
