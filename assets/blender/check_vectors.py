@@ -36,6 +36,14 @@ def words(frame, sx, sy):
     return "%s, +y %s" % (text, "down" if sy == sx else "up")
 
 
+def gblens_terms(frame, sx, sy):
+    y = "down" if sy == sx else "up"
+    if sx == 1:
+        return 'a motion quantity: "units": "pixels", "direction": "to_%s", "y": "%s", "jitter": "excluded"' % (frame, y)
+    return ('-1 x a motion "to_%s", "y": "%s" (no direction says so: a vector quantity with "scale": -1)'
+            % (frame, y))
+
+
 def layout_motion(path):
     """The layout's motion quantity on Vector.X/Y: (units, direction, y, jitter)."""
     with open(path) as f:
@@ -113,7 +121,8 @@ def main():
     objects, pass_index = motion["frames"], motion["pass_index"]
     ids_moving = np.array(list(pass_index.values()))
 
-    # rows[(pair, target)][signs] = list of per-pixel errors, static pixels; moving[(pair, target)] likewise.
+    # Per hypothesis (pair, frame, sx, sy): per-pixel errors on static pixels, on the moving objects (by
+    # their keyframes, and as if static), and the sums of a least-squares scale fit.
     static_err, moving_err, as_static, fits, selfproj, magnitudes = {}, {}, {}, {}, [], {}
     counts = {"static": 0, "moving": 0}
     for n in frames:
@@ -188,9 +197,7 @@ def main():
         if s_stat[2] > tolerance or s_mov[2] > tolerance or abs(scale - 1) > tolerance:
             print("      a residual exceeds --tolerance %g px" % tolerance)
             ok = False
-    print("  In gblens's terms: Vector.XY is motion toward the previous frame (direction to_previous), units pixels,")
-    print("  +y up, jitter excluded (Cycles renders no jitter); Vector.ZW is motion toward the next frame with its sign")
-    print("  turned (no direction says that: -1 x a to_next vector, +y up).")
+        print("      in gblens's terms: %s" % gblens_terms(*key[1:]))
     layout = os.path.join(root, LAYOUT)
     if os.path.exists(layout):
         channels, declared = layout_motion(layout)
