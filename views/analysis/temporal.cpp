@@ -85,7 +85,7 @@ bool checkMotionSequence(const Sequence& seq, const MotionSequenceOptions& o, Mo
 nlohmann::json motionReportJson(const MotionReport& r, const std::string& dir) {
   nlohmann::json pairs = nlohmann::json::array();
   for (const MotionPair& p : r.pairs) pairs.push_back(motionPairJson(p));
-  return {{"version", 1}, {"sequence", dir}, {"motion", r.motion}, {"verdict", r.verdict}, {"findings", r.findings}, {"pairs", pairs}};
+  return {{"format", "gblens-motion"}, {"version", 1}, {"sequence", dir}, {"motion", r.motion}, {"verdict", r.verdict}, {"findings", r.findings}, {"pairs", pairs}};
 }
 
 std::string motionReportText(const MotionReport& r) {
@@ -228,7 +228,7 @@ bool flickerSequence(const Sequence& seq, const FlickerOptions& o, FlickerReport
 }
 
 nlohmann::json flickerReportJson(const FlickerReport& r) {
-  return {{"version", 1},       {"quantity", r.quantity},          {"reference", r.reference},
+  return {{"format", "gblens-flicker"}, {"version", 1},       {"quantity", r.quantity},          {"reference", r.reference},
           {"frames", r.frames}, {"components", r.components},      {"stddev", {{"mean", r.meanStddev}, {"p99", r.p99Stddev}}},
           {"max_step", r.maxStepAll}};
 }
