@@ -71,6 +71,7 @@ void main() {
   // difference of NDCs first (no cancellation of pixel coordinates), then pixels (NDC y is +y down).
   vec4 previous = frame.prevClipFromEye * vec4(inEye, 1.0);
   vec4 current = frame.unjitteredClipFromEye * vec4(inEye, 1.0);
-  outMotion = previous.w > 0.0 ? (previous.xy / previous.w - current.xy / current.w) * 0.5 * frame.viewport.xy : vec2(0.0);
+  vec2 ndc = previous.xy / previous.w - current.xy / current.w;
+  outMotion = previous.w > 0.0 ? ndc * 0.5 * frame.viewport.xy : vec2(0.0);  // 0: behind the previous camera
 #endif
 }

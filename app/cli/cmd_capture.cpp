@@ -76,8 +76,8 @@ static CaptureMeta captureMeta(const HeadlessSession& session, const CommonOptio
 
 // The frames of a sequence: frame i at time T + i S with time_step S, so that each frame's motion
 // target points at the frame before it; its jitter recorded in sequence.json.
-static int captureSequence(const CommonOptions& o, HeadlessSession& session, const Scene& scene, const RenderOptions& ro,
-                           const std::vector<Target>& wanted, int count) {
+static int captureSequence(const CommonOptions& o, HeadlessSession& session, const Scene& scene,
+                           const RenderOptions& ro, const std::vector<Target>& wanted, int count) {
   std::vector<FrameStats> last;
   auto produce = [&](size_t i, SequenceEntry& entry, std::string&) {
     RenderOptions frame = ro;
@@ -104,8 +104,10 @@ static int captureSequence(const CommonOptions& o, HeadlessSession& session, con
     std::fprintf(stderr, "gblens: wrote %s (%d frames from time %g, step %g s, %zu targets each)\n", o.output.c_str(),
                  count, ro.time, ro.timeStep, wanted.size());
   }
-  if (o.stats && !last.empty())
-    std::printf("%s\n", statsJson(last, {session.deviceName(), session.driverName(), scene.source}, ro).dump(2).c_str());
+  if (o.stats && !last.empty()) {
+    const nlohmann::json stats = statsJson(last, {session.deviceName(), session.driverName(), scene.source}, ro);
+    std::printf("%s\n", stats.dump(2).c_str());
+  }
   if (session.reportValidation() && status == 0) status = 1;
   return status;
 }

@@ -24,7 +24,8 @@ glm::dmat4 orbitWorldFromEye(const glm::dmat4& w0, const glm::dvec3& c, double r
 CameraDesc movedCamera(const CameraDesc& camera, const RenderOptions& o, const glm::dvec3& centre, double radius,
                        double time) {
   CameraDesc moved = camera;
-  if (o.cameraMotion == CameraMotion::Orbit) moved.worldFromEye = orbitWorldFromEye(camera.worldFromEye, centre, radius, time);
+  if (o.cameraMotion == CameraMotion::Orbit)
+    moved.worldFromEye = orbitWorldFromEye(camera.worldFromEye, centre, radius, time);
   return moved;
 }
 

@@ -272,7 +272,9 @@ const std::vector<Entry>& entries() {
             "write the motion target in the G-buffer pass: screen motion in pixels toward the previous frame "
             "(time - time_step), +y down, jitter excluded",
             &RenderOptions::motion),
-      real("time_step", "seconds from the previous frame to this one (1e-9..1e9): the motion target's previous camera, the jitter's frame number",
+      real("time_step",
+           "seconds from the previous frame to this one (1e-9..1e9): the motion target's previous camera, the "
+           "jitter's frame number",
            &RenderOptions::timeStep, 1e-9, 1e9),
   };
   return table;

@@ -152,8 +152,8 @@ static ImageDesc targetDesc(const GpuContext& ctx, Target t, const Scene& s, con
   d.usage = t == Target::Position && o.position == PositionSource::Depth ? VkImageUsageFlags(VK_IMAGE_USAGE_SAMPLED_BIT)
                                                                           : targetUsage(targetInfo(t).role, d.transient);
   const TargetRole role = targetInfo(t).role;
-  if ((role == TargetRole::GBuffer || role == TargetRole::Id || role == TargetRole::Motion) && !d.transient && (d.usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) &&
-      clearViews(ctx, o))
+  const bool colour = role == TargetRole::GBuffer || role == TargetRole::Id || role == TargetRole::Motion;
+  if (colour && !d.transient && (d.usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) && clearViews(ctx, o))
     d.clearFormat = clearViewFormat(texelFormat(t, o));
   // final (sRGB, no storage support) written by tonemap_compute through a UNORM view, the shader
   // encoding sRGB itself.

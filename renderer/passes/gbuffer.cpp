@@ -32,7 +32,8 @@ void addGBufferPass(FrameGraph& g, Renderer& r) {
   uses.push_back({Target::ShadowMap, Access::SampledFragment});
   // [primitive_id][stored position][motion]
   static const Shader kFragment[2][2][2] = {
-      {{Shader::gbuffer_frag, Shader::gbuffer_motion_frag}, {Shader::gbuffer_position_frag, Shader::gbuffer_position_motion_frag}},
+      {{Shader::gbuffer_frag, Shader::gbuffer_motion_frag},
+       {Shader::gbuffer_position_frag, Shader::gbuffer_position_motion_frag}},
       {{Shader::gbuffer_id_frag, Shader::gbuffer_id_motion_frag},
        {Shader::gbuffer_id_position_frag, Shader::gbuffer_id_position_motion_frag}}};
   const Shader fragment = kFragment[primitiveId][position][motion];

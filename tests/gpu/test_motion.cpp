@@ -134,8 +134,9 @@ TEST_F(GpuTest, MotionTargetMatchesTheOrbitReprojectedOnTheCpu) {
           const double err = std::abs(stored[c] - expected[c]), bound = halfStep(expected[c]) + 1e-3;
           worst = std::max(worst, err / bound);
           if (err > bound) {
-            if (bad < 5) ADD_FAILURE() << label << ": pixel " << x << "," << y << " channel " << c << " stored " << stored[c]
-                                       << " expected " << expected[c];
+            if (bad < 5)
+              ADD_FAILURE() << label << ": pixel " << x << "," << y << " channel " << c << " stored " << stored[c]
+                            << " expected " << expected[c];
             ++bad;
           }
         }
