@@ -1,13 +1,16 @@
 // gblens check CAPTURE [--json] [--policy RULE]...: every target and quantity of a capture (gblens's own
 // or imported) scanned for NaN, ±Inf, denormals and out-of-range decoded values, and positions rebuilt
 // from depth checked against a stored position (views/analysis/check.h). What is a fault comes from the
-// policy (default, the layout's "check" fields, --policy). Exit 0 no fault, 1 faults, 2 unreadable.
+// policy (default, the layout's "check" fields, --policy). A sequence: every frame, then the temporal
+// class (motion vectors vs the layout's convention). Exit 0 no fault, 1 faults, 2 unreadable.
 #include <cstdio>
 #include <memory>
 
 #include "app/cli/cli.h"
 #include "views/analysis/check.h"
+#include "views/analysis/temporal.h"
 #include "views/capture/capture.h"
+#include "views/capture/sequence.h"
 
 namespace gb {
 
@@ -19,17 +22,69 @@ struct CheckArgs {
 };
 }  // namespace
 
+// A sequence: every frame checked as a capture is, then the temporal class: its motion vectors
+// against the layout's convention (temporal.h), a fault by default ("motion=warn" lowers it).
+int checkSequence(const CheckArgs& o) {
+  Sequence seq;
+  std::string error;
+  if (!loadSequence(o.capture, seq, error)) {
+    std::fprintf(stderr, "gblens check: %s\n", error.c_str());
+    return 2;
+  }
+  nlohmann::json frames = nlohmann::json::array();
+  bool clean = true;
+  std::string text;
+  CheckPolicy policy;
+  for (size_t i = 0; i < seq.frames.size(); ++i) {
+    Capture c;
+    if (!loadCapture(seq.captureDir(i), c, error) || (i == 0 && !checkPolicy(c.frame.layout, o.policy, policy, error))) {
+      std::fprintf(stderr, "gblens check: %s\n", error.c_str());
+      return 2;
+    }
+    const CheckReport report = checkFrame(c.frame, policy);
+    clean = clean && report.clean();
+    frames.push_back({{"frame", seq.frames[i].number}, {"check", checkJson(report)}});
+    text += "frame " + std::to_string(seq.frames[i].number) + ": " +
+            (report.total() == 0 ? std::string("clean") : std::to_string(report.total()) + " findings") + "\n";
+    if (report.total()) text += checkText(report);
+  }
+  nlohmann::json temporal = nlohmann::json();
+  Capture first;
+  loadCapture(seq.captureDir(0), first, error);
+  const Quantity* motion = first.frame.layout.find(QuantityKind::Motion);
+  if (motion && seq.frames.size() >= 2) {
+    MotionReport r;
+    if (!checkMotionSequence(seq, {}, r, error)) {
+      std::fprintf(stderr, "gblens check: %s\n", error.c_str());
+      return 2;
+    }
+    const Severity level = policy.at(motion->name, "motion");
+    if (r.verdict == "differs" && level == Severity::Fault) clean = false;
+    temporal = {{"motion", motionReportJson(r, o.capture)}, {"severity", name(level)}};
+    if (level != Severity::Ignore) text += "temporal, motion (" + std::string(name(level)) + "):\n" + motionReportText(r);
+  } else {
+    text += "temporal: " + std::string(motion ? "one frame: no pair to check" : "the layout has no motion quantity") + "\n";
+  }
+  if (o.json)
+    std::printf("%s\n", nlohmann::json({{"format", "gblens-check-sequence"}, {"version", 1}, {"sequence", o.capture},
+                                        {"frames", frames}, {"temporal", temporal}}).dump(2).c_str());
+  else
+    std::printf("sequence %s\n%s", o.capture.c_str(), text.c_str());
+  return clean ? 0 : 1;
+}
+
 Command addCheckCommand(CLI::App& root) {
   auto o = std::make_shared<CheckArgs>();
   CLI::App* cmd = root.add_subcommand(
       "check", "scan every target of a capture for NaN, Inf, denormals and out-of-range values (exit 1 when found)");
-  cmd->add_option("CAPTURE", o->capture, "capture directory (gblens capture or gblens import)")->required();
+  cmd->add_option("CAPTURE", o->capture, "capture directory (gblens capture or gblens import), or a sequence (every frame, then its motion vectors)")->required();
   cmd->add_flag("--json", o->json, "print the report as JSON");
   cmd->add_option("--policy", o->policy,
-                  "[QUANTITY.]CLASS=LEVEL: what a finding means (CLASS nan, inf, denormal, out_of_range, position; LEVEL "
+                  "[QUANTITY.]CLASS=LEVEL: what a finding means (CLASS nan, inf, denormal, out_of_range, position, normal, motion; LEVEL "
                   "fault, warn, ignore); default: denormal=warn, the rest fault; the layout's \"check\" fields apply first")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   return {cmd, [o]() -> int {
+            if (isSequence(o->capture)) return checkSequence(*o);
             Capture c;
             std::string error;
             if (!loadCapture(o->capture, c, error)) {

@@ -281,5 +281,31 @@ TEST(Sequence, AFrameIsNamedSeqAtNAndMistakesAreOneLine) {
   EXPECT_EQ(r.exitCode, 2);
 }
 
+// gblens's own renderer checked the same way: an orbiting, Halton-jittered camera with the motion
+// target; and `check` on sequences: its temporal class faults the rig's flipped y, not the correct one.
+TEST(MotionCli, GblensOwnMotionTargetAndCheckOnSequences) {
+  const std::string dir = freshDir("motion-own");
+  RunResult r = runGblens("capture builtin:temple --size 160x90 --sequence 4 --time-step 0.1 --camera-motion orbit "
+                          "--jitter halton --motion on -o '" + dir + "/seq'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  r = runGblens("motion '" + dir + "/seq' --json");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const json report = json::parse(r.output);
+  EXPECT_EQ(report["verdict"], "agrees");
+  for (const json& p : report["pairs"]) {
+    EXPECT_EQ(p["detected"]["jitter"], "excluded") << p;  // Halton offsets differ frame to frame: decided
+    EXPECT_LT(p["static_error_pixels"]["max"].get<double>(), 0.01) << p;  // RG16F: 1/128 px below 16 px
+  }
+  r = runGblens("check '" + dir + "/seq' --json");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(json::parse(r.output)["temporal"]["motion"]["verdict"], "agrees");
+  const std::string flipped = rigSequence(dir + "/rig", "y_flipped");
+  r = runGblens("check '" + flipped + "'");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("y is flipped"), std::string::npos) << r.output;
+  r = runGblens("check '" + flipped + "' --policy motion=warn");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
 }  // namespace
 }  // namespace gb

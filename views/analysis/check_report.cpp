@@ -156,7 +156,8 @@ Severity CheckPolicy::at(const std::string& quantity, const std::string& cls) co
 CheckPolicy defaultCheckPolicy() {
   CheckPolicy p;
   p.classes = {{"nan", Severity::Fault}, {"inf", Severity::Fault}, {"denormal", Severity::Warn},
-               {"out_of_range", Severity::Fault}, {"position", Severity::Fault}, {"normal", Severity::Fault}};
+               {"out_of_range", Severity::Fault}, {"position", Severity::Fault}, {"normal", Severity::Fault},
+               {"motion", Severity::Fault}};
   return p;
 }
 
@@ -180,7 +181,7 @@ bool checkPolicy(const Layout& l, const std::vector<std::string>& rules, CheckPo
   for (const Quantity& q : l.quantities)
     for (auto& [cls, level] : q.check)
       if (parseLevel(level, s)) apply(q.name, cls, s);
-  static const std::set<std::string> classes = {"nan", "inf", "denormal", "out_of_range", "position", "normal"};
+  static const std::set<std::string> classes = {"nan", "inf", "denormal", "out_of_range", "position", "normal", "motion"};
   for (const std::string& rule : rules) {
     const size_t eq = rule.find('=');
     std::string left = rule.substr(0, eq), quantity, cls = left;
