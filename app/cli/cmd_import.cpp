@@ -192,18 +192,34 @@ bool importedFrame(const ImportInput& in, const RenderOptions& options, const st
 // --frames A..B: every frame the layout's pattern names, as one sequence (views/capture/sequence.h);
 // each frame's time and jitter from its camera (a sidecar per frame), when it gives them.
 int runImportSequence(const ImportOptions& o, const ImportInput& base, const RenderOptions& options,
-                      const std::vector<std::string>& stated) {
+                      const std::vector<std::string>& stated, bool rdc) {
   int64_t first = 0, last = 0;
   std::string error;
   if (!parseFrameRange(o.frames, "--frames", first, last, error)) return importFail(error);
-  if (!hasFramePattern(base.layout))
-    return importFail("--frames: " + o.layout + " names no frame pattern (#### in a source's file or the camera's sidecar)");
+  // RenderDoc writes a capture per frame (APP_frameN.rdc): the pattern is in the .rdc's name.
+  const bool inputPattern = std::any_of(o.inputs.begin(), o.inputs.end(), [](const std::string& f) { return f.find('#') != std::string::npos; });
+  if (!hasFramePattern(base.layout) && !inputPattern)
+    return importFail("--frames: neither " + o.layout + " nor the files name a frame pattern (# in a source's file, the camera's "
+                      "sidecar or a file given)");
   const nlohmann::json extra = {{"command_line", commandLine()}, {"source", {{"layout", o.layout}, {"inputs", o.inputs}}}};
   const bool ok = writeSequence(o.output, size_t(last - first + 1), [&](size_t i, SequenceEntry& e, std::string& why) {
     ImportInput in = base;
     e.number = first + int64_t(i);
     in.layout = layoutForFrame(base.layout, e.number);
-    for (std::string& f : in.files) f = framePath(f, e.number);  // FILES may name the frames by the pattern too
+    if (rdc) {
+      const std::string capture = framePath(o.inputs[0], e.number);
+      RenderDocImport r{capture, o.event, o.pass, !o.camera.empty(), {}};
+      RenderDocImported read;
+      progress("frame " + std::to_string(e.number) + ": reading " + capture + " (RenderDoc replays it)");
+      if (!readRenderDocImport(r, in, read, why)) {
+        why = "frame " + std::to_string(e.number) + ": " + why;
+        return false;
+      }
+      e.meta.driver = read.listing.driverNote;
+    } else {
+      in.files = o.inputs;
+      for (std::string& f : in.files) f = framePath(f, e.number);  // FILES may name the frames by the pattern too
+    }
     progress("frame " + std::to_string(e.number) + ": decoding " + std::to_string(in.layout.targets.size()) + " targets");
     if (!importedFrame(in, options, stated, e.frame, why)) {
       why = "frame " + std::to_string(e.number) + ": " + why;
@@ -213,6 +229,7 @@ int runImportSequence(const ImportOptions& o, const ImportInput& base, const Ren
     e.jitter = e.frame.layout.camera.jitter;
     e.meta.scene = "import: " + o.layout + " frame " + std::to_string(e.number);
     e.meta.source = {{"inputs", o.inputs}, {"frame", e.number}};
+    if (rdc) e.meta.source["tool"] = "RenderDoc";
     e.meta.commandLine = commandLine();
     return true;
   }, extra, error);
@@ -257,6 +274,7 @@ int runImport(const ImportOptions& o) {
   if (!o.size.empty()) in.layout.width = options.width, in.layout.height = options.height;
   in.cameraFile = o.camera;
   in.allowOutsideSources = o.allowOutside;
+  if (!o.frames.empty()) return runImportSequence(o, in, options, stated, rdc);
   RenderDocImported read;
   if (rdc) {
     RenderDocImport r{o.inputs[0], o.event, o.pass, !o.camera.empty(), {}};
@@ -266,10 +284,6 @@ int runImport(const ImportOptions& o) {
     in.files = o.inputs;
   }
 
-  if (!o.frames.empty()) {
-    if (rdc) return importFail("--frames: reads image sequences (a frame pattern in the layout's sources), not a RenderDoc capture");
-    return runImportSequence(o, in, options, stated);
-  }
   if (hasFramePattern(in.layout))
     return importFail(o.layout + ": its sources name frames (####): give --frames A..B (the sequence to write)");
   FrameSnapshot frame;

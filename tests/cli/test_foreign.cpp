@@ -211,6 +211,27 @@ void linearDepth(const Variant& v, const std::string& dir) {
   expectPositions(imp.capture, d, "LinearDepth", v.name);
 }
 
+// RenderDoc writes one .rdc per captured frame (APP_frameN.rdc): `import 'APP_frame#.rdc' --frames A..B`
+// reads them as one sequence (docs/temporal.md). Frame 1 is the perspective capture and frame 2 the
+// orthographic one (links named as RenderDoc names frames): each frame's texels are the app's dump.
+TEST(Foreign, SeveralCapturesImportAsOneSequenceFrameForFrame) {
+  const std::string dir = freshDir("foreign-sequence");
+  std::filesystem::create_symlink(kPerspective.rdc, dir + "/app_frame1.rdc");
+  std::filesystem::create_symlink(kOrthographic.rdc, dir + "/app_frame2.rdc");
+  RunResult r = runGblens("import '" + dir + "/app_frame#.rdc' --layout '" + kLayout + "' --frames 1..2 -o '" + dir + "/seq'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const auto& [n, v] : {std::pair{1, kPerspective}, std::pair{2, kOrthographic}}) {
+    Capture c;
+    std::string error;
+    ASSERT_TRUE(loadCapture(dir + "/seq@" + std::to_string(n), c, error)) << error;
+    expectTexelsEqual(c, loadDump(v.dump), v.name);
+  }
+  r = runGblens("import '" + dir + "/app_frame#.rdc' --layout '" + kLayout + "' --frames 1..3 -o '" + dir + "/short'");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("frame 3"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/short"));
+}
+
 TEST(Foreign, PerspectivePositionsFromLinearDepth) { linearDepth(kPerspective, freshDir("foreign-linear")); }
 TEST(Foreign, OrthographicPositionsFromLinearDepth) { linearDepth(kOrthographic, freshDir("foreign-linear-ortho")); }
 
