@@ -2,6 +2,7 @@
 #include "app/bench/bench_report.h"
 
 #include "app/bench/bench_attach.h"
+#include "app/bench/bench_temporal.h"
 
 #include <algorithm>
 #include <cmath>
@@ -199,6 +200,7 @@ nlohmann::json benchJson(const BenchReport& r) {
                   {"relative_max", d.relMax}, {"relative_mean", d.relMean}});
   j["depth_range"] = dr;
   if (!r.attach.is_null()) j["attach"] = r.attach;
+  if (!r.temporal.is_null()) j["motion"] = r.temporal;
   nlohmann::json dt = nlohmann::json::array();
   for (const DepthTestRow& d : r.depthTest)
     dt.push_back({{"source", d.source}, {"gap", d.gap}, {"znear", d.znear}, {"zfar", d.zfar}, {"depth", d.depth},
@@ -361,6 +363,7 @@ std::string benchMarkdown(const BenchReport& r) {
   }
   md << depthTestMarkdown(r);
   md << attachMarkdown(r.attach) << "\n";
+  md << temporalMarkdown(r.temporal) << "\n";
   md << "## Targets\n\n| target | scene | measured | bound | met |\n| --- | --- | --- | --- | --- |\n";
   for (const auto& t : targetsJson(r))
     md << "| " << t.value("target", "") << " | " << t.value("scene", "") << " | " << num(t.value("measured", 0.0)) << " | "

@@ -167,6 +167,7 @@ struct BenchReport {
   std::vector<DepthTestRow> depthTest;
   std::vector<DefaultsCheck> defaults;
   BenchTolerances tolerances;
+  nlohmann::json temporal;  // gblens motion per pair vs compare (bench_temporal.h); null when not run
   nlohmann::json attach;  // the cost of gblens attach (bench_attach.h); null when not run
 };
 

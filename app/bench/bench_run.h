@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "app/bench/bench_attach.h"
+#include "app/bench/bench_temporal.h"
 #include "app/bench/bench_methods.h"
 #include "app/bench/bench_report.h"
 #include "renderer/frame/renderer.h"
@@ -33,6 +34,7 @@ struct BenchSettings {  // gblens bench's own flags
   std::string methodsSizes = "1280x720";
   // The cost of gblens attach (bench_attach.h); runs unless --only leaves out "attach".
   AttachBenchSettings attach;
+  TemporalBenchSettings temporal;
 };
 
 // Warm-up frames, then up to `frames` timed frames within `cap` seconds (at least minFrames):

@@ -266,12 +266,13 @@ bool planBench(BenchPlan& p, std::string& error) {
   std::vector<std::string> only = split(s.only);
   p.runMethods = std::find(only.begin(), only.end(), "methods") != only.end();
   p.runAttach = std::find(only.begin(), only.end(), "attach") != only.end();
+  p.runTemporal = std::find(only.begin(), only.end(), "motion") != only.end();
   std::vector<BenchVariant> kept;
   for (const BenchVariant& v : p.variants)
     if (std::find(only.begin(), only.end(), v.name()) != only.end() ||
         std::find(only.begin(), only.end(), v.group) != only.end())
       kept.push_back(v);
-  if (kept.empty() && !p.runMethods && !p.runAttach) {
+  if (kept.empty() && !p.runMethods && !p.runAttach && !p.runTemporal) {
     error = "--only " + s.only + ": no variant or group of that name";
     return false;
   }
@@ -325,6 +326,10 @@ BenchReport runBench(GpuContext& ctx, const BenchPlan& p) {
   if (p.runAttach) {
     report.attach = attachStudy(s.attach);
     std::fprintf(stderr, "gblens bench: attach done [%s]\n", minutes(sweepSeconds(run.start)).c_str());
+  }
+  if (p.runTemporal) {
+    report.temporal = temporalStudy(ctx, p.defaults, s.temporal);
+    std::fprintf(stderr, "gblens bench: motion done [%s]\n", minutes(sweepSeconds(run.start)).c_str());
   }
   report.meta["skipped_scenes"] = skippedScenes;
   report.meta["seconds"] = sweepSeconds(run.start);

@@ -20,6 +20,7 @@ struct BenchPlan {
   std::vector<BenchVariant> variants;  // after --only
   bool runMethods = true;
   bool runAttach = true;
+  bool runTemporal = true;  // gblens motion per pair vs compare (bench_temporal.h)
 };
 
 // Fills lightCounts, sizes, the method lists and the variants from the settings' text lists and

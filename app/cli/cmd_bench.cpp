@@ -26,7 +26,7 @@ static bool printSummary(const BenchReport& report, const std::string& out) {
   bool anyMeasured = false;
   for (const BenchRow& row : report.rows) anyMeasured |= row.measured;
   for (const MethodRow& row : report.methods) anyMeasured |= row.measured;
-  anyMeasured |= !report.attach.is_null();
+  anyMeasured |= !report.attach.is_null() || !report.temporal.is_null();
   if (!anyMeasured) std::fprintf(stderr, "gblens bench: no scene could be measured\n");
   return anyMeasured;
 }
@@ -84,7 +84,7 @@ Command addBenchCommand(CLI::App& root) {
   cmd->add_option("--sizes", s->sizes, "output sizes of the size sweep")->capture_default_str();
   cmd->add_option("--only", s->only,
                   "measure only these variants or groups (comma-separated names, e.g. default,normal; \"methods\": the "
-                  "method comparison and skip savings; \"attach\": the cost of gblens attach)");
+                  "method comparison and skip savings; \"attach\": the cost of gblens attach; \"motion\": gblens motion per pair vs compare)");
   cmd->add_option("--depth-range", s->depthRange, "the depth-precision study on builtin:depth-range")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
@@ -119,6 +119,10 @@ Command addBenchCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--attach-rounds", s->attach.rounds, "gblens attach's cost: interleaved rounds of its four variants")
       ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  cmd->add_option("--motion-size", s->temporal.size, "gblens motion's cost: the sequence's size")->capture_default_str();
+  cmd->add_option("--motion-frames", s->temporal.frames, "gblens motion's cost: frames of the sequence (pairs: one fewer)")
+      ->check(CLI::Range(3, 10000))
       ->capture_default_str();
   cmd->add_option("--attach-size", s->attach.size, "gblens attach's cost: the application's output size")
       ->capture_default_str();

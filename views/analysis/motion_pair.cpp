@@ -11,6 +11,7 @@
 #include "renderer/core/decode.h"
 #include "renderer/core/statistics.h"
 #include "views/analysis/motion.h"
+#include "views/analysis/parallel_rows.h"
 
 namespace gb {
 
@@ -57,11 +58,13 @@ struct MotionPairContext {
 };
 
 std::vector<MotionSample> gatherSamples(const MotionPairContext& pc, const Quantity& q) {
-  std::vector<MotionSample> out;
   const FrameSnapshot& C = *pc.cur;
   const TargetImage* img = layoutImage(C, q.target);
-  for (uint32_t y = 0; y < pc.h; ++y)
+  std::vector<std::vector<MotionSample>> parts(pc.h);  // per row, joined in order: the same on any core count
+  parallelRows(pc.h, size_t(pc.w) * pc.h, [&](uint32_t y0, uint32_t y1) {
+  for (uint32_t y = y0; y < y1; ++y)
     for (uint32_t x = 0; x < pc.w; ++x) {
+      std::vector<MotionSample>& out = parts[y];
       if (!holds(C, q, x, y)) continue;
       const std::optional<glm::dvec3> p = surfacePoint(C, x, y, pc.jc);
       if (!p) continue;
@@ -84,7 +87,10 @@ std::vector<MotionSample> gatherSamples(const MotionPairContext& pc, const Quant
       }
       if (std::isfinite(s.stored.x) && std::isfinite(s.stored.y)) out.push_back(s);
     }
-  return out;
+  });
+  std::vector<MotionSample> all;
+  for (std::vector<MotionSample>& p : parts) all.insert(all.end(), p.begin(), p.end());
+  return all;
 }
 
 std::vector<ConventionCandidate> hypotheses(bool withLag) {
@@ -115,8 +121,10 @@ void detect(const MotionPairContext& pc, const std::vector<MotionSample>& all, M
   for (size_t i = 0; i < all.size(); i += stride)
     if (!pc.before || all[i].hasLag) sub.push_back(&all[i]);
   std::vector<ConventionCandidate> hs = hypotheses(pc.before != nullptr);
-  for (ConventionCandidate& h : hs)
-    for (const MotionSample* s : sub) h.inliers += pc.residual(*s, h.c) < pc.bound(*s, h.c);
+  parallelRows(uint32_t(hs.size()), hs.size() * sub.size(), [&](uint32_t a, uint32_t b) {
+    for (uint32_t i = a; i < b; ++i)
+      for (const MotionSample* s : sub) hs[i].inliers += pc.residual(*s, hs[i].c) < pc.bound(*s, hs[i].c);
+  });
   auto better = [&](const ConventionCandidate& a, const ConventionCandidate& b) {
     if (a.inliers != b.inliers) return a.inliers > b.inliers;
     const int da = fieldsDiffering(a.c, out.declared), db = fieldsDiffering(b.c, out.declared);
@@ -200,6 +208,50 @@ static bool sameSurface(const FrameSnapshot& C, uint32_t x, uint32_t y, const Fr
   return dp && std::fabs(*dp - *dc) < 0.1 * *dc;
 }
 
+// The class of one surface pixel under the convention F (motion_pair.cpp's classes).
+static uint32_t classify(const MotionPairContext& pc, const MotionConvention& F, const MotionSample& s) {
+  const FrameSnapshot& C = *pc.cur;
+  const FrameSnapshot& P = *pc.prev;
+  const glm::dvec2 d = motionFromStored(F, s.stored, F.lag ? pc.djLag : pc.dj, pc.w, pc.h);
+  const glm::dvec2 u(s.x + 0.5 - pc.jc.x, s.y + 0.5 - pc.jc.y);
+  const bool agrees = pc.residual(s, F) < pc.bound(s, F);
+  // Where N-1 shows this pixel's surface: by the camera alone (static) or by the stored vector.
+  const glm::dvec2 target = (agrees ? u + (F.lag ? s.mLag : s.m) : u + d) + pc.jp;
+  const double tx = std::floor(target.x), ty = std::floor(target.y);
+  uint32_t c = kWrong;
+  if (tx < 0 || ty < 0 || tx >= pc.w || ty >= pc.h) {
+    c = kDisoccluded;  // off screen in N-1
+  } else {
+    bool same = false, nearer = false;
+    // Static: N-1 saw the point where the camera puts it when its depth lies within the range of
+    // N-1's depths around that place (a grazing surface changes depth fast from texel to texel).
+    const std::optional<double> here = viewDepthOf(P.camera, s.world);
+    double lo = 1e300, hi = -1e300;
+    for (int oy = -1; oy <= 1 && !same; ++oy)
+      for (int ox = -1; ox <= 1 && !same; ++ox) {
+        const double nx = tx + ox, ny = ty + oy;
+        if (nx < 0 || ny < 0 || nx >= pc.w || ny >= pc.h) continue;
+        const uint32_t ix = uint32_t(nx), iy = uint32_t(ny);
+        const auto pw = surfacePoint(P, ix, iy, pc.jp);
+        const auto there = pw ? viewDepthOf(P.camera, *pw) : std::nullopt;
+        if (agrees) {
+          if (there) lo = std::min(lo, *there), hi = std::max(hi, *there);
+        } else {
+          same = sameSurface(C, s.x, s.y, P, ix, iy, s.world, pc.jp);
+          const auto dc = viewDepthOf(C.camera, s.world);
+          nearer = nearer || (dc && there && *there < 0.98 * *dc);
+        }
+      }
+    if (agrees && here) {
+      const double tol = 0.01 * *here + 1e-4;
+      same = lo <= hi && *here >= lo - tol && *here <= hi + tol;
+      nearer = lo <= hi && *here > hi + tol;
+    }
+    c = same ? (agrees ? kStatic : kMoving) : nearer ? kDisoccluded : kWrong;
+  }
+  return c;
+}
+
 MotionPair checkMotionPair(const TemporalFrame& previous, const TemporalFrame& current, const TemporalFrame* beforePrevious,
                            const MotionPairOptions& options) {
   MotionPair out;
@@ -238,47 +290,15 @@ MotionPair checkMotionPair(const TemporalFrame& previous, const TemporalFrame& c
   std::vector<uint32_t> cls(size_t(pc.w) * pc.h, kNone);
   const MotionConvention& F = out.detected ? out.found : out.declared;
   std::vector<double> staticErrors;
-  for (const MotionSample& s : all) {
-    if (out.declared.lag == 0 || s.hasLag) err[size_t(s.y) * pc.w + s.x] = float(pc.residual(s, out.declared));
-    if (F.lag && !s.hasLag) continue;
-    const glm::dvec2 d = motionFromStored(F, s.stored, F.lag ? pc.djLag : pc.dj, pc.w, pc.h);
-    const glm::dvec2 u(s.x + 0.5 - pc.jc.x, s.y + 0.5 - pc.jc.y);
-    const bool agrees = pc.residual(s, F) < pc.bound(s, F);
-    // Where N-1 shows this pixel's surface: by the camera alone (static) or by the stored vector.
-    const glm::dvec2 target = (agrees ? u + (F.lag ? s.mLag : s.m) : u + d) + pc.jp;
-    const double tx = std::floor(target.x), ty = std::floor(target.y);
-    uint32_t c = kWrong;
-    if (tx < 0 || ty < 0 || tx >= pc.w || ty >= pc.h) {
-      c = kDisoccluded;  // off screen in N-1
-    } else {
-      bool same = false, nearer = false;
-      // Static: N-1 saw the point where the camera puts it when its depth lies within the range of
-      // N-1's depths around that place (a grazing surface changes depth fast from texel to texel).
-      const std::optional<double> here = viewDepthOf(P.camera, s.world);
-      double lo = 1e300, hi = -1e300;
-      for (int oy = -1; oy <= 1 && !same; ++oy)
-        for (int ox = -1; ox <= 1 && !same; ++ox) {
-          const double nx = tx + ox, ny = ty + oy;
-          if (nx < 0 || ny < 0 || nx >= pc.w || ny >= pc.h) continue;
-          const uint32_t ix = uint32_t(nx), iy = uint32_t(ny);
-          const auto pw = surfacePoint(P, ix, iy, pc.jp);
-          const auto there = pw ? viewDepthOf(P.camera, *pw) : std::nullopt;
-          if (agrees) {
-            if (there) lo = std::min(lo, *there), hi = std::max(hi, *there);
-          } else {
-            same = sameSurface(C, s.x, s.y, P, ix, iy, s.world, pc.jp);
-            const auto dc = viewDepthOf(C.camera, s.world);
-            nearer = nearer || (dc && there && *there < 0.98 * *dc);
-          }
-        }
-      if (agrees && here) {
-        const double tol = 0.01 * *here + 1e-4;
-        same = lo <= hi && *here >= lo - tol && *here <= hi + tol;
-        nearer = lo <= hi && *here > hi + tol;
-      }
-      c = same ? (agrees ? kStatic : kMoving) : nearer ? kDisoccluded : kWrong;
+  parallelRows(uint32_t(all.size()), all.size() * 16, [&](uint32_t i0, uint32_t i1) {
+    for (uint32_t i = i0; i < i1; ++i) {
+      const MotionSample& s = all[i];
+      if (out.declared.lag == 0 || s.hasLag) err[size_t(s.y) * pc.w + s.x] = float(pc.residual(s, out.declared));
+      if (!F.lag || s.hasLag) cls[size_t(s.y) * pc.w + s.x] = classify(pc, F, s);
     }
-    cls[size_t(s.y) * pc.w + s.x] = c;
+  });
+  for (const MotionSample& s : all) {
+    const uint32_t c = cls[size_t(s.y) * pc.w + s.x];
     if (c == kStatic) {
       ++out.staticPixels;
       const float e = err[size_t(s.y) * pc.w + s.x];
