@@ -2,7 +2,8 @@
 // window.cpp (GLFW, swapchain, Dear ImGui's backends), startup.cpp (arguments, context, frame
 // source; exit summary, teardown), viewer.cpp (the loop: render on demand),
 // controls.cpp (keys, camera, lights), camera_rig.cpp (orbit/fly), probe.cpp (region read-back ->
-// the shared dossier), captures.cpp (capture button, --capture / --compare).
+// the shared dossier), captures.cpp (capture button, --capture / --compare), sequence.cpp (view SEQ:
+// the timeline, the frame cache, the probe's track).
 #pragma once
 #include <array>
 #include <chrono>
