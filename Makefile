@@ -48,8 +48,9 @@ test: build
 golden: build
 	tests/golden/golden.sh regenerate $(GBLENS)
 
-# Rewrite tests/data/blender (the Cycles G-buffer that tests/unit/test_blender_import.cpp imports) with
-# Blender (Debian's blender 3.4: installed when root, else named); then look at it and commit it.
+# Rewrite tests/data/blender (the Cycles G-buffer that tests/unit/test_blender_import.cpp imports, and
+# sequence/: five frames of an animation, checked by check_vectors.py) with Blender (Debian's blender
+# 3.4: installed when root, else named); then look at it and commit it.
 BLENDER ?= blender
 fixtures:
 	@command -v $(BLENDER) >/dev/null || { \
@@ -59,7 +60,9 @@ fixtures:
 	  else echo "make fixtures: needs Blender; run:"; echo "  sudo apt-get install -y --no-install-recommends blender"; exit 1; fi; }
 	$(BLENDER) -b --factory-startup -noaudio -P assets/blender/render_gbuffer.py -- tests/data/blender
 	$(BLENDER) -b --factory-startup -noaudio -P assets/blender/render_gbuffer.py -- tests/data/blender/ortho 96 54 --ortho --full-float
-	@ls -l tests/data/blender tests/data/blender/ortho
+	$(BLENDER) -b --factory-startup -noaudio -P assets/blender/render_sequence.py -- tests/data/blender/sequence
+	/usr/bin/python3 assets/blender/check_vectors.py tests/data/blender/sequence
+	@ls -l tests/data/blender tests/data/blender/ortho tests/data/blender/sequence
 
 # The default sweep on the built-in temple and, when present, the shared VC model (a glTF that
 # does not load is skipped with a message). Budgeted to finish within 15 minutes on 2 cores.

@@ -69,6 +69,8 @@ Command addCheckCommand(CLI::App& root);
 Command addStatsCommand(CLI::App& root);
 Command addDecomposeCommand(CLI::App& root);
 Command addAttachCommand(CLI::App& root);
+Command addMotionCommand(CLI::App& root);
+Command addFlickerCommand(CLI::App& root);
 
 
 // Loads SCENE; on a user mistake prints one line and returns false (caller exits 2).

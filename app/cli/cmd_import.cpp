@@ -1,6 +1,7 @@
 // gblens import: another renderer's G-buffer becomes an ordinary gblens capture.
 //   gblens import FILES... --layout L.json -o DIR [--camera CAM.json] [--param NAME=VALUE]... [--size WxH]
 //   gblens import APP.rdc --layout L.json [--event EID | --pass NAME] -o DIR [...]
+//   gblens import --layout L.json --frames A..B -o SEQ   (a #### pattern in the layout: a sequence)
 //   gblens import APP.rdc --list
 //   gblens import APP.rdc|FILES... --suggest-layout [--event EID | --pass NAME] [-o DRAFT.json]
 // The layout says what the files hold (docs/layout-format.md); the capture is written atomically, and
@@ -18,6 +19,7 @@
 #include "renderer/core/library_output.h"
 #include "views/capture/capture.h"
 #include "views/capture/image_io.h"
+#include "views/capture/sequence.h"
 #include "views/import/import_renderdoc.h"
 #include "views/infer/suggest.h"
 
@@ -27,7 +29,7 @@ namespace {
 
 struct ImportOptions {
   std::vector<std::string> inputs;
-  std::string layout, output, camera, size, pass;
+  std::string layout, output, camera, size, pass, frames;
   std::vector<std::string> params;
   uint32_t event = 0;
   bool list = false, suggest = false;
@@ -170,6 +172,55 @@ int runSuggest(const ImportOptions& o) {
   return 0;
 }
 
+// One frame read with the layout, its options and absences settled as every import's are.
+bool importedFrame(const ImportInput& in, const RenderOptions& options, const std::vector<std::string>& stated,
+                   FrameSnapshot& frame, std::string& error) {
+  if (!importFrame(in, frame, error)) return false;
+  // The options the layout was resolved with are the frame's (gblens's own frames: how it was rendered).
+  setImportedOptions(frame, options, stated);
+  // gblens's own layout: a target the capture does not hold says why, as gblens's captures do (a
+  // 1x1 stand-in of coverage left out: "not computed: coverage off", by the options given).
+  if (frame.layout.name == nativeLayout(options).name)
+    for (uint32_t t = 0; t < frame.layout.targets.size(); ++t)
+      for (const TargetInfo& info : targetTable())
+        if (!frame.images[t].present() && info.name == frame.layout.targets[t].name &&
+            targetAbsence(info.target, frame.options) != Absent::No)
+          frame.absences[t] = targetAbsence(info.target, frame.options);
+  return true;
+}
+
+// --frames A..B: every frame the layout's pattern names, as one sequence (views/capture/sequence.h);
+// each frame's time and jitter from its camera (a sidecar per frame), when it gives them.
+int runImportSequence(const ImportOptions& o, const ImportInput& base, const RenderOptions& options,
+                      const std::vector<std::string>& stated) {
+  int64_t first = 0, last = 0;
+  std::string error;
+  if (!parseFrameRange(o.frames, "--frames", first, last, error)) return importFail(error);
+  if (!hasFramePattern(base.layout))
+    return importFail("--frames: " + o.layout + " names no frame pattern (#### in a source's file or the camera's sidecar)");
+  const nlohmann::json extra = {{"command_line", commandLine()}, {"source", {{"layout", o.layout}, {"inputs", o.inputs}}}};
+  const bool ok = writeSequence(o.output, size_t(last - first + 1), [&](size_t i, SequenceEntry& e, std::string& why) {
+    ImportInput in = base;
+    e.number = first + int64_t(i);
+    in.layout = layoutForFrame(base.layout, e.number);
+    progress("frame " + std::to_string(e.number) + ": decoding " + std::to_string(in.layout.targets.size()) + " targets");
+    if (!importedFrame(in, options, stated, e.frame, why)) {
+      why = "frame " + std::to_string(e.number) + ": " + why;
+      return false;
+    }
+    e.time = e.frame.layout.camera.time;
+    e.jitter = e.frame.layout.camera.jitter;
+    e.meta.scene = "import: " + o.layout + " frame " + std::to_string(e.number);
+    e.meta.source = {{"inputs", o.inputs}, {"frame", e.number}};
+    e.meta.commandLine = commandLine();
+    return true;
+  }, extra, error);
+  if (!ok) return importFail(error);
+  std::printf("imported frames %lld..%lld with layout %s into the sequence %s\n", (long long)first, (long long)last,
+              o.layout.c_str(), o.output.c_str());
+  return 0;
+}
+
 int runImport(const ImportOptions& o) {
   showLibraryOutput(o.verbose);
   const bool rdc = o.inputs.size() == 1 && isRenderDocCapture(o.inputs[0]);
@@ -214,19 +265,15 @@ int runImport(const ImportOptions& o) {
     in.files = o.inputs;
   }
 
+  if (!o.frames.empty()) {
+    if (rdc) return importFail("--frames: reads image sequences (a frame pattern in the layout's sources), not a RenderDoc capture");
+    return runImportSequence(o, in, options, stated);
+  }
+  if (hasFramePattern(in.layout))
+    return importFail(o.layout + ": its sources name frames (####): give --frames A..B (the sequence to write)");
   FrameSnapshot frame;
   progress("decoding " + std::to_string(in.layout.targets.size()) + " targets with layout " + o.layout);
-  if (!importFrame(in, frame, error)) return importFail(error);
-  // The options the layout was resolved with are the frame's (gblens's own frames: how it was rendered).
-  setImportedOptions(frame, options, stated);
-  // gblens's own layout: a target the capture does not hold says why, as gblens's captures do (a
-  // 1x1 stand-in of coverage left out: "not computed: coverage off", by the options given).
-  if (frame.layout.name == nativeLayout(options).name)
-    for (uint32_t t = 0; t < frame.layout.targets.size(); ++t)
-      for (const TargetInfo& info : targetTable())
-        if (!frame.images[t].present() && info.name == frame.layout.targets[t].name &&
-            targetAbsence(info.target, frame.options) != Absent::No)
-          frame.absences[t] = targetAbsence(info.target, frame.options);
+  if (!importedFrame(in, options, stated, frame, error)) return importFail(error);
   CaptureMeta meta;
   meta.scene = "import:";
   for (const std::string& input : o.inputs) meta.scene += " " + input;
@@ -275,6 +322,7 @@ Command addImportCommand(CLI::App& root) {
                   "what the G-buffer holds: a layout file (docs/layout-format.md) or a layout gblens carries: " +
                       builtinLayoutNames());
   cmd->add_option("-o,--output", o->output, "the capture folder to write (atomically); --suggest-layout: the draft's file");
+  cmd->add_option("--frames", o->frames, "A..B: the frames a layout's #### pattern names, written as one sequence (docs/temporal.md)");
   cmd->add_option("--camera", o->camera, "a camera sidecar JSON (the layout's camera fields) overriding the layout's camera");
   cmd->add_option("--param", o->params, "NAME=VALUE: an option value for a parameterised layout (e.g. normal_format=oct-rg16)")
       ->allow_extra_args(false)

@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
       gb::addStatsCommand(app),
       gb::addDecomposeCommand(app),
       gb::addAttachCommand(app),
+      gb::addMotionCommand(app),
+      gb::addFlickerCommand(app),
   };
   for (int i = 0; i < argc; ++i) gb::commandLine() += (i ? " " : "") + std::string(i ? argv[i] : "gblens");
   // An unknown first word is a mistyped command: name it and the commands there are.

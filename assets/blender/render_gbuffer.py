@@ -6,7 +6,7 @@
 #   blender -b --factory-startup -P assets/blender/render_gbuffer.py -- OUT_DIR [WIDTH HEIGHT] [--ortho] [--full-float]
 #   blender -b my.blend -P assets/blender/render_gbuffer.py -- OUT_DIR --scene [--full-float]
 # --ortho: the test scene through an orthographic camera; --full-float: colour passes in float32
-# ("Float (Full)") instead of half.
+# ("Float (Full)") instead of half. render_sequence.py renders an animation of the same scene.
 import json
 import math
 import os
@@ -155,13 +155,14 @@ def own_scene():
     return scene, cam
 
 
-def configure_output(scene, full_float):
+def configure_output(scene, full_float, passes=PASSES):
     """Every pass the layout reads, on the first view layer, into one multilayer EXR: colour passes
-    in half float (float32 with --full-float); Blender keeps Depth, Normal, Position and the indices
-    in float32 regardless."""
+    in half float (float32 with --full-float); Blender keeps Depth, Normal, Position, Vector and the
+    indices in float32 regardless. Passes not in `passes` are turned off (render_sequence.py's list
+    has no Combined)."""
     layer = scene.view_layers[0]
-    for p in PASSES:
-        setattr(layer, "use_pass_" + p, True)
+    for p in PASSES + ("vector",):
+        setattr(layer, "use_pass_" + p, p in passes)
     r = scene.render
     # No dates, times or file names in the EXR header: a regenerated fixture differs only where the
     # pixels do.
@@ -174,18 +175,19 @@ def configure_output(scene, full_float):
     img.exr_codec = "ZIP"
 
 
-def camera_json(scene, cam, width, height):
+def camera_json(scene, cam, width, height, extra=None):
     """The sidecar (docs/layout-format.md, "camera"): Blender's camera transform (world_from_view: the
     view looks down -Z, +Y up, world Z up) and calc_matrix_camera's OpenGL projection (y up, z -1..1),
     row-major as mathutils indexes them (m[row][col]). Blender keeps matrices in float32; these are
-    the doubles of those floats, so gblens sees the numbers Cycles used."""
+    the doubles of those floats, so gblens sees the numbers Cycles used. `extra`: more fields (a
+    sequence's "time")."""
     depsgraph = bpy.context.evaluated_depsgraph_get()
     proj = cam.calc_matrix_camera(depsgraph, x=width, y=height, scale_x=scene.render.pixel_aspect_x,
                                   scale_y=scene.render.pixel_aspect_y)
     rows = lambda m: ",\n".join("    " + ", ".join(repr(float(m[r][c])) for c in range(4)) for r in range(4))
     fields = {"matrix_order": "row_major", "convention": "gl", "view_handedness": "right", "up": "z",
               "image_origin": "top", "size": [width, height],
-              "projection": "orthographic" if cam.data.type == "ORTHO" else "perspective"}
+              "projection": "orthographic" if cam.data.type == "ORTHO" else "perspective", **(extra or {})}
     text = "{\n"
     text += "".join("  %s: %s,\n" % (json.dumps(k), json.dumps(v)) for k, v in fields.items())
     text += '  "world_from_view": [\n%s],\n' % rows(cam.matrix_world)
@@ -211,4 +213,5 @@ def main():
     print("render_gbuffer.py: wrote %s (%dx%d) and camera.json" % (exr, width, height))
 
 
-main()
+if __name__ == "__main__":  # render_sequence.py imports this file for its scene and output settings
+    main()

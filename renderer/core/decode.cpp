@@ -163,6 +163,7 @@ glm::dvec2 decodeMotion(const FrameSnapshot& f, const Quantity& q, uint32_t x, u
   glm::dvec2 m(v[0], v[1]);
   if (q.units == MotionUnits::Ndc) m *= glm::dvec2(f.camera.width, f.camera.height) * 0.5;
   if (q.units == MotionUnits::Uv) m *= glm::dvec2(f.camera.width, f.camera.height);
+  if (q.motionYUp) m.y = -m.y;
   return q.toPrevious ? m : -m;
 }
 

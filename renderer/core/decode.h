@@ -41,7 +41,8 @@ NormalSample decodeNormal(const FrameSnapshot& f, const Quantity& q, uint32_t x,
 std::optional<double> decodeEyeDepth(const FrameSnapshot& f, const Quantity& q, uint32_t x, uint32_t y);
 // The eye-space position from a depth quantity (reconstructed with the camera) or a stored position.
 std::optional<glm::dvec3> decodePosition(const FrameSnapshot& f, const Quantity& q, uint32_t x, uint32_t y);
-// A motion vector in pixels, toward the previous frame.
+// A motion vector in pixels, toward the previous frame, +y down (the layout's units, direction and y
+// axis undone; jitter is not: that needs the sequence, views/analysis/motion.h).
 glm::dvec2 decodeMotion(const FrameSnapshot& f, const Quantity& q, uint32_t x, uint32_t y);
 
 // The depth quantity that says where surfaces are: the layout's first camera depth (null: none).

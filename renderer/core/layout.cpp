@@ -80,6 +80,36 @@ const char* name(DepthEncoding e) {
   return n[size_t(e)];
 }
 
+std::string framePath(const std::string& pattern, int64_t number) {
+  std::string out;
+  for (size_t i = 0; i < pattern.size();) {
+    if (pattern[i] != '#') {
+      out += pattern[i++];
+      continue;
+    }
+    size_t n = 0;
+    while (i + n < pattern.size() && pattern[i + n] == '#') ++n;
+    std::string digits = std::to_string(number < 0 ? -number : number);
+    if (digits.size() < n) digits.insert(0, n - digits.size(), '0');
+    out += (number < 0 ? "-" : "") + digits;
+    i += n;
+  }
+  return out;
+}
+
+bool hasFramePattern(const Layout& l) {
+  for (const LayoutTarget& t : l.targets)
+    if (t.source.path.find('#') != std::string::npos) return true;
+  return l.camera.sidecar.find('#') != std::string::npos;
+}
+
+Layout layoutForFrame(const Layout& l, int64_t number) {
+  Layout out = l;
+  for (LayoutTarget& t : out.targets) t.source.path = framePath(t.source.path, number);
+  out.camera.sidecar = framePath(out.camera.sidecar, number);
+  return out;
+}
+
 void describeImage(const LayoutTarget& t, CpuImage& img) {
   img.name = t.name;
   img.channels = t.channels;

@@ -62,7 +62,9 @@ struct Quantity {
   bool ofSun = false;                // depth: the sun's shadow-map depth, not the camera's
   double scale = 1.0, bias = 0.0;
   MotionUnits units = MotionUnits::Pixels;
-  bool toPrevious = true;            // motion: current -> previous frame
+  bool toPrevious = true;            // motion: current -> previous frame ("to_next": the negated vector)
+  bool motionYUp = false;            // motion: +y points up the image ("y": "up")
+  bool jitterIncluded = false;       // motion: the difference of jittered positions ("jitter": "included")
   std::string unit;                  // scalar/vector: for people
   std::map<uint32_t, std::string> idNames;      // id: value -> name
   std::map<std::string, uint32_t> stencilBits;  // stencil: name -> mask
@@ -129,6 +131,10 @@ struct LayoutCamera {
   bool bottomOrigin = false; // row 0 of the stored images is the bottom of the picture
   uint32_t width = 0, height = 0;  // the image size the projection was made for (0: not given)
   std::string sidecar;       // the matrices come from this JSON file (resolved at import)
+  // A sequence's frame (docs/temporal.md): the sub-pixel offset the projection was moved by (pixels,
+  // +x right, +y down the image as shown; the matrices are the unjittered ones) and the time.
+  std::optional<glm::dvec2> jitter;
+  std::optional<double> time;
   struct BufferMatrix {
     std::string buffer;
     uint64_t viewOffset = 0, clipOffset = 0;
@@ -206,5 +212,12 @@ struct Layout {
 // camera, one line naming the file and the field; "" when it can. camera.live is a running
 // application's bytes: only `gblens attach` has them.
 std::string importCameraRefusal(const Layout& l);
+
+// Sequences (docs/temporal.md): a run of '#' in a source's path or the camera's sidecar is the frame
+// number, zero-padded to the run's length ("cycles_####.exr", Blender's pattern). Whether a layout
+// has one, and the layout of frame `number` (every run replaced).
+bool hasFramePattern(const Layout& layout);
+Layout layoutForFrame(const Layout& layout, int64_t number);
+std::string framePath(const std::string& pattern, int64_t number);
 
 }  // namespace gb

@@ -179,12 +179,15 @@ bool readQuantityFields(Reader& r, const json& j, const Where& w, Quantity& q) {
       return r.unknownKeys(j, w, {"quantity", "name", "channels", "space", "when"});
     }
     case QuantityKind::Motion: {
-      int u = -1, d = -1;
-      if (!r.choice(j, w, "units", {"pixels", "ndc", "uv"}, u) || !r.choice(j, w, "direction", {"to_previous", "to_next"}, d))
+      int u = -1, d = -1, yAxis = -1, jitter = -1;
+      if (!r.choice(j, w, "units", {"pixels", "ndc", "uv"}, u) || !r.choice(j, w, "direction", {"to_previous", "to_next"}, d) ||
+          !r.choice(j, w, "y", {"down", "up"}, yAxis) || !r.choice(j, w, "jitter", {"excluded", "included"}, jitter))
         return false;
       if (u >= 0) q.units = MotionUnits(u);
       q.toPrevious = d != 1;
-      return r.unknownKeys(j, w, {"quantity", "name", "channels", "units", "direction", "when"});
+      q.motionYUp = yAxis == 1;
+      q.jitterIncluded = jitter == 1;
+      return r.unknownKeys(j, w, {"quantity", "name", "channels", "units", "direction", "y", "jitter", "when"});
     }
     case QuantityKind::Id:
       if (auto it = j.find("names"); it != j.end()) {
@@ -557,6 +560,18 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
     if (!g->is_string() && !g->is_object()) return r.fail(wc, "guess", "expected a text or an object");
     c.guess = *g;
   }
+  if (auto it = j.find("jitter"); it != j.end()) {
+    double jx = 0, jy = 0;
+    if (!it->is_array() || it->size() != 2 || !jsonNumber((*it)[0], jx) || !jsonNumber((*it)[1], jy) ||
+        std::fabs(jx) > 64 || std::fabs(jy) > 64)
+      return r.fail(wc, "jitter", "expected [x, y] in pixels (+x right, +y down)");
+    c.jitter = glm::dvec2(jx, jy);
+  }
+  if (auto it = j.find("time"); it != j.end()) {
+    double t = 0;
+    if (!jsonNumber(*it, t)) return r.fail(wc, "time", "expected a number of seconds");
+    c.time = t;
+  }
   if (!up.empty() && !parseAxis(up, c.up))
     return r.fail(wc, "up", "\"" + up + "\" is not one of x, -x, y, -y, z, -z");
   if (conv >= 0) c.convention = LayoutCamera::Convention(conv);
@@ -623,7 +638,7 @@ bool readCamera(Reader& r, const json& j, const Where& w, LayoutCamera& c) {
   }
   return r.unknownKeys(j, wc, {"view_from_world", "world_from_view", "clip_from_view", "clip_from_world", "matrix_order", "convention",
                                "view_handedness", "world_handedness", "projection", "up", "image_origin", "sidecar",
-                               "renderdoc", "live", "size", "from", "guess"});
+                               "renderdoc", "live", "size", "from", "guess", "jitter", "time"});
 }
 
 bool readLights(Reader& r, const json& j, const Where& w, LayoutLights& l) {

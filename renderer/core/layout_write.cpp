@@ -46,6 +46,8 @@ static json quantityJson(const Quantity& q) {
     case QuantityKind::Motion:
       j["units"] = q.units == MotionUnits::Pixels ? "pixels" : q.units == MotionUnits::Ndc ? "ndc" : "uv";
       j["direction"] = q.toPrevious ? "to_previous" : "to_next";
+      if (q.motionYUp) j["y"] = "up";
+      if (q.jitterIncluded) j["jitter"] = "included";
       break;
     case QuantityKind::Id:
       if (!q.idNames.empty()) {
@@ -111,6 +113,8 @@ json layoutCameraJson(const LayoutCamera& c) {
   if (c.statedWorldLeftHanded) j["world_handedness"] = *c.statedWorldLeftHanded ? "left" : "right";
   if (c.statedOrthographic) j["projection"] = *c.statedOrthographic ? "orthographic" : "perspective";
   if (!c.sidecar.empty()) j["sidecar"] = c.sidecar;
+  if (c.jitter) j["jitter"] = {c.jitter->x, c.jitter->y};
+  if (c.time) j["time"] = *c.time;
   if (!c.from.empty()) j["from"] = c.from;
   if (!c.guess.is_null()) j["guess"] = c.guess;
   if (c.width) j["size"] = {c.width, c.height};

@@ -31,6 +31,11 @@ struct TemporalFrame {
 // Null where `from` holds no surface or the point is behind `to`'s camera.
 std::optional<glm::dvec2> reprojectPixel(const FrameSnapshot& from, uint32_t x, uint32_t y, const FrameSnapshot& to);
 
+// The world-space point pixel (x, y) of `f` shows (from its depth, or a stored position), its centre
+// moved back by the frame's jitter; and a world point in a camera's unjittered pixel coordinates.
+std::optional<glm::dvec3> surfacePoint(const FrameSnapshot& f, uint32_t x, uint32_t y, glm::dvec2 jitter);
+std::optional<glm::dvec2> projectToPixel(const Camera& camera, const glm::dvec3& world);
+
 // How a layout's stored vector relates to the screen motion. The layout's motion quantity declares
 // one (layout-format.md: units, direction, y, jitter); `gblens motion` detects one.
 struct MotionConvention {
@@ -41,11 +46,23 @@ struct MotionConvention {
   bool jitterIncluded = false;  // the difference of the jittered positions, not the unjittered ones
   int lag = 0;                  // 1: the vectors are the previous frame's ("one frame late")
 };
+// Which of a detected convention's fields the frames decide (a field no alternative explains worse,
+// e.g. the units when the camera did not move, or the lag when the motion did not change, is not).
+struct MotionDecided {
+  bool units = false, direction = false, y = false, scale = false, jitter = false, lag = false;
+};
 MotionConvention declaredConvention(const Quantity& motion);
-nlohmann::json conventionJson(const MotionConvention& c);
-// What differs between two conventions, each as people say it ("y is flipped", "vectors are
-// half-resolution", "one frame late"); empty when they agree.
-std::vector<std::string> conventionDifferences(const MotionConvention& declared, const MotionConvention& detected);
+// The convention's fields; with `decided`, an undecided field is null.
+nlohmann::json conventionJson(const MotionConvention& c, const MotionDecided* decided = nullptr);
+// What differs between the declared and a detected convention over its decided fields, each as
+// people say it ("y is flipped", "vectors are half length", "one frame late"); empty when they agree.
+std::vector<std::string> conventionDifferences(const MotionConvention& declared, const MotionConvention& detected,
+                                               const MotionDecided& decided);
+// The stored vector a convention gives for the true screen motion `m` (pixels, toward the previous
+// frame, +y down, jitter excluded) with `jitterDelta` = previous jitter - current jitter, in the
+// stored units; and back: the true motion a stored vector means under the convention.
+glm::dvec2 storedFromMotion(const MotionConvention& c, glm::dvec2 m, glm::dvec2 jitterDelta, uint32_t width, uint32_t height);
+glm::dvec2 motionFromStored(const MotionConvention& c, glm::dvec2 s, glm::dvec2 jitterDelta, uint32_t width, uint32_t height);
 
 struct MotionPairOptions {
   const Quantity* motion = nullptr;  // the layout's motion quantity (null: the first)
@@ -57,6 +74,7 @@ struct MotionPair {
   int64_t previous = 0, current = 0;
   bool detected = false;             // enough static surface to decide a convention
   MotionConvention declared, found;  // found: the detected one (when detected)
+  MotionDecided decided;
   std::vector<std::string> differences;  // declared vs found, as people say it
   std::string undecided;             // why not detected ("" when detected)
   double staticFraction = 0.0;       // surface pixels the camera's motion explains under `found`
