@@ -77,6 +77,7 @@ static void fillTimeline(Viewer& v, size_t shown) {
   ViewerModel::TimelineUi& t = v.model.timeline;
   const Sequence& seq = v.sequence->seq;
   t.on = true;
+  t.dir = seq.dir;
   t.numbers.clear(), t.times.clear();
   for (const SequenceFrame& f : seq.frames) t.numbers.push_back(f.number), t.times.push_back(f.time);
   t.shown = int(shown);

@@ -21,20 +21,20 @@ namespace {
 
 using json = nlohmann::json;
 
-constexpr uint32_t kW = 192, kH = 108;
-constexpr double kStep = 0.2;  // the camera's move along x from frame to frame (5.1 pixels here)
+constexpr uint32_t kSequenceWidth = 192, kSequenceHeight = 108;
+constexpr double kCameraStep = 0.2;  // the camera's move along x from frame to frame (5.1 pixels here)
 
 class GuiSequenceTest : public GpuGuiTest {
  protected:
   std::string folderPrefix() const override { return "gui_test/"; }
-  // Four frames numbered 10..13 at 10 fps, each camera kStep further right and each frame brighter.
+  // Four frames numbered 10..13 at 10 fps, each camera kCameraStep further right and each frame brighter.
   std::string writePlaneSequence() {
     const std::string dir = (dir_ / "seq").string();
     std::string error;
     const bool ok = writeSequence(
         dir, 4,
         [](size_t i, SequenceEntry& e, std::string&) {
-          e.frame = planeFrame(kW, kH, kStep * double(i), 0.55 + 0.15 * double(i));
+          e.frame = planeFrame(kSequenceWidth, kSequenceHeight, kCameraStep * double(i), 0.55 + 0.15 * double(i));
           e.meta.scene = "test plane";
           e.meta.commandLine = "tests/gui/test_gui_sequence.cpp";
           e.number = 10 + int64_t(i);
@@ -65,9 +65,9 @@ class GuiSequenceTest : public GpuGuiTest {
 // The texel pixel centre px of the frame with its camera at `from` moves to in the frame with its
 // camera at `to`, worked out by hand (tests/unit/test_probe_track.cpp has the derivation).
 int movedTexel(double px, double from, double to) {
-  const double p00 = planeFrame(kW, kH, 0.0).camera.clipFromEye[0][0];
-  const double world = from + (2.0 * px / kW - 1.0) * kPlaneDepth / p00;
-  return int(std::floor(((world - to) * p00 / kPlaneDepth + 1.0) * kW / 2.0));
+  const double p00 = planeFrame(kSequenceWidth, kSequenceHeight, 0.0).camera.clipFromEye[0][0];
+  const double world = from + (2.0 * px / kSequenceWidth - 1.0) * kPlaneDepth / p00;
+  return int(std::floor(((world - to) * p00 / kPlaneDepth + 1.0) * kSequenceWidth / 2.0));
 }
 
 }  // namespace
@@ -80,7 +80,7 @@ TEST_F(GuiSequenceTest, TheTimelineStepsAndTheProbeFollowsItsSurfacePoint) {
   EXPECT_EQ(opened["frame"], 11);
   EXPECT_EQ(opened["index"], 1);
   EXPECT_EQ(opened["frames"], 4);
-  EXPECT_EQ(firstLayout_["views"][0]["image"], json::array({kW, kH}));
+  EXPECT_EQ(firstLayout_["views"][0]["image"], json::array({kSequenceWidth, kSequenceHeight}));
 
   // A click probes texel (96, 54) of frame 11: the track holds the point's texel in every frame.
   clickTexel(firstLayout_["views"][0], 96.5, 54.5);
@@ -90,7 +90,7 @@ TEST_F(GuiSequenceTest, TheTimelineStepsAndTheProbeFollowsItsSurfacePoint) {
   EXPECT_EQ(track["first"], 0);
   EXPECT_EQ(track["last"], 3);
   for (int i = 0; i < 4; ++i)
-    EXPECT_EQ(track["texels"][size_t(i)], json::array({movedTexel(96.5, kStep, kStep * i), 54})) << "frame index " << i;
+    EXPECT_EQ(track["texels"][size_t(i)], json::array({movedTexel(96.5, kCameraStep, kCameraStep * i), 54})) << "frame index " << i;
   ASSERT_FALSE(track["values"].empty());
   EXPECT_EQ(track["view"], firstLayout_["views"][0]["view"]) << "the values plotted are the clicked view's";
 

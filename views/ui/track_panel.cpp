@@ -29,14 +29,26 @@ static void componentPlot(const ProbeTrack& t, size_t c, int shown) {
   if (hi - lo < 1e-6f * std::max(1.0f, std::abs(hi))) lo -= 0.5f * std::max(1e-3f, std::abs(lo)), hi += 0.5f * std::max(1e-3f, std::abs(hi));
   for (size_t i = t.first; i <= t.last; ++i)  // frames without a value sit at the bottom
     values.push_back(std::isfinite(t.values[c][i]) ? float(t.values[c][i]) : lo);
-  char overlay[160];
+  char overlay[160], top[32], bottom[32];
   const bool here = shown >= int(t.first) && shown <= int(t.last) && std::isfinite(t.values[c][size_t(shown)]);
   if (here)
-    std::snprintf(overlay, sizeof overlay, "%s %.5g (this frame)   %.4g..%.4g", t.components[c].c_str(), t.values[c][size_t(shown)], lo, hi);
+    std::snprintf(overlay, sizeof overlay, "%s %.5g (this frame)", t.components[c].c_str(), t.values[c][size_t(shown)]);
   else
-    std::snprintf(overlay, sizeof overlay, "%s   %.4g..%.4g", t.components[c].c_str(), lo, hi);
+    std::snprintf(overlay, sizeof overlay, "%s", t.components[c].c_str());
+  // The range beside the plot, its top and bottom (never over the line).
+  std::snprintf(top, sizeof top, "%.4g", hi);
+  std::snprintf(bottom, sizeof bottom, "%.4g", lo);
+  const float labels = std::max(ImGui::CalcTextSize(top).x, ImGui::CalcTextSize(bottom).x) + ImGui::GetStyle().ItemSpacing.x;
   ImGui::PlotLines(("##track" + std::to_string(c)).c_str(), values.data(), int(values.size()), 0, overlay, lo, hi,
-                   ImVec2(ImGui::GetContentRegionAvail().x, 46.0f));
+                   ImVec2(std::max(60.0f, ImGui::GetContentRegionAvail().x - labels), 46.0f));
+  {
+    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    const ImU32 grey = ImGui::GetColorU32(ImGuiCol_TextDisabled);
+    const float x = b.x + ImGui::GetStyle().ItemSpacing.x;
+    draw->AddText(ImVec2(x, a.y), grey, top);
+    draw->AddText(ImVec2(x, b.y - ImGui::GetTextLineHeight()), grey, bottom);
+  }
   if (shown < int(t.first) || shown > int(t.last) || values.size() < 2) return;
   // The frame shown: a vertical line where PlotLines puts its sample (inside the frame padding).
   const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax(), pad = ImGui::GetStyle().FramePadding;
@@ -84,8 +96,14 @@ void trackSection(ViewerModel& m) {
   if (!t.stopAfter.empty()) ImGui::TextDisabled("after frame %lld: %s", number(t.last), t.stopAfter.c_str());
   if (t.first == t.last)
     ImGui::TextDisabled("the point is in this frame only: nothing to plot");
-  else
-    for (size_t c = 0; c < t.values.size(); ++c) componentPlot(t, c, m.timeline.shown);
+  else {
+    // The components the view shows (its channel checkboxes), all when it shows none of them.
+    const int k = findView(m.views, t.view);
+    uint32_t shownChannels = k >= 0 && size_t(k) < m.settings.size() ? m.settings[size_t(k)].channels : ~0u;
+    if (!(shownChannels & ((1u << t.values.size()) - 1u))) shownChannels = ~0u;
+    for (size_t c = 0; c < t.values.size(); ++c)
+      if (shownChannels & (1u << c)) componentPlot(t, c, m.timeline.shown);
+  }
   followedTexels(m, t);
   ImGui::Separator();
 }

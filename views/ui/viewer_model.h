@@ -221,6 +221,7 @@ struct ViewerModel {
   // track across its frames (views/analysis/probe_track.h, drawn by views/ui/track_panel.cpp) ----
   struct TimelineUi {
     bool on = false;                          // the frames are a sequence's (source is Capture)
+    std::string dir;                          // the sequence's folder
     std::vector<int64_t> numbers;             // each frame's number (the N of SEQ@N)
     std::vector<std::optional<double>> times; // each frame's time (seconds), when the sequence says
     int shown = 0;                            // index of the frame shown
