@@ -22,19 +22,21 @@ namespace {
 using json = nlohmann::json;
 
 constexpr uint32_t kSequenceWidth = 192, kSequenceHeight = 108;
+constexpr int kFrames = 10;
 constexpr double kCameraStep = 0.2;  // the camera's move along x from frame to frame (5.1 pixels here)
 
 class GuiSequenceTest : public GpuGuiTest {
  protected:
   std::string folderPrefix() const override { return "gui_test/"; }
-  // Four frames numbered 10..13 at 10 fps, each camera kCameraStep further right and each frame brighter.
+  // Ten frames numbered 10..19 at 10 fps, each camera kCameraStep further right and each frame brighter:
+  // more than the viewer keeps in memory (8).
   std::string writePlaneSequence() {
     const std::string dir = (dir_ / "seq").string();
     std::string error;
     const bool ok = writeSequence(
-        dir, 4,
+        dir, kFrames,
         [](size_t i, SequenceEntry& e, std::string&) {
-          e.frame = planeFrame(kSequenceWidth, kSequenceHeight, kCameraStep * double(i), 0.55 + 0.15 * double(i));
+          e.frame = planeFrame(kSequenceWidth, kSequenceHeight, kCameraStep * double(i), 0.45 + 0.06 * double(i));
           e.meta.scene = "test plane";
           e.meta.commandLine = "tests/gui/test_gui_sequence.cpp";
           e.number = 10 + int64_t(i);
@@ -79,7 +81,7 @@ TEST_F(GuiSequenceTest, TheTimelineStepsAndTheProbeFollowsItsSurfacePoint) {
   ASSERT_FALSE(opened.is_null());
   EXPECT_EQ(opened["frame"], 11);
   EXPECT_EQ(opened["index"], 1);
-  EXPECT_EQ(opened["frames"], 4);
+  EXPECT_EQ(opened["frames"], kFrames);
   EXPECT_EQ(firstLayout_["views"][0]["image"], json::array({kSequenceWidth, kSequenceHeight}));
 
   // A click probes texel (96, 54) of frame 11: the track holds the point's texel in every frame.
@@ -88,8 +90,8 @@ TEST_F(GuiSequenceTest, TheTimelineStepsAndTheProbeFollowsItsSurfacePoint) {
   ASSERT_FALSE(track.is_null()) << "the click made no track";
   EXPECT_EQ(track["pixel"], json::array({96, 54}));
   EXPECT_EQ(track["first"], 0);
-  EXPECT_EQ(track["last"], 3);
-  for (int i = 0; i < 4; ++i)
+  EXPECT_EQ(track["last"], kFrames - 1);
+  for (int i = 0; i < kFrames; ++i)
     EXPECT_EQ(track["texels"][size_t(i)], json::array({movedTexel(96.5, kCameraStep, kCameraStep * i), 54})) << "frame index " << i;
   ASSERT_FALSE(track["values"].empty());
   EXPECT_EQ(track["view"], firstLayout_["views"][0]["view"]) << "the values plotted are the clicked view's";
@@ -100,6 +102,7 @@ TEST_F(GuiSequenceTest, TheTimelineStepsAndTheProbeFollowsItsSurfacePoint) {
   ASSERT_FALSE(shown.is_null()) << "`.` did not show frame 12";
   EXPECT_EQ(shown["probe"], track["texels"][2]);
   EXPECT_NEAR(shown["time"].get<double>(), 0.2, 1e-9);
+  EXPECT_EQ(shown["cached"], 8) << "the track read every frame; the cache keeps at most 8";
   shot("sequence_frame12.png");
 
   // `,` twice: frame 10; the probe there too.
@@ -111,7 +114,7 @@ TEST_F(GuiSequenceTest, TheTimelineStepsAndTheProbeFollowsItsSurfacePoint) {
 
   // Space plays at 10 fps (the frames' times) and wraps to the first frame after the last; Space pauses.
   xdotool("key --window " + wid_ + " space");
-  ASSERT_FALSE(waitFrame(13).is_null()) << "Space did not play";
+  ASSERT_FALSE(waitFrame(19).is_null()) << "Space did not play";
   ASSERT_FALSE(waitFrame(10).is_null()) << "playing did not wrap to the first frame";
   xdotool("key --window " + wid_ + " space");
   quit();
