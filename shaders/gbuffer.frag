@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // G-buffer: albedo_specular, normal_shadow (normal + shadow-map compare), depth (eye depth);
-// variants add primitive_id (GB_PRIMITIVE_ID) and the stored position (GB_POSITION), in that order.
+// variants add primitive_id (GB_PRIMITIVE_ID), the stored position (GB_POSITION) and the motion
+// target (GB_MOTION: pixels toward the previous frame, +y down, jitter excluded), in that order.
 #include "common.glsl"
 #include "material.glsl"
 #include "gbuffer_codec.glsl"
@@ -29,6 +30,19 @@ layout(location = 4) out vec4 outPosition;
 layout(location = 3) out vec4 outPosition;
 #endif
 #endif
+#ifdef GB_MOTION
+#ifdef GB_PRIMITIVE_ID
+#define GB_ID_OUTPUTS 1
+#else
+#define GB_ID_OUTPUTS 0
+#endif
+#ifdef GB_POSITION
+#define GB_POSITION_OUTPUTS 1
+#else
+#define GB_POSITION_OUTPUTS 0
+#endif
+layout(location = 3 + GB_ID_OUTPUTS + GB_POSITION_OUTPUTS) out vec2 outMotion;
+#endif
 
 void main() {
   Material m = materials[inMaterial];
@@ -51,5 +65,13 @@ void main() {
   // camera-relative eye position, so only the stored format rounds far from the origin.
   vec3 relative = mat3(frame.worldFromEye) * inEye;
   outPosition = vec4(POSITION == kPositionWorld ? relative + frame.worldFromEye[3].xyz : relative, 1.0);
+#endif
+#ifdef GB_MOTION
+  // The surface point's unjittered pixel in the previous frame minus the one in this frame: the
+  // difference of NDCs first (no cancellation of pixel coordinates), then pixels (NDC y is +y down).
+  vec4 previous = frame.prevClipFromEye * vec4(inEye, 1.0);
+  vec4 current = frame.unjitteredClipFromEye * vec4(inEye, 1.0);
+  vec2 ndc = previous.xy / previous.w - current.xy / current.w;
+  outMotion = previous.w > 0.0 ? ndc * 0.5 * frame.viewport.xy : vec2(0.0);  // 0: behind the previous camera
 #endif
 }

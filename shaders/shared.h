@@ -139,6 +139,11 @@ GB_STRUCT(FrameData) {
   uvec4 projection64[2];    // clipFromEye [0][0], [1][1] | [2][0], [2][1]
   uvec4 depthRange64;       // znear, zfar
   uvec4 time64;             // xy time (s); z scene lights; w 0
+  // The motion target (--motion on; zero otherwise): the previous frame's unjittered clip space
+  // from this frame's eye space (formed in double: camera-relative), and this frame's unjittered one.
+  mat4 prevClipFromEye;
+  mat4 unjitteredClipFromEye;
+  vec4 jitter;              // xy the projection's offset in pixels (+x right, +y down), zw in NDC
 };
 
 GB_STRUCT(DrawData) {
@@ -249,7 +254,7 @@ GB_STRUCT(RangeResult) {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameData) == 4 * 64 + 24 * 16);
+static_assert(sizeof(FrameData) == 6 * 64 + 25 * 16);
 static_assert(sizeof(LightDesc) == 80);
 static_assert(sizeof(LightCounts) == 32);
 static_assert(sizeof(Cluster) == 48);

@@ -1,5 +1,6 @@
-// gblens capture [SCENE] -o DIR [--targets a,b,c] [--coverage on|off]: renders one frame and
-// writes a capture (views/capture.h). Only the targets asked for are read back.
+// gblens capture [SCENE] -o DIR [--targets a,b,c] [--coverage on|off] [--sequence N]: renders one
+// frame and writes a capture (views/capture.h), or N frames at --time T, T + S, ... (S: --time-step)
+// as a sequence (views/capture/sequence.h). Only the targets asked for are read back.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -10,7 +11,9 @@
 #include "renderer/frame/session.h"
 #include "renderer/gpu/render_targets.h"
 #include "views/capture/capture.h"
+#include "renderer/core/camera_motion.h"
 #include "views/capture/report.h"
+#include "views/capture/sequence.h"
 
 namespace gb {
 
@@ -59,7 +62,57 @@ static bool chooseTargets(const std::string& list, const RenderOptions& ro, cons
   return true;
 }
 
-static int capture(const CommonOptions& o, const std::string& targets, bool coverage) {
+static CaptureMeta captureMeta(const HeadlessSession& session, const CommonOptions& o, const Scene& scene,
+                               const FrameStats& stats) {
+  CaptureMeta meta;
+  meta.device = session.deviceName();
+  meta.driver = session.driverName();
+  meta.scene = o.scene;
+  meta.sceneSha256 = sceneContentSha256(scene);
+  meta.stats = stats;
+  meta.commandLine = commandLine();
+  return meta;
+}
+
+// The frames of a sequence: frame i at time T + i S with time_step S, so that each frame's motion
+// target points at the frame before it; its jitter recorded in sequence.json.
+static int captureSequence(const CommonOptions& o, HeadlessSession& session, const Scene& scene,
+                           const RenderOptions& ro, const std::vector<Target>& wanted, int count) {
+  std::vector<FrameStats> last;
+  auto produce = [&](size_t i, SequenceEntry& entry, std::string&) {
+    RenderOptions frame = ro;
+    frame.time = ro.time + double(i) * ro.timeStep;
+    const FrameRequest request = captureRequest(wanted, frame);
+    std::vector<FrameStats> frames;
+    for (int k = 0; k < o.frames; ++k) frames.push_back(session.render(frame, request));
+    entry.frame = session.snapshot(wanted);
+    for (Absent& a : entry.frame.absences)
+      if (a == Absent::NotReadBack) a = Absent::NotRequested;
+    entry.meta = captureMeta(session, o, scene, frames.back());
+    entry.time = frame.time;
+    entry.jitter = frameJitter(frame);  // pixels, +x right, +y down (zero with jitter off)
+    last = frames;
+    return true;
+  };
+  const nlohmann::json extra = {{"command_line", commandLine()}, {"scene", o.scene}, {"time_step", ro.timeStep}};
+  std::string error;
+  int status = 0;
+  if (!writeSequence(o.output, size_t(count), produce, extra, error)) {
+    std::fprintf(stderr, "gblens capture: %s\n", error.c_str());
+    status = 2;
+  } else {
+    std::fprintf(stderr, "gblens: wrote %s (%d frames from time %g, step %g s, %zu targets each)\n", o.output.c_str(),
+                 count, ro.time, ro.timeStep, wanted.size());
+  }
+  if (o.stats && !last.empty()) {
+    const nlohmann::json stats = statsJson(last, {session.deviceName(), session.driverName(), scene.source}, ro);
+    std::printf("%s\n", stats.dump(2).c_str());
+  }
+  if (session.reportValidation() && status == 0) status = 1;
+  return status;
+}
+
+static int capture(const CommonOptions& o, const std::string& targets, bool coverage, int sequence) {
   RenderOptions ro = o.render;
   ro.coverage = coverage;
   Scene scene;
@@ -73,6 +126,7 @@ static int capture(const CommonOptions& o, const std::string& targets, bool cove
     std::fprintf(stderr, "gblens capture: %s\n", why.c_str());
     return 2;
   }
+  if (sequence > 0) return captureSequence(o, session, scene, ro, wanted, sequence);
   FrameRequest request = captureRequest(wanted, ro);
   std::vector<FrameStats> frames;
   for (int i = 0; i < o.frames; ++i) {
@@ -84,13 +138,7 @@ static int capture(const CommonOptions& o, const std::string& targets, bool cove
   FrameSnapshot snap = session.snapshot(wanted);
   for (Absent& a : snap.absences)
     if (a == Absent::NotReadBack) a = Absent::NotRequested;
-  CaptureMeta meta;
-  meta.device = session.deviceName();
-  meta.driver = session.driverName();
-  meta.scene = o.scene;
-  meta.sceneSha256 = sceneContentSha256(scene);
-  meta.stats = frames.back();
-  meta.commandLine = commandLine();
+  const CaptureMeta meta = captureMeta(session, o, scene, frames.back());
   int status = 0;
   std::string error;
   if (!writeCapture(o.output, snap, meta, error)) {
@@ -117,13 +165,28 @@ Command addCaptureCommand(CLI::App& root) {
   cmd->add_option("--coverage", *coverage, "compute the coverage_masked/coverage_full targets: on | off")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
-  return {cmd, [o, targets, coverage]() -> int {
+  auto sequence = std::make_shared<std::string>();
+  cmd->add_option("--sequence", *sequence,
+                  "write N frames at --time T, T + S, ... (S: --time-step, which is also each frame's motion "
+                  "target's step) as a sequence: DIR/frame_NNNN captures + sequence.json (time, jitter)");
+  return {cmd, [o, targets, coverage, sequence]() -> int {
             std::string error;
             if (!finishCommonOptions(*o, error)) {
               std::fprintf(stderr, "gblens capture: %s\n", error.c_str());
               return 2;
             }
-            return capture(*o, *targets, *coverage == "on");
+            int frames = 0;  // no sequence: one capture
+            if (!sequence->empty()) {
+              char* end = nullptr;
+              const long n = std::strtol(sequence->c_str(), &end, 10);
+              if (*end != 0 || n < 1 || n > 100000) {
+                std::fprintf(stderr, "gblens capture: --sequence %s: expected a frame count 1..100000\n",
+                             sequence->c_str());
+                return 2;
+              }
+              frames = int(n);
+            }
+            return capture(*o, *targets, *coverage == "on", frames);
           }};
 }
 

@@ -203,6 +203,7 @@ int runImportSequence(const ImportOptions& o, const ImportInput& base, const Ren
     ImportInput in = base;
     e.number = first + int64_t(i);
     in.layout = layoutForFrame(base.layout, e.number);
+    for (std::string& f : in.files) f = framePath(f, e.number);  // FILES may name the frames by the pattern too
     progress("frame " + std::to_string(e.number) + ": decoding " + std::to_string(in.layout.targets.size()) + " targets");
     if (!importedFrame(in, options, stated, e.frame, why)) {
       why = "frame " + std::to_string(e.number) + ": " + why;

@@ -337,7 +337,7 @@ bool openCaptures(Viewer& v) {
   // A renderer that holds no frame: the view pipelines' context (sampler, scene set).
   v.scene = emptyScene(v.captureA.frame.camera);
   initRenderer(v.renderer, v.ctx, v.scene);
-  v.renderer.camera = v.captureA.frame.camera;
+  v.renderer.camera = v.renderer.unjitteredCamera = v.captureA.frame.camera;
   m.rendered = v.captureA.frame.options;
   setCaptureViews(v);
   m.captureAvailable = false;

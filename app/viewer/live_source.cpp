@@ -85,7 +85,7 @@ void showFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info) {
   ++v.framesShown;
   v.attachInfo = info;
   const FrameSnapshot& f = v.captureA.frame;
-  v.renderer.camera = f.camera;
+  v.renderer.camera = v.renderer.unjitteredCamera = f.camera;
   m.rendered = f.options;
   if (!sameViews(frameViews(f), m.views) || v.decodedA.empty()) {
     setCaptureViews(v);  // every view decoded, the unavailable ones named

@@ -4,7 +4,8 @@
 # that grows from frame to frame (so that motion toward the previous and the next frame differ),
 # motion blur off. Per
 # frame F: the view-layer passes as one multilayer EXR OUT_DIR/cycles_FFFF.exr and the camera sidecar
-# OUT_DIR/camera_FFFF.json (render_gbuffer.py's, plus "time": (F - first) / fps seconds); and once,
+# OUT_DIR/camera_FFFF.json (render_gbuffer.py's, plus "time": (F - first) / fps seconds and "jitter": [0, 0]:
+# Cycles samples pixels without moving the projection); and once,
 # OUT_DIR/objects.json: the moving objects' and the camera's transforms for frames first-1 .. last+1
 # (the frames Cycles' Vector pass looks at), which assets/blender/check_vectors.py checks the Vector
 # pass against. `make fixtures` writes tests/data/blender/sequence so; docs/import.md explains.
@@ -113,7 +114,7 @@ def main():
         r.filepath = exr
         bpy.ops.render.render(write_still=True)
         with open(os.path.join(out_dir, "camera_%04d.json" % f), "w") as fh:
-            fh.write(gbuffer.camera_json(scene, cam, width, height, {"time": (f - first) / fps}))
+            fh.write(gbuffer.camera_json(scene, cam, width, height, {"time": (f - first) / fps, "jitter": [0.0, 0.0]}))
         print("render_sequence.py: wrote %s (%dx%d) and camera_%04d.json" % (exr, width, height, f))
 
     # Compact rows, one matrix a line (small diffs when regenerated).

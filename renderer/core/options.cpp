@@ -42,6 +42,8 @@ static const Names<TonemapPass, 3> kTonemapPass = {
     {{TonemapPass::Auto, "auto"}, {TonemapPass::Raster, "raster"}, {TonemapPass::Compute, "compute"}}};
 static const Names<PositionSource, 3> kPosition = {
     {{PositionSource::Depth, "depth"}, {PositionSource::Rgba16f, "rgba16f"}, {PositionSource::Rgba32f, "rgba32f"}}};
+static const Names<CameraMotion, 2> kCameraMotion = {{{CameraMotion::Off, "off"}, {CameraMotion::Orbit, "orbit"}}};
+static const Names<Jitter, 2> kJitter = {{{Jitter::Off, "off"}, {Jitter::Halton, "halton"}}};
 static const Names<PositionSpace, 2> kPositionSpace = {{{PositionSpace::World, "world"}, {PositionSpace::Camera, "camera"}}};
 
 template <class E, size_t N>
@@ -99,6 +101,10 @@ bool stencilLayersOn(const RenderOptions& o, Method ran, bool cpuDevice) {
 }
 bool parse(const std::string& t, PositionSource& o) { return find(kPosition, t, o); }
 bool parse(const std::string& t, PositionSpace& o) { return find(kPositionSpace, t, o); }
+const char* name(CameraMotion v) { return lookup(kCameraMotion, v); }
+bool parse(const std::string& t, CameraMotion& o) { return find(kCameraMotion, t, o); }
+const char* name(Jitter v) { return lookup(kJitter, v); }
+bool parse(const std::string& t, Jitter& o) { return find(kJitter, t, o); }
 
 // ---- the option table ------------------------------------------------------------------------
 
@@ -254,6 +260,22 @@ const std::vector<Entry>& entries() {
       real("exposure", "tone-mapping exposure", &RenderOptions::exposure, 0.0, 1e6),
       onOff("primitive_id", "write the primitive_id debug target (instance + triangle) in the G-buffer pass",
             &RenderOptions::primitiveId),
+      choice("camera_motion",
+             "the scene camera over time: off | orbit (about the scene's centre and the world up axis, 10 degrees "
+             "per second, rising and falling by 2% of the scene's radius every 4 s)",
+             kCameraMotion, &RenderOptions::cameraMotion),
+      choice("jitter",
+             "sub-pixel offset of the projection: off | halton (Halton(2,3), index 1 + (round(time / time_step) mod "
+             "16)); the capture's camera stays unjittered",
+             kJitter, &RenderOptions::jitter),
+      onOff("motion",
+            "write the motion target in the G-buffer pass: screen motion in pixels toward the previous frame "
+            "(time - time_step), +y down, jitter excluded",
+            &RenderOptions::motion),
+      real("time_step",
+           "seconds from the previous frame to this one (1e-9..1e9): the motion target's previous camera, the "
+           "jitter's frame number",
+           &RenderOptions::timeStep, 1e-9, 1e9),
   };
   return table;
 }

@@ -63,6 +63,12 @@ enum class ClusterAssign { Auto, Gpu, Cpu };
 // raster on a CPU device (lavapipe's compute pass took 6 ms at 720p: docs/performance.md), for
 // deferred and forward, and in the single-pass path (the tone map is its last subpass).
 enum class TonemapPass { Auto, Raster, Compute };
+// Camera motion over time (renderer/core/camera_motion.h): none, or the scene camera orbiting the
+// scene's centre about the world up axis (10 degrees per second) while rising and falling a little.
+enum class CameraMotion { Off, Orbit };
+// The projection's sub-pixel offset per frame (camera_motion.h): none, or Halton(2,3), its index
+// from the frame number round(time / time_step).
+enum class Jitter { Off, Halton };
 
 struct RenderOptions {
   uint32_t width = 1280, height = 720;
@@ -104,6 +110,13 @@ struct RenderOptions {
   bool coverage = false;      // masked/full coverage targets (views 8, 9, --stats, captures)
   bool keepGBuffer = true;    // single-pass: store the G-buffer (views, captures) instead of transient
   bool primitiveId = false;   // debug target primitive_id (instance + triangle), for the reference comparison
+  // Across frames: the camera's motion, the projection's jitter, and the motion target (screen
+  // motion in pixels toward the previous frame, at time - timeStep; the jitter's frame number is
+  // round(time / timeStep)).
+  CameraMotion cameraMotion = CameraMotion::Off;
+  Jitter jitter = Jitter::Off;
+  bool motion = false;
+  double timeStep = 1.0 / 30.0;  // seconds from the previous frame to this one (> 0)
 
   // Every member compares (a new option can never be forgotten by a hand-written comparison).
   bool operator==(const RenderOptions&) const = default;
@@ -153,6 +166,8 @@ const char* name(ClusterAssign a);
 const char* name(TonemapPass t);
 const char* name(PositionSource p);
 const char* name(PositionSpace p);
+const char* name(CameraMotion m);
+const char* name(Jitter j);
 
 // Parse the names above; false when the text names nothing.
 bool parse(const std::string& text, Path& out);
@@ -176,5 +191,7 @@ bool perLightMask(const RenderOptions& o, Method ran);
 bool stencilLayersOn(const RenderOptions& o, Method ran, bool cpuDevice);
 bool parse(const std::string& text, PositionSource& out);
 bool parse(const std::string& text, PositionSpace& out);
+bool parse(const std::string& text, CameraMotion& out);
+bool parse(const std::string& text, Jitter& out);
 
 }  // namespace gb

@@ -18,6 +18,7 @@ const TexelFormatInfo& texelFormatInfo(TexelFormat f) {
       {"rgba32f", PixelType::F32, Encoding::Float},
       {"r32f", PixelType::F32, Encoding::Float},
       {"r32_uint", PixelType::U32, Encoding::Uint},
+      {"rg16f", PixelType::F16, Encoding::Float},
       {"d32s8", PixelType::F32, Encoding::Float, true, true},
       {"d24s8", PixelType::F32, Encoding::Float, true, true},  // read back as float depth + stencil
       {"d32f", PixelType::F32, Encoding::Float, true, false},
@@ -85,6 +86,13 @@ const std::array<TargetInfo, kTargetCount>& targetTable() {
        "first triangle of the instance + triangle + 1 (0: no geometry)"},
       {T::Position, "position", {"P.X", "P.Y", "P.Z", "W"}, R::GBuffer, SizeRule::Output, positionFormat,
        "stored surface position (position_space), W 1 on geometry"},
+      // RG16F, as TAA renderers store it: 4 bytes a pixel, and half precision keeps 11 significant
+      // bits, so a vector of under 16 pixels is exact to 1/128 pixel and one under 1 pixel to 1/2048
+      // (reprojection samples bilinearly at far coarser steps); RG32F would double the bandwidth.
+      {T::Motion, "motion", {"M.X", "M.Y"}, R::Motion, SizeRule::Output,
+       [](const RenderOptions&) { return TexelFormat::Rg16f; },
+       "screen motion in pixels toward the previous frame (time - time_step), +y down, jitter excluded; 0 where no "
+       "geometry"},
   }};
   return table;
 }
@@ -116,6 +124,7 @@ static const char* const kAbsentText[] = {
     "not computed: coverage off",
     "not computed: primitive_id off",
     "not computed: positions come from depth (position depth)",
+    "not computed: motion off",
     "not computed: the scene has no sun (shadow term 1)",
     "not read back",
     "not requested (--targets)",
@@ -149,6 +158,10 @@ Absent targetAbsence(Target t, const RenderOptions& o, bool sceneHasSun) {
       break;
     case Target::PrimitiveId:
       if (!o.primitiveId) return Absent::PrimitiveIdOff;
+      if (forward) return Absent::ForwardNoGBuffer;
+      break;
+    case Target::Motion:
+      if (!o.motion) return Absent::MotionOff;
       if (forward) return Absent::ForwardNoGBuffer;
       break;
     case Target::Position:

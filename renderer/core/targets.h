@@ -25,13 +25,14 @@ enum class Target : uint8_t {
   CoverageFull,     // "coverage_full": light volumes covering the pixel in screen space
   PrimitiveId,      // "primitive_id": ID (first triangle of the instance + triangle + 1; 0 = none), on request
   Position,         // "position": stored P.X/P.Y/P.Z, W (1 = geometry), when options.position is a format
+  Motion,           // "motion": M.X/M.Y screen motion in pixels toward the previous frame (+y down), on request
   Count
 };
 constexpr size_t kTargetCount = size_t(Target::Count);
 
 // How texels are stored, independent of the graphics API.
 enum class TexelFormat : uint8_t {
-  Rgba8Srgb, Rgba8Unorm, Rgba8Snorm, Rgba16Snorm, Rgb10a2Unorm, Rgba16f, Rgba32f, R32f, R32Uint,
+  Rgba8Srgb, Rgba8Unorm, Rgba8Snorm, Rgba16Snorm, Rgb10a2Unorm, Rgba16f, Rgba32f, R32f, R32Uint, Rg16f,
   D32fS8, D24S8, D32f, D16
 };
 struct TexelFormatInfo {
@@ -51,6 +52,7 @@ enum class TargetRole : uint8_t {
   Display,       // final: colour attachment
   Counter,       // storage image counted into with atomics
   Id,            // integer colour attachment
+  Motion,        // colour attachment written by the geometry pass, read by no pass (views, captures)
 };
 enum class SizeRule : uint8_t { Output, ShadowMap };
 
@@ -82,6 +84,7 @@ enum class Absent : uint8_t {
   CoverageOff,
   PrimitiveIdOff,
   PositionFromDepth,  // position depth: no stored position
+  MotionOff,          // motion off: no motion target
   NoSun,              // no sun: no shadow map
   NotReadBack,        // computed, but the frame's request did not read it back
   NotRequested,       // a capture's --targets left it out

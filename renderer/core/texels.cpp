@@ -16,6 +16,7 @@ uint32_t packedTexelBytes(TexelFormat f) {
     case TexelFormat::Rgb10a2Unorm:
     case TexelFormat::R32f:
     case TexelFormat::R32Uint:
+    case TexelFormat::Rg16f:
     case TexelFormat::D32fS8:
     case TexelFormat::D24S8:
     case TexelFormat::D32f: return 4;

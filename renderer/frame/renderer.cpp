@@ -9,6 +9,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "renderer/core/camera_motion.h"
 #include "renderer/core/method_choice.h"
 #include "renderer/frame/frame.h"
 #include "renderer/frame/frame_slots.h"
@@ -47,7 +48,12 @@ static void prepareFrame(Renderer& r) {
   const RenderOptions& o = r.options;
   GB_ASSERT(!s.cameras.empty());
   const CameraDesc& cam = s.cameras[size_t(o.camera) < s.cameras.size() ? size_t(o.camera) : 0];
-  r.camera = makeCamera(cam, o.width, o.height, o.reversedZ);
+  // The frame's camera at its time (camera_motion), drawn with the jitter's offset (camera_motion.h).
+  const glm::dvec3 centre = s.bounds.center();
+  const double radius = s.bounds.radius();
+  r.unjitteredCamera = makeCamera(movedCamera(cam, o, centre, radius, o.time), o.width, o.height, o.reversedZ);
+  r.jitter = frameJitter(o);
+  r.camera = jitteredCamera(r.unjitteredCamera, r.jitter);
   r.lightClipFromWorld = shadowClipFromWorld(s);
 
   // Draws: camera-relative transforms formed in double.
@@ -96,6 +102,13 @@ static void prepareFrame(Renderer& r) {
   f.params = glm::vec4(o.exposure, 0.05f, 1.0f / float(o.shadowMapSize), float(o.time));
   f.counts = glm::uvec4(uint32_t(r.lights.visible.size()), uint32_t(r.lights.visible.size()) - r.lights.stencilCount,
                         0u, 0u);
+  if (o.motion) {  // the previous frame: time - time_step, unjittered (the scene's instances do not move)
+    const Camera previous =
+        makeCamera(movedCamera(cam, o, centre, radius, o.time - o.timeStep), o.width, o.height, o.reversedZ);
+    f.prevClipFromEye = glm::mat4(previous.clipFromWorld * r.camera.worldFromEye);
+    f.unjitteredClipFromEye = glm::mat4(r.unjitteredCamera.clipFromEye);
+    f.jitter = glm::vec4(r.jitter, 2.0 * r.jitter.x / o.width, 2.0 * r.jitter.y / o.height);
+  }
   clusterFrameData(r.camera, r.visibleBound, f);
   if (r.clusterGrid) gridFrameData(r.clusters.grid.shape, f);
   std::memcpy(frameSlot(r).frameBuffer.mapped, &f, sizeof(f));

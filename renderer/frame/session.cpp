@@ -103,7 +103,7 @@ FrameSnapshot snapshotFromRenderer(const Renderer& r, const std::vector<Target>&
   s.method = r.method;
   s.clusterGrid = r.method == Method::Clustered && r.clusterGrid;
   s.setLayout(nativeLayout(r.options));
-  s.camera = r.camera;
+  s.camera = r.unjitteredCamera;  // the jitter is the frame's options' (frameJitter, camera_motion.h)
   s.lightClipFromWorld = r.lightClipFromWorld;
   s.sun = r.scene->sun;
   s.sky = r.scene->sky;

@@ -87,6 +87,7 @@ static TargetsKey targetsKey(const GpuContext& ctx, const Scene& s, const Render
   k.coverage = o.coverage;
   k.transientGBuffer = transientGBuffer(o);
   k.primitiveId = primitiveIdOn(ctx, o);
+  k.motion = o.motion;
   k.clearViews = clearViews(ctx, o);
   k.finalStorage = finalStorageView(ctx, o);
   return k;
@@ -100,6 +101,7 @@ VkExtent2D targetExtent(const GpuContext& ctx, Target t, const Scene& s, const R
     case Target::CoverageFull: unused = !o.coverage; break;
     case Target::PrimitiveId: unused = !primitiveIdOn(ctx, o); break;
     case Target::Position: unused = o.position == PositionSource::Depth; break;
+    case Target::Motion: unused = !o.motion; break;
     case Target::ShadowMap: unused = !s.sun.enabled; break;
     default: break;
   }
@@ -131,6 +133,7 @@ static VkImageUsageFlags targetUsage(TargetRole role, bool transient) {
       return VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
              VK_IMAGE_USAGE_SAMPLED_BIT;
     case TargetRole::Id:
+    case TargetRole::Motion:
       return VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   }
   GB_ASSERT(!"target role");
@@ -149,8 +152,8 @@ static ImageDesc targetDesc(const GpuContext& ctx, Target t, const Scene& s, con
   d.usage = t == Target::Position && o.position == PositionSource::Depth ? VkImageUsageFlags(VK_IMAGE_USAGE_SAMPLED_BIT)
                                                                           : targetUsage(targetInfo(t).role, d.transient);
   const TargetRole role = targetInfo(t).role;
-  if ((role == TargetRole::GBuffer || role == TargetRole::Id) && !d.transient && (d.usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) &&
-      clearViews(ctx, o))
+  const bool colour = role == TargetRole::GBuffer || role == TargetRole::Id || role == TargetRole::Motion;
+  if (colour && !d.transient && (d.usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) && clearViews(ctx, o))
     d.clearFormat = clearViewFormat(texelFormat(t, o));
   // final (sRGB, no storage support) written by tonemap_compute through a UNORM view, the shader
   // encoding sRGB itself.

@@ -50,6 +50,7 @@ struct TargetsKey {
   ShadowFormat shadowFormat{};
   PositionSource position{};
   bool coverage = false, transientGBuffer = false, primitiveId = false, clearViews = false, finalStorage = false;
+  bool motion = false;
   bool operator==(const TargetsKey&) const = default;
 };
 struct ShadowMapKey {
@@ -180,8 +181,10 @@ struct Renderer {
   std::array<Buffer, kTargetCount> readbackBuffers;
   std::array<CpuImage, kTargetCount> readback;  // filled for the targets a request named
 
-  // This frame, as the frame function and the passes see it.
-  Camera camera;
+  // This frame, as the frame function and the passes see it: `camera` draws (jittered by `jitter`
+  // pixels under --jitter), `unjitteredCamera` is the frame's camera as captures record it.
+  Camera camera, unjitteredCamera;
+  glm::dvec2 jitter{0.0};
   FrameLights lights;
   glm::dmat4 lightClipFromWorld{1.0};
   gpu::FrameData frameData{};  // this frame's uniform data, as the shaders saw it

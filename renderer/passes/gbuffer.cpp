@@ -1,5 +1,6 @@
 // G-buffer: albedo_specular, normal_shadow (with the shadow-map compare), eye depth, and the
-// depth/stencil target where geometry writes stencil 128.
+// depth/stencil target where geometry writes stencil 128; on request primitive_id, the stored
+// position and the motion target (pixels toward the previous frame's camera, FrameData).
 #include "renderer/gpu/gpu_scene.h"
 #include "renderer/passes/passes.h"
 
@@ -9,6 +10,7 @@ std::vector<Target> gbufferColourTargets(const Renderer& r) {
   std::vector<Target> out = {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth};
   if (primitiveIdOn(*r.ctx, r.options)) out.push_back(Target::PrimitiveId);
   if (r.options.position != PositionSource::Depth) out.push_back(Target::Position);
+  if (r.options.motion) out.push_back(Target::Motion);
   return out;
 }
 
@@ -25,12 +27,16 @@ void addGBufferPass(FrameGraph& g, Renderer& r) {
   }
   const bool primitiveId = primitiveIdOn(*r.ctx, r.options);
   const bool position = r.options.position != PositionSource::Depth;
+  const bool motion = r.options.motion;
   uses.push_back(depth);
   uses.push_back({Target::ShadowMap, Access::SampledFragment});
-  // [primitive_id][stored position]
-  static const Shader kFragment[2][2] = {{Shader::gbuffer_frag, Shader::gbuffer_position_frag},
-                                         {Shader::gbuffer_id_frag, Shader::gbuffer_id_position_frag}};
-  const Shader fragment = kFragment[primitiveId][position];
+  // [primitive_id][stored position][motion]
+  static const Shader kFragment[2][2][2] = {
+      {{Shader::gbuffer_frag, Shader::gbuffer_motion_frag},
+       {Shader::gbuffer_position_frag, Shader::gbuffer_position_motion_frag}},
+      {{Shader::gbuffer_id_frag, Shader::gbuffer_id_motion_frag},
+       {Shader::gbuffer_id_position_frag, Shader::gbuffer_id_position_motion_frag}}};
+  const Shader fragment = kFragment[primitiveId][position][motion];
   g.addPass("gbuffer", uses, [&r, fragment](PassContext& pc) {
     auto describe = [&](DrawVariantBits v) {
       return [&r, v, fragment](GraphicsPipelineDesc& d) {

@@ -54,6 +54,10 @@ TEST_F(GpuTest, CaptureRoundTripIsBitExactInEveryStorageFormat) {
   variants[3].reversedZ = true;
   variants[3].stencilMask = StencilMask::Shared;
   variants[0].primitiveId = true;  // the optional targets round-trip too
+  variants[0].motion = true;       // rg16f
+  variants[0].cameraMotion = CameraMotion::Orbit;
+  variants[2].motion = true;       // written in the single-pass G-buffer subpass
+  variants[2].jitter = Jitter::Halton;
   variants[1].position = PositionSource::Rgba32f;
   variants[2].position = PositionSource::Rgba16f;
   std::set<PixelType> typesSeen;

@@ -30,7 +30,7 @@ def valid(name, document):
 
 
 def test_every_schema_is_a_schema_with_a_version():
-    for name in ("probe", "stats", "check", "compare"):
+    for name in ("probe", "stats", "check", "compare", "motion", "flicker"):
         s = schema(name)
         assert s["properties"]["version"]["const"] >= 1
         assert name in s["title"]
@@ -94,3 +94,21 @@ def test_the_schemas_refuse_a_changed_shape(captures):
             doc["pixel"] = "20,12"
         with pytest.raises(AssertionError):
             valid("probe", doc)
+
+
+def test_motion_and_flicker_on_blenders_sequence_are_valid(tmp_path):
+    """Blender's animation (tests/data/blender/sequence): the report of its vectors, and of one whose y
+    the schema refuses when a pair's key is taken away."""
+    seq = tmp_path / "seq"
+    run("import", os.path.join(SOURCE, "tests", "data", "blender", "sequence", "cycles_####.exr"), "--layout",
+        "builtin:blender-cycles-sequence", "--frames", "1..5", "-o", seq)
+    motion = run_json("motion", seq, "--json")
+    valid("motion", motion)
+    assert motion["verdict"] == "agrees" and len(motion["pairs"]) == 4
+    broken = copy.deepcopy(motion)
+    del broken["pairs"][0]["pixels"]
+    with pytest.raises(AssertionError):
+        valid("motion", broken)
+    flicker = run_json("flicker", seq, "--quantity", "DiffCol", "--json")
+    valid("flicker", flicker)
+    assert flicker["frames"] == 5 and flicker["components"] >= 3

@@ -252,7 +252,10 @@ MotionPair checkMotionPair(const TemporalFrame& previous, const TemporalFrame& c
       c = kDisoccluded;  // off screen in N-1
     } else {
       bool same = false, nearer = false;
+      // Static: N-1 saw the point where the camera puts it when its depth lies within the range of
+      // N-1's depths around that place (a grazing surface changes depth fast from texel to texel).
       const std::optional<double> here = viewDepthOf(P.camera, s.world);
+      double lo = 1e300, hi = -1e300;
       for (int oy = -1; oy <= 1 && !same; ++oy)
         for (int ox = -1; ox <= 1 && !same; ++ox) {
           const double nx = tx + ox, ny = ty + oy;
@@ -260,15 +263,19 @@ MotionPair checkMotionPair(const TemporalFrame& previous, const TemporalFrame& c
           const uint32_t ix = uint32_t(nx), iy = uint32_t(ny);
           const auto pw = surfacePoint(P, ix, iy, pc.jp);
           const auto there = pw ? viewDepthOf(P.camera, *pw) : std::nullopt;
-          if (agrees) {  // static: N-1 saw the point where the camera puts it
-            same = here && there && std::fabs(*there - *here) <= 0.01 * *here + 1e-4;
-            nearer = nearer || (here && there && *there < *here);
+          if (agrees) {
+            if (there) lo = std::min(lo, *there), hi = std::max(hi, *there);
           } else {
             same = sameSurface(C, s.x, s.y, P, ix, iy, s.world, pc.jp);
             const auto dc = viewDepthOf(C.camera, s.world);
             nearer = nearer || (dc && there && *there < 0.98 * *dc);
           }
         }
+      if (agrees && here) {
+        const double tol = 0.01 * *here + 1e-4;
+        same = lo <= hi && *here >= lo - tol && *here <= hi + tol;
+        nearer = lo <= hi && *here > hi + tol;
+      }
       c = same ? (agrees ? kStatic : kMoving) : nearer ? kDisoccluded : kWrong;
     }
     cls[size_t(s.y) * pc.w + s.x] = c;

@@ -85,7 +85,7 @@ bool checkMotionSequence(const Sequence& seq, const MotionSequenceOptions& o, Mo
 nlohmann::json motionReportJson(const MotionReport& r, const std::string& dir) {
   nlohmann::json pairs = nlohmann::json::array();
   for (const MotionPair& p : r.pairs) pairs.push_back(motionPairJson(p));
-  return {{"version", 1}, {"sequence", dir}, {"motion", r.motion}, {"verdict", r.verdict}, {"findings", r.findings}, {"pairs", pairs}};
+  return {{"format", "gblens-motion"}, {"version", 1}, {"sequence", dir}, {"motion", r.motion}, {"verdict", r.verdict}, {"findings", r.findings}, {"pairs", pairs}};
 }
 
 std::string motionReportText(const MotionReport& r) {
@@ -196,7 +196,7 @@ bool flickerSequence(const Sequence& seq, const FlickerOptions& o, FlickerReport
     CpuImage im;
     im.name = name, im.type = type, im.width = w, im.height = h;
     for (uint32_t c = 0; c < channels; ++c)
-      im.channels.push_back(type == PixelType::U32 ? std::string("count")
+      im.channels.push_back(std::string(name) == "flicker_seen" ? std::string("count")
                             : c < view.componentNames.size() ? view.name + "." + view.componentNames[c]
                                                              : view.name + "." + std::to_string(c));
     im.data.resize(size_t(w) * h * channels * 4);
@@ -204,11 +204,12 @@ bool flickerSequence(const Sequence& seq, const FlickerOptions& o, FlickerReport
   };
   out.stddev = image("flicker_stddev", PixelType::F32, n);
   out.maxStep = image("flicker_max_step", PixelType::F32, n);
-  out.seen = image("flicker_seen", PixelType::U32, 1);
+  out.seen = image("flicker_seen", PixelType::F32, 1);  // float: image tools read a UINT channel normalised
   std::vector<double> all;
   float* sd = reinterpret_cast<float*>(out.stddev.data.data());
   float* ms = reinterpret_cast<float*>(out.maxStep.data.data());
-  std::memcpy(out.seen.data.data(), seen.data(), seen.size() * 4);
+  float* sn = reinterpret_cast<float*>(out.seen.data.data());
+  for (size_t at = 0; at < count; ++at) sn[at] = float(seen[at]);
   for (size_t at = 0; at < count; ++at)
     for (uint32_t c = 0; c < n; ++c) {
       const size_t a = at * n + c;
@@ -227,7 +228,7 @@ bool flickerSequence(const Sequence& seq, const FlickerOptions& o, FlickerReport
 }
 
 nlohmann::json flickerReportJson(const FlickerReport& r) {
-  return {{"version", 1},       {"quantity", r.quantity},          {"reference", r.reference},
+  return {{"format", "gblens-flicker"}, {"version", 1},       {"quantity", r.quantity},          {"reference", r.reference},
           {"frames", r.frames}, {"components", r.components},      {"stddev", {{"mean", r.meanStddev}, {"p99", r.p99Stddev}}},
           {"max_step", r.maxStepAll}};
 }

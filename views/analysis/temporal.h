@@ -50,7 +50,7 @@ struct FlickerReport {
   // f32, one channel per component: the temporal standard deviation and the largest change between
   // consecutive frames, at the reference frame's pixels (NaN where fewer than two frames saw the point).
   CpuImage stddev, maxStep;
-  CpuImage seen;  // u32: how many frames saw the point
+  CpuImage seen;  // f32: how many frames saw the point
   double meanStddev = 0.0, p99Stddev = 0.0, maxStepAll = 0.0;
 };
 
