@@ -1,10 +1,12 @@
 // gblens view: the interactive viewer (app/viewer/*). Options beyond the common ones control
 // the window and make runs reproducible for tests (--paused, --size, --probe-log, --event-log).
+// SCENE may name a sequence (SEQ, SEQ@N: opened at frame N), shown as --capture SEQ is: with a timeline.
 #include <cstdio>
 #include <memory>
 
 #include "app/cli/cli.h"
 #include "app/viewer/viewer.h"
+#include "views/capture/sequence.h"
 #include "views/ui/keys.h"
 
 namespace gb {
@@ -32,7 +34,9 @@ Command addViewCommand(CLI::App& root) {
                   "frame is slower than the input budget), off, or N (2..8)")
       ->check(CLI::IsMember({"auto", "off", "2", "3", "4", "5", "6", "7", "8"}))
       ->capture_default_str();
-  cmd->add_option("--capture", a->capture, "open a capture directory instead of rendering (gblens capture -o DIR)");
+  cmd->add_option("--capture", a->capture,
+                  "open a capture directory instead of rendering (gblens capture -o DIR); a sequence SEQ or SEQ@N opens "
+                  "with a timeline over its frames (as `gblens view SEQ` does)");
   cmd->add_option("--compare", a->compare, "with --capture A: compare with capture B (A, B, |A-B|, split, both dossiers)");
   return {cmd, [a, common, cmd, reduce, keys]() -> int {
             if (*keys) {
@@ -54,6 +58,16 @@ Command addViewCommand(CLI::App& root) {
             a->reduceWhileMoving = *reduce == "auto" ? ViewerModel::kReduceAuto
                                    : *reduce == "off" ? ViewerModel::kReduceOff
                                                       : std::stoi(*reduce);
+            // gblens view SEQ / SEQ@N: a sequence in place of the scene, opened as --capture opens one.
+            if (a->capture.empty() && sequenceArgument(common->scene)) a->capture = a->scene;
+            if (a->compare.empty() && sequenceArgument(a->capture)) {  // refused before a window opens
+              Sequence s;
+              std::string dir;
+              if (isSequence(a->capture) ? !loadSequence(a->capture, s, error) : !resolveSequenceFrame(a->capture, dir, error)) {
+                std::fprintf(stderr, "gblens view: %s\n", error.c_str());
+                return 2;
+              }
+            }
             Scene scene;
             if (a->capture.empty() && !loadSceneOrReport(*common, scene)) return 2;
             return runViewer(*a, std::move(scene));

@@ -57,7 +57,7 @@ bool captureLiveFrame(Viewer& v, std::string& written, std::string& error, std::
 
 static bool nativeFrame(const FrameSnapshot& f) { return f.layout.name == nativeLayout(f.options).name; }
 
-static std::string describe(const Capture& c) {
+std::string describeCapture(const Capture& c) {
   const nlohmann::json& m = c.manifest;
   std::ostringstream o;
   const RenderOptions& opt = c.frame.options;
@@ -301,13 +301,15 @@ void updateCaptureRanges(Viewer& v) {
 bool openCaptures(Viewer& v) {
   ViewerModel& m = v.model;
   std::string error;
-  if (!loadCapture(v.args.capture, v.captureA, error)) {
-    std::fprintf(stderr, "gblens view: --capture %s\n", error.c_str());
+  // A sequence (SEQ, SEQ@N; not beside --compare): its frame shown, the timeline over the rest (sequence.cpp).
+  const bool sequence = v.args.compare.empty() && sequenceArgument(v.args.capture);
+  if (sequence ? !openSequence(v, error) : !loadCapture(v.args.capture, v.captureA, error)) {
+    std::fprintf(stderr, "gblens view: %s%s\n", sequence ? "" : "--capture ", error.c_str());
     return false;
   }
   m.source = FrameSource::Capture;
   m.captureA = v.args.capture;
-  m.captureInfo = describe(v.captureA);
+  m.captureInfo = describeCapture(v.captureA);
   if (!v.args.compare.empty()) {
     if (!loadCapture(v.args.compare, v.captureB, error)) {
       std::fprintf(stderr, "gblens view: --compare %s\n", error.c_str());
@@ -322,7 +324,7 @@ bool openCaptures(Viewer& v) {
     v.hasB = true;
     m.source = FrameSource::Compare;
     m.captureB = v.args.compare;
-    m.captureInfo = "A: " + describe(v.captureA) + "\nB: " + describe(v.captureB);
+    m.captureInfo = "A: " + describeCapture(v.captureA) + "\nB: " + describeCapture(v.captureB);
     auto report = std::make_shared<CompareReport>();
     if (compareCaptures(v.captureA, v.captureB, ThresholdSettings{}, *report, error)) {
       m.compareSummary = report->text();

@@ -64,6 +64,9 @@ void handleKeys(Viewer& v) {
       case KeyAction::Fit: m.transform = ViewTransform{}; break;
       case KeyAction::ZoomToMarks: zoomToShadowMarks(m); break;
       case KeyAction::NextSample: showNextSample(v); break;
+      case KeyAction::NextFrame: stepTimeline(m, +1); break;
+      case KeyAction::PreviousFrame: stepTimeline(m, -1); break;
+      case KeyAction::PlaySequence: m.timeline.playing = !m.timeline.playing, m.uiChanged = true; break;
       case KeyAction::MoveProbe: {
         const glm::ivec2 step(name == "Right" ? 1 : name == "Left" ? -1 : 0, name == "Down" ? 1 : name == "Up" ? -1 : 0);
         // From the pixel asked for already in this frame: presses that arrive together all count.

@@ -95,6 +95,7 @@ static void initModel(Viewer& v, bool live) {
   m.reduceWhileMoving = args.reduceWhileMoving;
   m.deviceName = v.ctx.deviceName;
   m.sceneName = live || args.attach ? args.scene : args.capture + (args.compare.empty() ? "" : " vs " + args.compare);
+  if (m.timeline.on) m.sceneName = "sequence " + m.timeline.dir;  // the frame shown ends the status line
   if (live) {
     m.rendered = m.wanted;  // until the first frame: the views of the layout it will have
     updateLiveViews(v);

@@ -70,6 +70,7 @@ static void answerProbe(Viewer& v) {
     probeViewerPixel(v, *m.probeRequest, true);
   else
     probeCapturePixel(v, *m.probeRequest);
+  trackSequenceProbe(v);  // a sequence: the point followed through its frames
   m.probeRequest.reset();
 }
 
@@ -102,6 +103,7 @@ struct LoopState {
 static bool awaitWork(Viewer& v, LoopState& s, int& fbw, int& fbh) {
   const ViewerModel& m = v.model;
   s.animating = s.live && m.playing && m.timeSpeed != 0.0f;  // a capture does not move
+  s.animating |= m.timeline.on && m.timeline.playing;         // a sequence plays
   s.keysHeld = false;
   for (int key : {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E})
     s.keysHeld |= glfwGetKey(v.window, key) == GLFW_PRESS && glfwGetKey(v.window, GLFW_KEY_LEFT_CONTROL) != GLFW_PRESS;
@@ -142,6 +144,7 @@ static void updateFrame(Viewer& v, const LoopState& s, int fbw, int fbh, double 
     renderIfNeeded(v, wantedOptions(v, fbw, fbh), s.animating);
   }
   m.stepForward = m.stepBack = false;
+  updateSequence(v, dt);  // a sequence: the frame played or asked for
   updateRanges(v);
   v.referenceBusy = updateReferenceError(v);
   v.referenceBusy |= updateCompareFlip(v);
@@ -235,7 +238,7 @@ static void iterate(Viewer& v, LoopState& s, int fbw, int fbh) {
   }
   // Changes made in this interface frame need another one (and maybe a render).
   bool pending = m.uiChanged || m.probeRequest || m.resetCamera || m.gltfCamera >= 0 || m.cameraDrag != glm::dvec2(0.0) ||
-                 m.cameraDolly != 0.0 || m.stepForward || m.stepBack || m.captureRequested || m.renderDocRequested ||
+                 m.cameraDolly != 0.0 || m.stepForward || m.stepBack || m.timeline.requested >= 0 || m.captureRequested || m.renderDocRequested ||
                  v.referenceBusy || m.referenceError.computeRequested ||
                  (s.live && frameOutdated(v.fullOptions, wantedOptions(v, fbw, fbh)));
   v.uiFramesLeft = pending ? std::max(v.uiFramesLeft, 2) : v.uiFramesLeft - 1;

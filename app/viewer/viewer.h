@@ -2,7 +2,8 @@
 // window.cpp (GLFW, swapchain, Dear ImGui's backends), startup.cpp (arguments, context, frame
 // source; exit summary, teardown), viewer.cpp (the loop: render on demand),
 // controls.cpp (keys, camera, lights), camera_rig.cpp (orbit/fly), probe.cpp (region read-back ->
-// the shared dossier), captures.cpp (capture button, --capture / --compare).
+// the shared dossier), captures.cpp (capture button, --capture / --compare), sequence.cpp (view SEQ:
+// the timeline, the frame cache, the probe's track).
 #pragma once
 #include <array>
 #include <chrono>
@@ -76,6 +77,7 @@ void moveRig(CameraRig& rig, glm::dvec3 local);    // right, up, back in scene u
 void dollyRig(CameraRig& rig, double steps);
 
 struct ImGuiVulkan;  // window.cpp
+struct SequenceSource;  // sequence.cpp: the sequence opened, its frame cache
 
 // Input as GLFW reported it, queued for the interface frames (input.cpp).
 struct InputEvent {
@@ -155,6 +157,8 @@ struct Viewer {
   bool attachPresentPending = false;       // a new frame of the stream goes to the screen with this present
   double attachShownMs = 0.0;              // the last one's latency from the application's frame end to the screen
   bool attachDetachLogged = false;
+  // gblens view SEQ: captureA.frame is a copy of the sequence's frame shown (sequence.cpp).
+  std::shared_ptr<SequenceSource> sequence;
   ViewerModel model;
   CameraRig rig;
   uint64_t cameraVersion = 1, lightsVersion = 1;
@@ -259,6 +263,19 @@ Scene emptyScene(const Camera& camera);
 bool updateCompareFlip(Viewer& v);
 void stopCompareFlip(Viewer& v);  // teardown
 std::string captureHoverText(const Viewer& v, int view, glm::ivec2 texel);
+
+// sequence.cpp (gblens view SEQ, SEQ@N): a sequence's frames shown one at a time, a timeline over them
+// True when `text` names a sequence (a folder with sequence.json) or a frame of one (SEQ@N).
+bool sequenceArgument(const std::string& text);
+// Opens the sequence v.args.capture names and loads its first frame (or frame N) into captureA, the
+// timeline's state in the model; false with `error`.
+bool openSequence(Viewer& v, std::string& error);
+// The timeline's work each iteration: plays at the sequence's rate, shows the frame the strip or a key
+// asked for (the views, zoom and pan kept; the probe moved along its track). True while playing.
+bool updateSequence(Viewer& v, double dt);
+// After a probe of a sequence's frame: the point followed through the other frames (model.track).
+void trackSequenceProbe(Viewer& v);
+std::string describeCapture(const Capture& c);  // captures.cpp: what the capture panel says of one
 
 // reference_error.cpp
 // The reference error's work: starts the worker on request, cancels it on request, picks up its

@@ -5,7 +5,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -112,6 +114,34 @@ FrameSnapshot syntheticFrame(uint32_t w, uint32_t h) {
       }
     f.setAbsence(t, Absent::No);
   }
+  return f;
+}
+
+// The plane's colour at world (x, y): a checkerboard, red and blue by square, green by height.
+static glm::dvec3 planeColour(double x, double y) {
+  const bool odd = (int64_t(std::floor(x / 0.25)) + int64_t(std::floor(y / 0.25))) & 1;
+  return odd ? glm::dvec3(0.8, 0.5, 0.15) : glm::dvec3(0.1, 0.3 + 0.1 * std::clamp(y, -2.0, 2.0), 0.7);
+}
+
+FrameSnapshot planeFrame(uint32_t w, uint32_t h, double cameraX, double brightness) {
+  FrameSnapshot f = syntheticFrame(w, h);
+  CameraDesc cam;
+  cam.worldFromEye = lookAt({cameraX, 0, kPlaneDepth}, {cameraX, 0, 0});
+  f.camera = makeCamera(cam, w, h, false);
+  auto srgb = [](double v) { return v <= 0.0031308 ? v * 12.92 : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055; };
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      const glm::dvec3 eye = eyeFromEyeDepth(f.camera, x, y, kPlaneDepth);
+      const glm::dvec3 world = glm::dvec3(f.camera.worldFromEye * glm::dvec4(eye, 1.0));
+      const glm::dvec3 c = glm::clamp(planeColour(world.x, world.y) * brightness, 0.0, 1.0);
+      for (uint32_t k = 0; k < 3; ++k) {
+        setTexel(f.target(Target::AlbedoSpecular).image, x, y, k, std::round(255.0 * c[k]));
+        setTexel(f.target(Target::Final).image, x, y, k, std::round(255.0 * srgb(c[k])));
+        setTexel(f.target(Target::Hdr).image, x, y, k, c[k]);
+      }
+      setTexel(f.target(Target::Depth).image, x, y, 0, kPlaneDepth);
+      setTexel(f.target(Target::DepthStencil).image, x, y, 0, hardwareDepth(f.camera, eye));
+    }
   return f;
 }
 

@@ -8,6 +8,7 @@
 namespace gb {
 
 unsigned keySession(const ViewerModel& m) {
+  if (m.timeline.on && m.source == FrameSource::Capture) return kCapture | kSequence;
   return m.source == FrameSource::Compare ? kCompare : m.attach.on ? kAttach : m.source == FrameSource::Live ? kLive : kCapture;
 }
 
@@ -22,6 +23,7 @@ const std::vector<KeyBinding>& keyBindings() {
       {"Space", A::PlayPause, kLive, "play / pause the animation"},
       {"Space", A::FlipCompare, kCompare, "flip A and B in place (the same zoom and pan)"},
       {"Space", A::PauseStream, kAttach, "pause the stream (the application runs on)"},
+      {"Space", A::PlaySequence, kSequence, "play / pause the sequence at its rate (from the frames' times, else 30 fps)"},
       {"S", A::CompareSwipe, kCompare, "swipe: A left of the mouse, B right of it"},
       {"D", A::CompareDifference, kCompare, "|A - B| of every view shown"},
       {"F", A::CompareFlip, kCompare, "FLIP of the colour views (others: |A - B|)"},
@@ -30,6 +32,8 @@ const std::vector<KeyBinding>& keyBindings() {
       {"ctrl+S", A::SaveDraft, kAttach, "save the suggested layout (attach --suggest)"},
       {".", A::StepForward, kLive, "step the animation forward"},
       {",", A::StepBack, kLive, "step the animation back"},
+      {".", A::NextFrame, kSequence, "the sequence's next frame (the view, zoom and probe stay; the probe follows its point)"},
+      {",", A::PreviousFrame, kSequence, "the sequence's previous frame"},
       {"Home", A::ResetCamera, kLive, "reset the camera"},
       {"Escape", A::CancelReference, kLive, "cancel the reference error's computation"},
       {"G", A::TexelGrid, kEverywhere, "texel grid on / off (zoomed in: values in texels)"},
@@ -71,7 +75,7 @@ std::optional<KeyAction> keyAction(const std::string& key, bool ctrl, unsigned s
 
 std::string keysMarkdown() {
   static const std::pair<unsigned, const char*> kNames[] = {
-      {kLive, "live"}, {kCapture, "capture"}, {kCompare, "compare"}, {kAttach, "attach"}};
+      {kLive, "live"}, {kCapture, "capture"}, {kCompare, "compare"}, {kAttach, "attach"}, {kSequence, "sequence"}};
   std::string out = "| input | in | does |\n| --- | --- | --- |\n";
   for (const KeyBinding& b : keyBindings()) {
     std::string in;

@@ -8,14 +8,15 @@
 
 namespace gb {
 
-// Kinds of session a row applies to (bits).
-enum KeySession : unsigned { kLive = 1, kCapture = 2, kCompare = 4, kAttach = 8, kEverywhere = 15 };
+// Kinds of session a row applies to (bits). A sequence (gblens view SEQ) is a capture session with a
+// timeline: keySession gives it kCapture | kSequence, so the capture rows apply there too.
+enum KeySession : unsigned { kLive = 1, kCapture = 2, kCompare = 4, kAttach = 8, kSequence = 16, kEverywhere = 31 };
 
 // What a key does (the handler's switch); Mouse rows are described only.
 enum class KeyAction {
   Quit, SaveDraft, Grid, FirstView, ViewKey, FlipCompare, PlayPause, PauseStream, CancelReference, CaptureShown,
   StepForward, StepBack, ResetCamera, TexelGrid, Fit, MoveProbe, MoveCamera, CompareSwipe, CompareDifference,
-  CompareFlip, CompareRow, ZoomToMarks, NextSample, Mouse
+  CompareFlip, CompareRow, ZoomToMarks, NextSample, NextFrame, PreviousFrame, PlaySequence, Mouse
 };
 
 struct KeyBinding {

@@ -21,6 +21,8 @@ void attachMenu(ViewerModel& m);   // attach_panel.cpp (gblens attach)
 void attachSection(ViewerModel& m);
 std::string attachStatusLine(const ViewerModel& m);
 void attachSuggestionWindow(ViewerModel& m);
+double timelineHeight(const ViewerModel& m);  // timeline_panel.cpp (a sequence's frames)
+void drawTimeline(ViewerModel& m, double x, double y, double w);
 
 static constexpr double kMenuHeight = 20.0, kStatusHeight = 22.0, kControlsWidth = 310.0, kPixelWidth = 450.0;
 static constexpr double kTextLine = 13.0;  // the default font's line
@@ -38,7 +40,7 @@ static double pixelWidth(const ViewerModel& m, double w) {
 
 Rect viewArea(const ViewerModel& m, double w, double h) {
   double left = controlsWidth(m, w), right = pixelWidth(m, w);
-  return {left, kMenuHeight, std::max(1.0, w - left - right), std::max(1.0, h - kMenuHeight - statusHeight(m))};
+  return {left, kMenuHeight, std::max(1.0, w - left - right), std::max(1.0, h - kMenuHeight - statusHeight(m) - timelineHeight(m))};
 }
 
 static void tooltip(const char* text) {
@@ -476,6 +478,9 @@ static void statusBar(ViewerModel& m, double w, double h) {
   } else {
     std::snprintf(buf, sizeof buf, "%s | %s | %ux%u", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height);
     line = buf;
+    if (m.timeline.on && !m.timeline.numbers.empty())  // a sequence: the frame shown
+      line += " | frame " + std::to_string(m.timeline.numbers[size_t(m.timeline.shown)]) + " of " +
+              std::to_string(m.timeline.numbers.front()) + ".." + std::to_string(m.timeline.numbers.back());
   }
   // The hovered values first where the line is too long for the window: they change under the
   // mouse, the rest does not (and the whole line is in the tooltip).
@@ -492,6 +497,7 @@ void drawViewerUi(ViewerModel& m, ViewDrawCallback callback, std::vector<ViewDra
   drawViewArea(m, area, callback, draws);  // first: the panels show this frame's hover
   if (m.showControls) controlsPanel(m, {0, kMenuHeight, controlsWidth(m, w), area.h});
   if (m.showPixel) pixelPanel(m, {w - pixelWidth(m, w), kMenuHeight, pixelWidth(m, w), area.h});
+  drawTimeline(m, 0.0, area.y + area.h, w);  // a sequence: the strip between the views and the status bar
   statusBar(m, w, h);
   attachSuggestionWindow(m);
 }

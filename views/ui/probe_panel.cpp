@@ -330,6 +330,7 @@ static void dossierSections(const PixelDossier& d) {
 }
 
 void referenceSection(ViewerModel& m);  // reference_panel.cpp
+void trackSection(ViewerModel& m);      // track_panel.cpp: a sequence's probe across its frames
 void compareDossiers(ViewerModel& m);   // compare_panel.cpp
 
 // The clicked shadow-map texel: how many pixels read it, where (zoom to them), or why none do.
@@ -400,6 +401,7 @@ void drawDossier(ViewerModel& m) {
     return;
   }
   if (!m.dossierB) {
+    trackSection(m);
     ImGui::BeginChild("dossier");
     if (gblensLayout(m.frameLayout)) referenceSection(m);  // another renderer's frame has no scene to trace
     dossierSections(d);

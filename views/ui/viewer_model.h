@@ -16,6 +16,7 @@
 #include "views/analysis/flip.h"
 #include "views/analysis/probe.h"
 #include "views/analysis/probe_reference.h"
+#include "views/analysis/probe_track.h"
 #include "views/analysis/region_stats.h"
 #include "views/analysis/shadow_marks.h"
 #include "views/ui/view_layout.h"
@@ -216,6 +217,23 @@ struct ViewerModel {
     std::string draftStatus;     // where it was saved, or why not
   } attach;
 
+  // ---- a sequence (gblens view SEQ): the timeline strip (views/ui/timeline_panel.cpp) and the probe's
+  // track across its frames (views/analysis/probe_track.h, drawn by views/ui/track_panel.cpp) ----
+  struct TimelineUi {
+    bool on = false;                          // the frames are a sequence's (source is Capture)
+    std::string dir;                          // the sequence's folder
+    std::vector<int64_t> numbers;             // each frame's number (the N of SEQ@N)
+    std::vector<std::optional<double>> times; // each frame's time (seconds), when the sequence says
+    int shown = 0;                            // index of the frame shown
+    int requested = -1;                       // the strip or a key asks for this frame (-1: none)
+    bool playing = false;
+    double fps = 30.0;                        // the sequence's rate: from the frames' times, else 30
+    bool fpsFromTimes = false;
+    size_t cached = 0, cacheLimit = 0;        // frames in memory now, at most
+    std::string status;                       // why a frame could not be shown ("" none)
+  } timeline;
+  std::optional<ProbeTrack> track;            // the probed point across the sequence (none: not probed)
+
   // Set by the panels when anything changed that needs another interface frame.
   bool uiChanged = false;
 };
@@ -254,6 +272,9 @@ std::vector<ViewSlot> viewSlots(const ViewerModel& m, const Rect& area);
 // The part of a slot its image is placed in: the slot less the strip below it that holds its legend
 // (views never draw a legend over the picture). Needs an ImGui frame (text sizes).
 Rect imageRectOf(const ViewerModel& m, const ViewSlot& s);
+
+// The timeline's step: asks for the frame `delta` away from the one shown (clamped), pauses playing.
+void stepTimeline(ViewerModel& m, int delta);
 
 // Keyboard shortcuts: 1 grid, 0 / Return the first view, 2..9 the next ones (view_table.h keys).
 // Returns true if handled.

@@ -1,0 +1,92 @@
+// The timeline strip of a sequence (gblens view SEQ; ImGui only): step back / forward, play / pause at
+// the sequence's rate, a slider over its frames, the frame's number and time, the frame cache. It
+// edits ViewerModel::timeline; the app (app/viewer/sequence.cpp) shows the frame asked for.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include "views/ui/viewer_model.h"
+
+namespace gb {
+
+double timelineHeight(const ViewerModel& m) { return m.timeline.on ? 30.0 : 0.0; }
+
+void stepTimeline(ViewerModel& m, int delta) {
+  ViewerModel::TimelineUi& t = m.timeline;
+  if (!t.on || t.numbers.empty()) return;
+  const int from = t.requested >= 0 ? t.requested : t.shown;  // presses that arrive together all count
+  t.requested = std::clamp(from + delta, 0, int(t.numbers.size()) - 1);
+  t.playing = false;
+  m.uiChanged = true;
+}
+
+// What the strip says of the frame shown: its number, place, time and the rate played at.
+static std::string frameText(const ViewerModel::TimelineUi& t) {
+  char buf[256];
+  const size_t i = size_t(t.shown);
+  const int n = std::snprintf(buf, sizeof buf, "frame %lld (%zu of %zu)", (long long)t.numbers[i], i + 1, t.numbers.size());
+  std::string text(buf, size_t(std::max(n, 0)));
+  if (t.times[i]) {
+    std::snprintf(buf, sizeof buf, "  t %.4g s", *t.times[i]);
+    text += buf;
+  }
+  return text;
+}
+
+void drawTimeline(ViewerModel& m, double x, double y, double w) {
+  ViewerModel::TimelineUi& t = m.timeline;
+  if (!t.on || t.numbers.empty()) return;
+  ImGui::SetNextWindowPos(ImVec2(float(x), float(y)));
+  ImGui::SetNextWindowSize(ImVec2(float(w), float(timelineHeight(m))));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(6, 4));
+  ImGui::Begin("##timeline", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                                           ImGuiWindowFlags_NoBringToFrontOnFocus);
+  ImGui::PopStyleVar();
+  const int last = int(t.numbers.size()) - 1;
+  if (ImGui::Button("|<")) t.requested = 0, t.playing = false;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the first frame");
+  ImGui::SameLine();
+  if (ImGui::ArrowButton("##back", ImGuiDir_Left)) stepTimeline(m, -1);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the previous frame (,)");
+  ImGui::SameLine();
+  if (ImGui::Button(t.playing ? "Pause" : "Play ", ImVec2(ImGui::CalcTextSize("Pause").x + 12.0f, 0.0f))) t.playing = !t.playing;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("play / pause at the sequence's rate (Space)");
+  ImGui::SameLine();
+  if (ImGui::ArrowButton("##forward", ImGuiDir_Right)) stepTimeline(m, +1);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the next frame (.)");
+  ImGui::SameLine();
+  if (ImGui::Button(">|")) t.requested = last, t.playing = false;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the last frame");
+  ImGui::SameLine();
+  // Right of the slider: the rate and the cache, or why a frame could not be shown.
+  char right[256];
+  if (!t.status.empty())
+    std::snprintf(right, sizeof right, "%s", t.status.c_str());
+  else
+    std::snprintf(right, sizeof right, "%.3g fps%s | %zu of at most %zu frames in memory", t.fps,
+                  t.fpsFromTimes ? " (the frames' times)" : " (no times: 30 fps)", t.cached, t.cacheLimit);
+  const float rightWidth = std::min(ImGui::CalcTextSize(right).x, float(w) * 0.45f);
+  ImGui::SetNextItemWidth(std::max(80.0f, ImGui::GetContentRegionAvail().x - rightWidth - ImGui::GetStyle().ItemSpacing.x));
+  int index = t.requested >= 0 ? t.requested : t.shown;
+  std::string label = frameText(t);
+  std::string format;  // the slider prints the text as is ('%' doubled)
+  for (char c : label) format += c == '%' ? std::string("%%") : std::string(1, c);
+  if (ImGui::SliderInt("##frame", &index, 0, last, format.c_str(), ImGuiSliderFlags_AlwaysClamp)) {
+    t.requested = index;
+    t.playing = false;
+  }
+  ImGui::SameLine();
+  if (!t.status.empty())
+    ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "%s", right);
+  else
+    ImGui::TextDisabled("%s", right);
+  if (ImGui::IsItemHovered() && t.status.empty())
+    ImGui::SetTooltip("frames are loaded when first shown and kept in a cache of at most %zu (the least recently used goes)",
+                      t.cacheLimit);
+  if (t.requested >= 0 || t.playing) m.uiChanged = true;
+  ImGui::End();
+}
+
+}  // namespace gb
