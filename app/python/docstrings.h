@@ -2,7 +2,8 @@
 // apart from the bindings so that both read easily; tests/python/test_api.py checks every public
 // name has one and that app/python/gblens.pyi declares it. A function's starts with its signature
 // and "--" (CPython's __text_signature__), so inspect.signature and help() show its real parameters
-// (pybind11's own signature lines are turned off in module.cpp).
+// (pybind11's own signature lines are turned off in module.cpp). The sequence API's are in
+// sequence_docstrings.h.
 #pragma once
 
 namespace gb::python::doc {

@@ -52,19 +52,8 @@ std::string missingReason(const FrameSnapshot& f, const ViewDef& v) {
 }
 
 py::array quantityArray(const FramePtr& h, const std::string& name) {
-  const FrameSnapshot& f = frameOfHandle(h);
-  const ViewDef v = findQuantity(f, name);
-  const TargetImage* ti = layoutImage(f, v.target);
-  if (!ti) fail(name + ": " + missingReason(f, v));
-  std::vector<double> values;
-  {
-    py::gil_scoped_release release;
-    values = decodedImage<double>(f, v);
-  }
-  // A scalar is (H, W), as numpy and OpenImageIO give one channel; vectors and colours (H, W, C).
-  const py::ssize_t components = py::ssize_t(decodedComponents(f, v));
-  if (components == 1) return adopt(std::move(values), {py::ssize_t(ti->image.height), py::ssize_t(ti->image.width)});
-  return adopt(std::move(values), {py::ssize_t(ti->image.height), py::ssize_t(ti->image.width), components});
+  Decoded d = decodeQuantity(h, name);
+  return adopt(std::move(d.values), std::move(d.shape));
 }
 
 // Positions from the first camera depth ("depth"), the stored position ("stored") or a depth quantity
@@ -199,6 +188,25 @@ FramePtr open(const py::object& path, const py::object& layout, const py::dict& 
 }
 
 }  // namespace
+
+Decoded decodeQuantity(const FramePtr& h, const std::string& name) {
+  const FrameSnapshot& f = frameOfHandle(h);
+  const ViewDef v = findQuantity(f, name);
+  const TargetImage* ti = layoutImage(f, v.target);
+  if (!ti) fail(name + ": " + missingReason(f, v));
+  Decoded d;
+  {
+    py::gil_scoped_release release;
+    d.values = decodedImage<double>(f, v);
+  }
+  // A scalar is (H, W), as numpy and OpenImageIO give one channel; vectors and colours (H, W, C).
+  const py::ssize_t components = py::ssize_t(decodedComponents(f, v));
+  d.shape = {py::ssize_t(ti->image.height), py::ssize_t(ti->image.width)};
+  if (components != 1) d.shape.push_back(components);
+  return d;
+}
+
+py::dtype dtypeOfPixels(PixelType t) { return dtypeOf(t); }
 
 FramePtr openCapture(const std::string& dir) {
   auto h = std::make_shared<FrameHandle>();

@@ -1,5 +1,6 @@
 // The `gblens` Python module (docs/python.md): frames from captures, imports and the renderer, their
-// targets and decoded quantities as numpy arrays, the probe, statistics, check, compare and its report.
+// targets and decoded quantities as numpy arrays, the probe, statistics, check, compare and its report;
+// sequences as arrays with a time axis, their motion vectors checked, flicker.
 #include "app/python/python.h"
 
 namespace gb::python {
@@ -24,8 +25,9 @@ PYBIND11_MODULE(gblens, m) {
 
 Frames come from captures and imports (``open``) or the headless renderer (``render``); each holds its
 stored targets (``Frame.targets``) and decodes its quantities (``Frame[name]``); ``Frame.probe``,
-``Frame.stats`` and ``Frame.check`` are the CLI's commands, ``compare`` compares two frames. Every
-error is a ``gblens.Error``. See docs/python.md.)";
+``Frame.stats`` and ``Frame.check`` are the CLI's commands, ``compare`` compares two frames;
+``open_sequence`` opens a sequence (frames, and arrays with a time axis), ``motion`` and ``flicker``
+analyse one. Every error is a ``gblens.Error``. See docs/python.md.)";
   m.attr("__version__") = GBLENS_VERSION;
   // Docstrings carry their own signatures (app/python/docstrings.h): inspect.signature reads them.
   py::options options;
@@ -50,4 +52,5 @@ error is a ``gblens.Error``. See docs/python.md.)";
   gb::python::bindFrame(m);
   gb::python::bindCompare(m);
   gb::python::bindRender(m);
+  gb::python::bindSequence(m);
 }

@@ -1,5 +1,5 @@
 // The `gblens` Python module's shared parts (pybind11): the frame handle every array keeps alive,
-// the exception that carries the CLI's one-line messages, JSON -> Python.
+// the exception that carries the CLI's one-line messages, JSON -> Python, a quantity decoded.
 #pragma once
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -64,8 +64,19 @@ py::object toPython(const nlohmann::json& j);
 FramePtr frameOf(const py::object& frameOrPath);
 FramePtr openCapture(const std::string& dir);
 
+// A quantity decoded as Frame[name] gives it: float64 values and their shape, (H, W) for a scalar,
+// (H, W, C) otherwise (QuantityError: no quantity of that name; Error: its target is not held).
+struct Decoded {
+  std::vector<double> values;
+  std::vector<py::ssize_t> shape;
+};
+Decoded decodeQuantity(const FramePtr& frame, const std::string& name);
+// The numpy type of a stored target's texels (Frame.targets).
+py::dtype dtypeOfPixels(PixelType type);
+
 void bindFrame(py::module_& m);
 void bindCompare(py::module_& m);
 void bindRender(py::module_& m);
+void bindSequence(py::module_& m);
 
 }  // namespace gb::python

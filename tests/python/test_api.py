@@ -28,7 +28,8 @@ def stub():
         if isinstance(node, ast.FunctionDef):
             out[""][node.name] = node
         elif isinstance(node, ast.ClassDef):
-            out[node.name] = {n.name: n for n in node.body if isinstance(n, ast.FunctionDef)}
+            out[node.name] = {n.name: n for n in node.body  # the names public() takes (not __len__)
+                              if isinstance(n, ast.FunctionDef) and (not n.name.startswith("_") or n.name == "__getitem__")}
     return out
 
 
@@ -62,12 +63,13 @@ def test_every_public_name_has_a_docstring():
     assert gblens.__doc__ and "Frame" in gblens.__doc__
     for name, obj in public(gblens).items():
         assert (obj.__doc__ or "").strip(), name
-    for cls in (gblens.Frame, gblens.Result):
+    for cls in (gblens.Frame, gblens.Sequence, gblens.Result):
         for name, member in public(cls).items():
             doc = member.__doc__ if not isinstance(member, property) else member.fget.__doc__ or member.__doc__
             assert (doc or "").strip(), f"{cls.__name__}.{name}"
     # Numpy style: the functions that take arguments say so under "Parameters".
-    for fn in (gblens.open, gblens.compare, gblens.render, gblens.Frame.probe, gblens.Frame.stats):
+    for fn in (gblens.open, gblens.compare, gblens.render, gblens.Frame.probe, gblens.Frame.stats, gblens.open_sequence,
+               gblens.motion, gblens.flicker, gblens.Sequence.array, gblens.Sequence.frame):
         assert "Parameters\n----------" in inspect.getdoc(fn), fn.__name__
 
 
@@ -77,7 +79,7 @@ def test_signatures_are_inspectable_and_equal_the_stub():
     assert module_functions == set(s[""]), "functions: module vs gblens.pyi"
     for name in module_functions:
         assert module_parameters(getattr(gblens, name)) == stub_parameters(s[""][name]), name
-    for cls in (gblens.Frame, gblens.Result):
+    for cls in (gblens.Frame, gblens.Sequence, gblens.Result):
         members = public(cls)
         methods = {n for n, m in members.items() if not isinstance(m, property)}
         properties = {n for n, m in members.items() if isinstance(m, property)}
@@ -137,13 +139,16 @@ def examples():
 @pytest.mark.parametrize("index", range(len(examples())))
 def test_every_docs_example_runs(index, tmp_path, monkeypatch):
     """Each ```python block of docs/python.md, run as written in a folder holding what it names: the
-    golden capture (made with the example's own options) and the Blender fixture."""
+    golden capture (made with the example's own options), the sequence "walk" and the Blender fixture."""
     code = examples()[index]
     compile(code, f"docs/python.md example {index}", "exec")  # a SyntaxError fails here
     monkeypatch.chdir(tmp_path)
     if "golden/temple" in code:
         run("capture", "builtin:temple", "--size", "160x90", "--lights", "16", "--time", "2.5", "--shadow-map-size", "256",
             "-o", tmp_path / "golden" / "temple")
+    if '"walk"' in code:  # the sequence the Sequences example names, made as its comment says
+        run("capture", "builtin:temple", "--size", "64x36", "--sequence", "3", "--time-step", "0.1", "--camera-motion", "orbit",
+            "--motion", "on", "-o", tmp_path / "walk")
     for name in ("cycles.exr", "camera.json"):  # the Blender passes and their camera sidecar
         shutil.copy(os.path.join(SOURCE, "tests", "data", "blender", name), tmp_path / name)
     exec(compile(code, f"docs/python.md example {index}", "exec"), {"__name__": "__docs__"})
