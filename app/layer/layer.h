@@ -452,6 +452,9 @@ inline bool frameDue(const Request& r, uint64_t number) {
 // (submit.cpp): the next submission that copies waits for it, so no frame of a range is skipped.
 void holdCapture(DeviceData& d);
 void releaseCapture(DeviceData& d);
+// Waits (at most 20 s) until the frame held is read: before a submission that would write its ring
+// buffers again or copy the next frame of a range, and before the device goes (stopStream).
+void waitForCapture(DeviceData& d);
 
 // ---- multisampled attachments (samples.cpp): every sample, copied at the pass's end into an image
 // of the layer's (the application's command buffer), then unpacked into the ring by a compute

@@ -231,6 +231,9 @@ void startStream(DeviceData& d, Stream* st) {
 void stopStream(DeviceData& d) {
   Stream* st = d.stream;
   if (!st) return;
+  // --capture-frame(s): a frame asked for, still on its way (its fence, the receiver's ack of the
+  // one before), is sent before the device goes: an application may end right after a range's last frame.
+  waitForCapture(d);
   st->stop = true;
   wakeUp(*st);
   st->thread.join();
