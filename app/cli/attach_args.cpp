@@ -56,16 +56,18 @@ bool checkAttachOptions(const AttachOptions& o, LiveOptions& lo, std::string& er
   const std::string captureFlag = o.sequence() ? "--capture-frames" : "--capture-frame";
   if (draft && (o.capturing() || o.frames))
     return refuse("--suggest: drafts a layout; " + captureFlag + " and --frames need --layout");
-  if (o.sequence() && o.captureFrame >= 0) return refuse("--capture-frames: one frame is --capture-frames N, not with --capture-frame");
+  if (o.sequence() && o.captureFrame >= 0)
+    return refuse("--capture-frames: one frame is --capture-frames N, not with --capture-frame");
   if (o.sequence() && o.frames) return refuse("--frames: receives frames and writes nothing; --capture-frames writes them");
   int64_t first = o.captureFrame, last = -1;
   if (o.sequence() && !parseFrameRange(o.captureFrames, "--capture-frames", first, last, error)) return false;
   if (o.sequence() && first < 0)
     return refuse("--capture-frames " + o.captureFrames + ": the application's frames count from 0");
   if (o.capturing() && o.output.empty())
-    return refuse("-o: required with " + captureFlag + (o.sequence() ? " (the sequence folder to write)" : " (the capture folder to write)"));
+    return refuse("-o: required with " + captureFlag + " (the " + (o.sequence() ? "sequence" : "capture") + " folder to write)");
   if (!o.capturing() && !draft && !o.output.empty())
-    return refuse("-o: writes the frame --capture-frame names, the frames --capture-frames names, or the layout --suggest drafts");
+    return refuse("-o: writes the frame --capture-frame names, the frames --capture-frames names, or the layout --suggest "
+                  "drafts");
   if (o.history && (o.capturing() || draft))
     return refuse("--history: keeps the last frames of the viewer's stream or of --frames; " +
                   (draft ? std::string("--suggest drafts a layout") : captureFlag + " writes its frames"));
@@ -73,7 +75,8 @@ bool checkAttachOptions(const AttachOptions& o, LiveOptions& lo, std::string& er
     return refuse("--layout: required (a layout file, docs/layout-format.md, or builtin:NAME)");
   if (o.keepRunning && !(draft && !o.output.empty())) return refuse("--keep-running: goes with --suggest -o");
   if (o.capturing() && o.every != 1)
-    return refuse("--every: " + captureFlag + (o.sequence() ? " names consecutive frames" : " names one frame") + " of the application");
+    return refuse("--every: " + captureFlag + (o.sequence() ? " names consecutive frames" : " names one frame") +
+                  " of the application");
   if (!(o.timeout > 0.0) || !std::isfinite(o.timeout)) return refuse("--timeout: expected a positive number of seconds");
   lo = LiveOptions{};
   lo.layout = o.layout;

@@ -32,8 +32,8 @@ std::string fileBytes(const std::string& path) {
 
 // `gblens attach ARGS -- tiler_deferred --mode subpass --frames 6` with validation on (and `env`).
 RunResult attachTiler(const std::string& args, const std::string& env = "") {
-  return runShell(env + " GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout '" + tilerLayout() + "' " + args +
-                  " -- '" + tiler() + "' --mode subpass --frames 6");
+  return runShell(env + " GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout '" + tilerLayout() + "' " +
+                  args + " -- '" + tiler() + "' --mode subpass --frames 6");
 }
 
 // gblens's lines of the output (the application prints its own).
