@@ -17,8 +17,11 @@ struct AttachOptions {
   std::vector<std::string> params, app;
   uint32_t every = 1;
   int64_t captureFrame = -1;  // the application's frame --capture-frame writes (0: its first); -1: none
+  std::string captureFrames;  // --capture-frames A..B: those frames as a sequence ("" : none)
   uint64_t frames = 0;
-  bool capturing() const { return captureFrame >= 0; }
+  size_t history = 0;         // --history K: the stream keeps its last K decoded frames
+  bool sequence() const { return !captureFrames.empty(); }
+  bool capturing() const { return captureFrame >= 0 || sequence(); }  // writes frames to -o
   bool suggest = false, stats = false, keepRunning = false;
   double timeout = 300.0;
   std::string window = "1280x800", eventLog, probeLog;  // the viewer's
@@ -29,7 +32,8 @@ struct AttachOptions {
 void addAttachOptions(CLI::App* cmd, AttachOptions& o);
 
 // The flags' combinations (one line naming the flag when they do not go together) and what the
-// session is asked: `lo` (layout, --param values, the application, --every, the frame, --suggest).
+// session is asked: `lo` (layout, --param values, the application, --every, the frame or the frames
+// --capture-frames names, --history, --suggest).
 bool checkAttachOptions(const AttachOptions& o, LiveOptions& lo, std::string& error);
 
 }  // namespace gb

@@ -1,11 +1,12 @@
 // gblens attach: another running Vulkan application's G-buffer, streamed by the gblens layer.
-//   gblens attach --layout L.json --capture-frame N -o DIR [--every E] [--stats] -- APP ARGS...
-//   gblens attach --layout L.json --frames K [--every E] [--stats] -- APP ARGS...
+//   gblens attach --layout L.json --capture-frame N -o DIR [--stats] -- APP ARGS...
+//   gblens attach --layout L.json --capture-frames A..B -o DIR [--stats] -- APP ARGS...   (a sequence)
+//   gblens attach --layout L.json --frames K [--every E] [--history K] [--stats] -- APP ARGS...
 //   gblens attach --suggest [-o DRAFT.json] -- APP ARGS...   (the viewer on a drafted layout, or the draft)
-//   gblens attach --layout L.json [--suggest] [--every E] -- APP ARGS...   (the viewer on the stream)
+//   gblens attach --layout L.json [--suggest] [--every E] [--history K] -- APP ARGS...   (the viewer)
 // Headless, the application is started with the layer, runs to its own end (the layer detaches), and
 // the command exits 0 when it got what it was asked for, 2 when nothing matched the layout (with why).
-// With a layout and none of --capture-frame, --frames: the viewer opens on the stream's first frame;
+// With a layout and none of --capture-frame(s), --frames: the viewer opens on the stream's first frame;
 // closing it detaches and the application runs on. --suggest without a layout drafts one from what
 // the application draws (views/infer/live_suggest.cpp) and streams under it. docs/attach.md.
 #include <chrono>
@@ -16,6 +17,7 @@
 #include <type_traits>
 
 #include "app/cli/attach_args.h"
+#include "app/cli/attach_sequence.h"
 #include "app/cli/cli.h"
 #include "app/cli/messages.h"
 #include "app/viewer/viewer.h"
@@ -47,6 +49,14 @@ T field(const nlohmann::json& j, const char* key, T fallback) {
   else return v.is_number() ? v.get<T>() : fallback;
 }
 
+// --history K: the frames kept (the application's numbers, oldest first) and their bytes; null without it.
+nlohmann::json historyJson(const FrameHistory& h) {
+  if (h.limit() == 0) return nullptr;
+  nlohmann::json frames = nlohmann::json::array(), bytes = nlohmann::json::array();
+  for (const HistoryFrame& f : h.frames()) frames.push_back(f.appFrame), bytes.push_back(f.bytes);
+  return {{"limit", h.limit()}, {"app_frames", frames}, {"frame_bytes", bytes}, {"bytes", h.bytes()}};
+}
+
 nlohmann::json statsJson(const LiveSession& s) {
   const LiveCounts& c = s.counts();
   const double frameMs = field(c.layer, "frame_ms", 0.0);
@@ -61,30 +71,18 @@ nlohmann::json statsJson(const LiveSession& s) {
           {"copies_done_ms", c.meanReadyMs},
           {"overwritten", c.overwritten},
           {"latency_frames", frameMs > 0.0 ? c.meanLatencyMs / frameMs : 0.0},
-          {"layer", c.layer}};
-}
-
-std::string appText(const AttachOptions& o) {
-  std::string text;
-  for (const std::string& a : o.app) text += (text.empty() ? "" : " ") + a;
-  return text;
+          {"layer", c.layer},
+          {"history", historyJson(s.history())}};
 }
 
 int writeFrame(const AttachOptions& o, const LiveSession& s, const FrameSnapshot& frame, const LiveFrameInfo& info) {
-  CaptureMeta meta;
-  meta.device = field(s.hello(), "device", std::string());
-  meta.scene = "attach: " + appText(o) + " (application frame " + std::to_string(info.appFrame) + ")";
-  meta.commandLine = commandLine();
+  const CaptureMeta meta = attachMeta(o, s, info.appFrame);
   std::string error;
   if (!writeCapture(o.output, frame, meta, error)) return attachFail(error);
   std::printf("attached to %s (%s): wrote application frame %llu (streamed frame %llu) with layout %s into %s\n",
               field(s.hello(), "application", std::string("?")).c_str(), meta.device.c_str(), (unsigned long long)info.appFrame,
               (unsigned long long)info.stream, o.layout.c_str(), o.output.c_str());
-  for (uint32_t t = 0; t < frame.layout.targets.size(); ++t)
-    if (frame.images[t].present())
-      std::printf("  %-20s %-14s %ux%u  %s\n", frame.layout.targets[t].name.c_str(), frame.layout.targets[t].format.name.c_str(),
-                  frame.images[t].image.width, frame.images[t].image.height, info.sources[t].c_str());
-  for (const std::string& a : info.absent) std::printf("  absent: %s\n", a.c_str());
+  std::fputs(attachTargetsText(frame, info).c_str(), stdout);
   return 0;
 }
 
@@ -170,7 +168,7 @@ int runSuggestLive(const AttachOptions& o, const LiveOptions& lo) {
   }
   std::fprintf(stderr, "gblens attach: draft%s%s; check every \"guess\", then: gblens attach --layout %s -- %s\n",
                o.output.empty() ? " on stdout" : " written to ", o.output.c_str(),
-               o.output.empty() ? "DRAFT.json" : o.output.c_str(), appText(o).c_str());
+               o.output.empty() ? "DRAFT.json" : o.output.c_str(), attachAppText(o).c_str());
   // The draft is what was asked for: the application is ended (scripts wait for gblens, not for it).
   if (!o.output.empty() && !o.keepRunning) {
     s.stop();
@@ -200,37 +198,23 @@ int runAttach(const AttachOptions& o) {
   if (!s.start(lo, error)) return attachFail(error);
   if (viewer) return runViewerOnStream(o, s);
 
-  int status = 2;
   std::string why;
-  uint64_t received = 0;
-  const auto start = std::chrono::steady_clock::now();
-  for (;;) {
-    FrameSnapshot frame;
-    LiveFrameInfo info;
-    const bool got = s.wait(frame, 0.2, &info);
-    printReports(s);
-    if (got && o.capturing()) {
-      status = writeFrame(o, s, frame, info);
-      break;
-    }
-    if (got && ++received == o.frames) {
-      status = 0;
-      break;
-    }
-    if (s.noMatch()) {
-      why = "nothing matched the layout in the application's first frames (the layer's reports above say why)";
-      break;
-    }
-    if (!s.running() && !s.attached()) {
-      why = s.hello().is_null() ? "the application ended without creating a Vulkan device under the layer"
-                                : "the application ended after " + std::to_string(s.counts().received) +
-                                      " streamed frame(s)" +
-                                      (o.capturing() ? ", before its frame " + std::to_string(o.captureFrame) : std::string());
-      break;
-    }
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > o.timeout) {
-      why = "--timeout " + std::to_string(int(o.timeout)) + " s: no frame came";
-      break;
+  int status = 2;
+  if (o.sequence()) {
+    status = captureAttachSequence(o, lo, s, why);
+  } else {
+    for (uint64_t received = 0;;) {  // --capture-frame N: the frame written; --frames K: K frames received
+      FrameSnapshot frame;
+      LiveFrameInfo info;
+      if (!nextAttachFrame(o, s, frame, info, o.captureFrame, why)) break;
+      if (o.capturing()) {
+        status = writeFrame(o, s, frame, info);
+        break;
+      }
+      if (++received == o.frames) {
+        status = 0;
+        break;
+      }
     }
   }
   s.detach();

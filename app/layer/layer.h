@@ -175,7 +175,9 @@ struct Request {
   std::string cameraBuffer;        // debug name of the buffer holding the matrices ("" : none)
   VkDeviceSize cameraBytes = 0;    // bytes of it to read (the matrices' last offset + 64)
   uint32_t every = 1;              // stream frames whose number is a multiple of this
-  int64_t onlyFrame = -1;          // --capture-frame: stream only the application's frame of this number (0: its first)
+  // --capture-frame N / --capture-frames A..B: stream only the application's frames onlyFrame..lastFrame
+  // (0: its first), every one of them (none paced; each held until read, submit.cpp); -1: every N.
+  int64_t onlyFrame = -1, lastFrame = -1;
   bool suggest = false;            // report the passes and attachments of one frame
   bool ringOffThread = false;      // the layer's thread makes the ring; frames before it go without copies
   uint32_t giveUp = 120;           // frames with passes but no match before "nomatch"
@@ -442,13 +444,17 @@ std::string pickText(const Pick& p);                               // "colour at
 CmdState* cmdState(DeviceData& d, VkCommandBuffer cmd);
 
 
-// Frame `number` is one the request wants streamed (every N, or only the frame --capture-frame names).
+// Frame `number` is one the request wants streamed (every N, or only the frames --capture-frame(s) names).
 inline bool frameDue(const Request& r, uint64_t number) {
-  return r.onlyFrame >= 0 ? number == uint64_t(r.onlyFrame) : number % r.every == 0;
+  return r.onlyFrame >= 0 ? number >= uint64_t(r.onlyFrame) && number <= uint64_t(r.lastFrame) : number % r.every == 0;
 }
-// --capture-frame: frame N is held (its copies not yet read) / read or given up (submit.cpp).
+// --capture-frame(s): the frame asked for is held (its copies not yet read) / read or given up
+// (submit.cpp): the next submission that copies waits for it, so no frame of a range is skipped.
 void holdCapture(DeviceData& d);
 void releaseCapture(DeviceData& d);
+// Waits (at most 20 s) until the frame held is read: before a submission that would write its ring
+// buffers again or copy the next frame of a range, and before the device goes (stopStream).
+void waitForCapture(DeviceData& d);
 
 // ---- multisampled attachments (samples.cpp): every sample, copied at the pass's end into an image
 // of the layer's (the application's command buffer), then unpacked into the ring by a compute

@@ -171,7 +171,9 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
     ++st.dropped, ++st.torn;
     return;
   }
-  if (!only && st.receiverBusy) {  // it waits for the receiver's ack; a newer one takes its place
+  // Busy: it waits for the receiver's ack; a newer one takes its place. A frame of --capture-frames
+  // never finds one waiting (the next frame's submission waited until this one was read).
+  if (st.receiverBusy) {
     if (st.waiting) {
       GBL_LOG("frame %llu: dropped, a newer one waits for the receiver", (unsigned long long)st.waiting->appFrame);
       ++st.dropped;

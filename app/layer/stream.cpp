@@ -45,6 +45,8 @@ bool parseRequest(const std::string& text, Request& r) {
   if (!j.is_object() || j.value("type", "") != gb::wire::kRequest) return false;
   r.every = std::max(1u, j.value("every", 1u));
   r.onlyFrame = j.contains("only_frame") && j["only_frame"].is_number_integer() ? j["only_frame"].get<int64_t>() : -1;
+  r.lastFrame = j.contains("last_frame") && j["last_frame"].is_number_integer() ? j["last_frame"].get<int64_t>() : r.onlyFrame;
+  if (r.lastFrame < r.onlyFrame) r.lastFrame = r.onlyFrame;
   r.suggest = j.value("suggest", false);
   r.ringOffThread = j.value("ring_off_thread", false);
   r.giveUp = std::max(1u, j.value("give_up", 120u));
@@ -126,8 +128,10 @@ void readMessages(Stream& st) {
     const std::string type = j.is_object() ? j.value("type", "") : "";
     if (type == gb::wire::kAck) {  // the receiver's buffers are free again: the frame waiting goes now
       st.receiverBusy = st.d->receiverBusy = false;
+      // --capture-frame(s): a frame read in place is read now (one copied out was let go when sent;
+      // the hold now may be the next frame's of a range, waiting below or still on the GPU).
+      if (st.atReceiver) releaseCapture(*st.d);
       st.atReceiver.reset();
-      releaseCapture(*st.d);  // --capture-frame: its frame is read
       if (st.waiting) {
         process(st, std::move(st.waiting));
         --st.d->toReceiver;
@@ -227,6 +231,9 @@ void startStream(DeviceData& d, Stream* st) {
 void stopStream(DeviceData& d) {
   Stream* st = d.stream;
   if (!st) return;
+  // --capture-frame(s): a frame asked for, still on its way (its fence, the receiver's ack of the
+  // one before), is sent before the device goes: an application may end right after a range's last frame.
+  waitForCapture(d);
   st->stop = true;
   wakeUp(*st);
   st->thread.join();

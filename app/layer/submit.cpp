@@ -140,19 +140,6 @@ void endFrame(DeviceData& d, const std::vector<uint32_t>& presentedNow = {}) {
   if (f) streamFrame(d, std::move(f));
 }
 
-// --capture-frame N: a submission that copies after frame N ended (a reusable recording, writing
-// the ring buffers frame N's copies are in) waits until the receiver has read frame N; at most 20 s
-// (a receiver that never answers), then it is said and the application goes on.
-void waitForCapture(DeviceData& d) {
-  std::unique_lock lock(d.captureLock);
-  if (!d.captureHeld) return;
-  if (!d.captureRead.wait_for(lock, std::chrono::seconds(20), [&] { return !d.captureHeld; })) {
-    d.captureHeld = false;
-    lock.unlock();
-    report(d, "capture-wait", "the receiver did not read the frame --capture-frame names within 20 s: the application goes on");
-  }
-}
-
 template <class Call>
 VkResult submit(DeviceData& d, VkQueue queue, const std::vector<VkCommandBuffer>& cmds, Call&& call) {
   auto start = std::chrono::steady_clock::now();
@@ -238,6 +225,20 @@ VKAPI_ATTR VkResult VKAPI_CALL QueuePresentKHR(VkQueue queue, const VkPresentInf
 }
 
 }  // namespace
+
+// --capture-frame N (and each frame N of --capture-frames A..B): a submission that copies after
+// frame N ended (a reusable recording writing the ring buffers frame N's copies are in; frame N+1's
+// own copies, in a range) waits until the receiver has read frame N; at most 20 s (a receiver that
+// never answers), then it is said and the application goes on.
+void waitForCapture(DeviceData& d) {
+  std::unique_lock lock(d.captureLock);
+  if (!d.captureHeld) return;
+  if (!d.captureRead.wait_for(lock, std::chrono::seconds(20), [&] { return !d.captureHeld; })) {
+    d.captureHeld = false;
+    lock.unlock();
+    report(d, "capture-wait", "the receiver did not read a frame --capture-frame(s) names within 20 s: the application goes on");
+  }
+}
 
 void holdCapture(DeviceData& d) {
   std::lock_guard lock(d.captureLock);

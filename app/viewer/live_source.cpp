@@ -27,18 +27,29 @@ uint64_t droppedFrames(const LiveReceiver::State& st) {
   return st.counts.dropped + st.counts.overwritten + st.replaced;
 }
 
-// What the status bar says: the frame shown, frames received and dropped, the application's state.
-std::string statusText(Viewer& v, const LiveReceiver::State& st) {
+// The application's state as the status bar says it.
+std::string stateText(Viewer& v, const LiveReceiver::State& st) {
   const ViewerModel& m = v.model;
+  if (!st.running) return "application exited (code " + std::to_string(st.exitStatus) + ")";
+  return m.attach.detachRequested ? "detached (the application runs on)"
+         : m.playing              ? "running"
+                                  : "paused (the application runs on)";
+}
+
+// What the status bar says: the frame shown, frames received and dropped, the history kept
+// (--history K: frames and their memory, at most K frames' bytes), the application's state.
+std::string statusText(Viewer& v, const LiveReceiver::State& st) {
   char text[256];
   std::snprintf(text, sizeof text, "application frame %llu | received %llu, dropped %llu | latency %.0f ms | ",
                 (unsigned long long)v.attachInfo.appFrame, (unsigned long long)st.counts.received,
                 (unsigned long long)droppedFrames(st), v.attachShownMs);
-  std::string state = st.running ? (m.attach.detachRequested ? "detached (the application runs on)"
-                                    : m.playing                ? "running"
-                                                               : "paused (the application runs on)")
-                                 : "application exited (code " + std::to_string(st.exitStatus) + ")";
-  return text + state;
+  std::string line = text;
+  if (st.historyLimit > 0) {
+    std::snprintf(text, sizeof text, "history %zu/%zu frames, %.1f MB | ", st.historyFrames, st.historyLimit,
+                  double(st.historyBytes) / 1e6);
+    line += text;
+  }
+  return line + stateText(v, st);
 }
 
 // The dossier of the probed pixel again on a new frame, quietly (only a user's probe is logged).

@@ -100,6 +100,38 @@ TEST_F(VkCube, StreamsWhatItPresentsAndPresentsTheSame) {
               worst * 65535.0);
 }
 
+// --capture-frames on an application that records its command buffers once: every submission of
+// the range waits until gblens has read the frame before it, so each frame k of the sequence is the
+// frame vkcube presented as its frame k (the present-dump layer's file k), and the three differ.
+TEST_F(VkCube, CaptureFramesAreTheFramesItPresents) {
+  const std::string dir = freshDir("attach_vkcube_sequence");
+  RunResult r = runShell(display() + attach::layerEnvironment("", dir + "/on.dump") + "'" + GBLENS_BINARY +
+                         "' attach --layout builtin:vkcube --capture-frames 3..5 -o " + dir + "/seq -- vkcube --c 12 --validate");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  expectClean(r);
+  EXPECT_NE(r.output.find("wrote application frames 3..5 (3 frames"), std::string::npos) << r.output;
+  std::vector<uint8_t> previous;
+  for (int k = 3; k <= 5; ++k) {
+    SCOPED_TRACE("frame " + std::to_string(k));
+    Capture c;
+    std::string error;
+    ASSERT_TRUE(loadCapture(dir + "/seq@" + std::to_string(k), c, error)) << error;
+    attach::Dump presented;
+    ASSERT_TRUE(attach::readDump(dir + "/on.dump." + std::to_string(k), presented)) << r.output;
+    const CpuImage& color = c.frame.images[0].image;
+    ASSERT_EQ(size_t(color.width) * color.height * 4, presented.texels.size());
+    size_t differs = 0;
+    for (size_t i = 0; i < size_t(color.width) * color.height; ++i) {  // B8G8R8A8 presented, rgba8 streamed
+      const uint8_t* p = &presented.texels[4 * i];
+      const uint8_t* s = &color.data[4 * i];
+      differs += s[0] != p[2] || s[1] != p[1] || s[2] != p[0] || s[3] != p[3];
+    }
+    EXPECT_EQ(differs, 0u);
+    EXPECT_NE(color.data, previous);  // the cube turns every frame
+    previous = color.data;
+  }
+}
+
 TEST_F(VkCube, FollowsAResizedWindow) {
   const std::string dir = freshDir("attach_vkcube_resize");
   std::ofstream(dir + "/layout.json") << R"({"format": "gblens-layout", "version": 1, "targets": [

@@ -71,6 +71,7 @@ LiveSession::~LiveSession() {
 
 bool LiveSession::start(const LiveOptions& o, std::string& error) {
   options_ = o;
+  history_.setLimit(o.history);
   // Every frame decoded allocates its targets (tens of MB) and frees the last frame's. glibc serves
   // blocks that large with a fresh mmap each time and trims freed heap back to the system, so every
   // frame's texels landed on new pages the kernel zeroes and faults in: two thirds of the decoding
@@ -251,6 +252,7 @@ bool LiveSession::receive(FrameSnapshot& out, LiveFrameInfo* info) {
     counts_.meanDecodeMs = (counts_.meanDecodeMs * double(counts_.received) + decodeMs) / double(counts_.received + 1);
     ++counts_.received;
     if (info) info->latencyMs = latency, info->endNs = m.value("end_ns", uint64_t(0));
+    history_.push(out, m.value("app_frame", uint64_t(0)), m.value("stream", uint64_t(0)), m.value("end_ns", uint64_t(0)));
     boundBuffers_.swap(decodedBound_);  // the bytes of the frame returned, not of one dropped while read
     return true;
   }

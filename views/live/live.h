@@ -18,6 +18,7 @@
 #include "renderer/core/options.h"
 #include "renderer/core/snapshot.h"
 #include "views/import/renderdoc_replay.h"
+#include "views/live/frame_history.h"
 
 namespace gb {
 
@@ -29,6 +30,12 @@ struct LiveOptions {
   std::vector<std::string> argv;         // the application and its arguments
   uint32_t every = 1;                    // stream the application's frames 0, N, 2N, ...
   int64_t captureFrame = -1;             // stream only the application's frame of this number (0: its first; -1: all)
+  // With captureFrame: the frames captureFrame..captureLast, every one (the layer's submissions wait
+  // for each frame to be read instead of skipping one); -1: captureFrame alone.
+  int64_t captureLast = -1;
+  // Keep the last `history` frames decoded (LiveSession::history; 0: none): at most that many frames'
+  // bytes besides the one returned.
+  size_t history = 0;
   bool suggest = false;                  // the layer reports one frame's render passes and attachments
   // A stream (the viewer, --frames, the bench): the layer's thread makes the ring when the first
   // frames need it, and those frames go without copies, so the application never waits for it.
@@ -97,6 +104,9 @@ class LiveSession {
   // constants, offset and range their bytes), set, binding, index, offset and range of the bound
   // range, bytes (the whole buffer's size), data (the range's bytes, max_bytes in all), bound = true.
   const std::vector<RdcBinding>& boundBuffers() const { return boundBuffers_; }
+  // The last LiveOptions::history frames decoded, oldest first, with the application's frame numbers
+  // (the one poll() / wait() last returned among them); bounded by that many frames' bytes.
+  const FrameHistory& history() const { return history_; }
   // The layer's report of one frame's render passes (--suggest), once it came.
   const nlohmann::json* suggestion() const { return suggestion_.is_null() ? nullptr : &suggestion_; }
   bool noMatch() const { return noMatch_; }           // the layer gave up finding any target
@@ -144,6 +154,7 @@ class LiveSession {
   std::vector<std::string> reports_;
   std::set<std::string> said_;
   LiveCounts counts_;
+  FrameHistory history_;
 };
 
 // What LiveSession::start resolves before it starts anything: the layout (as given, and as the layer

@@ -41,6 +41,11 @@ std::vector<std::string> LiveReceiver::takeReports() {
   return out;
 }
 
+std::vector<HistoryFrame> LiveReceiver::history() {
+  std::lock_guard lock(lock_);
+  return history_;
+}
+
 bool LiveReceiver::takeSuggestion(nlohmann::json& out) {
   std::lock_guard lock(lock_);
   if (suggestion_.is_null()) return false;
@@ -66,7 +71,12 @@ void LiveReceiver::run() {
       latest_ = std::move(frame);
       latestInfo_ = std::move(info);
       hasLatest_ = true;
+      const FrameHistory& h = session_.history();
+      history_.assign(h.frames().begin(), h.frames().end());
     }
+    state_.historyFrames = history_.size();
+    state_.historyLimit = session_.history().limit();
+    state_.historyBytes = session_.history().bytes();
     for (std::string& r : reports) reports_.push_back(std::move(r));
     state_.counts = session_.counts();
     state_.running = running;

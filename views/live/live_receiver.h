@@ -32,9 +32,14 @@ class LiveReceiver {
     bool running = true, attached = true;
     int exitStatus = -1;
     uint64_t replaced = 0;          // decoded frames a newer one replaced before the viewer took them
+    // The session's history (LiveOptions::history): frames kept, at most, and their texels' bytes.
+    size_t historyFrames = 0, historyLimit = 0, historyBytes = 0;
   };
   State state();
   std::vector<std::string> takeReports();
+  // The last frames decoded (the session's history, oldest first, as of the thread's last frame):
+  // shared, never copied again; empty unless LiveOptions::history was given.
+  std::vector<HistoryFrame> history();
   // The layer's report of one frame's passes (--suggest): true once, when it has come.
   bool takeSuggestion(nlohmann::json& out);
 
@@ -51,6 +56,7 @@ class LiveReceiver {
   State state_;
   std::vector<std::string> reports_;
   nlohmann::json suggestion_;
+  std::vector<HistoryFrame> history_;
   bool suggestionTaken_ = false;
 };
 
