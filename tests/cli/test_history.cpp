@@ -72,7 +72,7 @@ TEST(HistoryCli, EveryHistoryModeOfTheRigIsDetectedAndNamed) {
     } else {
       ASSERT_EQ(report["findings"].size(), 1u) << r.output;
       EXPECT_NE(report["findings"][0].get<std::string>().find(named.at(truth)), std::string::npos) << r.output;
-      EXPECT_EQ(report["findings"][0].get<std::string>().rfind("hist: ", 0), 0u) << "the history's name first";
+      EXPECT_EQ(report["findings"][0].get<std::string>().rfind("hist (history of color): ", 0), 0u) << "the names first";
     }
     // The text report names the same.
     const RunResult text = runGblens("history '" + seq + "'");

@@ -104,7 +104,8 @@ struct Tally {
   std::vector<double> diff, ratio;
 };
 
-void tally(Tally& t, const double* h, const HistoryPlane& H, const double* pred, const HistoryPlane& P, uint32_t n, double fixed) {
+void tally(Tally& t, const double* h, const HistoryPlane& H, const double* pred, const HistoryPlane& P, uint32_t n,
+           double fixed) {
   double d = 0.0, r = 0.0;
   for (uint32_t k = 0; k < n; ++k) {
     if (!std::isfinite(pred[k])) return;
@@ -173,8 +174,11 @@ std::vector<std::string> historyDifferences(const std::string& declared, const s
   if (found == "none")
     return {"the history holds none of the previous frame's X (same pixels or reprojected), X two frames back, the previous "
             "history or this frame's X: another quantity, or filtered beyond the bound"};
-  if (found == "previous") return {"the history is not reprojected (it holds the previous frame's X at the same pixels; the layout says history_space current)"};
-  if (found == "current") return {"the history is reprojected into this frame's pixels (the layout says history_space previous)"};
+  if (found == "previous")
+    return {"the history is not reprojected (it holds the previous frame's X at the same pixels; the layout says "
+            "history_space current)"};
+  if (found == "current")
+    return {"the history is reprojected into this frame's pixels (the layout says history_space previous)"};
   if (found == "stale") return {"the history is one frame stale (it holds X of two frames back)"};
   if (found == "frozen") return {"the history never updates (each frame holds the previous frame's history)"};
   return {"the history is this frame's X, not the previous one's"};
@@ -219,7 +223,8 @@ bool checkHistoryPair(const TemporalFrame* before, const TemporalFrame& previous
       tally(t[kThisFrame], hv, H, xn, Xn, n, o.bound);
       if (frozen) tally(t[kFrozen], hv, H, Hp.at(x, y), Hp, n, o.bound);
       if (stale && !history.historyCurrent) tally(t[kStale], hv, H, Xb.at(x, y), Xb, n, o.bound);
-      if (stale && history.historyCurrent && staleCurrent(P, jp, *B, jb, Xb, x, y, n, pred)) tally(t[kStale], hv, H, pred, Xb, n, o.bound);
+      if (stale && history.historyCurrent && staleCurrent(P, jp, *B, jb, Xb, x, y, n, pred))
+        tally(t[kStale], hv, H, pred, Xb, n, o.bound);
     }
   decide(t, out.comparable, zeros, out);
   out.differences = historyDifferences(out.declared, out.found);

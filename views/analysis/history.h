@@ -63,7 +63,7 @@ struct HistoryTarget {
 struct HistoryReport {
   std::vector<HistoryTarget> histories;
   std::vector<HistoryPair> pairs;      // every history's pairs, in sequence order
-  std::vector<std::string> findings;   // each once, prefixed with the history's name
+  std::vector<std::string> findings;   // each once, after "NAME (history of X): "
   std::string verdict;                 // "agrees", "differs" (a finding), "undecided" (no pair decided)
 };
 

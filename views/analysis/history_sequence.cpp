@@ -60,7 +60,8 @@ bool checkHistorySequence(const Sequence& seq, const HistoryOptions& o, HistoryR
       }
       continue;
     }
-    if (o.progress) o.progress("frames " + std::to_string(seq.frames[i - 1].number) + " -> " + std::to_string(seq.frames[i].number));
+    if (o.progress)
+      o.progress("frames " + std::to_string(seq.frames[i - 1].number) + " -> " + std::to_string(seq.frames[i].number));
     const TemporalFrame& cur = window.back().frame;
     const TemporalFrame& prev = window[window.size() - 2].frame;
     const TemporalFrame* before = window.size() == 3 ? &window[0].frame : nullptr;
@@ -77,7 +78,7 @@ bool checkHistorySequence(const Sequence& seq, const HistoryOptions& o, HistoryR
       }
       anyDecided = anyDecided || !p.found.empty();
       for (const std::string& d : p.differences) {
-        const std::string s = t.name + ": " + d;
+        const std::string s = t.name + " (history of " + t.of + "): " + d;
         if (std::find(out.findings.begin(), out.findings.end(), s) == out.findings.end()) out.findings.push_back(s);
       }
       out.pairs.push_back(std::move(p));
@@ -89,7 +90,8 @@ bool checkHistorySequence(const Sequence& seq, const HistoryOptions& o, HistoryR
 
 nlohmann::json historyReportJson(const HistoryReport& r, const std::string& dir) {
   nlohmann::json histories = nlohmann::json::array(), pairs = nlohmann::json::array();
-  for (const HistoryTarget& t : r.histories) histories.push_back({{"name", t.name}, {"history_of", t.of}, {"history_space", t.space}});
+  for (const HistoryTarget& t : r.histories)
+    histories.push_back({{"name", t.name}, {"history_of", t.of}, {"history_space", t.space}});
   for (const HistoryPair& p : r.pairs) {
     nlohmann::json hyps = nlohmann::json::object();
     for (const HistoryHypothesis& h : p.hypotheses)
@@ -126,7 +128,8 @@ std::string historyReportText(const HistoryReport& r) {
         s += " " + h.name + " -";
         continue;
       }
-      std::snprintf(line, sizeof line, " %s %.3g (x%.3g%s)", h.name.c_str(), h.medianDifference, h.medianRatio, h.fits ? ", fits" : "");
+      std::snprintf(line, sizeof line, " %s %.3g (x%.3g%s)", h.name.c_str(), h.medianDifference, h.medianRatio,
+                    h.fits ? ", fits" : "");
       s += line;
     }
     s += "\n  " + (p.found.empty() ? "undecided (" + p.undecided + ")" : "holds: " + p.found) + "\n";
