@@ -81,6 +81,29 @@ TEST(HistoryCli, EveryHistoryModeOfTheRigIsDetectedAndNamed) {
   }
 }
 
+// The same files under a layout that declares history_space previous: the rig's unreprojected
+// history now agrees, and its reprojected one is named as reprojected.
+TEST(HistoryCli, ADeclaredPreviousSpaceIsCheckedToo) {
+  json layout = historyReadJson(historyRigDir() + "/layout.json");
+  for (json& t : layout["targets"])
+    if (t["name"] == "history") t["quantities"][0]["history_space"] = "previous";
+  for (const std::string mode : {"history_not_reprojected", "none"}) {
+    SCOPED_TRACE(mode);
+    const std::string seq = historyRigSequence(freshDir("history-previous-" + mode), mode, &layout);
+    const RunResult r = runGblens("history '" + seq + "' --json");
+    const json report = json::parse(r.output);
+    if (mode == "none") {
+      EXPECT_EQ(r.exitCode, 1) << r.output;
+      ASSERT_EQ(report["findings"].size(), 1u) << r.output;
+      EXPECT_NE(report["findings"][0].get<std::string>().find("reprojected into this frame's pixels"), std::string::npos);
+    } else {
+      EXPECT_EQ(r.exitCode, 0) << r.output;
+      EXPECT_EQ(report["verdict"], "agrees");
+    }
+    for (const json& p : report["pairs"]) EXPECT_EQ(p["declared"], "previous");
+  }
+}
+
 TEST(HistoryCli, CheckSeqFaultsAStaleHistoryAndThePolicyLowersIt) {
   const std::string stale = historyRigSequence(freshDir("history-check-stale"), "history_stale");
   RunResult r = runGblens("check '" + stale + "' --json");
