@@ -71,6 +71,7 @@ Command addDecomposeCommand(CLI::App& root);
 Command addAttachCommand(CLI::App& root);
 Command addMotionCommand(CLI::App& root);
 Command addFlickerCommand(CLI::App& root);
+Command addHistoryCommand(CLI::App& root);
 
 
 // Loads SCENE; on a user mistake prints one line and returns false (caller exits 2).

@@ -2,12 +2,15 @@
 // or imported) scanned for NaN, ±Inf, denormals and out-of-range decoded values, and positions rebuilt
 // from depth checked against a stored position (views/analysis/check.h). What is a fault comes from the
 // policy (default, the layout's "check" fields, --policy). A sequence: every frame, then the temporal
-// class (motion vectors vs the layout's convention). Exit 0 no fault, 1 faults, 2 unreadable.
+// classes (motion vectors vs the layout's convention, history targets vs their history_of). Exit 0 no
+// fault, 1 faults, 2 unreadable.
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
 #include "app/cli/cli.h"
 #include "views/analysis/check.h"
+#include "views/analysis/history.h"
 #include "views/analysis/temporal.h"
 #include "views/capture/capture.h"
 #include "views/capture/sequence.h"
@@ -22,8 +25,31 @@ struct CheckArgs {
 };
 }  // namespace
 
-// A sequence: every frame checked as a capture is, then the temporal class: its motion vectors
-// against the layout's convention (temporal.h), a fault by default ("motion=warn" lowers it).
+// The temporal class history: every history target against its history_of (history.h), a fault by
+// default ("history=warn" lowers it, per quantity too: "hist.history=warn").
+bool checkSequenceHistory(const Sequence& seq, const CheckArgs& o, const CheckPolicy& policy, nlohmann::json& temporal,
+                          std::string& text, bool& clean) {
+  HistoryReport r;
+  std::string error;
+  if (!checkHistorySequence(seq, {}, r, error)) {
+    std::fprintf(stderr, "gblens check: %s\n", error.c_str());
+    return false;
+  }
+  Severity level = Severity::Ignore;  // the highest of the histories' levels
+  for (const HistoryTarget& t : r.histories) level = std::min(level, policy.at(t.name, "history"));
+  bool faulted = false;
+  for (const HistoryPair& p : r.pairs)
+    faulted = faulted || (!p.differences.empty() && policy.at(p.history, "history") == Severity::Fault);
+  if (faulted) clean = false;
+  temporal["history"] = historyReportJson(r, o.capture);
+  temporal["history_severity"] = name(level);
+  if (level != Severity::Ignore) text += "temporal, history (" + std::string(name(level)) + "):\n" + historyReportText(r);
+  return true;
+}
+
+// A sequence: every frame checked as a capture is, then the temporal classes: its motion vectors
+// against the layout's convention (temporal.h) and its history targets (history.h), faults by default
+// ("motion=warn", "history=warn" lower them).
 int checkSequence(const CheckArgs& o) {
   Sequence seq;
   std::string error;
@@ -65,6 +91,12 @@ int checkSequence(const CheckArgs& o) {
   } else {
     text += "temporal: " + std::string(motion ? "one frame: no pair to check" : "the layout has no motion quantity") + "\n";
   }
+  const bool histories = std::any_of(first.frame.layout.quantities.begin(), first.frame.layout.quantities.end(),
+                                     [](const Quantity& q) { return !q.historyOf.empty(); });
+  if (histories && seq.frames.size() >= 2) {
+    if (temporal.is_null()) temporal = nlohmann::json::object();
+    if (!checkSequenceHistory(seq, o, policy, temporal, text, clean)) return 2;
+  }
   if (o.json)
     std::printf("%s\n", nlohmann::json({{"format", "gblens-check-sequence"}, {"version", 1}, {"sequence", o.capture},
                                         {"frames", frames}, {"temporal", temporal}}).dump(2).c_str());
@@ -77,10 +109,10 @@ Command addCheckCommand(CLI::App& root) {
   auto o = std::make_shared<CheckArgs>();
   CLI::App* cmd = root.add_subcommand(
       "check", "scan every target of a capture for NaN, Inf, denormals and out-of-range values (exit 1 when found)");
-  cmd->add_option("CAPTURE", o->capture, "capture directory (gblens capture or gblens import), or a sequence (every frame, then its motion vectors)")->required();
+  cmd->add_option("CAPTURE", o->capture, "capture directory (gblens capture or gblens import), or a sequence (every frame, then its motion vectors and history targets)")->required();
   cmd->add_flag("--json", o->json, "print the report as JSON");
   cmd->add_option("--policy", o->policy,
-                  "[QUANTITY.]CLASS=LEVEL: what a finding means (CLASS nan, inf, denormal, out_of_range, position, normal, motion; LEVEL "
+                  "[QUANTITY.]CLASS=LEVEL: what a finding means (CLASS nan, inf, denormal, out_of_range, position, normal, motion, history; LEVEL "
                   "fault, warn, ignore); default: denormal=warn, the rest fault; the layout's \"check\" fields apply first")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   return {cmd, [o]() -> int {

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
       gb::addAttachCommand(app),
       gb::addMotionCommand(app),
       gb::addFlickerCommand(app),
+      gb::addHistoryCommand(app),
   };
   for (int i = 0; i < argc; ++i) gb::commandLine() += (i ? " " : "") + std::string(i ? argv[i] : "gblens");
   // An unknown first word is a mistyped command: name it and the commands there are.

@@ -70,6 +70,12 @@ struct Quantity {
   std::map<std::string, uint32_t> stencilBits;  // stencil: name -> mask
   nlohmann::json guess;              // a draft layout's note (import --suggest-layout): text or an object
   std::map<std::string, std::string> check;     // `gblens check` policy for this quantity: class -> level
+  // A history target (TAA's previous frame, docs/temporal.md): the quantity holds another quantity
+  // of the layout as it was one frame earlier ("history_of": its name; "" : not a history), either as
+  // that frame's pixels held it ("history_space": "previous", the default) or reprojected into this
+  // frame's pixels ("current").
+  std::string historyOf;
+  bool historyCurrent = false;
 };
 
 // Where an imported target's texels come from (ignored for gblens's own frames).

@@ -241,14 +241,54 @@ bool takeGuess(Reader& r, json& j, const Where& w, json& guess) {
 bool readCheck(Reader& r, const json& j, const Where& w, std::map<std::string, std::string>& out) {
   auto it = j.find("check");
   if (it == j.end()) return true;
-  static const std::set<std::string> classes = {"nan", "inf", "denormal", "out_of_range", "position", "normal"};
+  static const std::set<std::string> classes = {"nan", "inf", "denormal", "out_of_range", "position", "normal", "motion", "history"};
   static const std::set<std::string> levels = {"fault", "warn", "ignore"};
   if (!it->is_object()) return r.fail(w, "check", "expected {\"CLASS\": \"fault|warn|ignore\", ...}");
   for (auto& [k, v] : it->items()) {
-    if (!classes.count(k)) return r.fail(w, "check", "\"" + k + "\": expected nan, inf, denormal, out_of_range or position");
+    if (!classes.count(k)) return r.fail(w, "check", "\"" + k + "\": expected nan, inf, denormal, out_of_range, position, normal, motion or history");
     if (!v.is_string() || !levels.count(v.get<std::string>()))
       return r.fail(w, "check", "\"" + k + "\": expected \"fault\", \"warn\" or \"ignore\", got " + v.dump());
     out[k] = v.get<std::string>();
+  }
+  return true;
+}
+
+// "history_of": NAME, "history_space": "previous" | "current" (any kind): read and erased, so that
+// every kind takes them; NAME is checked against the whole layout once every target is read.
+bool readHistory(Reader& r, json& j, const Where& w, Quantity& q) {
+  int space = -1;
+  if (!r.string(j, w, "history_of", q.historyOf, false) || !r.choice(j, w, "history_space", {"previous", "current"}, space))
+    return false;
+  if (j.contains("history_of") && q.historyOf.empty()) return r.fail(w, "history_of", "expected the name of a quantity of the layout");
+  if (space >= 0 && q.historyOf.empty()) return r.fail(w, "history_space", "applies to a history (give \"history_of\")");
+  q.historyCurrent = space == 1;
+  j.erase("history_of");
+  j.erase("history_space");
+  return true;
+}
+
+// Every history_of names another quantity of the layout with as many components.
+bool checkHistories(Reader& r, const json& targets, const Where& w, const Layout& l) {
+  size_t at = 0;
+  for (size_t t = 0; t < targets.size(); ++t) {
+    const json& qs = targets[t]["quantities"];
+    for (size_t i = 0; i < qs.size() && at < l.quantities.size(); ++i, ++at) {
+      const Quantity& q = l.quantities[at];
+      if (q.historyOf.empty()) continue;
+      const Where wq = w.at("targets[" + std::to_string(t) + "]").at("\"" + l.targets[t].name + "\"")
+                           .at("quantities[" + std::to_string(i) + "] \"" + q.name + "\"");
+      const Quantity* x = l.findByName(q.historyOf);
+      if (!x) {
+        std::string names;
+        for (const Quantity& o : l.quantities)
+          if (&o != &q) names += (names.empty() ? "" : ", ") + o.name;
+        return r.fail(wq, "history_of", "\"" + q.historyOf + "\" is not a quantity of the layout (" + names + ")");
+      }
+      if (x == &q) return r.fail(wq, "history_of", "a quantity cannot be its own history");
+      if (x->channels.size() != q.channels.size())
+        return r.fail(wq, "history_of", "\"" + x->name + "\" has " + std::to_string(x->channels.size()) + " components, \"" +
+                                            q.name + "\" " + std::to_string(q.channels.size()));
+    }
   }
   return true;
 }
@@ -258,7 +298,7 @@ bool readQuantity(Reader& r, const json& jIn, const Where& w, Layout& l, uint32_
   if (!readCheck(r, jIn, w, q.check)) return false;
   json j = jIn;
   j.erase("check");  // read above; every kind may have it
-  if (!takeGuess(r, j, w, q.guess)) return false;
+  if (!takeGuess(r, j, w, q.guess) || !readHistory(r, j, w, q)) return false;
   std::string kind;
   if (!r.string(j, w, "quantity", kind, true)) return false;
   if (!parseQuantityKind(kind, q.kind)) return r.fail(w, "quantity", "unknown kind \"" + kind + "\"");
@@ -745,6 +785,7 @@ bool parseLayout(const json& j, const std::string& file, Layout& out, std::strin
   if (ts == j.end() || !ts->is_array() || ts->empty()) return r.fail(w, "targets", "expected a list of targets");
   for (size_t i = 0; i < ts->size(); ++i)
     if (!readTarget(r, (*ts)[i], w.at("targets[" + std::to_string(i) + "]"), out)) return false;
+  if (!checkHistories(r, *ts, w, out)) return false;
   if (auto it = j.find("camera"); it != j.end() && !readCamera(r, *it, w, out.camera)) return false;
   if (auto it = j.find("lights"); it != j.end() && !readLights(r, *it, w, out.lights)) return false;
   return true;

@@ -72,6 +72,10 @@ static json quantityJson(const Quantity& q) {
       if (!q.unit.empty()) j["unit"] = q.unit;
       break;
   }
+  if (!q.historyOf.empty()) {
+    j["history_of"] = q.historyOf;
+    j["history_space"] = q.historyCurrent ? "current" : "previous";
+  }
   if (!q.guess.is_null()) j["guess"] = q.guess;
   if (!q.check.empty()) j["check"] = q.check;
   return j;

@@ -30,7 +30,7 @@ def valid(name, document):
 
 
 def test_every_schema_is_a_schema_with_a_version():
-    for name in ("probe", "stats", "check", "compare", "motion", "flicker"):
+    for name in ("probe", "stats", "check", "compare", "motion", "flicker", "history"):
         s = schema(name)
         assert s["properties"]["version"]["const"] >= 1
         assert name in s["title"]

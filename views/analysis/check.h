@@ -33,7 +33,8 @@ struct AnomalyCount {
 // What a kind of finding means: a fault (exit 1), a warning (reported, exit 0), or nothing (not
 // reported). Classes: "nan", "inf" (+Inf and -Inf), "denormal", "out_of_range", "position" (positions
 // rebuilt from depth vs a stored position target), "normal" (stored normals vs the rebuilt surface),
-// "motion" (a sequence's motion vectors vs the layout's convention, temporal.h: `gblens check SEQ`).
+// "motion" (a sequence's motion vectors vs the layout's convention, temporal.h: `gblens check SEQ`),
+// "history" (a sequence's history targets vs their history_of and history_space, history.h).
 enum class Severity : uint8_t { Fault, Warn, Ignore };
 const char* name(Severity s);
 struct CheckPolicy {

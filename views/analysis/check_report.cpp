@@ -157,7 +157,7 @@ CheckPolicy defaultCheckPolicy() {
   CheckPolicy p;
   p.classes = {{"nan", Severity::Fault}, {"inf", Severity::Fault}, {"denormal", Severity::Warn},
                {"out_of_range", Severity::Fault}, {"position", Severity::Fault}, {"normal", Severity::Fault},
-               {"motion", Severity::Fault}};
+               {"motion", Severity::Fault}, {"history", Severity::Fault}};
   return p;
 }
 
@@ -181,14 +181,14 @@ bool checkPolicy(const Layout& l, const std::vector<std::string>& rules, CheckPo
   for (const Quantity& q : l.quantities)
     for (auto& [cls, level] : q.check)
       if (parseLevel(level, s)) apply(q.name, cls, s);
-  static const std::set<std::string> classes = {"nan", "inf", "denormal", "out_of_range", "position", "normal", "motion"};
+  static const std::set<std::string> classes = {"nan", "inf", "denormal", "out_of_range", "position", "normal", "motion", "history"};
   for (const std::string& rule : rules) {
     const size_t eq = rule.find('=');
     std::string left = rule.substr(0, eq), quantity, cls = left;
     if (const size_t dot = left.rfind('.'); dot != std::string::npos) quantity = left.substr(0, dot), cls = left.substr(dot + 1);
     if (eq == std::string::npos || !classes.count(cls) || !parseLevel(rule.substr(eq + 1), s)) {
       error = "--policy " + rule + ": expected [QUANTITY.]CLASS=LEVEL, CLASS one of nan, inf, denormal, out_of_range, "
-              "position, normal and LEVEL one of fault, warn, ignore (e.g. denormal=fault, Normal.out_of_range=warn)";
+              "position, normal, motion, history and LEVEL one of fault, warn, ignore (e.g. denormal=fault, Normal.out_of_range=warn)";
       return false;
     }
     if (!quantity.empty() && !l.findByName(quantity)) {

@@ -35,6 +35,8 @@ std::optional<glm::dvec2> reprojectPixel(const FrameSnapshot& from, uint32_t x, 
 // moved back by the frame's jitter; and a world point in a camera's unjittered pixel coordinates.
 std::optional<glm::dvec3> surfacePoint(const FrameSnapshot& f, uint32_t x, uint32_t y, glm::dvec2 jitter);
 std::optional<glm::dvec2> projectToPixel(const Camera& camera, const glm::dvec3& world);
+// A world point's depth along the camera's view axis (null behind it).
+std::optional<double> viewDepthOf(const Camera& camera, const glm::dvec3& world);
 
 // How a layout's stored vector relates to the screen motion. The layout's motion quantity declares
 // one (layout-format.md: units, direction, y, jitter); `gblens motion` detects one.

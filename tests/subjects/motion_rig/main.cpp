@@ -1,7 +1,9 @@
 // motion_rig: a CPU ray caster standing for "another renderer" that writes a G-buffer sequence with
-// motion vectors (README.md). Shares no code or header with gblens.
+// motion vectors, a lit colour and its history target (TAA's previous frame, reprojected by the
+// true motion) (README.md). Shares no code or header with gblens.
 //
 //   motion_rig --out DIR --frames N [--width W --height H] [--bug MODE]
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,12 +21,14 @@ namespace {
 
 using namespace rig;
 
-const char* const kModes[] = {"none",    "y_flipped",      "direction_flipped", "half_scale",
-                              "pixels_not_uv", "one_frame_late", "jitter_included"};
+const char* const kModes[] = {"none",           "y_flipped",       "direction_flipped",       "half_scale",
+                              "pixels_not_uv",  "one_frame_late",  "jitter_included",         "history_stale",
+                              "history_not_reprojected", "history_current"};
 
 int usage(const std::string& why) {
   std::fprintf(stderr, "motion_rig: %s\nusage: motion_rig --out DIR --frames N [--width W --height H] [--bug MODE]\n"
-               "modes: none y_flipped direction_flipped half_scale pixels_not_uv one_frame_late jitter_included\n",
+               "modes: none y_flipped direction_flipped half_scale pixels_not_uv one_frame_late jitter_included\n"
+               "       history_stale history_not_reprojected history_current\n",
                why.c_str());
   return 2;
 }
@@ -32,10 +36,11 @@ int usage(const std::string& why) {
 // Everything one frame holds, before any bug.
 struct Frame {
   int width = 0, height = 0;
-  std::vector<float> depth, normal, albedo, object;  // normal, albedo: 3 a texel
+  std::vector<float> depth, normal, albedo, object, colour;  // normal, albedo, colour: 3 a texel
   std::vector<vec2> motion;    // pixels, x right, y down, to the previous frame, jitter excluded
   std::vector<vec2> jittered;  // the same from the jittered positions
   std::vector<float> mask;     // 0 sky, 1 static, 2 moving, 3 disoccluded
+  std::vector<vec2> historyAt; // where the point was in the previous frame's stored (jittered) image
 };
 
 Frame render(int f, int w, int h) {
@@ -44,6 +49,7 @@ Frame render(int f, int w, int h) {
   const size_t n = size_t(w) * h;
   out.depth.assign(n, 0.0f), out.normal.assign(3 * n, 0.0f), out.albedo.assign(3 * n, 0.0f);
   out.object.assign(n, 0.0f), out.motion.assign(n, vec2(0.0)), out.jittered.assign(n, vec2(0.0)), out.mask.assign(n, 0.0f);
+  out.colour.assign(3 * n, 0.0f), out.historyAt.assign(n, vec2(NAN));
   const Scene scene(f), before(f - 1);
   const Camera cam = cameraAt(f, w, h), prev = cameraAt(f - 1, w, h);
   const mat4 prevFromNow = Scene::spinnerFromObject(f - 1) * glm::inverse(Scene::spinnerFromObject(f));
@@ -62,7 +68,9 @@ Frame render(int f, int w, int h) {
         then = hit->id == kMovingId ? prevFromNow * now : now;
         const vec4 v = cam.viewFromWorld * now;
         out.depth[i] = float(kNear / v.z);
+        const vec3 lit = shade(*hit, f);
         for (int k = 0; k < 3; ++k) out.normal[3 * i + k] = float(hit->normal[k]), out.albedo[3 * i + k] = float(hit->albedo[k]);
+        for (int k = 0; k < 3; ++k) out.colour[3 * i + k] = float(lit[k]);
         out.object[i] = float(hit->id);
       }
       const std::optional<vec2> p1 = cam.project(now), p0 = prev.project(then);
@@ -71,6 +79,7 @@ Frame render(int f, int w, int h) {
         continue;
       }
       out.motion[i] = *p0 - *p1;
+      out.historyAt[i] = *p0 + prev.jitter;  // the jittered image of f - 1 shows the point there
       out.jittered[i] = (*p0 + prev.jitter) - (*p1 + cam.jitter);
       if (!hit) continue;
       float m = hit->id == kMovingId ? 2.0f : 1.0f;
@@ -97,6 +106,29 @@ vec2 stored(const std::string& mode, vec2 px, vec2 jitteredPx, int w, int h) {
   if (mode == "pixels_not_uv") return px;
   if (mode == "jitter_included") return jitteredPx / size;
   return px / size;  // none; one_frame_late stores the previous frame's "none" vectors (caller)
+}
+
+// The history of a texel: the previous frame's colour as stored (float32), sampled bilinearly at
+// `at` (continuous pixel coordinates, texel centres at i + 0.5, clamped to the edge), as TAA reads it.
+vec3 bilinear(const std::vector<float>& colour, int w, int h, vec2 at) {
+  if (!std::isfinite(at.x) || !std::isfinite(at.y)) return vec3(0.0);
+  const vec2 s = at - vec2(0.5);
+  const double x0 = std::floor(s.x), y0 = std::floor(s.y), fx = s.x - x0, fy = s.y - y0;
+  auto texel = [&](double x, double y) {
+    const size_t i = size_t(std::clamp(int(y), 0, h - 1)) * w + size_t(std::clamp(int(x), 0, w - 1));
+    return vec3(colour[3 * i], colour[3 * i + 1], colour[3 * i + 2]);
+  };
+  return (texel(x0, y0) * (1 - fx) + texel(x0 + 1, y0) * fx) * (1 - fy) + (texel(x0, y0 + 1) * (1 - fx) + texel(x0 + 1, y0 + 1) * fx) * fy;
+}
+
+// The history target a mode stores at frame f (`right`: the correct one, mode none's; frame 0: zeros).
+vec3 storedHistory(const std::string& mode, int f, size_t i, const Frame& now, const Frame& previous,
+                   const std::vector<vec3>& right, const std::vector<vec3>& previousRight) {
+  if (f == 0) return vec3(0.0);
+  if (mode == "history_stale") return previousRight[i];  // the previous frame's history: X of f - 2
+  if (mode == "history_not_reprojected") return {previous.colour[3 * i], previous.colour[3 * i + 1], previous.colour[3 * i + 2]};
+  if (mode == "history_current") return {now.colour[3 * i], now.colour[3 * i + 1], now.colour[3 * i + 2]};
+  return right[i];
 }
 
 bool writeExr(const std::string& path, int w, int h, const std::vector<std::string>& names,
@@ -196,14 +228,21 @@ int main(int argc, char** argv) {
   }
 
   using OIIO::TypeDesc;
-  const std::vector<std::string> names = {"Z", "N.x", "N.y", "N.z", "albedo.R", "albedo.G", "albedo.B", "object", "mv.u", "mv.v"};
-  const std::vector<TypeDesc> formats = {TypeDesc::FLOAT, TypeDesc::HALF, TypeDesc::HALF, TypeDesc::HALF, TypeDesc::HALF,
-                                         TypeDesc::HALF,  TypeDesc::HALF, TypeDesc::FLOAT, TypeDesc::FLOAT, TypeDesc::FLOAT};
+  const std::vector<std::string> names = {"Z",      "N.x",  "N.y",  "N.z",     "albedo.R", "albedo.G", "albedo.B", "object",
+                                          "mv.u",   "mv.v", "color.R", "color.G", "color.B", "hist.R", "hist.G", "hist.B"};
+  const std::vector<TypeDesc> formats = {TypeDesc::FLOAT, TypeDesc::HALF,  TypeDesc::HALF,  TypeDesc::HALF,
+                                         TypeDesc::HALF,  TypeDesc::HALF,  TypeDesc::HALF,  TypeDesc::FLOAT,
+                                         TypeDesc::FLOAT, TypeDesc::FLOAT, TypeDesc::FLOAT, TypeDesc::FLOAT,
+                                         TypeDesc::FLOAT, TypeDesc::HALF,  TypeDesc::HALF,  TypeDesc::HALF};
   Frame previous;
+  std::vector<vec3> previousRight(size_t(w) * h, vec3(0.0));  // the correct history of the previous frame
   for (int f = 0; f < frames; ++f) {
     const Frame fr = render(f, w, h);
     const size_t n = size_t(w) * h;
     std::vector<float> px(n * names.size()), truth(n * 3);
+    std::vector<vec3> right(n, vec3(0.0));
+    if (f > 0)
+      for (size_t i = 0; i < n; ++i) right[i] = bilinear(previous.colour, w, h, fr.historyAt[i]);
     for (size_t i = 0; i < n; ++i) {
       vec2 mv(0.0);
       if (mode == "one_frame_late") mv = f == 0 ? vec2(0.0) : previous.motion[i] / vec2(w, h);
@@ -213,6 +252,8 @@ int main(int argc, char** argv) {
       for (int k = 0; k < 3; ++k) t[1 + k] = fr.normal[3 * i + k], t[4 + k] = fr.albedo[3 * i + k];
       t[7] = fr.object[i];
       t[8] = float(mv.x), t[9] = float(mv.y);
+      const vec3 hist = storedHistory(mode, f, i, fr, previous, right, previousRight);
+      for (int k = 0; k < 3; ++k) t[10 + k] = fr.colour[3 * i + k], t[13 + k] = float(hist[k]);
       truth[3 * i] = float(fr.motion[i].x), truth[3 * i + 1] = float(fr.motion[i].y), truth[3 * i + 2] = fr.mask[i];
     }
     if (!writeExr(numbered(dir, "rig", f, "exr"), w, h, names, formats, px) ||
@@ -224,6 +265,7 @@ int main(int argc, char** argv) {
       return 1;
     }
     previous = fr;
+    previousRight = right;
   }
   std::printf("motion_rig %s: wrote %d frames %dx%d to %s\n", mode.c_str(), frames, w, h, dir.c_str());
   return 0;

@@ -162,6 +162,15 @@ Camera cameraAt(int frame, int width, int height) {
   return c;
 }
 
+vec3 lightAt(int frame) { return {-1.5 + 0.25 * frame, -0.3, 2.2}; }
+
+vec3 shade(const Hit& hit, int frame) {
+  const vec3 toLight = lightAt(frame) - hit.position;
+  const double d2 = glm::dot(toLight, toLight);
+  const double lambert = std::max(0.0, glm::dot(hit.normal, toLight / std::sqrt(d2)));
+  return hit.albedo * (0.2 + 6.0 * lambert / (1.0 + d2));
+}
+
 mat4 Camera::jitteredClipFromView() const {
   mat4 p = clipFromView;
   p[2][0] += 2.0 * jitter.x / width;   // ndc x += 2 jx / W: the image moves right by jx pixels

@@ -65,6 +65,10 @@ struct Camera {
 };
 
 Camera cameraAt(int frame, int width, int height);
+// The point light of frame f (it moves, so a lit colour changes from frame to frame), and the lit
+// colour of a hit: albedo x (0.2 + 6 max(0, n.l) / (1 + d^2)), no shadows; the sky is black.
+vec3 lightAt(int frame);
+vec3 shade(const Hit& hit, int frame);
 // Halton(2, 3) sub-pixel offset of frame f: index (f mod 8) + 1, each value minus 0.5.
 vec2 haltonJitter(int frame);
 

@@ -1,6 +1,7 @@
 // motion_rig's self-check (CTest MotionRig.*, label cli): runs the program in every --bug mode and
 // checks what it wrote from the files alone (README.md "Self-check"). Reads none of the program's
 // code: the reprojection below is its own, from the stored depth, the sidecars' matrices and jitter.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -24,8 +25,9 @@ namespace {
 
 constexpr int kFrames = 5;
 constexpr int kW = 160, kH = 96;
-const char* const kBugModes[] = {"y_flipped", "direction_flipped", "half_scale", "pixels_not_uv", "one_frame_late",
-                                 "jitter_included"};
+const char* const kBugModes[] = {"y_flipped",       "direction_flipped", "half_scale",
+                                 "pixels_not_uv",   "one_frame_late",    "jitter_included",
+                                 "history_stale",   "history_not_reprojected", "history_current"};
 
 struct Exr {
   int width = 0, height = 0;
@@ -124,7 +126,7 @@ class MotionRig : public ::testing::Test {
     work = std::string(MOTION_RIG_WORK) + "/" + std::to_string(getpid());
     fs::remove_all(work);
     for (const char* mode : {"none", "y_flipped", "direction_flipped", "half_scale", "pixels_not_uv", "one_frame_late",
-                             "jitter_included"}) {
+                             "jitter_included", "history_stale", "history_not_reprojected", "history_current"}) {
       const std::string dir = work + "/" + mode;
       const std::string cmd = std::string("'") + MOTION_RIG_EXE + "' --out '" + dir + "' --frames " +
                               std::to_string(kFrames) + " --bug " + mode + " > /dev/null";
@@ -152,7 +154,8 @@ TEST_F(MotionRig, FilesAndSidecars) {
     const Exr& e = r.frames[f];
     EXPECT_EQ(e.width, kW);
     EXPECT_EQ(e.height, kH);
-    for (const char* ch : {"Z", "N.x", "N.y", "N.z", "albedo.R", "albedo.G", "albedo.B", "object", "mv.u", "mv.v"})
+    for (const char* ch : {"Z", "N.x", "N.y", "N.z", "albedo.R", "albedo.G", "albedo.B", "object", "mv.u", "mv.v", "color.R",
+                           "color.G", "color.B", "hist.R", "hist.G", "hist.B"})
       EXPECT_TRUE(e.channels.count(ch)) << ch;
     const json& c = r.cams[f].raw;
     EXPECT_EQ(c.at("convention"), "d3d");
@@ -254,7 +257,9 @@ TEST_F(MotionRig, BugModesDifferAsTruthSays) {
     SCOPED_TRACE(mode);
     const json truth = readJson(std::string(MOTION_RIG_TRUTH) + "/" + mode + ".json");
     ASSERT_EQ(truth.at("mode"), mode);
-    ASSERT_EQ(truth.size(), 7u);
+    ASSERT_EQ(truth.size(), 8u);
+    const std::string history = truth.at("history");
+    ASSERT_TRUE(history == "current" || history == "previous" || history == "stale" || history == "this_frame");
     const std::string units = truth.at("units"), direction = truth.at("direction"), yAxis = truth.at("y"),
                       jitter = truth.at("jitter");
     const double scale = truth.at("scale");
@@ -268,7 +273,7 @@ TEST_F(MotionRig, BugModesDifferAsTruthSays) {
     double biggest = 0.0;
     for (int f = 0; f < kFrames; ++f) {
       const Exr& e = r.frames[f];
-      for (const char* ch : {"Z", "N.x", "N.y", "N.z", "albedo.R", "albedo.G", "albedo.B", "object"})
+      for (const char* ch : {"Z", "N.x", "N.y", "N.z", "albedo.R", "albedo.G", "albedo.B", "object", "color.R", "color.G", "color.B"})
         ASSERT_EQ(e[ch], base.frames[f][ch]) << ch << " frame " << f;
       ASSERT_EQ(r.cams[f].raw, base.cams[f].raw) << f;
       if (jitter == "included" && f == 0) continue;  // frame -1's jitter is in no sidecar
@@ -290,7 +295,73 @@ TEST_F(MotionRig, BugModesDifferAsTruthSays) {
         biggest = std::max(biggest, glm::length(got - plain));
       }
     }
-    EXPECT_GT(biggest, 1e-3) << "the stored vectors should differ from none's";
+    if (std::string(mode).rfind("history_", 0) != 0) { EXPECT_GT(biggest, 1e-3) << "the stored vectors should differ from none's"; }
+  }
+}
+
+// Bilinear sample (texel centres at i + 0.5) of a frame's colour at continuous pixel coordinates,
+// clamped to the edge: how the README says the history reads the previous frame.
+glm::dvec3 sampleColour(const Exr& e, glm::dvec2 at) {
+  const glm::dvec2 s = at - 0.5;
+  const int x0 = int(std::floor(s.x)), y0 = int(std::floor(s.y));
+  const double fx = s.x - x0, fy = s.y - y0;
+  auto texel = [&](int x, int y) {
+    const size_t i = size_t(std::clamp(y, 0, kH - 1)) * kW + size_t(std::clamp(x, 0, kW - 1));
+    return glm::dvec3(e["color.R"][i], e["color.G"][i], e["color.B"][i]);
+  };
+  return (texel(x0, y0) * (1 - fx) + texel(x0 + 1, y0) * fx) * (1 - fy) + (texel(x0, y0 + 1) * (1 - fx) + texel(x0 + 1, y0 + 1) * fx) * fy;
+}
+
+glm::dvec3 hist(const Exr& e, size_t i) { return {e["hist.R"][i], e["hist.G"][i], e["hist.B"][i]}; }
+glm::dvec3 colour(const Exr& e, size_t i) { return {e["color.R"][i], e["color.G"][i], e["color.B"][i]}; }
+bool nearHalf(glm::dvec3 a, glm::dvec3 b) {  // within a half float's rounding
+  for (int k = 0; k < 3; ++k)
+    if (std::fabs(a[k] - b[k]) > 1e-3 * std::fabs(b[k]) + 1e-6) return false;
+  return true;
+}
+
+// Mode none: frame 0's history is zero; at every static and sky pixel of frames 1.. it is frame N-1's
+// colour sampled where the reprojection by hand (depth, both sidecars, both jitters) puts the point.
+TEST_F(MotionRig, HistoryIsThePreviousColourReprojected) {
+  const RigRun& r = runs.at("none");
+  for (size_t i = 0; i < size_t(kW) * kH; ++i) ASSERT_EQ(hist(r.frames[0], i), glm::dvec3(0.0)) << i;
+  for (int f = 1; f < kFrames; ++f) {
+    const glm::dmat4 worldFromClip = glm::inverse(r.cams[f].clipFromWorld);
+    size_t checked = 0, differ = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        const size_t i = size_t(y) * kW + x;
+        const float mask = r.truth[f]["mask"][i];
+        if (mask != 1.0f && mask != 0.0f) continue;
+        const glm::dvec2 u = glm::dvec2(x + 0.5, y + 0.5) - r.cams[f].jitter;
+        const glm::dvec4 world = worldFromClip * glm::dvec4(2.0 * u.x / kW - 1.0, 1.0 - 2.0 * u.y / kH, r.frames[f]["Z"][i], 1.0);
+        const glm::dvec2 at = toPixels(r.cams[f - 1].clipFromWorld, world) + r.cams[f - 1].jitter;
+        const glm::dvec3 want = sampleColour(r.frames[f - 1], at);
+        ASSERT_TRUE(nearHalf(hist(r.frames[f], i), want)) << "frame " << f << " pixel " << x << "," << y;
+        ++checked;
+        differ += !nearHalf(hist(r.frames[f], i), colour(r.frames[f - 1], i)) && mask == 1.0f;
+      }
+    EXPECT_GT(checked, size_t(kW * kH / 2)) << f;
+    EXPECT_GT(differ, checked / 2) << "reprojected and not reprojected histories should differ, frame " << f;
+  }
+}
+
+// The history modes: what truth/MODE.json's "history" says, from mode none's files.
+TEST_F(MotionRig, HistoryModesHoldWhatTheTruthSays) {
+  const RigRun& base = runs.at("none");
+  for (const char* mode : kBugModes) {
+    SCOPED_TRACE(mode);
+    const std::string history = readJson(std::string(MOTION_RIG_TRUTH) + "/" + mode + ".json").at("history");
+    const RigRun& r = runs.at(mode);
+    for (size_t i = 0; i < size_t(kW) * kH; ++i) ASSERT_EQ(hist(r.frames[0], i), glm::dvec3(0.0)) << "frame 0 is zero";
+    for (int f = 1; f < kFrames; ++f)
+      for (size_t i = 0; i < size_t(kW) * kH; ++i) {
+        const glm::dvec3 got = hist(r.frames[f], i);
+        if (history == "current") ASSERT_EQ(got, hist(base.frames[f], i)) << f << " " << i;
+        if (history == "stale") ASSERT_EQ(got, hist(base.frames[f - 1], i)) << f << " " << i;
+        if (history == "previous") ASSERT_TRUE(nearHalf(got, colour(base.frames[f - 1], i))) << f << " " << i;
+        if (history == "this_frame") ASSERT_TRUE(nearHalf(got, colour(base.frames[f], i))) << f << " " << i;
+      }
   }
 }
 
