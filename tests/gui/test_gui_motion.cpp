@@ -148,4 +148,23 @@ TEST_F(GuiMotionTest, TheMotionCheckAndFlickerAreViewsOfTheFrameShown) {
   quit();
 }
 
+// The rig without a bug: the first frame's motion views say why they are empty, frame 1's pair agrees.
+TEST_F(GuiMotionTest, ACorrectSequenceAgreesAndTheFirstFrameHasNoPairToCheck) {
+  const std::string seq = rigSequence("none");
+  startViewer({seq});
+  xdotool("key --window " + wid_ + " v");
+  const json first = waitEvent([](const json& j) {
+    return j["event"] == "layout" && !j["views"].empty() && j["views"][0]["view"] == "Motion error" && j["views"][0].contains("unavailable");
+  });
+  ASSERT_FALSE(first.is_null()) << "V did not show the Motion error view on frame 0";
+  EXPECT_NE(first["views"][0]["unavailable"].get<std::string>().find("no previous frame"), std::string::npos) << first.dump();
+  xdotool("key --window " + wid_ + " period");
+  const json pairEvent = waitEvent([](const json& j) { return j["event"] == "motion_pair" && j["index"] == 1; }, 60.0);
+  ASSERT_FALSE(pairEvent.is_null()) << "no motion check of frame 1";
+  EXPECT_NE(pairEvent["line"].get<std::string>().find("Motion 0 -> 1: agrees with the layout"), std::string::npos) << pairEvent["line"];
+  EXPECT_TRUE(pairEvent["pair"]["differences"].empty()) << pairEvent.dump();
+  EXPECT_FALSE(waitLayoutOf("Motion error").is_null()) << "the Motion error view did not show frame 1's map";
+  quit();
+}
+
 }  // namespace gb

@@ -28,9 +28,22 @@ bool cycleMotionViews(ViewerModel& m) {
   return true;
 }
 
-// The second row: the motion verdict (coloured by what it says) and the Flicker button with its result.
+// The second row: the motion verdict (coloured by what it says; the detected convention and the pixel
+// counts in its tooltip) and the Flicker button with what the last flicker found.
 static void drawTemporalRow(ViewerModel& m) {
   ViewerModel::TimelineUi& t = m.timeline;
+  if (!t.motionLine.empty()) {
+    const bool agrees = t.motionLine.find("agrees") != std::string::npos;
+    const bool undecided = t.motionComputing || t.motionLine.find("undecided") != std::string::npos ||
+                           t.motionLine.find("no previous") != std::string::npos;
+    const ImVec4 colour = agrees ? ImVec4(0.55f, 0.9f, 0.55f, 1) : undecided ? ImVec4(0.75f, 0.75f, 0.75f, 1) : ImVec4(1, 0.6f, 0.3f, 1);
+    const size_t cut = t.motionLine.find(" | ");
+    ImGui::TextColored(colour, "%s", t.motionLine.substr(0, cut).c_str());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("%s\n\ngblens motion on the pair ending at the frame shown (V: the Motion error view, again: Motion class)",
+                        t.motionLine.c_str());
+    ImGui::SameLine(0.0f, 24.0f);
+  }
   if (!t.flickerOf.empty() || t.flickerComputing) {
     const std::string label = t.flickerComputing ? "Flicker: computing..." : "Flicker of " + t.flickerOf;
     ImGui::BeginDisabled(t.flickerComputing);
@@ -41,18 +54,7 @@ static void drawTemporalRow(ViewerModel& m) {
                         "each frame carried to the frame shown by reprojection (gblens flicker); views Flicker stddev, Flicker max step");
     ImGui::SameLine();
   }
-  if (!t.flickerLine.empty()) {
-    ImGui::TextDisabled("%s", t.flickerLine.c_str());
-    ImGui::SameLine();
-  }
-  if (t.motionLine.empty()) return;
-  const bool agrees = t.motionLine.find("agrees") != std::string::npos;
-  const bool undecided = t.motionComputing || t.motionLine.find("undecided") != std::string::npos ||
-                         t.motionLine.find("no previous") != std::string::npos;
-  const ImVec4 colour = agrees ? ImVec4(0.55f, 0.9f, 0.55f, 1) : undecided ? ImVec4(0.75f, 0.75f, 0.75f, 1) : ImVec4(1, 0.6f, 0.3f, 1);
-  ImGui::TextColored(colour, "%s", t.motionLine.c_str());
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("gblens motion on the pair ending at the frame shown (V: the Motion error view, again: Motion class)");
+  if (!t.flickerLine.empty()) ImGui::TextDisabled("%s", t.flickerLine.c_str());
 }
 
 void stepTimeline(ViewerModel& m, int delta) {
