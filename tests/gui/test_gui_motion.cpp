@@ -104,7 +104,7 @@ TEST_F(GuiMotionTest, TheMotionCheckAndFlickerAreViewsOfTheFrameShown) {
   moveTo(at);
   const json hover = waitHover("Motion error");
   ASSERT_FALSE(hover.is_null()) << "no hover over the Motion error view";
-  EXPECT_FLOAT_EQ(float(hoverNumber(hover, "Motion error")), float(cliError)) << hover["text"];
+  EXPECT_EQ(float(hoverNumber(hover, "Motion error")), float(cliError)) << hover["text"];  // %.9g: the float exactly
   shot("motion_error.png");
 
   // A click probes the pixel: the Pixel panel's "Across frames" plots the point's values over time.
