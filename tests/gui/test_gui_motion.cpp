@@ -3,14 +3,15 @@
 // `--bug y_flipped`, imported with its layout), stepped to frame 2; the strip's verdict names the
 // flipped y, V shows the "Motion error" view, the error hovered at a pixel is the one `gblens motion -o`
 // wrote there (an independent path: the CLI's EXR), V again the "Motion class" view with its classes
-// named, F the flicker of the view shown. Screenshots stay in the test's folder
-// (gui_test/GuiMotionTest.*): the error view, the class view, the probe's plot over time.
+// named, F the flicker of the view shown. Screenshots stay in the test's folder (gui_test/<test name>/:
+// motion_error.png, probe_track.png, motion_class.png, grid_with_flicker.png).
 #include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <thread>
 
@@ -94,7 +95,14 @@ TEST_F(GuiMotionTest, TheMotionCheckAndFlickerAreViewsOfTheFrameShown) {
   const std::string line = pairEvent["line"].get<std::string>();
   EXPECT_NE(line.find("y is flipped (+y points up)"), std::string::npos) << line;
   EXPECT_NE(line.find("1 -> 2"), std::string::npos) << line;
-  EXPECT_EQ(pairEvent["pair"]["detected"]["y"], "up") << pairEvent.dump();
+  // The pair as the CLI judged it: the same detected convention (its lag decided: frame 0 was given
+  // as N-2) and the same pixel counts.
+  std::ifstream in(dir_ / "motion" / "motion.json");
+  const json report = json::parse(in);
+  ASSERT_EQ(report["pairs"][1]["current"], 2);
+  EXPECT_EQ(pairEvent["pair"]["detected"], report["pairs"][1]["detected"]) << pairEvent.dump();
+  EXPECT_EQ(pairEvent["pair"]["detected"]["lag"], 0) << "pair 1 -> 2 was not given frame 0";
+  EXPECT_EQ(pairEvent["pair"]["pixels"], report["pairs"][1]["pixels"]);
 
   // V: the Motion error view alone; the error under the mouse is the CLI's at that pixel.
   xdotool("key --window " + wid_ + " v");
