@@ -276,7 +276,7 @@ void setCaptureViews(Viewer& v) {
     if ((b && !v.hasB) || view < 0 || size_t(view) >= v.model.views.size()) return std::nullopt;
     const ViewDef& d = b ? v.viewsB[size_t(view)] : v.model.views[size_t(view)];
     const FrameSnapshot& f = b ? v.captureB.frame : v.captureA.frame;
-    if (d.quantity < 0) return std::nullopt;
+    if (d.quantity < 0) return b ? std::nullopt : temporalTexelValue(v, view, t);  // a derived map
     TexelValue out;
     const std::optional<std::array<double, 4>> value = viewValue(f, d, uint32_t(t.x), uint32_t(t.y));
     out.lines = texelValueLines(f, d, value, v.model.settings[size_t(view)].channels);

@@ -295,6 +295,8 @@ bool updateTemporalViews(Viewer& v);
 void stopTemporalViews(Viewer& v);  // teardown: cancels and waits
 // The hovered temporal view's value at a pixel ("" when `view` is not one).
 std::string temporalHoverText(const Viewer& v, int view, glm::ivec2 texel);
+// Its value printed in the texel at high zoom (ViewerModel::texelValue); nothing outside its image.
+std::optional<TexelValue> temporalTexelValue(const Viewer& v, int view, glm::ivec2 texel);
 
 // reference_error.cpp
 // The reference error's work: starts the worker on request, cancels it on request, picks up its

@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -153,6 +154,28 @@ TEST_F(GuiMotionTest, TheMotionCheckAndFlickerAreViewsOfTheFrameShown) {
   });
   EXPECT_FALSE(grid.is_null()) << "the flicker's views are not in the grid";
   shot("grid_with_flicker.png");
+
+  // V: the Motion error view again; zoomed in with the wheel, its texels print the error there.
+  xdotool("key --window " + wid_ + " v");
+  const json again = waitLayoutOf("Motion error");
+  ASSERT_FALSE(again.is_null());
+  moveTo(screenOf(again["views"][0], px.x + 0.5, px.y + 0.5));
+  json values;
+  for (int step = 0; step < 30 && values.is_null(); ++step) {
+    xdotool("click --window " + wid_ + " 4");
+    values = waitEvent([](const json& j) { return j["event"] == "texel_values" && j["view"] == "Motion error" && !j["texels"].empty(); }, 1.0);
+  }
+  ASSERT_FALSE(values.is_null()) << "no values in the Motion error view's texels after 30 wheel steps";
+  char expected[32];
+  std::snprintf(expected, sizeof expected, "%.4g", cliError);
+  bool sawPixel = false;
+  for (const json& t : values["texels"])
+    if (t["texel"] == json::array({px.x, px.y})) {
+      sawPixel = true;
+      EXPECT_EQ(t["lines"], json::array({expected})) << t.dump();
+    }
+  EXPECT_TRUE(sawPixel) << "the texel under the mouse was not among those printed";
+  shot("motion_error_zoomed.png");
   quit();
 }
 
