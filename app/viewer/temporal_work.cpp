@@ -74,6 +74,8 @@ static std::string verdictLine(const MotionPair& p) {
   return out + stats;
 }
 
+static std::string lineOf(const TemporalWork::MotionResult& r) { return r.error.empty() ? verdictLine(r.pair) : "Motion: " + r.error; }
+
 static void finishMotion(Viewer& v, TemporalWork& w) {
   TemporalWork::MotionResult r = w.motionJob.get();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w.motionStart).count();
@@ -83,7 +85,7 @@ static void finishMotion(Viewer& v, TemporalWork& w) {
   }
   ViewerModel::TimelineUi& t = v.model.timeline;
   t.motionComputing = false;
-  t.motionLine = r.error.empty() ? verdictLine(r.pair) : "Motion: " + r.error;
+  t.motionLine = lineOf(r);
   if (r.error.empty()) {
     w.motionError = decodedFloats(r.pair.errorMap, 1, "Motion error");
     w.motionClass = decodedClasses(r.pair.classMap);
@@ -106,6 +108,7 @@ static bool updateMotion(Viewer& v, TemporalWork& w) {
     t.motionLine = t.shown > 0 ? "Motion " + std::to_string(t.numbers[size_t(t.shown) - 1]) + " -> " +
                                      std::to_string(t.numbers[size_t(t.shown)]) + ": checking ..."
                                : "Motion: frame " + std::to_string(t.numbers[0]) + " is the first: no previous frame to check against";
+    if (w.motion && int(w.motion->index) == t.shown) t.motionLine = lineOf(*w.motion), t.motionComputing = false;  // kept
   }
   if (w.motionJob.valid() && w.motionJob.wait_for(std::chrono::seconds(0)) == std::future_status::ready) finishMotion(v, w);
   const bool done = w.motion && int(w.motion->index) == w.wanted;
