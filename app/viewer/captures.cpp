@@ -239,7 +239,9 @@ void setCaptureViews(Viewer& v) {
   const FrameSnapshot& a = v.captureA.frame;
   m.frameLayout = a.layout;
   m.samplesNote = samplesNote(a);
-  setViews(m, frameViews(a));
+  std::vector<ViewDef> views = frameViews(a);
+  appendTemporalViews(v, views);  // a sequence: the motion check's and flicker's maps (temporal_views.cpp)
+  setViews(m, std::move(views));
   v.decodedA = decodeViews(a, m.views);
   v.viewsB.clear();
   if (v.hasB) {
@@ -253,15 +255,17 @@ void setCaptureViews(Viewer& v) {
   for (size_t k = 0; k < m.views.size(); ++k) {
     const ViewDef& d = m.views[k];
     m.unavailable[k].clear();
+    if (d.quantity < 0) continue;  // a temporal view: fillTemporalViews
     Absent why = a.absences[d.target];
     if (v.decodedA[k].empty()) m.unavailable[k] = a.layout.targets[d.target].name + ": " + absentText(why == Absent::No ? Absent::NotCaptured : why);
     else if (v.hasB && v.decodedB[k].empty()) m.unavailable[k] = d.name + " is not in B";
     if (v.hasB) m.differenceMax[k] = largestDifference(v.decodedA[k], v.decodedB[k], d.components);
   }
+  v.rangeKeys.assign(m.views.size(), "");
+  fillTemporalViews(v);
   uploadViewImages(v.imagesA, v.ctx, v.decodedA);
   if (v.hasB) uploadViewImages(v.imagesB, v.ctx, v.decodedB);
   if (v.hasB) startFlip(v);
-  v.rangeKeys.assign(m.views.size(), "");
   const TargetImage* sm = nullptr;
   for (const ViewDef& d : m.views)
     if (d.sun) sm = layoutImage(a, d.target);
@@ -272,7 +276,7 @@ void setCaptureViews(Viewer& v) {
     if ((b && !v.hasB) || view < 0 || size_t(view) >= v.model.views.size()) return std::nullopt;
     const ViewDef& d = b ? v.viewsB[size_t(view)] : v.model.views[size_t(view)];
     const FrameSnapshot& f = b ? v.captureB.frame : v.captureA.frame;
-    if (d.quantity < 0) return std::nullopt;
+    if (d.quantity < 0) return b ? std::nullopt : temporalTexelValue(v, view, t);  // a derived map
     TexelValue out;
     const std::optional<std::array<double, 4>> value = viewValue(f, d, uint32_t(t.x), uint32_t(t.y));
     out.lines = texelValueLines(f, d, value, v.model.settings[size_t(view)].channels);
@@ -378,6 +382,7 @@ void probeCapturePixel(Viewer& v, glm::ivec2 p) {
 std::string captureHoverText(const Viewer& v, int view, glm::ivec2 texel) {
   const ViewerModel& m = v.model;
   if (view < 0 || size_t(view) >= m.views.size()) return "";
+  if (m.views[size_t(view)].quantity < 0) return temporalHoverText(v, view, texel);  // a derived map
   std::string a = viewValueText(v.captureA.frame, m.views[size_t(view)], uint32_t(texel.x), uint32_t(texel.y));
   if (!v.hasB) return a;
   const ViewDef& b = v.viewsB[size_t(view)];

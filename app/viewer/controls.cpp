@@ -67,6 +67,10 @@ void handleKeys(Viewer& v) {
       case KeyAction::NextFrame: stepTimeline(m, +1); break;
       case KeyAction::PreviousFrame: stepTimeline(m, -1); break;
       case KeyAction::PlaySequence: m.timeline.playing = !m.timeline.playing, m.uiChanged = true; break;
+      case KeyAction::MotionViews: cycleMotionViews(m); break;
+      case KeyAction::FlickerView:
+        if (!m.timeline.flickerOf.empty()) m.timeline.flickerRequested = true, m.uiChanged = true;
+        break;
       case KeyAction::MoveProbe: {
         const glm::ivec2 step(name == "Right" ? 1 : name == "Left" ? -1 : 0, name == "Down" ? 1 : name == "Up" ? -1 : 0);
         // From the pixel asked for already in this frame: presses that arrive together all count.

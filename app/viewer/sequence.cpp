@@ -67,6 +67,15 @@ static std::shared_ptr<const Capture> cachedFrame(SequenceSource& s, size_t i, s
   return capture;
 }
 
+std::shared_ptr<const Capture> sequenceFrame(Viewer& v, size_t i, std::string& error) {
+  if (!v.sequence || i >= v.sequence->seq.frames.size()) return error = "no such frame", nullptr;
+  std::shared_ptr<const Capture> c = cachedFrame(*v.sequence, i, error);
+  v.model.timeline.cached = v.sequence->cache.size();
+  return c;
+}
+
+const Sequence& openedSequence(const Viewer& v) { return v.sequence->seq; }
+
 // How long frame i stays on screen while playing: to the next frame's time when both are known.
 static double frameSeconds(const ViewerModel::TimelineUi& t, size_t i) {
   if (i + 1 < t.times.size() && t.times[i] && t.times[i + 1] && *t.times[i + 1] > *t.times[i]) return *t.times[i + 1] - *t.times[i];

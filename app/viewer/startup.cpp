@@ -154,6 +154,7 @@ int finishViewer(Viewer& v) {
   destroyViewImages(v.imagesB, v.ctx);
   stopCompareFlip(v);
   stopReferenceError(v);
+  stopTemporalViews(v);
   destroyRenderer(v.renderer);
   closeWindow(v);
   int messages = reportValidation(v.ctx);

@@ -148,6 +148,7 @@ static void updateFrame(Viewer& v, const LoopState& s, int fbw, int fbh, double 
   updateRanges(v);
   v.referenceBusy = updateReferenceError(v);
   v.referenceBusy |= updateCompareFlip(v);
+  v.referenceBusy |= updateTemporalViews(v);  // a sequence: the motion check, flicker
   if (m.probeRequest) answerProbe(v);
   updateRegion(v);
   countMarkedPixels(v);

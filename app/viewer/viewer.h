@@ -23,6 +23,7 @@
 #include "views/analysis/decompose.h"
 #include "views/analysis/error.h"
 #include "views/capture/capture.h"
+#include "views/capture/sequence.h"
 #include "views/live/live.h"
 #include "views/live/live_receiver.h"
 #include "views/ui/view_map.h"
@@ -78,6 +79,7 @@ void dollyRig(CameraRig& rig, double steps);
 
 struct ImGuiVulkan;  // window.cpp
 struct SequenceSource;  // sequence.cpp: the sequence opened, its frame cache
+struct TemporalWork;    // temporal_views.cpp: the motion and flicker workers and their maps
 
 // Input as GLFW reported it, queued for the interface frames (input.cpp).
 struct InputEvent {
@@ -159,6 +161,7 @@ struct Viewer {
   bool attachDetachLogged = false;
   // gblens view SEQ: captureA.frame is a copy of the sequence's frame shown (sequence.cpp).
   std::shared_ptr<SequenceSource> sequence;
+  std::shared_ptr<TemporalWork> temporal;  // its temporal views (temporal_views.cpp)
   ViewerModel model;
   CameraRig rig;
   uint64_t cameraVersion = 1, lightsVersion = 1;
@@ -276,6 +279,24 @@ bool updateSequence(Viewer& v, double dt);
 // After a probe of a sequence's frame: the point followed through the other frames (model.track).
 void trackSequenceProbe(Viewer& v);
 std::string describeCapture(const Capture& c);  // captures.cpp: what the capture panel says of one
+// Frame i of the sequence opened, from its cache (loaded when not there); null with `error`.
+std::shared_ptr<const Capture> sequenceFrame(Viewer& v, size_t i, std::string& error);
+const Sequence& openedSequence(const Viewer& v);  // v.sequence must be set
+
+// temporal_views.cpp (a sequence's temporal views: the motion check of the pair ending at the frame
+// shown, the flicker of a view; maps as views of the frame, quantity -1, computed in a worker thread)
+// The temporal views appended to a sequence frame's views (setCaptureViews).
+void appendTemporalViews(const Viewer& v, std::vector<ViewDef>& views);
+// Their decoded images into decodedA and why one cannot show now into unavailable (before the upload).
+void fillTemporalViews(Viewer& v);
+// The work each iteration: starts the motion check when the frame shown changed (a running one is
+// cancelled), the flicker on request, picks up results. True while a worker runs.
+bool updateTemporalViews(Viewer& v);
+void stopTemporalViews(Viewer& v);  // teardown: cancels and waits
+// The hovered temporal view's value at a pixel ("" when `view` is not one).
+std::string temporalHoverText(const Viewer& v, int view, glm::ivec2 texel);
+// Its value printed in the texel at high zoom (ViewerModel::texelValue); nothing outside its image.
+std::optional<TexelValue> temporalTexelValue(const Viewer& v, int view, glm::ivec2 texel);
 
 // reference_error.cpp
 // The reference error's work: starts the worker on request, cancels it on request, picks up its

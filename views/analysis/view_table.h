@@ -35,6 +35,7 @@ struct ViewDef {
   // Defaults of the viewer's per-view settings.
   uint32_t channels = 0x7;  // components shown (bit c = component c)
   bool autoRange = false;
+  bool falseColor = false;  // grey mappings: viridis (derived maps: the temporal views)
   float black = 0.0f, white = 1.0f;
   bool negativeSuspicious = true;  // negative values cannot be right here (highlighted)
   uint32_t predicate = gpu::kRangeAll;  // which texels count for the automatic range (and are drawn)

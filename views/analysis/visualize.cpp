@@ -20,6 +20,7 @@ ViewSettings defaultSettings(const ViewDef& d) {
   ViewSettings s;
   s.channels = d.channels;
   s.autoRange = d.autoRange;
+  s.falseColor = d.falseColor;
   s.black = d.black;
   s.white = d.white;
   return s;

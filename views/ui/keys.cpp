@@ -34,6 +34,12 @@ const std::vector<KeyBinding>& keyBindings() {
       {",", A::StepBack, kLive, "step the animation back"},
       {".", A::NextFrame, kSequence, "the sequence's next frame (the view, zoom and probe stay; the probe follows its point)"},
       {",", A::PreviousFrame, kSequence, "the sequence's previous frame"},
+      {"V", A::MotionViews, kSequence,
+       "the motion check of the pair ending at the frame shown: the Motion error view (again: Motion class); the verdict "
+       "is in the strip"},
+      {"F", A::FlickerView, kSequence,
+       "flicker of the view shown over the whole sequence, at the frame shown's pixels: views Flicker stddev and "
+       "Flicker max step"},
       {"Home", A::ResetCamera, kLive, "reset the camera"},
       {"Escape", A::CancelReference, kLive, "cancel the reference error's computation"},
       {"G", A::TexelGrid, kEverywhere, "texel grid on / off (zoomed in: values in texels)"},

@@ -16,7 +16,8 @@ enum KeySession : unsigned { kLive = 1, kCapture = 2, kCompare = 4, kAttach = 8,
 enum class KeyAction {
   Quit, SaveDraft, Grid, FirstView, ViewKey, FlipCompare, PlayPause, PauseStream, CancelReference, CaptureShown,
   StepForward, StepBack, ResetCamera, TexelGrid, Fit, MoveProbe, MoveCamera, CompareSwipe, CompareDifference,
-  CompareFlip, CompareRow, ZoomToMarks, NextSample, NextFrame, PreviousFrame, PlaySequence, Mouse
+  CompareFlip, CompareRow, ZoomToMarks, NextSample, NextFrame, PreviousFrame, PlaySequence, MotionViews,
+  FlickerView, Mouse
 };
 
 struct KeyBinding {

@@ -1,17 +1,61 @@
 // The timeline strip of a sequence (gblens view SEQ; ImGui only): step back / forward, play / pause at
-// the sequence's rate, a slider over its frames, the frame's number and time, the frame cache. It
-// edits ViewerModel::timeline; the app (app/viewer/sequence.cpp) shows the frame asked for.
+// the sequence's rate, a slider over its frames, the frame's number and time, the frame cache; below
+// them the temporal views' row: the motion check's verdict of the pair ending at the frame shown and
+// the Flicker button. It edits ViewerModel::timeline; the app (app/viewer/sequence.cpp,
+// temporal_views.cpp) shows the frame asked for and computes the maps.
 #include <imgui.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <string>
 
+#include "views/analysis/view_table.h"
 #include "views/ui/viewer_model.h"
 
 namespace gb {
 
-double timelineHeight(const ViewerModel& m) { return m.timeline.on ? 30.0 : 0.0; }
+// The strip's rows: the frames, and the temporal views' row where there is a verdict or a button.
+static bool temporalRow(const ViewerModel::TimelineUi& t) { return !t.motionLine.empty() || !t.flickerOf.empty() || !t.flickerLine.empty(); }
+double timelineHeight(const ViewerModel& m) { return m.timeline.on ? (temporalRow(m.timeline) ? 56.0 : 30.0) : 0.0; }
+
+bool cycleMotionViews(ViewerModel& m) {
+  const int error = findView(m.views, "Motion error"), classes = findView(m.views, "Motion class");
+  if (error < 0 || m.views[size_t(error)].quantity >= 0) return false;
+  const bool again = m.layout != LayoutMode::Grid && m.primary == error && classes >= 0;
+  m.primary = m.edited = again ? classes : error;
+  if (m.layout == LayoutMode::Grid) m.layout = LayoutMode::Single;
+  m.uiChanged = true;
+  return true;
+}
+
+// The second row: the motion verdict (coloured by what it says; the detected convention and the pixel
+// counts in its tooltip) and the Flicker button with what the last flicker found.
+static void drawTemporalRow(ViewerModel& m) {
+  ViewerModel::TimelineUi& t = m.timeline;
+  if (!t.motionLine.empty()) {
+    const bool agrees = t.motionLine.find("agrees") != std::string::npos;
+    const bool undecided = t.motionComputing || t.motionLine.find("undecided") != std::string::npos ||
+                           t.motionLine.find("no previous") != std::string::npos;
+    const ImVec4 colour = agrees ? ImVec4(0.55f, 0.9f, 0.55f, 1) : undecided ? ImVec4(0.75f, 0.75f, 0.75f, 1) : ImVec4(1, 0.6f, 0.3f, 1);
+    const size_t cut = t.motionLine.find(" | ");
+    ImGui::TextColored(colour, "%s", t.motionLine.substr(0, cut).c_str());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("%s\n\ngblens motion on the pair ending at the frame shown (V: the Motion error view, again: Motion class)",
+                        t.motionLine.c_str());
+    ImGui::SameLine(0.0f, 24.0f);
+  }
+  if (!t.flickerOf.empty() || t.flickerComputing) {
+    const std::string label = t.flickerComputing ? "Flicker: computing..." : "Flicker of " + t.flickerOf;
+    ImGui::BeginDisabled(t.flickerComputing);
+    if (ImGui::SmallButton(label.c_str())) t.flickerRequested = true, m.uiChanged = true;
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip("F: the view's temporal standard deviation and largest frame-to-frame step over the whole sequence,\n"
+                        "each frame carried to the frame shown by reprojection (gblens flicker); views Flicker stddev, Flicker max step");
+    ImGui::SameLine();
+  }
+  if (!t.flickerLine.empty()) ImGui::TextDisabled("%s", t.flickerLine.c_str());
+}
 
 void stepTimeline(ViewerModel& m, int delta) {
   ViewerModel::TimelineUi& t = m.timeline;
@@ -85,6 +129,7 @@ void drawTimeline(ViewerModel& m, double x, double y, double w) {
   if (ImGui::IsItemHovered() && t.status.empty())
     ImGui::SetTooltip("frames are loaded when first shown and kept in a cache of at most %zu (the least recently used goes)",
                       t.cacheLimit);
+  if (temporalRow(t)) drawTemporalRow(m);
   if (t.requested >= 0 || t.playing) m.uiChanged = true;
   ImGui::End();
 }

@@ -112,4 +112,20 @@ void textLegend(ImDrawList* dl, const Rect& r, float width, const std::string& t
   dl->AddText(ImGui::GetFont(), ImGui::GetFontSize(), at, rgb(1, 1, 1), text.c_str(), nullptr, width);
 }
 
+void classLegend(ImDrawList* dl, ImVec2 at, float width, const std::string& title, const std::vector<std::string>& names) {
+  const float h = ImGui::GetFontSize();
+  float x = at.x;
+  dl->AddText(ImVec2(at.x, at.y - 16), rgb(1, 1, 1), title.c_str());
+  for (size_t i = 0; i < names.size(); ++i) {
+    const std::string text = std::to_string(i) + " " + names[i];
+    const float w = h + 4 + ImGui::CalcTextSize(text.c_str()).x;
+    if (x + w > at.x + width) break;  // no room: the hover still names the class
+    const glm::vec3 c = colors::idColor(uint32_t(i));
+    dl->AddRectFilled(ImVec2(x, at.y), ImVec2(x + h, at.y + h), rgb(c.r, c.g, c.b));
+    dl->AddRect(ImVec2(x, at.y), ImVec2(x + h, at.y + h), rgb(0.6f, 0.6f, 0.6f));
+    dl->AddText(ImVec2(x + h + 4, at.y), rgb(1, 1, 1), text.c_str());
+    x += w + 14;
+  }
+}
+
 }  // namespace gb

@@ -4,6 +4,7 @@
 #include <imgui.h>
 
 #include <string>
+#include <vector>
 
 #include "views/ui/viewer_model.h"
 
@@ -16,6 +17,8 @@ void rampLegend(ImDrawList* dl, ImVec2 at, float width, const ViewMapping& mappi
                 const std::string& unit);
 // FLIP's magma from 0 to 1.
 void magmaLegend(ImDrawList* dl, ImVec2 at, float width);
+// An id view's classes: a swatch of each value's id colour (0: black) and its name, in a row titled `title`.
+void classLegend(ImDrawList* dl, ImVec2 at, float width, const std::string& title, const std::vector<std::string>& names);
 // `text` wrapped to `width` at the bottom of the view rectangle `r`.
 void textLegend(ImDrawList* dl, const Rect& r, float width, const std::string& text);
 

@@ -311,7 +311,7 @@ static std::string compareLabel(const ViewerModel& m, const SlotDraw& v) {
 
 // Which legend a slot shows: beside the image, in a strip below it (never over the picture), where
 // the slot is large enough for one (grid cells too, from 200 x 200 px).
-enum class LegendKind { None, Flip, Difference, Count, Words, Ramp };
+enum class LegendKind { None, Flip, Difference, Count, Words, Ramp, Classes };
 static LegendKind legendOf(const ViewerModel& m, int view, FrameSide side, const Rect& r) {
   if (r.w <= 200 || r.h <= 200) return LegendKind::None;
   const ViewDef& def = m.views[size_t(view)];
@@ -319,6 +319,7 @@ static LegendKind legendOf(const ViewerModel& m, int view, FrameSide side, const
   if (side == FrameSide::Difference) return LegendKind::Difference;
   if (def.visual == Visual::Count) return LegendKind::Count;
   if (m.referenceError.legends.count(def.name)) return LegendKind::Words;
+  if (def.visual == Visual::Id && m.classNames.count(def.name)) return LegendKind::Classes;
   const ViewMapping mapping = viewMapping(def, m.settings[size_t(view)]);
   if (mapping.mapping == gpu::kViewMapDepth || (mapping.mapping == gpu::kViewMapGrey && (mapping.flags & gpu::kViewFlagFalseColor)))
     return LegendKind::Ramp;
@@ -358,6 +359,7 @@ static void drawLegend(const ViewerModel& m, int view, FrameSide side, const Rec
       break;
     case LegendKind::Count: heatLegend(dl, bar, width, range.white, viewUnit(def, m.stats.method).c_str()); break;
     case LegendKind::Words: textLegend(dl, r, float(std::min(r.w - 24, 420.0)), wordsOf(m, view)); break;
+    case LegendKind::Classes: classLegend(dl, bar, float(r.w - 24), def.name, m.classNames.at(def.name)); break;
     case LegendKind::Ramp:
       rampLegend(dl, bar, width, viewMapping(def, m.settings[size_t(view)]), range, def.unit.empty() ? def.name : def.unit);
       break;

@@ -231,8 +231,20 @@ struct ViewerModel {
     bool fpsFromTimes = false;
     size_t cached = 0, cacheLimit = 0;        // frames in memory now, at most
     std::string status;                       // why a frame could not be shown ("" none)
+    // The temporal views (app/viewer/temporal_views.cpp): the motion check of the pair ending at the
+    // frame shown (its maps: the views "Motion error" and "Motion class") and the flicker of a view
+    // over the whole sequence ("Flicker stddev", "Flicker max step"); the strip's second row.
+    std::string motionLine;                   // the pair's verdict in words ("" : no motion quantity)
+    bool motionComputing = false;
+    std::string flickerOf;                    // the view the Flicker button runs on ("" : none can)
+    bool flickerRequested = false;            // the button or F
+    bool flickerComputing = false;
+    std::string flickerLine;                  // what the last flicker found, or why there is none
   } timeline;
   std::optional<ProbeTrack> track;            // the probed point across the sequence (none: not probed)
+  // Views of classes (quantity -1, Visual::Id; the motion check's class map): each value's name, in
+  // the legend (a swatch per class) and the hover.
+  std::map<std::string, std::vector<std::string>> classNames;
 
   // Set by the panels when anything changed that needs another interface frame.
   bool uiChanged = false;
@@ -275,6 +287,8 @@ Rect imageRectOf(const ViewerModel& m, const ViewSlot& s);
 
 // The timeline's step: asks for the frame `delta` away from the one shown (clamped), pauses playing.
 void stepTimeline(ViewerModel& m, int delta);
+// V in a sequence: the view "Motion error" alone, and from it "Motion class"; false when there is none.
+bool cycleMotionViews(ViewerModel& m);
 
 // Keyboard shortcuts: 1 grid, 0 / Return the first view, 2..9 the next ones (view_table.h keys).
 // Returns true if handled.
