@@ -210,7 +210,8 @@ void trackSequenceProbe(Viewer& v) {
     const std::shared_ptr<const Capture> c = cachedFrame(s, i, error);
     return c ? std::shared_ptr<const FrameSnapshot>(c, &c->frame) : nullptr;
   };
-  m.track = trackProbe(m.timeline.numbers.size(), frames, shown, *m.probePixel, m.views[size_t(k)]);
+  const TrackJitters jitters = [&s](size_t i) { return i < s.seq.frames.size() ? s.seq.frames[i].jitter : std::nullopt; };
+  m.track = trackProbe(m.timeline.numbers.size(), frames, shown, *m.probePixel, m.views[size_t(k)], jitters);
   m.timeline.cached = s.cache.size();
   m.probeNote.clear();
   nlohmann::json j = trackJson(*m.track);

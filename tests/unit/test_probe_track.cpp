@@ -104,3 +104,25 @@ TEST(ProbeTrack, StopsAtAFrameThatCannotBeLoaded) {
 }
 
 }  // namespace gb
+
+namespace gb {
+
+// The same frames rendered with jitter: frame i shows at p the point whose unjittered place is p - j_i,
+// and another frame shows it at its unjittered place + its own jitter (frame 2's is not known: none).
+TEST(ProbeTrack, TakesEachFramesJitterOutAndPutsTheNextOnesIn) {
+  const Frames seq({0.0, 0.2, 0.4});
+  const std::vector<std::optional<glm::dvec2>> jitter = {glm::dvec2(0.25, 0.125), glm::dvec2(-0.375, 0.25), std::nullopt};
+  const TrackJitters jitters = [&](size_t i) { return jitter[i]; };
+  const glm::ivec2 probed(30, 20);
+  const ProbeTrack t = trackProbe(3, seq.source(), 1, probed, finalView(*seq.frames[0]), jitters);
+  ASSERT_EQ(t.first, 0u);
+  ASSERT_EQ(t.last, 2u);
+  const double x1 = 30.5, y1 = 20.5;  // the probed texel's centre, as frame 1 shows it
+  const double u1 = x1 - jitter[1]->x, v1 = y1 - jitter[1]->y;  // its unjittered place in frame 1
+  EXPECT_NEAR(t.positions[0]->x, movedX(u1, 0.2, 0.0) + jitter[0]->x, 1e-9);
+  EXPECT_NEAR(t.positions[0]->y, v1 + jitter[0]->y, 1e-9);  // the camera moves along x only
+  EXPECT_NEAR(t.positions[2]->x, movedX(u1, 0.2, 0.4), 1e-9);
+  EXPECT_NEAR(t.positions[2]->y, v1, 1e-9);
+}
+
+}  // namespace gb

@@ -1,4 +1,4 @@
-// The probe's track across a sequence (probe_track.h): reprojectPixel chained frame to frame in both
+// The probe's track across a sequence (probe_track.h): the point reprojected frame to frame in both
 // directions from the probed frame, then the view decoded at each texel reached.
 #include "views/analysis/probe_track.h"
 
@@ -15,9 +15,12 @@ namespace {
 
 // One step of the chain: where the point at `from`'s position is in `to` (the offset inside its
 // texel kept), or why it is not followed there.
-std::optional<glm::dvec2> step(const FrameSnapshot& from, glm::dvec2 position, const FrameSnapshot& to, std::string& why) {
+std::optional<glm::dvec2> step(const FrameSnapshot& from, glm::dvec2 position, const FrameSnapshot& to, glm::dvec2 jFrom,
+                               glm::dvec2 jTo, std::string& why) {
   const glm::ivec2 texel(int(std::floor(position.x)), int(std::floor(position.y)));
-  const std::optional<glm::dvec2> centre = reprojectPixel(from, uint32_t(texel.x), uint32_t(texel.y), to);
+  const std::optional<glm::dvec3> point = surfacePoint(from, uint32_t(texel.x), uint32_t(texel.y), jFrom);
+  std::optional<glm::dvec2> centre = point ? projectToPixel(to.camera, *point) : std::nullopt;
+  if (centre) *centre += jTo;  // where the jittered frame shows it
   if (!centre) {
     why = "no static surface to follow (no depth there, or behind the next frame's camera)";
     return std::nullopt;
@@ -51,8 +54,9 @@ void decodeAt(ProbeTrack& t, size_t i, const FrameSnapshot& f, const FrameSnapsh
 
 // Follows the track from `start` towards `direction` (+1, -1) until a step fails or the frames end,
 // decoding the view in each frame reached (each frame is asked for once).
-void follow(ProbeTrack& t, const TrackFrames& frames, const std::shared_ptr<const FrameSnapshot>& probed, const ViewDef& view,
-            int direction) {
+void follow(ProbeTrack& t, const TrackFrames& frames, const TrackJitters& jitters,
+            const std::shared_ptr<const FrameSnapshot>& probed, const ViewDef& view, int direction) {
+  auto jitter = [&](int64_t i) { return jitters ? jitters(size_t(i)).value_or(glm::dvec2(0.0)) : glm::dvec2(0.0); };
   std::shared_ptr<const FrameSnapshot> from = probed;
   std::string& stop = direction > 0 ? t.stopAfter : t.stopBefore;
   for (int64_t i = int64_t(t.start) + direction; i >= 0 && i < int64_t(t.frameCount); i += direction) {
@@ -61,7 +65,8 @@ void follow(ProbeTrack& t, const TrackFrames& frames, const std::shared_ptr<cons
       stop = "frame index " + std::to_string(i) + " could not be loaded";
       return;
     }
-    const std::optional<glm::dvec2> p = step(*from, *t.positions[size_t(i - direction)], *to, stop);
+    const std::optional<glm::dvec2> p =
+        step(*from, *t.positions[size_t(i - direction)], *to, jitter(i - direction), jitter(i), stop);
     if (!p) return;
     t.positions[size_t(i)] = p;
     t.texels[size_t(i)] = glm::ivec2(int(std::floor(p->x)), int(std::floor(p->y)));
@@ -73,7 +78,8 @@ void follow(ProbeTrack& t, const TrackFrames& frames, const std::shared_ptr<cons
 
 }  // namespace
 
-ProbeTrack trackProbe(size_t frameCount, const TrackFrames& frames, size_t start, glm::ivec2 pixel, const ViewDef& view) {
+ProbeTrack trackProbe(size_t frameCount, const TrackFrames& frames, size_t start, glm::ivec2 pixel, const ViewDef& view,
+                      const TrackJitters& jitters) {
   ProbeTrack t;
   t.frameCount = frameCount;
   t.start = t.first = t.last = start;
@@ -94,8 +100,8 @@ ProbeTrack trackProbe(size_t frameCount, const TrackFrames& frames, size_t start
   t.positions[start] = glm::dvec2(pixel) + 0.5;
   t.texels[start] = pixel;
   decodeAt(t, start, *probed, *probed, view);
-  follow(t, frames, probed, view, +1);
-  follow(t, frames, probed, view, -1);
+  follow(t, frames, jitters, probed, view, +1);
+  follow(t, frames, jitters, probed, view, -1);
   return t;
 }
 

@@ -22,6 +22,8 @@ namespace gb {
 // Frame i of the sequence (0-based, in frame order); null when it cannot be loaded (the track stops
 // there). Shared: a caller's cache may drop a frame while the track still reads it.
 using TrackFrames = std::function<std::shared_ptr<const FrameSnapshot>(size_t i)>;
+// Frame i's jitter (pixels, as sequence.json gives it; null: not known, taken as none).
+using TrackJitters = std::function<std::optional<glm::dvec2>(size_t i)>;
 
 struct ProbeTrack {
   size_t frameCount = 0;
@@ -44,7 +46,10 @@ struct ProbeTrack {
 // of the start frame's layout; other frames: their view of the same name) along it. Each step starts
 // from the texel holding the point and keeps its offset inside the texel, so a uniform motion (a
 // camera translation over a plane) carries sub-texel positions exactly.
-ProbeTrack trackProbe(size_t frameCount, const TrackFrames& frames, size_t start, glm::ivec2 pixel, const ViewDef& view);
+// With `jitters`, each frame's jitter is taken out of the point it shows and put into where the next
+// frame shows it (a jittered sequence's points stay on their surface to a hundredth of a pixel).
+ProbeTrack trackProbe(size_t frameCount, const TrackFrames& frames, size_t start, glm::ivec2 pixel, const ViewDef& view,
+                      const TrackJitters& jitters = {});
 
 // The track as JSON (the viewer's event log): the followed texels by frame index, the stops, the values.
 nlohmann::json trackJson(const ProbeTrack& t);
