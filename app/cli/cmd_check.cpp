@@ -43,7 +43,7 @@ bool checkSequenceHistory(const Sequence& seq, const CheckArgs& o, const CheckPo
   if (faulted) clean = false;
   temporal["history"] = historyReportJson(r, o.capture);
   temporal["history_severity"] = name(level);
-  if (level != Severity::Ignore) text += "temporal, history (" + std::string(name(level)) + "):\n" + historyReportText(r);
+  if (level != Severity::Ignore) text += "temporal, history (a finding is a " + std::string(name(level)) + "):\n" + historyReportText(r);
   return true;
 }
 
@@ -86,8 +86,8 @@ int checkSequence(const CheckArgs& o) {
     }
     const Severity level = policy.at(motion->name, "motion");
     if (r.verdict == "differs" && level == Severity::Fault) clean = false;
-    temporal = {{"motion", motionReportJson(r, o.capture)}, {"severity", name(level)}};
-    if (level != Severity::Ignore) text += "temporal, motion (" + std::string(name(level)) + "):\n" + motionReportText(r);
+    temporal = {{"motion", motionReportJson(r, o.capture)}, {"motion_severity", name(level)}};
+    if (level != Severity::Ignore) text += "temporal, motion (a finding is a " + std::string(name(level)) + "):\n" + motionReportText(r);
   } else {
     text += "temporal: " + std::string(motion ? "one frame: no pair to check" : "the layout has no motion quantity") + "\n";
   }

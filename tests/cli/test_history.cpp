@@ -114,7 +114,7 @@ TEST(HistoryCli, CheckSeqFaultsAStaleHistoryAndThePolicyLowersIt) {
   EXPECT_EQ(j["temporal"]["motion"]["verdict"], "agrees");  // the vectors are right: the history alone faults
   r = runGblens("check '" + stale + "'");
   EXPECT_EQ(r.exitCode, 1);
-  EXPECT_NE(r.output.find("temporal, history (fault)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("temporal, history (a finding is a fault)"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("one frame stale"), std::string::npos) << r.output;
   for (const std::string rule : {"history=warn", "hist.history=warn"}) {
     r = runGblens("check '" + stale + "' --json --policy " + rule);

@@ -30,7 +30,7 @@ def valid(name, document):
 
 
 def test_every_schema_is_a_schema_with_a_version():
-    for name in ("probe", "stats", "check", "compare", "motion", "flicker", "history"):
+    for name in ("probe", "stats", "check", "compare", "motion", "flicker", "history", "check-sequence"):
         s = schema(name)
         assert s["properties"]["version"]["const"] >= 1
         assert name in s["title"]
@@ -109,6 +109,12 @@ def test_motion_and_flicker_on_blenders_sequence_are_valid(tmp_path):
     del broken["pairs"][0]["pixels"]
     with pytest.raises(AssertionError):
         valid("motion", broken)
+    checked = run_json("check", seq, "--json")
+    valid("check-sequence", checked)
+    for f in checked["frames"]:
+        valid("check", f["check"])
+    valid("motion", checked["temporal"]["motion"])
+    assert checked["temporal"]["motion_severity"] == "fault"
     flicker = run_json("flicker", seq, "--quantity", "DiffCol", "--json")
     valid("flicker", flicker)
     assert flicker["frames"] == 5 and flicker["components"] >= 3

@@ -94,7 +94,7 @@ std::string motionReportText(const MotionReport& r) {
   for (const MotionPair& p : r.pairs) {
     const double n = std::max<double>(1.0, double(p.surfacePixels));
     std::snprintf(line, sizeof line,
-                  "frames %lld -> %lld: static %5.1f %% (error median %.4f, p95 %.4f, max %.4f px; bound %.3f px), "
+                  "frames %lld -> %lld: static %5.1f %% (error median %.2g, p95 %.2g, max %.2g px; bound %.3f px), "
                   "moving %.1f %%, disoccluded %.1f %%, wrong %.1f %%\n",
                   (long long)p.previous, (long long)p.current, 100.0 * p.staticPixels / n, p.medianError, p.p95Error,
                   p.maxError, p.bound, 100.0 * p.movingPixels / n, 100.0 * p.disoccluded / n, 100.0 * p.wrongMoving / n);
