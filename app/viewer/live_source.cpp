@@ -205,6 +205,7 @@ bool pollAttached(Viewer& v) {
   if (m.playing && !m.attach.detachRequested && receiver.take(frame, info)) {
     v.captureA.frame = FrameSnapshot{};  // its memory back before the new one's views are decoded
     showStreamFrame(v, std::move(frame), info);
+    updateLiveTimeline(v);  // the strip on the frame taken among the kept ones
     changed = true;
   } else if (visibleViews(m) != v.attachShown) {  // other views came on screen
     decodeShown(v);

@@ -2,8 +2,8 @@
 // strip of a sequence (views/ui/timeline_panel.cpp) over LiveReceiver::history(). While the stream
 // runs the strip sits on the newest frame and holds only the kept frames' numbers; frozen (Space, or
 // a step or the slider, which freeze it), the viewer holds the kept frames as they were (shared with
-// the session's history, which takes no frame while paused: at most K frames' texels, plus the copy
-// shown) and shows any of them as a streamed frame is shown; the probe follows its point through them
+// the session's history once the receiver has stopped taking frames: at most K frames' texels, plus
+// the copy shown) and shows any of them as a streamed frame is shown; the probe follows its point through them
 // (no jitter known: none). Running again drops them and the track; the next frame taken is the newest.
 #include <algorithm>
 
@@ -17,7 +17,7 @@ struct LiveHistoryFrames : TimelineFrames {
   size_t count() const override { return kept.size(); }
   int64_t number(size_t i) const override { return int64_t(kept[i].appFrame); }
   std::optional<double> time(size_t i) const override {  // seconds before the newest kept frame's end
-    return -double(kept.back().endNs - kept[i].endNs) * 1e-9;
+    return double(int64_t(kept[i].endNs) - int64_t(kept.back().endNs)) * 1e-9;  // 0 for the newest
   }
   std::shared_ptr<const FrameSnapshot> frame(size_t i, std::string&) override { return kept[i].frame; }
   size_t inMemory() const override { return kept.size(); }
@@ -97,7 +97,8 @@ void thaw(Viewer& v) {
 bool updateLiveTimeline(Viewer& v) {
   ViewerModel& m = v.model;
   ViewerModel::TimelineUi& t = m.timeline;
-  const size_t limit = v.receiver->state().historyLimit;
+  const LiveReceiver::State st = v.receiver->state();
+  const size_t limit = st.historyLimit;
   if (limit == 0) return false;
   t.history = true;
   t.dir = "attach";
@@ -113,6 +114,9 @@ bool updateLiveTimeline(Viewer& v) {
     return true;
   }
   if (!v.liveHistory) {
+    // Frozen once the receiver takes no more frames (it may finish one after the pause): the kept
+    // frames are then the session's own, no more than K.
+    if (v.attachPlaying || st.receiving) return true;  // another look soon
     if (!freeze(v)) return false;
     v.liveNumbersFor = 0;
   }

@@ -32,6 +32,11 @@ TEST_F(GuiAttachTest, HistoryTimelineFreezesStepsBackAndTracksTheProbeOverTheKep
     if (v["view"] == "Albedo") albedo = v;
   ASSERT_FALSE(albedo.is_null());
 
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));  // the grid's views decoded (live: the strip on the newest)
+  gui::Screenshot shot;
+  std::string error;
+  ASSERT_TRUE(gui::screenshot(xvfb_.display, (dir_ / "history_live.png").string(), shot, error)) << error;
+
   // Space: frozen on the newest kept frame, four kept (the bound: --history 4).
   xdotool("key --window " + wid_ + " space");
   const json frozen = waitEvent([](const json& j) { return j["event"] == "history_frame" && j["state"] == "frozen"; });
@@ -70,8 +75,6 @@ TEST_F(GuiAttachTest, HistoryTimelineFreezesStepsBackAndTracksTheProbeOverTheKep
               track["last"].get<int>(), track["texels"].dump().c_str());
   xdotool("mousemove --window " + wid_ + " 10 300");
   std::this_thread::sleep_for(std::chrono::milliseconds(800));  // the frame and strip on screen
-  gui::Screenshot shot;
-  std::string error;
   ASSERT_TRUE(gui::screenshot(xvfb_.display, (dir_ / "history_frozen.png").string(), shot, error)) << error;
   std::printf("screenshot: %s\n", (dir_ / "history_frozen.png").c_str());
   for (const json& e : events())
