@@ -81,6 +81,7 @@ bool freeze(Viewer& v) {
   fill(v, *f, indexOf(*f, v.attachInfo.appFrame));
   if (f->kept.back().appFrame != v.attachInfo.appFrame) showKept(v, f->kept.size() - 1);
   else logKept(v, "frozen");
+  trackTimelineProbe(v, *f);  // a probe made while it ran: followed through the kept frames now
   return true;
 }
 

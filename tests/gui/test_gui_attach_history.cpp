@@ -4,7 +4,8 @@
 // four kept frames' application numbers in the log); `,` `,` steps back two kept frames, shown as a
 // streamed frame is (no frame is taken from the stream meanwhile); a click probes that frame and the
 // probe's track lists the four kept frames; Space returns to the stream, whose next frame is newer
-// than every kept one.
+// than every kept one; `,` on the running stream freezes it again (its newer kept frames, the probe
+// tracked over them at once) and steps back one.
 #include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -86,6 +87,19 @@ TEST_F(GuiAttachTest, HistoryTimelineFreezesStepsBackAndTracksTheProbeOverTheKep
   const int64_t newest = kept[3];
   ASSERT_FALSE(waitEvent([&](const json& j) { return j["event"] == "attach_frame" && j["app_frame"] > newest; }).is_null())
       << "the stream did not come back after the freeze";
+
+  // `,` while it runs freezes it too, one kept frame before the one shown; the probe's track is there at once.
+  xdotool("key --window " + wid_ + " comma");
+  EXPECT_FALSE(waitEvent([](const json& j) { return j["event"] == "attach_state" && j["state"] == "paused"; }).is_null());
+  const json refrozen = waitEvent([](const json& j) { return j["event"] == "history_frame" && j["state"] == "frozen"; });
+  ASSERT_FALSE(refrozen.is_null()) << "`,` on the running stream did not freeze it";
+  const json again = waitEvent([](const json& j) { return j["event"] == "track"; });
+  ASSERT_FALSE(again.is_null()) << "no track of the probe over the new kept frames";
+  EXPECT_EQ(again["frames"], refrozen["frames"]);
+  EXPECT_GT(refrozen["frames"][0].get<int64_t>(), newest) << "the kept frames are the newer ones";
+  const json stepped = waitEvent([](const json& j) { return j["event"] == "history_frame" && j["index"] < 3; });
+  ASSERT_FALSE(stepped.is_null()) << "`,` on the running stream did not step back a kept frame";
+  EXPECT_EQ(stepped["app_frame"], refrozen["frames"][stepped["index"].get<size_t>()]);
   EXPECT_EQ(kill(app_, 0), 0) << "the application stopped";
 }
 
