@@ -85,9 +85,26 @@ bool sameViews(const std::vector<ViewDef>& a, const std::vector<ViewDef>& b) {
   return same;
 }
 
-// The frame shown becomes `frame`: the views of a new layout set up as for a capture, else the
-// shown views decoded again.
-void showFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info) {
+// Each drafted quantity's verdict for the Suggested layout window's table (views/infer/guess.h).
+std::vector<ViewerModel::AttachUi::Verdict> verdictsOf(const nlohmann::json& draft) {
+  std::vector<ViewerModel::AttachUi::Verdict> out;
+  for (const nlohmann::json& t : draft.value("targets", nlohmann::json::array()))
+    for (const nlohmann::json& q : t.value("quantities", nlohmann::json::array())) {
+      const nlohmann::json g = q.value("guess", nlohmann::json::object());
+      if (!g.is_object()) continue;
+      const std::string kind = q.value("quantity", "");
+      const bool unknown = g.value("quantity", "") == "unknown" || kind == "scalar" || kind == "vector";
+      char confidence[16];
+      std::snprintf(confidence, sizeof confidence, "%.2f", g.value("confidence", 0.0));
+      out.push_back({t.value("name", ""), q.value("channels", nlohmann::json::array()).dump(), unknown ? "unknown" : kind,
+                     confidence, g.value("evidence", "")});
+    }
+  return out;
+}
+
+}  // namespace
+
+void showStreamFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info, bool kept) {
   ViewerModel& m = v.model;
   const auto start = std::chrono::steady_clock::now();
   v.captureA.frame = std::move(frame);
@@ -117,6 +134,10 @@ void showFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info) {
                 (unsigned long long)info.appFrame, (unsigned long long)info.stream, info.latencyMs);
   m.attach.frame = text;
   for (const std::string& a : info.absent) m.attach.frame += "\nabsent: " + a;
+  if (kept) {
+    m.attach.frame = "kept " + m.attach.frame.substr(0, m.attach.frame.find(','));  // its latency meant nothing now
+    return;
+  }
   const LiveReceiver::State st = v.receiver->state();
   const LiveCounts& c = st.counts;
   v.attachPresentPending = true;
@@ -130,25 +151,6 @@ void showFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info) {
                        {"decode_ms", c.meanDecodeMs},
                        {"show_ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()}});
 }
-
-// Each drafted quantity's verdict for the Suggested layout window's table (views/infer/guess.h).
-std::vector<ViewerModel::AttachUi::Verdict> verdictsOf(const nlohmann::json& draft) {
-  std::vector<ViewerModel::AttachUi::Verdict> out;
-  for (const nlohmann::json& t : draft.value("targets", nlohmann::json::array()))
-    for (const nlohmann::json& q : t.value("quantities", nlohmann::json::array())) {
-      const nlohmann::json g = q.value("guess", nlohmann::json::object());
-      if (!g.is_object()) continue;
-      const std::string kind = q.value("quantity", "");
-      const bool unknown = g.value("quantity", "") == "unknown" || kind == "scalar" || kind == "vector";
-      char confidence[16];
-      std::snprintf(confidence, sizeof confidence, "%.2f", g.value("confidence", 0.0));
-      out.push_back({t.value("name", ""), q.value("channels", nlohmann::json::array()).dump(), unknown ? "unknown" : kind,
-                     confidence, g.value("evidence", "")});
-    }
-  return out;
-}
-
-}  // namespace
 
 void openAttached(Viewer& v) {
   ViewerModel& m = v.model;
@@ -167,7 +169,7 @@ void openAttached(Viewer& v) {
   v.scene = emptyScene(v.captureA.frame.camera);
   initRenderer(v.renderer, v.ctx, v.scene);
   FrameSnapshot first = v.captureA.frame;
-  showFrame(v, std::move(first), v.args.attachFirstInfo);
+  showStreamFrame(v, std::move(first), v.args.attachFirstInfo);
   m.captureAvailable = true;
   m.captureHint = "Writes the frame shown (paused: the frozen one) as a gblens capture to ./gblens-attach-<date>-<time>/\n"
                   "(the format gblens import and attach --capture-frame write; key C)";
@@ -187,7 +189,7 @@ void openAttached(Viewer& v) {
 bool pollAttached(Viewer& v) {
   ViewerModel& m = v.model;
   LiveReceiver& receiver = *v.receiver;
-  bool changed = false;
+  bool changed = updateLiveTimeline(v);  // --history K: a step freezes the stream, frozen a kept frame
   if (m.attach.detachRequested && !v.attachDetachLogged) {
     receiver.detach();
     v.attachDetachLogged = true;
@@ -202,7 +204,8 @@ bool pollAttached(Viewer& v) {
   LiveFrameInfo info;
   if (m.playing && !m.attach.detachRequested && receiver.take(frame, info)) {
     v.captureA.frame = FrameSnapshot{};  // its memory back before the new one's views are decoded
-    showFrame(v, std::move(frame), info);
+    showStreamFrame(v, std::move(frame), info);
+    updateLiveTimeline(v);  // the strip on the frame taken among the kept ones
     changed = true;
   } else if (visibleViews(m) != v.attachShown) {  // other views came on screen
     decodeShown(v);

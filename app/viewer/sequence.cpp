@@ -7,6 +7,7 @@
 #include <charconv>
 #include <filesystem>
 
+#include "app/viewer/timeline.h"
 #include "app/viewer/viewer.h"
 #include "views/analysis/probe.h"
 #include "views/analysis/probe_track.h"
@@ -19,7 +20,7 @@ namespace gb {
 // goes first); the frame shown is a copy of one of them (captureA). README and docs/temporal.md say so.
 constexpr size_t kSequenceCacheFrames = 8;
 
-struct SequenceSource {
+struct SequenceSource : TimelineFrames {
   Sequence seq;
   struct Cached {
     size_t index = 0;
@@ -29,6 +30,13 @@ struct SequenceSource {
   std::vector<Cached> cache;
   uint64_t clock = 0;
   double played = 0.0;  // seconds since the frame shown was shown, while playing
+
+  size_t count() const override { return seq.frames.size(); }
+  int64_t number(size_t i) const override { return seq.frames[i].number; }
+  std::optional<double> time(size_t i) const override { return seq.frames[i].time; }
+  std::optional<glm::dvec2> jitter(size_t i) const override { return seq.frames[i].jitter; }
+  std::shared_ptr<const FrameSnapshot> frame(size_t i, std::string& error) override;
+  size_t inMemory() const override { return cache.size(); }
 };
 
 // "SEQ@N" split into SEQ and N; false when `text` has no such form.
@@ -67,6 +75,11 @@ static std::shared_ptr<const Capture> cachedFrame(SequenceSource& s, size_t i, s
   return capture;
 }
 
+std::shared_ptr<const FrameSnapshot> SequenceSource::frame(size_t i, std::string& error) {
+  const std::shared_ptr<const Capture> c = cachedFrame(*this, i, error);
+  return c ? std::shared_ptr<const FrameSnapshot>(c, &c->frame) : nullptr;
+}
+
 std::shared_ptr<const Capture> sequenceFrame(Viewer& v, size_t i, std::string& error) {
   if (!v.sequence || i >= v.sequence->seq.frames.size()) return error = "no such frame", nullptr;
   std::shared_ptr<const Capture> c = cachedFrame(*v.sequence, i, error);
@@ -84,14 +97,9 @@ static double frameSeconds(const ViewerModel::TimelineUi& t, size_t i) {
 
 static void fillTimeline(Viewer& v, size_t shown) {
   ViewerModel::TimelineUi& t = v.model.timeline;
-  const Sequence& seq = v.sequence->seq;
-  t.on = true;
-  t.dir = seq.dir;
-  t.numbers.clear(), t.times.clear();
-  for (const SequenceFrame& f : seq.frames) t.numbers.push_back(f.number), t.times.push_back(f.time);
-  t.shown = int(shown);
+  fillTimelineFrames(t, *v.sequence, shown);
+  t.dir = v.sequence->seq.dir;
   t.cacheLimit = kSequenceCacheFrames;
-  t.cached = v.sequence->cache.size();
   // The rate: the frames' mean rate when every frame has a time, else 30 fps.
   const bool timed = t.times.size() > 1 && std::all_of(t.times.begin(), t.times.end(), [](const auto& x) { return x.has_value(); });
   const double span = timed ? *t.times.back() - *t.times.front() : 0.0;
@@ -157,13 +165,7 @@ static void showFrame(Viewer& v, size_t i) {
   m.rendered = v.captureA.frame.options;
   setCaptureViews(v);
   m.regionDirty = m.region.has_value();
-  if (m.probePixel) {
-    const bool followed = m.track && i < m.track->texels.size() && m.track->texels[i];
-    probeCapturePixel(v, followed ? *m.track->texels[i] : *m.probePixel);
-    m.probeNote = followed || !m.track ? ""
-                                       : "the probed point is not followed into this frame (" +
-                                             (i < m.track->first ? m.track->stopBefore : m.track->stopAfter) + "): the same pixel";
-  }
+  followTimelineProbe(v, i);
   m.uiChanged = true;
   logShown(v);
 }
@@ -192,32 +194,7 @@ bool updateSequence(Viewer& v, double dt) {
 }
 
 void trackSequenceProbe(Viewer& v) {
-  ViewerModel& m = v.model;
-  if (!v.sequence || !m.probePixel || m.views.empty()) return;
-  // The values plotted: the view last used (clicked in), else the first that decodes a quantity.
-  int k = m.edited >= 0 && size_t(m.edited) < m.views.size() ? m.edited : 0;
-  if (m.views[size_t(k)].quantity < 0)
-    for (size_t j = 0; j < m.views.size(); ++j)
-      if (m.views[j].quantity >= 0) {
-        k = int(j);
-        break;
-      }
-  const size_t shown = size_t(m.timeline.shown);
-  SequenceSource& s = *v.sequence;
-  const TrackFrames frames = [&v, &s, shown](size_t i) -> std::shared_ptr<const FrameSnapshot> {
-    if (i == shown) return std::shared_ptr<const FrameSnapshot>(std::shared_ptr<void>(), &v.captureA.frame);  // not owned
-    std::string error;
-    const std::shared_ptr<const Capture> c = cachedFrame(s, i, error);
-    return c ? std::shared_ptr<const FrameSnapshot>(c, &c->frame) : nullptr;
-  };
-  const TrackJitters jitters = [&s](size_t i) { return i < s.seq.frames.size() ? s.seq.frames[i].jitter : std::nullopt; };
-  m.track = trackProbe(m.timeline.numbers.size(), frames, shown, *m.probePixel, m.views[size_t(k)], jitters);
-  m.timeline.cached = s.cache.size();
-  m.probeNote.clear();
-  nlohmann::json j = trackJson(*m.track);
-  j["event"] = "track";
-  j["frames"] = m.timeline.numbers;
-  logLine(v.eventLog, j);
+  if (v.sequence) trackTimelineProbe(v, *v.sequence);
 }
 
 }  // namespace gb

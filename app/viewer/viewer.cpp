@@ -71,6 +71,7 @@ static void answerProbe(Viewer& v) {
   else
     probeCapturePixel(v, *m.probeRequest);
   trackSequenceProbe(v);  // a sequence: the point followed through its frames
+  trackLiveProbe(v);      // a frozen stream with kept frames: through those
   m.probeRequest.reset();
 }
 

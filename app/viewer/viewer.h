@@ -80,6 +80,7 @@ void dollyRig(CameraRig& rig, double steps);
 struct ImGuiVulkan;  // window.cpp
 struct SequenceSource;  // sequence.cpp: the sequence opened, its frame cache
 struct TemporalWork;    // temporal_views.cpp: the motion and flicker workers and their maps
+struct LiveHistoryFrames;  // live_timeline.cpp: an attached stream's kept frames, held while frozen
 
 // Input as GLFW reported it, queued for the interface frames (input.cpp).
 struct InputEvent {
@@ -159,6 +160,10 @@ struct Viewer {
   bool attachPresentPending = false;       // a new frame of the stream goes to the screen with this present
   double attachShownMs = 0.0;              // the last one's latency from the application's frame end to the screen
   bool attachDetachLogged = false;
+  // attach --history K: the kept frames the timeline steps through while the stream is frozen (null
+  // while it runs), and the frame shown whose kept frames' numbers the strip has (live_timeline.cpp).
+  std::shared_ptr<LiveHistoryFrames> liveHistory;
+  uint64_t liveNumbersFor = 0;
   // gblens view SEQ: captureA.frame is a copy of the sequence's frame shown (sequence.cpp).
   std::shared_ptr<SequenceSource> sequence;
   std::shared_ptr<TemporalWork> temporal;  // its temporal views (temporal_views.cpp)
@@ -336,6 +341,14 @@ void openAttached(Viewer& v);
 // Takes the newest streamed frame unless paused, the layer's reports and the application's state;
 // true when the frame shown changed or the status did (another interface frame is due).
 bool pollAttached(Viewer& v);
+// The frame shown becomes `frame` (the views of a new layout set up, else those on screen decoded
+// again); `kept`: one of the stream's kept frames (live_timeline.cpp), not logged as taken.
+void showStreamFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info, bool kept = false);
+// live_timeline.cpp (attach --history K): the strip over the kept frames; a step or the slider
+// freezes the stream, frozen it shows the kept frame asked for. True when the strip or frame changed.
+bool updateLiveTimeline(Viewer& v);
+// After a probe of a frozen stream's frame: the point followed through the kept frames.
+void trackLiveProbe(Viewer& v);
 // Writes the frame shown as a capture (the folder ./gblens-attach-<date>-<time>/).
 bool captureAttachedFrame(Viewer& v, std::string& written, std::string& error);
 // After a present that put a new frame of the stream on screen: its latency from the application's

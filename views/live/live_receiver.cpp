@@ -74,6 +74,7 @@ void LiveReceiver::run() {
       const FrameHistory& h = session_.history();
       history_.assign(h.frames().begin(), h.frames().end());
     }
+    state_.receiving = receiving;
     state_.historyFrames = history_.size();
     state_.historyLimit = session_.history().limit();
     state_.historyBytes = session_.history().bytes();

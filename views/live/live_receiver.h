@@ -32,6 +32,7 @@ class LiveReceiver {
     bool running = true, attached = true;
     int exitStatus = -1;
     uint64_t replaced = 0;          // decoded frames a newer one replaced before the viewer took them
+    bool receiving = true;          // the thread's last look took frames (false: paused or detached, no frame comes)
     // The session's history (LiveOptions::history): frames kept, at most, and their texels' bytes.
     size_t historyFrames = 0, historyLimit = 0, historyBytes = 0;
   };

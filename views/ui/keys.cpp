@@ -8,6 +8,7 @@
 namespace gb {
 
 unsigned keySession(const ViewerModel& m) {
+  if (m.attach.on) return m.timeline.on && m.timeline.history ? kAttach | kHistory : kAttach;
   if (m.timeline.on && m.source == FrameSource::Capture) return kCapture | kSequence;
   return m.source == FrameSource::Compare ? kCompare : m.attach.on ? kAttach : m.source == FrameSource::Live ? kLive : kCapture;
 }
@@ -22,7 +23,9 @@ const std::vector<KeyBinding>& keyBindings() {
        "coverage); the View menu has every view, those without a key too"},
       {"Space", A::PlayPause, kLive, "play / pause the animation"},
       {"Space", A::FlipCompare, kCompare, "flip A and B in place (the same zoom and pan)"},
-      {"Space", A::PauseStream, kAttach, "pause the stream (the application runs on)"},
+      {"Space", A::PauseStream, kAttach,
+       "pause the stream (the application runs on); with --history K the strip then steps through the kept frames, "
+       "Space again returns to the newest"},
       {"Space", A::PlaySequence, kSequence, "play / pause the sequence at its rate (from the frames' times, else 30 fps)"},
       {"S", A::CompareSwipe, kCompare, "swipe: A left of the mouse, B right of it"},
       {"D", A::CompareDifference, kCompare, "|A - B| of every view shown"},
@@ -34,6 +37,8 @@ const std::vector<KeyBinding>& keyBindings() {
       {",", A::StepBack, kLive, "step the animation back"},
       {".", A::NextFrame, kSequence, "the sequence's next frame (the view, zoom and probe stay; the probe follows its point)"},
       {",", A::PreviousFrame, kSequence, "the sequence's previous frame"},
+      {".", A::NextFrame, kHistory, "the next kept frame (freezes the stream; the probe follows its point)"},
+      {",", A::PreviousFrame, kHistory, "the previous kept frame (freezes the stream)"},
       {"V", A::MotionViews, kSequence,
        "the motion check of the pair ending at the frame shown: the Motion error view (again: Motion class); the verdict "
        "is in the strip"},
@@ -81,7 +86,7 @@ std::optional<KeyAction> keyAction(const std::string& key, bool ctrl, unsigned s
 
 std::string keysMarkdown() {
   static const std::pair<unsigned, const char*> kNames[] = {
-      {kLive, "live"}, {kCapture, "capture"}, {kCompare, "compare"}, {kAttach, "attach"}, {kSequence, "sequence"}};
+      {kLive, "live"}, {kCapture, "capture"}, {kCompare, "compare"}, {kAttach, "attach"}, {kSequence, "sequence"}, {kHistory, "attach --history"}};
   std::string out = "| input | in | does |\n| --- | --- | --- |\n";
   for (const KeyBinding& b : keyBindings()) {
     std::string in;

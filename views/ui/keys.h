@@ -10,7 +10,9 @@ namespace gb {
 
 // Kinds of session a row applies to (bits). A sequence (gblens view SEQ) is a capture session with a
 // timeline: keySession gives it kCapture | kSequence, so the capture rows apply there too.
-enum KeySession : unsigned { kLive = 1, kCapture = 2, kCompare = 4, kAttach = 8, kSequence = 16, kEverywhere = 31 };
+// An attached stream with kept frames (attach --history K) is an attach session with a timeline:
+// kAttach | kHistory (Space still freezes the stream; `,` and `.` step through the kept frames).
+enum KeySession : unsigned { kLive = 1, kCapture = 2, kCompare = 4, kAttach = 8, kSequence = 16, kEverywhere = 31, kHistory = 32 };
 
 // What a key does (the handler's switch); Mouse rows are described only.
 enum class KeyAction {

@@ -1,5 +1,7 @@
 // The timeline strip of a sequence (gblens view SEQ; ImGui only): step back / forward, play / pause at
-// the sequence's rate, a slider over its frames, the frame's number and time, the frame cache; below
+// the sequence's rate, a slider over its frames, the frame's number and time, the frame cache (on an
+// attached stream's kept frames, attach --history K: Freeze / Live for the stream, the kept frames'
+// count and memory, at most K frames; app/viewer/live_timeline.cpp); below
 // them the temporal views' row: the motion check's verdict of the pair ending at the frame shown and
 // the Flicker button. It edits ViewerModel::timeline; the app (app/viewer/sequence.cpp,
 // temporal_views.cpp) shows the frame asked for and computes the maps.
@@ -70,13 +72,44 @@ void stepTimeline(ViewerModel& m, int delta) {
 static std::string frameText(const ViewerModel::TimelineUi& t) {
   char buf[256];
   const size_t i = size_t(t.shown);
-  const int n = std::snprintf(buf, sizeof buf, "frame %lld (%zu of %zu)", (long long)t.numbers[i], i + 1, t.numbers.size());
+  const int n = std::snprintf(buf, sizeof buf, "%sframe %lld (%zu of %zu)", t.history ? "application " : "", (long long)t.numbers[i],
+                              i + 1, t.numbers.size());
   std::string text(buf, size_t(std::max(n, 0)));
   if (t.times[i]) {
     std::snprintf(buf, sizeof buf, "  t %.4g s", *t.times[i]);
     text += buf;
   }
   return text;
+}
+
+// Play / pause a sequence; on an attached stream's kept frames, freeze the stream or back to it.
+static void playButton(ViewerModel& m) {
+  ViewerModel::TimelineUi& t = m.timeline;
+  const ImVec2 size(ImGui::CalcTextSize("Freeze").x + 12.0f, 0.0f);
+  if (t.history) {
+    if (ImGui::Button(m.playing ? "Freeze" : "Live", size)) m.playing = !m.playing, m.uiChanged = true;
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(m.playing ? "freeze the stream: step through its kept frames (Space)" : "back to the stream's newest frame (Space)");
+    return;
+  }
+  if (ImGui::Button(t.playing ? "Pause" : "Play ", size)) t.playing = !t.playing;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("play / pause at the sequence's rate (Space)");
+}
+
+// Right of the slider: the rate and the cache (kept frames: their count and memory, the bound), or
+// why a frame could not be shown.
+static std::string rightText(const ViewerModel& m) {
+  const ViewerModel::TimelineUi& t = m.timeline;
+  char right[256];
+  if (!t.status.empty())
+    std::snprintf(right, sizeof right, "%s", t.status.c_str());
+  else if (t.history)
+    std::snprintf(right, sizeof right, "%s | %zu of at most %zu frames kept, %.1f MB", m.playing ? "live" : "frozen", t.cached,
+                  t.cacheLimit, double(t.historyBytes) / 1e6);
+  else
+    std::snprintf(right, sizeof right, "%.3g fps%s | %zu of at most %zu frames in memory", t.fps,
+                  t.fpsFromTimes ? " (the frames' times)" : " (no times: 30 fps)", t.cached, t.cacheLimit);
+  return right;
 }
 
 void drawTimeline(ViewerModel& m, double x, double y, double w) {
@@ -95,8 +128,7 @@ void drawTimeline(ViewerModel& m, double x, double y, double w) {
   if (ImGui::ArrowButton("##back", ImGuiDir_Left)) stepTimeline(m, -1);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the previous frame (,)");
   ImGui::SameLine();
-  if (ImGui::Button(t.playing ? "Pause" : "Play ", ImVec2(ImGui::CalcTextSize("Pause").x + 12.0f, 0.0f))) t.playing = !t.playing;
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("play / pause at the sequence's rate (Space)");
+  playButton(m);
   ImGui::SameLine();
   if (ImGui::ArrowButton("##forward", ImGuiDir_Right)) stepTimeline(m, +1);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the next frame (.)");
@@ -105,13 +137,8 @@ void drawTimeline(ViewerModel& m, double x, double y, double w) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the last frame");
   ImGui::SameLine();
   // Right of the slider: the rate and the cache, or why a frame could not be shown.
-  char right[256];
-  if (!t.status.empty())
-    std::snprintf(right, sizeof right, "%s", t.status.c_str());
-  else
-    std::snprintf(right, sizeof right, "%.3g fps%s | %zu of at most %zu frames in memory", t.fps,
-                  t.fpsFromTimes ? " (the frames' times)" : " (no times: 30 fps)", t.cached, t.cacheLimit);
-  const float rightWidth = std::min(ImGui::CalcTextSize(right).x, float(w) * 0.45f);
+  const std::string right = rightText(m);
+  const float rightWidth = std::min(ImGui::CalcTextSize(right.c_str()).x, float(w) * 0.45f);
   ImGui::SetNextItemWidth(std::max(80.0f, ImGui::GetContentRegionAvail().x - rightWidth - ImGui::GetStyle().ItemSpacing.x));
   int index = t.requested >= 0 ? t.requested : t.shown;
   std::string label = frameText(t);
@@ -123,10 +150,14 @@ void drawTimeline(ViewerModel& m, double x, double y, double w) {
   }
   ImGui::SameLine();
   if (!t.status.empty())
-    ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "%s", right);
+    ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "%s", right.c_str());
   else
-    ImGui::TextDisabled("%s", right);
-  if (ImGui::IsItemHovered() && t.status.empty())
+    ImGui::TextDisabled("%s", right.c_str());
+  if (ImGui::IsItemHovered() && t.status.empty() && t.history)
+    ImGui::SetTooltip("gblens attach --history %zu: the stream's last %zu decoded frames are kept (the oldest goes);\n"
+                      "frozen, the strip steps through them (the probe follows its point), Live returns to the newest",
+                      t.cacheLimit, t.cacheLimit);
+  else if (ImGui::IsItemHovered() && t.status.empty())
     ImGui::SetTooltip("frames are loaded when first shown and kept in a cache of at most %zu (the least recently used goes)",
                       t.cacheLimit);
   if (temporalRow(t)) drawTemporalRow(m);

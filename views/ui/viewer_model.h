@@ -231,6 +231,12 @@ struct ViewerModel {
     bool fpsFromTimes = false;
     size_t cached = 0, cacheLimit = 0;        // frames in memory now, at most
     std::string status;                       // why a frame could not be shown ("" none)
+    // An attached stream's kept frames (attach --history K, app/viewer/live_timeline.cpp): the numbers
+    // are the application's frames, the times seconds from the newest kept frame's end, cacheLimit K.
+    // While the stream runs (ViewerModel::playing) the strip sits on its newest frame; stepping or the
+    // slider freezes it, Space or the strip's Live button returns to the stream's newest frame.
+    bool history = false;
+    size_t historyBytes = 0;                  // the kept frames' texels
     // The temporal views (app/viewer/temporal_views.cpp): the motion check of the pair ending at the
     // frame shown (its maps: the views "Motion error" and "Motion class") and the flicker of a view
     // over the whole sequence ("Flicker stddev", "Flicker max step"); the strip's second row.
