@@ -61,13 +61,25 @@ Corner corner(uint v) {
   return c;
 }
 
-// Perspective-correct barycentrics of the ray through framebuffer point `f` (pixels) and the
-// triangle's plane: the weights with sum_k l_k * clip_k.xyw proportional to (ndc.x, ndc.y, 1), i.e.
-// the ray's point on the plane in homogeneous clip space (valid with vertices behind the eye).
-vec3 barycentrics(mat3 xyw, vec2 f) {
-  vec3 s = vec3(f * frame.viewport.zw * 2.0 - 1.0, 1.0);
-  vec3 l = vec3(dot(s, cross(xyw[1], xyw[2])), dot(s, cross(xyw[2], xyw[0])), dot(s, cross(xyw[0], xyw[1])));
-  return l / (l.x + l.y + l.z);
+// The triangle in eye space (the vertex stage's eye positions) and its plane's normal.
+struct Triangle {
+  vec3 e0, e1, e2, n;
+};
+// The eye ray through framebuffer point `f` (pixels), as the lighting passes reconstruct
+// positions (gbuffer_read.glsl eyePosition): its point at eye depth 1.
+vec3 eyeRay(vec2 f) {
+  vec2 ndc = f * frame.viewport.zw * 2.0 - 1.0;
+  return vec3((ndc + frame.eyeRay.zw) * frame.eyeRay.xy, -1.0);
+}
+// Where that ray meets the triangle's plane: the eye-space point (xyz) is the surface point
+// itself (depth and position are not interpolated), and its barycentrics (sub-triangle areas over
+// the whole, perspective-correct by construction) interpolate the attributes.
+vec3 onPlane(Triangle t, vec2 f, out vec3 l) {
+  const vec3 d = eyeRay(f);
+  const vec3 p = d * (dot(t.e0, t.n) / dot(d, t.n));
+  l = vec3(dot(t.n, cross(t.e1 - p, t.e2 - p)), dot(t.n, cross(t.e2 - p, t.e0 - p)), dot(t.n, cross(t.e0 - p, t.e1 - p)));
+  l /= l.x + l.y + l.z;
+  return p;
 }
 
 // Texel packing of the unsigned views (what the attachment's format conversion stores).
@@ -146,20 +158,25 @@ void main() {
     eye[k] = e.xyz;
     xyw[k] = clip.xyw;
   }
-  const vec3 l = barycentrics(xyw, vec2(p) + 0.5);
+  Triangle t;
+  t.e0 = eye[0];
+  t.e1 = eye[1];
+  t.e2 = eye[2];
+  t.n = cross(eye[1] - eye[0], eye[2] - eye[0]);
+  vec3 l, l00, l10, l01;
+  const vec3 eyePosition = onPlane(t, vec2(p) + 0.5, l);
   // The quad's neighbours: the pixel's partner across the 2x2 quad in x and in y (coarse: the
   // quad's top row and left column), as a rasterizer's derivatives difference them.
   const ivec2 q = p & ~1;
-  const vec3 l00 = barycentrics(xyw, vec2(q) + 0.5);
-  const vec3 l10 = barycentrics(xyw, vec2(q) + vec2(1.5, 0.5));
-  const vec3 l01 = barycentrics(xyw, vec2(q) + vec2(0.5, 1.5));
+  onPlane(t, vec2(q) + 0.5, l00);
+  onPlane(t, vec2(q) + vec2(1.5, 0.5), l10);
+  onPlane(t, vec2(q) + vec2(0.5, 1.5), l01);
 
   vec4 uv[3];
   for (int k = 0; k < 3; ++k) uv[k] = materialUvs(m, c[k].uv0, c[k].uv1);
   const mat3x4 uvs = mat3x4(uv[0], uv[1], uv[2]);
   const vec4 uvHere = uvs * l, uvDx = uvs * l10 - uvs * l00, uvDy = uvs * l01 - uvs * l00;
 
-  const vec3 eyePosition = mat3(eye[0], eye[1], eye[2]) * l;
   const mat3 normalFrom = mat3(d.normalEyeFromObject), eyeFrom = mat3(d.eyeFromObject);
   const vec3 normal = normalFrom * (mat3(c[0].normal, c[1].normal, c[2].normal) * l);
   const vec4 tangentObject = mat3x4(c[0].tangent, c[1].tangent, c[2].tangent) * l;
@@ -168,7 +185,7 @@ void main() {
   // homogeneous determinant), counter-clockwise front unless the draw's transform mirrors.
   const bool ccw = determinant(xyw) < 0.0;
   const bool frontFacing = d.info.y != 0u ? !ccw : ccw;
-  const vec3 face = cross(eye[1] - eye[0], eye[2] - eye[0]);
+  const vec3 face = t.n;
 
   vec4 base = m.baseColor;
   if (g.textures.x >= 0) base *= textureGrad(baseTexture, uvHere.xy, uvDx.xy, uvDy.xy);
@@ -184,7 +201,7 @@ void main() {
   imageStore(outNormal, p, packNormalTexel(m.flags.z != 0u ? encodeUnlit() : encodeNormalShadow(N, shadow)));
   imageStore(outDepth, p, uvec4(floatBitsToUint(-eyePosition.z), 0u, 0u, 0u));
 #ifdef GB_PRIMITIVE_ID
-  imageStore(outPrimitiveId, p, uvec4(g.info.w + triangle + 1u, 0u, 0u, 0u));
+  imageStore(outPrimitiveId, p, uvec4(g.info.w + triangle, 0u, 0u, 0u));  // firstPrimitiveIds counts from 1
 #endif
 #ifdef GB_POSITION
   vec3 relative = mat3(frame.worldFromEye) * eyePosition;

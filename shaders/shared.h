@@ -176,7 +176,7 @@ GB_STRUCT(DrawData) {
 
 // Where a draw's triangles are (gbuffer_resolve): its mesh's place in the index and vertex buffers.
 GB_STRUCT(DrawGeometry) {
-  uvec4 info;      // x first index, y vertex offset, z triangles, w first primitive_id (DrawData.info.z)
+  uvec4 info;      // x first index, y vertex offset, z triangles, w primitive_id of its triangle 0 (DrawData.info.z)
   ivec4 textures;  // x base-colour texture (-1 none), y normal texture (-1 none), z texture group, w 0
 };
 
