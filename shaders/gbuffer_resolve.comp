@@ -165,17 +165,21 @@ void main() {
   t.n = cross(eye[1] - eye[0], eye[2] - eye[0]);
   vec3 l, l00, l10, l01;
   const vec3 eyePosition = onPlane(t, vec2(p) + 0.5, l);
-  // The quad's neighbours: the pixel's partner across the 2x2 quad in x and in y (coarse: the
-  // quad's top row and left column), as a rasterizer's derivatives difference them.
+  // The quad's neighbours: the pixel and its partner across the 2x2 quad in x (its own row) and
+  // in y (its own column), as a rasterizer's fine derivatives difference them (lavapipe: 6.95% of
+  // temple's pixels one albedo step off the raster pass's; the quad's top row and left column,
+  // coarse derivatives: 7.01%).
   const ivec2 q = p & ~1;
-  onPlane(t, vec2(q) + 0.5, l00);
-  onPlane(t, vec2(q) + vec2(1.5, 0.5), l10);
-  onPlane(t, vec2(q) + vec2(0.5, 1.5), l01);
+  vec3 lx0, lx1, ly0, ly1;
+  onPlane(t, vec2(q.x, p.y) + 0.5, lx0);
+  onPlane(t, vec2(q.x + 1, p.y) + 0.5, lx1);
+  onPlane(t, vec2(p.x, q.y) + 0.5, ly0);
+  onPlane(t, vec2(p.x, q.y + 1) + 0.5, ly1);
 
   vec4 uv[3];
   for (int k = 0; k < 3; ++k) uv[k] = materialUvs(m, c[k].uv0, c[k].uv1);
   const mat3x4 uvs = mat3x4(uv[0], uv[1], uv[2]);
-  const vec4 uvHere = uvs * l, uvDx = uvs * l10 - uvs * l00, uvDy = uvs * l01 - uvs * l00;
+  const vec4 uvHere = uvs * l, uvDx = uvs * lx1 - uvs * lx0, uvDy = uvs * ly1 - uvs * ly0;
 
   const mat3 normalFrom = mat3(d.normalEyeFromObject), eyeFrom = mat3(d.eyeFromObject);
   const vec3 normal = normalFrom * (mat3(c[0].normal, c[1].normal, c[2].normal) * l);
