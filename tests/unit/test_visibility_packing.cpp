@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "renderer/core/visibility.h"
+#include "views/import/import.h"
 
 namespace gb {
 
@@ -49,6 +50,21 @@ TEST(VisibilityPacking, ScenesBeyondTheIdAndOptionsWithoutAGBufferAreRefused) {
   o.path = Path::SinglePass;
   EXPECT_NE(visibilityOptionsRefusal(o).find("two-pass"), std::string::npos);
   EXPECT_FALSE(visibilityFrame(o));
+}
+
+// builtin:visibility-buffer: what an engine that ships a visibility buffer stores, depth and the id.
+TEST(VisibilityPacking, TheShippedVisibilityBufferLayoutHoldsHardwareDepthAndAnId) {
+  Layout l;
+  std::string error, dir;
+  ASSERT_TRUE(loadImportLayout("builtin:visibility-buffer", {}, l, dir, error)) << error;
+  ASSERT_EQ(l.targets.size(), 2u);
+  int ids = 0, depths = 0;
+  for (const Quantity& q : l.quantities) {
+    ids += q.kind == QuantityKind::Id;
+    depths += q.kind == QuantityKind::Depth;
+  }
+  EXPECT_EQ(ids, 1);
+  EXPECT_EQ(depths, 1);
 }
 
 }  // namespace gb
