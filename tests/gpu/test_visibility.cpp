@@ -10,6 +10,7 @@
 // - hdr: what those differences do to the shading.
 #include <cmath>
 
+#include "renderer/core/camera.h"
 #include "renderer/core/codec.h"
 #include "renderer/core/visibility.h"
 #include "renderer/reference/reference.h"
@@ -351,6 +352,44 @@ TEST_F(Visibility, StoredPositionAndMotionMatchAndRefusedFramesRasterize) {
   EXPECT_TRUE(passRan(st, "gbuffer"));
   for (const PassStat& p : st.passes)
     if (p.name == "gbuffer_resolve") EXPECT_NE(p.reason.find("two-pass path"), std::string::npos) << p.reason;
+}
+
+}  // namespace gb
+
+namespace gb {
+
+// gbuffer_resolve writes every pixel: where the previous frame drew and this one does not, the
+// targets hold 0 as the raster pass's clear leaves them; and frames in flight (a burst, with
+// synchronization validation between submissions) raise no hazard on the visibility target.
+TEST_F(Visibility, EveryPixelIsWrittenAndFramesInFlightAreClean) {
+  Scene scene = builtinTemple(16);
+  scene.cameras.push_back(lookAtCamera("down", {0.0, 3.0, 0.0}, {0.0, 0.0, 0.001}, 0.6, 0.1, 100.0));
+  RenderOptions o = visibilityOptions();
+  o.gbuffer = GBufferKind::Visibility;
+  o.camera = 1;  // geometry in every pixel
+  render(scene, o, {{Target::Depth}});
+  o.camera = 0;
+  render(scene, o, {{Target::Depth, Target::AlbedoSpecular, Target::NormalShadow, Target::Visibility}});
+  const Renderer& r = renderer(scene);
+  uint64_t sky = 0;
+  for (uint32_t y = 0; y < o.height; ++y)
+    for (uint32_t x = 0; x < o.width; ++x) {
+      if (r.readback[size_t(Target::Visibility)].raw(x, y, 0) != 0) continue;
+      ++sky;
+      ASSERT_EQ(r.readback[size_t(Target::Depth)].raw(x, y, 0), 0u) << x << "," << y;
+      for (uint32_t c = 0; c < 4; ++c) {
+        ASSERT_EQ(r.readback[size_t(Target::AlbedoSpecular)].raw(x, y, c), 0u);
+        ASSERT_EQ(r.readback[size_t(Target::NormalShadow)].raw(x, y, c), 0u);
+      }
+    }
+  EXPECT_GT(sky, 300u);
+  for (Method m : {Method::Deferred, Method::Tiled, Method::Clustered}) {
+    o.method = m;
+    const FrameBurst burst = renderBurst(renderer(scene), o, 4);
+    ASSERT_FALSE(burst.frames.empty()) << name(m);
+    EXPECT_GE(burst.inFlight, 2) << name(m);
+    for (const FrameStats& f : burst.frames) EXPECT_TRUE(passRan(f, "gbuffer_resolve")) << name(m);
+  }
 }
 
 }  // namespace gb
