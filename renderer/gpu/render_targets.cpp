@@ -70,6 +70,7 @@ std::vector<Target> readableTargets(const Renderer& r, const RenderOptions& o) {
   for (const TargetInfo& info : targetTable()) {
     if (targetAbsence(info.target, o, r.scene->sun.enabled) != Absent::No) continue;
     if (info.target == Target::PrimitiveId && !primitiveIdOn(*r.ctx, o)) continue;
+    if (info.target == Target::Visibility && !visibilityRefusal(r, o).empty()) continue;  // rasterized instead
     out.push_back(info.target);
   }
   return out;
