@@ -163,7 +163,7 @@ void main() {
   t.e1 = eye[1];
   t.e2 = eye[2];
   t.n = cross(eye[1] - eye[0], eye[2] - eye[0]);
-  vec3 l, l00, l10, l01;
+  vec3 l;
   const vec3 eyePosition = onPlane(t, vec2(p) + 0.5, l);
   // The quad's neighbours: the pixel and its partner across the 2x2 quad in x (its own row) and
   // in y (its own column), as a rasterizer's fine derivatives difference them (lavapipe: 6.95% of

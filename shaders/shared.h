@@ -72,7 +72,6 @@ GB_CONST(uint, kResolveBindingPosition, 6);
 GB_CONST(uint, kResolveBindingMotion, 7);
 GB_CONST(uint, kResolveBindingBaseTexture, 8);   // the dispatch's texture group: base colour ...
 GB_CONST(uint, kResolveBindingNormalTexture, 9); // ... and normal texture (stand-ins where the group has none)
-GB_CONST(uint, kResolveBindingCount, 10);
 GB_CONST(uint, kSetResolveScene, 2);
 GB_CONST(uint, kResolveBindingVertices, 0);     // float[]: the scene's Vertex array (renderer/core/vertex.h), 14 floats each
 GB_CONST(uint, kResolveBindingIndices, 1);      // uint[]: the scene's index buffer
