@@ -89,6 +89,19 @@ struct VisibilityFigures {
   uint64_t hdrOver = 0;                   // over what the albedo and normal differences explain
 };
 
+// One line of what a comparison measured (the figures docs/architecture.md quotes).
+void printFigures(const VisibilityFigures& fig, const char* what, NormalFormat format) {
+  std::printf(
+      "visibility vs raster, %s (%s normals): %llu surface px; albedo max %d steps, %llu px off (%llu untextured); "
+      "specular max %d; normal max %.5f deg, %llu px over the bound; eye depth max %.3g relative, %llu px over the "
+      "bound; hdr max %.3g mean %.3g relative, where albedo is equal max %.3g, %llu px over the bound\n",
+      what, name(format), (unsigned long long)fig.surface, fig.albedoMaxSteps,
+      (unsigned long long)fig.albedoOff, (unsigned long long)fig.albedoOffUntextured, fig.specularMaxSteps,
+      fig.normalMaxDeg, (unsigned long long)fig.normalOverBound, fig.depthMaxRelative,
+      (unsigned long long)fig.depthOverBound, fig.hdrMaxRelative, fig.hdrMeanRelative, fig.hdrMaxRelativeSameAlbedo,
+      (unsigned long long)fig.hdrOver);
+}
+
 }  // namespace
 
 class Visibility : public GpuTest {
@@ -170,15 +183,7 @@ class Visibility : public GpuTest {
         fig.hdrOver += over;
       }
     fig.hdrMeanRelative = fig.surface ? hdrSum / double(fig.surface) : 0.0;
-    std::printf(
-        "visibility vs raster, %s (%s normals): %llu surface px; albedo max %d steps, %llu px off (%llu untextured); "
-        "specular max %d; normal max %.5f deg, %llu px over the bound; eye depth max %.3g relative, %llu px over the "
-        "bound; hdr max %.3g mean %.3g relative, where albedo is equal max %.3g, %llu px over the bound\n",
-        what, name(o.normalFormat), (unsigned long long)fig.surface, fig.albedoMaxSteps,
-        (unsigned long long)fig.albedoOff, (unsigned long long)fig.albedoOffUntextured, fig.specularMaxSteps,
-        fig.normalMaxDeg, (unsigned long long)fig.normalOverBound, fig.depthMaxRelative,
-        (unsigned long long)fig.depthOverBound, fig.hdrMaxRelative, fig.hdrMeanRelative, fig.hdrMaxRelativeSameAlbedo,
-        (unsigned long long)fig.hdrOver);
+    printFigures(fig, what, o.normalFormat);
     return fig;
   }
 
