@@ -9,6 +9,7 @@
 //   differ by the value's change per pixel times the snap, then by the storage's rounding.
 // - hdr: what those differences do to the shading.
 #include <cmath>
+#include <list>
 
 #include "renderer/core/camera.h"
 #include "renderer/core/codec.h"
@@ -16,6 +17,7 @@
 #include "renderer/reference/reference.h"
 #include "renderer/scene/builtin.h"
 #include "tests/gpu/gpu_test.h"
+#include "tests/support/test_paths.h"
 #include "views/analysis/accuracy.h"
 
 namespace gb {
@@ -237,6 +239,22 @@ TEST_F(Visibility, NormalSphereAndATexturedNormalMappedFloorMatchTheRasterGBuffe
   RenderOptions o = visibilityOptions();
   o.lights = 0;
   expectWithinBounds(compare(floor, o, "textured floor"), o.normalFormat, "floor");
+}
+
+// glTF files of the corpus that take the resolve's other paths: an alpha-tested cut-out, mirrored
+// instances (the front face flips), a second UV set (the two UV sets of materialUvs).
+TEST_F(Visibility, GltfCutoutsMirrorsAndUvSetsMatchTheRasterGBuffer) {
+  std::list<Scene> scenes;  // alive for the test: its renderers are kept per scene
+  for (const char* file : {"cutout_quad.gltf", "mirrored.gltf", "two_uv_sets.gltf"}) {
+    const Scene& scene = scenes.emplace_back(loadScene(std::string(GBLENS_SOURCE_DIR) + "/tests/data/gltf/valid/" + file, 4));
+    VisibilityFigures f = compare(scene, visibilityOptions(), file);
+    EXPECT_EQ(f.exactOff, 0u) << file;
+    EXPECT_LE(f.albedoMaxSteps, 1) << file;
+    EXPECT_EQ(f.albedoOffUntextured, 0u) << file;
+    EXPECT_LE(f.normalMaxDeg, 2.0 * normalStepDeg(NormalFormat::OctRg16) + 0.01) << file;
+    EXPECT_LE(f.depthMaxRelative, 1e-5) << file;
+    EXPECT_LE(f.hdrOver, f.surface / 1000) << file;
+  }
 }
 
 }  // namespace gb
