@@ -1,6 +1,7 @@
 # Embeds the shipped data files (assets/) into a generated source (renderer/core/assets.h), so the
 # binary carries them. GBLENS_ASSETS lists them explicitly; the source is regenerated when one changes.
-set(GBLENS_ASSETS layouts/gblens.json layouts/blender-cycles.json layouts/blender-cycles-sequence.json layouts/vkcube.json)
+set(GBLENS_ASSETS layouts/gblens.json layouts/blender-cycles.json layouts/blender-cycles-sequence.json layouts/vkcube.json
+    layouts/visibility-buffer.json)
 set(GBLENS_ASSETS_SOURCE ${CMAKE_BINARY_DIR}/generated/assets.cpp)
 set(asset_paths "")
 foreach(a ${GBLENS_ASSETS})

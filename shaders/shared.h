@@ -61,6 +61,24 @@ GB_CONST(uint, kBindingFairyBits, 18);      // uint[]: per light bin, a bit per 
 GB_CONST(uint, kBindingClearTarget, 19);    // clear_gbuffer: a G-buffer target's unsigned storage view
 GB_CONST(uint, kFairyListMax, 1024);        // sprites a 16x16 tile lists in shared memory (more: read from the bin)
 
+// ---- gbuffer_resolve (--gbuffer visibility): its own set 1 (pushed) and set 2 (the scene, written once) ----
+GB_CONST(uint, kResolveBindingShadowMap, 0);    // shadow_map with compare sampler
+GB_CONST(uint, kResolveBindingVisibility, 1);   // visibility (usampler2D)
+GB_CONST(uint, kResolveBindingAlbedo, 2);       // the G-buffer targets through their unsigned storage views
+GB_CONST(uint, kResolveBindingNormal, 3);
+GB_CONST(uint, kResolveBindingDepth, 4);
+GB_CONST(uint, kResolveBindingPrimitiveId, 5);
+GB_CONST(uint, kResolveBindingPosition, 6);
+GB_CONST(uint, kResolveBindingMotion, 7);
+GB_CONST(uint, kResolveBindingBaseTexture, 8);   // the dispatch's texture group: base colour ...
+GB_CONST(uint, kResolveBindingNormalTexture, 9); // ... and normal texture (stand-ins where the group has none)
+GB_CONST(uint, kSetResolveScene, 2);
+GB_CONST(uint, kResolveBindingVertices, 0);     // float[]: the scene's Vertex array (renderer/core/vertex.h), 14 floats each
+GB_CONST(uint, kResolveBindingIndices, 1);      // uint[]: the scene's index buffer
+GB_CONST(uint, kResolveBindingGeometry, 2);     // DrawGeometry[] per draw (instance)
+GB_CONST(uint, kVertexFloats, 14);
+GB_CONST(uint, kResolveGroup, 8);               // gbuffer_resolve's workgroup side (8x8 pixels)
+
 // Input attachment indices of the single-pass path (subpass inputs, in this order).
 GB_CONST(uint, kInputAlbedo, 0);
 GB_CONST(uint, kInputNormal, 1);
@@ -79,6 +97,8 @@ GB_CONST(uint, kSpecOutputSrgb, 7);     // 1: the view pipeline writes an sRGB a
 GB_CONST(uint, kSpecOctPrecise, 8);     // 1: octahedral normals keep the best of the 4 neighbouring codes
 GB_CONST(uint, kSpecBaseColorTexture, 9);  // 0: the material has no base-colour texture (not sampled)
 GB_CONST(uint, kSpecViewMapping, 10);   // the view pipeline's kViewMap* (a pipeline per mapping: see view_map.frag)
+GB_CONST(uint, kSpecVisibilityBits, 11);  // the visibility id's triangle bits (renderer/core/visibility.h)
+GB_CONST(uint, kSpecResolvePosition32, 12);  // gbuffer_resolve: 1 when the position target is rgba32f (else rgba16f)
 
 // The lighting passes' position source.
 GB_CONST(uint, kPositionDepth, 0);      // reconstructed from eye depth or hardware depth (kSpecEyeDepth)
@@ -151,6 +171,12 @@ GB_STRUCT(DrawData) {
   mat4 normalEyeFromObject;   // inverse transpose of eyeFromObject's 3x3
   mat4 lightClipFromObject;   // the sun's shadow-map clip space
   uvec4 info;                 // x material index, y 1 if the winding is flipped, z first primitive_id
+};
+
+// Where a draw's triangles are (gbuffer_resolve): its mesh's place in the index and vertex buffers.
+GB_STRUCT(DrawGeometry) {
+  uvec4 info;      // x first index, y vertex offset, z triangles, w primitive_id of its triangle 0 (DrawData.info.z)
+  ivec4 textures;  // x base-colour texture (-1 none), y normal texture (-1 none), z texture group, w 0
 };
 
 GB_STRUCT(Material) {
@@ -260,6 +286,7 @@ static_assert(sizeof(LightCounts) == 32);
 static_assert(sizeof(Cluster) == 48);
 static_assert(sizeof(DrawData) == 3 * 64 + 16);
 static_assert(sizeof(Material) == 8 * 16);
+static_assert(sizeof(DrawGeometry) == 32);
 static_assert(sizeof(PointLight) == 32);
 static_assert(sizeof(ViewParams) == 80);
 }  // namespace gb::gpu

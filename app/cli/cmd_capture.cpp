@@ -126,6 +126,10 @@ static int capture(const CommonOptions& o, const std::string& targets, bool cove
     std::fprintf(stderr, "gblens capture: %s\n", why.c_str());
     return 2;
   }
+  if (std::string why = session.refused(ro); !why.empty()) {  // --gbuffer visibility out of reach
+    std::fprintf(stderr, "gblens capture: %s\n", why.c_str());
+    return 2;
+  }
   if (sequence > 0) return captureSequence(o, session, scene, ro, wanted, sequence);
   FrameRequest request = captureRequest(wanted, ro);
   std::vector<FrameStats> frames;

@@ -100,6 +100,10 @@ static int measure(const CommonOptions& o, bool json, double band) {
     std::fprintf(stderr, "gblens error: %s\n", why.c_str());
     return 2;
   }
+  if (std::string why = session.refused(o.render); !why.empty()) {  // --gbuffer visibility out of reach
+    std::fprintf(stderr, "gblens error: %s\n", why.c_str());
+    return 2;
+  }
   if (!session.primitiveIdAvailable())
     std::fprintf(stderr, "gblens error: %s has no gl_PrimitiveID: silhouettes from depth differences\n",
                  session.deviceName().c_str());

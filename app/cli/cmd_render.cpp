@@ -49,6 +49,10 @@ static int render(const CommonOptions& o, const std::string& viewName) {
     std::fprintf(stderr, "gblens render: %s\n", why.c_str());
     return 2;
   }
+  if (std::string why = session.refused(ro); !why.empty()) {  // --gbuffer visibility out of reach
+    std::fprintf(stderr, "gblens render: %s\n", why.c_str());
+    return 2;
+  }
   FrameRequest request;
   request.readback = {target};
   // Normals and positions are drawn where a surface is: the eye depth says where.

@@ -40,6 +40,8 @@ static const Names<ClusterAssign, 3> kClusterAssign = {
     {{ClusterAssign::Auto, "auto"}, {ClusterAssign::Gpu, "gpu"}, {ClusterAssign::Cpu, "cpu"}}};
 static const Names<TonemapPass, 3> kTonemapPass = {
     {{TonemapPass::Auto, "auto"}, {TonemapPass::Raster, "raster"}, {TonemapPass::Compute, "compute"}}};
+static const Names<GBufferKind, 2> kGBufferKind = {
+    {{GBufferKind::Raster, "raster"}, {GBufferKind::Visibility, "visibility"}}};
 static const Names<PositionSource, 3> kPosition = {
     {{PositionSource::Depth, "depth"}, {PositionSource::Rgba16f, "rgba16f"}, {PositionSource::Rgba32f, "rgba32f"}}};
 static const Names<CameraMotion, 2> kCameraMotion = {{{CameraMotion::Off, "off"}, {CameraMotion::Orbit, "orbit"}}};
@@ -81,6 +83,8 @@ const char* name(ClusterAssign v) { return lookup(kClusterAssign, v); }
 bool parse(const std::string& t, ClusterAssign& o) { return find(kClusterAssign, t, o); }
 const char* name(TonemapPass v) { return lookup(kTonemapPass, v); }
 bool parse(const std::string& t, TonemapPass& o) { return find(kTonemapPass, t, o); }
+const char* name(GBufferKind v) { return lookup(kGBufferKind, v); }
+bool parse(const std::string& t, GBufferKind& o) { return find(kGBufferKind, t, o); }
 bool parse(const std::string& t, LightSetup& o) { return find(kLightSetup, t, o); }
 const char* name(PositionSpace v) { return lookup(kPositionSpace, v); }
 bool parse(const std::string& t, Path& o) { return find(kPath, t, o); }
@@ -256,6 +260,10 @@ const std::vector<Entry>& entries() {
              "how hdr becomes final: raster (full-screen pass, sRGB attachment) | compute (tonemap_compute: sRGB "
              "encoded in the shader, a storage view of final) | auto (compute for tiled and clustered on a GPU device)",
              kTonemapPass, &RenderOptions::tonemapPass),
+      choice("gbuffer",
+             "how the G-buffer is filled: raster (materials shaded where they are drawn) | visibility (the raster pass "
+             "writes depth and a visibility id, gbuffer_resolve rebuilds the same targets in compute)",
+             kGBufferKind, &RenderOptions::gbuffer),
       onOff("sky", "skybox", &RenderOptions::sky),
       real("exposure", "tone-mapping exposure", &RenderOptions::exposure, 0.0, 1e6),
       onOff("primitive_id", "write the primitive_id debug target (instance + triangle) in the G-buffer pass",

@@ -63,6 +63,11 @@ enum class ClusterAssign { Auto, Gpu, Cpu };
 // raster on a CPU device (lavapipe's compute pass took 6 ms at 720p: docs/performance.md), for
 // deferred and forward, and in the single-pass path (the tone map is its last subpass).
 enum class TonemapPass { Auto, Raster, Compute };
+// How the G-buffer is filled: the raster pass shades every material where it draws (raster), or
+// the raster pass writes only depth and a visibility id (draw + triangle, visibility.h) and a
+// compute pass, gbuffer_resolve, rebuilds each pixel's surface from its triangle and writes the
+// same G-buffer targets (Burns and Hunt, JCGT 2013). No auto yet: it would have to be measured.
+enum class GBufferKind { Raster, Visibility };
 // Camera motion over time (renderer/core/camera_motion.h): none, or the scene camera orbiting the
 // scene's centre about the world up axis (10 degrees per second) while rising and falling a little.
 enum class CameraMotion { Off, Orbit };
@@ -86,6 +91,7 @@ struct RenderOptions {
   GBufferClear gbufferClear = GBufferClear::Auto;
   ClusterAssign clusterAssign = ClusterAssign::Auto;
   TonemapPass tonemapPass = TonemapPass::Auto;
+  GBufferKind gbuffer = GBufferKind::Raster;
   bool reversedZ = false;
   // Octahedral 16+16-bit normals and fp32 accumulation: `gblens bench` found each dominating the
   // former defaults (rgba16f normals; fp16 accumulation) on lavapipe: same or lower frame time,
@@ -164,6 +170,7 @@ const char* name(FairySplat f);
 const char* name(GBufferClear c);
 const char* name(ClusterAssign a);
 const char* name(TonemapPass t);
+const char* name(GBufferKind g);
 const char* name(PositionSource p);
 const char* name(PositionSpace p);
 const char* name(CameraMotion m);
@@ -184,6 +191,7 @@ bool parse(const std::string& text, FairySplat& out);
 bool parse(const std::string& text, GBufferClear& out);
 bool parse(const std::string& text, ClusterAssign& out);
 bool parse(const std::string& text, TonemapPass& out);
+bool parse(const std::string& text, GBufferKind& out);
 // The point lights are drawn with the per-light stencil mask (method `ran` deferred, culling on,
 // per-light); with `cpuDevice`, whether they come in screen-disjoint layers (StencilLayers; auto:
 // on a CPU). `ran` is the method the frame runs (RenderOptions::method unless that is auto).

@@ -2,6 +2,7 @@
 #include "renderer/core/targets.h"
 
 #include "renderer/core/layout_json.h"
+#include "renderer/core/visibility.h"
 
 #include "renderer/core/assert.h"
 
@@ -93,6 +94,9 @@ const std::array<TargetInfo, kTargetCount>& targetTable() {
        [](const RenderOptions&) { return TexelFormat::Rg16f; },
        "screen motion in pixels toward the previous frame (time - time_step), +y down, jitter excluded; 0 where no "
        "geometry"},
+      {T::Visibility, "visibility", {"ID"}, R::Id, SizeRule::Output,
+       [](const RenderOptions&) { return TexelFormat::R32Uint; },
+       "visibility id: (draw + 1) << triangle bits | triangle (renderer/core/visibility.h; 0: no geometry)"},
   }};
   return table;
 }
@@ -125,6 +129,7 @@ static const char* const kAbsentText[] = {
     "not computed: primitive_id off",
     "not computed: positions come from depth (position depth)",
     "not computed: motion off",
+    "not computed: the G-buffer is rasterized (gbuffer raster)",
     "not computed: the scene has no sun (shadow term 1)",
     "not read back",
     "not requested (--targets)",
@@ -168,6 +173,11 @@ Absent targetAbsence(Target t, const RenderOptions& o, bool sceneHasSun) {
       if (o.position == PositionSource::Depth) return Absent::PositionFromDepth;
       if (forward) return Absent::ForwardNoGBuffer;
       if (transientGBuffer(o)) return Absent::Transient;
+      break;
+    case Target::Visibility:
+      if (o.gbuffer != GBufferKind::Visibility) return Absent::RasterGBuffer;
+      if (forward) return Absent::ForwardNoGBuffer;
+      if (!visibilityFrame(o)) return Absent::RasterGBuffer;  // the single-pass path rasterizes its G-buffer
       break;
     case Target::ShadowMap:
       if (!sceneHasSun) return Absent::NoSun;

@@ -26,6 +26,7 @@ enum class Target : uint8_t {
   PrimitiveId,      // "primitive_id": ID (first triangle of the instance + triangle + 1; 0 = none), on request
   Position,         // "position": stored P.X/P.Y/P.Z, W (1 = geometry), when options.position is a format
   Motion,           // "motion": M.X/M.Y screen motion in pixels toward the previous frame (+y down), on request
+  Visibility,       // "visibility": ID (packed draw + 1 and triangle, renderer/core/visibility.h; 0 = none), --gbuffer visibility
   Count
 };
 constexpr size_t kTargetCount = size_t(Target::Count);
@@ -85,6 +86,7 @@ enum class Absent : uint8_t {
   PrimitiveIdOff,
   PositionFromDepth,  // position depth: no stored position
   MotionOff,          // motion off: no motion target
+  RasterGBuffer,      // gbuffer raster: no visibility target
   NoSun,              // no sun: no shadow map
   NotReadBack,        // computed, but the frame's request did not read it back
   NotRequested,       // a capture's --targets left it out

@@ -1,4 +1,5 @@
-// The frame, top to bottom: shadow map -> G-buffer -> directional light -> light mask ->
+// The frame, top to bottom: shadow map -> G-buffer (or, --gbuffer visibility, the visibility pass
+// and gbuffer_resolve) -> directional light -> light mask ->
 // point lights -> skybox -> fairy lights -> tone map (raster or compute), in the two-pass or
 // single-pass path;
 // method tiled replaces the three lighting passes by one compute pass, method clustered by four
@@ -87,23 +88,39 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   }
 
   // ── 2. G-buffer (deferred, tiled) or the forward pass ──────────────────────────────────────
+  // --gbuffer visibility: the visibility pass draws depth/stencil and the id, gbuffer_resolve
+  // (compute) writes every pixel of the G-buffer's targets from it (r.visibility: visibilityOn).
   if (method == Method::Forward)
     g.skipPass("clear_gbuffer", "method forward: no G-buffer");
+  else if (r.visibility)
+    g.skipPass("clear_gbuffer", "gbuffer visibility: gbuffer_resolve writes every pixel (0 where no geometry)");
   else if (!r.computeClear)
     g.skipPass("clear_gbuffer", r.clearReason);  // the gbuffer render pass clears its targets
   else
     addClearGBufferPass(g, r);  // compute: zero the G-buffer's colour targets through storage views
+  if (!r.visibility) {
+    g.skipPass("visibility", r.visibilityReason);
+    g.skipPass("gbuffer_resolve", r.visibilityReason);
+  }
   if (method == Method::Forward) {
     g.skipPass("gbuffer", "method forward: materials are shaded where they are drawn (no G-buffer)");
     g.beginRenderPass("forward");
     addForwardPass(g, r);  // sun + every visible point light per fragment, into hdr
   } else {
-    g.beginRenderPass(singlePass ? "deferred (single pass)" : "gbuffer");
-    addGBufferPass(g, r);
+    if (r.visibility) {  // never single pass (visibilityFrame)
+      g.skipPass("gbuffer", "gbuffer visibility: the visibility pass draws, gbuffer_resolve writes the G-buffer");
+      g.beginRenderPass("visibility");
+      addVisibilityPass(g, r);  // depth/stencil + the visibility id
+      g.endRenderPass();
+      addGBufferResolvePass(g, r);  // compute: the G-buffer's targets from the id
+    } else {
+      g.beginRenderPass(singlePass ? "deferred (single pass)" : "gbuffer");
+      addGBufferPass(g, r);
+    }
     if (singlePass) {
       g.nextSubpass();  // lighting reads the G-buffer as subpass inputs, in tile memory where possible
     } else {
-      g.endRenderPass();
+      if (!r.visibility) g.endRenderPass();
       if (method == Method::Tiled) addTiledLightingPass(g, r);  // compute: sun + binned point lights
       if (method == Method::Clustered && !r.clusterGrid) addClusteredPasses(g, r);
       if (method == Method::Clustered && r.clusterGrid)

@@ -18,6 +18,7 @@
 #include "renderer/gpu/gpu_lights.h"
 #include "renderer/gpu/gpu_scene.h"
 #include "renderer/gpu/render_targets.h"
+#include "renderer/gpu/visibility_scene.h"
 #include "renderer/passes/passes.h"
 #include "renderer/readback/target_readback.h"
 #include "renderer/vk/check.h"
@@ -190,6 +191,7 @@ static FrameRequest recordFrame(Renderer& r, const RenderOptions& options, const
   const FrameRequest request = completeRequest(userRequest, options, choice.method);
   ensureTargets(r, options);
   r.computeClear = computeClears(*r.ctx, options, choice.method, r.clearReason);
+  r.visibility = visibilityOn(r, options, choice.method, r.visibilityReason);
   r.computeToneMap = computeToneMap(*r.ctx, options, choice.method, r.toneMapReason);
   // Transient images have no memory to copy from, and forward frames never write the G-buffer.
   for (Target t : request.readback) {
@@ -270,6 +272,7 @@ void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
   createDescriptors(r);
   createFrameSlots(r);
   sortDraws(r);
+  createVisibilityScene(r);  // --gbuffer visibility: the id's packing, gbuffer_resolve's scene set
 }
 
 void destroyRenderer(Renderer& r) {
@@ -283,6 +286,7 @@ void destroyRenderer(Renderer& r) {
   for (auto& [k, p] : r.pipelines) vkDestroyPipeline(ctx.device, p, nullptr);
   if (r.statisticsPool) vkDestroyQueryPool(ctx.device, r.statisticsPool, nullptr);
   destroyFrameSlots(r);
+  destroyVisibilityScene(r);
   for (Buffer* b : {&r.vertexBuffer, &r.indexBuffer, &r.icosahedronBuffer, &r.materialBuffer}) destroyBuffer(ctx, *b);
   for (Image& img : r.textures) destroyImage(ctx, img);
   for (VkSampler s : {r.samplerRepeat, r.samplerClamp, r.samplerShadow, r.samplerPoint}) vkDestroySampler(ctx.device, s, nullptr);

@@ -8,6 +8,7 @@
 #include "renderer/gpu/frame_memory.h"
 #include "renderer/gpu/gpu_lights.h"
 #include "renderer/gpu/render_targets.h"
+#include "renderer/gpu/visibility_scene.h"
 #include "renderer/readback/srgb_probe.h"
 #include "renderer/vk/check.h"
 
@@ -49,6 +50,10 @@ const Scene& HeadlessSession::scene() const {
 
 std::string HeadlessSession::tooLarge(const RenderOptions& o, uint64_t readback) const {
   return frameTooLarge(*ctx_, scene(), o, readback);
+}
+std::string HeadlessSession::refused(const RenderOptions& o) const {
+  GB_ASSERT(sceneInUse_);
+  return visibilityRefusal(*renderer_, o);
 }
 uint64_t HeadlessSession::targetBytes(const RenderOptions& o) const { return frameMemory(*ctx_, scene(), o).targets; }
 uint64_t HeadlessSession::readbackBytes(const RenderOptions& o) const { return frameMemory(*ctx_, scene(), o).readback; }

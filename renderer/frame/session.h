@@ -40,6 +40,9 @@ class HeadlessSession {
   std::string tooLarge(const RenderOptions& options, uint64_t readback = 0) const;
   // Bytes of every target of such a frame, and of reading all of them back.
   uint64_t targetBytes(const RenderOptions& options) const;
+  // "" unless --gbuffer visibility cannot run with these options, scene and device: then one line
+  // saying why (renderer/gpu/visibility_scene.h; the renderer would rasterize the G-buffer instead).
+  std::string refused(const RenderOptions& options) const;
   uint64_t readbackBytes(const RenderOptions& options) const;
 
   // One frame; the request's targets are read back.

@@ -67,8 +67,10 @@ void uploadScene(Renderer& r) {
   // Geometry. Empty scenes still get valid (tiny) buffers.
   VkDeviceSize vbytes = std::max<VkDeviceSize>(scene.vertices.size() * sizeof(Vertex), 64);
   VkDeviceSize ibytes = std::max<VkDeviceSize>(scene.indices.size() * sizeof(uint32_t), 64);
-  r.vertexBuffer = createBuffer(ctx, vbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | dst, MemoryUse::Device, "vertices");
-  r.indexBuffer = createBuffer(ctx, ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | dst, MemoryUse::Device, "indices");
+  // Also storage buffers: gbuffer_resolve (--gbuffer visibility) fetches each pixel's triangle.
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  r.vertexBuffer = createBuffer(ctx, vbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | storage | dst, MemoryUse::Device, "vertices");
+  r.indexBuffer = createBuffer(ctx, ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | storage | dst, MemoryUse::Device, "indices");
   uploadBuffer(ctx, r.vertexBuffer, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex));
   uploadBuffer(ctx, r.indexBuffer, scene.indices.data(), scene.indices.size() * sizeof(uint32_t));
 

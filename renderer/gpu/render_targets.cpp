@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "renderer/core/texels.h"
+#include "renderer/gpu/visibility_scene.h"
 #include "renderer/vk/check.h"
 #include "renderer/vk/formats.h"
 
@@ -26,6 +27,14 @@ bool computeClears(const GpuContext& ctx, const RenderOptions& o, Method ran, st
   if (ran == Method::Deferred)
     return reason = "the render pass clears: method deferred (compute clears measured slower there, docs/perf-gpu.md)", false;
   return reason = "auto: a GPU device, method " + std::string(name(ran)), true;
+}
+
+bool visibilityOn(const Renderer& r, const RenderOptions& o, Method ran, std::string& reason) {
+  if (o.gbuffer == GBufferKind::Raster) return reason = "gbuffer raster: the G-buffer pass shades every material", false;
+  if (ran == Method::Forward) return reason = "method forward: no G-buffer", false;
+  const std::string refused = visibilityRefusal(r, o);
+  if (!refused.empty()) return reason = refused + " (the G-buffer pass ran instead)", false;
+  return reason = "--gbuffer visibility", true;
 }
 
 bool finalStorageView(const GpuContext& ctx, const RenderOptions& o) {
@@ -61,6 +70,7 @@ std::vector<Target> readableTargets(const Renderer& r, const RenderOptions& o) {
   for (const TargetInfo& info : targetTable()) {
     if (targetAbsence(info.target, o, r.scene->sun.enabled) != Absent::No) continue;
     if (info.target == Target::PrimitiveId && !primitiveIdOn(*r.ctx, o)) continue;
+    if (info.target == Target::Visibility && !visibilityRefusal(r, o).empty()) continue;  // rasterized instead
     out.push_back(info.target);
   }
   return out;
@@ -90,6 +100,7 @@ static TargetsKey targetsKey(const GpuContext& ctx, const Scene& s, const Render
   k.motion = o.motion;
   k.clearViews = clearViews(ctx, o);
   k.finalStorage = finalStorageView(ctx, o);
+  k.visibility = visibilityFrame(o);
   return k;
 }
 
@@ -102,6 +113,7 @@ VkExtent2D targetExtent(const GpuContext& ctx, Target t, const Scene& s, const R
     case Target::PrimitiveId: unused = !primitiveIdOn(ctx, o); break;
     case Target::Position: unused = o.position == PositionSource::Depth; break;
     case Target::Motion: unused = !o.motion; break;
+    case Target::Visibility: unused = !visibilityFrame(o); break;
     case Target::ShadowMap: unused = !s.sun.enabled; break;
     default: break;
   }
@@ -153,8 +165,12 @@ static ImageDesc targetDesc(const GpuContext& ctx, Target t, const Scene& s, con
                                                                           : targetUsage(targetInfo(t).role, d.transient);
   const TargetRole role = targetInfo(t).role;
   const bool colour = role == TargetRole::GBuffer || role == TargetRole::Id || role == TargetRole::Motion;
-  if (colour && !d.transient && (d.usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) && clearViews(ctx, o))
+  // The G-buffer's colour targets under --gbuffer visibility: gbuffer_resolve writes them through the same views.
+  const bool resolved = visibilityFrame(o) && role != TargetRole::Id && t != Target::Visibility;
+  if (colour && !d.transient && (d.usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT) && (clearViews(ctx, o) || resolved))
     d.clearFormat = clearViewFormat(texelFormat(t, o));
+  if (t == Target::PrimitiveId && visibilityFrame(o) && (d.usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT))
+    d.clearFormat = VK_FORMAT_R32_UINT;
   // final (sRGB, no storage support) written by tonemap_compute through a UNORM view, the shader
   // encoding sRGB itself.
   if (t == Target::Final && finalStorageView(ctx, o)) {

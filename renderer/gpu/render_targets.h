@@ -20,6 +20,11 @@ bool targetTransient(Target t, const RenderOptions& o);
 bool clearViews(const GpuContext& ctx, const RenderOptions& o);
 bool computeClears(const GpuContext& ctx, const RenderOptions& o, Method ran, std::string& reason);
 
+// This frame fills the G-buffer through the visibility id (--gbuffer visibility: the visibility
+// pass, then gbuffer_resolve), or the G-buffer pass shades it; `reason` says why, for the pass list.
+// A refused frame (visibilityRefusal) runs the G-buffer pass, the refusal as its reason.
+bool visibilityOn(const Renderer& r, const RenderOptions& o, Method ran, std::string& reason);
+
 // The tone map runs in compute (tonemap_compute) rather than as a raster pass (TonemapPass):
 // forced, or auto on a GPU device for tiled and clustered; `reason` says why, for the frame's pass
 // list. finalStorageView: final gets the UNORM storage view it writes through (on a GPU device

@@ -14,6 +14,7 @@
 #include "renderer/core/frame_stats.h"
 #include "renderer/core/image.h"
 #include "renderer/core/options.h"
+#include "renderer/core/visibility.h"
 #include "renderer/graph/graph.h"
 #include "renderer/scene/scene.h"
 #include "renderer/vk/formats.h"
@@ -50,7 +51,7 @@ struct TargetsKey {
   ShadowFormat shadowFormat{};
   PositionSource position{};
   bool coverage = false, transientGBuffer = false, primitiveId = false, clearViews = false, finalStorage = false;
-  bool motion = false;
+  bool motion = false, visibility = false;
   bool operator==(const TargetsKey&) const = default;
 };
 struct ShadowMapKey {
@@ -145,6 +146,17 @@ struct Renderer {
   VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayoutInput = VK_NULL_HANDLE;      // single-pass lighting pipelines
   VkDescriptorPool descriptorPool = VK_NULL_HANDLE;  // set 0 of each frame slot
+  // --gbuffer visibility (gpu/visibility_scene.cpp): the id's packing for this scene (or why the
+  // scene or device cannot have it), gbuffer_resolve's set layouts (set 1 pushed, set 2 the scene's
+  // vertices, indices, draws' geometry and textures, written once) and its pipeline layout.
+  VisibilityPacking visibilityPacking;
+  std::string visibilityRefusal;  // "" when the scene fits and the device can resolve
+  Buffer drawGeometryBuffer;
+  std::vector<std::pair<int, int>> textureGroups;  // (base colour, normal) texture per group; [0] = (-1, -1)
+  VkDescriptorSetLayout resolveSetLayout = VK_NULL_HANDLE, resolveSceneSetLayout = VK_NULL_HANDLE;
+  VkDescriptorPool resolvePool = VK_NULL_HANDLE;
+  VkDescriptorSet resolveSceneSet = VK_NULL_HANDLE;
+  VkPipelineLayout resolveLayout = VK_NULL_HANDLE;
 
   // Frame resources.
   RenderOptions options;  // the options the targets were created for (as asked: method may be auto)
@@ -159,6 +171,8 @@ struct Renderer {
   std::string clusterAssignReason;
   bool computeClear = false;        // clear_gbuffer clears the G-buffer (not the render pass)
   std::string clearReason;
+  bool visibility = false;          // this frame fills the G-buffer through the visibility id (--gbuffer)
+  std::string visibilityReason;     // why it does or does not
   bool computeToneMap = false;      // tonemap_compute writes final (not the raster tonemap pass)
   std::string toneMapReason;
   std::string fairyReason;

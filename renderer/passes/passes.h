@@ -14,6 +14,10 @@ void addGBufferPass(FrameGraph& g, Renderer& r);
 // clear_gbuffer (passes/clear_gbuffer.cpp) zeroes them when the render pass does not.
 std::vector<Target> gbufferColourTargets(const Renderer& r);
 void addClearGBufferPass(FrameGraph& g, Renderer& r);
+// --gbuffer visibility (passes/visibility.cpp, passes/gbuffer_resolve.cpp): the raster pass of
+// depth/stencil and the visibility id, then the compute pass that writes gbufferColourTargets.
+void addVisibilityPass(FrameGraph& g, Renderer& r);
+void addGBufferResolvePass(FrameGraph& g, Renderer& r);
 void addDirectionalLightPass(FrameGraph& g, Renderer& r);
 void addLightMaskPass(FrameGraph& g, Renderer& r);
 void addPointLightPass(FrameGraph& g, Renderer& r);

@@ -296,6 +296,7 @@ static DeviceSupport querySupport(GpuContext& ctx, const ContextOptions& options
   }
   s.maintenance4 = v13.maintenance4;
   s.scalarBlockLayout = v12.scalarBlockLayout;
+  ctx.features.visibilityResolve = s.core.shaderStorageImageWriteWithoutFormat && s.core.geometryShader;
   return s;
 }
 

@@ -37,6 +37,9 @@ struct DeviceFeatures {
   bool timestamps = false;
   bool primitiveId = false;  // gl_PrimitiveID in fragment shaders (the geometryShader feature)
   bool float64 = false;      // shaderFloat64: light setup on the GPU computes in double
+  // gbuffer_resolve (--gbuffer visibility): G-buffer stores through unsigned views without a format
+  // qualifier (shaderStorageImageWriteWithoutFormat), gl_PrimitiveID (geometryShader).
+  bool visibilityResolve = false;
 };
 
 // VK_EXT_debug_utils entry points (renderer/vk/debug_utils.h); null when the instance lacks it.

@@ -3,6 +3,7 @@
 #
 #   tests/golden/golden.sh check      GBLENS WORKDIR   capture now, compare with tests/golden/temple
 #   tests/golden/golden.sh perturbed  GBLENS WORKDIR   deliberately changed frames must be caught
+#   tests/golden/golden.sh visibility GBLENS WORKDIR   --gbuffer visibility within the same thresholds
 #   tests/golden/golden.sh regenerate GBLENS           rewrite tests/golden/temple (after an intended change)
 #
 # Thresholds (docs/capture-format.md, "Golden captures", says why):
@@ -37,6 +38,18 @@ check)
      exit 1 ;;
   esac
   ;;
+visibility)
+  # The visibility buffer's G-buffer (docs/architecture.md) against the raster golden: warnings
+  # (one albedo step on textured pixels, normals and depth within rounding) but no failure; its
+  # own visibility target is not in the golden.
+  WORK=$3
+  mkdir -p "$WORK"
+  "$GBLENS" $CAPTURE --gbuffer visibility -o "$WORK/visibility"
+  status=0
+  "$GBLENS" compare "$HERE/temple" "$WORK/visibility" --exclude visibility $THRESHOLDS -q || status=$?
+  echo "golden: --gbuffer visibility -> exit $status (0 or 1 expected)"
+  [ "$status" -le 1 ]
+  ;;
 perturbed)
   # Each line: expected exit status, then the options that perturb the frame.
   WORK=$3
@@ -62,7 +75,7 @@ LIST
   exit $failed
   ;;
 *)
-  echo "usage: golden.sh check|perturbed GBLENS WORKDIR | golden.sh regenerate GBLENS" >&2
+  echo "usage: golden.sh check|perturbed|visibility GBLENS WORKDIR | golden.sh regenerate GBLENS" >&2
   exit 2
   ;;
 esac

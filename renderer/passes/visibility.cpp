@@ -1,0 +1,43 @@
+// Visibility (--gbuffer visibility): the scene drawn as the G-buffer pass draws it (the same vertex
+// positions, depth test, stencil 128 and alpha test), writing only depth/stencil and the visibility
+// id (renderer/core/visibility.h: draw + 1 and gl_PrimitiveID); gbuffer_resolve does the rest.
+#include "renderer/gpu/gpu_scene.h"
+#include "renderer/passes/passes.h"
+
+namespace gb {
+
+void addVisibilityPass(FrameGraph& g, Renderer& r) {
+  Use id{Target::Visibility, Access::ColorWrite, true};
+  id.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // 0: no geometry
+  Use depth{Target::DepthStencil, Access::DepthStencilWrite, true};
+  depth.clearValue.depthStencil = {farDepth(r), 0};
+  g.addPass("visibility", {id, depth}, [&r](PassContext& pc) {
+    auto describe = [&](DrawVariantBits v) {
+      return [&r, v](GraphicsPipelineDesc& d) {
+        d.vertexShader = Shader::visibility_vert;
+        d.fragmentShader = Shader::visibility_frag;
+        d.vertexInput = VertexInput::SceneVertex;
+        d.depthTest = d.depthWrite = true;
+        d.depthCompare = r.options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
+        d.stencilTest = true;
+        d.stencil = stencil(VK_COMPARE_OP_ALWAYS, 0xFF, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_REPLACE);
+        d.spec.push_back({gpu::kSpecAlphaTest, v.alpha ? 1u : 0u});
+        d.spec.push_back({gpu::kSpecBaseColorTexture, v.baseTexture ? 1u : 0u});
+        d.spec.push_back({gpu::kSpecVisibilityBits, r.visibilityPacking.triangleBits});
+      };
+    };
+    bindDescriptors(r, pc.cmd, r.pipelineLayout, {});
+    // The G-buffer pass's variants (drawVariant), so the draw order and the alpha test are its own;
+    // the normal texture changes nothing here.
+    for (uint32_t v = 0; v < kDrawVariants; ++v) {
+      if (r.drawVariants[v] == r.drawVariants[v + 1]) continue;
+      const std::string pipeline = "visibility" + drawVariantName(v) + ".bits" +
+                                   std::to_string(r.visibilityPacking.triangleBits);
+      bindPipeline(pc, graphicsPipeline(r, pc, pipeline, describe(drawVariantBits(v))));
+      vkCmdSetStencilReference(pc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, gpu::kStencilGeometry);
+      drawInstances(r, pc.cmd, r.drawVariants[v], r.drawVariants[v + 1], false);
+    }
+  });
+}
+
+}  // namespace gb
