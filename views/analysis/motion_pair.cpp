@@ -271,6 +271,13 @@ MotionPair checkMotionPair(const TemporalFrame& previous, const TemporalFrame& c
     out.undecided = "the frames differ in size";
     return out;
   }
+  // An imported frame whose layout gives no camera has none to reproject with (gblens's own frames
+  // always have the renderer's).
+  auto noCamera = [](const FrameSnapshot& f) { return !f.unknown.empty() && !f.layout.camera.present; };
+  if (noCamera(C) || noCamera(P)) {
+    out.undecided = "the layout gives no camera: reprojection needs both frames' cameras";
+    return out;
+  }
   pc.jitterKnown = current.jitter.has_value() && previous.jitter.has_value();
   pc.jc = current.jitter.value_or(glm::dvec2(0.0)), pc.jp = previous.jitter.value_or(glm::dvec2(0.0));
   pc.dj = pc.jp - pc.jc;
