@@ -2,29 +2,13 @@
 // three frames in memory at a time, summed up as one verdict; the report as JSON and text.
 #include <algorithm>
 #include <cstdio>
-#include <deque>
-#include <memory>
 
 #include "views/analysis/history.h"
+#include "views/analysis/temporal.h"
 
 namespace gb {
 
 namespace {
-
-struct HistoryFrame {
-  std::shared_ptr<Capture> capture;
-  TemporalFrame frame;
-};
-
-bool loadHistoryFrame(const Sequence& seq, size_t i, HistoryFrame& out, std::string& error) {
-  out.capture = std::make_shared<Capture>();
-  if (!loadCapture(seq.captureDir(i), *out.capture, error)) return false;
-  out.frame.frame = &out.capture->frame;
-  out.frame.number = seq.frames[i].number;
-  out.frame.time = seq.frames[i].time;
-  out.frame.jitter = seq.frames[i].jitter;
-  return true;
-}
 
 // The history quantities of a layout (or the one named), or why none.
 bool historyTargets(const Layout& l, const std::string& named, std::vector<HistoryTarget>& out, std::string& error) {
@@ -46,44 +30,35 @@ bool checkHistorySequence(const Sequence& seq, const HistoryOptions& o, HistoryR
     error = seq.dir + ": history needs two frames at least (the sequence has " + std::to_string(seq.frames.size()) + ")";
     return false;
   }
-  std::deque<HistoryFrame> window;
   bool anyDecided = false;
-  for (size_t i = 0; i < seq.frames.size(); ++i) {
-    HistoryFrame f;
-    if (!loadHistoryFrame(seq, i, f, error)) return false;
-    window.push_back(std::move(f));
-    if (window.size() > 3) window.pop_front();
-    if (i == 0) {
-      if (!historyTargets(window.back().frame.frame->layout, o.history, out.histories, error)) {
-        error = seq.captureDir(i) + ": " + error;
+  const bool ok = walkFramePairs(seq, [&](size_t i, const TemporalFrame* before, const TemporalFrame* prev,
+                                          const TemporalFrame& cur, std::string& why) {
+    if (!prev) {
+      if (!historyTargets(cur.frame->layout, o.history, out.histories, why)) {
+        why = seq.captureDir(i) + ": " + why;
         return false;
       }
-      continue;
+      return true;
     }
-    if (o.progress)
-      o.progress("frames " + std::to_string(seq.frames[i - 1].number) + " -> " + std::to_string(seq.frames[i].number));
-    const TemporalFrame& cur = window.back().frame;
-    const TemporalFrame& prev = window[window.size() - 2].frame;
-    const TemporalFrame* before = window.size() == 3 ? &window[0].frame : nullptr;
+    if (o.progress) o.progress("frames " + std::to_string(prev->number) + " -> " + std::to_string(cur.number));
     for (const HistoryTarget& t : out.histories) {
       const Quantity* q = cur.frame->layout.findByName(t.name);
       if (!q || q->historyOf.empty()) {
-        error = seq.captureDir(i) + ": no history quantity " + t.name;
+        why = seq.captureDir(i) + ": no history quantity " + t.name;
         return false;
       }
       HistoryPair p;
-      if (!checkHistoryPair(before, prev, cur, *q, o, p, error)) {
-        error = seq.dir + ": " + error;
+      if (!checkHistoryPair(before, *prev, cur, *q, o, p, why)) {
+        why = seq.dir + ": " + why;
         return false;
       }
       anyDecided = anyDecided || !p.found.empty();
-      for (const std::string& d : p.differences) {
-        const std::string s = t.name + " (history of " + t.of + "): " + d;
-        if (std::find(out.findings.begin(), out.findings.end(), s) == out.findings.end()) out.findings.push_back(s);
-      }
+      for (const std::string& d : p.differences) addFindingOnce(out.findings, t.name + " (history of " + t.of + "): " + d);
       out.pairs.push_back(std::move(p));
     }
-  }
+    return true;
+  }, error);
+  if (!ok) return false;
   out.verdict = !out.findings.empty() ? "differs" : anyDecided ? "agrees" : "undecided";
   return true;
 }

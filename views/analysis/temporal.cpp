@@ -16,14 +16,7 @@
 
 namespace gb {
 
-namespace {
-
-struct Loaded {
-  std::shared_ptr<Capture> capture;
-  TemporalFrame frame;
-};
-
-bool loadFrame(const Sequence& seq, size_t i, Loaded& out, std::string& error) {
+bool loadTemporalFrame(const Sequence& seq, size_t i, LoadedFrame& out, std::string& error) {
   out.capture = std::make_shared<Capture>();
   if (!loadCapture(seq.captureDir(i), *out.capture, error)) return false;
   out.frame.frame = &out.capture->frame;
@@ -33,11 +26,23 @@ bool loadFrame(const Sequence& seq, size_t i, Loaded& out, std::string& error) {
   return true;
 }
 
-void addOnce(std::vector<std::string>& list, const std::string& s) {
-  if (std::find(list.begin(), list.end(), s) == list.end()) list.push_back(s);
+bool walkFramePairs(const Sequence& seq, const FramePairVisit& visit, std::string& error) {
+  std::deque<LoadedFrame> window;
+  for (size_t i = 0; i < seq.frames.size(); ++i) {
+    LoadedFrame l;
+    if (!loadTemporalFrame(seq, i, l, error)) return false;
+    window.push_back(std::move(l));
+    if (window.size() > 3) window.pop_front();
+    const TemporalFrame* previous = window.size() >= 2 ? &window[window.size() - 2].frame : nullptr;
+    const TemporalFrame* before = window.size() == 3 ? &window[0].frame : nullptr;
+    if (!visit(i, before, previous, window.back().frame, error)) return false;
+  }
+  return true;
 }
 
-}  // namespace
+void addFindingOnce(std::vector<std::string>& list, const std::string& s) {
+  if (std::find(list.begin(), list.end(), s) == list.end()) list.push_back(s);
+}
 
 bool checkMotionSequence(const Sequence& seq, const MotionSequenceOptions& o, MotionReport& out, std::string& error) {
   out = MotionReport{};
@@ -45,39 +50,34 @@ bool checkMotionSequence(const Sequence& seq, const MotionSequenceOptions& o, Mo
     error = seq.dir + ": motion needs two frames at least (the sequence has " + std::to_string(seq.frames.size()) + ")";
     return false;
   }
-  std::deque<Loaded> window;
   bool anyDecided = false;
-  for (size_t i = 0; i < seq.frames.size(); ++i) {
-    Loaded l;
-    if (!loadFrame(seq, i, l, error)) return false;
-    window.push_back(std::move(l));
-    if (window.size() > 3) window.pop_front();
-    if (window.size() < 2) {
-      const Layout& layout = window.back().frame.frame->layout;
+  const bool ok = walkFramePairs(seq, [&](size_t i, const TemporalFrame* before, const TemporalFrame* prev,
+                                          const TemporalFrame& cur, std::string& why) {
+    if (!prev) {
+      const Layout& layout = cur.frame->layout;
       const Quantity* q = o.motion.empty() ? layout.find(QuantityKind::Motion) : layout.findByName(o.motion);
       if (!q || q->kind != QuantityKind::Motion) {
-        error = seq.captureDir(i) + ": " +
-                (o.motion.empty() ? std::string("the layout has no motion quantity") : "--motion " + o.motion + ": not a motion quantity of the layout");
+        why = seq.captureDir(i) + ": " +
+              (o.motion.empty() ? std::string("the layout has no motion quantity") : "--motion " + o.motion + ": not a motion quantity of the layout");
         return false;
       }
       out.motion = q->name;
-      continue;
+      return true;
     }
-    if (o.progress) o.progress("frames " + std::to_string(seq.frames[i - 1].number) + " -> " + std::to_string(seq.frames[i].number));
-    const Loaded& cur = window.back();
-    const Loaded& prev = window[window.size() - 2];
-    const Loaded* before = window.size() == 3 ? &window[0] : nullptr;
+    if (o.progress) o.progress("frames " + std::to_string(prev->number) + " -> " + std::to_string(cur.number));
     MotionPairOptions po;
-    po.motion = cur.frame.frame->layout.findByName(out.motion);
+    po.motion = cur.frame->layout.findByName(out.motion);
     po.inlierPixels = o.inlierPixels;
-    MotionPair p = checkMotionPair(prev.frame, cur.frame, before ? &before->frame : nullptr, po);
+    MotionPair p = checkMotionPair(*prev, cur, before, po);
     anyDecided = anyDecided || p.detected;
-    for (const std::string& d : p.differences) addOnce(out.findings, d);
+    for (const std::string& d : p.differences) addFindingOnce(out.findings, d);
     if (p.surfacePixels && double(p.wrongMoving) > o.wrongFraction * double(p.surfacePixels))
-      addOnce(out.findings, "vectors that land on another surface in the previous frame (more than " +
-                                std::to_string(int(o.wrongFraction * 100)) + " % of the surface in a pair)");
+      addFindingOnce(out.findings, "vectors that land on another surface in the previous frame (more than " +
+                                       std::to_string(int(o.wrongFraction * 100)) + " % of the surface in a pair)");
     out.pairs.push_back(std::move(p));
-  }
+    return true;
+  }, error);
+  if (!ok) return false;
   out.verdict = !out.findings.empty() ? "differs" : anyDecided ? "agrees" : "undecided";
   return true;
 }
@@ -126,8 +126,8 @@ bool flickerSequence(const Sequence& seq, const FlickerOptions& o, FlickerReport
     }
     refIndex = size_t(i);
   }
-  Loaded ref;
-  if (!loadFrame(seq, refIndex, ref, error)) return false;
+  LoadedFrame ref;
+  if (!loadTemporalFrame(seq, refIndex, ref, error)) return false;
   const FrameSnapshot& R = *ref.frame.frame;
   const std::vector<ViewDef> views = layoutViews(R.layout);
   const int v = findView(views, o.quantity);
@@ -146,9 +146,9 @@ bool flickerSequence(const Sequence& seq, const FlickerOptions& o, FlickerReport
   for (uint32_t y = 0; y < h; ++y)
     for (uint32_t x = 0; x < w; ++x) points[size_t(y) * w + x] = surfacePoint(R, x, y, ref.frame.jitter.value_or(glm::dvec2(0.0)));
   for (size_t i = 0; i < seq.frames.size(); ++i) {
-    Loaded l;
+    LoadedFrame l;
     if (i == refIndex) l = ref;
-    else if (!loadFrame(seq, i, l, error)) return false;
+    else if (!loadTemporalFrame(seq, i, l, error)) return false;
     const FrameSnapshot& F = *l.frame.frame;
     if (F.camera.width != w || F.camera.height != h) {
       error = seq.captureDir(i) + ": " + std::to_string(F.camera.width) + "x" + std::to_string(F.camera.height) +

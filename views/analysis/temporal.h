@@ -3,6 +3,7 @@
 // decoded quantity, each frame's values carried to the reference frame's pixels by reprojection.
 #pragma once
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,21 @@
 #include "views/capture/sequence.h"
 
 namespace gb {
+
+// A sequence's frame loaded for analysis: the capture and what the sequence says of it.
+struct LoadedFrame {
+  std::shared_ptr<Capture> capture;
+  TemporalFrame frame;  // frame.frame points into capture
+};
+bool loadTemporalFrame(const Sequence& seq, size_t i, LoadedFrame& out, std::string& error);
+
+// Walks a sequence's frames in order with three in memory: visit(i, nullptr, nullptr, frame 0), then
+// visit(i, N-2 or null, N-1, N) for every later frame; stops at a load failure or a visit's false.
+using FramePairVisit = std::function<bool(size_t i, const TemporalFrame* before, const TemporalFrame* previous,
+                                          const TemporalFrame& current, std::string& error)>;
+bool walkFramePairs(const Sequence& seq, const FramePairVisit& visit, std::string& error);
+// Appends `s` to `list` unless it is there (a sequence's findings, each once).
+void addFindingOnce(std::vector<std::string>& list, const std::string& s);
 
 struct MotionSequenceOptions {
   std::string motion;         // the motion quantity's name ("": the layout's first)
