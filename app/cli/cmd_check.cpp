@@ -61,12 +61,14 @@ int checkSequence(const CheckArgs& o) {
   bool clean = true;
   std::string text;
   CheckPolicy policy;
+  Layout layout;  // the first frame's: which temporal classes apply
   for (size_t i = 0; i < seq.frames.size(); ++i) {
     Capture c;
     if (!loadCapture(seq.captureDir(i), c, error) || (i == 0 && !checkPolicy(c.frame.layout, o.policy, policy, error))) {
       std::fprintf(stderr, "gblens check: %s\n", error.c_str());
       return 2;
     }
+    if (i == 0) layout = c.frame.layout;
     const CheckReport report = checkFrame(c.frame, policy);
     clean = clean && report.clean();
     frames.push_back({{"frame", seq.frames[i].number}, {"check", checkJson(report)}});
@@ -75,9 +77,7 @@ int checkSequence(const CheckArgs& o) {
     if (report.total()) text += checkText(report);
   }
   nlohmann::json temporal = nlohmann::json();
-  Capture first;
-  loadCapture(seq.captureDir(0), first, error);
-  const Quantity* motion = first.frame.layout.find(QuantityKind::Motion);
+  const Quantity* motion = layout.find(QuantityKind::Motion);
   if (motion && seq.frames.size() >= 2) {
     MotionReport r;
     if (!checkMotionSequence(seq, {}, r, error)) {
@@ -91,7 +91,7 @@ int checkSequence(const CheckArgs& o) {
   } else {
     text += "temporal: " + std::string(motion ? "one frame: no pair to check" : "the layout has no motion quantity") + "\n";
   }
-  const bool histories = std::any_of(first.frame.layout.quantities.begin(), first.frame.layout.quantities.end(),
+  const bool histories = std::any_of(layout.quantities.begin(), layout.quantities.end(),
                                      [](const Quantity& q) { return !q.historyOf.empty(); });
   if (histories && seq.frames.size() >= 2) {
     if (temporal.is_null()) temporal = nlohmann::json::object();

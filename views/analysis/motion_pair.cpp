@@ -226,6 +226,7 @@ static uint32_t classify(const MotionPairContext& pc, const MotionConvention& F,
     // Static: N-1 saw the point where the camera puts it when its depth lies within the range of
     // N-1's depths around that place (a grazing surface changes depth fast from texel to texel).
     const std::optional<double> here = viewDepthOf(P.camera, s.world);
+    const std::optional<double> dc = agrees ? std::nullopt : viewDepthOf(C.camera, s.world);
     double lo = 1e300, hi = -1e300;
     for (int oy = -1; oy <= 1 && !same; ++oy)
       for (int ox = -1; ox <= 1 && !same; ++ox) {
@@ -238,7 +239,6 @@ static uint32_t classify(const MotionPairContext& pc, const MotionConvention& F,
           if (there) lo = std::min(lo, *there), hi = std::max(hi, *there);
         } else {
           same = sameSurface(C, s.x, s.y, P, ix, iy, s.world, pc.jp);
-          const auto dc = viewDepthOf(C.camera, s.world);
           nearer = nearer || (dc && there && *there < 0.98 * *dc);
         }
       }
