@@ -19,10 +19,7 @@ void addForwardPass(FrameGraph& g, Renderer& r) {
         d.vertexShader = Shader::gbuffer_vert;
         d.fragmentShader = v.alpha ? Shader::forward_alpha_frag : Shader::forward_frag;  // early depth tests when opaque
         d.vertexInput = VertexInput::SceneVertex;
-        d.depthTest = d.depthWrite = true;
-        d.depthCompare = r.options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
-        d.stencilTest = true;  // stencil 128 where geometry is, as the G-buffer pass writes it
-        d.stencil = stencil(VK_COMPARE_OP_ALWAYS, 0xFF, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_REPLACE);
+        sceneGeometryDepthStencil(r, d);  // stencil 128 where geometry is, as the G-buffer pass writes it
         d.spec.push_back({gpu::kSpecAlphaTest, v.alpha ? 1u : 0u});
         d.spec.push_back({gpu::kSpecNormalMap, v.normalMap ? 1u : 0u});
         d.spec.push_back({gpu::kSpecBaseColorTexture, v.baseTexture ? 1u : 0u});

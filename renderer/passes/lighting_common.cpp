@@ -153,6 +153,13 @@ void bindPipeline(const PassContext& pc, VkPipeline pipeline) {
   vkCmdSetScissor(pc.cmd, 0, 1, &scissor);
 }
 
+void sceneGeometryDepthStencil(const Renderer& r, GraphicsPipelineDesc& d) {
+  d.depthTest = d.depthWrite = true;
+  d.depthCompare = r.options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
+  d.stencilTest = true;
+  d.stencil = stencil(VK_COMPARE_OP_ALWAYS, 0xFF, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_REPLACE);
+}
+
 VkStencilOpState stencil(VkCompareOp compare, uint32_t compareMask, VkStencilOp depthFail, VkStencilOp pass) {
   VkStencilOpState s{};
   s.failOp = VK_STENCIL_OP_KEEP;

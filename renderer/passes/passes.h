@@ -80,5 +80,9 @@ void drawInstances(Renderer& r, VkCommandBuffer cmd, uint32_t begin, uint32_t en
 void bindPipeline(const PassContext& pc, VkPipeline pipeline);
 VkStencilOpState stencil(VkCompareOp compare, uint32_t compareMask, VkStencilOp depthFail = VK_STENCIL_OP_KEEP,
                          VkStencilOp pass = VK_STENCIL_OP_KEEP);
+// The scene geometry's depth and stencil state (depth tested and written, reversed Z as the options
+// say; stencil kStencilGeometry where geometry is): the passes that draw the scene into the G-buffer's
+// depth (gbuffer, visibility, forward) write the same depth and stencil through it.
+void sceneGeometryDepthStencil(const Renderer& r, GraphicsPipelineDesc& d);
 
 }  // namespace gb

@@ -17,10 +17,7 @@ void addVisibilityPass(FrameGraph& g, Renderer& r) {
         d.vertexShader = Shader::visibility_vert;
         d.fragmentShader = Shader::visibility_frag;
         d.vertexInput = VertexInput::SceneVertex;
-        d.depthTest = d.depthWrite = true;
-        d.depthCompare = r.options.reversedZ ? VK_COMPARE_OP_GREATER : VK_COMPARE_OP_LESS;
-        d.stencilTest = true;
-        d.stencil = stencil(VK_COMPARE_OP_ALWAYS, 0xFF, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_REPLACE);
+        sceneGeometryDepthStencil(r, d);
         d.spec.push_back({gpu::kSpecAlphaTest, v.alpha ? 1u : 0u});
         d.spec.push_back({gpu::kSpecBaseColorTexture, v.baseTexture ? 1u : 0u});
         d.spec.push_back({gpu::kSpecVisibilityBits, r.visibilityPacking.triangleBits});
