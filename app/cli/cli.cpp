@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include <unistd.h>
+
 #include "renderer/core/layout_json.h"
 #include "renderer/scene/builtin.h"
 #include "views/analysis/view_table.h"
@@ -69,6 +71,16 @@ void reportRenderDocCapture(const char* command, RenderDocCapture& capture) {
 
 void removeDebrisOf(const char* command, const std::string& path) {
   for (const std::string& line : removeDebris(path)) std::fprintf(stderr, "gblens %s: %s\n", command, line.c_str());
+}
+
+void progressLine(const std::string& text) {
+  static const bool terminal = isatty(STDERR_FILENO) == 1;
+  if (terminal) std::fprintf(stderr, "  .. %s\n", text.c_str());
+}
+
+std::function<void(const std::string&)> terminalProgress() {
+  if (isatty(STDERR_FILENO) != 1) return {};
+  return [](const std::string& s) { progressLine(s); };
 }
 
 std::string& commandLine() {

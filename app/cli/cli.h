@@ -59,6 +59,12 @@ Command addProbeCommand(CLI::App& root);
 // on stderr ("gblens COMMAND: removed ...").
 void removeDebrisOf(const char* command, const std::string& path);
 
+// Progress on stderr ("  .. TEXT"), as stress prints its own, for a person at a terminal only, so
+// that what a script reads (a pipe, a file) is the command's one-line messages. terminalProgress: the
+// same as a callback for the engines' progress, null when stderr is no terminal.
+void progressLine(const std::string& text);
+std::function<void(const std::string&)> terminalProgress();
+
 // The command line as typed (set by main; recorded in capture manifests).
 std::string& commandLine();
 Command addErrorCommand(CLI::App& root);

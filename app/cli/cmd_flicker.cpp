@@ -1,8 +1,6 @@
 // gblens flicker SEQ --quantity Q [--reference N] [--no-reproject] [--json] [-o DIR]: per-pixel temporal
 // statistics of a decoded quantity over a sequence, each frame carried to the reference frame's pixels
 // by reprojection (views/analysis/temporal.h). Exit 0, or 2 on bad input.
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -46,8 +44,7 @@ Command addFlickerCommand(CLI::App& root) {
               return flickerFail(error);
             FlickerOptions fo;
             fo.quantity = o->quantity, fo.reference = o->reference, fo.reproject = !o->noReproject;
-            static const bool terminal = isatty(STDERR_FILENO) == 1;
-            if (terminal) fo.progress = [](const std::string& s) { std::fprintf(stderr, "  .. %s\n", s.c_str()); };
+            fo.progress = terminalProgress();
             FlickerReport r;
             if (!flickerSequence(seq, fo, r, error)) return flickerFail(error);
             const nlohmann::json j = flickerReportJson(r);

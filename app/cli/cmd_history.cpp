@@ -3,8 +3,6 @@
 // hypothesis that fits named against the declared history_space (views/analysis/history.h,
 // docs/temporal.md). Exit 0: they hold what the layout says (or nothing could be decided); 1: a
 // finding; 2: bad input.
-#include <unistd.h>
-
 #include <cstdio>
 #include <memory>
 
@@ -43,8 +41,7 @@ Command addHistoryCommand(CLI::App& root) {
             HistoryOptions ho;
             ho.history = o->history;
             ho.bound = o->bound;
-            static const bool terminal = isatty(STDERR_FILENO) == 1;
-            if (terminal) ho.progress = [](const std::string& s) { std::fprintf(stderr, "  .. %s\n", s.c_str()); };
+            ho.progress = terminalProgress();
             HistoryReport r;
             if (!checkHistorySequence(seq, ho, r, error)) return historyFail(error);
             if (o->json)

@@ -6,8 +6,6 @@
 //   gblens import APP.rdc|FILES... --suggest-layout [--event EID | --pass NAME] [-o DRAFT.json]
 // The layout says what the files hold (docs/layout-format.md); the capture is written atomically, and
 // nothing at all when anything does not match (one line naming the file, the target and the field; exit 2).
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -37,12 +35,9 @@ struct ImportOptions {
   bool allowOutside = false;  // --allow-outside-sources
 };
 
-// Progress on stderr, as stress prints its own ("  .. "): what import is doing now, for a person at a
-// terminal only, so that a refusal read by a script (a pipe, a file) is its one line ("gblens import: ...").
-void progress(const std::string& text) {
-  static const bool terminal = isatty(STDERR_FILENO) == 1;
-  if (terminal) std::fprintf(stderr, "  .. %s\n", text.c_str());
-}
+// What import is doing now (cli.h progressLine: a terminal only, so that a refusal read by a script is
+// its one line, "gblens import: ...").
+void progress(const std::string& text) { progressLine(text); }
 
 bool isRenderDocCapture(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();

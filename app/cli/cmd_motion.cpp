@@ -1,8 +1,6 @@
 // gblens motion SEQ [--json] [-o DIR] [--motion NAME] [--bound PX]: a sequence's motion vectors checked
 // by reprojection, pair by pair, and the convention they follow set against the layout's
 // (views/analysis/temporal.h, docs/temporal.md). Exit 0: they follow it; 1: a finding; 2: bad input.
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -67,8 +65,7 @@ Command addMotionCommand(CLI::App& root) {
             MotionSequenceOptions mo;
             mo.motion = o->motion;
             mo.inlierPixels = o->bound;
-            static const bool terminal = isatty(STDERR_FILENO) == 1;
-            if (terminal) mo.progress = [](const std::string& s) { std::fprintf(stderr, "  .. %s\n", s.c_str()); };
+            mo.progress = terminalProgress();
             MotionReport r;
             if (!checkMotionSequence(seq, mo, r, error)) return motionFail(error);
             const nlohmann::json j = motionReportJson(r, o->sequence);
