@@ -11,6 +11,7 @@ using vec3 = glm::dvec3;
 using glm::clamp;
 using glm::dot;
 using glm::exp;
+using glm::inversesqrt;
 using glm::max;
 using glm::normalize;
 using glm::pow;
@@ -60,16 +61,26 @@ GB_FN vec3 shadeDirectional(vec3 albedo, real specular, vec3 N, vec3 V, vec3 toS
   return albedo * ambient + shadow * blinnPhong(albedo, specular, N, V, toSun, sunColor);
 }
 
+// One point light at eye-space `lightPosition` lighting the surface point P (eye space), with
+// V = normalize(-P) and the light's 1 / radius^2 given: a loop over many lights computes them
+// once. The range test comes first (x >= 1 is exactly where the window falloff is 0), so a
+// light that does not reach P costs a subtraction, a dot product and a compare; one inverse
+// square root makes L.
+GB_FN vec3 shadePointPrepared(vec3 albedo, real specular, vec3 N, vec3 P, vec3 V, vec3 lightPosition,
+                              real invRadiusSquared, vec3 color) {
+  vec3 toLight = lightPosition - P;
+  real d2 = dot(toLight, toLight);
+  real x = d2 * invRadiusSquared;
+  if (x >= 1.0) return vec3(0.0);
+  real w = 1.0 - x;  // pointAttenuation's window, unclamped: 0 <= x < 1 here
+  vec3 L = toLight * inversesqrt(max(d2, 1e-30));
+  return blinnPhong(albedo, specular, N, V, L, color * (w * w));
+}
+
 // One point light at eye-space `lightPosition` lighting the surface point P (eye space).
 GB_FN vec3 shadePoint(vec3 albedo, real specular, vec3 N, vec3 P, vec3 lightPosition, real radius,
                       vec3 color) {
-  vec3 toLight = lightPosition - P;
-  real d2 = dot(toLight, toLight);
-  real attenuation = pointAttenuation(d2, radius);
-  if (attenuation <= 0.0) return vec3(0.0);
-  vec3 L = toLight / sqrt(max(d2, 1e-30));
-  vec3 V = normalize(-P);
-  return blinnPhong(albedo, specular, N, V, L, color * attenuation);
+  return shadePointPrepared(albedo, specular, N, P, normalize(-P), lightPosition, 1.0 / (radius * radius), color);
 }
 
 // An unlit surface (KHR_materials_unlit): its albedo (the base colour) as is, in place of

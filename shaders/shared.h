@@ -46,7 +46,7 @@ GB_CONST(uint, kBindingHdrStorage, 9);  // hdr as a storage image (tiled lightin
 GB_CONST(uint, kBindingClusterHeader, 10);  // ClusterHeader
 GB_CONST(uint, kBindingClusters, 11);       // Cluster[]: the occupied clusters
 GB_CONST(uint, kBindingPixelClusters, 12);  // uint per pixel: its cluster (kNoCluster: sky or no room)
-GB_CONST(uint, kBindingLightLists, 13);     // uint[]: visible-list positions, each cluster's in order
+GB_CONST(uint, kBindingLightLists, 13);     // uint[]: light indices, each cluster's in visible-list order
 GB_CONST(uint, kBindingBinBits, 14);        // uint[]: per light bin, a bit per visible-list position
 GB_CONST(uint, kBindingBinBoxes, 15);       // uvec4[2] per light bin: the box of its surface points
 // Light setup on the GPU (renderer/gpu/gpu_lights.h): the scene's lights and per-light scratch.
@@ -127,6 +127,7 @@ GB_CONST(uint, kClusterTile, 16);          // pixels; one cluster_bounds workgro
 GB_CONST(uint, kClusterMaxSlices, 256);    // depth slices at most (a tile's slice mask: 8 words)
 GB_CONST(uint, kBinTile, 64);              // pixels per light bin side (4x4 cluster tiles)
 GB_CONST(uint, kClusterListGroup, 64);     // invocations per cluster in cluster_lists
+GB_CONST(uint, kClusterListWords, 4096);   // mask words cluster_lists keeps (131072 visible lights; 16 KiB)
 GB_CONST(uint, kNoCluster, 0xFFFFFFFFu);   // a pixel with no cluster: sky, or the clusters ran out
 GB_CONST(uint, kListOverflow, 0xFFFFFFFFu);  // Cluster.info.z: its list did not fit (shaded from the bin)
 // The cluster grid (--cluster-assign cpu; renderer/core/cluster_grid.h): every cell of a fixed
