@@ -61,26 +61,33 @@ GB_FN vec3 shadeDirectional(vec3 albedo, real specular, vec3 N, vec3 V, vec3 toS
   return albedo * ambient + shadow * blinnPhong(albedo, specular, N, V, toSun, sunColor);
 }
 
-// One point light at eye-space `lightPosition` lighting the surface point P (eye space), with
-// V = normalize(-P) and the light's 1 / radius^2 given: a loop over many lights computes them
-// once. The range test comes first (x >= 1 is exactly where the window falloff is 0), so a
-// light that does not reach P costs a subtraction, a dot product and a compare; one inverse
-// square root makes L.
-GB_FN vec3 shadePointPrepared(vec3 albedo, real specular, vec3 N, vec3 P, vec3 V, vec3 lightPosition,
+// One point light at eye-space `lightPosition` lighting the surface point P (eye space): the
+// Blinn-Phong of blinnPhong in the form a loop over many lights evaluates, with what depends only on
+// the pixel (V = normalize(-P), N.V) and on the light (1 / radius^2) given. The range test comes
+// first (x >= 1 is exactly where the window falloff is 0). L and H are never formed: with
+// t = lightPosition - P, N.L = N.t / |t|; L and V are unit, so |L + V|^2 = 2 + 2 L.V and
+// N.H = (N.L + N.V) / |L + V|. Two inverse square roots, no division.
+GB_FN vec3 shadePointPrepared(vec3 albedo, real specular, vec3 N, vec3 P, vec3 V, real nDotV, vec3 lightPosition,
                               real invRadiusSquared, vec3 color) {
-  vec3 toLight = lightPosition - P;
-  real d2 = dot(toLight, toLight);
+  vec3 t = lightPosition - P;
+  real d2 = dot(t, t);
   real x = d2 * invRadiusSquared;
   if (x >= 1.0) return vec3(0.0);
+  real invLength = inversesqrt(max(d2, 1e-30));
+  real nDotL = dot(N, t) * invLength;
+  if (nDotL <= 0.0) return vec3(0.0);
+  real lDotV = dot(t, V) * invLength;
+  real nDotH = max((nDotL + nDotV) * inversesqrt(max(2.0 + 2.0 * lDotV, 1e-30)), 0.0);
   real w = 1.0 - x;  // pointAttenuation's window, unclamped: 0 <= x < 1 here
-  vec3 L = toLight * inversesqrt(max(d2, 1e-30));
-  return blinnPhong(albedo, specular, N, V, L, color * (w * w));
+  real a = w * w;
+  return color * (albedo * (a * nDotL) + vec3(a * specular * pow32(nDotH)));
 }
 
 // One point light at eye-space `lightPosition` lighting the surface point P (eye space).
 GB_FN vec3 shadePoint(vec3 albedo, real specular, vec3 N, vec3 P, vec3 lightPosition, real radius,
                       vec3 color) {
-  return shadePointPrepared(albedo, specular, N, P, normalize(-P), lightPosition, 1.0 / (radius * radius), color);
+  vec3 V = normalize(-P);
+  return shadePointPrepared(albedo, specular, N, P, V, dot(N, V), lightPosition, 1.0 / (radius * radius), color);
 }
 
 // An unlit surface (KHR_materials_unlit): its albedo (the base colour) as is, in place of

@@ -127,7 +127,6 @@ GB_CONST(uint, kClusterTile, 16);          // pixels; one cluster_bounds workgro
 GB_CONST(uint, kClusterMaxSlices, 256);    // depth slices at most (a tile's slice mask: 8 words)
 GB_CONST(uint, kBinTile, 64);              // pixels per light bin side (4x4 cluster tiles)
 GB_CONST(uint, kClusterListGroup, 64);     // invocations per cluster in cluster_lists
-GB_CONST(uint, kClusterListWords, 4096);   // mask words cluster_lists keeps (131072 visible lights; 16 KiB)
 GB_CONST(uint, kNoCluster, 0xFFFFFFFFu);   // a pixel with no cluster: sky, or the clusters ran out
 GB_CONST(uint, kListOverflow, 0xFFFFFFFFu);  // Cluster.info.z: its list did not fit (shaded from the bin)
 // The cluster grid (--cluster-assign cpu; renderer/core/cluster_grid.h): every cell of a fixed
