@@ -29,7 +29,7 @@ void screenRect(vec4 l, out vec2 lo, out vec2 hi) {
 void main() {
   const uint v = gl_GlobalInvocationID.x;
   if (v >= lightCounts.counts.x) return;
-  const vec4 l = lights[visibleLights[v]].eyePositionRadius;
+  const vec4 l = visiblePositions[v];
   const uint binsX = frame.clusterGrid.z;
   const uint binsY = (uint(frame.viewport.y) + kBinTile - 1u) / kBinTile;
   uvec2 b0 = uvec2(0u), b1 = uvec2(binsX - 1u, binsY - 1u);

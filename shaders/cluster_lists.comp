@@ -30,7 +30,7 @@ void main() {
     for (uint w = w0; w < w1; ++w)
       for (uint bits = binBits[mask + w]; bits != 0u; bits &= bits - 1u) {
         const uint v = w * 32u + uint(findLSB(bits));
-        n += sphereReachesBox(lights[visibleLights[v]].eyePositionRadius, cl.lo.xyz, cl.hi.xyz) ? 1u : 0u;
+        n += sphereReachesBox(visiblePositions[v], cl.lo.xyz, cl.hi.xyz) ? 1u : 0u;
       }
     sCount[t] = n;
     barrier();
@@ -54,8 +54,8 @@ void main() {
       uint at = sOffset + sCount[t];
       for (uint w = w0; w < w1; ++w)
         for (uint bits = binBits[mask + w]; bits != 0u; bits &= bits - 1u) {
-          const uint light = visibleLights[w * 32u + uint(findLSB(bits))];
-          if (sphereReachesBox(lights[light].eyePositionRadius, cl.lo.xyz, cl.hi.xyz)) lightLists[at++] = light;
+          const uint v = w * 32u + uint(findLSB(bits));
+          if (sphereReachesBox(visiblePositions[v], cl.lo.xyz, cl.hi.xyz)) lightLists[at++] = visibleLights[v];
         }
     }
     barrier();  // sCount and sOffset are reused by the next cluster

@@ -12,6 +12,9 @@ layout(set = 0, binding = kBindingMaterials, std430) readonly buffer MaterialBlo
 #endif
 layout(set = 0, binding = kBindingLights, std430) GB_LIGHT_ACCESS buffer LightBlock { PointLight lights[]; };
 layout(set = 0, binding = kBindingVisible, std430) GB_LIGHT_ACCESS buffer VisibleBlock { uint visibleLights[]; };
+// The visible lights' positions and radii in visible-list order: the culling passes walk them by
+// visible-list position with one load, not two dependent ones (visibleLights, then lights).
+layout(set = 0, binding = kBindingVisiblePositions, std430) GB_LIGHT_ACCESS buffer VisiblePositionBlock { vec4 visiblePositions[]; };
 layout(set = 0, binding = kBindingLightCounts, std430) GB_LIGHT_ACCESS buffer LightCountBlock { LightCounts lightCounts; };
 
 layout(constant_id = kSpecEyeDepth) const uint EYE_DEPTH = 1;

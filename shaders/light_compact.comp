@@ -3,7 +3,7 @@
 // Light setup on the GPU, step 2: the visible list in scene-light order (deterministic, whatever
 // order invocations run in). Each workgroup sums the visible counts of the groups before it (at
 // most a few hundred), and every visible light of its group goes to that base + its place in the
-// group. The first workgroup writes the totals (LightCounts: visible, culled, the fairies'
+// group, its position and radius to the same place of visiblePositions. The first workgroup writes the totals (LightCounts: visible, culled, the fairies'
 // indirect draw).
 #define GB_LIGHTS_WRITTEN
 #include "common.glsl"
@@ -29,7 +29,10 @@ void main() {
   }
   const uint base = group == 0u ? 0u : sSum[0].x;
   const uint i = gl_GlobalInvocationID.x;
-  if (i < n && scratch[i] != 0xFFFFFFFFu) visibleLights[base + scratch[i]] = i;
+  if (i < n && scratch[i] != 0xFFFFFFFFu) {
+    visibleLights[base + scratch[i]] = i;
+    visiblePositions[base + scratch[i]] = lights[i].eyePositionRadius;
+  }
   if (group == 0u && local == 0u) {
     const uvec4 total = sSum[0];
     lightCounts.counts = total;  // visible, frustum, empty, sub-pixel

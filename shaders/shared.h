@@ -27,6 +27,7 @@ GB_CONST(uint, kBindingMaterials, 2);  // buffer Material[]
 GB_CONST(uint, kBindingLights, 3);     // buffer PointLight[] (eye space, this frame)
 GB_CONST(uint, kBindingVisible, 4);    // buffer uint[]: indices of the lights drawn this frame
 GB_CONST(uint, kBindingLightCounts, 5); // buffer LightCounts: the visible count (written by the CPU or light_setup)
+GB_CONST(uint, kBindingVisiblePositions, 6);  // buffer vec4[]: the visible lights' eyePositionRadius, in visible-list order
 
 // ---- descriptor set 1: the pass's inputs (push descriptors) ----
 GB_CONST(uint, kSetPass, 1);

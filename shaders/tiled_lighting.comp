@@ -66,9 +66,9 @@ void main() {
     // pixel is dropped; the relative margin covers rounding of the box distance.
     const uint i = base + local;
     if (i < n) {
-      PointLight l = lights[visibleLights[i]];
-      vec3 d = max(max(lo - l.eyePositionRadius.xyz, l.eyePositionRadius.xyz - hi), 0.0);
-      float r = l.eyePositionRadius.w;
+      const vec4 l = visiblePositions[i];
+      vec3 d = max(max(lo - l.xyz, l.xyz - hi), 0.0);
+      float r = l.w;
       if (dot(d, d) < r * r * 1.0001) atomicOr(sList[local >> 5], 1u << (local & 31u));
     }
     barrier();

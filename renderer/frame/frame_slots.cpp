@@ -26,13 +26,14 @@ static double msBetween(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
-// Set 0 of one slot: frame data, draws, lights, visible list, light counts.
+// Set 0 of one slot: frame data, draws, lights, visible list, light counts, visible positions.
 static void writeSceneSet(GpuContext& ctx, const FrameSlot& s, const Buffer& materials) {
   const VkDescriptorBufferInfo bufs[] = {{s.frameBuffer.buffer, 0, VK_WHOLE_SIZE},   {s.drawBuffer.buffer, 0, VK_WHOLE_SIZE},
                                          {materials.buffer, 0, VK_WHOLE_SIZE},       {s.lightBuffer.buffer, 0, VK_WHOLE_SIZE},
-                                         {s.visibleBuffer.buffer, 0, VK_WHOLE_SIZE}, {s.lightCountBuffer.buffer, 0, VK_WHOLE_SIZE}};
+                                         {s.visibleBuffer.buffer, 0, VK_WHOLE_SIZE}, {s.lightCountBuffer.buffer, 0, VK_WHOLE_SIZE},
+                                         {s.visiblePositionBuffer.buffer, 0, VK_WHOLE_SIZE}};
   std::vector<VkWriteDescriptorSet> writes;
-  for (uint32_t b = 0; b < 6; ++b) {
+  for (uint32_t b = 0; b < uint32_t(std::size(bufs)); ++b) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstSet = s.sceneSet;
     w.dstBinding = b;
@@ -47,7 +48,7 @@ static void writeSceneSet(GpuContext& ctx, const FrameSlot& s, const Buffer& mat
 void createFrameSlots(Renderer& r) {
   GpuContext& ctx = *r.ctx;
   VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kFrameSlots},
-                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * kFrameSlots}};
+                                  {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 6 * kFrameSlots}};
   VkDescriptorPoolCreateInfo dpci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   dpci.maxSets = kFrameSlots;
   dpci.poolSizeCount = 2;
@@ -65,6 +66,8 @@ void createFrameSlots(Renderer& r) {
                                  MemoryUse::Upload, "lights");
     s.visibleBuffer = createBuffer(ctx, maxLights * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                    MemoryUse::Upload, "visible_lights");
+    s.visiblePositionBuffer = createBuffer(ctx, maxLights * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                           MemoryUse::Upload, "visible_positions");
     s.lightCountBuffer = createBuffer(ctx, sizeof(gpu::LightCounts),
                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                                       MemoryUse::Upload, "light_counts");
@@ -89,7 +92,7 @@ void createFrameSlots(Renderer& r) {
 void destroyFrameSlots(Renderer& r) {
   GpuContext& ctx = *r.ctx;
   for (FrameSlot& s : r.slots) {
-    for (Buffer* b : {&s.frameBuffer, &s.drawBuffer, &s.lightBuffer, &s.visibleBuffer, &s.lightCountBuffer,
+    for (Buffer* b : {&s.frameBuffer, &s.drawBuffer, &s.lightBuffer, &s.visibleBuffer, &s.lightCountBuffer, &s.visiblePositionBuffer,
                       &s.lightDescStaging, &s.clusterHeader, &s.gridCells, &s.gridLights})
       if (b->buffer) destroyBuffer(ctx, *b);
     for (VkQueryPool q : {s.timestampPool, s.occlusionPool})

@@ -37,6 +37,8 @@ static void uploadCpuLights(Renderer& r) {
     std::memcpy(slot.lightBuffer.mapped, r.lights.eye.data(), r.lights.eye.size() * sizeof(gpu::PointLight));
   if (!r.lights.visible.empty())
     std::memcpy(slot.visibleBuffer.mapped, r.lights.visible.data(), r.lights.visible.size() * sizeof(uint32_t));
+  auto* positions = static_cast<glm::vec4*>(slot.visiblePositionBuffer.mapped);
+  for (size_t v = 0; v < r.lights.visible.size(); ++v) positions[v] = r.lights.eye[r.lights.visible[v]].eyePositionRadius;
   gpu::LightCounts counts{};
   const uint32_t visible = uint32_t(r.lights.visible.size());
   counts.counts = glm::uvec4(visible, r.lights.culledFrustum, r.lights.culledEmpty, r.lights.culledSubpixel);

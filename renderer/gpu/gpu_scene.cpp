@@ -126,9 +126,10 @@ void createDescriptors(Renderer& r) {
       {gpu::kBindingLights, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {gpu::kBindingVisible, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
       {gpu::kBindingLightCounts, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
+      {gpu::kBindingVisiblePositions, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, all, nullptr},
   };
   VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  lci.bindingCount = 6;
+  lci.bindingCount = uint32_t(std::size(sceneBindings));
   lci.pBindings = sceneBindings;
   VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &r.sceneSetLayout));
   setName(ctx, uint64_t(r.sceneSetLayout), VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, "set0.scene");

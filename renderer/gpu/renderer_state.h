@@ -113,7 +113,7 @@ struct FrameSlot {
   VkFence fence = VK_NULL_HANDLE;
   // Set 0's per-frame buffers (written by the CPU before submission, or by light setup on the
   // GPU) and set 0 naming them: the other slot's frame may still read its own.
-  Buffer frameBuffer, drawBuffer, lightBuffer, visibleBuffer, lightCountBuffer;
+  Buffer frameBuffer, drawBuffer, lightBuffer, visibleBuffer, lightCountBuffer, visiblePositionBuffer;
   VkDescriptorSet sceneSet = VK_NULL_HANDLE;
   Buffer lightDescStaging;  // new light descriptions, copied into GpuLights::descs by light_upload
   Buffer clusterHeader;     // the cluster counters copied for the CPU (clustered frames)

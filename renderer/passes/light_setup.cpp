@@ -32,7 +32,9 @@ void addLightSetupPasses(FrameGraph& g, Renderer& r) {
     pushLightSetup(r, pc);
     vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, computePipeline(r, Shader::light_compact_comp));
     vkCmdDispatch(pc.cmd, groups, 1, 1);
-  }, {{r.gpuLights.scratch.buffer, BufferAccess::ComputeRead}, {frameSlot(r).visibleBuffer.buffer, BufferAccess::ComputeReadWrite},
+  }, {{r.gpuLights.scratch.buffer, BufferAccess::ComputeRead}, {frameSlot(r).lightBuffer.buffer, BufferAccess::ComputeRead},
+      {frameSlot(r).visibleBuffer.buffer, BufferAccess::ComputeReadWrite},
+      {frameSlot(r).visiblePositionBuffer.buffer, BufferAccess::ComputeReadWrite},
       {frameSlot(r).lightCountBuffer.buffer, BufferAccess::ComputeReadWrite}});
 }
 

@@ -89,7 +89,8 @@ void pushComputeBuffers(Renderer& r, VkCommandBuffer cmd, std::initializer_list<
 }
 
 std::vector<BufferUse> lightReads(const Renderer& r, BufferAccess access) {
-  return {{frameSlot(r).lightBuffer.buffer, access}, {frameSlot(r).visibleBuffer.buffer, access}, {frameSlot(r).lightCountBuffer.buffer, access}};
+  return {{frameSlot(r).lightBuffer.buffer, access}, {frameSlot(r).visibleBuffer.buffer, access},
+          {frameSlot(r).visiblePositionBuffer.buffer, access}, {frameSlot(r).lightCountBuffer.buffer, access}};
 }
 
 void drawLightVolumes(Renderer& r, VkCommandBuffer cmd, uint32_t first, uint32_t count) {
