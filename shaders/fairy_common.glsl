@@ -14,18 +14,19 @@ struct Sprite {
 // that rounding: under 1% of a sprite's value for sprites a pixel wide, test_fairies.cpp.)
 vec2 spriteScreen(vec4 clip) { return (clip.xy / clip.w * 0.5 + 0.5) * frame.viewport.xy; }
 
-Sprite sprite(PointLight l) {
-  float size = l.eyePositionRadius.w * frame.params.y;
-  vec4 a = frame.clipFromEye * vec4(l.eyePositionRadius.xyz + vec3(-size, -size, 0.0), 1.0);
-  vec4 b = frame.clipFromEye * vec4(l.eyePositionRadius.xyz + vec3(size, size, 0.0), 1.0);
+Sprite spriteAt(vec4 eyePositionRadius, vec3 color) {
+  float size = eyePositionRadius.w * frame.params.y;
+  vec4 a = frame.clipFromEye * vec4(eyePositionRadius.xyz + vec3(-size, -size, 0.0), 1.0);
+  vec4 b = frame.clipFromEye * vec4(eyePositionRadius.xyz + vec3(size, size, 0.0), 1.0);
   Sprite s;
   s.lo = spriteScreen(a);
   s.hi = spriteScreen(b);
   s.depth = a.z / a.w;
   s.drawn = a.w > 0.0 && a.z >= 0.0 && a.z <= a.w;  // the clip volume (no depth clamp)
-  s.color = l.color.rgb;
+  s.color = color;
   return s;
 }
+Sprite sprite(PointLight l) { return spriteAt(l.eyePositionRadius, l.color.rgb); }
 
 // The pixel-centre range a sprite can cover (widened by a pixel), as integer pixel bounds.
 void spritePixels(Sprite s, out ivec2 p0, out ivec2 p1) {
