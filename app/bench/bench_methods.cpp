@@ -116,6 +116,7 @@ void summarize(Renderer& r, const RenderOptions& o, MethodRow& row, const Timed&
   row.passes = passTimings(frames);
   row.overDefault = timingOf(timed.ratios).median;
   row.lightSetup = frames.back().lightSetup;
+  row.gbuffer = frames.back().gbuffer;
   row.clusterAssign = frames.back().clusterAssign;
   if (frames.back().clusters.valid) row.clusters = frames.back().clusters;
   // Forward's count is its visible lights times its shaded fragments; a frame over 3 s is not spent on it.
@@ -139,8 +140,9 @@ void summarize(Renderer& r, const RenderOptions& o, MethodRow& row, const Timed&
 void logRow(const std::string& size, int lights, const MethodRow& row) {
   std::fprintf(stderr, "[methods] %-10s %5d lights %-18s ", size.c_str(), lights, row.method.c_str());
   if (row.measured)
-    std::fprintf(stderr, "%2d fr %9.2f ms (cpu %.2f) x%.2f defaults  work/ideal %s%s\n", row.frames, row.frameMs.median,
-                 row.cpuMs.median, row.overDefault, row.cullingValid ? std::to_string(row.workOverIdeal).c_str() : "-",
+    std::fprintf(stderr, "%2d fr %9.2f ms (cpu %.2f) x%.2f defaults  work/ideal %s  gbuffer %s%s\n", row.frames,
+                 row.frameMs.median, row.cpuMs.median, row.overDefault,
+                 row.cullingValid ? std::to_string(row.workOverIdeal).c_str() : "-", row.gbuffer.c_str(),
                  row.autoPick ? "  [auto]" : "");
   else
     std::fprintf(stderr, "%s\n", row.note.c_str());

@@ -62,6 +62,7 @@ nlohmann::json methodsJson(const BenchReport& r) {
       o["gpu_ms"] = timingJson(m.gpuMs);
       o["cpu_ms"] = timingJson(m.cpuMs);
       o["light_setup"] = m.lightSetup;
+      o["gbuffer"] = m.gbuffer;
       if (!m.clusterAssign.empty()) o["cluster_assign"] = m.clusterAssign;
       o["time_over_default"] = m.overDefault;
       o["lighting_ms"] = lightingMs(m);
@@ -82,13 +83,13 @@ std::string methodsCsv(const BenchReport& r) {
   for (const MethodRow& m : r.methods) collectPassNames(m.passes, passNames);
   std::ostringstream out;
   out.precision(9);
-  out << "scene,method,size,lights,auto_pick,measured,frames,frame_ms,frame_ms_min,frame_ms_max,gpu_ms,cpu_ms,"
+  out << "scene,method,size,lights,auto_pick,measured,gbuffer,frames,frame_ms,frame_ms_min,frame_ms_max,gpu_ms,cpu_ms,"
          "time_over_default,lighting_ms,invocations,ideal_pairs,work_over_ideal";
   for (const std::string& p : passNames) out << "," << p << "_ms";
   out << ",note\n";
   for (const MethodRow& m : r.methods) {
     out << m.scene << "," << m.method << "," << sizeOf(m) << "," << m.options.lights << "," << (m.autoPick ? 1 : 0) << ","
-        << (m.measured ? 1 : 0) << "," << m.frames << "," << m.frameMs.median << "," << m.frameMs.min << ","
+        << (m.measured ? 1 : 0) << "," << m.gbuffer << "," << m.frames << "," << m.frameMs.median << "," << m.frameMs.min << ","
         << m.frameMs.max << "," << m.gpuMs.median << "," << m.cpuMs.median << "," << m.overDefault << ","
         << lightingMs(m) << ",";
     if (m.cullingValid) out << m.invocations << "," << m.idealPairs << "," << m.workOverIdeal;
@@ -171,20 +172,21 @@ std::string methodsMarkdown(const BenchReport& r) {
           "auto-picked method's frame time of the same round. `cpu ms`: the frame's CPU time before submission. "
           "`lighting ms` sums the lighting passes' GPU timestamps (directional_light, light_mask, point_lights, "
           "tiled_lighting, cluster_*, clustered_lighting, forward). `work/ideal`: the lighting work counted in "
-          "coverage_masked / ideal pixel-light pairs, from one more frame with coverage on.\n\n";
+          "coverage_masked / ideal pixel-light pairs, from one more frame with coverage on. `gbuffer`: how the "
+          "G-buffer was filled (raster, or visibility: the visibility pass and gbuffer_resolve; --gbuffer).\n\n";
     for (const std::string& size : sizes) {
-      md << "### " << size << "\n\n| lights | method | frame ms (median [min-max]) | frames | x defaults | cpu ms | "
-            "lighting ms | work/ideal | note |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+      md << "### " << size << "\n\n| lights | method | gbuffer | frame ms (median [min-max]) | frames | x defaults | "
+            "cpu ms | lighting ms | work/ideal | note |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
       for (int lights : lightSet)
         for (const auto& [method, flags] : benchMethods())
           for (const MethodRow& m : r.methods) {
             if (sizeOf(m) != size || m.options.lights != lights || m.method != method) continue;
             md << "| " << lights << " | " << method << (m.autoPick ? " (auto)" : "") << " | ";
             if (!m.measured) {
-              md << "not measured | | | | | | " << m.note << " |\n";
+              md << " | not measured | | | | | | " << m.note << " |\n";
               continue;
             }
-            md << msText(m.frameMs.median) << " [" << msText(m.frameMs.min) << "-" << msText(m.frameMs.max) << "] | "
+            md << m.gbuffer << " | " << msText(m.frameMs.median) << " [" << msText(m.frameMs.min) << "-" << msText(m.frameMs.max) << "] | "
                << m.frames << " | " << num(m.overDefault) << "x | " << msText(m.cpuMs.median) << " | "
                << msText(lightingMs(m)) << " | " << (m.cullingValid ? num(m.workOverIdeal) : "-") << " | " << m.note
                << " |\n";

@@ -122,6 +122,7 @@ struct MethodRow {
   // counted frames' (cpuMs: the CPU's part before submission, FrameStats::cpuMs).
   Timing frameMs, gpuMs, cpuMs;
   std::string lightSetup;        // where the lights were set up ("cpu", "gpu")
+  std::string gbuffer;           // how the G-buffer was filled ("raster", "visibility"; --gbuffer)
   std::string clusterAssign;     // method clustered: where its lights were assigned ("cpu" grid, "gpu")
   ClusterStats clusters;         // method clustered: occupied clusters, list entries
   std::vector<PassTiming> passes;

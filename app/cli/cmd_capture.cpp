@@ -42,20 +42,17 @@ static uint64_t directoryBytes(const std::string& dir) {
   return n;
 }
 
-// Which targets to capture: --targets (each must be computed) or every available one.
-static bool chooseTargets(const std::string& list, const RenderOptions& ro, const Scene& scene,
+// Which targets to capture: --targets (parsed before the device starts; each must be computed
+// under the options as this device runs them, `ran`) or every available one.
+static bool chooseTargets(const std::vector<Target>& listed, const RenderOptions& ran, const Scene& scene,
                           std::vector<Target>& wanted) {
-  if (list.empty()) {
-    wanted = availableTargets(ro, scene.sun.enabled);
+  if (listed.empty()) {
+    wanted = availableTargets(ran, scene.sun.enabled);
     return true;
   }
-  std::string error;
-  if (!parseTargetList(list, wanted, error)) {
-    std::fprintf(stderr, "gblens capture: %s\n", error.c_str());
-    return false;
-  }
+  wanted = listed;
   for (Target t : wanted)
-    if (Absent why = targetAbsence(t, ro, scene.sun.enabled); why != Absent::No) {
+    if (Absent why = targetAbsence(t, ran, scene.sun.enabled); why != Absent::No) {
       std::fprintf(stderr, "gblens capture: --targets %s: %s\n", targetName(t), absentText(why));
       return false;
     }
@@ -117,10 +114,16 @@ static int capture(const CommonOptions& o, const std::string& targets, bool cove
   ro.coverage = coverage;
   Scene scene;
   if (!loadSceneOrReport(o, scene)) return 2;
-  std::vector<Target> wanted;
-  if (!chooseTargets(targets, ro, scene, wanted)) return 2;
-  removeDebrisOf("capture", o.output);
+  std::vector<Target> listed;
+  if (std::string error; !targets.empty() && !parseTargetList(targets, listed, error)) {
+    std::fprintf(stderr, "gblens capture: %s\n", error.c_str());
+    return 2;
+  }
   HeadlessSession session(scene, {o.device, o.validate});
+  // Which targets the frame computes depends on the G-buffer kind this device runs (--gbuffer auto).
+  std::vector<Target> wanted;
+  if (!chooseTargets(listed, session.frameOptions(ro), scene, wanted)) return 2;
+  removeDebrisOf("capture", o.output);
   // An output the device cannot hold is refused here, before any target is allocated.
   if (std::string why = session.tooLarge(ro); !why.empty()) {
     std::fprintf(stderr, "gblens capture: %s\n", why.c_str());

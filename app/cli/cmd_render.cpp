@@ -42,8 +42,10 @@ static int render(const CommonOptions& o, const std::string& viewName) {
   ro.coverage = target == Target::CoverageMasked || target == Target::CoverageFull;
   // Single pass: the G-buffer stays in tile memory (transient) unless this view reads it.
   ro.keepGBuffer = targetInfo(target).role == TargetRole::GBuffer || view.surfaceOnly;
-  if (!viewAvailable(view, target, ro, scene)) return 2;
   HeadlessSession session(scene, {o.device, o.validate});
+  // Which targets the frame computes depends on the G-buffer kind this device runs (--gbuffer auto).
+  const RenderOptions ran = session.frameOptions(ro);
+  if (!viewAvailable(view, target, ran, scene)) return 2;
   // An output the device cannot hold is refused here, before any target is allocated.
   if (std::string why = session.tooLarge(ro); !why.empty()) {
     std::fprintf(stderr, "gblens render: %s\n", why.c_str());
@@ -56,7 +58,7 @@ static int render(const CommonOptions& o, const std::string& viewName) {
   FrameRequest request;
   request.readback = {target};
   // Normals and positions are drawn where a surface is: the eye depth says where.
-  if (view.surfaceOnly && target != Target::Depth && targetAbsence(Target::Depth, ro, scene.sun.enabled) == Absent::No)
+  if (view.surfaceOnly && target != Target::Depth && targetAbsence(Target::Depth, ran, scene.sun.enabled) == Absent::No)
     request.readback.push_back(Target::Depth);
   std::vector<FrameStats> frames;
   // Frames before the last in flight (the CPU records one while the GPU runs the one before),

@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 
 #include <functional>
+#include <optional>
 
 #include "app/python/docstrings.h"
 #include "app/python/python.h"
@@ -49,18 +50,28 @@ Scene sceneFrom(const std::string& source, const RenderOptions& o) {
   return scene;
 }
 
-// What `gblens capture` reads back: every available target, or the ones named.
-std::vector<Target> targetsFrom(const py::object& names, const RenderOptions& o, const Scene& scene) {
-  if (names.is_none()) return availableTargets(o, scene.sun.enabled);
+// The targets named (None: every available one), parsed before the device starts.
+std::optional<std::vector<Target>> targetsNamed(const py::object& names) {
+  if (names.is_none()) return std::nullopt;
   std::vector<Target> out;
   for (const py::handle& n : names) {
     Target t;
     const std::string name = py::str(n);
     if (!parseTarget(name, t)) failArgument("targets: unknown target \"" + name + "\"");
-    if (Absent why = targetAbsence(t, o, scene.sun.enabled); why != Absent::No) failArgument("targets: " + name + ": " + absentText(why));
     out.push_back(t);
   }
   return out;
+}
+
+// What `gblens capture` reads back: every available target, or the ones named, each computed
+// under the options as the device runs them (`ran`: --gbuffer auto resolved).
+std::vector<Target> targetsFrom(const std::optional<std::vector<Target>>& named, const RenderOptions& ran,
+                                const Scene& scene) {
+  if (!named) return availableTargets(ran, scene.sun.enabled);
+  for (Target t : *named)
+    if (Absent why = targetAbsence(t, ran, scene.sun.enabled); why != Absent::No)
+      failArgument(std::string("targets: ") + targetName(t) + ": " + absentText(why));
+  return *named;
 }
 
 // A headless session on `scene` for `work` (without the GIL); an output too large for the device and
@@ -87,9 +98,10 @@ FramePtr render(const std::string& source, const py::object& targetNames, const 
   RenderOptions o = optionsFrom(kwargs);
   o.coverage = coverage;
   const Scene scene = sceneFrom(source, o);
-  const std::vector<Target> wanted = targetsFrom(targetNames, o, scene);
+  const std::optional<std::vector<Target>> named = targetsNamed(targetNames);
   auto h = std::make_shared<FrameHandle>();
   withSession(scene, device, o, [&](HeadlessSession& session) {
+    const std::vector<Target> wanted = targetsFrom(named, session.frameOptions(o), scene);
     h->meta.stats = session.render(o, captureRequest(wanted, o));
     h->capture.frame = session.snapshot(wanted);
     for (Absent& a : h->capture.frame.absences)

@@ -118,7 +118,7 @@ void renderIfNeeded(Viewer& v, const RenderOptions& full, bool animating, bool r
   v.renderedCamera = v.cameraVersion;
   v.renderedLights = v.lightsVersion;
   v.rangesStale = true;
-  m.rendered = o;
+  m.rendered = v.renderer.options;  // o as it ran: --gbuffer auto resolved (frameOptions)
   v.fullOptions = full;
   m.fullSize = {full.width, full.height};
   m.reducedBy = n;

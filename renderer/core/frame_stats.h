@@ -41,6 +41,9 @@ struct ClusterStats {
 struct FrameStats {
   // The lighting method that ran (never "auto") and why: "auto: clustered on a GPU (...)".
   std::string method, methodReason;
+  // How the G-buffer was filled ("raster" or "visibility", never "auto", --gbuffer) and why:
+  // "auto: visibility on a GPU (...)".
+  std::string gbuffer, gbufferReason;
   // Where the lights were set up ("cpu" or "gpu", --light-setup) and why.
   std::string lightSetup, lightSetupReason;
   // Method clustered: where its lights were assigned ("gpu": occupied clusters, "cpu": the cluster

@@ -40,8 +40,8 @@ static const Names<ClusterAssign, 3> kClusterAssign = {
     {{ClusterAssign::Auto, "auto"}, {ClusterAssign::Gpu, "gpu"}, {ClusterAssign::Cpu, "cpu"}}};
 static const Names<TonemapPass, 3> kTonemapPass = {
     {{TonemapPass::Auto, "auto"}, {TonemapPass::Raster, "raster"}, {TonemapPass::Compute, "compute"}}};
-static const Names<GBufferKind, 2> kGBufferKind = {
-    {{GBufferKind::Raster, "raster"}, {GBufferKind::Visibility, "visibility"}}};
+static const Names<GBufferKind, 3> kGBufferKind = {
+    {{GBufferKind::Auto, "auto"}, {GBufferKind::Raster, "raster"}, {GBufferKind::Visibility, "visibility"}}};
 static const Names<PositionSource, 3> kPosition = {
     {{PositionSource::Depth, "depth"}, {PositionSource::Rgba16f, "rgba16f"}, {PositionSource::Rgba32f, "rgba32f"}}};
 static const Names<CameraMotion, 2> kCameraMotion = {{{CameraMotion::Off, "off"}, {CameraMotion::Orbit, "orbit"}}};
@@ -262,7 +262,8 @@ const std::vector<Entry>& entries() {
              kTonemapPass, &RenderOptions::tonemapPass),
       choice("gbuffer",
              "how the G-buffer is filled: raster (materials shaded where they are drawn) | visibility (the raster pass "
-             "writes depth and a visibility id, gbuffer_resolve rebuilds the same targets in compute)",
+             "writes depth and a visibility id, gbuffer_resolve rebuilds the same targets in compute) | auto (the one "
+             "measured faster on this kind of device: raster on a CPU device, visibility on a GPU)",
              kGBufferKind, &RenderOptions::gbuffer),
       onOff("sky", "skybox", &RenderOptions::sky),
       real("exposure", "tone-mapping exposure", &RenderOptions::exposure, 0.0, 1e6),

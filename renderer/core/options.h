@@ -66,8 +66,10 @@ enum class TonemapPass { Auto, Raster, Compute };
 // How the G-buffer is filled: the raster pass shades every material where it draws (raster), or
 // the raster pass writes only depth and a visibility id (draw + triangle, visibility.h) and a
 // compute pass, gbuffer_resolve, rebuilds each pixel's surface from its triangle and writes the
-// same G-buffer targets (Burns and Hunt, JCGT 2013). No auto yet: it would have to be measured.
-enum class GBufferKind { Raster, Visibility };
+// same G-buffer targets (Burns and Hunt, JCGT 2013). Auto: the kind measured faster on the kind
+// of device (chooseGBuffer, method_choice.h: raster on a CPU device, visibility on a GPU), raster
+// where visibility cannot run; the renderer resolves it before anything reads it (frameOptions).
+enum class GBufferKind { Raster, Visibility, Auto };
 // Camera motion over time (renderer/core/camera_motion.h): none, or the scene camera orbiting the
 // scene's centre about the world up axis (10 degrees per second) while rising and falling a little.
 enum class CameraMotion { Off, Orbit };
@@ -91,7 +93,7 @@ struct RenderOptions {
   GBufferClear gbufferClear = GBufferClear::Auto;
   ClusterAssign clusterAssign = ClusterAssign::Auto;
   TonemapPass tonemapPass = TonemapPass::Auto;
-  GBufferKind gbuffer = GBufferKind::Raster;
+  GBufferKind gbuffer = GBufferKind::Auto;
   bool reversedZ = false;
   // Octahedral 16+16-bit normals and fp32 accumulation: `gblens bench` found each dominating the
   // former defaults (rgba16f normals; fp16 accumulation) on lavapipe: same or lower frame time,

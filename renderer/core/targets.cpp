@@ -175,6 +175,8 @@ Absent targetAbsence(Target t, const RenderOptions& o, bool sceneHasSun) {
       if (transientGBuffer(o)) return Absent::Transient;
       break;
     case Target::Visibility:
+      // Auto here is a frame whose options no renderer resolved (frameOptions): an import's, or a
+      // manifest's from before --gbuffer. Neither holds a visibility target.
       if (o.gbuffer != GBufferKind::Visibility) return Absent::RasterGBuffer;
       if (forward) return Absent::ForwardNoGBuffer;
       if (!visibilityFrame(o)) return Absent::RasterGBuffer;  // the single-pass path rasterizes its G-buffer

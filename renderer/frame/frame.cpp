@@ -6,7 +6,7 @@
 // light-assignment passes and one shading pass (all compute), or, with the cluster grid filled on
 // the CPU (--cluster-assign cpu), by one full-screen raster pass; method forward replaces the
 // G-buffer and lighting by one forward pass. The method is r.method (auto resolved by
-// chooseMethod). Every pass that does not run is listed with the reason (see --stats).
+// chooseMethod), the G-buffer kind r.options.gbuffer (auto resolved by frameGBuffer). Every pass that does not run is listed with the reason (see --stats).
 #include "renderer/frame/frame.h"
 
 #include <algorithm>
@@ -89,7 +89,7 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
 
   // ── 2. G-buffer (deferred, tiled) or the forward pass ──────────────────────────────────────
   // --gbuffer visibility: the visibility pass draws depth/stencil and the id, gbuffer_resolve
-  // (compute) writes every pixel of the G-buffer's targets from it (r.visibility: visibilityOn).
+  // (compute) writes every pixel of the G-buffer's targets from it (r.visibility: frameGBuffer).
   if (method == Method::Forward)
     g.skipPass("clear_gbuffer", "method forward: no G-buffer");
   else if (r.visibility)
@@ -99,8 +99,8 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   else
     addClearGBufferPass(g, r);  // compute: zero the G-buffer's colour targets through storage views
   if (!r.visibility) {
-    g.skipPass("visibility", r.visibilityReason);
-    g.skipPass("gbuffer_resolve", r.visibilityReason);
+    g.skipPass("visibility", r.gbufferReason);
+    g.skipPass("gbuffer_resolve", r.gbufferReason);
   }
   if (method == Method::Forward) {
     g.skipPass("gbuffer", "method forward: materials are shaded where they are drawn (no G-buffer)");

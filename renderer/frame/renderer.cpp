@@ -185,15 +185,19 @@ static CullingStats cullingStats(Renderer& r, const FrameStats& st) {
 // The frame's CPU part, into the current slot (its previous frame retired), up to submission:
 // method, targets, per-frame data, the graph, recording. The slot's FrameStats get what the CPU
 // knows; retireFrame adds what the GPU measured and counted.
-static FrameRequest recordFrame(Renderer& r, const RenderOptions& options, const FrameRequest& userRequest) {
+static FrameRequest recordFrame(Renderer& r, const RenderOptions& asked, const FrameRequest& userRequest) {
   const auto start = std::chrono::steady_clock::now();
-  const MethodChoice choice =
-      chooseMethod(options, r.ctx->isCpu ? DeviceKind::Cpu : DeviceKind::Gpu, r.scene->lights.size());
-  GB_ASSERT(choice.method != Method::Auto && (options.method != Method::Auto || choice.method != Method::Forward));
+  const MethodChoice choice = chooseMethod(asked, r.ctx->isCpu ? DeviceKind::Cpu : DeviceKind::Gpu, r.scene->lights.size());
+  GB_ASSERT(choice.method != Method::Auto && (asked.method != Method::Auto || choice.method != Method::Forward));
+  // The G-buffer kind resolved before anything reads it (targets, absences, the snapshot's options).
+  const GBufferChoice gbuffer = frameGBuffer(r, asked);
+  RenderOptions options = asked;
+  options.gbuffer = gbuffer.gbuffer;
   const FrameRequest request = completeRequest(userRequest, options, choice.method);
   ensureTargets(r, options);
   r.computeClear = computeClears(*r.ctx, options, choice.method, r.clearReason);
-  r.visibility = visibilityOn(r, options, choice.method, r.visibilityReason);
+  r.visibility = visibilityFrame(options);
+  r.gbufferReason = gbuffer.reason;
   r.computeToneMap = computeToneMap(*r.ctx, options, choice.method, r.toneMapReason);
   // Transient images have no memory to copy from, and forward frames never write the G-buffer.
   for (Target t : request.readback) {
@@ -229,6 +233,8 @@ static FrameRequest recordFrame(Renderer& r, const RenderOptions& options, const
   st.gpuMs = -1.0;
   st.method = name(r.method);
   st.methodReason = r.methodReason;
+  st.gbuffer = name(options.gbuffer);
+  st.gbufferReason = r.gbufferReason;
   st.lightSetup = r.lightsOnGpu ? "gpu" : "cpu";
   st.lightSetupReason = r.lightSetupReason;
   cpuLightCounts(r, st);
@@ -262,7 +268,7 @@ void submitFrame(Renderer& r, const RenderOptions& options) {
   // Coverage frames count per pixel for read-backs and culling statistics: renderFrame's.
   GB_ASSERT(!options.coverage);
   // New targets: the frames in flight finish on the old ones first (their sky counts belong there).
-  if (!targetsCurrent(r, options)) retireFrames(r);
+  if (!targetsCurrent(r, frameOptions(r, options))) retireFrames(r);
   nextFrameSlot(r);  // waits for the frame that last used this slot
   recordFrame(r, options, {});
 }

@@ -49,14 +49,22 @@ const Scene& HeadlessSession::scene() const {
 }
 
 std::string HeadlessSession::tooLarge(const RenderOptions& o, uint64_t readback) const {
-  return frameTooLarge(*ctx_, scene(), o, readback);
+  return frameTooLarge(*ctx_, scene(), frameOptions(o), readback);
 }
 std::string HeadlessSession::refused(const RenderOptions& o) const {
   GB_ASSERT(sceneInUse_);
   return visibilityRefusal(*renderer_, o);
 }
-uint64_t HeadlessSession::targetBytes(const RenderOptions& o) const { return frameMemory(*ctx_, scene(), o).targets; }
-uint64_t HeadlessSession::readbackBytes(const RenderOptions& o) const { return frameMemory(*ctx_, scene(), o).readback; }
+uint64_t HeadlessSession::targetBytes(const RenderOptions& o) const {
+  return frameMemory(*ctx_, scene(), frameOptions(o)).targets;
+}
+uint64_t HeadlessSession::readbackBytes(const RenderOptions& o) const {
+  return frameMemory(*ctx_, scene(), frameOptions(o)).readback;
+}
+RenderOptions HeadlessSession::frameOptions(const RenderOptions& o) const {
+  GB_ASSERT(sceneInUse_);
+  return gb::frameOptions(*renderer_, o);
+}
 
 const FrameStats& HeadlessSession::render(const RenderOptions& o, const FrameRequest& request) {
   GB_ASSERT(sceneInUse_);
@@ -92,7 +100,7 @@ FrameSnapshot HeadlessSession::snapshot(const std::vector<Target>& fresh) const 
 
 std::vector<Target> HeadlessSession::readableTargets(const RenderOptions& o) const {
   GB_ASSERT(sceneInUse_);
-  return gb::readableTargets(*renderer_, o);
+  return gb::readableTargets(*renderer_, frameOptions(o));
 }
 const std::string& HeadlessSession::deviceName() const { return ctx_->deviceName; }
 const std::string& HeadlessSession::driverName() const { return ctx_->driverName; }

@@ -44,6 +44,10 @@ class HeadlessSession {
   // saying why (renderer/gpu/visibility_scene.h; the renderer would rasterize the G-buffer instead).
   std::string refused(const RenderOptions& options) const;
   uint64_t readbackBytes(const RenderOptions& options) const;
+  // The options as a frame of them runs here: --gbuffer auto resolved for this device and scene
+  // (frameOptions, renderer/gpu/render_targets.h), for what a command checks before rendering
+  // (which targets exist). The calls here that take options resolve them themselves.
+  RenderOptions frameOptions(const RenderOptions& options) const;
 
   // One frame; the request's targets are read back.
   const FrameStats& render(const RenderOptions& options, const FrameRequest& request = {});

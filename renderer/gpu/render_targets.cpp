@@ -29,12 +29,22 @@ bool computeClears(const GpuContext& ctx, const RenderOptions& o, Method ran, st
   return reason = "auto: a GPU device, method " + std::string(name(ran)), true;
 }
 
-bool visibilityOn(const Renderer& r, const RenderOptions& o, Method ran, std::string& reason) {
-  if (o.gbuffer == GBufferKind::Raster) return reason = "gbuffer raster: the G-buffer pass shades every material", false;
-  if (ran == Method::Forward) return reason = "method forward: no G-buffer", false;
-  const std::string refused = visibilityRefusal(r, o);
-  if (!refused.empty()) return reason = refused + " (the G-buffer pass ran instead)", false;
-  return reason = "--gbuffer visibility", true;
+GBufferChoice frameGBuffer(const Renderer& r, const RenderOptions& o) {
+  const GBufferChoice choice = chooseGBuffer(o, r.ctx->isCpu ? DeviceKind::Cpu : DeviceKind::Gpu);
+  if (choice.gbuffer != GBufferKind::Visibility) return choice;
+  RenderOptions visibility = o;
+  visibility.gbuffer = GBufferKind::Visibility;
+  const std::string refused = visibilityRefusal(r, visibility);
+  if (refused.empty()) return choice;
+  if (o.gbuffer == GBufferKind::Auto) return {GBufferKind::Raster, "auto: raster (" + refused + ")"};
+  // Method forward draws no G-buffer at all: nothing ran instead.
+  return {GBufferKind::Raster, refused + (o.method == Method::Forward ? "" : " (the G-buffer pass ran instead)")};
+}
+
+RenderOptions frameOptions(const Renderer& r, const RenderOptions& o) {
+  RenderOptions ran = o;
+  ran.gbuffer = frameGBuffer(r, o).gbuffer;
+  return ran;
 }
 
 bool finalStorageView(const GpuContext& ctx, const RenderOptions& o) {

@@ -3,6 +3,7 @@
 #pragma once
 #include <vector>
 
+#include "renderer/core/method_choice.h"
 #include "renderer/gpu/renderer_state.h"
 
 namespace gb {
@@ -20,10 +21,15 @@ bool targetTransient(Target t, const RenderOptions& o);
 bool clearViews(const GpuContext& ctx, const RenderOptions& o);
 bool computeClears(const GpuContext& ctx, const RenderOptions& o, Method ran, std::string& reason);
 
-// This frame fills the G-buffer through the visibility id (--gbuffer visibility: the visibility
-// pass, then gbuffer_resolve), or the G-buffer pass shades it; `reason` says why, for the pass list.
-// A refused frame (visibilityRefusal) runs the G-buffer pass, the refusal as its reason.
-bool visibilityOn(const Renderer& r, const RenderOptions& o, Method ran, std::string& reason);
+// How a frame of these options fills its G-buffer on this renderer (never auto) and why, for the
+// frame's stats and pass list: chooseGBuffer for the kind of device, then raster where the scene or
+// the device refuses visibility (visibilityRefusal; a named --gbuffer visibility the commands
+// refuse first, the viewer gets the G-buffer pass with the refusal as its reason).
+GBufferChoice frameGBuffer(const Renderer& r, const RenderOptions& o);
+// The options with the G-buffer kind that runs (frameGBuffer) in place of the one asked: what
+// the frame records (Renderer::options, snapshots, captures) and what its targets are made for,
+// so that nothing after it reads --gbuffer auto.
+RenderOptions frameOptions(const Renderer& r, const RenderOptions& o);
 
 // The tone map runs in compute (tonemap_compute) rather than as a raster pass (TonemapPass):
 // forced, or auto on a GPU device for tiled and clustered; `reason` says why, for the frame's pass
@@ -36,7 +42,8 @@ bool computeToneMap(const GpuContext& ctx, const RenderOptions& o, Method ran, s
 bool primitiveIdOn(const GpuContext& ctx, const RenderOptions& o);
 
 // The targets a frame of these options can read back on this renderer's device (targetAbsence()
-// is Absent::No; primitive_id also needs gl_PrimitiveID).
+// is Absent::No; primitive_id also needs gl_PrimitiveID). `o` as the frame records them
+// (frameOptions; an uploaded frame's own): --gbuffer auto reads as raster here.
 std::vector<Target> readableTargets(const Renderer& r, const RenderOptions& o);
 
 // The request of a capture of `targets`: those are read back and nothing else; culling statistics

@@ -159,7 +159,9 @@ struct Renderer {
   VkPipelineLayout resolveLayout = VK_NULL_HANDLE;
 
   // Frame resources.
-  RenderOptions options;  // the options the targets were created for (as asked: method may be auto)
+  // The options the targets were created for: as asked, but the G-buffer kind that runs
+  // (frameOptions: never --gbuffer auto); method may be auto.
+  RenderOptions options;
   Method method = Method::Deferred;  // the method this frame runs (options.method resolved by chooseMethod)
   std::string methodReason;
   ClusterBuffers clusters;
@@ -172,7 +174,7 @@ struct Renderer {
   bool computeClear = false;        // clear_gbuffer clears the G-buffer (not the render pass)
   std::string clearReason;
   bool visibility = false;          // this frame fills the G-buffer through the visibility id (--gbuffer)
-  std::string visibilityReason;     // why it does or does not
+  std::string gbufferReason;        // why it does or does not (frameGBuffer)
   bool computeToneMap = false;      // tonemap_compute writes final (not the raster tonemap pass)
   std::string toneMapReason;
   std::string fairyReason;

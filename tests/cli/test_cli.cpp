@@ -1,5 +1,6 @@
 // The command line as a user or CI job meets it: exit codes for mistakes, the --stats JSON
-// shape every later tool reads (frame_ms, passes with skip reasons, culling), and the PNG written.
+// shape every later tool reads (frame_ms, passes with skip reasons, culling, what auto picked),
+// and the PNG written.
 #include "tests/support/test_paths.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -7,6 +8,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace gb {
@@ -78,6 +80,29 @@ TEST(Cli, RenderStatsReportEveryPassAndTheCullingEfficiency) {
   EXPECT_NEAR(c["work_over_ideal"].get<double>(),
               double(c["invocations"].get<uint64_t>()) / double(c["ideal_pairs"].get<uint64_t>()), 1e-9);
   std::filesystem::remove(png);
+}
+
+// The default G-buffer is --gbuffer auto; on lavapipe (a CPU device) it rasterizes, and the stats
+// say so with the auto reason, as they do for --method auto. The capture records the kind that ran
+// (what its targets' absences follow), the --stats options the one asked for.
+TEST(Cli, TheDefaultGBufferIsAutoAndRasterOnACpuDevice) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "gblens_cli_gbuffer_auto";
+  std::filesystem::remove_all(dir);
+  CliRun r = runGblens("capture --validate --size 96x54 --lights 8 --stats -o " + dir.string());
+  ASSERT_EQ(r.status, 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["options"]["gbuffer"], "auto");
+  EXPECT_EQ(j["gbuffer"]["ran"], "raster");
+  const std::string why = j["gbuffer"]["why"];
+  EXPECT_EQ(why.rfind("auto: raster on a CPU device (lavapipe", 0), 0u) << why;
+  for (const auto& p : j["passes"])
+    if (p["name"] == "visibility" || p["name"] == "gbuffer_resolve") EXPECT_EQ(p["reason"], why) << p["name"];
+  std::ifstream mf(dir / "manifest.json");
+  const nlohmann::json m = nlohmann::json::parse(mf);
+  EXPECT_EQ(m["options"]["gbuffer"], "raster");
+  EXPECT_EQ(m["stats"]["gbuffer"]["ran"], "raster");
+  EXPECT_EQ(m["stats"]["gbuffer"]["why"], why);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace gb

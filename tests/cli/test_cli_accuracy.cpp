@@ -114,7 +114,7 @@ TEST(CliAccuracy, BenchWritesJsonCsvAndPlotsWithOneRowPerVariant) {
 
 // The method comparison: the five methods at every light count, in bench.json, methods.csv and
 // bench.md, with their ratios to the defaults (the method auto picks, marked) taken in the same
-// rounds (the defaults' own is 1),
+// rounds (the defaults' own is 1), the G-buffer kind each ran,
 // culling work from the coverage counts (forward's: every visible light at every fragment it
 // shaded, far above the ideal pairs), and forward left out above --methods-forward-max.
 TEST(CliAccuracy, BenchComparesTheMethodsSideBySide) {
@@ -144,6 +144,7 @@ TEST(CliAccuracy, BenchComparesTheMethodsSideBySide) {
     EXPECT_EQ(m["bursts"].get<int>(), 2);  // one per round
     EXPECT_EQ(m["frames"].get<int>(), 4);  // each burst's but its first
     EXPECT_EQ(m["frames_in_flight"].get<int>(), 2);
+    EXPECT_EQ(m["gbuffer"], "raster") << method;  // --gbuffer auto on a CPU device
     EXPECT_GT(m["frame_ms"]["median"].get<double>(), 0.0);
     if (m["auto_pick"].get<bool>()) {
       EXPECT_EQ(m["time_over_default"].get<double>(), 1.0);
@@ -175,6 +176,7 @@ TEST(CliAccuracy, BenchComparesTheMethodsSideBySide) {
   std::ifstream md(std::filesystem::path(dir) / "bench.md");
   std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("## Lighting methods"), std::string::npos);
+  EXPECT_NE(text.find("| lights | method | gbuffer |"), std::string::npos);
   EXPECT_NE(text.find("Culling efficiency vs lights"), std::string::npos);
   std::ifstream img(std::filesystem::path(dir) / "methods_vs_lights.png", std::ios::binary);
   std::string head(4, '\0');

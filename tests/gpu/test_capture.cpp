@@ -85,8 +85,10 @@ TEST_F(GpuTest, CaptureRoundTripIsBitExactInEveryStorageFormat) {
       EXPECT_EQ(a.height, b.height);
       EXPECT_TRUE(a.data == b.data) << "variant " << v << ": " << a.name << " differs after the round trip";
     }
-    // Everything else the probe uses comes back exactly too.
-    EXPECT_EQ(optionsJson(c.frame.options), optionsJson(o));
+    // Everything else the probe uses comes back exactly too; the options with the G-buffer kind
+    // that ran (--gbuffer auto resolved before the frame, frameOptions).
+    EXPECT_NE(c.frame.options.gbuffer, GBufferKind::Auto);
+    EXPECT_EQ(optionsJson(c.frame.options), optionsJson(frameOptions(renderer(scene), o)));
     for (auto [x, y] : {std::pair{&live.camera.clipFromEye, &c.frame.camera.clipFromEye},
                         {&live.camera.eyeFromClip, &c.frame.camera.eyeFromClip},
                         {&live.camera.eyeFromWorld, &c.frame.camera.eyeFromWorld},

@@ -106,6 +106,7 @@ nlohmann::json frameStatsJson(const FrameStats& st) {
                       {"record_ms", st.recordMs},
                       {"render_pass_groups", {{"compiled", st.groupsCompiled}, {"reused", st.groupsReused}}},
                       {"method", {{"ran", st.method}, {"why", st.methodReason}}},
+                      {"gbuffer", {{"ran", st.gbuffer}, {"why", st.gbufferReason}}},
                       {"light_setup", {{"ran", st.lightSetup}, {"why", st.lightSetupReason}}},
                       {"passes", passes}};
   if (!st.clusterAssign.empty()) j["cluster_assign"] = {{"ran", st.clusterAssign}, {"why", st.clusterAssignReason}};
