@@ -60,7 +60,7 @@ GB_CONST(uint, kLightSetupGroup, 256);      // lights per light_setup workgroup
 // Fairy sprites splatted in compute (fairy_bins, fairy_splat): the light bins' layout, own masks.
 GB_CONST(uint, kBindingFairyBits, 18);      // uint[]: per light bin, a bit per visible-list position
 GB_CONST(uint, kBindingClearTarget, 19);    // clear_gbuffer: a G-buffer target's unsigned storage view
-GB_CONST(uint, kFairyListMax, 768);         // sprites a 16x16 tile places in shared memory, 32 B each (more: read from the bin)
+GB_CONST(uint, kFairyListMax, 1024);        // sprites a 16x16 tile lists in shared memory (more: read from the bin)
 
 // ---- gbuffer_resolve (--gbuffer visibility): its own set 1 (pushed) and set 2 (the scene, written once) ----
 GB_CONST(uint, kResolveBindingShadowMap, 0);    // shadow_map with compare sampler
