@@ -17,7 +17,7 @@ layout(set = 1, binding = kBindingDepth) uniform sampler2D hardwareDepth;
 
 const uint kGroup = kTileSize * kTileSize;
 shared uint sCount[kGroup];
-shared uint sList[kFairyListMax];
+shared uint sList[kFairyListMax];  // the listed sprites' light indices, in visible-list order
 shared uint sTotal;
 
 bool reachesTile(Sprite s, ivec2 t0, ivec2 t1) {
@@ -65,7 +65,7 @@ void main() {
     for (uint w = w0; w < w1; ++w)
       for (uint bits = fairyBits[mask + w]; bits != 0u; bits &= bits - 1u) {
         const uint v = w * 32u + uint(findLSB(bits));
-        if (reachesTile(spriteAt(visiblePositions[v], vec3(0.0)), t0, t1)) sList[at++] = v;
+        if (reachesTile(spriteAt(visiblePositions[v], vec3(0.0)), t0, t1)) sList[at++] = visibleLights[v];
       }
   }
   barrier();
@@ -75,7 +75,7 @@ void main() {
   const float depth = texelFetch(hardwareDepth, p, 0).r;
   vec4 c = imageLoad(hdr, p);
   if (listed) {
-    for (uint i = 0u; i < sTotal; ++i) blend(c, sprite(lights[visibleLights[sList[i]]]), centre, depth);
+    for (uint i = 0u; i < sTotal; ++i) blend(c, sprite(lights[sList[i]]), centre, depth);
   } else {
     for (uint w = 0u; w < words; ++w)
       for (uint bits = fairyBits[mask + w]; bits != 0u; bits &= bits - 1u)
