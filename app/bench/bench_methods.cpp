@@ -160,10 +160,14 @@ std::vector<PassTiming> passTimings(const std::vector<FrameStats>& frames) {
     p.name = last.passes[i].name;
     p.skipped = last.passes[i].skipped;
     p.reason = last.passes[i].reason;
-    std::vector<double> ms;
+    std::vector<double> ms, before;
     for (const FrameStats& f : frames)
-      if (i < f.passes.size() && f.passes[i].name == p.name && !f.passes[i].skipped) ms.push_back(f.passes[i].ms);
+      if (i < f.passes.size() && f.passes[i].name == p.name && !f.passes[i].skipped) {
+        ms.push_back(f.passes[i].ms);
+        before.push_back(f.passes[i].beforeMs);
+      }
     p.ms = timingOf(ms);
+    p.beforeMs = timingOf(before);
     out.push_back(p);
   }
   return out;

@@ -143,8 +143,10 @@ nlohmann::json passesJson(const std::vector<PassTiming>& passes) {
     nlohmann::json pj = {{"name", p.name}, {"skipped", p.skipped}};
     if (p.skipped)
       pj["reason"] = p.reason;
-    else
+    else {
       pj["ms"] = timingJson(p.ms);
+      pj["before_ms"] = timingJson(p.beforeMs);
+    }
     out.push_back(pj);
   }
   return out;

@@ -35,6 +35,7 @@ struct PassTiming {
   bool skipped = false;
   std::string reason;
   Timing ms;
+  Timing beforeMs;  // PassStat::beforeMs: the gap between the pass before it and this one
 };
 
 // An interleaved A/B (bench_run.cpp): frames of the defaults and of a variant alternating, the

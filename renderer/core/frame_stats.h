@@ -21,6 +21,9 @@ struct PassStat {
   bool skipped = false;
   std::string reason;
   double ms = 0.0;  // GPU time (-1 for a pass that ran until its frame in flight is retired)
+  // GPU time from the end of the pass that ran before it to its start: its barriers and what else
+  // the queue did there (0 for the frame's first pass).
+  double beforeMs = 0.0;
 };
 
 struct CullingStats {

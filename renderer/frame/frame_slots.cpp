@@ -134,12 +134,14 @@ static void passTimes(GpuContext& ctx, const FrameSlot& s, FrameStats& st) {
   st.gpuMs = 0.0;
   if (!ctx.features.timestamps) return;
   const double period = ctx.properties.limits.timestampPeriod * 1e-6;
-  double first = 1e300, last = -1e300;
+  double first = 1e300, last = -1e300, end = -1.0;
   for (size_t i = 0; i < st.passes.size(); ++i) {
     if (st.passes[i].skipped) continue;
     const double t0 = double(queryResult(ctx, s.timestampPool, uint32_t(2 * i))) * period;
     const double t1 = double(queryResult(ctx, s.timestampPool, uint32_t(2 * i + 1))) * period;
     st.passes[i].ms = t1 - t0;
+    st.passes[i].beforeMs = end < 0.0 ? 0.0 : t0 - end;
+    end = t1;
     first = std::min(first, t0);
     last = std::max(last, t1);
   }

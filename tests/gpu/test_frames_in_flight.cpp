@@ -95,9 +95,14 @@ TEST_F(GpuTest, ABurstInFlightEndsOnTheSynchronousFrameWithCompleteStatistics) {
       ASSERT_EQ(g.passes.size(), e.passes.size()) << what;
       if (!ctx().features.timestamps) continue;
       EXPECT_GT(g.gpuMs, 0.0) << what << " frame " << i;
+      double spans = 0.0;  // the passes and the gaps before them tile the frame's GPU time
       for (const PassStat& p : g.passes) {
-        if (!p.skipped) EXPECT_GE(p.ms, 0.0) << what << " frame " << i << " " << p.name << ": no GPU time";
+        if (p.skipped) continue;
+        EXPECT_GE(p.ms, 0.0) << what << " frame " << i << " " << p.name << ": no GPU time";
+        EXPECT_GE(p.beforeMs, 0.0) << what << " frame " << i << " " << p.name << ": starts before the pass before it ends";
+        spans += p.beforeMs + p.ms;
       }
+      EXPECT_NEAR(spans, g.gpuMs, 1e-6 * g.gpuMs + 1e-9) << what << " frame " << i;
     }
     EXPECT_GT(got.back().lightsVisible, 0u) << what;
     EXPECT_EQ(got.back().lightsCulledEmpty, uint32_t(frames)) << what;
