@@ -92,12 +92,10 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   // (compute) writes every pixel of the G-buffer's targets from it (r.visibility: frameGBuffer).
   if (method == Method::Forward)
     g.skipPass("clear_gbuffer", "method forward: no G-buffer");
-  else if (r.visibility)
-    g.skipPass("clear_gbuffer", "gbuffer visibility: gbuffer_resolve writes every pixel (0 where no geometry)");
   else if (!r.computeClear)
-    g.skipPass("clear_gbuffer", r.clearReason);  // the gbuffer render pass clears its targets
+    g.skipPass("clear_gbuffer", r.clearReason);  // the gbuffer (or visibility) render pass clears its targets
   else
-    addClearGBufferPass(g, r);  // compute: zero the G-buffer's colour targets through storage views
+    addClearGBufferPass(g, r);  // compute: zero the G-buffer's colour targets (or the visibility id) through storage views
   if (!r.visibility) {
     g.skipPass("visibility", r.gbufferReason);
     g.skipPass("gbuffer_resolve", r.gbufferReason);

@@ -7,8 +7,10 @@
 namespace gb {
 
 void addVisibilityPass(FrameGraph& g, Renderer& r) {
-  Use id{Target::Visibility, Access::ColorWrite, true};
-  id.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // 0: no geometry
+  // 0: no geometry. Cleared by clear_gbuffer in compute where r.computeClear (a render-pass clear
+  // of the id cost 0.58 ms at 4K on an H200, the raster back end's speed; docs/perf-gpu.md).
+  Use id{Target::Visibility, Access::ColorWrite, !r.computeClear};
+  id.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
   Use depth{Target::DepthStencil, Access::DepthStencilWrite, true};
   depth.clearValue.depthStencil = {farDepth(r), 0};
   g.addPass("visibility", {id, depth}, [&r](PassContext& pc) {

@@ -1,6 +1,7 @@
 // The G-buffer cleared in compute (clear_gbuffer, --gbuffer-clear compute) leaves every target
 // bit for bit as the render pass's clear does, also where the previous frame drew geometry that
-// this one does not: the stale texels must be zeroed, not loaded.
+// this one does not: the stale texels must be zeroed, not loaded. Under --gbuffer visibility the
+// cleared target is the visibility id (0: no geometry), which gbuffer_resolve reads.
 #include "renderer/core/camera.h"
 #include "renderer/scene/builtin.h"
 #include "tests/gpu/gpu_test.h"
@@ -17,10 +18,18 @@ TEST_F(GpuTest, ComputeClearsLeaveTheGBufferAsTheRenderPassClearDoes) {
   o.lights = 16;
   o.primitiveId = true;               // a 4-byte uint target
   o.position = PositionSource::Rgba32f;  // a 16-byte float target
-  const std::vector<Target> targets = {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth,
-                                       Target::Position,       Target::Hdr,          Target::Final};
-  for (Method m : {Method::Deferred, Method::Clustered}) {
+  struct Case {
+    Method method;
+    GBufferKind gbuffer;
+  };
+  for (const Case k : {Case{Method::Deferred, GBufferKind::Raster}, Case{Method::Clustered, GBufferKind::Raster},
+                       Case{Method::Clustered, GBufferKind::Visibility}}) {
+    const Method m = k.method;
+    std::vector<Target> targets = {Target::AlbedoSpecular, Target::NormalShadow, Target::Depth,
+                                   Target::Position,       Target::Hdr,          Target::Final};
+    if (k.gbuffer == GBufferKind::Visibility) targets.push_back(Target::Visibility);
     o.method = m;
+    o.gbuffer = k.gbuffer;
     o.camera = 0;
     o.gbufferClear = GBufferClear::RenderPass;
     EXPECT_FALSE(passRan(render(scene, o, {targets}), "clear_gbuffer"));
@@ -33,7 +42,9 @@ TEST_F(GpuTest, ComputeClearsLeaveTheGBufferAsTheRenderPassClearDoes) {
     for (uint32_t y = 0; y < o.height; ++y)
       for (uint32_t x = 0; x < o.width; ++x) ASSERT_GT(full.value(x, y, 0), 0.0) << "camera 1 sees geometry everywhere";
     o.camera = 0;
-    EXPECT_TRUE(passRan(render(scene, o, {targets}), "clear_gbuffer")) << name(m);
+    const FrameStats& st = render(scene, o, {targets});
+    EXPECT_TRUE(passRan(st, "clear_gbuffer")) << name(m);
+    EXPECT_EQ(passRan(st, "visibility"), k.gbuffer == GBufferKind::Visibility) << name(m);
     size_t sky = 0;
     for (size_t i = 0; i < targets.size(); ++i) {
       const CpuImage& got = renderer(scene).readback[size_t(targets[i])];
