@@ -38,11 +38,12 @@ struct TargetImage {
   double value(uint32_t x, uint32_t y, uint32_t c) const;
 };
 
-struct FrameSnapshot {
+// What a frame is besides its layout and pixels: a copy of it is cheap (decodeSamples in
+// views/analysis/probe.cpp builds 1x1 frames from it without copying the targets' planes).
+struct FrameContext {
   RenderOptions options;                  // what the frame was rendered with (imports: the defaults, size)
   Method method = Method::Auto;           // the lighting method that ran (Auto: not known, e.g. a capture)
   bool clusterGrid = false;               // method clustered ran with the CPU's cluster grid (--cluster-assign)
-  Layout layout;                          // what its targets hold (nativeLayout(options) for gblens's frames)
   Camera camera;                          // camera matrices (double), size, near/far, reversed Z
   glm::dmat4 lightClipFromWorld{1.0};     // the sun's shadow-map clip space
   Sun sun;                                // world space
@@ -56,10 +57,7 @@ struct FrameSnapshot {
   // The per-light mask's layers: [layerStarts[k], layerStarts[k + 1]) of the visible list share a
   // stencil bit (renderer/frame/light_culling.cpp). Empty: each stencil-class light has its own bit.
   std::vector<uint32_t> layerStarts;
-  // One image and one reason per layout target, in layout order.
-  std::vector<TargetImage> images;
   uint32_t sampleShown = 0;  // multisampled targets: the sample their images are (views/analysis/sample_views.h)
-  std::vector<Absent> absences;  // why a target is not here (Absent::No when present)
   // The point lights' descriptions (world space, animation) when the frame came from a scene.
   std::vector<PointLightDesc> lightDescs;
   // The lighting passes' uniform data as uploaded (live frames; captures rebuild what they need).
@@ -72,6 +70,13 @@ struct FrameSnapshot {
   std::map<std::string, std::string> unknown;
   // With unknown["options"]: the options (table names) the source or the user stated.
   std::vector<std::string> statedOptions;
+};
+
+struct FrameSnapshot : FrameContext {
+  Layout layout;                          // what its targets hold (nativeLayout(options) for gblens's frames)
+  // One image and one reason per layout target, in layout order.
+  std::vector<TargetImage> images;
+  std::vector<Absent> absences;  // why a target is not here (Absent::No when present)
 
   // Sets the layout: one empty image per target, each absent as "not captured".
   void setLayout(Layout l);

@@ -11,6 +11,7 @@
 #include "renderer/scene/mesh_builder.h"
 #include "shaders/shading.h"
 #include "views/analysis/probe_internal.h"
+#include "views/analysis/sample_views.h"
 
 namespace gb {
 
@@ -41,16 +42,8 @@ static ProbeTarget rawTarget(const FrameSnapshot& f, uint32_t t, uint32_t x, uin
     for (uint32_t c = 0; c < s.channelCount(); ++c) ch.push_back({s.channels[c], s.raw(x - ti.x0, y - ti.y0, c), s.value(x - ti.x0, y - ti.y0, c)});
   }
   if (p.samples.size() != ti.samples.size()) p.samples.clear();
-  // As the spread views (sample_views.h): integer channels count their distinct values less one.
-  for (size_t c = 0; !p.samples.empty() && c < p.channels.size(); ++c) {
-    double lo = INFINITY, hi = -INFINITY;
-    std::vector<uint32_t> distinct;
-    for (const auto& ch : p.samples) {
-      lo = std::min(lo, ch[c].value), hi = std::max(hi, ch[c].value);
-      if (std::find(distinct.begin(), distinct.end(), ch[c].bits) == distinct.end()) distinct.push_back(ch[c].bits);
-    }
-    p.spread.push_back(ti.image.encoding == Encoding::Uint ? double(distinct.size() - 1) : hi - lo);
-  }
+  // The spread views' rule (sample_views.h), per channel.
+  for (uint32_t c = 0; !p.samples.empty() && c < p.channels.size(); ++c) p.spread.push_back(channelSpread(ti, x, y, c));
   return p;
 }
 
@@ -61,7 +54,10 @@ static void decodeSamples(const FrameSnapshot& f, uint32_t x, uint32_t y, PixelD
   for (const TargetImage& ti : f.images)
     if (ti.contains(x, y) && ti.samples.size() > 1) samples = std::max(samples, ti.samples.size());
   if (samples < 2) return;
-  FrameSnapshot one = f;
+  FrameSnapshot one;
+  static_cast<FrameContext&>(one) = f;  // everything but the planes, which the windows below replace
+  one.setLayout(f.layout);
+  one.absences = f.absences;
   for (size_t k = 0; k < samples; ++k) {
     for (size_t t = 0; t < f.images.size(); ++t) {
       const TargetImage& ti = f.images[t];

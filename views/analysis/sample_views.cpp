@@ -44,27 +44,29 @@ std::vector<ViewDef> spreadViews(const FrameSnapshot& f) {
   return out;
 }
 
+double channelSpread(const TargetImage& t, uint32_t x, uint32_t y, uint32_t c) {
+  const uint32_t lx = x - t.x0, ly = y - t.y0;
+  if (t.image.encoding == Encoding::Uint) {
+    std::vector<uint32_t> distinct;  // ids: how many values, not their distance
+    for (const CpuImage& s : t.samples)
+      if (const uint32_t v = s.raw(lx, ly, c); std::find(distinct.begin(), distinct.end(), v) == distinct.end())
+        distinct.push_back(v);
+    return double(distinct.size()) - 1.0;
+  }
+  double lo = INFINITY, hi = -INFINITY;
+  for (const CpuImage& s : t.samples)
+    if (const double v = s.value(lx, ly, c); std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  return hi >= lo ? hi - lo : NAN;
+}
+
 std::optional<std::array<double, 4>> sampleSpread(const FrameSnapshot& f, uint32_t target, uint32_t x, uint32_t y) {
   const TargetImage& t = f.images[target];
   if (t.samples.size() < 2 || !t.contains(x, y)) return std::nullopt;
-  const uint32_t lx = x - t.x0, ly = y - t.y0;
+  for (const CpuImage& s : t.samples)
+    if (s.width != t.image.width || s.height != t.image.height) return std::nullopt;
   double spread = -1.0;
-  for (uint32_t c = 0; c < t.samples[0].channelCount(); ++c) {
-    double lo = INFINITY, hi = -INFINITY;
-    std::vector<uint32_t> distinct;  // integer channels (ids): how many values, not their distance
-    for (const CpuImage& s : t.samples) {
-      if (s.width != t.image.width || s.height != t.image.height) return std::nullopt;
-      if (s.encoding == Encoding::Uint) {
-        const uint32_t v = s.raw(lx, ly, c);
-        if (std::find(distinct.begin(), distinct.end(), v) == distinct.end()) distinct.push_back(v);
-        continue;
-      }
-      const double v = s.value(lx, ly, c);
-      if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
-    }
-    if (!distinct.empty()) spread = std::max(spread, double(distinct.size() - 1));
-    if (hi >= lo) spread = std::max(spread, hi - lo);
-  }
+  for (uint32_t c = 0; c < t.samples[0].channelCount(); ++c)
+    if (const double s = channelSpread(t, x, y, c); std::isfinite(s)) spread = std::max(spread, s);
   if (spread < 0.0) return std::nullopt;
   return std::array<double, 4>{spread, 0.0, 0.0, 0.0};
 }

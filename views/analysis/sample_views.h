@@ -21,5 +21,10 @@ void showSample(FrameSnapshot& f, size_t k);
 // empty where no sample holds a number.
 std::vector<ViewDef> spreadViews(const FrameSnapshot& f);
 std::optional<std::array<double, 4>> sampleSpread(const FrameSnapshot& f, uint32_t target, uint32_t x, uint32_t y);
+// The spread of channel c of a multisampled target's samples at target texel (x, y), every plane
+// of the image's size: for an integer channel (ids) how many distinct values less one, else the
+// largest finite value less the smallest (NaN where no sample is finite). The probe shows it per
+// channel; the spread view is the largest over the channels.
+double channelSpread(const TargetImage& t, uint32_t x, uint32_t y, uint32_t c);
 
 }  // namespace gb
