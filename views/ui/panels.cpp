@@ -467,14 +467,15 @@ static void statusBar(ViewerModel& m, double w, double h) {
   if (m.attach.on) {
     line = attachStatusLine(m);
   } else if (m.source == FrameSource::Live && m.reducedBy > 1) {
-    std::snprintf(buf, sizeof buf, "%s | %s | %ux%u: reduced 1/%d while moving (full %ux%u when input stops) | %s | %s | %.1f ms",
+    // The frame time before the reasons: they are long, and the line is cut at the window's edge.
+    std::snprintf(buf, sizeof buf, "%s | %s | %ux%u: reduced 1/%d while moving (full %ux%u when input stops) | %.1f ms | %s | %s",
                   m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height, m.reducedBy,
-                  m.fullSize.x, m.fullSize.y, m.stats.methodReason.c_str(), m.stats.gbufferReason.c_str(), m.stats.frameMs);
+                  m.fullSize.x, m.fullSize.y, m.stats.frameMs, m.stats.methodReason.c_str(), m.stats.gbufferReason.c_str());
     line = buf;
   } else if (m.source == FrameSource::Live) {
-    std::snprintf(buf, sizeof buf, "%s | %s | %ux%u | %s | %s | %.1f ms", m.sceneName.c_str(), m.deviceName.c_str(),
-                  m.rendered.width, m.rendered.height, m.stats.methodReason.c_str(), m.stats.gbufferReason.c_str(),
-                  m.stats.frameMs);
+    std::snprintf(buf, sizeof buf, "%s | %s | %ux%u | %.1f ms | %s | %s", m.sceneName.c_str(), m.deviceName.c_str(),
+                  m.rendered.width, m.rendered.height, m.stats.frameMs, m.stats.methodReason.c_str(),
+                  m.stats.gbufferReason.c_str());
     line = buf;
   } else {
     std::snprintf(buf, sizeof buf, "%s | %s | %ux%u", m.sceneName.c_str(), m.deviceName.c_str(), m.rendered.width, m.rendered.height);
