@@ -24,7 +24,7 @@ shared vec4 sLight[kGroup];  // xyz eye position, w 1 / radius^2
 shared vec4 sColor[kGroup];
 shared uint sNext;           // the smallest cluster index still to shade in the workgroup
 
-vec3 shadeBin(const Surface s, const vec3 V, const float nDotV, const ivec2 p, inout uint evaluated) {
+vec3 shadeBin(const Surface s, const vec3 V, const ivec2 p, inout uint evaluated) {
   // No list: every light of the pixel's bin (its bits cover every surface point of the bin).
   vec3 c = vec3(0.0);
   const uint tile = (uint(p.y) / kClusterTile) * frame.clusterGrid.x + uint(p.x) / kClusterTile;
@@ -34,7 +34,7 @@ vec3 shadeBin(const Surface s, const vec3 V, const float nDotV, const ivec2 p, i
     for (uint bits = binBits[mask + w]; bits != 0u; bits &= bits - 1u) {
       const PointLight l = lights[visibleLights[w * 32u + uint(findLSB(bits))]];
       const float r = l.eyePositionRadius.w;
-      c += shadePointPrepared(s.albedo, s.specular, s.N, s.P, V, nDotV, l.eyePositionRadius.xyz, 1.0 / (r * r), l.color.rgb);
+      c += shadePointPrepared(s.albedo, s.specular, s.N, s.P, V, l.eyePositionRadius.xyz, 1.0 / (r * r), l.color.rgb);
       ++evaluated;
     }
   return c;
@@ -50,7 +50,6 @@ void main() {
   if (inside) s = readSurface(vec2(p) + 0.5);
   const bool lit = s.geometry && !s.unlit;
   const vec3 V = normalize(-s.P);
-  const float nDotV = dot(s.N, V);
   vec3 c = vec3(0.0);
   uint evaluated = 0u;
   if (s.geometry && s.unlit) c = shadeUnlit(s.albedo);  // KHR_materials_unlit: no light changes its colour
@@ -84,7 +83,7 @@ void main() {
       barrier();
       if (mine)  // a subgroup without this cluster's pixels skips the loop as a whole
         for (uint i = 0u; i < n; ++i)
-          c += shadePointPrepared(s.albedo, s.specular, s.N, s.P, V, nDotV, sLight[i].xyz, sLight[i].w, sColor[i].rgb);
+          c += shadePointPrepared(s.albedo, s.specular, s.N, s.P, V, sLight[i].xyz, sLight[i].w, sColor[i].rgb);
       barrier();
     }
     if (mine) {
@@ -93,7 +92,7 @@ void main() {
     }
     barrier();  // sNext is reset by the next round
   }
-  if (fromBin) c += shadeBin(s, V, nDotV, p, evaluated);
+  if (fromBin) c += shadeBin(s, V, p, evaluated);
 
   if (!inside) return;
   // No geometry: the sky (the skybox pass is skipped for this method), else nothing.
