@@ -4,7 +4,7 @@
 
 #include <cstring>
 
-#include "renderer/vk/check.h"
+#include "renderer/readback/buffer_probe.h"
 
 namespace gb {
 
@@ -25,21 +25,8 @@ std::vector<glm::vec4> encodeNormalsOnDevice(Renderer& r, const std::vector<glm:
   for (size_t i = 0; i < count; ++i) v[i] = glm::vec4(i < normals.size() ? normals[i] : glm::vec3(0, 0, 1), 0.0f);
   std::vector<SpecConstant> spec = {{gpu::kSpecNormalEncoding, code},
                                     {gpu::kSpecOctPrecise, encoding == OctEncoding::Precise ? 1u : 0u}};
-  VkPipeline pipeline = createComputePipeline(ctx, Shader::codec_probe_comp, spec, r.pipelineLayout);
-  submitOnce(ctx, [&](VkCommandBuffer cmd) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    VkDescriptorBufferInfo buffer{values.buffer, 0, VK_WHOLE_SIZE};
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstBinding = gpu::kBindingTileLights;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w.pBufferInfo = &buffer;
-    ctx.cmdPushDescriptorSet(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.pipelineLayout, gpu::kSetPass, 1, &w);
-    vkCmdDispatch(cmd, uint32_t(groups), 1, 1);
-    hostReadBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-  });
+  runBufferProbe(r, Shader::codec_probe_comp, spec, values, uint32_t(groups));
   std::vector<glm::vec4> out(v, v + normals.size());
-  vkDestroyPipeline(ctx.device, pipeline, nullptr);
   destroyBuffer(ctx, values);
   return out;
 }
