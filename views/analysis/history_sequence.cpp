@@ -26,12 +26,8 @@ bool historyTargets(const Layout& l, const std::string& named, std::vector<Histo
 
 bool checkHistorySequence(const Sequence& seq, const HistoryOptions& o, HistoryReport& out, std::string& error) {
   out = HistoryReport{};
-  if (seq.frames.size() < 2) {
-    error = seq.dir + ": history needs two frames at least (the sequence has " + std::to_string(seq.frames.size()) + ")";
-    return false;
-  }
   bool anyDecided = false;
-  const bool ok = walkFramePairs(seq, [&](size_t i, const TemporalFrame* before, const TemporalFrame* prev,
+  const bool ok = walkFramePairs(seq, "history", [&](size_t i, const TemporalFrame* before, const TemporalFrame* prev,
                                           const TemporalFrame& cur, std::string& why) {
     if (!prev) {
       if (!historyTargets(cur.frame->layout, o.history, out.histories, why)) {

@@ -26,7 +26,11 @@ bool loadTemporalFrame(const Sequence& seq, size_t i, LoadedFrame& out, std::str
   return true;
 }
 
-bool walkFramePairs(const Sequence& seq, const FramePairVisit& visit, std::string& error) {
+bool walkFramePairs(const Sequence& seq, const char* what, const FramePairVisit& visit, std::string& error) {
+  if (seq.frames.size() < 2) {
+    error = seq.dir + ": " + what + " needs two frames at least (the sequence has " + std::to_string(seq.frames.size()) + ")";
+    return false;
+  }
   std::deque<LoadedFrame> window;
   for (size_t i = 0; i < seq.frames.size(); ++i) {
     LoadedFrame l;
@@ -46,12 +50,8 @@ void addFindingOnce(std::vector<std::string>& list, const std::string& s) {
 
 bool checkMotionSequence(const Sequence& seq, const MotionSequenceOptions& o, MotionReport& out, std::string& error) {
   out = MotionReport{};
-  if (seq.frames.size() < 2) {
-    error = seq.dir + ": motion needs two frames at least (the sequence has " + std::to_string(seq.frames.size()) + ")";
-    return false;
-  }
   bool anyDecided = false;
-  const bool ok = walkFramePairs(seq, [&](size_t i, const TemporalFrame* before, const TemporalFrame* prev,
+  const bool ok = walkFramePairs(seq, "motion", [&](size_t i, const TemporalFrame* before, const TemporalFrame* prev,
                                           const TemporalFrame& cur, std::string& why) {
     if (!prev) {
       const Layout& layout = cur.frame->layout;

@@ -24,9 +24,10 @@ bool loadTemporalFrame(const Sequence& seq, size_t i, LoadedFrame& out, std::str
 
 // Walks a sequence's frames in order with three in memory: visit(i, nullptr, nullptr, frame 0), then
 // visit(i, N-2 or null, N-1, N) for every later frame; stops at a load failure or a visit's false.
+// A sequence of fewer than two frames is refused first, naming `what` needs pairs ("motion").
 using FramePairVisit = std::function<bool(size_t i, const TemporalFrame* before, const TemporalFrame* previous,
                                           const TemporalFrame& current, std::string& error)>;
-bool walkFramePairs(const Sequence& seq, const FramePairVisit& visit, std::string& error);
+bool walkFramePairs(const Sequence& seq, const char* what, const FramePairVisit& visit, std::string& error);
 // Appends `s` to `list` unless it is there (a sequence's findings, each once).
 void addFindingOnce(std::vector<std::string>& list, const std::string& s);
 
