@@ -126,11 +126,7 @@ static FlipImage flipInput(const CpuImage& decoded) {
 
 // A FLIP map in magma (flip.h magmaColor, as the FLIP tool draws it) as a decoded colour image.
 static CpuImage flipImage(const std::vector<float>& errors, uint32_t width, uint32_t height) {
-  CpuImage img;
-  img.name = "flip";
-  img.width = width, img.height = height;
-  img.channels = {"0", "1", "2", "3"};
-  img.data.resize(size_t(width) * height * 16);
+  CpuImage img = decodedViewImage("flip", width, height);
   float* out = reinterpret_cast<float*>(img.data.data());
   for (size_t i = 0; i < errors.size(); ++i) {
     uint8_t c[3];

@@ -14,6 +14,7 @@
 #include "app/viewer/viewer.h"
 #include "renderer/frame/session.h"
 #include "views/analysis/accuracy.h"
+#include "views/analysis/visualize.h"
 #include "views/capture/exr.h"
 #include "views/capture/image_io.h"
 
@@ -105,11 +106,7 @@ static ViewDef mapView(const std::string& name, Visual visual) {
 
 // An error map (sRGB colours) as a decoded view image: linear RGBA floats.
 static CpuImage decodedErrorMap(const Rgba8Image& map, const std::string& name) {
-  CpuImage img;
-  img.name = name;
-  img.width = map.width, img.height = map.height;
-  img.channels = {"0", "1", "2", "3"};
-  img.data.resize(size_t(map.width) * map.height * 16);
+  CpuImage img = decodedViewImage(name, map.width, map.height);
   float* out = reinterpret_cast<float*>(img.data.data());
   for (size_t i = 0; i < size_t(map.width) * map.height; ++i)
     for (int c = 0; c < 4; ++c) out[i * 4 + c] = c < 3 ? float(srgbToLinear(map.pixels[i * 4 + c] / 255.0)) : 1.0f;

@@ -64,11 +64,7 @@ void appendTemporalViews(const Viewer& v, std::vector<ViewDef>& views) {
 
 // An f32 map of `n` channels as a decoded view image (RGBA32F); NaN -> the empty texel (nothing there).
 CpuImage decodedFloats(const CpuImage& map, uint32_t n, const std::string& name) {
-  CpuImage img;
-  img.name = name;
-  img.width = map.width, img.height = map.height;
-  img.channels = {"0", "1", "2", "3"};
-  img.data.resize(size_t(map.width) * map.height * 16);
+  CpuImage img = decodedViewImage(name, map.width, map.height);
   uint32_t* out = reinterpret_cast<uint32_t*>(img.data.data());
   for (uint32_t y = 0; y < map.height; ++y)
     for (uint32_t x = 0; x < map.width; ++x) {

@@ -79,17 +79,22 @@ std::optional<std::array<double, 4>> viewValue(const FrameSnapshot& f, const Vie
   return out;
 }
 
-CpuImage viewImage(const FrameSnapshot& f, const ViewDef& view) {
+CpuImage decodedViewImage(const std::string& name, uint32_t width, uint32_t height, bool integer) {
   CpuImage out;
+  out.width = width;
+  out.height = height;
+  out.name = name;
+  out.type = integer ? PixelType::U32 : PixelType::F32;
+  out.encoding = integer ? Encoding::Uint : Encoding::Float;
+  out.channels = integer ? std::vector<std::string>{name} : std::vector<std::string>{"0", "1", "2", "3"};
+  out.data.assign(size_t(width) * height * out.texelBytes(), 0);
+  return out;
+}
+
+CpuImage viewImage(const FrameSnapshot& f, const ViewDef& view) {
   const TargetImage* ti = layoutImage(f, view.target);
-  if (!ti || !ti->present()) return out;
-  out.width = ti->image.width;
-  out.height = ti->image.height;
-  out.name = view.name;
-  out.type = view.integer ? PixelType::U32 : PixelType::F32;
-  out.encoding = view.integer ? Encoding::Uint : Encoding::Float;
-  out.channels = view.integer ? std::vector<std::string>{view.name} : std::vector<std::string>{"0", "1", "2", "3"};
-  out.data.assign(size_t(out.width) * out.height * out.texelBytes(), 0);
+  if (!ti || !ti->present()) return {};
+  CpuImage out = decodedViewImage(view.name, ti->image.width, ti->image.height, view.integer);
   const uint32_t n = out.channelCount();
   // Every texel is a function of the read-only frame alone: rows on every core (a stream's frame is
   // decoded while the viewer waits to show it).

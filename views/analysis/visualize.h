@@ -40,6 +40,9 @@ std::optional<std::array<double, 4>> viewValue(const FrameSnapshot& f, const Vie
 // views, of the target's size; texels without a value hold gpu::kEmptyTexel in every channel, decoded
 // NaNs are stored as one quiet NaN. Empty when the frame does not hold the target.
 CpuImage viewImage(const FrameSnapshot& f, const ViewDef& view);
+// A decoded view image of this size in viewImage's format, zero-filled: RGBA32F in channels "0".."3",
+// or one R32_UINT channel named `name` for an integer view (the viewer's own maps use it too).
+CpuImage decodedViewImage(const std::string& name, uint32_t width, uint32_t height, bool integer = false);
 
 // How settings turn a view into the shader's mapping (gpu::kViewMap*), component mask and flags.
 struct ViewMapping {
