@@ -55,7 +55,7 @@ bool checkHistorySequence(const Sequence& seq, const HistoryOptions& o, HistoryR
     return true;
   }, error);
   if (!ok) return false;
-  out.verdict = !out.findings.empty() ? "differs" : anyDecided ? "agrees" : "undecided";
+  out.verdict = sequenceVerdict(out.findings, anyDecided);
   return true;
 }
 

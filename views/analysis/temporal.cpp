@@ -44,6 +44,10 @@ bool walkFramePairs(const Sequence& seq, const char* what, const FramePairVisit&
   return true;
 }
 
+const char* sequenceVerdict(const std::vector<std::string>& findings, bool anyDecided) {
+  return !findings.empty() ? "differs" : anyDecided ? "agrees" : "undecided";
+}
+
 void addFindingOnce(std::vector<std::string>& list, const std::string& s) {
   if (std::find(list.begin(), list.end(), s) == list.end()) list.push_back(s);
 }
@@ -78,7 +82,7 @@ bool checkMotionSequence(const Sequence& seq, const MotionSequenceOptions& o, Mo
     return true;
   }, error);
   if (!ok) return false;
-  out.verdict = !out.findings.empty() ? "differs" : anyDecided ? "agrees" : "undecided";
+  out.verdict = sequenceVerdict(out.findings, anyDecided);
   return true;
 }
 

@@ -28,6 +28,8 @@ bool loadTemporalFrame(const Sequence& seq, size_t i, LoadedFrame& out, std::str
 using FramePairVisit = std::function<bool(size_t i, const TemporalFrame* before, const TemporalFrame* previous,
                                           const TemporalFrame& current, std::string& error)>;
 bool walkFramePairs(const Sequence& seq, const char* what, const FramePairVisit& visit, std::string& error);
+// A sequence check's verdict: "differs" with findings, else "agrees" when some pair decided, else "undecided".
+const char* sequenceVerdict(const std::vector<std::string>& findings, bool anyDecided);
 // Appends `s` to `list` unless it is there (a sequence's findings, each once).
 void addFindingOnce(std::vector<std::string>& list, const std::string& s);
 
