@@ -91,6 +91,8 @@ TEST(Cli, TheDefaultGBufferIsAutoAndRasterOnACpuDevice) {
   CliRun r = runGblens("capture --validate --size 96x54 --lights 8 --stats -o " + dir.string());
   ASSERT_EQ(r.status, 0);
   const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["format"], "gblens-frame-stats");
+  EXPECT_EQ(j["version"], 2);  // docs/json.md: the version that added gbuffer
   EXPECT_EQ(j["options"]["gbuffer"], "auto");
   EXPECT_EQ(j["gbuffer"]["ran"], "raster");
   const std::string why = j["gbuffer"]["why"];
