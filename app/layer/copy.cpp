@@ -138,6 +138,41 @@ void transitions(const Looked& l, const FormatInfo& f, std::vector<VkImageMemory
   }
 }
 
+// The staged ring's copy of a single-sampled attachment into its tile image (ring.h TileImage): image
+// to image on the application's queue, each aspect from the layout the pass left it in; the tile
+// left in TRANSFER_SRC for the download on the layer's queue (staging.cpp recordDownload).
+void tileCopies(DeviceData& d, const Looked& l, const FormatInfo& f, Copy& c, VkImage tile, std::vector<Region>& regions,
+                std::vector<VkImageMemoryBarrier>& there, std::vector<VkImageMemoryBarrier>& back) {
+  c.tile = tile;
+  ++d.tileCopies;
+  c.tileDepth = f.depth;
+  c.tileStencil = f.stencil;
+  auto copy = [&](VkImageAspectFlags aspect) {
+    const VkImageLayout was = aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? l.a->stencilLayout : l.a->layout;
+    Region r{l.a->image, was == VK_IMAGE_LAYOUT_GENERAL ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+             VK_NULL_HANDLE, {}, tile, {}};
+    r.samples.srcSubresource = {aspect, l.viewMip, l.viewLayer, 1};
+    r.samples.dstSubresource = {aspect, 0, 0, 1};
+    r.samples.extent = {c.width, c.height, 1};
+    regions.push_back(r);
+  };
+  if (f.depth || !f.stencil) copy(f.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT);
+  if (f.stencil) copy(VK_IMAGE_ASPECT_STENCIL_BIT);
+  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;  // its last contents (an earlier frame's, downloaded) are not needed
+  b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = tile;
+  b.subresourceRange = {aspects(f), 0, 1, 0, 1};
+  there.push_back(b);
+  b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;  // then the download's read, after the fence
+  b.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+  b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  back.push_back(b);
+}
+
 }  // namespace
 
 namespace {
@@ -306,6 +341,10 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
       b.image = r.stage;
       b.subresourceRange = {aspect, 0, 1, 0, 1};
       there.push_back(b);
+    } else if (VkImage tile = tilesWanted(d) && c.buffer->hostBuffer
+                                  ? ringTile(d, *c.buffer, c.offset, c.format, c.width, c.height)
+                                  : VK_NULL_HANDLE) {
+      tileCopies(d, *l, f, c, tile, regions, there, back);
     } else {
       if (f.depth || !f.stencil) region(f.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, c.offset);
       if (f.stencil && f.depth) region(VK_IMAGE_ASPECT_STENCIL_BIT, c.stencilOffset);

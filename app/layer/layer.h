@@ -369,6 +369,7 @@ struct DeviceData {
   VkDeviceSize hostAlignment = 4096;
   std::atomic<uint32_t> nextRingId{0};
   std::atomic<uint64_t> ringBytes{0};
+  std::atomic<uint64_t> tileCopies{0};  // attachments copied image to image into the staged ring's tiles
   VkDeviceSize ringWanted = 0;                // a slot's buffer the layer's thread is to make (growRing)
   std::atomic<uint64_t> droppedForRing{0};    // recordings that went without copies meanwhile
   std::atomic<uint64_t> threadAllocNs{0};     // the thread's time making ring buffers (not the application's)
@@ -474,6 +475,10 @@ std::vector<Hook> queueHooks();  // vkGetDeviceQueue(2): each queue's family
 // ---- the staged ring (staging.cpp)
 bool planStaging(InstanceData& inst, VkPhysicalDevice physical, const VkDeviceCreateInfo& info, QueuePlan& plan);
 void startStaging(DeviceData& d, const QueuePlan& plan);  // after vkCreateDevice
+// The staged ring's tile images (ring.h TileImage): wanted on this device, and the one of a copy at
+// `offset` of `ring` (made or remade to fit; null: none could be made, the copy uses the buffer).
+bool tilesWanted(const DeviceData& d);
+VkImage ringTile(DeviceData& d, RingBuffer& ring, VkDeviceSize offset, VkFormat format, uint32_t width, uint32_t height);
 bool stagedOwnQueue(const DeviceData& d);                 // downloads on the layer's queue (else in its batch)
 // The commands that bring `copies` from the device-local ring to its host buffers, and the layer's
 // thread doing so on its own queue (waits for it).

@@ -198,6 +198,11 @@ RingBuffer::~RingBuffer() {
   if (memory) d.vk.FreeMemory(d.device, memory, nullptr);  // unmaps it, unless it is a shared file's
   if (hostBuffer) d.vk.DestroyBuffer(d.device, hostBuffer, nullptr);
   if (hostMemory) d.vk.FreeMemory(d.device, hostMemory, nullptr);
+  for (const TileImage& t : tiles) {
+    d.vk.DestroyImage(d.device, t.image, nullptr);
+    d.vk.FreeMemory(d.device, t.memory, nullptr);
+    d.ringBytes -= t.bytes;
+  }
   if (fd >= 0) {
     if (mapped) munmap(mapped, mappedBytes);
     close(fd);

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +15,20 @@
 namespace gbl {
 
 struct DeviceData;
+
+// The staged ring's copy of one single-sampled attachment in the device's own tiling (staging.cpp):
+// the application's queue copies image to image (tiled to tiled), and the layer's queue brings it
+// to the host buffer at `offset` with the download, so the de-tiling never runs on the
+// application's queue.
+struct TileImage {
+  VkDeviceSize offset = 0;  // the copy's place in the ring buffer (one per target of a recording)
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  uint32_t width = 0, height = 0;
+  VkImage image = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkDeviceSize bytes = 0;
+};
+
 struct RingBuffer {
   DeviceData* device = nullptr;
   VkBuffer buffer = VK_NULL_HANDLE;
@@ -37,6 +52,10 @@ struct RingBuffer {
   // the thread sets to the frame's after each download (the receiver checks it as a submission count).
   std::atomic<uint64_t>* published = nullptr;
   std::atomic<int> holds{0};             // recordings that copy into it and frames not yet read from it
+  // A staged ring's tile images (staging.cpp), held as long as the buffer: they have its slot's
+  // holds, so a frame's tiles are not written again before its download.
+  std::mutex tileLock;
+  std::vector<TileImage> tiles;
   ~RingBuffer();
 };
 using RingRef = std::shared_ptr<RingBuffer>;
@@ -90,6 +109,9 @@ struct Copy {
   uint32_t samples = 1;
   VkDeviceSize sampleStride = 0;
   std::shared_ptr<SampleStage> stage;
+  // The staged ring's tile image of it (buffer's `tiles`): the download copies it to the host buffer.
+  VkImage tile = VK_NULL_HANDLE;
+  bool tileDepth = false, tileStencil = false;
 };
 
 // A buffer range (or push constant bytes) a pass's end copies into the ring (copy_buffers.cpp).

@@ -150,6 +150,7 @@ json statsJson(Stream& st) {
           {"thread_copy_ms", st.sent ? st.copyMs / double(st.sent) : 0.0},
           {"ring_staged", d.staging != nullptr},
           {"ring_staged_shared", d.staging != nullptr && d.stagedShared},
+          {"ring_tile_copies", d.tileCopies.load()},
           {"ring_download", !d.staging ? "none" : stagedOwnQueue(d) ? "layer queue" : "application queue"},
           {"download_ms", st.sent ? st.downloadMs / double(st.sent) : 0.0}};
 }

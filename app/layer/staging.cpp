@@ -30,6 +30,40 @@ int stagedEnv() {
   return !e ? -1 : std::strcmp(e, "0") ? 1 : 0;
 }
 
+// A tile image: a single-sampled 2D image of the attachment's format in optimal tiling, in
+// device-local memory shared by the ring's queue families (no ownership transfers).
+bool makeTile(DeviceData& d, TileImage& t) {
+  VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  ii.imageType = VK_IMAGE_TYPE_2D;
+  ii.format = t.format;
+  ii.extent = {t.width, t.height, 1};
+  ii.mipLevels = ii.arrayLayers = 1;
+  ii.samples = VK_SAMPLE_COUNT_1_BIT;
+  ii.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ii.usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  if (d.ringFamilies.size() > 1) {
+    ii.sharingMode = VK_SHARING_MODE_CONCURRENT;
+    ii.queueFamilyIndexCount = uint32_t(d.ringFamilies.size());
+    ii.pQueueFamilyIndices = d.ringFamilies.data();
+  }
+  if (d.vk.CreateImage(d.device, &ii, nullptr, &t.image) != VK_SUCCESS) return t.image = VK_NULL_HANDLE, false;
+  VkMemoryRequirements req{};
+  d.vk.GetImageMemoryRequirements(d.device, t.image, &req);
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  ai.allocationSize = req.size;
+  ai.memoryTypeIndex = deviceLocalMemoryType(d, req.memoryTypeBits);
+  if (ai.memoryTypeIndex == UINT32_MAX || d.vk.AllocateMemory(d.device, &ai, nullptr, &t.memory) != VK_SUCCESS ||
+      d.vk.BindImageMemory(d.device, t.image, t.memory, 0) != VK_SUCCESS) {
+    d.vk.DestroyImage(d.device, t.image, nullptr);
+    if (t.memory) d.vk.FreeMemory(d.device, t.memory, nullptr);
+    t.image = VK_NULL_HANDLE, t.memory = VK_NULL_HANDLE;
+    return false;
+  }
+  t.bytes = req.size;
+  d.ringBytes += t.bytes;
+  return true;
+}
+
 }  // namespace
 
 bool planStaging(InstanceData& inst, VkPhysicalDevice physical, const VkDeviceCreateInfo& info, QueuePlan& plan) {
@@ -117,6 +151,33 @@ void startStaging(DeviceData& d, const QueuePlan& plan) {
 
 bool stagedOwnQueue(const DeviceData& d) { return d.staging && d.staging->ownQueue; }
 
+bool tilesWanted(const DeviceData& d) {
+  // GBLENS_LAYER_TILES=0: the attachments copied to the device buffer as before (the bench's other variant).
+  static const bool off = [] {
+    const char* e = std::getenv("GBLENS_LAYER_TILES");
+    return e && !std::strcmp(e, "0");
+  }();
+  return d.staging && !off;
+}
+
+VkImage ringTile(DeviceData& d, RingBuffer& ring, VkDeviceSize offset, VkFormat format, uint32_t width, uint32_t height) {
+  std::lock_guard lock(ring.tileLock);
+  for (TileImage& t : ring.tiles)
+    if (t.offset == offset) {
+      if (t.format == format && t.width == width && t.height == height) return t.image;
+      d.vk.DestroyImage(d.device, t.image, nullptr);  // the slot's holds say nothing reads it now
+      d.vk.FreeMemory(d.device, t.memory, nullptr);
+      d.ringBytes -= t.bytes;
+      t = ring.tiles.back();
+      ring.tiles.pop_back();
+      break;
+    }
+  TileImage t{offset, format, width, height};
+  if (!makeTile(d, t)) return VK_NULL_HANDLE;  // this copy goes through the device buffer instead
+  ring.tiles.push_back(t);
+  return t.image;
+}
+
 void recordDownload(DeviceData& d, VkCommandBuffer cmd, const std::vector<Copy>& copies) {
   VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};  // the copies (and samples' shaders) wrote the ring
   before.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
@@ -125,6 +186,19 @@ void recordDownload(DeviceData& d, VkCommandBuffer cmd, const std::vector<Copy>&
                           nullptr);
   for (const Copy& c : copies) {
     if (!c.buffer || !c.buffer->hostBuffer) continue;
+    if (c.tile) {  // de-tiled here, on the layer's queue: the planes as the device buffer would hold them
+      VkBufferImageCopy r[2]{};
+      uint32_t n = 0;
+      auto plane = [&](VkImageAspectFlags aspect, VkDeviceSize offset) {
+        r[n].bufferOffset = offset;
+        r[n].imageSubresource = {aspect, 0, 0, 1};
+        r[n++].imageExtent = {c.width, c.height, 1};
+      };
+      if (c.tileDepth || !c.tileStencil) plane(c.tileDepth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, c.offset);
+      if (c.tileStencil) plane(VK_IMAGE_ASPECT_STENCIL_BIT, c.tileDepth ? c.stencilOffset : c.offset);
+      d.vk.CmdCopyImageToBuffer(cmd, c.tile, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, c.buffer->hostBuffer, n, r);
+      continue;
+    }
     const VkBufferCopy region{c.offset, c.offset, copySize(c)};
     d.vk.CmdCopyBuffer(cmd, c.buffer->buffer, c.buffer->hostBuffer, 1, &region);
   }
