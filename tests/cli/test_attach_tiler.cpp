@@ -12,6 +12,9 @@
 
 #include <cstring>
 #include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "tests/support/capture_util.h"
@@ -113,6 +116,25 @@ TEST(TilerAttach, AVulkan10ApplicationsRingIsSharedMemory) {
 }
 
 // The MSAA frame 1 attached with `env`: every sample of every target is the dump's.
+// Every target of the dump's frame.json, every sample of each, equals the capture's; the number of
+// multisampled planes compared.
+size_t expectEverySampleDumped(const Capture& c, const json& frame, const std::string& dump) {
+  size_t samples = 0;
+  for (const json& t : frame["targets"]) {
+    const std::string name = t["name"];
+    const int count = t["samples"];
+    EXPECT_EQ(t["files"].size(), size_t(count)) << name;
+    if (count == 1) {
+      expectDumped(c, name, dump + "/" + t["files"][0].get<std::string>());
+      continue;
+    }
+    for (int k = 0; k < count; ++k, ++samples)
+      expectDumped(c, name, dump + "/" + t["files"][size_t(k)].get<std::string>(), k);
+    expectDumped(c, name, dump + "/" + t["files"][0].get<std::string>());  // the target's image is sample 0
+  }
+  return samples;
+}
+
 void expectEverySample(const std::string& dir, const std::string& env) {
   const RunResult dump = runShell("GBLENS_VALIDATE=1 '" + tiler() + "' --mode msaa --frames 4 --dump '" + dir +
                                   "/dump' --dump-frame 1");
@@ -128,20 +150,7 @@ void expectEverySample(const std::string& dir, const std::string& env) {
   ASSERT_EQ(frame["frame"], 1);
   // A capture with multisampled targets is of format version 2 (sample_files): a version-1 reader refuses it.
   EXPECT_EQ(json::parse(std::ifstream(dir + "/live/manifest.json"))["format_version"], 2);
-  size_t samples = 0;
-  for (const json& t : frame["targets"]) {
-    const std::string name = t["name"];
-    const int count = t["samples"];
-    ASSERT_EQ(t["files"].size(), size_t(count)) << name;
-    if (count == 1) {
-      expectDumped(c, name, dir + "/dump/" + t["files"][0].get<std::string>());
-      continue;
-    }
-    for (int k = 0; k < count; ++k, ++samples)
-      expectDumped(c, name, dir + "/dump/" + t["files"][size_t(k)].get<std::string>(), k);
-    expectDumped(c, name, dir + "/dump/" + t["files"][0].get<std::string>());  // the target's image is sample 0
-  }
-  EXPECT_EQ(samples, 16u);  // albedo, normal, id, depth: 4 samples each
+  EXPECT_EQ(expectEverySampleDumped(c, frame, dir + "/dump"), 16u);  // albedo, normal, id, depth: 4 samples each
   // The samples differ somewhere (the subject's edges are multisampled), so a copy of sample 0 four times fails.
   const TargetImage& albedo = c.frame.images[size_t(c.frame.indexOf("albedo"))];
   ASSERT_EQ(albedo.samples.size(), 4u);
@@ -200,6 +209,68 @@ TEST(TilerAttach, TheStagedRingStreamsTheSameBits) {
   const json off = tilerStats("GBLENS_LAYER_STAGED=1 GBLENS_LAYER_TILES=0", "subpass", 2);
   ASSERT_TRUE(off.is_object());
   EXPECT_EQ(off["layer"]["ring_tile_copies"], 0) << off.dump();
+}
+
+// The same MSAA G-buffer through RenderDoc: `renderdoccmd capture` of the subject's frame 1 (it
+// brackets the frame with RenderDoc's in-application API), imported with a layout naming its
+// textures by the resource ids RenderDoc lists (they have no names) and the camera by its uniform
+// buffer: every sample of every target equals the application's own dump of that sample.
+TEST(RenderDoc, AMultisampledCaptureImportsEverySampleAsTheApplicationsOwnDump) {
+  const std::string dir = freshDir("rdc_tiler_msaa");
+  const RunResult rec = runShell("timeout -k 5 120 renderdoccmd capture -w -c '" + dir + "/msaa' '" + tiler() +
+                                 "' --mode msaa --frames 3 --capture-frame 1 --dump '" + dir + "/dump' --dump-frame 1");
+  ASSERT_NE(rec.output.find("RenderDoc captured frame 1, dumped frame 1"), std::string::npos) << rec.output;
+  const std::string rdc = dir + "/msaa_capture.rdc";
+  ASSERT_TRUE(std::ifstream(rdc).good()) << rec.output;
+  const RunResult list = runShell("'" + std::string(GBLENS_BINARY) + "' import '" + rdc + "' --list");
+  ASSERT_EQ(list.exitCode, 0) << list.output;
+  // RenderDoc's listing: "  2D Color Attachment 142      #142    R8G8B8A8_UNORM  320x180, 4 samples", and
+  // the pass's uniform buffer "    uniform Buffer 133   #133   1024 bytes ...".
+  std::map<std::string, std::string> idOfFormat;
+  std::string uniform;
+  std::istringstream lines(list.output);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line);
+    std::vector<std::string> w{std::istream_iterator<std::string>(words), std::istream_iterator<std::string>()};
+    for (size_t k = 0; k + 1 < w.size(); ++k)
+      if (w[k].size() > 1 && w[k][0] == '#') {
+        if (w[0] == "2D") idOfFormat[w[k + 1]] = w[k];
+        if (w[0] == "uniform" && uniform.empty()) uniform = w[k];
+        break;
+      }
+  }
+  const json frame = json::parse(std::ifstream(dir + "/dump/frame.json"));
+  const std::map<std::string, std::string> rdcFormat = {{"VK_FORMAT_R8G8B8A8_UNORM", "R8G8B8A8_UNORM"},
+                                                        {"VK_FORMAT_A2B10G10R10_UNORM_PACK32", "R10G10B10A2_UNORM"},
+                                                        {"VK_FORMAT_R32_UINT", "R32_UINT"},
+                                                        {"VK_FORMAT_D32_SFLOAT", "D32"},
+                                                        {"VK_FORMAT_R16G16B16A16_SFLOAT", "R16G16B16A16_FLOAT"}};
+  json layout = json::parse(std::ifstream(tilerDir() + "/layout_msaa.json"));
+  for (json& t : layout["targets"])
+    for (const json& d : frame["targets"])
+      if (d["name"] == t["name"]) {
+        const std::string id = idOfFormat[rdcFormat.at(d["vk_format"].get<std::string>())];
+        ASSERT_FALSE(id.empty()) << d.dump() << list.output;
+        t["source"] = {{"renderdoc", id}};
+      }
+  ASSERT_FALSE(uniform.empty()) << list.output;
+  const uint32_t at = frame["camera"]["uniform_buffer"]["dynamic_offset"];
+  json& camera = layout["camera"];
+  camera.erase("live");
+  camera.erase("view_from_world");
+  camera.erase("clip_from_view");
+  camera["renderdoc"] = {{"buffer", uniform}, {"view_from_world", {{"offset", at + 16}}}, {"clip_from_view", {{"offset", at + 80}}}};
+  std::ofstream(dir + "/layout.json") << layout.dump(2);
+  const RunResult imp = runShell("'" + std::string(GBLENS_BINARY) + "' import '" + rdc + "' --layout '" + dir +
+                                 "/layout.json' -o '" + dir + "/imported'");
+  ASSERT_EQ(imp.exitCode, 0) << imp.output;
+  Capture c;
+  std::string error;
+  ASSERT_TRUE(loadCapture(dir + "/imported", c, error)) << error;
+  EXPECT_EQ(expectEverySampleDumped(c, frame, dir + "/dump"), 16u);
+  const TargetImage& depth = c.frame.images[size_t(c.frame.indexOf("depth"))];
+  ASSERT_EQ(depth.samples.size(), 4u);
+  EXPECT_NE(depth.samples[0].data, depth.samples[3].data);  // not one sample four times
 }
 
 }  // namespace

@@ -183,18 +183,17 @@ void flipRows(CpuImage& img) {
 }
 
 // One target's texels; `lt` (the frame's copy of the layout's target) gets the format a file holds.
-// A multisampled attachment's planes, one per sample (app/layer/samples.cpp); `img` is sample 0.
-bool readLiveSamples(const ImportInput::LiveTexels& live, const LayoutTarget& lt, uint32_t w, uint32_t h,
-                     const std::string& where, CpuImage& img, std::vector<CpuImage>& samples, std::string& error) {
-  if (live.sampleStride == 0 || live.bytes / live.sampleStride < live.samples) {
-    error = where + ": source.live: " + std::to_string(live.samples) + " samples do not fit the " + std::to_string(live.bytes) +
-            " bytes streamed";
+// A multisampled attachment's planes, one per sample, each `stride` bytes (app/layer/samples.cpp
+// streams them so, renderdoc_replay.py reads them so); `img` is sample 0.
+bool readSamplePlanes(const uint8_t* data, size_t bytes, uint32_t count, size_t stride, const LayoutTarget& lt, uint32_t w,
+                      uint32_t h, const std::string& where, CpuImage& img, std::vector<CpuImage>& samples, std::string& error) {
+  if (stride == 0 || bytes / stride < count) {
+    error = where + ": " + std::to_string(count) + " samples do not fit the " + std::to_string(bytes) + " bytes read";
     return false;
   }
-  samples.resize(live.samples);
-  for (uint32_t k = 0; k < live.samples; ++k)
-    if (!unpackDump(live.data + k * live.sampleStride, live.sampleStride, lt, w, h,
-                    where + ": source.live (sample " + std::to_string(k) + ")", samples[k], error))
+  samples.resize(count);
+  for (uint32_t k = 0; k < count; ++k)
+    if (!unpackDump(data + k * stride, stride, lt, w, h, where + " (sample " + std::to_string(k) + ")", samples[k], error))
       return false;
   img = samples[0];
   return true;
@@ -215,8 +214,12 @@ bool readTarget(const ImportInput& in, uint32_t t, LayoutTarget& lt, uint32_t w,
       error = where + ": source.renderdoc: the capture has no texture \"" + s.resource + "\"";
       return false;
     }
-    return unpackDump(it->second.data(), it->second.size(), lt, w, h, where + ": source.renderdoc \"" + s.resource + "\"",
-                      img, error);
+    const std::string from = where + ": source.renderdoc \"" + s.resource + "\"";
+    auto count = in.renderdocSamples.find(lt.name);
+    if (count != in.renderdocSamples.end())
+      return readSamplePlanes(it->second.data(), it->second.size(), count->second, it->second.size() / count->second, lt, w, h,
+                              from, img, samples, error);
+    return unpackDump(it->second.data(), it->second.size(), lt, w, h, from, img, error);
   }
   if (s.kind == TargetSource::Kind::Live) {
     auto it = in.liveTexels.find(lt.name);
@@ -226,7 +229,8 @@ bool readTarget(const ImportInput& in, uint32_t t, LayoutTarget& lt, uint32_t w,
     }
     const ImportInput::LiveTexels& live = it->second;
     if (live.samples <= 1) return unpackDump(live.data, live.bytes, lt, w, h, where + ": source.live", img, error);
-    return readLiveSamples(live, lt, w, h, where, img, samples, error);
+    return readSamplePlanes(live.data, live.bytes, live.samples, live.sampleStride, lt, w, h, where + ": source.live", img, samples,
+                            error);
   }
   const std::string path = sourcePath(in, lt);
   if (path.empty()) {

@@ -29,6 +29,7 @@ struct ImportInput {
   // renderer/core/texels.h says, by target name; and the bytes of the camera's uniform buffer.
   std::map<std::string, std::vector<uint8_t>> renderdocTexels;
   std::map<std::string, std::array<uint32_t, 2>> renderdocSizes;  // their textures' width and height
+  std::map<std::string, uint32_t> renderdocSamples;  // a multisampled texture's samples: that many planes
   std::vector<uint8_t> renderdocCameraBuffer;
   std::string renderdocCameraBufferAt;  // where it was read, for people: " (#123) at event 140"
   std::string capture;                  // the RenderDoc capture imported ("": files): a sidecar may be beside it

@@ -88,7 +88,7 @@ bool checkTexels(const Layout& layout, uint32_t t, const RdcTexels& got, std::st
   if (tex.texelFormat)
     same = want == tex.texelFormat;
   else  // a format gblens does not render to (rg16_snorm, r8_unorm, ...): tightly packed texels of its size
-    same = !want && got.bytes.size() == size_t(tex.width) * tex.height * lt.format.packedBytes();
+    same = !want && got.sampleBytes == size_t(tex.width) * tex.height * lt.format.packedBytes();
   if (!same) {
     error = layoutTargetWhere(layout, t) + ": format: the capture's texture \"" + lt.source.resource + "\" is " + tex.format +
             ", the layout says " + lt.format.name;
@@ -137,6 +137,7 @@ bool readRenderDocImport(const RenderDocImport& r, ImportInput& in, RenderDocImp
     info.reads.push_back({target, texels[k].texture.name, texels[k].texture.format, texels[k].event});
     in.renderdocSizes[target] = {texels[k].texture.width, texels[k].texture.height};
     in.renderdocTexels[target] = std::move(texels[k].bytes);
+    if (texels[k].texture.samples > 1) in.renderdocSamples[target] = texels[k].texture.samples;
   }
 
   in.capture = r.rdc;

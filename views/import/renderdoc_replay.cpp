@@ -313,6 +313,14 @@ bool readRenderDocTexels(const std::string& rdc, uint32_t event, const std::vect
       error = rdc + ": RenderDoc's replay wrote no texels for " + texels.texture.name;
       return false;
     }
+    texels.sampleBytes = t.value("sample_bytes", texels.bytes.size());
+    const uint32_t planes = std::max(1u, texels.texture.samples);
+    if (texels.sampleBytes * planes != texels.bytes.size()) {
+      error = rdc + ": RenderDoc's replay wrote " + std::to_string(texels.bytes.size()) + " bytes for the " +
+              std::to_string(planes) + " samples of " + texels.texture.name + ", not " + std::to_string(planes) + " x " +
+              std::to_string(texels.sampleBytes);
+      return false;
+    }
     out.push_back(std::move(texels));
   }
   return true;

@@ -114,7 +114,8 @@ bool listRenderDocCapture(const std::string& rdc, RdcListing& out, std::string& 
 struct RdcTexels {
   RdcTexture texture;
   uint32_t event = 0;  // the event it was read after
-  std::vector<uint8_t> bytes;
+  std::vector<uint8_t> bytes;  // a multisampled texture: texture.samples planes of sampleBytes, sample 0 first
+  size_t sampleBytes = 0;
 };
 bool readRenderDocTexels(const std::string& rdc, uint32_t event, const std::vector<std::string>& textures,
                          std::vector<RdcTexels>& out, std::string& error, const RdcReplayOptions& options = {});

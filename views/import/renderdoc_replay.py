@@ -527,20 +527,26 @@ def command_texels(replay, event, outdir, wanted):
     for i, name in enumerate(wanted):
         tex_id = replay.find(replay.textures, "texture", name)
         t = replay.textures[tex_id]
-        if t.msSamp > 1 or t.depth > 1 or t.arraysize > 1:
-            raise Failure("%s: texture %s is %s; gblens reads single-sample 2D textures" % (
-                replay.path, name, "multisampled" if t.msSamp > 1 else "3D or an array"))
+        if t.depth > 1 or t.arraysize > 1:
+            raise Failure("%s: texture %s is 3D or an array; gblens reads 2D textures" % (replay.path, name))
         at = event or default_event(replay, tex_id)
         progress("reading %s after event %d" % (name, at))
         replay.controller.SetFrameEvent(at, False)
-        data = replay.controller.GetTextureData(t.resourceId, rd.Subresource(0, 0, 0))
-        if not data:
-            raise Failure("%s: RenderDoc returned no texels for %s at event %d" % (replay.path, name, at))
+        # A multisampled texture: every sample (RenderDoc's Subresource selects one), one plane each,
+        # sample 0 first, in the file one after another.
+        planes = []
+        for k in range(max(1, t.msSamp)):
+            data = replay.controller.GetTextureData(t.resourceId, rd.Subresource(0, 0, k))
+            if not data:
+                raise Failure("%s: RenderDoc returned no texels for %s%s at event %d" % (
+                    replay.path, name, " sample %d" % k if t.msSamp > 1 else "", at))
+            planes.append(packed(data, t.format, t.width, t.height))
         path = os.path.join(outdir, "%d.bin" % i)
         with open(path, "wb") as f:
-            f.write(packed(data, t.format, t.width, t.height))
+            for plane in planes:
+                f.write(plane)
         entry = describe_texture(replay, tex_id)
-        entry.update({"event": at, "file": path})
+        entry.update({"event": at, "file": path, "sample_bytes": len(planes[0])})
         out.append(entry)
     return {"textures": out}
 

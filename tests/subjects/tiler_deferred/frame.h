@@ -16,6 +16,7 @@ struct options {
   mode_kind mode = mode_kind::subpass;
   uint32_t width = 320, height = 180, frames = 3;
   int64_t dump_frame = -1;  // -1: the last frame
+  int64_t capture_frame = -1;  // under renderdoccmd: the frame RenderDoc captures (-1: none)
   bool transient = true;
   std::string dump;  // empty: no dump
 };

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "dump.h"
+#include "renderdoc.h"
 
 namespace {
 
@@ -11,7 +12,7 @@ using td::options;
 
 const char* k_usage =
     "usage: tiler_deferred [--mode subpass|msaa] [--size WxH] [--frames N] [--dump DIR] [--dump-frame K]\n"
-    "                      [--transient on|off]\n"
+    "                      [--transient on|off] [--capture-frame K]\n"
     "  --mode subpass|msaa  one render pass with two subpasses and input attachments (default), or a 4x\n"
     "                       G-buffer lit per sample and averaged in the shader\n"
     "  --size WxH           target size (default 320x180)\n"
@@ -19,6 +20,7 @@ const char* k_usage =
     "  --dump DIR           write frame --dump-frame's attachments and frame.json to DIR (atomically)\n"
     "  --dump-frame K       the frame --dump writes (default: the last)\n"
     "  --transient on|off   subpass mode: G-buffer images TRANSIENT + lazily allocated (default on)\n"
+    "  --capture-frame K    under renderdoccmd capture: RenderDoc captures frame K (its one submission)\n"
     "  GBLENS_VALIDATE=1    validation layer on; any warning or error makes the exit status 1\n";
 
 [[noreturn]] void bad(const std::string& line) {
@@ -67,6 +69,11 @@ options parse(int argc, char** argv) {
       uint32_t k = 0;
       if (!parse_number(v, 0, 999999, k)) bad("--dump-frame " + v + ": expected a frame index");
       o.dump_frame = k;
+    } else if (flag == "--capture-frame") {
+      const std::string v = value();
+      uint32_t k = 0;
+      if (!parse_number(v, 0, 999999, k)) bad("--capture-frame " + v + ": expected a frame index");
+      o.capture_frame = k;
     } else if (flag == "--transient") {
       const std::string v = value();
       if (v == "on") o.transient = true;
@@ -78,6 +85,8 @@ options parse(int argc, char** argv) {
   }
   if (o.dump_frame >= 0 && o.dump.empty()) bad("--dump-frame: needs --dump DIR");
   if (o.dump_frame < 0) o.dump_frame = int64_t(o.frames) - 1;
+  if (o.capture_frame >= int64_t(o.frames))
+    bad("--capture-frame " + std::to_string(o.capture_frame) + ": the frames are 0.." + std::to_string(o.frames - 1));
   if (o.dump_frame >= int64_t(o.frames))
     bad("--dump-frame " + std::to_string(o.dump_frame) + ": the frames are 0.." + std::to_string(o.frames - 1));
   return o;
@@ -105,9 +114,15 @@ int main(int argc, char** argv) {
     in.objects = &s;
     in.dump = !o.dump.empty() && int64_t(k) == o.dump_frame;
     std::memcpy(static_cast<char*>(sh.uniforms.mapped) + in.uniform_offset, &block, sizeof(block));
+    const bool captured = int64_t(k) == o.capture_frame && td::renderdoc_present();
+    if (captured) td::renderdoc_frame_begin(g.instance);
     VkCommandBuffer cmd = td::begin_frame_commands(g);
     r->record(cmd, in);
     td::submit_and_wait(g, cmd);
+    if (captured && !td::renderdoc_frame_end(g.instance)) {
+      std::fprintf(stderr, "tiler_deferred: RenderDoc wrote no capture of frame %u\n", k);
+      return 1;
+    }
     if (in.dump) {
       dump.frame = k;
       dump.cam = cam;
@@ -130,8 +145,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (!dumped) return 1;
-  std::printf("tiler_deferred: rendered %u frame(s) at %ux%u, mode %s%s\n", o.frames, o.width, o.height,
-              mode ? "msaa" : "subpass",
+  const bool rdc = o.capture_frame >= 0 && td::renderdoc_present();
+  std::printf("tiler_deferred: rendered %u frame(s) at %ux%u, mode %s%s%s\n", o.frames, o.width, o.height,
+              mode ? "msaa" : "subpass", rdc ? (", RenderDoc captured frame " + std::to_string(o.capture_frame)).c_str() : "",
               o.dump.empty() ? "" : (", dumped frame " + std::to_string(dump.frame) + " to " + o.dump).c_str());
   return 0;
 }
