@@ -341,7 +341,7 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
       b.image = r.stage;
       b.subresourceRange = {aspect, 0, 1, 0, 1};
       there.push_back(b);
-    } else if (VkImage tile = tilesWanted(d) && c.buffer->hostBuffer
+    } else if (VkImage tile = tilesWanted(d, f.depth || f.stencil) && c.buffer->hostBuffer
                                   ? ringTile(d, *c.buffer, c.offset, c.format, c.width, c.height)
                                   : VK_NULL_HANDLE) {
       tileCopies(d, *l, f, c, tile, regions, there, back);

@@ -287,6 +287,7 @@ struct StagingState;  // staging.cpp
 struct QueuePlan {
   bool staged = false, ownQueue = false;
   uint32_t family = 0, index = 0;
+  VkQueueFlags familyFlags = 0;  // the layer's queue's family (ownQueue)
   std::vector<VkDeviceQueueCreateInfo> infos;
   std::vector<float> priorities;
 };
@@ -477,7 +478,7 @@ bool planStaging(InstanceData& inst, VkPhysicalDevice physical, const VkDeviceCr
 void startStaging(DeviceData& d, const QueuePlan& plan);  // after vkCreateDevice
 // The staged ring's tile images (ring.h TileImage): wanted on this device, and the one of a copy at
 // `offset` of `ring` (made or remade to fit; null: none could be made, the copy uses the buffer).
-bool tilesWanted(const DeviceData& d);
+bool tilesWanted(const DeviceData& d, bool depthStencil);
 VkImage ringTile(DeviceData& d, RingBuffer& ring, VkDeviceSize offset, VkFormat format, uint32_t width, uint32_t height);
 bool stagedOwnQueue(const DeviceData& d);                 // downloads on the layer's queue (else in its batch)
 // The commands that bring `copies` from the device-local ring to its host buffers, and the layer's

@@ -15,6 +15,7 @@ namespace gbl {
 
 struct StagingState {
   bool ownQueue = false;
+  bool graphics = false;  // the download's family is a graphics one (its own queue's, or the application's)
   VkQueue queue = VK_NULL_HANDLE;
   uint32_t family = 0;
   VkCommandPool pool = VK_NULL_HANDLE;
@@ -100,6 +101,7 @@ bool planStaging(InstanceData& inst, VkPhysicalDevice physical, const VkDeviceCr
       }
     if (used >= families[f].queueCount) continue;
     plan.family = f;
+    plan.familyFlags = families[f].queueFlags;
     if (plain >= 0) {  // one more queue in the application's own info for the family (its priorities kept)
       VkDeviceQueueCreateInfo& q = plan.infos[size_t(plain)];
       plan.priorities.assign(q.pQueuePriorities, q.pQueuePriorities + q.queueCount);
@@ -126,6 +128,7 @@ void startStaging(DeviceData& d, const QueuePlan& plan) {
   if (!plan.staged) return;
   auto* s = new StagingState;
   d.staging = s;
+  s->graphics = !plan.ownQueue || (plan.familyFlags & VK_QUEUE_GRAPHICS_BIT);
   for (uint32_t f : d.createdFamilies)
     if (std::find(d.ringFamilies.begin(), d.ringFamilies.end(), f) == d.ringFamilies.end()) d.ringFamilies.push_back(f);
   if (!plan.ownQueue) return;
@@ -151,13 +154,18 @@ void startStaging(DeviceData& d, const QueuePlan& plan) {
 
 bool stagedOwnQueue(const DeviceData& d) { return d.staging && d.staging->ownQueue; }
 
-bool tilesWanted(const DeviceData& d) {
-  // GBLENS_LAYER_TILES=0: the attachments copied to the device buffer as before (the bench's other variant).
-  static const bool off = [] {
+bool tilesWanted(const DeviceData& d, bool depthStencil) {
+  // GBLENS_LAYER_TILES=0: the attachments copied to the device buffer as before (the bench's other
+  // variant); "colour": colour attachments only.
+  static const int mode = [] {
     const char* e = std::getenv("GBLENS_LAYER_TILES");
-    return e && !std::strcmp(e, "0");
+    return !e ? 2 : !std::strcmp(e, "0") ? 0 : !std::strcmp(e, "colour") ? 1 : 2;
   }();
-  return d.staging && !off;
+  // Depth/stencil tiles only where a graphics family downloads them: on the H200 a depth/stencil
+  // image-to-buffer copy on the transfer-only family lost the device (driver 580.159), colour ones
+  // did not; those go through the device buffer (de-tiled on the application's queue, as before).
+  if (!d.staging || mode == 0) return false;
+  return !depthStencil || (mode == 2 && d.staging->graphics);
 }
 
 VkImage ringTile(DeviceData& d, RingBuffer& ring, VkDeviceSize offset, VkFormat format, uint32_t width, uint32_t height) {
