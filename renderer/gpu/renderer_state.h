@@ -165,6 +165,10 @@ struct Renderer {
   Method method = Method::Deferred;  // the method this frame runs (options.method resolved by chooseMethod)
   std::string methodReason;
   ClusterBuffers clusters;
+  // clustered_lighting's pixels an invocation: 1 (clustered_lighting.comp) or 2
+  // (clustered_lighting2.comp: the same image, each staged light read once for two pixels; issue 39
+  // measures which is faster on a GPU). initRenderer reads GBLENS_LIGHTING_PIXELS; tests set it.
+  uint32_t lightingPixels = 1;
   GpuLights gpuLights;
   Buffer fairyBits;                 // fairy_bins' masks (--fairy-splat compute), the light bins' layout
   VkDeviceSize fairyBitsBytes = 0;  // this frame's part
