@@ -88,6 +88,9 @@ struct PipelineKey {
 struct ClusterBuffers {
   Buffer header, clusters, pixelClusters, lists, binBits, binBoxes;
   uint32_t clusterCapacity = 0, listCapacity = 0;
+  // Tests: cluster_clear starts the list count past the capacity, so every list overflows, empty
+  // ones too (a capacity of 0 would let empty lists that come first fit: an order-dependent frame).
+  bool listsFull = false;
   VkDeviceSize binBitsBytes = 0, binBoxBytes = 0;  // this frame's parts to clear
   ClusterGrid grid;
 };
