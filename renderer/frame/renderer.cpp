@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 
@@ -273,8 +275,19 @@ void submitFrame(Renderer& r, const RenderOptions& options) {
   recordFrame(r, options, {});
 }
 
+// GBLENS_LIGHTING_PIXELS: clustered_lighting's variant for an A/B run without rebuilding. Any
+// value but 1 or 2 stops the program, so a mistyped run does not time the default as the variant.
+static uint32_t lightingPixelsFromEnvironment() {
+  const char* v = std::getenv("GBLENS_LIGHTING_PIXELS");
+  if (!v || !*v || std::strcmp(v, "1") == 0) return 1;
+  if (std::strcmp(v, "2") == 0) return 2;
+  std::fprintf(stderr, "gblens: GBLENS_LIGHTING_PIXELS=%s: 1 or 2 (clustered_lighting's pixels an invocation)\n", v);
+  std::exit(2);
+}
+
 void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
   r.ctx = &ctx;
+  r.lightingPixels = lightingPixelsFromEnvironment();
   r.scene = &scene;
   uploadScene(r);
   createDescriptors(r);

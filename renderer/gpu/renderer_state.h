@@ -88,6 +88,9 @@ struct PipelineKey {
 struct ClusterBuffers {
   Buffer header, clusters, pixelClusters, lists, binBits, binBoxes;
   uint32_t clusterCapacity = 0, listCapacity = 0;
+  // Tests: cluster_clear starts the list count past the capacity, so every list overflows, empty
+  // ones too (a capacity of 0 would let empty lists that come first fit: an order-dependent frame).
+  bool listsFull = false;
   VkDeviceSize binBitsBytes = 0, binBoxBytes = 0;  // this frame's parts to clear
   ClusterGrid grid;
 };
@@ -165,6 +168,10 @@ struct Renderer {
   Method method = Method::Deferred;  // the method this frame runs (options.method resolved by chooseMethod)
   std::string methodReason;
   ClusterBuffers clusters;
+  // clustered_lighting's pixels an invocation: 1 (clustered_lighting.comp) or 2
+  // (clustered_lighting2.comp: the same image, each staged light read once for two pixels; issue 39
+  // measures which is faster on a GPU). initRenderer reads GBLENS_LIGHTING_PIXELS; tests set it.
+  uint32_t lightingPixels = 1;
   GpuLights gpuLights;
   Buffer fairyBits;                 // fairy_bins' masks (--fairy-splat compute), the light bins' layout
   VkDeviceSize fairyBitsBytes = 0;  // this frame's part

@@ -2,6 +2,7 @@
 // G-buffer once and writes hdr = sun + ambient + the lights of the pixel's cluster
 // (shaders/clustered_lighting.comp); the cluster passes (clusters.cpp) built the lists. It also
 // copies the cluster counters for the CPU (FrameStats::clusters, the next frame's buffer sizes).
+// Renderer::lightingPixels picks the shader of one or two pixels an invocation (the same image).
 #include "renderer/passes/passes.h"
 
 namespace gb {
@@ -13,9 +14,15 @@ void addClusteredLightingPass(FrameGraph& g, Renderer& r) {
   uses.push_back({Target::CoverageMasked, Access::StorageCompute});  // bound even when off (1x1)
   const ClusterBuffers& c = r.clusters;
   g.addPass("clustered_lighting", uses, [&r](PassContext& pc) {
-    const Shader shader = r.options.accumFormat == AccumFormat::Rgba32f ? Shader::clustered_lighting_rgba32f_comp
-                          : r.options.accumFormat == AccumFormat::Rgba8 ? Shader::clustered_lighting_rgba8_comp
-                                                                         : Shader::clustered_lighting_rgba16f_comp;
+    // Two pixels an invocation (r.lightingPixels, GBLENS_LIGHTING_PIXELS=2): the same image, the same
+    // dispatch (a workgroup is still one tile), half the invocations.
+    const bool two = r.lightingPixels == 2;
+    const Shader shader =
+        r.options.accumFormat == AccumFormat::Rgba32f
+            ? (two ? Shader::clustered_lighting2_rgba32f_comp : Shader::clustered_lighting_rgba32f_comp)
+        : r.options.accumFormat == AccumFormat::Rgba8
+            ? (two ? Shader::clustered_lighting2_rgba8_comp : Shader::clustered_lighting_rgba8_comp)
+            : (two ? Shader::clustered_lighting2_rgba16f_comp : Shader::clustered_lighting_rgba16f_comp);
     const ClusterBuffers& c = r.clusters;
     VkBufferCopy copy{0, 0, sizeof(gpu::ClusterHeader)};
     vkCmdCopyBuffer(pc.cmd, c.header.buffer, frameSlot(r).clusterHeader.buffer, 1, &copy);

@@ -30,6 +30,7 @@ void addClusterClearPass(FrameGraph& g, Renderer& r) {
     const ClusterBuffers& c = r.clusters;
     gpu::ClusterHeader h{};
     h.capacity = glm::uvec4(c.clusterCapacity, c.listCapacity, 0u, 0u);
+    if (c.listsFull) h.counts.y = c.listCapacity + 1;
     h.dispatch = glm::uvec4(0u, 1u, 1u, 0u);
     vkCmdUpdateBuffer(pc.cmd, c.header.buffer, 0, sizeof(h), &h);
     vkCmdFillBuffer(pc.cmd, c.binBoxes.buffer, 0, c.binBoxBytes, 0xFFFFFFFFu);  // empty boxes (cluster_common.glsl)
