@@ -129,6 +129,9 @@ TEST(AttachSequence, TheCopiedOutRingSendsEveryFrameUpToTheApplicationsLast) {
   const std::string dir = freshDir("attach_sequence_copied");
   dumpFrames(dir);
   expectSequenceOfDumps(dir, "GBLENS_LAYER_STAGED=1 GBLENS_LAYER_STAGED_SHARED=0", 3, 5);
+  // The same through the staged ring's tile images (image-to-image copies, de-tiled by the download).
+  std::filesystem::remove_all(dir + "/seq");
+  expectSequenceOfDumps(dir, "GBLENS_LAYER_STAGED=1 GBLENS_LAYER_TILES=1", 3, 5);
 }
 
 TEST(AttachSequence, BadRangesAndARangePastTheLastFrameFailInOneLineWithNothingWritten) {
