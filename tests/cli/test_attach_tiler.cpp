@@ -285,6 +285,30 @@ TEST(RenderDoc, AMultisampledCaptureImportsEverySampleAsTheApplicationsOwnDump) 
   const TargetImage& depth = c.frame.images[size_t(c.frame.indexOf("depth"))];
   ASSERT_EQ(depth.samples.size(), 4u);
   EXPECT_NE(depth.samples[0].data, depth.samples[3].data);  // not one sample four times
+
+  // --suggest-layout drafts the multisampled G-buffer as the subject's own layout says (from sample
+  // 0's texels): its floor-filled frame once made the albedo's first two channels pass for an
+  // octahedral normal. The draft also reads the lit target, so RenderDoc's replay crash (above) is
+  // retried, named by its message.
+  RunResult draft;
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    draft = runShell("'" + std::string(GBLENS_BINARY) + "' import '" + rdc + "' --suggest-layout -o '" + dir + "/draft.json'");
+    if (draft.output.find("RenderDoc's replay crashed") == std::string::npos) break;
+  }
+  ASSERT_EQ(draft.exitCode, 0) << draft.output;
+  const json drafted = json::parse(std::ifstream(dir + "/draft.json"));
+  std::map<std::string, std::string> truth;  // texture id -> the subject layout's first quantity
+  for (const json& t : layout["targets"]) truth[t["source"]["renderdoc"]] = t["quantities"][0]["quantity"];
+  size_t checked = 0;
+  for (const json& t : drafted["targets"]) {
+    const std::string id = t["source"]["renderdoc"];
+    if (!truth.count(id)) continue;
+    SCOPED_TRACE(id);
+    ASSERT_FALSE(t["quantities"].empty()) << t.dump();
+    EXPECT_EQ(t["quantities"][0]["quantity"], truth[id]) << t.dump();
+    ++checked;
+  }
+  EXPECT_EQ(checked, 4u) << drafted.dump();
 }
 
 }  // namespace

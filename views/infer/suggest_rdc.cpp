@@ -29,9 +29,9 @@ std::string sourceName(const RdcListing& l, const RdcTexture& t) {
   return same == 1 && !t.name.empty() && !t.autoName ? t.name : "#" + std::to_string(t.id);
 }
 
-bool holdable(const RdcTexture& t) {
-  return !storageFormatName(t.format).empty() && t.samples == 1 && t.depth == 1 && t.layers == 1;
-}
+// A multisampled texture is holdable too: the import reads every sample (the evidence reads sample 0,
+// a value the renderer stored).
+bool holdable(const RdcTexture& t) { return !storageFormatName(t.format).empty() && t.depth == 1 && t.layers == 1; }
 
 // The frame's structure as roles.h reads it: the passes with a draw, their outputs at the last draw
 // with the application's store ops, and when each texture is read.
@@ -103,6 +103,7 @@ bool readTargets(const SuggestRequest& r, const RdcListing& listing, uint32_t re
     const std::string& target = in.layout.targets[k].name;
     in.renderdocSizes[target] = {texels[k].texture.width, texels[k].texture.height};
     in.renderdocTexels[target] = std::move(texels[k].bytes);
+    if (texels[k].texture.samples > 1) in.renderdocSamples[target] = texels[k].texture.samples;
   }
   return importFrame(in, raw, error);
 }
