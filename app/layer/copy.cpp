@@ -138,33 +138,41 @@ void transitions(const Looked& l, const FormatInfo& f, std::vector<VkImageMemory
   }
 }
 
+// One aspect of the attachment copied into subresource 0 of an image of the layer's (vkCmdCopyImage,
+// sample for sample), from the layout the pass left that aspect in.
+Region layerImageCopy(const Looked& l, VkImage dst, VkImageAspectFlags aspect, uint32_t width, uint32_t height) {
+  const VkImageLayout was = aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? l.a->stencilLayout : l.a->layout;
+  Region r{l.a->image, was == VK_IMAGE_LAYOUT_GENERAL ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+           VK_NULL_HANDLE, {}, dst, {}};
+  r.samples.srcSubresource = {aspect, l.viewMip, l.viewLayer, 1};
+  r.samples.dstSubresource = {aspect, 0, 0, 1};
+  r.samples.extent = {width, height, 1};
+  return r;
+}
+
+// The layer's image made ready for those copies: its last contents (an earlier frame's) are not needed.
+VkImageMemoryBarrier toTransferDst(VkImage image, VkImageAspectFlags aspects) {
+  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {aspects, 0, 1, 0, 1};
+  return b;
+}
+
 // The staged ring's copy of a single-sampled attachment into its tile image (ring.h TileImage): image
-// to image on the application's queue, each aspect from the layout the pass left it in; the tile
-// left in TRANSFER_SRC for the download on the layer's queue (staging.cpp recordDownload).
+// to image on the application's queue, each aspect from its own layout; the tile left in
+// TRANSFER_SRC for the download on the layer's queue (staging.cpp recordDownload).
 void tileCopies(DeviceData& d, const Looked& l, const FormatInfo& f, Copy& c, VkImage tile, std::vector<Region>& regions,
                 std::vector<VkImageMemoryBarrier>& there, std::vector<VkImageMemoryBarrier>& back) {
   c.tile = tile;
   ++d.tileCopies;
-  c.tileDepth = f.depth;
-  c.tileStencil = f.stencil;
-  auto copy = [&](VkImageAspectFlags aspect) {
-    const VkImageLayout was = aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? l.a->stencilLayout : l.a->layout;
-    Region r{l.a->image, was == VK_IMAGE_LAYOUT_GENERAL ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-             VK_NULL_HANDLE, {}, tile, {}};
-    r.samples.srcSubresource = {aspect, l.viewMip, l.viewLayer, 1};
-    r.samples.dstSubresource = {aspect, 0, 0, 1};
-    r.samples.extent = {c.width, c.height, 1};
-    regions.push_back(r);
-  };
-  if (f.depth || !f.stencil) copy(f.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT);
-  if (f.stencil) copy(VK_IMAGE_ASPECT_STENCIL_BIT);
-  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-  b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;  // its last contents (an earlier frame's, downloaded) are not needed
-  b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = tile;
-  b.subresourceRange = {aspects(f), 0, 1, 0, 1};
+  if (f.depth || !f.stencil)
+    regions.push_back(layerImageCopy(l, tile, f.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, c.width, c.height));
+  if (f.stencil) regions.push_back(layerImageCopy(l, tile, VK_IMAGE_ASPECT_STENCIL_BIT, c.width, c.height));
+  VkImageMemoryBarrier b = toTransferDst(tile, aspects(f));
   there.push_back(b);
   b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;  // then the download's read, after the fence
   b.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
@@ -326,21 +334,9 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
       regions.push_back(r);
     };
     if (c.stage) {  // sample for sample into the layer's image, which the unpacking after the submission reads
-      Region r{l->a->image, l->a->layout == VK_IMAGE_LAYOUT_GENERAL ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-               VK_NULL_HANDLE, {}, stageImage(*c.stage), {}};
       const VkImageAspectFlags aspect = f.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT;
-      r.samples.srcSubresource = {aspect, l->viewMip, l->viewLayer, 1};
-      r.samples.dstSubresource = {aspect, 0, 0, 1};
-      r.samples.extent = {c.width, c.height, 1};
-      regions.push_back(r);
-      VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-      b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;  // its last contents (an earlier frame's) are not needed
-      b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-      b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-      b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      b.image = r.stage;
-      b.subresourceRange = {aspect, 0, 1, 0, 1};
-      there.push_back(b);
+      regions.push_back(layerImageCopy(*l, stageImage(*c.stage), aspect, c.width, c.height));
+      there.push_back(toTransferDst(stageImage(*c.stage), aspect));
     } else if (VkImage tile = tilesWanted(d, f.depth || f.stencil) && c.buffer->hostBuffer
                                   ? ringTile(d, *c.buffer, c.offset, c.format, c.width, c.height)
                                   : VK_NULL_HANDLE) {

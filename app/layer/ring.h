@@ -111,7 +111,6 @@ struct Copy {
   std::shared_ptr<SampleStage> stage;
   // The staged ring's tile image of it (buffer's `tiles`): the download copies it to the host buffer.
   VkImage tile = VK_NULL_HANDLE;
-  bool tileDepth = false, tileStencil = false;
 };
 
 // A buffer range (or push constant bytes) a pass's end copies into the ring (copy_buffers.cpp).

@@ -203,8 +203,9 @@ void recordDownload(DeviceData& d, VkCommandBuffer cmd, const std::vector<Copy>&
         r[n].imageSubresource = {aspect, 0, 0, 1};
         r[n++].imageExtent = {c.width, c.height, 1};
       };
-      if (c.tileDepth || !c.tileStencil) plane(c.tileDepth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, c.offset);
-      if (c.tileStencil) plane(VK_IMAGE_ASPECT_STENCIL_BIT, c.tileDepth ? c.stencilOffset : c.offset);
+      const FormatInfo& f = formatInfo(c.format);
+      if (f.depth || !f.stencil) plane(f.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, c.offset);
+      if (f.stencil) plane(VK_IMAGE_ASPECT_STENCIL_BIT, f.depth ? c.stencilOffset : c.offset);
       d.vk.CmdCopyImageToBuffer(cmd, c.tile, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, c.buffer->hostBuffer, n, r);
       continue;
     }

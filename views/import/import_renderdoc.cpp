@@ -99,6 +99,12 @@ bool checkTexels(const Layout& layout, uint32_t t, const RdcTexels& got, std::st
 
 }  // namespace
 
+void takeRenderDocTexels(ImportInput& in, const std::string& target, RdcTexels&& texels) {
+  in.renderdocSizes[target] = {texels.texture.width, texels.texture.height};
+  if (texels.texture.samples > 1) in.renderdocSamples[target] = texels.texture.samples;
+  in.renderdocTexels[target] = std::move(texels.bytes);
+}
+
 bool readRenderDocImport(const RenderDocImport& r, ImportInput& in, RenderDocImported& info, std::string& error) {
   if (!listRenderDocCapture(r.rdc, info.listing, error, r.replay)) return false;
   uint32_t event = 0;
@@ -135,9 +141,7 @@ bool readRenderDocImport(const RenderDocImport& r, ImportInput& in, RenderDocImp
     if (!checkTexels(layout, t, texels[k], error)) return false;
     const std::string& target = layout.targets[t].name;
     info.reads.push_back({target, texels[k].texture.name, texels[k].texture.format, texels[k].event});
-    in.renderdocSizes[target] = {texels[k].texture.width, texels[k].texture.height};
-    in.renderdocTexels[target] = std::move(texels[k].bytes);
-    if (texels[k].texture.samples > 1) in.renderdocSamples[target] = texels[k].texture.samples;
+    takeRenderDocTexels(in, target, std::move(texels[k]));
   }
 
   in.capture = r.rdc;

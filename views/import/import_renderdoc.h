@@ -41,4 +41,7 @@ struct RenderDocImported {
 // frame is larger. False with one line naming the capture or the layout's target and field.
 bool readRenderDocImport(const RenderDocImport& r, ImportInput& in, RenderDocImported& info, std::string& error);
 
+// Target `target` of `in` reads `texels` (its size, bytes, and a multisampled texture's sample count).
+void takeRenderDocTexels(ImportInput& in, const std::string& target, RdcTexels&& texels);
+
 }  // namespace gb

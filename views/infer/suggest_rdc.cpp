@@ -9,6 +9,7 @@
 
 #include "renderer/core/layout_json.h"
 #include "views/import/import.h"
+#include "views/import/import_renderdoc.h"
 #include "views/infer/roles.h"
 #include "views/infer/suggest.h"
 #include "views/infer/suggest_guess.h"
@@ -99,12 +100,8 @@ bool readTargets(const SuggestRequest& r, const RdcListing& listing, uint32_t re
   if (!readRenderDocTexels(r.inputs[0], readAt, sources, texels, error, r.replay)) return false;
   ImportInput in;
   if (!parseLayout(draft, "draft", in.layout, error)) return false;
-  for (size_t k = 0; k < texels.size() && k < in.layout.targets.size(); ++k) {
-    const std::string& target = in.layout.targets[k].name;
-    in.renderdocSizes[target] = {texels[k].texture.width, texels[k].texture.height};
-    in.renderdocTexels[target] = std::move(texels[k].bytes);
-    if (texels[k].texture.samples > 1) in.renderdocSamples[target] = texels[k].texture.samples;
-  }
+  for (size_t k = 0; k < texels.size() && k < in.layout.targets.size(); ++k)
+    takeRenderDocTexels(in, in.layout.targets[k].name, std::move(texels[k]));
   return importFrame(in, raw, error);
 }
 
