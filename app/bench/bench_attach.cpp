@@ -178,11 +178,11 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
   const fs::path dir = fs::temp_directory_path() / ("gblens-bench-attach-" + std::to_string(getpid()));
   fs::create_directories(dir);
   const std::string layout = writeLayout(dir.string()), log = (dir / "app.log").string();
-  // The raster G-buffer: its four targets are render-pass attachments, what the layer copies. Where
-  // --gbuffer auto picks the visibility path (the H200), albedo and normals are written by a compute
-  // pass and no render pass holds them (docs/attach.md "Reach").
+  // The raster G-buffer by default: its four targets are render-pass attachments. Where --gbuffer auto
+  // picks the visibility path (the H200), albedo and normals are storage images a compute pass writes,
+  // copied after its dispatches (docs/attach.md "Targets written by compute"): --attach-gbuffer.
   const std::vector<std::string> app = {self(), "render", "builtin:temple", "--size", s.size, "--frames",
-                                        std::to_string(s.frames), "--gbuffer", "raster", "--stats", "-o", (dir / "frame.png").string()};
+                                        std::to_string(s.frames), "--gbuffer", s.gbuffer, "--stats", "-o", (dir / "frame.png").string()};
   const std::vector<std::string> names = {"without", "idle", "every frame", "every " + std::to_string(s.every) + "th frame"};
   std::vector<std::vector<double>> ms(names.size());
   std::vector<std::vector<Phases>> phase(names.size());

@@ -17,6 +17,7 @@ struct AttachBenchSettings {
   int every = 4;             // the "every Nth frame" variant
   int soakFrames = 10000;    // the soak: frames streamed at soakSize
   std::string soakSize = "160x90";
+  std::string gbuffer = "raster";  // the application's --gbuffer (visibility: three targets written by compute)
 };
 
 // Runs the study with the gblens executable this process is (it starts itself as the application).

@@ -126,6 +126,9 @@ Command addBenchCommand(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--attach-size", s->attach.size, "gblens attach's cost: the application's output size")
       ->capture_default_str();
+  cmd->add_option("--attach-gbuffer", s->attach.gbuffer, "gblens attach's cost: the application's --gbuffer")
+      ->check(CLI::IsMember({"raster", "visibility", "auto"}))
+      ->capture_default_str();
   cmd->add_option("--attach-frames", s->attach.frames, "gblens attach's cost: frames per run of the application")
       ->check(CLI::Range(3, 100000))
       ->capture_default_str();

@@ -56,6 +56,9 @@ namespace {
 
 // The attachment a pick selects in this pass, or null.
 const Looked* select(DeviceData& d, const Pick& p, const OpenPass& pass, const std::vector<Looked>& all) {
+  // A dispatch's storage images are picked by name only (attachment indices, colour slots and
+  // formats are a render pass's).
+  if (pass.ordinal < 0 && (p.name.empty() || p.attachment >= 0 || p.subpass >= 0)) return nullptr;
   int index = p.attachment;  // a pick by the render pass's attachment index, or by a subpass's
   if (p.subpass >= 0) {
     if (size_t(p.subpass) >= pass.subpassColors.size()) {
@@ -111,16 +114,22 @@ VkImageAspectFlags aspects(const FormatInfo& f) {
   return (f.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : 0) | (f.stencil ? VK_IMAGE_ASPECT_STENCIL_BIT : 0);
 }
 
+// An attachment the pass left in GENERAL is copied there; a storage image (in GENERAL to be written,
+// and about to be copied once) goes to TRANSFER_SRC like the others.
+bool inPlace(const PassAttachment& a, VkImageLayout layout) { return layout == VK_IMAGE_LAYOUT_GENERAL && !a.storage; }
+
 // The barriers that take an attachment to TRANSFER_SRC (there) and back (after its copy).
 void transitions(const Looked& l, const FormatInfo& f, std::vector<VkImageMemoryBarrier>& there,
                  std::vector<VkImageMemoryBarrier>& back) {
   const PassAttachment& a = *l.a;
   auto barrier = [&](VkImageAspectFlags aspect, VkImageLayout layout) {
     VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-    b.srcAccessMask = f.depth || f.stencil ? VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT : VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    b.srcAccessMask = a.storage                ? VK_ACCESS_SHADER_WRITE_BIT
+                      : f.depth || f.stencil ? VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT
+                                             : VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
     b.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
     b.oldLayout = layout;
-    b.newLayout = layout == VK_IMAGE_LAYOUT_GENERAL ? layout : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    b.newLayout = inPlace(a, layout) ? layout : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
     b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     b.image = a.image;
     b.subresourceRange = {aspect, l.viewMip, 1, l.viewLayer, 1};
@@ -142,7 +151,7 @@ void transitions(const Looked& l, const FormatInfo& f, std::vector<VkImageMemory
 // sample for sample), from the layout the pass left that aspect in.
 Region layerImageCopy(const Looked& l, VkImage dst, VkImageAspectFlags aspect, uint32_t width, uint32_t height) {
   const VkImageLayout was = aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? l.a->stencilLayout : l.a->layout;
-  Region r{l.a->image, was == VK_IMAGE_LAYOUT_GENERAL ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+  Region r{l.a->image, inPlace(*l.a, was) ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
            VK_NULL_HANDLE, {}, dst, {}};
   r.samples.srcSubresource = {aspect, l.viewMip, l.viewLayer, 1};
   r.samples.dstSubresource = {aspect, 0, 0, 1};
@@ -258,14 +267,16 @@ void keep(CmdState& s, std::vector<Copy>& made, std::vector<BufferCopy>& buffers
 
 }  // namespace
 
-void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
+void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) { recordPassCopies(d, cmd, s, s.open); }
+
+void recordPassCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s, const OpenPass& pass) {
   const auto start = std::chrono::steady_clock::now();
   std::shared_ptr<const Request> req = currentRequest(d);
   if (!req) return;
   std::vector<Looked> all;
   {
     std::shared_lock lock(d.objects);
-    for (const PassAttachment& a : s.open.attachments) {
+    for (const PassAttachment& a : pass.attachments) {
       auto img = d.images.find(a.image);
       auto view = d.views.find(a.view);
       if (img == d.images.end() || view == d.views.end()) continue;
@@ -277,8 +288,8 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
   std::vector<Copy> made;
   for (size_t t = 0; t < req->picks.size(); ++t) {
     const Pick& p = req->picks[t];
-    if (!passMatches(p, s.open)) continue;
-    const Looked* l = select(d, p, s.open, all);
+    if (!passMatches(p, pass)) continue;
+    const Looked* l = select(d, p, pass, all);
     if (!l) continue;
     if (std::string why = refusal(d, l->image, p.format); !why.empty()) {
       report(d, "refused:" + p.targetName, "target \"" + p.targetName + "\": " + pickText(p) + " " + why);
@@ -290,8 +301,8 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
     c.width = std::max(1u, l->image.extent.width >> l->viewMip);
     c.height = std::max(1u, l->image.extent.height >> l->viewMip);
     c.format = l->image.format;
-    c.passOrdinal = s.open.ordinal;
-    c.pass = !s.open.labels.empty() ? s.open.labels.back() : s.open.renderPass;
+    c.passOrdinal = pass.ordinal;
+    c.pass = !pass.labels.empty() ? pass.labels.back() : pass.renderPass;
     const VkDeviceSize plane = VkDeviceSize(c.width) * c.height * f.bytes;
     const VkDeviceSize stencilAt = (plane + 3) / 4 * 4;
     VkDeviceSize bytes = f.stencil && f.depth ? stencilAt + VkDeviceSize(c.width) * c.height : plane;
@@ -327,7 +338,7 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
     auto region = [&](VkImageAspectFlags aspect, VkDeviceSize offset) {
       Region r{l->a->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, c.buffer->buffer, {}};
       const VkImageLayout was = aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? l->a->stencilLayout : l->a->layout;
-      if (was == VK_IMAGE_LAYOUT_GENERAL) r.layout = VK_IMAGE_LAYOUT_GENERAL;  // copied where it is
+      if (inPlace(*l->a, was)) r.layout = VK_IMAGE_LAYOUT_GENERAL;  // copied where it is
       r.copy.bufferOffset = offset;
       r.copy.imageSubresource = {aspect, l->viewMip, l->viewLayer, 1};
       r.copy.imageExtent = {c.width, c.height, 1};
@@ -354,10 +365,11 @@ void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
   }
   // The camera's bytes and the bound buffers, each where the ring has room.
   std::vector<BufferCopy> buffers;
-  for (BufferCopy& b : bufferCopies(d, s, *req, !made.empty()))
+  if (pass.ordinal < 0 && made.empty()) return;
+  for (BufferCopy& b : pass.ordinal < 0 ? std::vector<BufferCopy>{} : bufferCopies(d, s, *req, !made.empty()))
     if (reserve(d, s, b.size, b.copy.buffer, b.copy.offset)) {
-      b.copy.passOrdinal = s.open.ordinal;
-      b.copy.pass = !s.open.labels.empty() ? s.open.labels.back() : s.open.renderPass;
+      b.copy.passOrdinal = pass.ordinal;
+      b.copy.pass = !pass.labels.empty() ? pass.labels.back() : pass.renderPass;
       buffers.push_back(std::move(b));
     }
   if (made.empty() && buffers.empty()) return;

@@ -52,6 +52,9 @@ namespace gbl {
   X(GetDeviceQueue) X(GetDeviceQueue2) X(GetImageMemoryRequirements) X(BindImageMemory) X(CreateSampler)               \
   X(DestroySampler) X(CreateShaderModule) X(DestroyShaderModule) X(CreatePipelineLayout) X(DestroyPipelineLayout)      \
   X(CreateComputePipelines) X(DestroyPipeline) X(CreateDescriptorPool) X(CreateCommandPool) X(CmdBindPipeline)        \
+  X(CmdClearColorImage) X(CmdClearDepthStencilImage) X(CmdCopyBufferToImage) X(CmdCopyBufferToImage2)                 \
+  X(CmdCopyBufferToImage2KHR) X(CmdExecuteCommands) X(CmdPipelineBarrier2) X(CmdPipelineBarrier2KHR) X(CmdWaitEvents)   \
+  X(CmdWaitEvents2) X(CmdWaitEvents2KHR)                                                                              \
 
 struct DeviceTable {
 #define GBL_MEMBER(name) PFN_vk##name name = nullptr;
@@ -180,6 +183,9 @@ struct Request {
   int64_t onlyFrame = -1, lastFrame = -1;
   bool suggest = false;            // report the passes and attachments of one frame
   bool ringOffThread = false;      // the layer's thread makes the ring; frames before it go without copies
+  // Some pick names an image (not a pass's attachment by index or format): it may be a storage image
+  // written by compute, copied after each dispatch that binds it (dispatch_copies.cpp).
+  bool namedPicks = false;
   uint32_t giveUp = 120;           // frames with passes but no match before "nomatch"
 };
 
@@ -212,11 +218,17 @@ struct PassAttachment {
   int attachment = -1;  // its index in the render pass (dynamic rendering: colours 0.., then depth)
   int color = -1;
   bool depth = false, written = false;
+  bool storage = false;  // a storage image a compute dispatch may write (no render pass holds it)
   AttachmentOps ops;
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED, stencilLayout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
+// A storage image a dispatch bound, copied before the next command that could write it (dispatch_copies.cpp).
+struct PendingStorage {
+  PassAttachment attachment;
+  std::vector<std::string> labels;  // the debug labels open at the dispatch
+};
 struct OpenPass {
-  int ordinal = 0;
+  int ordinal = 0;  // -1: a compute dispatch (its storage images as "attachments", dispatch_copies.cpp)
   bool dynamic = false, suspending = false;
   std::string renderPass;
   std::vector<std::string> labels;
@@ -251,6 +263,10 @@ struct CmdState {
   // replaced before any draw does not). structure.cpp.
   bool trackBinds = false;
   std::vector<BoundSet> graphicsSets, computeSets;  // by set number
+  // Views of the images a pick names, for the dispatch copies (found at this recording's first dispatch).
+  bool namedViewsFound = false;
+  std::vector<VkImageView> namedViews;
+  std::vector<PendingStorage> pendingStorage;  // bound by the last dispatches, not copied yet
   int passBindsOf = -2;         // the passes whose binds are kept: -1 every pass, N the pass of ordinal N, -2 none
   bool keepPassBinds = false;   // the open pass's are
   std::vector<BindEvent> passBinds;
@@ -437,7 +453,18 @@ void returnFence(DeviceData& d, VkFence f);
 void destroyRing(DeviceData& d);
 
 // ---- command recording (record.cpp)
-void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);  // copy.cpp
+void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);  // copy.cpp: at the open pass's end
+// The copies of the targets `pass` holds (a render pass, or a dispatch's storage images: then no
+// buffers, and only picks by name); copy.cpp.
+void recordPassCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s, const OpenPass& pass);
+// dispatch_copies.cpp: after a dispatch, the named storage images it binds become pending (replacing
+// the same images' pending copies: a later writer supersedes them); flushed (their copies recorded)
+// before any command that could write them (a render pass, a clear, a copy into an image, secondary
+// command buffers) and at the recording's end.
+void dispatchCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);
+void flushStorageCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);
+std::vector<Hook> storageWriterHooks();
+void flushBeforeWrite(VkCommandBuffer cmd);  // a hooked command that may write an image is about to be recorded
 PassReport reportPass(DeviceData& d, const OpenPass& pass);        // copy.cpp
 // The camera's and the bound buffers' copies at the end of the open pass (`targets`: it copies
 // attachments too, and so the camera of a debug name). copy_buffers.cpp.

@@ -68,11 +68,19 @@ VKAPI_ATTR VkResult VKAPI_CALL BeginCommandBuffer(VkCommandBuffer cmd, const VkC
     s->reusable = reusable;
     s->suggest = req && req->suggest && !d.suggestSent;  // the report is of one frame: no tracking after it
     // The sets bound are followed only for what asks for them (a stream of attachments alone does not).
-    s->trackBinds = s->suggest || (s->copies && (req->boundBuffers.on || (req->liveCamera.on && !req->cameraPushConstants)));
+    // A pick by name may be a storage image compute writes: the compute sets say which (dispatch_copies.cpp).
+    s->trackBinds = s->suggest || (s->copies && (req->boundBuffers.on || req->namedPicks ||
+                                                 (req->liveCamera.on && !req->cameraPushConstants)));
     const bool bound = s->copies && req->boundBuffers.on;
     s->passBindsOf = s->suggest || (bound && !req->boundBuffers.pass.empty()) ? -1 : bound ? req->boundBuffers.passIndex : -2;
   }
   return d.vk.BeginCommandBuffer(cmd, info);
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL EndCommandBuffer(VkCommandBuffer cmd) {
+  DeviceData& d = *deviceOf(cmd);
+  if (CmdState* s = cmdState(d, cmd); s && !s->pendingStorage.empty()) flushStorageCopies(d, cmd, *s);
+  return d.vk.EndCommandBuffer(cmd);
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL ResetCommandBuffer(VkCommandBuffer cmd, VkCommandBufferResetFlags flags) {
@@ -98,6 +106,7 @@ VKAPI_ATTR void VKAPI_CALL CmdEndDebugUtilsLabelEXT(VkCommandBuffer cmd) {
 void beginRenderPass(DeviceData& d, VkCommandBuffer cmd, const VkRenderPassBeginInfo* info) {
   CmdState* s = cmdState(d, cmd);
   if (!s) return;
+  if (!s->pendingStorage.empty()) flushStorageCopies(d, cmd, *s);  // its draws may write them
   s->open = OpenPass{};
   s->open.ordinal = s->passes++;
   s->open.labels = s->labels;
@@ -198,6 +207,7 @@ void beginRendering(DeviceData& d, VkCommandBuffer cmd, const VkRenderingInfo* i
   patched.pColorAttachments = colors.data();
   CmdState* s = cmdState(d, cmd);
   if (!s || (info->flags & VK_RENDERING_RESUMING_BIT)) return;  // a resumed pass goes on as it began
+  if (!s->pendingStorage.empty()) flushStorageCopies(d, cmd, *s);  // its draws may write them
   s->open = OpenPass{};
   s->open.ordinal = s->passes++;
   s->open.labels = s->labels;
@@ -274,7 +284,7 @@ VKAPI_ATTR void VKAPI_CALL CmdEndRenderingKHR(VkCommandBuffer cmd) {
 
 std::vector<Hook> recordHooks() {
   return {GBL_HOOK(AllocateCommandBuffers), GBL_HOOK(FreeCommandBuffers),     GBL_HOOK(ResetCommandPool),
-          GBL_HOOK(DestroyCommandPool),     GBL_HOOK(BeginCommandBuffer),     GBL_HOOK(ResetCommandBuffer),
+          GBL_HOOK(DestroyCommandPool),     GBL_HOOK(BeginCommandBuffer),     GBL_HOOK(ResetCommandBuffer),     GBL_HOOK(EndCommandBuffer),
           GBL_HOOK(CmdBeginDebugUtilsLabelEXT), GBL_HOOK(CmdEndDebugUtilsLabelEXT),
           GBL_HOOK(CmdBeginRenderPass),     GBL_HOOK(CmdBeginRenderPass2),    GBL_HOOK(CmdBeginRenderPass2KHR),
           GBL_HOOK(CmdEndRenderPass),       GBL_HOOK(CmdEndRenderPass2),      GBL_HOOK(CmdEndRenderPass2KHR),

@@ -80,6 +80,7 @@ bool parseRequest(const std::string& text, Request& r) {
     p.byFormat = live.value("format", "");
     p.subpass = live.value("subpass", -1);
     p.attachment = live.value("attachment", -1);
+    r.namedPicks |= !p.name.empty() && p.attachment < 0 && p.subpass < 0 && p.passIndex < 0;
     r.picks.push_back(p);
   }
   return true;

@@ -1,6 +1,6 @@
 // The frame's structure for --suggest and the sets a pass binds: descriptor sets bound per bind point
 // (followed only where something asks: --suggest until its report is sent, bound_buffers,
-// camera.live), the sets a pass's draws see and the images they may read through them, and what is
+// camera.live, a pick by name: dispatch_copies.cpp), the sets a pass's draws see and the images they may read through them, and what is
 // read between passes (compute dispatches, copy/blit/resolve sources) or copied into a swapchain
 // image; image ids; push constants for bound_buffers and camera.live. The draw, dispatch, copy and
 // push-constant hooks are handed out only to a device whose request asks for them
@@ -85,6 +85,7 @@ void imageCopy(DeviceData& d, VkCommandBuffer cmd, VkImage src, VkImage dst) {
 }
 
 void dispatched(DeviceData& d, VkCommandBuffer cmd) {
+  if (CmdState* c = cmdState(d, cmd); c && c->copies && c->trackBinds) dispatchCopies(d, cmd, *c);
   CmdState* s = following(d, cmd);
   if (!s) return;
   std::vector<BindEvent> binds;
@@ -249,18 +250,21 @@ VKAPI_ATTR void VKAPI_CALL CmdDispatchBaseKHR(VkCommandBuffer cmd, uint32_t bx, 
 VKAPI_ATTR void VKAPI_CALL CmdCopyImage(VkCommandBuffer cmd, VkImage src, VkImageLayout srcLayout, VkImage dst,
                                         VkImageLayout dstLayout, uint32_t n, const VkImageCopy* regions) {
   DeviceData& d = *deviceOf(cmd);
+  flushBeforeWrite(cmd);
   d.vk.CmdCopyImage(cmd, src, srcLayout, dst, dstLayout, n, regions);
   imageCopy(d, cmd, src, dst);
 }
 VKAPI_ATTR void VKAPI_CALL CmdBlitImage(VkCommandBuffer cmd, VkImage src, VkImageLayout srcLayout, VkImage dst,
                                         VkImageLayout dstLayout, uint32_t n, const VkImageBlit* regions, VkFilter filter) {
   DeviceData& d = *deviceOf(cmd);
+  flushBeforeWrite(cmd);
   d.vk.CmdBlitImage(cmd, src, srcLayout, dst, dstLayout, n, regions, filter);
   imageCopy(d, cmd, src, dst);
 }
 VKAPI_ATTR void VKAPI_CALL CmdResolveImage(VkCommandBuffer cmd, VkImage src, VkImageLayout srcLayout, VkImage dst,
                                            VkImageLayout dstLayout, uint32_t n, const VkImageResolve* regions) {
   DeviceData& d = *deviceOf(cmd);
+  flushBeforeWrite(cmd);
   d.vk.CmdResolveImage(cmd, src, srcLayout, dst, dstLayout, n, regions);
   imageCopy(d, cmd, src, dst);
 }
@@ -275,6 +279,7 @@ VKAPI_ATTR void VKAPI_CALL CmdCopyImageToBuffer(VkCommandBuffer cmd, VkImage src
 #define GBL_COPY2(name, Info, dstImage)                                          \
   VKAPI_ATTR void VKAPI_CALL name(VkCommandBuffer cmd, const Info* info) {       \
     DeviceData& d = *deviceOf(cmd);                                              \
+    flushBeforeWrite(cmd);                                                       \
     d.vk.name(cmd, info);                                                        \
     imageCopy(d, cmd, info->srcImage, dstImage);                                 \
   }
@@ -302,6 +307,8 @@ std::vector<Hook> bindHooks() {
 
 std::vector<Hook> structureHooks(const Request& req) {
   std::vector<Hook> hooks;
+  if (req.namedPicks && !req.suggest)  // a named storage image is copied after the dispatches that bind it
+    hooks = {GBL_HOOK(CmdDispatch), GBL_HOOK(CmdDispatchIndirect), GBL_HOOK(CmdDispatchBase), GBL_HOOK(CmdDispatchBaseKHR)};
   if (req.suggest)
     hooks = {GBL_HOOK(CmdDispatch),      GBL_HOOK(CmdDispatchIndirect),   GBL_HOOK(CmdDispatchBase),
              GBL_HOOK(CmdDispatchBaseKHR), GBL_HOOK(CmdCopyImage),        GBL_HOOK(CmdCopyImage2),
@@ -309,6 +316,15 @@ std::vector<Hook> structureHooks(const Request& req) {
              GBL_HOOK(CmdBlitImage2KHR), GBL_HOOK(CmdResolveImage),       GBL_HOOK(CmdResolveImage2),
              GBL_HOOK(CmdResolveImage2KHR), GBL_HOOK(CmdCopyImageToBuffer), GBL_HOOK(CmdCopyImageToBuffer2),
              GBL_HOOK(CmdCopyImageToBuffer2KHR)};
+  if (req.namedPicks) {  // what may write an image flushes the storage copies pending before it
+    const std::vector<Hook> writers = storageWriterHooks();
+    hooks.insert(hooks.end(), writers.begin(), writers.end());
+    if (!req.suggest)
+      for (const Hook& h : {GBL_HOOK(CmdCopyImage), GBL_HOOK(CmdCopyImage2), GBL_HOOK(CmdCopyImage2KHR), GBL_HOOK(CmdBlitImage),
+                            GBL_HOOK(CmdBlitImage2), GBL_HOOK(CmdBlitImage2KHR), GBL_HOOK(CmdResolveImage),
+                            GBL_HOOK(CmdResolveImage2), GBL_HOOK(CmdResolveImage2KHR)})
+        hooks.push_back(h);
+  }
   if (req.suggest || req.boundBuffers.on)
     for (const Hook& h : {GBL_HOOK(CmdDraw), GBL_HOOK(CmdDrawIndexed), GBL_HOOK(CmdDrawIndirect), GBL_HOOK(CmdDrawIndexedIndirect),
                           GBL_HOOK(CmdDrawIndirectCount), GBL_HOOK(CmdDrawIndirectCountKHR), GBL_HOOK(CmdDrawIndexedIndirectCount),

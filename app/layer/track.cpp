@@ -29,7 +29,9 @@ VKAPI_ATTR VkResult VKAPI_CALL CreateImage(VkDevice device, const VkImageCreateI
                                            const VkAllocationCallbacks* alloc, VkImage* image) {
   DeviceData& d = *deviceOf(device);
   VkImageCreateInfo patched = *info;
-  const VkImageUsageFlags attachment = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+  // Attachments, and storage images (a G-buffer compute writes: dispatch_copies.cpp).
+  const VkImageUsageFlags attachment =
+      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
   // A transient attachment (a tiler keeps it in tile memory) cannot be copied. On a device with no
   // lazily allocated memory the flag changes nothing but the usage allowed: the layer drops it and
   // copies the image; where such memory exists the application may bind it, so it stays transient

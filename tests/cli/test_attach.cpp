@@ -64,6 +64,34 @@ TEST(Attach, GblensStreamEqualsItsCapture) {
     }
 }
 
+// A G-buffer written by compute (the visibility G-buffer: gbuffer_resolve writes albedo, normals and
+// eye depth into storage images no render pass holds) is streamed from after the dispatches that
+// write it: every target equals `gblens capture` of the same frame bit for bit (validation and
+// synchronization validation in the application: the copies' layouts and barriers are checked).
+TEST(Attach, AGBufferWrittenByComputeStreamsAsItsCapture) {
+  const std::string dir = freshDir("attach_visibility");
+  const std::string frame = kFrame + " --gbuffer visibility";
+  RunResult r = runGblens("attach --layout builtin:gblens --capture-frame 0 -o " + dir + "/live -- " +
+                          app("render " + frame + " --frames 2 --validate -o " + dir + "/frame.png"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("exited with status"), std::string::npos) << r.output;  // validation clean
+  for (const char* t : {"albedo_specular", "normal_shadow", "depth"})
+    EXPECT_NE(r.output.find(std::string(t) + " ", 0), std::string::npos) << r.output;
+  EXPECT_EQ(count(r.output, "compute dispatch \"gbuffer_resolve\""), 3u) << r.output;  // the three storage targets
+  RunResult c = runGblens("capture " + frame + " --coverage off -o " + dir + "/capture");
+  ASSERT_EQ(c.exitCode, 0) << c.output;
+  Capture live, ref;
+  std::string error;
+  ASSERT_TRUE(loadCapture(dir + "/live", live, error)) << error;
+  ASSERT_TRUE(loadCapture(dir + "/capture", ref, error)) << error;
+  for (const char* t : {"albedo_specular", "normal_shadow", "depth", "depth_stencil", "visibility", "hdr", "final"}) {
+    ASSERT_GE(live.frame.indexOf(t), 0) << t;
+    EXPECT_TRUE(live.frame.images[size_t(live.frame.indexOf(t))].present()) << t << "\n" << r.output;
+  }
+  const std::vector<std::string> differ = attach::texelDifferences(live, ref);
+  EXPECT_TRUE(differ.empty()) << differ.front();
+}
+
 TEST(Attach, EveryNthFrameAndStats) {
   const std::string dir = freshDir("attach_every");
   RunResult r = runGblens("attach --layout builtin:gblens --capture-frame 4 --stats -o " + dir + "/live -- " +

@@ -206,8 +206,9 @@ bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFr
     in.liveTexels[lt.name] = {texels, bytes, t.value("width", 0u), t.value("height", 0u), std::max(1u, t.value("samples", 1u)),
                               t.value("sample_stride", size_t(0))};
     const std::string pass = t.value("pass_name", "");
-    sources[index] = "render pass " + std::to_string(t.value("pass", 0)) + (pass.empty() ? "" : " \"" + pass + "\"") +
-                             ", " + t.value("vk_format", "");
+    const int ordinal = t.value("pass", 0);  // -1: a storage image, copied after the dispatches that bind it
+    sources[index] = (ordinal < 0 ? std::string("compute dispatch") : "render pass " + std::to_string(ordinal)) +
+                     (pass.empty() ? "" : " \"" + pass + "\"") + ", " + t.value("vk_format", "");
   }
   for (const LayoutTarget& lt : l.targets)
     if (!in.liveTexels.count(lt.name)) {

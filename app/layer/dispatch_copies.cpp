@@ -1,0 +1,163 @@
+// G-buffers written by compute (visibility-buffer and compute-deferred engines): a storage image that
+// a pick names is copied after the last of a run of dispatches that bind it, before the next command
+// that could write it again or move it to another layout (a dispatch binding it supersedes the
+// pending copy; a barrier, a render pass, a clear, a copy or blit into an image, secondary command
+// buffers, the recording's end flush it), so
+// the frame holds what the last such dispatch left (docs/attach.md "Targets written by compute").
+// The copies and barriers are copy.cpp's; only picks by name reach storage images.
+#include <algorithm>
+
+#include "app/layer/layer.h"
+
+namespace gbl {
+
+namespace {
+
+// The views of the images (or views) a pick names: found once per recording, so that a dispatch
+// compares its storage descriptors with a handful of views, not with every view the device has
+// (the caller holds d.objects).
+void findNamedViews(DeviceData& d, const Request& req, CmdState& s) {
+  s.namedViewsFound = true;
+  s.namedViews.clear();
+  auto named = [&](const std::string& name) {
+    return !name.empty() && std::any_of(req.picks.begin(), req.picks.end(), [&](const Pick& p) { return p.name == name; });
+  };
+  for (const auto& [view, info] : d.views) {
+    auto image = d.images.find(info.image);
+    if (image != d.images.end() && (image->second.usage & VK_IMAGE_USAGE_STORAGE_BIT) &&
+        (named(info.name) || named(image->second.name)))
+      s.namedViews.push_back(view);
+  }
+}
+
+// The named storage images the compute sets bound now hold (the caller holds d.objects).
+std::vector<PassAttachment> boundNamedStorage(DeviceData& d, CmdState& s) {
+  std::vector<PassAttachment> out;
+  std::vector<BoundDescriptor> bound;
+  for (uint32_t n = 0; n < s.computeSets.size(); ++n)
+    if (s.computeSets[n].bound()) boundDescriptors(d, n, s.computeSets[n], bound);
+  for (const BoundDescriptor& b : bound) {
+    if (b.type != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE || !b.view) continue;
+    if (std::find(s.namedViews.begin(), s.namedViews.end(), b.view) == s.namedViews.end()) continue;
+    if (std::any_of(out.begin(), out.end(), [&](const PassAttachment& a) { return a.view == b.view; })) continue;
+    PassAttachment a;
+    a.image = d.views.at(b.view).image;
+    a.view = b.view;
+    a.written = a.storage = true;
+    a.layout = a.stencilLayout = VK_IMAGE_LAYOUT_GENERAL;  // where storage images are accessed
+    out.push_back(a);
+  }
+  return out;
+}
+
+}  // namespace
+
+void dispatchCopies(DeviceData& d, VkCommandBuffer, CmdState& s) {
+  std::shared_ptr<const Request> req = currentRequest(d);
+  if (!req || !req->namedPicks) return;
+  std::shared_lock lock(d.objects);
+  if (!s.namedViewsFound) findNamedViews(d, *req, s);
+  if (s.namedViews.empty()) return;
+  for (PassAttachment& a : boundNamedStorage(d, s)) {
+    std::erase_if(s.pendingStorage, [&](const PendingStorage& p) { return p.attachment.view == a.view; });
+    s.pendingStorage.push_back({a, s.labels});
+  }
+}
+
+void flushStorageCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
+  std::vector<PendingStorage> pending;
+  pending.swap(s.pendingStorage);
+  while (!pending.empty() && s.copies) {  // one "pass" per run of the same labels (the target's pass name)
+    OpenPass pass;
+    pass.ordinal = -1;
+    pass.labels = pending.front().labels;
+    for (auto it = pending.begin(); it != pending.end();)
+      if (it->labels == pass.labels) {
+        pass.attachments.push_back(it->attachment);
+        it = pending.erase(it);
+      } else {
+        ++it;
+      }
+    recordPassCopies(d, cmd, s, pass);
+  }
+}
+
+namespace {
+
+// Commands that may write an image: the pending storage copies go first.
+void beforeWrite(VkCommandBuffer cmd) {
+  DeviceData& d = *deviceOf(cmd);
+  if (CmdState* s = cmdState(d, cmd); s && !s->pendingStorage.empty()) flushStorageCopies(d, cmd, *s);
+}
+
+VKAPI_ATTR void VKAPI_CALL CmdClearColorImage(VkCommandBuffer cmd, VkImage image, VkImageLayout layout, const VkClearColorValue* c,
+                                              uint32_t n, const VkImageSubresourceRange* ranges) {
+  beforeWrite(cmd);
+  deviceOf(cmd)->vk.CmdClearColorImage(cmd, image, layout, c, n, ranges);
+}
+VKAPI_ATTR void VKAPI_CALL CmdClearDepthStencilImage(VkCommandBuffer cmd, VkImage image, VkImageLayout layout,
+                                                     const VkClearDepthStencilValue* c, uint32_t n,
+                                                     const VkImageSubresourceRange* ranges) {
+  beforeWrite(cmd);
+  deviceOf(cmd)->vk.CmdClearDepthStencilImage(cmd, image, layout, c, n, ranges);
+}
+VKAPI_ATTR void VKAPI_CALL CmdCopyBufferToImage(VkCommandBuffer cmd, VkBuffer src, VkImage dst, VkImageLayout layout, uint32_t n,
+                                                const VkBufferImageCopy* regions) {
+  beforeWrite(cmd);
+  deviceOf(cmd)->vk.CmdCopyBufferToImage(cmd, src, dst, layout, n, regions);
+}
+VKAPI_ATTR void VKAPI_CALL CmdCopyBufferToImage2(VkCommandBuffer cmd, const VkCopyBufferToImageInfo2* info) {
+  beforeWrite(cmd);
+  deviceOf(cmd)->vk.CmdCopyBufferToImage2(cmd, info);
+}
+VKAPI_ATTR void VKAPI_CALL CmdCopyBufferToImage2KHR(VkCommandBuffer cmd, const VkCopyBufferToImageInfo2* info) {
+  beforeWrite(cmd);
+  deviceOf(cmd)->vk.CmdCopyBufferToImage2KHR(cmd, info);
+}
+// A barrier may move a pending image to another layout (the copy is recorded where it is GENERAL)
+// and order later writes after it.
+VKAPI_ATTR void VKAPI_CALL CmdPipelineBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkPipelineStageFlags dst,
+                                              VkDependencyFlags flags, uint32_t nm, const VkMemoryBarrier* m, uint32_t nb,
+                                              const VkBufferMemoryBarrier* b, uint32_t ni, const VkImageMemoryBarrier* i) {
+  beforeWrite(cmd);
+  deviceOf(cmd)->vk.CmdPipelineBarrier(cmd, src, dst, flags, nm, m, nb, b, ni, i);
+}
+VKAPI_ATTR void VKAPI_CALL CmdPipelineBarrier2(VkCommandBuffer cmd, const VkDependencyInfo* info) {
+  beforeWrite(cmd);
+  deviceOf(cmd)->vk.CmdPipelineBarrier2(cmd, info);
+}
+VKAPI_ATTR void VKAPI_CALL CmdPipelineBarrier2KHR(VkCommandBuffer cmd, const VkDependencyInfo* info) {
+  beforeWrite(cmd);
+  deviceOf(cmd)->vk.CmdPipelineBarrier2KHR(cmd, info);
+}
+VKAPI_ATTR void VKAPI_CALL CmdWaitEvents(VkCommandBuffer cmd, uint32_t n, const VkEvent* events, VkPipelineStageFlags src,
+                                         VkPipelineStageFlags dst, uint32_t nm, const VkMemoryBarrier* m, uint32_t nb,
+                                         const VkBufferMemoryBarrier* b, uint32_t ni, const VkImageMemoryBarrier* i) {
+  beforeWrite(cmd);
+  deviceOf(cmd)->vk.CmdWaitEvents(cmd, n, events, src, dst, nm, m, nb, b, ni, i);
+}
+VKAPI_ATTR void VKAPI_CALL CmdWaitEvents2(VkCommandBuffer cmd, uint32_t n, const VkEvent* events, const VkDependencyInfo* infos) {
+  beforeWrite(cmd);
+  deviceOf(cmd)->vk.CmdWaitEvents2(cmd, n, events, infos);
+}
+VKAPI_ATTR void VKAPI_CALL CmdWaitEvents2KHR(VkCommandBuffer cmd, uint32_t n, const VkEvent* events, const VkDependencyInfo* infos) {
+  beforeWrite(cmd);
+  deviceOf(cmd)->vk.CmdWaitEvents2KHR(cmd, n, events, infos);
+}
+VKAPI_ATTR void VKAPI_CALL CmdExecuteCommands(VkCommandBuffer cmd, uint32_t n, const VkCommandBuffer* cmds) {
+  beforeWrite(cmd);
+  deviceOf(cmd)->vk.CmdExecuteCommands(cmd, n, cmds);
+}
+
+}  // namespace
+
+void flushBeforeWrite(VkCommandBuffer cmd) { beforeWrite(cmd); }
+
+std::vector<Hook> storageWriterHooks() {
+  return {GBL_HOOK(CmdClearColorImage), GBL_HOOK(CmdClearDepthStencilImage), GBL_HOOK(CmdCopyBufferToImage),
+          GBL_HOOK(CmdCopyBufferToImage2), GBL_HOOK(CmdCopyBufferToImage2KHR), GBL_HOOK(CmdExecuteCommands),
+          GBL_HOOK(CmdPipelineBarrier), GBL_HOOK(CmdPipelineBarrier2), GBL_HOOK(CmdPipelineBarrier2KHR),
+          GBL_HOOK(CmdWaitEvents), GBL_HOOK(CmdWaitEvents2), GBL_HOOK(CmdWaitEvents2KHR)};
+}
+
+}  // namespace gbl
