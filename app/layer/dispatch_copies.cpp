@@ -6,6 +6,7 @@
 // the frame holds what the last such dispatch left (docs/attach.md "Targets written by compute").
 // The copies and barriers are copy.cpp's; only picks by name reach storage images.
 #include <algorithm>
+#include <chrono>
 
 #include "app/layer/layer.h"
 
@@ -55,6 +56,7 @@ std::vector<PassAttachment> boundNamedStorage(DeviceData& d, CmdState& s) {
 void dispatchCopies(DeviceData& d, VkCommandBuffer, CmdState& s) {
   std::shared_ptr<const Request> req = currentRequest(d);
   if (!req || !req->namedPicks) return;
+  const auto start = std::chrono::steady_clock::now();
   std::shared_lock lock(d.objects);
   if (!s.namedViewsFound) findNamedViews(d, *req, s);
   if (s.namedViews.empty()) return;
@@ -62,6 +64,9 @@ void dispatchCopies(DeviceData& d, VkCommandBuffer, CmdState& s) {
     std::erase_if(s.pendingStorage, [&](const PendingStorage& p) { return p.attachment.view == a.view; });
     s.pendingStorage.push_back({a, s.labels});
   }
+  const uint64_t ns = uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count());
+  d.hookNs += ns;
+  if (ns > 1000000) GBL_LOG("a dispatch's storage images took %.2f ms to look up", double(ns) * 1e-6);
 }
 
 void flushStorageCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
@@ -80,6 +85,27 @@ void flushStorageCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
       }
     recordPassCopies(d, cmd, s, pass);
   }
+}
+
+void storageBeforePass(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
+  std::shared_ptr<const Request> req = currentRequest(d);
+  std::erase_if(s.pendingStorage, [&](const PendingStorage& p) {
+    auto a = std::find_if(s.open.attachments.begin(), s.open.attachments.end(),
+                          [&](const PassAttachment& x) { return x.image == p.attachment.image && x.written; });
+    if (a == s.open.attachments.end() || !req) return false;
+    // The pass's end copies it only for picks that follow the image through every pass; a pick
+    // naming the dispatch's pass wants what the dispatch left.
+    std::string name, viewName;
+    {
+      std::shared_lock lock(d.objects);
+      if (auto i = d.images.find(p.attachment.image); i != d.images.end()) name = i->second.name;
+      if (auto v = d.views.find(p.attachment.view); v != d.views.end()) viewName = v->second.name;
+    }
+    return std::none_of(req->picks.begin(), req->picks.end(), [&](const Pick& k) {
+      return (k.name == name || k.name == viewName) && (!k.pass.empty() || k.passIndex >= 0);
+    });
+  });
+  if (!s.pendingStorage.empty()) flushStorageCopies(d, cmd, s);
 }
 
 namespace {

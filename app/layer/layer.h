@@ -463,6 +463,9 @@ void recordPassCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s, const Ope
 // command buffers) and at the recording's end.
 void dispatchCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);
 void flushStorageCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);
+// A render pass (s.open) is about to begin: a pending image it writes as an attachment is dropped
+// (its end copies it), the others are flushed.
+void storageBeforePass(DeviceData& d, VkCommandBuffer cmd, CmdState& s);
 std::vector<Hook> storageWriterHooks();
 void flushBeforeWrite(VkCommandBuffer cmd);  // a hooked command that may write an image is about to be recorded
 PassReport reportPass(DeviceData& d, const OpenPass& pass);        // copy.cpp

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include <algorithm>
+#include <chrono>
 
 #include "app/layer/layer.h"
 #include "views/live/live_wire.h"
@@ -322,7 +323,9 @@ void logLine(const char* format, ...) {
   va_start(args, format);
   std::vsnprintf(line, sizeof(line), format, args);
   va_end(args);
-  std::fprintf(stderr, "gblens layer: %s\n", line);
+  static const auto start = std::chrono::steady_clock::now();  // lines say when, from the first
+  std::fprintf(stderr, "gblens layer: %9.3f ms %s\n",
+               std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(), line);
 }
 
 std::shared_ptr<const Request> currentRequest(DeviceData& d) {

@@ -106,7 +106,6 @@ VKAPI_ATTR void VKAPI_CALL CmdEndDebugUtilsLabelEXT(VkCommandBuffer cmd) {
 void beginRenderPass(DeviceData& d, VkCommandBuffer cmd, const VkRenderPassBeginInfo* info) {
   CmdState* s = cmdState(d, cmd);
   if (!s) return;
-  if (!s->pendingStorage.empty()) flushStorageCopies(d, cmd, *s);  // its draws may write them
   s->open = OpenPass{};
   s->open.ordinal = s->passes++;
   s->open.labels = s->labels;
@@ -144,6 +143,11 @@ void beginRenderPass(DeviceData& d, VkCommandBuffer cmd, const VkRenderPassBegin
   }
 }
 
+// Storage copies pending when a pass begins (s.open just made): before it, as its draws may write them.
+void pendingBeforePass(DeviceData& d, VkCommandBuffer cmd) {
+  if (CmdState* s = cmdState(d, cmd); s && !s->pendingStorage.empty()) storageBeforePass(d, cmd, *s);
+}
+
 void endPass(DeviceData& d, VkCommandBuffer cmd) {
   CmdState* s = cmdState(d, cmd);
   if (!s || !s->inPass) return;
@@ -160,18 +164,21 @@ void endPass(DeviceData& d, VkCommandBuffer cmd) {
 VKAPI_ATTR void VKAPI_CALL CmdBeginRenderPass(VkCommandBuffer cmd, const VkRenderPassBeginInfo* info, VkSubpassContents c) {
   DeviceData& d = *deviceOf(cmd);
   beginRenderPass(d, cmd, info);
+  pendingBeforePass(d, cmd);
   d.vk.CmdBeginRenderPass(cmd, info, c);
 }
 VKAPI_ATTR void VKAPI_CALL CmdBeginRenderPass2(VkCommandBuffer cmd, const VkRenderPassBeginInfo* info,
                                                const VkSubpassBeginInfo* sub) {
   DeviceData& d = *deviceOf(cmd);
   beginRenderPass(d, cmd, info);
+  pendingBeforePass(d, cmd);
   d.vk.CmdBeginRenderPass2(cmd, info, sub);
 }
 VKAPI_ATTR void VKAPI_CALL CmdBeginRenderPass2KHR(VkCommandBuffer cmd, const VkRenderPassBeginInfo* info,
                                                   const VkSubpassBeginInfo* sub) {
   DeviceData& d = *deviceOf(cmd);
   beginRenderPass(d, cmd, info);
+  pendingBeforePass(d, cmd);
   d.vk.CmdBeginRenderPass2KHR(cmd, info, sub);
 }
 VKAPI_ATTR void VKAPI_CALL CmdEndRenderPass(VkCommandBuffer cmd) {
@@ -207,7 +214,6 @@ void beginRendering(DeviceData& d, VkCommandBuffer cmd, const VkRenderingInfo* i
   patched.pColorAttachments = colors.data();
   CmdState* s = cmdState(d, cmd);
   if (!s || (info->flags & VK_RENDERING_RESUMING_BIT)) return;  // a resumed pass goes on as it began
-  if (!s->pendingStorage.empty()) flushStorageCopies(d, cmd, *s);  // its draws may write them
   s->open = OpenPass{};
   s->open.ordinal = s->passes++;
   s->open.labels = s->labels;
@@ -260,6 +266,7 @@ void cmdBeginRendering(PFN_vkCmdBeginRendering next, VkCommandBuffer cmd, const 
   std::vector<VkRenderingAttachmentInfo> colors;
   VkRenderingAttachmentInfo depth, stencil;
   beginRendering(d, cmd, info, patched, colors, depth, stencil);
+  if (!(info->flags & VK_RENDERING_RESUMING_BIT)) pendingBeforePass(d, cmd);
   next(cmd, &patched);
 }
 VKAPI_ATTR void VKAPI_CALL CmdBeginRendering(VkCommandBuffer cmd, const VkRenderingInfo* info) {

@@ -13,12 +13,23 @@
 
 #include <chrono>
 #include <cstring>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "app/layer/stream.h"
 #include "views/live/live_wire.h"
 
 namespace gbl {
+
+// GBLENS_LAYER_COMPUTE=0: no copies after dispatches (nor the compute sets followed for them), for
+// measuring what they cost (docs/attach.md "Targets written by compute").
+bool computeCopiesOn() {
+  static const bool on = [] {
+    const char* e = std::getenv("GBLENS_LAYER_COMPUTE");
+    return !e || std::strcmp(e, "0") != 0;
+  }();
+  return on;
+}
 
 using json = nlohmann::json;
 
@@ -80,7 +91,7 @@ bool parseRequest(const std::string& text, Request& r) {
     p.byFormat = live.value("format", "");
     p.subpass = live.value("subpass", -1);
     p.attachment = live.value("attachment", -1);
-    r.namedPicks |= !p.name.empty() && p.attachment < 0 && p.subpass < 0 && p.passIndex < 0;
+    r.namedPicks |= !p.name.empty() && p.attachment < 0 && p.subpass < 0 && p.passIndex < 0 && computeCopiesOn();
     r.picks.push_back(p);
   }
   return true;
