@@ -1,8 +1,9 @@
 // G-buffers written by compute (visibility-buffer and compute-deferred engines): a storage image that
 // a pick names is copied after the last of a run of dispatches that bind it, before the next command
-// that could write it again or move it to another layout (a dispatch binding it supersedes the
-// pending copy; a barrier, a render pass, a clear, a copy or blit into an image, secondary command
-// buffers, the recording's end flush it), so
+// that could write it again (a dispatch binding it supersedes the pending copy; a render pass
+// writing it as an attachment copies it at its end instead; another render pass, a clear, a copy or
+// blit into an image, a barrier discarding it, secondary command buffers, the recording's end flush
+// it; a barrier moving it to another layout keeps it pending there), so
 // the frame holds what the last such dispatch left (docs/attach.md "Targets written by compute").
 // The copies and barriers are copy.cpp's; only picks by name reach storage images.
 #include <algorithm>
@@ -140,34 +141,66 @@ VKAPI_ATTR void VKAPI_CALL CmdCopyBufferToImage2KHR(VkCommandBuffer cmd, const V
   beforeWrite(cmd);
   deviceOf(cmd)->vk.CmdCopyBufferToImage2KHR(cmd, info);
 }
-// A barrier may move a pending image to another layout (the copy is recorded where it is GENERAL)
-// and order later writes after it.
+// A barrier over a pending image: one that discards it (from UNDEFINED) copies it first; one that
+// moves it to another layout keeps it pending there (a render pass that then writes it as an
+// attachment copies it itself: the compute clear before a raster G-buffer is never copied).
+void throughBarriers(VkCommandBuffer cmd, uint32_t n, const VkImage* images, const VkImageLayout* from, const VkImageLayout* to,
+                     size_t stride) {
+  DeviceData& d = *deviceOf(cmd);
+  CmdState* s = cmdState(d, cmd);
+  if (!s || s->pendingStorage.empty()) return;
+  auto at = [&](const void* base, uint32_t i) { return static_cast<const char*>(base) + stride * i; };
+  bool discarded = false;
+  for (uint32_t i = 0; i < n && !discarded; ++i) {
+    const VkImage image = *reinterpret_cast<const VkImage*>(at(images, i));
+    const VkImageLayout oldLayout = *reinterpret_cast<const VkImageLayout*>(at(from, i));
+    for (const PendingStorage& p : s->pendingStorage)
+      discarded |= p.attachment.image == image && (oldLayout == VK_IMAGE_LAYOUT_UNDEFINED || oldLayout == VK_IMAGE_LAYOUT_PREINITIALIZED);
+  }
+  if (discarded) return flushStorageCopies(d, cmd, *s);
+  for (uint32_t i = 0; i < n; ++i) {
+    const VkImage image = *reinterpret_cast<const VkImage*>(at(images, i));
+    const VkImageLayout newLayout = *reinterpret_cast<const VkImageLayout*>(at(to, i));
+    for (PendingStorage& p : s->pendingStorage)
+      if (p.attachment.image == image) p.attachment.layout = p.attachment.stencilLayout = newLayout;
+  }
+}
+void throughBarriers(VkCommandBuffer cmd, uint32_t n, const VkImageMemoryBarrier* b) {
+  if (n) throughBarriers(cmd, n, &b->image, &b->oldLayout, &b->newLayout, sizeof(*b));
+}
+void throughBarriers(VkCommandBuffer cmd, uint32_t count, const VkDependencyInfo* infos) {
+  for (uint32_t k = 0; k < count; ++k)
+    if (const VkDependencyInfo& i = infos[k]; i.imageMemoryBarrierCount)
+      throughBarriers(cmd, i.imageMemoryBarrierCount, &i.pImageMemoryBarriers->image, &i.pImageMemoryBarriers->oldLayout,
+                      &i.pImageMemoryBarriers->newLayout, sizeof(VkImageMemoryBarrier2));
+}
+
 VKAPI_ATTR void VKAPI_CALL CmdPipelineBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkPipelineStageFlags dst,
                                               VkDependencyFlags flags, uint32_t nm, const VkMemoryBarrier* m, uint32_t nb,
                                               const VkBufferMemoryBarrier* b, uint32_t ni, const VkImageMemoryBarrier* i) {
-  beforeWrite(cmd);
+  throughBarriers(cmd, ni, i);
   deviceOf(cmd)->vk.CmdPipelineBarrier(cmd, src, dst, flags, nm, m, nb, b, ni, i);
 }
 VKAPI_ATTR void VKAPI_CALL CmdPipelineBarrier2(VkCommandBuffer cmd, const VkDependencyInfo* info) {
-  beforeWrite(cmd);
+  throughBarriers(cmd, 1, info);
   deviceOf(cmd)->vk.CmdPipelineBarrier2(cmd, info);
 }
 VKAPI_ATTR void VKAPI_CALL CmdPipelineBarrier2KHR(VkCommandBuffer cmd, const VkDependencyInfo* info) {
-  beforeWrite(cmd);
+  throughBarriers(cmd, 1, info);
   deviceOf(cmd)->vk.CmdPipelineBarrier2KHR(cmd, info);
 }
 VKAPI_ATTR void VKAPI_CALL CmdWaitEvents(VkCommandBuffer cmd, uint32_t n, const VkEvent* events, VkPipelineStageFlags src,
                                          VkPipelineStageFlags dst, uint32_t nm, const VkMemoryBarrier* m, uint32_t nb,
                                          const VkBufferMemoryBarrier* b, uint32_t ni, const VkImageMemoryBarrier* i) {
-  beforeWrite(cmd);
+  throughBarriers(cmd, ni, i);
   deviceOf(cmd)->vk.CmdWaitEvents(cmd, n, events, src, dst, nm, m, nb, b, ni, i);
 }
 VKAPI_ATTR void VKAPI_CALL CmdWaitEvents2(VkCommandBuffer cmd, uint32_t n, const VkEvent* events, const VkDependencyInfo* infos) {
-  beforeWrite(cmd);
+  throughBarriers(cmd, n, infos);
   deviceOf(cmd)->vk.CmdWaitEvents2(cmd, n, events, infos);
 }
 VKAPI_ATTR void VKAPI_CALL CmdWaitEvents2KHR(VkCommandBuffer cmd, uint32_t n, const VkEvent* events, const VkDependencyInfo* infos) {
-  beforeWrite(cmd);
+  throughBarriers(cmd, n, infos);
   deviceOf(cmd)->vk.CmdWaitEvents2KHR(cmd, n, events, infos);
 }
 VKAPI_ATTR void VKAPI_CALL CmdExecuteCommands(VkCommandBuffer cmd, uint32_t n, const VkCommandBuffer* cmds) {
