@@ -356,6 +356,7 @@ void recordPassCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s, const Ope
       if (f.depth || !f.stencil) region(f.depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT, c.offset);
       if (f.stencil && f.depth) region(VK_IMAGE_ASPECT_STENCIL_BIT, c.stencilOffset);
     }
+    if (pass.ordinal < 0) ++d.storageCopies;
     made.push_back(c);
   }
   if (s.ringPending) {  // no copies until the layer's thread has made the ring (ring.cpp reserve)

@@ -387,6 +387,7 @@ struct DeviceData {
   std::atomic<uint32_t> nextRingId{0};
   std::atomic<uint64_t> ringBytes{0};
   std::atomic<uint64_t> tileCopies{0};  // attachments copied image to image into the staged ring's tiles
+  std::atomic<uint64_t> storageCopies{0};  // storage images copied after dispatches (dispatch_copies.cpp)
   VkDeviceSize ringWanted = 0;                // a slot's buffer the layer's thread is to make (growRing)
   std::atomic<uint64_t> droppedForRing{0};    // recordings that went without copies meanwhile
   std::atomic<uint64_t> threadAllocNs{0};     // the thread's time making ring buffers (not the application's)

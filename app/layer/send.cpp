@@ -151,6 +151,7 @@ json statsJson(Stream& st) {
           {"ring_staged", d.staging != nullptr},
           {"ring_staged_shared", d.staging != nullptr && d.stagedShared},
           {"ring_tile_copies", d.tileCopies.load()},
+          {"storage_copies", d.storageCopies.load()},
           {"ring_download", !d.staging ? "none" : stagedOwnQueue(d) ? "layer queue" : "application queue"},
           {"download_ms", st.sent ? st.downloadMs / double(st.sent) : 0.0}};
 }

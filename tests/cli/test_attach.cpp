@@ -92,6 +92,31 @@ TEST(Attach, AGBufferWrittenByComputeStreamsAsItsCapture) {
   EXPECT_TRUE(differ.empty()) << differ.front();
 }
 
+// The layer's storage copies, counted in --stats: the visibility G-buffer's three storage targets in
+// every streamed frame; a compute clear of the raster
+// G-buffer's targets none (the barrier to COLOR_ATTACHMENT keeps the copy pending and the G-buffer
+// pass, which writes them, drops it: copying at the barrier would make 3 a frame).
+TEST(Attach, StorageImagesAreCopiedOnceAfterTheirLastWriterAndNotBeforeAPassWritingThem) {
+  auto storageCopies = [](const std::string& options, uint64_t& streamed) -> uint64_t {
+    RunResult r = runGblens("attach --layout builtin:gblens --frames 3 --stats -- " +
+                            app("render " + kFrame + " --frames 8 " + options + " -o " + freshDir("attach_storage") + "/f.png"));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    const size_t json = r.output.find("{\n");
+    if (json == std::string::npos) return ~0ull;
+    nlohmann::json stats = nlohmann::json::parse(r.output.substr(json, r.output.rfind('}') - json + 1), nullptr, false);
+    if (!stats.is_object()) return ~0ull;
+    streamed = stats["layer"]["streamed"].get<uint64_t>();
+    return stats["layer"]["storage_copies"].get<uint64_t>();
+  };
+  uint64_t streamed = 0;
+  const uint64_t visibility = storageCopies("--gbuffer visibility", streamed);
+  EXPECT_GE(streamed, 3u);
+  // (frames the layer began to copy but did not stream, at the connect, count too)
+  EXPECT_GE(visibility, 3 * streamed);
+  EXPECT_EQ(storageCopies("--gbuffer raster --method clustered --gbuffer-clear compute", streamed), 0u);
+  EXPECT_GE(streamed, 3u);
+}
+
 TEST(Attach, EveryNthFrameAndStats) {
   const std::string dir = freshDir("attach_every");
   RunResult r = runGblens("attach --layout builtin:gblens --capture-frame 4 --stats -o " + dir + "/live -- " +
