@@ -92,6 +92,35 @@ TEST(TilerAttach, ASubpassGBufferOfAVulkan10ApplicationIsItsOwnDumpOfTheFrameAsk
   EXPECT_EQ(corner, 0xF0000002u);
 }
 
+// --mode compute: albedo and normal written by a compute dispatch into storage images (bound through
+// vkUpdateDescriptorSets and vkCmdBindDescriptorSets, named tiler.albedo / tiler.normal, moved to
+// SHADER_READ_ONLY by a barrier before the lighting pass reads them), picked by name: every target of
+// the frame asked for equals the application's own dump of it bit for bit, with validation on.
+TEST(TilerAttach, AGBufferWrittenByComputeIsItsOwnDumpOfTheFrameAskedFor) {
+  const std::string dir = freshDir("attach_tiler_compute");
+  const RunResult dump = runShell("GBLENS_VALIDATE=1 '" + tiler() + "' --mode compute --frames 4 --dump '" + dir +
+                                  "/dump' --dump-frame 1");
+  ASSERT_EQ(dump.exitCode, 0) << dump.output;
+  const RunResult r = attachTiler(dir, "compute", 1);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("exited with status"), std::string::npos) << r.output;  // validation clean
+  EXPECT_NE(r.output.find("wrote application frame 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("albedo               rgba8_unorm    320x180  compute dispatch"), std::string::npos) << r.output;
+  Capture c;
+  std::string error;
+  ASSERT_TRUE(loadCapture(dir + "/live", c, error)) << error;
+  const json frame = json::parse(std::ifstream(dir + "/dump/frame.json"));
+  ASSERT_EQ(frame["frame"], 1);
+  size_t compared = 0, storage = 0;
+  for (const json& t : frame["targets"]) {
+    expectDumped(c, t["name"], dir + "/dump/" + t["files"][0].get<std::string>());
+    ++compared;
+    storage += t["render_pass"] == -1;
+  }
+  EXPECT_EQ(compared, 5u);
+  EXPECT_EQ(storage, 2u);  // albedo and normal: no render pass holds them
+}
+
 // A Vulkan 1.0 application's ring is shared memory too (the layer enables the instance and device
 // extensions VK_EXT_external_memory_host needs): the layer's thread copies nothing out of it.
 // `attach --frames K --stats` of `mode` with `env`: the JSON it prints (null, with the output in the

@@ -75,7 +75,8 @@ nlohmann::ordered_json target_json(const target_info& t) {
           {"files", t.files},
           {"store", t.store ? "store" : "dont_care"},
           {"transient", t.transient},
-          {"input_of_subpass", t.input_of_subpass}};
+          {"input_of_subpass", t.input_of_subpass},
+          {"debug_name", t.debug_name.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(t.debug_name)}};
 }
 
 bool write_file(const fs::path& path, const void* data, size_t bytes) {
@@ -105,7 +106,7 @@ bool write_dump(const dump_frame& d) {
   const nlohmann::ordered_json frame = {
       {"producer", "tiler_deferred"},
       {"gpu", d.gpu_name},
-      {"mode", msaa ? "msaa" : "subpass"},
+      {"mode", mode_name(d.opts->mode)},
       {"frame", d.frame},
       {"frames", d.opts->frames},
       {"width", d.opts->width},

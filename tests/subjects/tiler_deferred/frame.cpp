@@ -22,15 +22,17 @@ shared_gpu make_shared(const gpu& g, const scene& s) {
   sh.uniforms = make_buffer(g, 2 * sh.slot_bytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   sh.frame_layout = make_set_layout(g, {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC},
                                     VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
-  // Room for both modes' sets: set 0, the lighting set (4 images), the dump compute set (4 + 1).
+  // Room for every mode's sets: set 0, the lighting set (4 images), the dump compute set (4 + 1), the
+  // compute mode's resolve set (2 sampled + 2 storage images).
   const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1},
                                         {VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT, 4},
                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}};
   VkDescriptorPoolCreateInfo pool{};
   pool.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
   pool.maxSets = 4;
-  pool.poolSizeCount = 4;
+  pool.poolSizeCount = 5;
   pool.pPoolSizes = sizes;
   TD_CHECK(vkCreateDescriptorPool(g.device, &pool, nullptr, &sh.pool));
   VkDescriptorSetAllocateInfo alloc{};

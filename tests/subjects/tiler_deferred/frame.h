@@ -10,7 +10,8 @@
 
 namespace td {
 
-enum class mode_kind { subpass, msaa };
+enum class mode_kind { subpass, msaa, compute };
+inline const char* mode_name(mode_kind m) { return m == mode_kind::subpass ? "subpass" : m == mode_kind::msaa ? "msaa" : "compute"; }
 
 struct options {
   mode_kind mode = mode_kind::subpass;
@@ -31,6 +32,7 @@ struct target_info {
   std::vector<std::string> files;
   bool store = true, transient = false;
   std::vector<int> input_of_subpass;
+  std::string debug_name;  // VK_EXT_debug_utils name ("" : none; only the compute mode names images)
 };
 
 // The resources both modes use. The uniform buffer holds two 512-byte slots (frame k uses slot k % 2);
@@ -69,6 +71,7 @@ class mode_renderer {
 
 std::unique_ptr<mode_renderer> make_subpass_renderer(const gpu& g, const shared_gpu& sh, const options& o);
 std::unique_ptr<mode_renderer> make_msaa_renderer(const gpu& g, const shared_gpu& sh, const options& o);
+std::unique_ptr<mode_renderer> make_compute_renderer(const gpu& g, const shared_gpu& sh, const options& o);
 
 // Image memory barrier on one whole image.
 VkImageMemoryBarrier image_barrier(const image& i, VkAccessFlags src, VkAccessFlags dst, VkImageLayout from,

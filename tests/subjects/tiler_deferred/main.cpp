@@ -11,10 +11,11 @@ namespace {
 using td::options;
 
 const char* k_usage =
-    "usage: tiler_deferred [--mode subpass|msaa] [--size WxH] [--frames N] [--dump DIR] [--dump-frame K]\n"
+    "usage: tiler_deferred [--mode subpass|msaa|compute] [--size WxH] [--frames N] [--dump DIR] [--dump-frame K]\n"
     "                      [--transient on|off] [--capture-frame K]\n"
-    "  --mode subpass|msaa  one render pass with two subpasses and input attachments (default), or a 4x\n"
-    "                       G-buffer lit per sample and averaged in the shader\n"
+    "  --mode subpass|msaa|compute  one render pass with two subpasses and input attachments (default), a 4x\n"
+    "                       G-buffer lit per sample and averaged in the shader, or albedo and normal written\n"
+    "                       by a compute dispatch into storage images named tiler.albedo / tiler.normal\n"
     "  --size WxH           target size (default 320x180)\n"
     "  --frames N           frames 0..N-1 (default 3)\n"
     "  --dump DIR           write frame --dump-frame's attachments and frame.json to DIR (atomically)\n"
@@ -51,7 +52,8 @@ options parse(int argc, char** argv) {
       const std::string v = value();
       if (v == "subpass") o.mode = td::mode_kind::subpass;
       else if (v == "msaa") o.mode = td::mode_kind::msaa;
-      else bad("--mode " + v + ": expected subpass or msaa");
+      else if (v == "compute") o.mode = td::mode_kind::compute;
+      else bad("--mode " + v + ": expected subpass, msaa or compute");
     } else if (flag == "--size") {
       const std::string v = value();
       const size_t x = v.find('x');
@@ -96,11 +98,12 @@ options parse(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   const options o = parse(argc, argv);
-  td::gpu g = td::open_gpu();
+  td::gpu g = td::open_gpu(o.mode == td::mode_kind::compute);
   td::shared_gpu sh = td::make_shared(g, td::build_scene(0));
   std::unique_ptr<td::mode_renderer> r = o.mode == td::mode_kind::subpass ? td::make_subpass_renderer(g, sh, o)
-                                                                           : td::make_msaa_renderer(g, sh, o);
-  const uint32_t mode = o.mode == td::mode_kind::subpass ? 0 : 1;
+                                         : o.mode == td::mode_kind::msaa  ? td::make_msaa_renderer(g, sh, o)
+                                                                          : td::make_compute_renderer(g, sh, o);
+  const uint32_t mode = uint32_t(o.mode);  // 0 subpass, 1 msaa, 2 compute
   td::dump_frame dump;
   dump.opts = &o;
   dump.gpu_name = g.name;
@@ -147,7 +150,7 @@ int main(int argc, char** argv) {
   if (!dumped) return 1;
   const bool rdc = o.capture_frame >= 0 && td::renderdoc_present();
   std::printf("tiler_deferred: rendered %u frame(s) at %ux%u, mode %s%s%s\n", o.frames, o.width, o.height,
-              mode ? "msaa" : "subpass", rdc ? (", RenderDoc captured frame " + std::to_string(o.capture_frame)).c_str() : "",
+              td::mode_name(o.mode), rdc ? (", RenderDoc captured frame " + std::to_string(o.capture_frame)).c_str() : "",
               o.dump.empty() ? "" : (", dumped frame " + std::to_string(dump.frame) + " to " + o.dump).c_str());
   return 0;
 }

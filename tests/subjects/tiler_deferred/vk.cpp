@@ -2,6 +2,7 @@
 // synchronization validation and a messenger; every warning or error is printed and counted.
 #include "vk.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace td {
@@ -64,7 +65,7 @@ VkDeviceMemory allocate(const gpu& g, const VkMemoryRequirements& req, uint32_t 
   return m;
 }
 
-void create_instance(gpu& g) {
+void create_instance(gpu& g, bool names) {
   VkApplicationInfo app{};
   app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
   app.pApplicationName = "tiler_deferred";
@@ -100,6 +101,10 @@ void create_instance(gpu& g) {
       chain = &features;
     }
   }
+  if (names && std::find_if(extensions.begin(), extensions.end(), [](const char* e) {
+                 return std::strcmp(e, VK_EXT_DEBUG_UTILS_EXTENSION_NAME) == 0;
+               }) == extensions.end())
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   VkInstanceCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
   info.pNext = chain;
@@ -109,6 +114,8 @@ void create_instance(gpu& g) {
   info.enabledExtensionCount = uint32_t(extensions.size());
   info.ppEnabledExtensionNames = extensions.data();
   TD_CHECK(vkCreateInstance(&info, nullptr, &g.instance));
+  if (names)
+    g.set_name = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(vkGetInstanceProcAddr(g.instance, "vkSetDebugUtilsObjectNameEXT"));
   if (g.validation) {
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(g.instance, "vkCreateDebugUtilsMessengerEXT"));
@@ -120,9 +127,19 @@ void create_instance(gpu& g) {
 
 int validation_count() { return g_count; }
 
-gpu open_gpu() {
+void name_image(const gpu& g, VkImage image, const char* name) {
+  if (!g.set_name) return;
+  VkDebugUtilsObjectNameInfoEXT info{};
+  info.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT;
+  info.objectType = VK_OBJECT_TYPE_IMAGE;
+  info.objectHandle = uint64_t(image);
+  info.pObjectName = name;
+  TD_CHECK(g.set_name(g.device, &info));
+}
+
+gpu open_gpu(bool names) {
   gpu g;
-  create_instance(g);
+  create_instance(g, names);
   uint32_t n = 0;
   TD_CHECK(vkEnumeratePhysicalDevices(g.instance, &n, nullptr));
   if (n == 0) {

@@ -32,6 +32,7 @@ struct gpu {
   std::string name;
   bool validation = false;
   bool has_lazy_memory = false;  // a memory type with LAZILY_ALLOCATED exists
+  PFN_vkSetDebugUtilsObjectNameEXT set_name = nullptr;  // open_gpu(true)
 };
 
 struct image {
@@ -51,7 +52,9 @@ struct buffer {
   void* mapped = nullptr;
 };
 
-gpu open_gpu();
+// `names`: VK_EXT_debug_utils enabled so that name_image names images (the compute mode; the others name nothing).
+gpu open_gpu(bool names = false);
+void name_image(const gpu& g, VkImage image, const char* name);
 void close_gpu(gpu& g);
 int validation_count();  // warnings + errors reported so far (each printed when it came)
 
