@@ -92,8 +92,8 @@ const Looked* select(DeviceData& d, const Pick& p, const OpenPass& pass, const s
   return found[0];
 }
 
-// Why an attachment cannot be streamed as a target of storage format `want` ("" : it can; want ""
-// accepts any format a layout can hold).
+}  // namespace
+
 std::string refusal(DeviceData& d, const ImageInfo& image, const std::string& want) {
   const FormatInfo& f = formatInfo(image.format);
   if (!*f.storage) return "is " + formatName(image.format) + ", which no layout storage format holds";
@@ -108,6 +108,8 @@ std::string refusal(DeviceData& d, const ImageInfo& image, const std::string& wa
     return "cannot be copied (a format the device cannot copy from)";
   return "";
 }
+
+namespace {
 
 VkImageAspectFlags aspects(const FormatInfo& f) {
   if (!f.depth && !f.stencil) return VK_IMAGE_ASPECT_COLOR_BIT;
@@ -383,39 +385,6 @@ void recordPassCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s, const Ope
     GBL_LOG("%s %d: %zu copies took %.2f ms to record (the driver's commands %.2f ms)", pass.ordinal < 0 ? "dispatch" : "pass",
             pass.ordinal, regions.size(), std::chrono::duration<double, std::milli>(end - start).count(),
             std::chrono::duration<double, std::milli>(end - transfers).count());
-}
-
-PassReport reportPass(DeviceData& d, const OpenPass& pass) {
-  PassReport r;
-  r.ordinal = pass.ordinal;
-  r.dynamic = pass.dynamic;
-  r.renderPass = pass.renderPass;
-  r.labels = pass.labels;
-  std::shared_lock lock(d.objects);
-  for (const PassAttachment& a : pass.attachments) {
-    auto img = d.images.find(a.image);
-    auto view = d.views.find(a.view);
-    if (img == d.images.end()) continue;
-    PassReport::Attachment e;
-    e.role = a.color >= 0 ? "color " + std::to_string(a.color) : a.depth ? "depth" : "other";
-    e.image = img->second.name;
-    e.view = view == d.views.end() ? "" : view->second.name;
-    const uint32_t mip = view == d.views.end() ? 0 : view->second.mip;
-    e.width = std::max(1u, img->second.extent.width >> mip);
-    e.height = std::max(1u, img->second.extent.height >> mip);
-    e.samples = uint32_t(img->second.samples);
-    e.format = formatName(img->second.format);
-    e.storage = formatInfo(img->second.format).storage;
-    e.written = a.written;
-    e.ops = a.ops;
-    e.depth = formatInfo(img->second.format).depth;
-    e.stencil = formatInfo(img->second.format).stencil;
-    e.presented = img->second.swapchain != VK_NULL_HANDLE;
-    e.imageId = imageId(d, a.image);
-    e.why = refusal(d, img->second, "");
-    r.attachments.push_back(e);
-  }
-  return r;
 }
 
 }  // namespace gbl

@@ -469,7 +469,10 @@ void flushStorageCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);
 void storageBeforePass(DeviceData& d, VkCommandBuffer cmd, CmdState& s);
 std::vector<Hook> storageWriterHooks();
 void flushBeforeWrite(VkCommandBuffer cmd);  // a hooked command that may write an image is about to be recorded
-PassReport reportPass(DeviceData& d, const OpenPass& pass);        // copy.cpp
+PassReport reportPass(DeviceData& d, const OpenPass& pass);        // structure.cpp (--suggest)
+// Why an attachment cannot be streamed as a target of storage format `want` ("" : it can; want ""
+// accepts any format a layout can hold). copy.cpp.
+std::string refusal(DeviceData& d, const ImageInfo& image, const std::string& want);
 // The camera's and the bound buffers' copies at the end of the open pass (`targets`: it copies
 // attachments too, and so the camera of a debug name). copy_buffers.cpp.
 std::vector<BufferCopy> bufferCopies(DeviceData& d, const CmdState& s, const Request& req, bool targets);

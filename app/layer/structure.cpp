@@ -334,4 +334,37 @@ std::vector<Hook> structureHooks(const Request& req) {
   return hooks;
 }
 
+PassReport reportPass(DeviceData& d, const OpenPass& pass) {
+  PassReport r;
+  r.ordinal = pass.ordinal;
+  r.dynamic = pass.dynamic;
+  r.renderPass = pass.renderPass;
+  r.labels = pass.labels;
+  std::shared_lock lock(d.objects);
+  for (const PassAttachment& a : pass.attachments) {
+    auto img = d.images.find(a.image);
+    auto view = d.views.find(a.view);
+    if (img == d.images.end()) continue;
+    PassReport::Attachment e;
+    e.role = a.color >= 0 ? "color " + std::to_string(a.color) : a.depth ? "depth" : "other";
+    e.image = img->second.name;
+    e.view = view == d.views.end() ? "" : view->second.name;
+    const uint32_t mip = view == d.views.end() ? 0 : view->second.mip;
+    e.width = std::max(1u, img->second.extent.width >> mip);
+    e.height = std::max(1u, img->second.extent.height >> mip);
+    e.samples = uint32_t(img->second.samples);
+    e.format = formatName(img->second.format);
+    e.storage = formatInfo(img->second.format).storage;
+    e.written = a.written;
+    e.ops = a.ops;
+    e.depth = formatInfo(img->second.format).depth;
+    e.stencil = formatInfo(img->second.format).stencil;
+    e.presented = img->second.swapchain != VK_NULL_HANDLE;
+    e.imageId = imageId(d, a.image);
+    e.why = refusal(d, img->second, "");
+    r.attachments.push_back(e);
+  }
+  return r;
+}
+
 }  // namespace gbl

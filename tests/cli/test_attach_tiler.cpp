@@ -64,26 +64,34 @@ void expectDumped(const Capture& c, const std::string& target, const std::string
   EXPECT_EQ(std::memcmp(img.data.data(), bytes.data(), bytes.size()), 0);
 }
 
+// The application's own dump of frame `k` of a 4-frame run in `mode`, then attach --capture-frame k
+// (validation on in the application): every target of the dump's frame.json equals the capture's.
+// The frame.json (null on a failure, reported) and the capture.
+json dumpedAndStreamed(const std::string& dir, const std::string& mode, int k, Capture& c, std::string& output) {
+  const RunResult dump = runShell("GBLENS_VALIDATE=1 '" + tiler() + "' --mode " + mode + " --frames 4 --dump '" + dir +
+                                  "/dump' --dump-frame " + std::to_string(k));
+  EXPECT_EQ(dump.exitCode, 0) << dump.output;
+  const RunResult r = attachTiler(dir, mode, k);
+  output = r.output;
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("exited with status"), std::string::npos) << r.output;  // validation clean
+  EXPECT_NE(r.output.find("wrote application frame " + std::to_string(k)), std::string::npos) << r.output;
+  std::string error;
+  EXPECT_TRUE(loadCapture(dir + "/live", c, error)) << error;
+  if (dump.exitCode != 0 || r.exitCode != 0 || !error.empty()) return json();
+  const json frame = json::parse(std::ifstream(dir + "/dump/frame.json"));
+  EXPECT_EQ(frame["frame"], k);
+  for (const json& t : frame["targets"]) expectDumped(c, t["name"], dir + "/dump/" + t["files"][0].get<std::string>());
+  return frame;
+}
+
 TEST(TilerAttach, ASubpassGBufferOfAVulkan10ApplicationIsItsOwnDumpOfTheFrameAskedFor) {
   const std::string dir = freshDir("attach_tiler_subpass");
-  const RunResult dump = runShell("GBLENS_VALIDATE=1 '" + tiler() + "' --mode subpass --frames 4 --dump '" + dir +
-                                  "/dump' --dump-frame 2");
-  ASSERT_EQ(dump.exitCode, 0) << dump.output;
-  const RunResult r = attachTiler(dir, "subpass", 2);
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_EQ(r.output.find("exited with status"), std::string::npos) << r.output;  // validation clean
-  EXPECT_NE(r.output.find("wrote application frame 2"), std::string::npos) << r.output;
   Capture c;
-  std::string error;
-  ASSERT_TRUE(loadCapture(dir + "/live", c, error)) << error;
-  const json frame = json::parse(std::ifstream(dir + "/dump/frame.json"));
-  ASSERT_EQ(frame["frame"], 2);
-  size_t compared = 0;
-  for (const json& t : frame["targets"]) {
-    expectDumped(c, t["name"], dir + "/dump/" + t["files"][0].get<std::string>());
-    ++compared;
-  }
-  EXPECT_EQ(compared, 6u);
+  std::string output;
+  const json frame = dumpedAndStreamed(dir, "subpass", 2, c, output);
+  ASSERT_TRUE(frame.is_object());
+  EXPECT_EQ(frame["targets"].size(), 6u);
   // The frame asked for, by the application's own count: the id target's background is 0xF0000000 | k.
   const int id = c.frame.indexOf("id");
   ASSERT_GE(id, 0);
@@ -97,27 +105,14 @@ TEST(TilerAttach, ASubpassGBufferOfAVulkan10ApplicationIsItsOwnDumpOfTheFrameAsk
 // SHADER_READ_ONLY by a barrier before the lighting pass reads them), picked by name: every target of
 // the frame asked for equals the application's own dump of it bit for bit, with validation on.
 TEST(TilerAttach, AGBufferWrittenByComputeIsItsOwnDumpOfTheFrameAskedFor) {
-  const std::string dir = freshDir("attach_tiler_compute");
-  const RunResult dump = runShell("GBLENS_VALIDATE=1 '" + tiler() + "' --mode compute --frames 4 --dump '" + dir +
-                                  "/dump' --dump-frame 1");
-  ASSERT_EQ(dump.exitCode, 0) << dump.output;
-  const RunResult r = attachTiler(dir, "compute", 1);
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_EQ(r.output.find("exited with status"), std::string::npos) << r.output;  // validation clean
-  EXPECT_NE(r.output.find("wrote application frame 1"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("albedo               rgba8_unorm    320x180  compute dispatch"), std::string::npos) << r.output;
   Capture c;
-  std::string error;
-  ASSERT_TRUE(loadCapture(dir + "/live", c, error)) << error;
-  const json frame = json::parse(std::ifstream(dir + "/dump/frame.json"));
-  ASSERT_EQ(frame["frame"], 1);
-  size_t compared = 0, storage = 0;
-  for (const json& t : frame["targets"]) {
-    expectDumped(c, t["name"], dir + "/dump/" + t["files"][0].get<std::string>());
-    ++compared;
-    storage += t["render_pass"] == -1;
-  }
-  EXPECT_EQ(compared, 5u);
+  std::string output;
+  const json frame = dumpedAndStreamed(freshDir("attach_tiler_compute"), "compute", 1, c, output);
+  ASSERT_TRUE(frame.is_object());
+  EXPECT_NE(output.find("albedo               rgba8_unorm    320x180  compute dispatch"), std::string::npos) << output;
+  EXPECT_EQ(frame["targets"].size(), 5u);
+  size_t storage = 0;
+  for (const json& t : frame["targets"]) storage += t["render_pass"] == -1;
   EXPECT_EQ(storage, 2u);  // albedo and normal: no render pass holds them
 }
 

@@ -156,4 +156,32 @@ VkRenderPass make_pass(const gpu& g, const std::vector<VkAttachmentDescription>&
   return pass;
 }
 
+VkRenderPass make_lit_pass(const gpu& g) {
+  const VkAttachmentReference lit{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription sub{};
+  sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  sub.colorAttachmentCount = 1;
+  sub.pColorAttachments = &lit;
+  const VkPipelineStageFlags out = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  return make_pass(g,
+                   {attachment(VK_FORMAT_R16G16B16A16_SFLOAT, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+                               VK_ATTACHMENT_STORE_OP_STORE, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL)},
+                   sub,
+                   {{VK_SUBPASS_EXTERNAL, 0, out | VK_PIPELINE_STAGE_TRANSFER_BIT, out, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                     VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, 0},
+                    {0, VK_SUBPASS_EXTERNAL, out, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                     VK_ACCESS_TRANSFER_READ_BIT, 0}});
+}
+
+target_info lit_target() {
+  target_info lit;
+  lit.name = "lit";
+  lit.vk_format = "VK_FORMAT_R16G16B16A16_SFLOAT";
+  lit.bytes_per_texel = 8;
+  lit.render_pass = 1;
+  lit.color = 0;
+  lit.files = {"lit.bin"};
+  return lit;
+}
+
 }  // namespace td

@@ -82,6 +82,10 @@ VkFramebuffer make_framebuffer(const gpu& g, VkRenderPass pass, const std::vecto
                                uint32_t width, uint32_t height);
 
 VkDescriptorSet allocate_set(const gpu& g, VkDescriptorPool pool, VkDescriptorSetLayout layout);
+// The msaa and compute modes' render pass 1: lit (R16G16B16A16_SFLOAT, DONT_CARE / STORE, final
+// TRANSFER_SRC), and its target_info.
+VkRenderPass make_lit_pass(const gpu& g);
+target_info lit_target();
 // A render pass of one subpass (msaa mode's two passes).
 VkRenderPass make_pass(const gpu& g, const std::vector<VkAttachmentDescription>& attachments,
                        const VkSubpassDescription& subpass, const std::vector<VkSubpassDependency>& deps);

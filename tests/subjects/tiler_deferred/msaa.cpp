@@ -114,14 +114,7 @@ class msaa_renderer final : public mode_renderer {
       for (int s = 0; s < 4; ++s) t.files.push_back(t.name + ".s" + std::to_string(s) + ".bin");
       list.push_back(t);
     }
-    target_info lit;
-    lit.name = "lit";
-    lit.vk_format = "VK_FORMAT_R16G16B16A16_SFLOAT";
-    lit.bytes_per_texel = 8;
-    lit.render_pass = 1;
-    lit.color = 0;
-    lit.files = {"lit.bin"};
-    list.push_back(lit);
+    list.push_back(lit_target());
     return list;
   }
 
@@ -166,19 +159,7 @@ class msaa_renderer final : public mode_renderer {
                         sub,
                         {{VK_SUBPASS_EXTERNAL, 0, attach | readers, attach, writes, rw, 0},
                          {0, VK_SUBPASS_EXTERNAL, attach, readers, writes, VK_ACCESS_SHADER_READ_BIT, 0}});
-    const VkAttachmentReference lit{0, color};
-    sub.colorAttachmentCount = 1;
-    sub.pColorAttachments = &lit;
-    sub.pDepthStencilAttachment = nullptr;
-    const VkPipelineStageFlags out = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    pass_b_ = make_pass(g_,
-                        {attachment(VK_FORMAT_R16G16B16A16_SFLOAT, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_DONT_CARE,
-                                    store, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL)},
-                        sub,
-                        {{VK_SUBPASS_EXTERNAL, 0, out | VK_PIPELINE_STAGE_TRANSFER_BIT, out,
-                          VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, 0},
-                         {0, VK_SUBPASS_EXTERNAL, out, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                          VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT, 0}});
+    pass_b_ = make_lit_pass(g_);
   }
 
   // Bindings 0..3 of `set`: the G-buffer images in `order`, through the nearest sampler.
