@@ -41,7 +41,9 @@ bool passMatches(const Pick& p, const OpenPass& pass) {
 }  // namespace
 
 std::string pickText(const Pick& p) {
-  std::string t = !p.name.empty()    ? "the image named \"" + p.name + "\""
+  std::string t = p.storageSet >= 0   ? "the storage image a dispatch binds at set " + std::to_string(p.storageSet) +
+                                           " binding " + std::to_string(p.storageBinding)
+                  : !p.name.empty()    ? "the image named \"" + p.name + "\""
                   : p.attachment >= 0 ? "attachment " + std::to_string(p.attachment)
                   : p.color >= 0      ? "colour attachment " + std::to_string(p.color)
                   : p.depth           ? std::string("the depth attachment")
@@ -56,9 +58,11 @@ namespace {
 
 // The attachment a pick selects in this pass, or null.
 const Looked* select(DeviceData& d, const Pick& p, const OpenPass& pass, const std::vector<Looked>& all) {
-  // A dispatch's storage images are picked by name only (attachment indices, colour slots and
-  // formats are a render pass's).
-  if (pass.ordinal < 0 && (p.name.empty() || p.attachment >= 0 || p.subpass >= 0)) return nullptr;
+  // A dispatch's storage images are picked by name or by the set and binding it binds them at
+  // (attachment indices, colour slots and formats are a render pass's); a storage pick is no
+  // render pass's attachment.
+  if (pass.ordinal < 0 && p.storageSet < 0 && (p.name.empty() || p.attachment >= 0 || p.subpass >= 0)) return nullptr;
+  if (pass.ordinal >= 0 && p.storageSet >= 0) return nullptr;
   int index = p.attachment;  // a pick by the render pass's attachment index, or by a subpass's
   if (p.subpass >= 0) {
     if (size_t(p.subpass) >= pass.subpassColors.size()) {
@@ -73,7 +77,8 @@ const Looked* select(DeviceData& d, const Pick& p, const OpenPass& pass, const s
   }
   std::vector<const Looked*> found;
   for (const Looked& l : all) {
-    const bool hit = index >= 0       ? l.a->attachment == index
+    const bool hit = p.storageSet >= 0 ? l.a->storageSet == p.storageSet && l.a->storageBinding == p.storageBinding
+                     : index >= 0       ? l.a->attachment == index
                      : !p.name.empty() ? (l.image.name == p.name || l.viewName == p.name)
                      : p.color >= 0  ? l.a->color == p.color
                      : p.depth       ? l.a->depth

@@ -32,21 +32,30 @@ void findNamedViews(DeviceData& d, const Request& req, CmdState& s) {
   }
 }
 
-// The named storage images the compute sets bound now hold (the caller holds d.objects).
-std::vector<PassAttachment> boundNamedStorage(DeviceData& d, CmdState& s) {
+bool bindingPicked(const Request& req, uint32_t set, uint32_t binding) {
+  return std::any_of(req.picks.begin(), req.picks.end(), [&](const Pick& p) {
+    return p.storageSet == int(set) && p.storageBinding == int(binding);
+  });
+}
+
+// The storage images the compute sets bound now hold that a pick names, or binds at a set and
+// binding a pick gives (the caller holds d.objects).
+std::vector<PassAttachment> boundPickedStorage(DeviceData& d, const Request& req, CmdState& s) {
   std::vector<PassAttachment> out;
   std::vector<BoundDescriptor> bound;
   for (uint32_t n = 0; n < s.computeSets.size(); ++n)
     if (s.computeSets[n].bound()) boundDescriptors(d, n, s.computeSets[n], bound);
   for (const BoundDescriptor& b : bound) {
-    if (b.type != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE || !b.view) continue;
-    if (std::find(s.namedViews.begin(), s.namedViews.end(), b.view) == s.namedViews.end()) continue;
+    if (b.type != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE || !b.view || !d.views.count(b.view)) continue;
+    const bool atBinding = bindingPicked(req, b.set, b.binding);
+    if (!atBinding && std::find(s.namedViews.begin(), s.namedViews.end(), b.view) == s.namedViews.end()) continue;
     if (std::any_of(out.begin(), out.end(), [&](const PassAttachment& a) { return a.view == b.view; })) continue;
     PassAttachment a;
     a.image = d.views.at(b.view).image;
     a.view = b.view;
     a.written = a.storage = true;
     a.layout = a.stencilLayout = VK_IMAGE_LAYOUT_GENERAL;  // where storage images are accessed
+    if (atBinding) a.storageSet = int(b.set), a.storageBinding = int(b.binding);
     out.push_back(a);
   }
   return out;
@@ -60,8 +69,9 @@ void dispatchCopies(DeviceData& d, VkCommandBuffer, CmdState& s) {
   const auto start = std::chrono::steady_clock::now();
   std::shared_lock lock(d.objects);
   if (!s.namedViewsFound) findNamedViews(d, *req, s);
-  if (s.namedViews.empty()) return;
-  for (PassAttachment& a : boundNamedStorage(d, s)) {
+  const bool bindings = std::any_of(req->picks.begin(), req->picks.end(), [](const Pick& p) { return p.storageSet >= 0; });
+  if (s.namedViews.empty() && !bindings) return;
+  for (PassAttachment& a : boundPickedStorage(d, *req, s)) {
     std::erase_if(s.pendingStorage, [&](const PendingStorage& p) { return p.attachment.view == a.view; });
     s.pendingStorage.push_back({a, s.labels});
   }
@@ -93,7 +103,8 @@ void storageBeforePass(DeviceData& d, VkCommandBuffer cmd, CmdState& s) {
   std::erase_if(s.pendingStorage, [&](const PendingStorage& p) {
     auto a = std::find_if(s.open.attachments.begin(), s.open.attachments.end(),
                           [&](const PassAttachment& x) { return x.image == p.attachment.image && x.written; });
-    if (a == s.open.attachments.end() || !req) return false;
+    // A pick by set and binding is no render pass's: only the dispatch's copy serves it.
+    if (a == s.open.attachments.end() || !req || p.attachment.storageSet >= 0) return false;
     // The pass's end copies it only for picks that follow the image through every pass; a pick
     // naming the dispatch's pass wants what the dispatch left.
     std::string name, viewName;

@@ -157,6 +157,7 @@ struct Pick {  // one target of the layout: which attachment of which pass
   std::string byFormat;
   int subpass = -1;     // color / depth of this subpass
   int attachment = -1;  // the render pass's attachment index
+  int storageSet = -1, storageBinding = -1;  // the storage image a dispatch binds there (dispatch_copies.cpp)
 };
 // Which render pass: its ordinal in its command buffer, or a label / render pass name.
 struct PassPick {
@@ -183,8 +184,9 @@ struct Request {
   int64_t onlyFrame = -1, lastFrame = -1;
   bool suggest = false;            // report the passes and attachments of one frame
   bool ringOffThread = false;      // the layer's thread makes the ring; frames before it go without copies
-  // Some pick names an image (not a pass's attachment by index or format): it may be a storage image
-  // written by compute, copied after each dispatch that binds it (dispatch_copies.cpp).
+  // Some pick names an image (not a pass's attachment by index or format) or a dispatch's storage
+  // binding: it may be a storage image written by compute, copied after the dispatches that bind it
+  // (dispatch_copies.cpp).
   bool namedPicks = false;
   uint32_t giveUp = 120;           // frames with passes but no match before "nomatch"
 };
@@ -219,6 +221,7 @@ struct PassAttachment {
   int color = -1;
   bool depth = false, written = false;
   bool storage = false;  // a storage image a compute dispatch may write (no render pass holds it)
+  int storageSet = -1, storageBinding = -1;  // where the dispatch binds it
   AttachmentOps ops;
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED, stencilLayout = VK_IMAGE_LAYOUT_UNDEFINED;
 };

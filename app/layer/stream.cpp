@@ -91,7 +91,10 @@ bool parseRequest(const std::string& text, Request& r) {
     p.byFormat = live.value("format", "");
     p.subpass = live.value("subpass", -1);
     p.attachment = live.value("attachment", -1);
-    r.namedPicks |= !p.name.empty() && p.attachment < 0 && p.subpass < 0 && p.passIndex < 0 && computeCopiesOn();
+    if (const json storage = live.value("storage", json::object()); storage.is_object() && storage.contains("set"))
+      p.storageSet = storage.value("set", -1), p.storageBinding = storage.value("binding", -1);
+    r.namedPicks |= (p.storageSet >= 0 || (!p.name.empty() && p.attachment < 0 && p.subpass < 0 && p.passIndex < 0)) &&
+                    computeCopiesOn();
     r.picks.push_back(p);
   }
   return true;

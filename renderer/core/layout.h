@@ -99,6 +99,7 @@ struct TargetSource {
     int subpass = -1;                // with color or depth: that subpass's (a G-buffer read as input attachments later)
     int attachment = -1;             // the render pass's attachment N (VkRenderPassCreateInfo::pAttachments;
                                      // dynamic rendering: colour attachments 0.., then depth)
+    int storageSet = -1, storageBinding = -1;  // or the storage image a compute dispatch binds at set / binding
   } live;
 };
 

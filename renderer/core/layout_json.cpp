@@ -349,7 +349,23 @@ bool readQuantity(Reader& r, const json& jIn, const Where& w, Layout& l, uint32_
 }
 
 // {"live": "NAME"} or {"live": {"pass": LABEL | N, "name" | "color" | "depth" | "format" | "attachment": ...,
-// "subpass": S (with color or depth)}}.
+// "subpass": S (with color or depth)}} or {"live": {"pass": LABEL, "storage": {"set": S, "binding": B}}}.
+bool readStoragePick(Reader& r, const json& j, const Where& wl, TargetSource::LivePick& p) {
+  auto it = j.find("storage");
+  if (it == j.end()) return true;
+  const Where ws = wl.at("storage");
+  if (!it->is_object()) return r.fail(wl, "storage", "expected {\"set\": S, \"binding\": B} (a compute dispatch's storage image)");
+  int64_t set = -1, binding = -1;
+  if (!it->contains("set") || !jsonInteger((*it)["set"], 0, 31, set)) return r.fail(ws, "set", "expected a set number 0..31");
+  if (!it->contains("binding") || !jsonInteger((*it)["binding"], 0, 1 << 16, binding))
+    return r.fail(ws, "binding", "expected a binding number 0..65536");
+  if (p.passIndex >= 0)
+    return r.fail(wl, "pass", "with \"storage\": a debug label open at the dispatch (a dispatch has no render pass ordinal)");
+  p.storageSet = int(set);
+  p.storageBinding = int(binding);
+  return r.unknownKeys(*it, ws, {"set", "binding"});
+}
+
 bool readLiveSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
   s.kind = TargetSource::Kind::Live;
   TargetSource::LivePick& p = s.live;
@@ -386,10 +402,12 @@ bool readLiveSource(Reader& r, const json& j, const Where& w, TargetSource& s) {
   StorageFormat f;
   if (!p.format.empty() && !parseStorageFormat(p.format, f))
     return r.fail(wl, "format", "unknown storage format \"" + p.format + "\"");
-  const int picks = int(!p.name.empty()) + int(p.color >= 0) + int(p.depth) + int(!p.format.empty()) + int(p.attachment >= 0);
+  if (!readStoragePick(r, j, wl, p)) return false;
+  const int picks = int(!p.name.empty()) + int(p.color >= 0) + int(p.depth) + int(!p.format.empty()) + int(p.attachment >= 0) +
+                    int(p.storageSet >= 0);
   if (picks != 1)
-    return r.fail(wl, "name", "give exactly one of \"name\", \"color\", \"depth\": true, \"format\" and \"attachment\"");
-  return r.unknownKeys(j, wl, {"pass", "name", "color", "depth", "format", "subpass", "attachment"});
+    return r.fail(wl, "name", "give exactly one of \"name\", \"color\", \"depth\": true, \"format\", \"attachment\" and \"storage\"");
+  return r.unknownKeys(j, wl, {"pass", "name", "color", "depth", "format", "subpass", "attachment", "storage"});
 }
 
 bool readSource(Reader& r, const json& j, const Where& w, TargetSource& s) {

@@ -91,6 +91,7 @@ json livePickJson(const TargetSource::LivePick& p) {
   if (!p.format.empty()) l["format"] = p.format;
   if (p.subpass >= 0) l["subpass"] = p.subpass;
   if (p.attachment >= 0) l["attachment"] = p.attachment;
+  if (p.storageSet >= 0) l["storage"] = {{"set", p.storageSet}, {"binding", p.storageBinding}};
   return l;
 }
 

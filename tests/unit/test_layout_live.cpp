@@ -47,6 +47,11 @@ TEST(LayoutLive, EveryFormParses) {
   ASSERT_TRUE(parse(withSource({{"live", {{"pass", 0}, {"attachment", 5}}}}), l, error)) << error;
   EXPECT_EQ(l.targets[0].source.live.attachment, 5);
   EXPECT_EQ(l.targets[0].source.live.subpass, -1);
+  // The storage image a compute dispatch binds at set 0 binding 3 (inside the debug label "Resolve").
+  ASSERT_TRUE(parse(withSource({{"live", {{"pass", "Resolve"}, {"storage", {{"set", 0}, {"binding", 3}}}}}}), l, error)) << error;
+  EXPECT_EQ(l.targets[0].source.live.storageSet, 0);
+  EXPECT_EQ(l.targets[0].source.live.storageBinding, 3);
+  EXPECT_EQ(l.targets[0].source.live.pass, "Resolve");
 }
 
 TEST(LayoutLive, MistakesNameTheField) {
@@ -65,6 +70,12 @@ TEST(LayoutLive, MistakesNameTheField) {
       {{{"live", "a"}, {"file", "a.exr"}}, "source: live: a live source has no other fields"},
       {{{"live", ""}}, "source: live: expected an attachment's debug name"},
       {{{"live", 3}}, "source: live: expected a debug name or"},
+      {{{"live", {{"storage", {{"set", 0}}}}}}, "source: live: storage: binding: expected a binding number"},
+      {{{"live", {{"storage", {{"set", 32}, {"binding", 0}}}}}}, "source: live: storage: set: expected a set number 0..31"},
+      {{{"live", {{"pass", 1}, {"storage", {{"set", 0}, {"binding", 0}}}}}}, "source: live: pass: with \"storage\": a debug label"},
+      {{{"live", {{"name", "a"}, {"storage", {{"set", 0}, {"binding", 0}}}}}}, "source: live: name: give exactly one of"},
+      {{{"live", {{"storage", 2}}}}, "source: live: storage: expected {\"set\": S"},
+      {{{"live", {{"storage", {{"set", 0}, {"binding", 1}, {"index", 0}}}}}}, "source: live: storage: index: unknown field"},
   };
   for (const auto& [source, want] : cases) {
     Layout l;
@@ -77,7 +88,8 @@ TEST(LayoutLive, MistakesNameTheField) {
 TEST(LayoutLive, RoundTripsThroughJson) {
   for (const json& source : {json{{"live", "a"}}, json{{"live", {{"pass", "L"}, {"color", 1}}}},
                              json{{"live", {{"pass", 2}, {"depth", true}}}}, json{{"live", {{"format", "r32f"}}}},
-                             json{{"live", {{"pass", 0}, {"subpass", 1}, {"depth", true}}}}, json{{"live", {{"attachment", 3}}}}}) {
+                             json{{"live", {{"pass", 0}, {"subpass", 1}, {"depth", true}}}}, json{{"live", {{"attachment", 3}}}},
+                             json{{"live", {{"pass", "R"}, {"storage", {{"set", 1}, {"binding", 2}}}}}}}) {
     Layout a, b;
     std::string error;
     ASSERT_TRUE(parse(withSource(source), a, error)) << error;
@@ -85,7 +97,8 @@ TEST(LayoutLive, RoundTripsThroughJson) {
     const TargetSource::LivePick &x = a.targets[0].source.live, &y = b.targets[0].source.live;
     EXPECT_EQ(b.targets[0].source.kind, TargetSource::Kind::Live);
     EXPECT_TRUE(x.pass == y.pass && x.passIndex == y.passIndex && x.name == y.name && x.color == y.color &&
-                x.depth == y.depth && x.format == y.format && x.subpass == y.subpass && x.attachment == y.attachment)
+                x.depth == y.depth && x.format == y.format && x.subpass == y.subpass && x.attachment == y.attachment &&
+                x.storageSet == y.storageSet && x.storageBinding == y.storageBinding)
         << source.dump();
   }
 }
