@@ -1,11 +1,11 @@
-// G-buffers written by compute (visibility-buffer and compute-deferred engines): a storage image that
-// a pick names is copied after the last of a run of dispatches that bind it, before the next command
-// that could write it again (a dispatch binding it supersedes the pending copy; a render pass
-// writing it as an attachment copies it at its end instead; another render pass, a clear, a copy or
-// blit into an image, a barrier discarding it, secondary command buffers, the recording's end flush
-// it; a barrier moving it to another layout keeps it pending there), so
-// the frame holds what the last such dispatch left (docs/attach.md "Targets written by compute").
-// The copies and barriers are copy.cpp's; only picks by name reach storage images.
+// G-buffers written by compute (visibility-buffer and compute-deferred engines): a storage image a
+// pick names (or binds at the set and binding a pick gives) is copied after the last of a run of
+// dispatches that bind it, before the next command that could write it again: a dispatch binding it
+// supersedes the pending copy; a render pass writing it as an attachment copies it at its end
+// instead; another render pass, a clear, a copy or blit into an image, a barrier discarding it,
+// secondary command buffers and the recording's end flush it; a barrier moving it to another layout
+// keeps it pending there. The frame holds what the last such dispatch left (docs/attach.md "Targets
+// written by compute"); the copies and barriers are copy.cpp's.
 #include <algorithm>
 #include <chrono>
 
