@@ -49,7 +49,7 @@ TEST(Attach, GblensStreamEqualsItsCapture) {
   std::string error;
   ASSERT_TRUE(loadCapture(dir + "/live", live, error)) << error;
   ASSERT_TRUE(loadCapture(dir + "/capture", ref, error)) << error;
-  // Every target the capture has that a render pass writes (the coverage counters are storage images).
+  // Every target the capture has that a render pass writes (coverage is off: its counters are not made).
   for (const char* t : {"albedo_specular", "normal_shadow", "depth", "depth_stencil", "shadow_map", "hdr", "final"}) {
     ASSERT_GE(live.frame.indexOf(t), 0);
     EXPECT_TRUE(live.frame.images[size_t(live.frame.indexOf(t))].present()) << t << "\n" << r.output;
