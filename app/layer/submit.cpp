@@ -131,7 +131,11 @@ void endFrame(DeviceData& d, const std::vector<uint32_t>& presentedNow = {}) {
     any |= got;
     if (!got && p.explicitSource && !wasReported(d, "refused:" + p.targetName))  // a refusal said more
       report(d, "missing:" + p.targetName,
-             "target \"" + p.targetName + "\": frame " + std::to_string(number) + " has no render pass with " + pickText(p));
+             "target \"" + p.targetName + "\": frame " + std::to_string(number) + " has no " +
+                 (p.storageSet >= 0 ? "compute dispatch binding a storage image at set " + std::to_string(p.storageSet) +
+                                          " binding " + std::to_string(p.storageBinding)
+                  : req->namedPicks && !p.name.empty() && p.passIndex < 0 ? "render pass or compute dispatch with " + pickText(p)
+                                                                         : "render pass with " + pickText(p)));
   }
   if (any)
     d.framesWithoutMatch = 0;

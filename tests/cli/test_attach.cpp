@@ -186,7 +186,7 @@ TEST(Attach, MissingImageAndWrongFormatAreReportedOnce) {
   // gblens's normals are rgba16_snorm by default: named, not decoded as half floats.
   EXPECT_EQ(count(r.output, "target \"normals\": colour attachment 1 of pass \"gbuffer\" is rgba16_snorm"), 1u) << r.output;
   EXPECT_EQ(count(r.output, "target \"ghost\": frame"), 1u) << r.output;
-  EXPECT_EQ(count(r.output, "has no render pass with the image named \"no_such_image\""), 1u) << r.output;
+  EXPECT_EQ(count(r.output, "has no render pass or compute dispatch with the image named \"no_such_image\""), 1u) << r.output;
   Capture live;
   std::string error;
   ASSERT_TRUE(loadCapture(dir + "/live", live, error)) << error;
