@@ -41,8 +41,8 @@ bool passMatches(const Pick& p, const OpenPass& pass) {
 }  // namespace
 
 std::string pickText(const Pick& p) {
-  std::string t = p.storageSet >= 0   ? "the storage image a dispatch binds at set " + std::to_string(p.storageSet) +
-                                           " binding " + std::to_string(p.storageBinding)
+  std::string t = p.storageSet >= 0   ? "the storage image at set " + std::to_string(p.storageSet) + " binding " +
+                                           std::to_string(p.storageBinding)
                   : !p.name.empty()    ? "the image named \"" + p.name + "\""
                   : p.attachment >= 0 ? "attachment " + std::to_string(p.attachment)
                   : p.color >= 0      ? "colour attachment " + std::to_string(p.color)
@@ -372,14 +372,15 @@ void recordPassCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s, const Ope
     return;
   }
   // The camera's bytes and the bound buffers, each where the ring has room.
+  // (a dispatch's storage images: no buffers)
   std::vector<BufferCopy> buffers;
-  if (pass.ordinal < 0 && made.empty()) return;
-  for (BufferCopy& b : pass.ordinal < 0 ? std::vector<BufferCopy>{} : bufferCopies(d, s, *req, !made.empty()))
-    if (reserve(d, s, b.size, b.copy.buffer, b.copy.offset)) {
-      b.copy.passOrdinal = pass.ordinal;
-      b.copy.pass = !pass.labels.empty() ? pass.labels.back() : pass.renderPass;
-      buffers.push_back(std::move(b));
-    }
+  if (pass.ordinal >= 0)
+    for (BufferCopy& b : bufferCopies(d, s, *req, !made.empty()))
+      if (reserve(d, s, b.size, b.copy.buffer, b.copy.offset)) {
+        b.copy.passOrdinal = pass.ordinal;
+        b.copy.pass = !pass.labels.empty() ? pass.labels.back() : pass.renderPass;
+        buffers.push_back(std::move(b));
+      }
   if (made.empty() && buffers.empty()) return;
   const auto transfers = std::chrono::steady_clock::now();
   recordTransfers(d, cmd, there, back, regions, made, buffers);

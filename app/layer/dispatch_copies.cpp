@@ -65,7 +65,7 @@ std::vector<PassAttachment> boundPickedStorage(DeviceData& d, const Request& req
 
 void dispatchCopies(DeviceData& d, VkCommandBuffer, CmdState& s) {
   std::shared_ptr<const Request> req = currentRequest(d);
-  if (!req || !req->namedPicks) return;
+  if (!req || !req->storagePicks) return;
   const auto start = std::chrono::steady_clock::now();
   std::shared_lock lock(d.objects);
   if (!s.namedViewsFound) findNamedViews(d, *req, s);

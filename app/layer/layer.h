@@ -187,7 +187,7 @@ struct Request {
   // Some pick names an image (not a pass's attachment by index or format) or a dispatch's storage
   // binding: it may be a storage image written by compute, copied after the dispatches that bind it
   // (dispatch_copies.cpp).
-  bool namedPicks = false;
+  bool storagePicks = false;
   uint32_t giveUp = 120;           // frames with passes but no match before "nomatch"
 };
 
@@ -459,12 +459,13 @@ void destroyRing(DeviceData& d);
 // ---- command recording (record.cpp)
 void recordCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);  // copy.cpp: at the open pass's end
 // The copies of the targets `pass` holds (a render pass, or a dispatch's storage images: then no
-// buffers, and only picks by name); copy.cpp.
+// buffers, and only picks by name or by storage binding); copy.cpp.
 void recordPassCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s, const OpenPass& pass);
-// dispatch_copies.cpp: after a dispatch, the named storage images it binds become pending (replacing
+// dispatch_copies.cpp: after a dispatch, the picked storage images it binds become pending (replacing
 // the same images' pending copies: a later writer supersedes them); flushed (their copies recorded)
-// before any command that could write them (a render pass, a clear, a copy into an image, secondary
-// command buffers) and at the recording's end.
+// before any command that could write them (a render pass that does not write them as attachments,
+// a clear, a copy into an image, a barrier discarding them, secondary command buffers) and at the
+// recording's end; a barrier moving one to another layout keeps it pending there.
 void dispatchCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);
 void flushStorageCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);
 // A render pass (s.open) is about to begin: a pending image it writes as an attachment is dropped

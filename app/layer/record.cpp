@@ -69,7 +69,7 @@ VKAPI_ATTR VkResult VKAPI_CALL BeginCommandBuffer(VkCommandBuffer cmd, const VkC
     s->suggest = req && req->suggest && !d.suggestSent;  // the report is of one frame: no tracking after it
     // The sets bound are followed only for what asks for them (a stream of attachments alone does not).
     // A pick by name may be a storage image compute writes: the compute sets say which (dispatch_copies.cpp).
-    s->trackBinds = s->suggest || (s->copies && (req->boundBuffers.on || req->namedPicks ||
+    s->trackBinds = s->suggest || (s->copies && (req->boundBuffers.on || req->storagePicks ||
                                                  (req->liveCamera.on && !req->cameraPushConstants)));
     const bool bound = s->copies && req->boundBuffers.on;
     s->passBindsOf = s->suggest || (bound && !req->boundBuffers.pass.empty()) ? -1 : bound ? req->boundBuffers.passIndex : -2;

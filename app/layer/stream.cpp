@@ -23,7 +23,7 @@ namespace gbl {
 
 // GBLENS_LAYER_COMPUTE=0: no copies after dispatches (nor the compute sets followed for them), for
 // measuring what they cost (docs/attach.md "Targets written by compute").
-bool computeCopiesOn() {
+static bool computeCopiesOn() {
   static const bool on = [] {
     const char* e = std::getenv("GBLENS_LAYER_COMPUTE");
     return !e || std::strcmp(e, "0") != 0;
@@ -93,7 +93,7 @@ bool parseRequest(const std::string& text, Request& r) {
     p.attachment = live.value("attachment", -1);
     if (const json storage = live.value("storage", json::object()); storage.is_object() && storage.contains("set"))
       p.storageSet = storage.value("set", -1), p.storageBinding = storage.value("binding", -1);
-    r.namedPicks |= (p.storageSet >= 0 || (!p.name.empty() && p.attachment < 0 && p.subpass < 0 && p.passIndex < 0)) &&
+    r.storagePicks |= (p.storageSet >= 0 || (!p.name.empty() && p.attachment < 0 && p.subpass < 0 && p.passIndex < 0)) &&
                     computeCopiesOn();
     r.picks.push_back(p);
   }

@@ -1,8 +1,9 @@
 // The frame's structure for --suggest and the sets a pass binds: descriptor sets bound per bind point
 // (followed only where something asks: --suggest until its report is sent, bound_buffers,
-// camera.live, a pick by name: dispatch_copies.cpp), the sets a pass's draws see and the images they may read through them, and what is
-// read between passes (compute dispatches, copy/blit/resolve sources) or copied into a swapchain
-// image; image ids; push constants for bound_buffers and camera.live. The draw, dispatch, copy and
+// camera.live, a pick that may be a storage image: dispatch_copies.cpp), the sets a pass's draws see
+// and the images they may read through them, and what is read between passes (compute dispatches,
+// copy/blit/resolve sources) or copied into a swapchain image; image ids; push constants for
+// bound_buffers and camera.live; the --suggest report of a pass. The draw, dispatch, copy and
 // push-constant hooks are handed out only to a device whose request asks for them
 // (structureHooks): a plain stream never calls them.
 #include <algorithm>
@@ -307,23 +308,19 @@ std::vector<Hook> bindHooks() {
 
 std::vector<Hook> structureHooks(const Request& req) {
   std::vector<Hook> hooks;
-  if (req.namedPicks && !req.suggest)  // a named storage image is copied after the dispatches that bind it
-    hooks = {GBL_HOOK(CmdDispatch), GBL_HOOK(CmdDispatchIndirect), GBL_HOOK(CmdDispatchBase), GBL_HOOK(CmdDispatchBaseKHR)};
-  if (req.suggest)
+  // --suggest follows dispatches and image copies; a pick that may be a storage image needs the
+  // dispatches (copies after them) and every command that may write an image (the pending copies
+  // go first).
+  if (req.suggest || req.storagePicks)
     hooks = {GBL_HOOK(CmdDispatch),      GBL_HOOK(CmdDispatchIndirect),   GBL_HOOK(CmdDispatchBase),
              GBL_HOOK(CmdDispatchBaseKHR), GBL_HOOK(CmdCopyImage),        GBL_HOOK(CmdCopyImage2),
              GBL_HOOK(CmdCopyImage2KHR), GBL_HOOK(CmdBlitImage),          GBL_HOOK(CmdBlitImage2),
              GBL_HOOK(CmdBlitImage2KHR), GBL_HOOK(CmdResolveImage),       GBL_HOOK(CmdResolveImage2),
              GBL_HOOK(CmdResolveImage2KHR), GBL_HOOK(CmdCopyImageToBuffer), GBL_HOOK(CmdCopyImageToBuffer2),
              GBL_HOOK(CmdCopyImageToBuffer2KHR)};
-  if (req.namedPicks) {  // what may write an image flushes the storage copies pending before it
+  if (req.storagePicks) {
     const std::vector<Hook> writers = storageWriterHooks();
     hooks.insert(hooks.end(), writers.begin(), writers.end());
-    if (!req.suggest)
-      for (const Hook& h : {GBL_HOOK(CmdCopyImage), GBL_HOOK(CmdCopyImage2), GBL_HOOK(CmdCopyImage2KHR), GBL_HOOK(CmdBlitImage),
-                            GBL_HOOK(CmdBlitImage2), GBL_HOOK(CmdBlitImage2KHR), GBL_HOOK(CmdResolveImage),
-                            GBL_HOOK(CmdResolveImage2), GBL_HOOK(CmdResolveImage2KHR)})
-        hooks.push_back(h);
   }
   if (req.suggest || req.boundBuffers.on)
     for (const Hook& h : {GBL_HOOK(CmdDraw), GBL_HOOK(CmdDrawIndexed), GBL_HOOK(CmdDrawIndirect), GBL_HOOK(CmdDrawIndexedIndirect),

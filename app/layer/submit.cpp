@@ -132,10 +132,10 @@ void endFrame(DeviceData& d, const std::vector<uint32_t>& presentedNow = {}) {
     if (!got && p.explicitSource && !wasReported(d, "refused:" + p.targetName))  // a refusal said more
       report(d, "missing:" + p.targetName,
              "target \"" + p.targetName + "\": frame " + std::to_string(number) + " has no " +
-                 (p.storageSet >= 0 ? "compute dispatch binding a storage image at set " + std::to_string(p.storageSet) +
-                                          " binding " + std::to_string(p.storageBinding)
-                  : req->namedPicks && !p.name.empty() && p.passIndex < 0 ? "render pass or compute dispatch with " + pickText(p)
-                                                                         : "render pass with " + pickText(p)));
+                 (p.storageSet >= 0                                        ? "compute dispatch with "
+                  : req->storagePicks && !p.name.empty() && p.passIndex < 0 ? "render pass or compute dispatch with "
+                                                                           : "render pass with ") +
+                 pickText(p));
   }
   if (any)
     d.framesWithoutMatch = 0;

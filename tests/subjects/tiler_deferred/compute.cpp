@@ -59,11 +59,7 @@ class compute_renderer final : public mode_renderer {
     make_passes();
     framebuffer_a_ = make_framebuffer(g, pass_a_, {raw_[0].view, raw_[1].view, raw_[2].view, raw_[3].view}, o.width, o.height);
     framebuffer_b_ = make_framebuffer(g, pass_b_, {lit_.view}, o.width, o.height);
-    VkSamplerCreateInfo sampler{};
-    sampler.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
-    sampler.magFilter = sampler.minFilter = VK_FILTER_NEAREST;
-    sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    TD_CHECK(vkCreateSampler(g.device, &sampler, nullptr, &sampler_));
+    sampler_ = make_nearest_sampler(g);
     make_pipelines();
     if (!o.dump.empty()) readback_ = make_buffer(g, plane_at(files().size()), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
   }
@@ -116,16 +112,7 @@ class compute_renderer final : public mode_renderer {
                                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
                          nullptr, s_count, to_read);
-    begin.renderPass = pass_b_;
-    begin.framebuffer = framebuffer_b_;
-    begin.clearValueCount = 0;
-    begin.pClearValues = nullptr;
-    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, light_);
-    bind_frame_set(cmd, light_layout_, sh_, in);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, light_layout_, 1, 1, &light_set_, 0, nullptr);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-    vkCmdEndRenderPass(cmd);
+    draw_lit(cmd, pass_b_, framebuffer_b_, light_, light_layout_, light_set_, sh_, in, o_.width, o_.height);
     if (in.dump) record_dump(cmd);
   }
 

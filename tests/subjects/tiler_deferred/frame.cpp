@@ -184,4 +184,29 @@ target_info lit_target() {
   return lit;
 }
 
+void draw_lit(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, VkPipeline pipeline, VkPipelineLayout layout,
+              VkDescriptorSet images, const shared_gpu& sh, const frame_input& in, uint32_t width, uint32_t height) {
+  VkRenderPassBeginInfo begin{};
+  begin.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+  begin.renderPass = pass;
+  begin.framebuffer = framebuffer;
+  begin.renderArea = {{0, 0}, {width, height}};
+  vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+  bind_frame_set(cmd, layout, sh, in);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &images, 0, nullptr);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+  vkCmdEndRenderPass(cmd);
+}
+
+VkSampler make_nearest_sampler(const gpu& g) {
+  VkSamplerCreateInfo info{};
+  info.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
+  info.magFilter = info.minFilter = VK_FILTER_NEAREST;
+  info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  VkSampler sampler = VK_NULL_HANDLE;
+  TD_CHECK(vkCreateSampler(g.device, &info, nullptr, &sampler));
+  return sampler;
+}
+
 }  // namespace td

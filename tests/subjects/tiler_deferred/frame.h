@@ -86,6 +86,12 @@ VkDescriptorSet allocate_set(const gpu& g, VkDescriptorPool pool, VkDescriptorSe
 // TRANSFER_SRC), and its target_info.
 VkRenderPass make_lit_pass(const gpu& g);
 target_info lit_target();
+// Render pass 1 of those modes: a full-screen triangle of `pipeline` with set 0 and the G-buffer's
+// images at set 1 (`images`).
+void draw_lit(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer, VkPipeline pipeline, VkPipelineLayout layout,
+              VkDescriptorSet images, const shared_gpu& sh, const frame_input& in, uint32_t width, uint32_t height);
+// Nearest filtering, clamped: the lighting passes' texelFetch-like reads.
+VkSampler make_nearest_sampler(const gpu& g);
 // A render pass of one subpass (msaa mode's two passes).
 VkRenderPass make_pass(const gpu& g, const std::vector<VkAttachmentDescription>& attachments,
                        const VkSubpassDescription& subpass, const std::vector<VkSubpassDependency>& deps);

@@ -39,11 +39,7 @@ class msaa_renderer final : public mode_renderer {
     framebuffer_a_ = make_framebuffer(g, pass_a_, {g_images_[0].view, g_images_[1].view, g_images_[2].view,
                                                    g_images_[3].view}, o.width, o.height);
     framebuffer_b_ = make_framebuffer(g, pass_b_, {lit_.view}, o.width, o.height);
-    VkSamplerCreateInfo sampler{};
-    sampler.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
-    sampler.magFilter = sampler.minFilter = VK_FILTER_NEAREST;
-    sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    TD_CHECK(vkCreateSampler(g.device, &sampler, nullptr, &sampler_));
+    sampler_ = make_nearest_sampler(g);
     make_pipelines();
     if (!o.dump.empty()) {
       plane_bytes_ = VkDeviceSize(o.width) * o.height * 4;
@@ -88,16 +84,7 @@ class msaa_renderer final : public mode_renderer {
     vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
     draw_objects(cmd, sh_, geometry_, in);
     vkCmdEndRenderPass(cmd);
-    begin.renderPass = pass_b_;
-    begin.framebuffer = framebuffer_b_;
-    begin.clearValueCount = 0;
-    begin.pClearValues = nullptr;
-    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, light_);
-    bind_frame_set(cmd, light_layout_, sh_, in);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, light_layout_, 1, 1, &sampler_set_, 0, nullptr);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-    vkCmdEndRenderPass(cmd);
+    draw_lit(cmd, pass_b_, framebuffer_b_, light_, light_layout_, sampler_set_, sh_, in, o_.width, o_.height);
     if (in.dump) record_dump(cmd);
   }
 
