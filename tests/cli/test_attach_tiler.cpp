@@ -107,13 +107,18 @@ TEST(TilerAttach, ASubpassGBufferOfAVulkan10ApplicationIsItsOwnDumpOfTheFrameAsk
 TEST(TilerAttach, AGBufferWrittenByComputeIsItsOwnDumpOfTheFrameAskedFor) {
   Capture c;
   std::string output;
-  const json frame = dumpedAndStreamed(freshDir("attach_tiler_compute"), "compute", 1, c, output);
+  const std::string dir = freshDir("attach_tiler_compute");
+  const json frame = dumpedAndStreamed(dir, "compute", 1, c, output);
   ASSERT_TRUE(frame.is_object());
   EXPECT_NE(output.find("albedo               rgba8_unorm    320x180  compute dispatch"), std::string::npos) << output;
   EXPECT_EQ(frame["targets"].size(), 5u);
   size_t storage = 0;
   for (const json& t : frame["targets"]) storage += t["render_pass"] == -1;
   EXPECT_EQ(storage, 2u);  // albedo and normal: no render pass holds them
+  // A correct frame raises no fault (its normals were 0.2 % off unit before the subject renormalised them).
+  const RunResult check = runShell("'" + std::string(GBLENS_BINARY) + "' check '" + dir + "/live'");
+  EXPECT_EQ(check.exitCode, 0) << check.output;
+  EXPECT_NE(check.output.find("clean: no fault"), std::string::npos) << check.output;
 }
 
 // A Vulkan 1.0 application's ring is shared memory too (the layer enables the instance and device
