@@ -163,7 +163,9 @@ TEST(AttachSequence, BadRangesAndARangePastTheLastFrameFailInOneLineWithNothingW
 // --history K on a stream of --frames: the last K frames decoded are kept with the application's
 // numbers, and their memory is K frames' bytes.
 TEST(AttachSequence, HistoryKeepsTheLastKFramesWithinKFramesBytes) {
-  const RunResult r = attachTiler("--frames 4 --history 2 --stats");
+  // 3 of the application's 6 frames (more than K = 2): its first frames go without copies while the
+  // layer's thread makes the ring and one may be dropped under load, so 4 did not always come.
+  const RunResult r = attachTiler("--frames 3 --history 2 --stats");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const size_t brace = r.output.find("{\n");
   ASSERT_NE(brace, std::string::npos) << r.output;
