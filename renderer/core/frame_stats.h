@@ -49,6 +49,10 @@ struct FrameStats {
   std::string gbuffer, gbufferReason;
   // Where the lights were set up ("cpu" or "gpu", --light-setup) and why.
   std::string lightSetup, lightSetupReason;
+  // Whether the visibility pass ran on the side queue beside the previous frame (GBLENS_OVERLAP,
+  // renderer/frame/side_queue.h) and why.
+  bool overlap = false;
+  std::string overlapReason;
   // Method clustered: where its lights were assigned ("gpu": occupied clusters, "cpu": the cluster
   // grid, --cluster-assign) and why; empty for the other methods.
   std::string clusterAssign, clusterAssignReason;

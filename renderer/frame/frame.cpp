@@ -90,6 +90,10 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
   // ── 2. G-buffer (deferred, tiled) or the forward pass ──────────────────────────────────────
   // --gbuffer visibility: the visibility pass draws depth/stencil and the id, gbuffer_resolve
   // (compute) writes every pixel of the G-buffer's targets from it (r.visibility: frameGBuffer).
+  // r.overlap: the id's clear and the visibility pass go into the frame's side command buffer,
+  // which a queue of its own starts while the previous frame's compute still runs (the depth and
+  // the id are the slot's own images: frame_slots.h); everything before them touches neither.
+  if (r.overlap) g.beginSide();
   if (method == Method::Forward)
     g.skipPass("clear_gbuffer", "method forward: no G-buffer");
   else if (!r.computeClear)
@@ -110,6 +114,7 @@ void buildFrame(FrameGraph& g, Renderer& r, const FrameRequest& request) {
       g.beginRenderPass("visibility");
       addVisibilityPass(g, r);  // depth/stencil + the visibility id
       g.endRenderPass();
+      if (r.overlap) g.endSide();
       addGBufferResolvePass(g, r);  // compute: the G-buffer's targets from the id
     } else {
       g.beginRenderPass(singlePass ? "deferred (single pass)" : "gbuffer");

@@ -86,6 +86,13 @@ void createFrameSlots(Renderer& r) {
     setName(ctx, uint64_t(s.cmd), VK_OBJECT_TYPE_COMMAND_BUFFER, "frame");
     VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &s.fence));
+    if (r.overlapAllowed) {  // the side part (side_queue.h)
+      VK_CHECK(vkAllocateCommandBuffers(ctx.device, &cai, &s.sideCmd));
+      setName(ctx, uint64_t(s.sideCmd), VK_OBJECT_TYPE_COMMAND_BUFFER, "frame (side)");
+      VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+      VK_CHECK(vkCreateSemaphore(ctx.device, &sci, nullptr, &s.sideDone));
+      setName(ctx, uint64_t(s.sideDone), VK_OBJECT_TYPE_SEMAPHORE, "side done");
+    }
   }
 }
 
@@ -97,8 +104,10 @@ void destroyFrameSlots(Renderer& r) {
       if (b->buffer) destroyBuffer(ctx, *b);
     for (VkQueryPool q : {s.timestampPool, s.occlusionPool})
       if (q) vkDestroyQueryPool(ctx.device, q, nullptr);
-    if (s.cmd) vkFreeCommandBuffers(ctx.device, ctx.commandPool, 1, &s.cmd);
+    for (VkCommandBuffer c : {s.cmd, s.sideCmd})
+      if (c) vkFreeCommandBuffers(ctx.device, ctx.commandPool, 1, &c);
     if (s.fence) vkDestroyFence(ctx.device, s.fence, nullptr);
+    if (s.sideDone) vkDestroySemaphore(ctx.device, s.sideDone, nullptr);
     s = FrameSlot{};
   }
   if (r.descriptorPool) vkDestroyDescriptorPool(ctx.device, r.descriptorPool, nullptr);
@@ -130,16 +139,24 @@ uint64_t queryResult(GpuContext& ctx, VkQueryPool pool, uint32_t query) {
 }
 
 // The passes' GPU times from the slot's timestamps (query 2i and 2i + 1 around the i-th pass).
+// "Before" is the gap after the pass that ran before it: in time, not list order (a side part
+// runs before the main part's first passes).
 static void passTimes(GpuContext& ctx, const FrameSlot& s, FrameStats& st) {
   st.gpuMs = 0.0;
   if (!ctx.features.timestamps) return;
   const double period = ctx.properties.limits.timestampPeriod * 1e-6;
-  double first = 1e300, last = -1e300, end = -1.0;
+  std::vector<std::pair<double, size_t>> starts;  // (start, pass)
   for (size_t i = 0; i < st.passes.size(); ++i) {
     if (st.passes[i].skipped) continue;
     const double t0 = double(queryResult(ctx, s.timestampPool, uint32_t(2 * i))) * period;
     const double t1 = double(queryResult(ctx, s.timestampPool, uint32_t(2 * i + 1))) * period;
     st.passes[i].ms = t1 - t0;
+    starts.push_back({t0, i});
+  }
+  std::stable_sort(starts.begin(), starts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  double first = 1e300, last = -1e300, end = -1.0;
+  for (const auto& [t0, i] : starts) {
+    const double t1 = t0 + st.passes[i].ms;
     st.passes[i].beforeMs = end < 0.0 ? 0.0 : t0 - end;
     end = t1;
     first = std::min(first, t0);
@@ -217,22 +234,49 @@ static void afterEarlierFrames(VkCommandBuffer cmd) {
   vkCmdPipelineBarrier2(cmd, &di);
 }
 
+static void beginCommands(VkCommandBuffer cmd, bool othersInFlight) {
+  VK_CHECK(vkResetCommandBuffer(cmd, 0));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
+  if (othersInFlight) afterEarlierFrames(cmd);
+}
+
+// With a side part (the graph's side passes: Renderer::overlap), it goes to the side queue first
+// and the main part waits for it. The side part waits for nothing of the frame in flight: it
+// writes only this slot's own images (kSlotTargets), whose last frame was retired; the barrier
+// after earlier frames orders it after the side parts before it (and, on one queue, after all).
 std::chrono::steady_clock::time_point recordAndSubmit(Renderer& r, FrameGraph& graph) {
   GpuContext& ctx = *r.ctx;
   FrameSlot& s = frameSlot(r);
   const bool othersInFlight = framesInFlight(r);  // this slot's own frame was retired
-  VK_CHECK(vkResetCommandBuffer(s.cmd, 0));
-  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  VK_CHECK(vkBeginCommandBuffer(s.cmd, &bi));
-  if (othersInFlight) afterEarlierFrames(s.cmd);
-  graph.record(ctx, s.cmd, r.targets, r.graphCache, ctx.features.timestamps ? s.timestampPool : VK_NULL_HANDLE);
+  const bool side = graph.hasSide();
+  GB_ASSERT(!side || (s.sideCmd && r.parked[0].image.image));
+  beginCommands(s.cmd, othersInFlight);
+  if (side) beginCommands(s.sideCmd, othersInFlight);
+  graph.record(ctx, s.cmd, r.targets, r.graphCache, ctx.features.timestamps ? s.timestampPool : VK_NULL_HANDLE,
+               side ? s.sideCmd : VK_NULL_HANDLE);
   VK_CHECK(vkEndCommandBuffer(s.cmd));
+  if (side) VK_CHECK(vkEndCommandBuffer(s.sideCmd));
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
   si.pCommandBuffers = &s.cmd;
+  const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_ALL_COMMANDS_BIT;
+  if (side) {
+    si.waitSemaphoreCount = 1;
+    si.pWaitSemaphores = &s.sideDone;
+    si.pWaitDstStageMask = &waitStage;
+  }
   VK_CHECK(vkResetFences(ctx.device, 1, &s.fence));
   const Clock::time_point submitted = Clock::now();
+  if (side) {
+    VkSubmitInfo ssi{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    ssi.commandBufferCount = 1;
+    ssi.pCommandBuffers = &s.sideCmd;
+    ssi.signalSemaphoreCount = 1;
+    ssi.pSignalSemaphores = &s.sideDone;
+    VK_CHECK(vkQueueSubmit(ctx.sideQueue, 1, &ssi, VK_NULL_HANDLE));
+  }
   VK_CHECK(vkQueueSubmit(ctx.queue, 1, &si, s.fence));
   s.pending = true;
   return submitted;

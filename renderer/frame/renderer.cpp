@@ -15,6 +15,7 @@
 #include "renderer/core/method_choice.h"
 #include "renderer/frame/frame.h"
 #include "renderer/frame/frame_slots.h"
+#include "renderer/frame/side_queue.h"
 #include "renderer/frame/light_culling.h"
 #include "renderer/gpu/cluster_buffers.h"
 #include "renderer/gpu/gpu_lights.h"
@@ -214,6 +215,8 @@ static FrameRequest recordFrame(Renderer& r, const RenderOptions& asked, const F
   if (r.method == Method::Clustered && !r.clusterGrid) ensureClusterBuffers(r, r.visibleBound);
   r.fairyCompute = fairiesInCompute(*r.ctx, options, r.fairyReason);
   if (r.fairyCompute && options.fairies) ensureFairyBits(r, r.visibleBound);
+  r.overlap = overlapFrame(r, r.overlapReason);
+  useSlotTargets(r);  // this slot's depth and id (frames that may overlap have one per slot)
 
   FrameGraph graph;
   r.skyQueryActive = false;
@@ -237,6 +240,8 @@ static FrameRequest recordFrame(Renderer& r, const RenderOptions& asked, const F
   st.methodReason = r.methodReason;
   st.gbuffer = name(options.gbuffer);
   st.gbufferReason = r.gbufferReason;
+  st.overlap = r.overlap;
+  st.overlapReason = r.overlapReason;
   st.lightSetup = r.lightsOnGpu ? "gpu" : "cpu";
   st.lightSetupReason = r.lightSetupReason;
   cpuLightCounts(r, st);
@@ -288,6 +293,7 @@ static uint32_t lightingPixelsFromEnvironment() {
 void initRenderer(Renderer& r, GpuContext& ctx, const Scene& scene) {
   r.ctx = &ctx;
   r.lightingPixels = lightingPixelsFromEnvironment();
+  decideOverlapAllowed(r);  // GBLENS_OVERLAP and the device's queues
   r.scene = &scene;
   uploadScene(r);
   createDescriptors(r);

@@ -94,7 +94,9 @@ FrameRequest captureRequest(const std::vector<Target>& targets, const RenderOpti
   return r;
 }
 
-static TargetsKey targetsKey(const GpuContext& ctx, const Scene& s, const RenderOptions& o) {
+static TargetsKey targetsKey(const Renderer& r, const RenderOptions& o) {
+  const GpuContext& ctx = *r.ctx;
+  const Scene& s = *r.scene;
   TargetsKey k;
   k.width = o.width;
   k.height = o.height;
@@ -111,6 +113,7 @@ static TargetsKey targetsKey(const GpuContext& ctx, const Scene& s, const Render
   k.clearViews = clearViews(ctx, o);
   k.finalStorage = finalStorageView(ctx, o);
   k.visibility = visibilityFrame(o);
+  k.slotImages = r.overlapAllowed && k.visibility;  // frames may overlap (side_queue.h)
   return k;
 }
 
@@ -196,6 +199,10 @@ void destroyTargets(Renderer& r) {
     destroyImage(ctx, t.image);
     t = GraphTarget{};
   }
+  for (GraphTarget& t : r.parked) {
+    if (t.image.image) destroyImage(ctx, t.image);
+    t = GraphTarget{};
+  }
   for (Buffer& b : r.readbackBuffers) destroyBuffer(ctx, b);
   clearFramebuffers(ctx, r.graphCache);
   r.shadowKey.reset();
@@ -204,16 +211,21 @@ void destroyTargets(Renderer& r) {
 }
 
 bool targetsCurrent(const Renderer& r, const RenderOptions& o) {
-  return r.targetsValid && targetsKey(*r.ctx, *r.scene, o) == r.targetsKey;
+  return r.targetsValid && targetsKey(r, o) == r.targetsKey;
 }
 
 void ensureTargets(Renderer& r, const RenderOptions& o) {
-  TargetsKey key = targetsKey(*r.ctx, *r.scene, o);
+  TargetsKey key = targetsKey(r, o);
   if (r.targetsValid && key == r.targetsKey) return;
   vkDeviceWaitIdle(r.ctx->device);  // frames in flight use the old ones
   destroyTargets(r);
   for (size_t i = 0; i < kTargetCount; ++i)
     r.targets[i].image = createImage(*r.ctx, targetDesc(*r.ctx, Target(i), *r.scene, o));
+  // The other slot's depth and id, named alike (an application's capture of gblens shows both).
+  if (key.slotImages)
+    for (size_t i = 0; i < kSlotTargets.size(); ++i)
+      r.parked[i].image = createImage(*r.ctx, targetDesc(*r.ctx, kSlotTargets[i], *r.scene, o));
+  r.targetsSlot = r.slot;
   r.targets[size_t(Target::ShadowMap)].keep = true;  // reused while the sun and geometry stay
   // The frame's product: stored even when nothing reads it in the frame (a frame in flight is read
   // back, presented or compared after it, not in it).

@@ -51,7 +51,7 @@ struct TargetsKey {
   ShadowFormat shadowFormat{};
   PositionSource position{};
   bool coverage = false, transientGBuffer = false, primitiveId = false, clearViews = false, finalStorage = false;
-  bool motion = false, visibility = false;
+  bool motion = false, visibility = false, slotImages = false;
   bool operator==(const TargetsKey&) const = default;
 };
 struct ShadowMapKey {
@@ -110,10 +110,16 @@ struct GpuLights {
 // frame of the other (submitFrame; renderFrame waits for its own). A slot holds what a frame
 // writes from the CPU and what the CPU reads after it (renderer/frame/frame_slots.cpp).
 inline constexpr uint32_t kFrameSlots = 2;
+// The targets a frame's side part writes: one image per slot when frames overlap.
+inline constexpr std::array<Target, 2> kSlotTargets = {Target::DepthStencil, Target::Visibility};
 
 struct FrameSlot {
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
+  // The frame's side part (Renderer::overlap): its command buffer, submitted to the side queue,
+  // and the semaphore the main part waits for.
+  VkCommandBuffer sideCmd = VK_NULL_HANDLE;
+  VkSemaphore sideDone = VK_NULL_HANDLE;
   // Set 0's per-frame buffers (written by the CPU before submission, or by light setup on the
   // GPU) and set 0 naming them: the other slot's frame may still read its own.
   Buffer frameBuffer, drawBuffer, lightBuffer, visibleBuffer, lightCountBuffer, visiblePositionBuffer;
@@ -182,6 +188,12 @@ struct Renderer {
   std::string clearReason;
   bool visibility = false;          // this frame fills the G-buffer through the visibility id (--gbuffer)
   std::string gbufferReason;        // why it does or does not (frameGBuffer)
+  // Side queue (renderer/frame/side_queue.h): whether frames may put their visibility pass on it
+  // (GBLENS_OVERLAP and the device, decided once), whether this frame does, and why.
+  bool overlapAllowed = false;
+  std::string overlapAllowedReason;
+  bool overlap = false;
+  std::string overlapReason;
   bool computeToneMap = false;      // tonemap_compute writes final (not the raster tonemap pass)
   std::string toneMapReason;
   std::string fairyReason;
@@ -191,6 +203,10 @@ struct Renderer {
   bool targetsValid = false;
   std::optional<TargetsKey> targetsKey;  // what the targets were created for (none: uploaded ones)
   GraphTargets targets;
+  // With overlapAllowed and a visibility G-buffer, the side part's targets (kSlotTargets) have an
+  // image per frame slot: `targets` holds the current slot's, `parked` the other's.
+  std::array<GraphTarget, 2> parked;
+  uint32_t targetsSlot = 0;  // the slot whose images `targets` holds
   GraphCache graphCache;
   std::map<PipelineKey, VkPipeline> pipelines;
   std::array<FrameSlot, kFrameSlots> slots;

@@ -50,8 +50,23 @@ void FrameGraph::endRenderPass() {
   openGroup_ = -1;
 }
 
+void FrameGraph::beginSide() {
+  GB_ASSERT(!openSide_ && openGroup_ < 0);
+  openSide_ = true;
+}
+
+void FrameGraph::endSide() {
+  GB_ASSERT(openSide_ && openGroup_ < 0);
+  openSide_ = false;
+}
+
+bool FrameGraph::hasSide() const {
+  return std::any_of(passes_.begin(), passes_.end(), [](const GraphPass& p) { return p.side; });
+}
+
 void FrameGraph::addPass(std::string name, std::vector<Use> uses, PassFn execute, std::vector<BufferUse> buffers) {
   GraphPass node;
+  node.side = openSide_;
   node.name = name;
   node.uses = std::move(uses);
   node.buffers = std::move(buffers);
@@ -77,17 +92,41 @@ bool FrameGraph::usedAfter(Target t, size_t passIndex) const {
   return false;
 }
 
+// Side passes run first (another queue may start them while the previous frame's main part runs):
+// that is the frame's order only if no pass before them touches what they touch.
+void FrameGraph::checkSideIndependent() const {
+  for (size_t i = 0; i < passes_.size(); ++i) {
+    if (!passes_[i].side) continue;
+    for (size_t j = 0; j < i; ++j) {
+      if (passes_[j].side) continue;
+      for (const Use& a : passes_[i].uses)
+        for (const Use& b : passes_[j].uses) GB_ASSERT(a.target != b.target);
+      for (const BufferUse& a : passes_[i].buffers)
+        for (const BufferUse& b : passes_[j].buffers) GB_ASSERT(a.buffer != b.buffer);
+    }
+  }
+  for (const GraphGroup& g : groups_)
+    for (int pi : g.passes) GB_ASSERT(passes_[size_t(pi)].side == passes_[size_t(g.passes[0])].side);
+}
+
 void FrameGraph::record(GpuContext& ctx, VkCommandBuffer cmd, GraphTargets& targets, GraphCache& cache,
-                        VkQueryPool timestamps) {
-  GB_ASSERT(openGroup_ < 0);
+                        VkQueryPool timestamps, VkCommandBuffer side) {
+  GB_ASSERT(openGroup_ < 0 && !openSide_);
+  GB_ASSERT(hasSide() == (side != VK_NULL_HANDLE));
+  if (side) checkSideIndependent();
   buffers_.clear();
   std::vector<bool> groupDone(groups_.size(), false);
-  for (GraphPass& p : passes_) {
-    if (p.renderPass < 0) {
-      recordCompute(ctx, cmd, p, targets, timestamps);
-    } else if (!groupDone[p.renderPass]) {
-      recordGroup(ctx, cmd, p.renderPass, targets, cache, timestamps);
-      groupDone[p.renderPass] = true;
+  for (bool sidePart : {true, false}) {
+    if (sidePart && !side) continue;
+    VkCommandBuffer into = sidePart ? side : cmd;
+    for (GraphPass& p : passes_) {
+      if (p.side != sidePart) continue;
+      if (p.renderPass < 0) {
+        recordCompute(ctx, into, p, targets, timestamps);
+      } else if (!groupDone[p.renderPass]) {
+        recordGroup(ctx, into, p.renderPass, targets, cache, timestamps);
+        groupDone[p.renderPass] = true;
+      }
     }
   }
   // Buffers written this frame may be read by the CPU after the fence (counters, read-backs):
@@ -144,15 +183,18 @@ void FrameGraph::recordGroup(GpuContext& ctx, VkCommandBuffer cmd, int g, GraphT
   int lastPass = 0;
   for (int pi : group.passes) lastPass = std::max(lastPass, pi);
   GroupShape shape = groupShape(group, passes_, targets, [&](Target t) { return usedAfter(t, size_t(lastPass)); });
-  auto it = cache.groups.find(group.name);
-  if (it == cache.groups.end() || !(it->second.shape == shape)) {
-    cache.groups[group.name] = compileGroup(ctx, group, passes_, targets, shape, cache);
-    it = cache.groups.find(group.name);
+  std::vector<CompiledGroup>& compiled = cache.groups[group.name];
+  auto it = std::find_if(compiled.begin(), compiled.end(), [&](const CompiledGroup& c) { return c.shape == shape; });
+  if (it == compiled.end()) {
+    constexpr size_t kKept = 2;  // a group's shapes while targets alternate between two frame slots
+    if (compiled.size() == kKept) compiled.pop_back();
+    compiled.insert(compiled.begin(), compileGroup(ctx, group, passes_, targets, shape, cache));
     cache.compilations++;
   } else {
+    if (it != compiled.begin()) std::rotate(compiled.begin(), it, it + 1);  // newest first
     cache.reuses++;
   }
-  executeGroup(ctx, cmd, group, it->second, targets, timestamps);
+  executeGroup(ctx, cmd, group, compiled.front(), targets, timestamps);
 }
 
 // Barriers into the render pass, the targets' new state, and every pass of every subpass.

@@ -28,13 +28,20 @@ class FrameGraph {
   void endRenderPass();
   void addPass(std::string name, std::vector<Use> uses, PassFn execute, std::vector<BufferUse> buffers = {});
   void skipPass(std::string name, std::string reason);
+  // Passes added between beginSide and endSide are recorded into a command buffer of their own,
+  // before the others (record's `side`), so that another queue can run them beside the previous
+  // frame. They must not touch what a pass added before them touches (asserted when recording).
+  void beginSide();
+  void endSide();
+  bool hasSide() const;
 
   // Builds render passes and barriers and records every pass, each in a debug label region named as in
   // stats() (RenderDoc's event browser), render-pass groups in one more region named as the group.
   // Timestamps (if a pool is given)
   // are written around each pass: query 2*i and 2*i+1 for the i-th pass in stats() order.
+  // With side passes, `side` gets them (and nothing else) and `cmd` the rest.
   void record(GpuContext& ctx, VkCommandBuffer cmd, GraphTargets& targets, GraphCache& cache,
-              VkQueryPool timestamps);
+              VkQueryPool timestamps, VkCommandBuffer side = VK_NULL_HANDLE);
 
   std::vector<PassStat>& stats() { return stats_; }
   uint32_t timestampCount() const { return uint32_t(stats_.size()) * 2; }
@@ -44,6 +51,7 @@ class FrameGraph {
   std::vector<GraphGroup> groups_;
   std::vector<PassStat> stats_;
   int openGroup_ = -1;
+  bool openSide_ = false;
   std::map<VkBuffer, GraphBufferState> buffers_;  // buffer state while recording
 
   void bufferBarriers(const GraphPass& p, graph_sync::Barriers& out);
@@ -54,6 +62,7 @@ class FrameGraph {
   void executeGroup(GpuContext& ctx, VkCommandBuffer cmd, const GraphGroup& group, const CompiledGroup& c,
                     GraphTargets& targets, VkQueryPool timestamps);
   bool usedAfter(Target t, size_t passIndex) const;
+  void checkSideIndependent() const;
 };
 
 }  // namespace gb

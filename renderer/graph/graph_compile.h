@@ -118,7 +118,9 @@ struct GraphCache {
   std::map<RenderPassKey, VkRenderPass> renderPasses;
   std::map<RenderPassKey, uint32_t> compatClasses;  // compatibility() -> class index
   std::map<FramebufferKey, VkFramebuffer> framebuffers;
-  std::map<std::string, CompiledGroup> groups;  // by group name: the last compilation
+  // By group name: its last compilations, newest first (two while targets alternate between frame
+  // slots, renderer/frame/frame_slots.h: the same group names the images of either slot).
+  std::map<std::string, std::vector<CompiledGroup>> groups;
   uint64_t compilations = 0, reuses = 0;         // group compilations and reuses since creation
 };
 
@@ -133,6 +135,7 @@ struct GraphPass {
   int renderPass = -1;  // index of its group, -1 for compute/transfer
   uint32_t subpass = 0;
   int stat = 0;         // index into the graph's pass statistics
+  bool side = false;    // recorded into the side command buffer (FrameGraph::beginSide)
 };
 struct GraphGroup {
   std::string name;

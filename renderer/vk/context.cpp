@@ -243,6 +243,7 @@ static void describeDevice(GpuContext& ctx) {
     }
   }
   GB_ASSERT(ctx.queueFamily != UINT32_MAX);
+  ctx.familyQueues = families[ctx.queueFamily].queueCount;
   ctx.features.timestamps = families[ctx.queueFamily].timestampValidBits > 0;
 
   VkPhysicalDeviceFeatures supported{};
@@ -300,7 +301,7 @@ static DeviceSupport querySupport(GpuContext& ctx, const ContextOptions& options
   return s;
 }
 
-// The device with one queue and only the features gblens uses (so behaviour matches between
+// The device with one queue (two where the family has them: the side queue) and only the features gblens uses (so behaviour matches between
 // devices), the push-descriptor entry point and the command pool.
 static void createDevice(GpuContext& ctx, const DeviceSupport& s) {
   VkPhysicalDeviceFeatures2 enabled{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
@@ -329,11 +330,11 @@ static void createDevice(GpuContext& ctx, const DeviceSupport& s) {
   e13.pNext = &e12;
   if (ctx.features.rasterOrderAttachmentAccess) e12.pNext = &eRaster;
 
-  float priority = 1.0f;
+  const float priorities[2] = {1.0f, 1.0f};
   VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
   qci.queueFamilyIndex = ctx.queueFamily;
-  qci.queueCount = 1;
-  qci.pQueuePriorities = &priority;
+  qci.queueCount = ctx.familyQueues >= 2 ? 2 : 1;  // the second: the side queue
+  qci.pQueuePriorities = priorities;
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   dci.pNext = &enabled;
   dci.queueCreateInfoCount = 1;
@@ -342,10 +343,16 @@ static void createDevice(GpuContext& ctx, const DeviceSupport& s) {
   dci.ppEnabledExtensionNames = s.extensions.data();
   VK_CHECK(vkCreateDevice(ctx.physical, &dci, nullptr, &ctx.device));
   vkGetDeviceQueue(ctx.device, ctx.queueFamily, 0, &ctx.queue);
+  ctx.sideQueue = ctx.queue;
+  if (qci.queueCount == 2) vkGetDeviceQueue(ctx.device, ctx.queueFamily, 1, &ctx.sideQueue);
   ctx.cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
       vkGetDeviceProcAddr(ctx.device, "vkCmdPushDescriptorSetKHR"));
   GB_ASSERT(ctx.cmdPushDescriptorSet);
   if (debugUtilsAvailable()) loadDebugUtils(ctx);  // the instance enabled it (createInstance)
+  if (ctx.sideQueue != ctx.queue) {  // as Nsight's timeline names them
+    setName(ctx, uint64_t(ctx.queue), VK_OBJECT_TYPE_QUEUE, "main");
+    setName(ctx, uint64_t(ctx.sideQueue), VK_OBJECT_TYPE_QUEUE, "side");
+  }
 
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;

@@ -55,7 +55,11 @@ struct GpuContext {
   VkPhysicalDevice physical = VK_NULL_HANDLE;
   VkDevice device = VK_NULL_HANDLE;
   VkQueue queue = VK_NULL_HANDLE;
+  // A second queue of the same family where it has one (else `queue` again): frames put their
+  // visibility pass there to run beside the previous frame's compute (renderer/frame/side_queue.h).
+  VkQueue sideQueue = VK_NULL_HANDLE;
   uint32_t queueFamily = 0;
+  uint32_t familyQueues = 1;  // queues the family offers
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties{};
   VkPhysicalDeviceMemoryProperties memory{};

@@ -1,11 +1,16 @@
 // --gbuffer visibility beyond the target-by-target comparison (test_visibility.cpp): the reference
 // error of both paths, the id against primitive_id and the reference's ray cast, the resolve's
-// variants (stored position, motion), refusals, every pixel written, frames in flight.
+// variants (stored position, motion), refusals, every pixel written, frames in flight, frames that
+// overlap (the visibility pass in a side submission).
 #include <cmath>
+#include <cstdlib>
 #include <list>
+#include <set>
 
 #include "renderer/core/camera.h"
 #include "renderer/core/visibility.h"
+#include "renderer/passes/passes.h"
+#include "renderer/readback/target_readback.h"
 #include "renderer/reference/reference.h"
 #include "renderer/scene/builtin.h"
 #include "tests/gpu/gpu_test.h"
@@ -164,6 +169,61 @@ TEST_F(VisibilityFrames, EveryPixelIsWrittenAndFramesInFlightAreClean) {
     ASSERT_FALSE(burst.frames.empty()) << name(m);
     EXPECT_GE(burst.inFlight, 2) << name(m);
     for (const FrameStats& f : burst.frames) EXPECT_TRUE(passRan(f, "gbuffer_resolve")) << name(m);
+  }
+}
+
+// Frames that overlap (GBLENS_OVERLAP=on, renderer/frame/side_queue.h; on lavapipe's one queue the
+// side part is submitted apart and runs first, under synchronization validation): a burst whose
+// time changes every frame alternates the depth and id between the two slots' images, says every
+// frame overlapped, its passes tile its GPU time, and it ends on the frame a renderer that does not
+// overlap draws for the last frame alone, bit for bit, for each method.
+TEST_F(VisibilityFrames, FramesThatOverlapEndOnTheFrameARendererInOrderDraws) {
+  struct Overlap {  // the renderer reads GBLENS_OVERLAP when it is made
+    Renderer r;
+    Overlap(const Scene& scene, const char* mode) {
+      setenv("GBLENS_OVERLAP", mode, 1);
+      initRenderer(r, GpuTest::ctx(), scene);
+      unsetenv("GBLENS_OVERLAP");
+    }
+    ~Overlap() { destroyRenderer(r); }
+  };
+  const Scene scene = builtinTemple(16);
+  const std::vector<Target> targets = {Target::Final, Target::Hdr, Target::Depth, Target::DepthStencil, Target::Visibility};
+  for (Method m : {Method::Deferred, Method::Tiled, Method::Clustered}) {
+    RenderOptions o = visibilityOptions();
+    o.gbuffer = GBufferKind::Visibility;
+    o.method = m;
+    Overlap on(scene, "on"), off(scene, "off");
+    ASSERT_TRUE(on.r.overlapAllowed);
+    ASSERT_FALSE(off.r.overlapAllowed);
+    std::set<VkImage> depthImages, idImages;
+    const int frames = 5;
+    for (int i = 0; i < frames; ++i) {
+      o.time = 1.0 + 0.5 * i;
+      submitFrame(on.r, o);
+      depthImages.insert(on.r.targets[size_t(Target::DepthStencil)].image.image);
+      idImages.insert(on.r.targets[size_t(Target::Visibility)].image.image);
+    }
+    const std::vector<FrameStats> got = finishFrames(on.r);
+    ASSERT_EQ(got.size(), size_t(frames)) << name(m);
+    EXPECT_EQ(depthImages.size(), 2u) << name(m);
+    EXPECT_EQ(idImages.size(), 2u) << name(m);
+    for (const FrameStats& f : got) {
+      EXPECT_TRUE(f.overlap) << name(m) << ": " << f.overlapReason;
+      if (!ctx().features.timestamps) continue;
+      double spans = 0.0;
+      for (const PassStat& p : f.passes) {
+        if (p.skipped) continue;
+        EXPECT_GE(p.beforeMs, 0.0) << name(m) << " " << p.name;
+        spans += p.beforeMs + p.ms;
+      }
+      EXPECT_NEAR(spans, f.gpuMs, 1e-6 * f.gpuMs + 1e-9) << name(m);
+    }
+    runAfterFrame(on.r, [&](FrameGraph& g) { addReadbackPass(g, on.r, targets); }, {});
+    const FrameStats& alone = renderFrame(off.r, o, {targets});
+    EXPECT_FALSE(alone.overlap);
+    for (Target t : targets)
+      EXPECT_EQ(differingTexels(unpackReadback(on.r, t), off.r.readback[size_t(t)]), 0u) << name(m) << ": " << targetName(t);
   }
 }
 

@@ -108,6 +108,7 @@ nlohmann::json frameStatsJson(const FrameStats& st) {
                       {"method", {{"ran", st.method}, {"why", st.methodReason}}},
                       {"gbuffer", {{"ran", st.gbuffer}, {"why", st.gbufferReason}}},
                       {"light_setup", {{"ran", st.lightSetup}, {"why", st.lightSetupReason}}},
+                      {"overlap", {{"ran", st.overlap}, {"why", st.overlapReason}}},
                       {"passes", passes}};
   if (!st.clusterAssign.empty()) j["cluster_assign"] = {{"ran", st.clusterAssign}, {"why", st.clusterAssignReason}};
   j["lights"] = {{"total", st.lights},
