@@ -117,6 +117,7 @@ void summarize(Renderer& r, const RenderOptions& o, MethodRow& row, const Timed&
   row.overDefault = timingOf(timed.ratios).median;
   row.lightSetup = frames.back().lightSetup;
   row.gbuffer = frames.back().gbuffer;
+  row.overlap = frames.back().overlap;
   row.clusterAssign = frames.back().clusterAssign;
   if (frames.back().clusters.valid) row.clusters = frames.back().clusters;
   // Forward's count is its visible lights times its shaded fragments; a frame over 3 s is not spent on it.

@@ -63,6 +63,7 @@ nlohmann::json methodsJson(const BenchReport& r) {
       o["cpu_ms"] = timingJson(m.cpuMs);
       o["light_setup"] = m.lightSetup;
       o["gbuffer"] = m.gbuffer;
+      o["overlap"] = m.overlap;
       if (!m.clusterAssign.empty()) o["cluster_assign"] = m.clusterAssign;
       o["time_over_default"] = m.overDefault;
       o["lighting_ms"] = lightingMs(m);

@@ -124,6 +124,7 @@ struct MethodRow {
   Timing frameMs, gpuMs, cpuMs;
   std::string lightSetup;        // where the lights were set up ("cpu", "gpu")
   std::string gbuffer;           // how the G-buffer was filled ("raster", "visibility"; --gbuffer)
+  bool overlap = false;          // its visibility pass ran beside the previous frame (GBLENS_OVERLAP)
   std::string clusterAssign;     // method clustered: where its lights were assigned ("cpu" grid, "gpu")
   ClusterStats clusters;         // method clustered: occupied clusters, list entries
   std::vector<PassTiming> passes;

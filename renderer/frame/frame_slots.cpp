@@ -86,13 +86,26 @@ void createFrameSlots(Renderer& r) {
     setName(ctx, uint64_t(s.cmd), VK_OBJECT_TYPE_COMMAND_BUFFER, "frame");
     VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VK_CHECK(vkCreateFence(ctx.device, &fci, nullptr, &s.fence));
-    if (r.overlapAllowed) {  // the side part (side_queue.h)
+    if (r.overlapAllowed) {  // frames that overlap (side_queue.h)
       VK_CHECK(vkAllocateCommandBuffers(ctx.device, &cai, &s.sideCmd));
-      setName(ctx, uint64_t(s.sideCmd), VK_OBJECT_TYPE_COMMAND_BUFFER, "frame (side)");
+      setName(ctx, uint64_t(s.sideCmd), VK_OBJECT_TYPE_COMMAND_BUFFER, "frame (visibility)");
+      VkCommandBufferAllocateInfo compute = cai;
+      compute.commandPool = ctx.computePool;
+      VK_CHECK(vkAllocateCommandBuffers(ctx.device, &compute, &s.computeCmd));
+      setName(ctx, uint64_t(s.computeCmd), VK_OBJECT_TYPE_COMMAND_BUFFER, "frame (compute)");
       VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
       VK_CHECK(vkCreateSemaphore(ctx.device, &sci, nullptr, &s.sideDone));
-      setName(ctx, uint64_t(s.sideDone), VK_OBJECT_TYPE_SEMAPHORE, "side done");
+      setName(ctx, uint64_t(s.sideDone), VK_OBJECT_TYPE_SEMAPHORE, "visibility done");
     }
+  }
+  if (r.overlapAllowed) {
+    VkSemaphoreTypeCreateInfo type{VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO};
+    type.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+    VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    sci.pNext = &type;
+    VK_CHECK(vkCreateSemaphore(ctx.device, &sci, nullptr, &r.frameTimeline));
+    setName(ctx, uint64_t(r.frameTimeline), VK_OBJECT_TYPE_SEMAPHORE, "frames");
+    r.framesSubmitted = 0;
   }
 }
 
@@ -106,12 +119,15 @@ void destroyFrameSlots(Renderer& r) {
       if (q) vkDestroyQueryPool(ctx.device, q, nullptr);
     for (VkCommandBuffer c : {s.cmd, s.sideCmd})
       if (c) vkFreeCommandBuffers(ctx.device, ctx.commandPool, 1, &c);
+    if (s.computeCmd) vkFreeCommandBuffers(ctx.device, ctx.computePool, 1, &s.computeCmd);
     if (s.fence) vkDestroyFence(ctx.device, s.fence, nullptr);
     if (s.sideDone) vkDestroySemaphore(ctx.device, s.sideDone, nullptr);
     s = FrameSlot{};
   }
   if (r.descriptorPool) vkDestroyDescriptorPool(ctx.device, r.descriptorPool, nullptr);
   r.descriptorPool = VK_NULL_HANDLE;
+  if (r.frameTimeline) vkDestroySemaphore(ctx.device, r.frameTimeline, nullptr);
+  r.frameTimeline = VK_NULL_HANDLE;
 }
 
 bool framesInFlight(const Renderer& r) {
@@ -242,30 +258,48 @@ static void beginCommands(VkCommandBuffer cmd, bool othersInFlight) {
   if (othersInFlight) afterEarlierFrames(cmd);
 }
 
-// With a side part (the graph's side passes: Renderer::overlap), it goes to the side queue first
-// and the main part waits for it. The side part waits for nothing of the frame in flight: it
-// writes only this slot's own images (kSlotTargets), whose last frame was retired; the barrier
-// after earlier frames orders it after the side parts before it (and, on one queue, after all).
+// A frame that overlaps (Renderer::overlap) submits its side part (the visibility pass) to the
+// graphics queue and the rest to the compute queue, which waits for the side part. The side part
+// waits for nothing of the frame in flight: it writes only this slot's own images (kSlotTargets),
+// whose last frame was retired, and the barrier after earlier frames orders it after the graphics
+// queue's work before it. Every frame's last submission waits for the previous frame's on the
+// timeline (whichever queue that went to) and signals its own.
 std::chrono::steady_clock::time_point recordAndSubmit(Renderer& r, FrameGraph& graph) {
   GpuContext& ctx = *r.ctx;
   FrameSlot& s = frameSlot(r);
   const bool othersInFlight = framesInFlight(r);  // this slot's own frame was retired
-  const bool side = graph.hasSide();
-  GB_ASSERT(!side || (s.sideCmd && r.parked[0].image.image));
-  beginCommands(s.cmd, othersInFlight);
+  const bool side = r.overlap;
+  GB_ASSERT(!side || (s.sideCmd && r.parked[0].image.image && graph.hasSide()));
+  VkCommandBuffer main = side ? s.computeCmd : s.cmd;
+  beginCommands(main, othersInFlight);
   if (side) beginCommands(s.sideCmd, othersInFlight);
-  graph.record(ctx, s.cmd, r.targets, r.graphCache, ctx.features.timestamps ? s.timestampPool : VK_NULL_HANDLE,
+  graph.record(ctx, main, r.targets, r.graphCache, ctx.features.timestamps ? s.timestampPool : VK_NULL_HANDLE,
                side ? s.sideCmd : VK_NULL_HANDLE);
-  VK_CHECK(vkEndCommandBuffer(s.cmd));
+  VK_CHECK(vkEndCommandBuffer(main));
   if (side) VK_CHECK(vkEndCommandBuffer(s.sideCmd));
+
+  std::vector<VkSemaphore> waits;
+  std::vector<VkPipelineStageFlags> waitStages;
+  std::vector<uint64_t> waitValues;
+  if (side) waits.push_back(s.sideDone), waitValues.push_back(0);
+  if (r.frameTimeline) waits.push_back(r.frameTimeline), waitValues.push_back(r.framesSubmitted);
+  waitStages.assign(waits.size(), VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);
+  const uint64_t signalValue = r.framesSubmitted + 1;
+  VkTimelineSemaphoreSubmitInfo timeline{VK_STRUCTURE_TYPE_TIMELINE_SEMAPHORE_SUBMIT_INFO};
+  timeline.waitSemaphoreValueCount = uint32_t(waitValues.size());
+  timeline.pWaitSemaphoreValues = waitValues.data();
+  timeline.signalSemaphoreValueCount = 1;
+  timeline.pSignalSemaphoreValues = &signalValue;
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
-  si.pCommandBuffers = &s.cmd;
-  const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_ALL_COMMANDS_BIT;
-  if (side) {
-    si.waitSemaphoreCount = 1;
-    si.pWaitSemaphores = &s.sideDone;
-    si.pWaitDstStageMask = &waitStage;
+  si.pCommandBuffers = &main;
+  si.waitSemaphoreCount = uint32_t(waits.size());
+  si.pWaitSemaphores = waits.data();
+  si.pWaitDstStageMask = waitStages.data();
+  if (r.frameTimeline) {
+    si.pNext = &timeline;
+    si.signalSemaphoreCount = 1;
+    si.pSignalSemaphores = &r.frameTimeline;
   }
   VK_CHECK(vkResetFences(ctx.device, 1, &s.fence));
   const Clock::time_point submitted = Clock::now();
@@ -275,9 +309,10 @@ std::chrono::steady_clock::time_point recordAndSubmit(Renderer& r, FrameGraph& g
     ssi.pCommandBuffers = &s.sideCmd;
     ssi.signalSemaphoreCount = 1;
     ssi.pSignalSemaphores = &s.sideDone;
-    VK_CHECK(vkQueueSubmit(ctx.sideQueue, 1, &ssi, VK_NULL_HANDLE));
+    VK_CHECK(vkQueueSubmit(ctx.queue, 1, &ssi, VK_NULL_HANDLE));
   }
-  VK_CHECK(vkQueueSubmit(ctx.queue, 1, &si, s.fence));
+  VK_CHECK(vkQueueSubmit(side ? ctx.computeQueue : ctx.queue, 1, &si, s.fence));
+  if (r.frameTimeline) r.framesSubmitted = signalValue;
   s.pending = true;
   return submitted;
 }

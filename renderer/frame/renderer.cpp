@@ -221,6 +221,7 @@ static FrameRequest recordFrame(Renderer& r, const RenderOptions& asked, const F
   FrameGraph graph;
   r.skyQueryActive = false;
   buildFrame(graph, r, request);
+  overlapRecorded(r, graph);  // not when the compute part has a raster pass
   resetQueries(r, graph, request);
   const auto recordStart = std::chrono::steady_clock::now();
   const uint64_t compiled = r.graphCache.compilations, reused = r.graphCache.reuses;

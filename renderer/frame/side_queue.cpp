@@ -13,25 +13,28 @@ void decideOverlapAllowed(Renderer& r) {
   const GpuContext& ctx = *r.ctx;
   const char* v = std::getenv("GBLENS_OVERLAP");
   const std::string mode = v && *v ? v : "auto";
-  if (mode == "off") {
-    r.overlapAllowed = false;
-    r.overlapAllowedReason = "GBLENS_OVERLAP=off";
-  } else if (mode == "on") {
-    r.overlapAllowed = true;
-    r.overlapAllowedReason = ctx.sideQueue != ctx.queue
-                                 ? "GBLENS_OVERLAP=on: the visibility pass on a second queue, beside the previous frame"
-                                 : "GBLENS_OVERLAP=on: the visibility pass submitted apart, on the device's one queue";
-  } else if (mode == "auto") {
-    r.overlapAllowed = !ctx.isCpu && ctx.sideQueue != ctx.queue;
-    r.overlapAllowedReason = ctx.isCpu ? "auto: a CPU device runs one part at a time"
-                             : r.overlapAllowed ? "auto: a GPU device with a second queue: the visibility pass runs "
-                                                  "there, beside the previous frame"
-                                                : "auto: the device's graphics family has one queue";
-  } else {
+  const bool asyncCompute = ctx.computeQueue != ctx.queue;
+  if (mode != "auto" && mode != "on" && mode != "off") {
     std::fprintf(stderr, "gblens: GBLENS_OVERLAP=%s: auto, on or off (the visibility pass beside the previous frame)\n",
                  v);
     std::exit(2);
   }
+  r.overlapAllowed = false;
+  if (mode == "off")
+    r.overlapAllowedReason = "GBLENS_OVERLAP=off";
+  else if (!ctx.features.timelineSemaphore)
+    r.overlapAllowedReason = "the device lacks timeline semaphores";
+  else if (mode == "on")
+    r.overlapAllowed = true, r.overlapAllowedReason = asyncCompute
+                                 ? "GBLENS_OVERLAP=on: the compute part on the compute queue, beside the next visibility pass"
+                                 : "GBLENS_OVERLAP=on: no compute-only queue family, the two parts submitted apart to the one queue";
+  else if (ctx.isCpu)
+    r.overlapAllowedReason = "auto: a CPU device runs one part at a time";
+  else if (!asyncCompute)
+    r.overlapAllowedReason = "auto: the device has no compute-only queue family";
+  else
+    r.overlapAllowed = true, r.overlapAllowedReason = "auto: a GPU device with a compute queue: the compute part runs there, "
+                                                       "beside the next frame's visibility pass";
 }
 
 bool overlapFrame(const Renderer& r, std::string& reason) {
@@ -40,6 +43,15 @@ bool overlapFrame(const Renderer& r, std::string& reason) {
   GB_ASSERT(r.method != Method::Forward);
   reason = r.overlapAllowedReason;
   return true;
+}
+
+bool overlapRecorded(Renderer& r, const FrameGraph& graph) {
+  if (!r.overlap) return false;
+  const std::string raster = graph.rasterOutsideSide();
+  if (raster.empty()) return true;
+  r.overlap = false;
+  r.overlapReason = "the compute part has a raster pass (" + raster + "), which the compute queue cannot run";
+  return false;
 }
 
 void useSlotTargets(Renderer& r) {

@@ -116,9 +116,9 @@ inline constexpr std::array<Target, 2> kSlotTargets = {Target::DepthStencil, Tar
 struct FrameSlot {
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
-  // The frame's side part (Renderer::overlap): its command buffer, submitted to the side queue,
-  // and the semaphore the main part waits for.
-  VkCommandBuffer sideCmd = VK_NULL_HANDLE;
+  // A frame that overlaps (Renderer::overlap): its side part's command buffer (graphics queue),
+  // the semaphore it signals, and the command buffer of the rest (compute queue's pool).
+  VkCommandBuffer sideCmd = VK_NULL_HANDLE, computeCmd = VK_NULL_HANDLE;
   VkSemaphore sideDone = VK_NULL_HANDLE;
   // Set 0's per-frame buffers (written by the CPU before submission, or by light setup on the
   // GPU) and set 0 naming them: the other slot's frame may still read its own.
@@ -194,6 +194,11 @@ struct Renderer {
   std::string overlapAllowedReason;
   bool overlap = false;
   std::string overlapReason;
+  // With overlapAllowed, every frame's last submission signals this timeline (the value: frames
+  // submitted) and waits for the one before: the frames' non-side parts run in order whichever
+  // queue each went to.
+  VkSemaphore frameTimeline = VK_NULL_HANDLE;
+  uint64_t framesSubmitted = 0;
   bool computeToneMap = false;      // tonemap_compute writes final (not the raster tonemap pass)
   std::string toneMapReason;
   std::string fairyReason;

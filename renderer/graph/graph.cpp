@@ -64,6 +64,12 @@ bool FrameGraph::hasSide() const {
   return std::any_of(passes_.begin(), passes_.end(), [](const GraphPass& p) { return p.side; });
 }
 
+std::string FrameGraph::rasterOutsideSide() const {
+  for (const GraphGroup& g : groups_)
+    if (!g.passes.empty() && !passes_[size_t(g.passes[0])].side) return passes_[size_t(g.passes[0])].name;
+  return "";
+}
+
 void FrameGraph::addPass(std::string name, std::vector<Use> uses, PassFn execute, std::vector<BufferUse> buffers) {
   GraphPass node;
   node.side = openSide_;
@@ -112,7 +118,7 @@ void FrameGraph::checkSideIndependent() const {
 void FrameGraph::record(GpuContext& ctx, VkCommandBuffer cmd, GraphTargets& targets, GraphCache& cache,
                         VkQueryPool timestamps, VkCommandBuffer side) {
   GB_ASSERT(openGroup_ < 0 && !openSide_);
-  GB_ASSERT(hasSide() == (side != VK_NULL_HANDLE));
+  GB_ASSERT(!side || hasSide());
   if (side) checkSideIndependent();
   buffers_.clear();
   std::vector<bool> groupDone(groups_.size(), false);
@@ -120,7 +126,7 @@ void FrameGraph::record(GpuContext& ctx, VkCommandBuffer cmd, GraphTargets& targ
     if (sidePart && !side) continue;
     VkCommandBuffer into = sidePart ? side : cmd;
     for (GraphPass& p : passes_) {
-      if (p.side != sidePart) continue;
+      if (side && p.side != sidePart) continue;
       if (p.renderPass < 0) {
         recordCompute(ctx, into, p, targets, timestamps);
       } else if (!groupDone[p.renderPass]) {

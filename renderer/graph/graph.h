@@ -34,12 +34,15 @@ class FrameGraph {
   void beginSide();
   void endSide();
   bool hasSide() const;
+  // The first pass of the first render-pass group outside the side part ("" if none).
+  std::string rasterOutsideSide() const;
 
   // Builds render passes and barriers and records every pass, each in a debug label region named as in
   // stats() (RenderDoc's event browser), render-pass groups in one more region named as the group.
   // Timestamps (if a pool is given)
   // are written around each pass: query 2*i and 2*i+1 for the i-th pass in stats() order.
-  // With side passes, `side` gets them (and nothing else) and `cmd` the rest.
+  // With `side`, it gets the side passes (and nothing else) and `cmd` the rest; without, `cmd` gets
+  // every pass in order.
   void record(GpuContext& ctx, VkCommandBuffer cmd, GraphTargets& targets, GraphCache& cache,
               VkQueryPool timestamps, VkCommandBuffer side = VK_NULL_HANDLE);
 

@@ -243,7 +243,19 @@ static void describeDevice(GpuContext& ctx) {
     }
   }
   GB_ASSERT(ctx.queueFamily != UINT32_MAX);
-  ctx.familyQueues = families[ctx.queueFamily].queueCount;
+  // Async compute: a family with compute but no graphics (NVIDIA's queues of one family are
+  // time-sliced, not concurrent: docs/perf-gpu.md). GBLENS_OVERLAP=off leaves it out, so an A/B
+  // run measures the shared images too.
+  const char* overlap = std::getenv("GBLENS_OVERLAP");
+  ctx.computeFamily = ctx.queueFamily;
+  if (!(overlap && std::strcmp(overlap, "off") == 0))
+    for (uint32_t i = 0; i < qn; ++i)
+      if ((families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) && !(families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) &&
+          families[i].queueCount > 0 && families[i].timestampValidBits > 0) {
+        ctx.computeFamily = i;
+        break;
+      }
+  if (ctx.computeFamily != ctx.queueFamily) ctx.sharedFamilies = {ctx.queueFamily, ctx.computeFamily};
   ctx.features.timestamps = families[ctx.queueFamily].timestampValidBits > 0;
 
   VkPhysicalDeviceFeatures supported{};
@@ -297,11 +309,12 @@ static DeviceSupport querySupport(GpuContext& ctx, const ContextOptions& options
   }
   s.maintenance4 = v13.maintenance4;
   s.scalarBlockLayout = v12.scalarBlockLayout;
+  ctx.features.timelineSemaphore = v12.timelineSemaphore;
   ctx.features.visibilityResolve = s.core.shaderStorageImageWriteWithoutFormat && s.core.geometryShader;
   return s;
 }
 
-// The device with one queue (two where the family has them: the side queue) and only the features gblens uses (so behaviour matches between
+// The device with one queue (and one of a compute-only family: GpuContext::computeQueue) and only the features gblens uses (so behaviour matches between
 // devices), the push-descriptor entry point and the command pool.
 static void createDevice(GpuContext& ctx, const DeviceSupport& s) {
   VkPhysicalDeviceFeatures2 enabled{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
@@ -322,6 +335,7 @@ static void createDevice(GpuContext& ctx, const DeviceSupport& s) {
   VkPhysicalDeviceVulkan12Features e12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   e12.separateDepthStencilLayouts = VK_TRUE;
   e12.hostQueryReset = VK_TRUE;
+  e12.timelineSemaphore = ctx.features.timelineSemaphore;
   e12.scalarBlockLayout = s.scalarBlockLayout;
   VkPhysicalDeviceRasterizationOrderAttachmentAccessFeaturesEXT eRaster{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RASTERIZATION_ORDER_ATTACHMENT_ACCESS_FEATURES_EXT};
@@ -330,34 +344,41 @@ static void createDevice(GpuContext& ctx, const DeviceSupport& s) {
   e13.pNext = &e12;
   if (ctx.features.rasterOrderAttachmentAccess) e12.pNext = &eRaster;
 
-  const float priorities[2] = {1.0f, 1.0f};
-  VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-  qci.queueFamilyIndex = ctx.queueFamily;
-  qci.queueCount = ctx.familyQueues >= 2 ? 2 : 1;  // the second: the side queue
-  qci.pQueuePriorities = priorities;
+  const float priority = 1.0f;
+  VkDeviceQueueCreateInfo qci[2] = {{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO}, {VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO}};
+  qci[0].queueFamilyIndex = ctx.queueFamily;
+  qci[1].queueFamilyIndex = ctx.computeFamily;
+  for (VkDeviceQueueCreateInfo& q : qci) {
+    q.queueCount = 1;
+    q.pQueuePriorities = &priority;
+  }
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   dci.pNext = &enabled;
-  dci.queueCreateInfoCount = 1;
-  dci.pQueueCreateInfos = &qci;
+  dci.queueCreateInfoCount = ctx.computeFamily != ctx.queueFamily ? 2 : 1;
+  dci.pQueueCreateInfos = qci;
   dci.enabledExtensionCount = uint32_t(s.extensions.size());
   dci.ppEnabledExtensionNames = s.extensions.data();
   VK_CHECK(vkCreateDevice(ctx.physical, &dci, nullptr, &ctx.device));
   vkGetDeviceQueue(ctx.device, ctx.queueFamily, 0, &ctx.queue);
-  ctx.sideQueue = ctx.queue;
-  if (qci.queueCount == 2) vkGetDeviceQueue(ctx.device, ctx.queueFamily, 1, &ctx.sideQueue);
+  vkGetDeviceQueue(ctx.device, ctx.computeFamily, 0, &ctx.computeQueue);
   ctx.cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
       vkGetDeviceProcAddr(ctx.device, "vkCmdPushDescriptorSetKHR"));
   GB_ASSERT(ctx.cmdPushDescriptorSet);
   if (debugUtilsAvailable()) loadDebugUtils(ctx);  // the instance enabled it (createInstance)
-  if (ctx.sideQueue != ctx.queue) {  // as Nsight's timeline names them
-    setName(ctx, uint64_t(ctx.queue), VK_OBJECT_TYPE_QUEUE, "main");
-    setName(ctx, uint64_t(ctx.sideQueue), VK_OBJECT_TYPE_QUEUE, "side");
+  if (ctx.computeQueue != ctx.queue) {  // as Nsight's timeline names them
+    setName(ctx, uint64_t(ctx.queue), VK_OBJECT_TYPE_QUEUE, "graphics");
+    setName(ctx, uint64_t(ctx.computeQueue), VK_OBJECT_TYPE_QUEUE, "compute");
   }
 
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   pci.queueFamilyIndex = ctx.queueFamily;
   VK_CHECK(vkCreateCommandPool(ctx.device, &pci, nullptr, &ctx.commandPool));
+  ctx.computePool = ctx.commandPool;
+  if (ctx.computeFamily != ctx.queueFamily) {
+    pci.queueFamilyIndex = ctx.computeFamily;
+    VK_CHECK(vkCreateCommandPool(ctx.device, &pci, nullptr, &ctx.computePool));
+  }
 }
 
 GpuContext createContext(const ContextOptions& options) {
@@ -379,6 +400,7 @@ GpuContext createContext(const ContextOptions& options) {
 void destroyContext(GpuContext& ctx) {
   if (ctx.device) {
     vkDeviceWaitIdle(ctx.device);
+    if (ctx.computePool != ctx.commandPool) vkDestroyCommandPool(ctx.device, ctx.computePool, nullptr);
     vkDestroyCommandPool(ctx.device, ctx.commandPool, nullptr);
     vkDestroyDevice(ctx.device, nullptr);
   }

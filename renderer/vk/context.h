@@ -40,6 +40,7 @@ struct DeviceFeatures {
   // gbuffer_resolve (--gbuffer visibility): G-buffer stores through unsigned views without a format
   // qualifier (shaderStorageImageWriteWithoutFormat), gl_PrimitiveID (geometryShader).
   bool visibilityResolve = false;
+  bool timelineSemaphore = false;  // Vulkan 1.2's (frames that overlap order their compute parts with one)
 };
 
 // VK_EXT_debug_utils entry points (renderer/vk/debug_utils.h); null when the instance lacks it.
@@ -55,11 +56,15 @@ struct GpuContext {
   VkPhysicalDevice physical = VK_NULL_HANDLE;
   VkDevice device = VK_NULL_HANDLE;
   VkQueue queue = VK_NULL_HANDLE;
-  // A second queue of the same family where it has one (else `queue` again): frames put their
-  // visibility pass there to run beside the previous frame's compute (renderer/frame/side_queue.h).
-  VkQueue sideQueue = VK_NULL_HANDLE;
   uint32_t queueFamily = 0;
-  uint32_t familyQueues = 1;  // queues the family offers
+  // A queue of a compute-only family, where the device has one with timestamps and GBLENS_OVERLAP
+  // is not off (else `queue` again, its family and pool): frames whose visibility pass overlaps the
+  // previous frame run their compute there (renderer/frame/side_queue.h). With two families every
+  // buffer and image is shared by both (VK_SHARING_MODE_CONCURRENT: no ownership transfers).
+  VkQueue computeQueue = VK_NULL_HANDLE;
+  uint32_t computeFamily = 0;
+  VkCommandPool computePool = VK_NULL_HANDLE;
+  std::vector<uint32_t> sharedFamilies;  // both families when computeFamily != queueFamily, else empty
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkPhysicalDeviceProperties properties{};
   VkPhysicalDeviceMemoryProperties memory{};

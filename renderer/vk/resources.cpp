@@ -24,6 +24,11 @@ Buffer createBuffer(GpuContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage
   VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bci.size = size > 0 ? size : 16;
   bci.usage = usage;
+  if (!ctx.sharedFamilies.empty()) {  // the graphics and the compute queue's families (context.h)
+    bci.sharingMode = VK_SHARING_MODE_CONCURRENT;
+    bci.queueFamilyIndexCount = uint32_t(ctx.sharedFamilies.size());
+    bci.pQueueFamilyIndices = ctx.sharedFamilies.data();
+  }
   VK_CHECK(vkCreateBuffer(ctx.device, &bci, nullptr, &b.buffer));
   setName(ctx, uint64_t(b.buffer), VK_OBJECT_TYPE_BUFFER, name);
   VkMemoryRequirements req;
@@ -146,6 +151,11 @@ Image createImage(GpuContext& ctx, const ImageDesc& desc) {
     ici.flags = VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT | VK_IMAGE_CREATE_EXTENDED_USAGE_BIT;
   }
   ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  if (!ctx.sharedFamilies.empty()) {
+    ici.sharingMode = VK_SHARING_MODE_CONCURRENT;
+    ici.queueFamilyIndexCount = uint32_t(ctx.sharedFamilies.size());
+    ici.pQueueFamilyIndices = ctx.sharedFamilies.data();
+  }
   VK_CHECK(vkCreateImage(ctx.device, &ici, nullptr, &img.image));
   setName(ctx, uint64_t(img.image), VK_OBJECT_TYPE_IMAGE, desc.name);
 

@@ -92,7 +92,9 @@ TEST(Cli, TheDefaultGBufferIsAutoAndRasterOnACpuDevice) {
   ASSERT_EQ(r.status, 0);
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["format"], "gblens-frame-stats");
-  EXPECT_EQ(j["version"], 2);  // docs/json.md: the version that added gbuffer
+  EXPECT_EQ(j["version"], 3);  // docs/json.md: 2 added gbuffer, 3 overlap
+  EXPECT_EQ(j["overlap"]["ran"], false);  // one queue, a CPU device
+  EXPECT_EQ(j["overlap"]["why"], "auto: a CPU device runs one part at a time");
   EXPECT_EQ(j["options"]["gbuffer"], "auto");
   EXPECT_EQ(j["gbuffer"]["ran"], "raster");
   const std::string why = j["gbuffer"]["why"];

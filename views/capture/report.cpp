@@ -137,9 +137,10 @@ nlohmann::json statsJson(const std::vector<FrameStats>& frames, const StatsSourc
   if (frames.empty()) return nlohmann::json();
   const FrameStats& last = frames.back();
   nlohmann::json j = frameStatsJson(last);
-  // docs/json.md: version 2 added "gbuffer" (what filled the G-buffer and why); version 1 was unversioned.
+  // docs/json.md: version 2 added "gbuffer" (what filled the G-buffer and why), 3 "overlap"; version
+  // 1 was unversioned.
   j["format"] = "gblens-frame-stats";
-  j["version"] = 2;
+  j["version"] = 3;
   std::vector<double> frameMs, gpuMs, cpuMs, recordMs;
   for (const FrameStats& f : frames) {
     frameMs.push_back(f.frameMs);
