@@ -211,6 +211,14 @@ struct PassReport {
   // point, and those read after it (compute dispatches, copy/blit/resolve sources) before the next
   // pass of the frame begins.
   std::vector<uint32_t> reads, readsAfter;
+  // Storage images the compute dispatches after it (before the next pass) bind, each once: a G-buffer
+  // written by compute, which the draft does not hold but the report names with its sources.
+  struct Storage {
+    Attachment image;  // role "storage"; written: unknown (a storage image may be read or written)
+    uint32_t set = 0, binding = 0;
+    std::vector<std::string> labels;  // the debug labels open at the first dispatch binding it
+  };
+  std::vector<Storage> storageAfter;
 };
 
 // A render pass being recorded: its attachments and where they are when it ends.
@@ -275,6 +283,7 @@ struct CmdState {
   std::vector<BindEvent> passBinds;
   PushState push;               // only while bound_buffers or camera.live asks for them
   std::vector<uint32_t> leadingReads;   // --suggest: image ids read before this recording's first pass
+  std::vector<PassReport::Storage> leadingStorage;  // --suggest: storage images dispatches bind before it
   std::vector<uint32_t> intoSwapchain;  // --suggest: image ids copied or blitted into a swapchain image
   bool reusable = false;        // it may be submitted again (no ONE_TIME_SUBMIT)
   int passes = 0;               // render passes begun so far

@@ -317,8 +317,16 @@ void streamPasses(DeviceData& d, const std::vector<PassReport>& passes, const st
   for (const PassReport& p : passes) {
     json attachments = json::array();
     for (const PassReport::Attachment& a : p.attachments) attachments.push_back(attachmentJson(a));
+    json storage = json::array();
+    for (const PassReport::Storage& e : p.storageAfter) {
+      const PassReport::Attachment& a = e.image;
+      storage.push_back({{"image", a.image}, {"view", a.view}, {"image_id", a.imageId}, {"vk_format", a.format},
+                         {"format", a.storage}, {"width", a.width}, {"height", a.height}, {"samples", a.samples},
+                         {"set", e.set}, {"binding", e.binding}, {"labels", e.labels}, {"why", a.why}});
+    }
     list.push_back({{"ordinal", p.ordinal}, {"dynamic", p.dynamic}, {"render_pass", p.renderPass}, {"labels", p.labels},
-                    {"attachments", attachments}, {"reads", p.reads}, {"reads_after", p.readsAfter}});
+                    {"attachments", attachments}, {"reads", p.reads}, {"reads_after", p.readsAfter},
+                    {"storage_after", storage}});
   }
   sendOnce(d, "passes",
            json{{"type", gb::wire::kPasses}, {"frame", frame}, {"passes", list}, {"presented", presented}}.dump());

@@ -85,6 +85,44 @@ void imageCopy(DeviceData& d, VkCommandBuffer cmd, VkImage src, VkImage dst) {
   if (intoSwapchain) addOnce(s->intoSwapchain, id);
 }
 
+// A followed image as the report shows it (the caller holds d.objects).
+PassReport::Attachment describeImage(DeviceData& d, VkImage image, const ImageInfo& info, const ViewInfo* view) {
+  PassReport::Attachment e;
+  e.image = info.name;
+  e.view = view ? view->name : "";
+  const uint32_t mip = view ? view->mip : 0;
+  e.width = std::max(1u, info.extent.width >> mip);
+  e.height = std::max(1u, info.extent.height >> mip);
+  e.samples = uint32_t(info.samples);
+  e.format = formatName(info.format);
+  e.storage = formatInfo(info.format).storage;
+  e.depth = formatInfo(info.format).depth;
+  e.stencil = formatInfo(info.format).stencil;
+  e.presented = info.swapchain != VK_NULL_HANDLE;
+  e.imageId = imageId(d, image);
+  e.why = refusal(d, info, "");
+  return e;
+}
+
+// The storage images a dispatch binds, each once between two passes, where it binds them.
+void noteStorage(DeviceData& d, CmdState& s, const std::vector<BindEvent>& binds) {
+  std::vector<PassReport::Storage>& list = s.reports.empty() ? s.leadingStorage : s.reports.back().storageAfter;
+  std::shared_lock lock(d.objects);
+  std::vector<BoundDescriptor> all;
+  for (const BindEvent& b : binds) boundDescriptors(d, b.number, b.set, all);
+  for (const BoundDescriptor& desc : all) {
+    if (desc.type != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE || !desc.view) continue;
+    auto v = d.views.find(desc.view);
+    auto img = v == d.views.end() ? d.images.end() : d.images.find(v->second.image);
+    if (img == d.images.end()) continue;
+    const uint32_t id = imageId(d, img->first);
+    if (std::any_of(list.begin(), list.end(), [&](const PassReport::Storage& e) { return e.image.imageId == id; })) continue;
+    PassReport::Storage e{describeImage(d, img->first, img->second, &v->second), desc.set, desc.binding, s.labels};
+    e.image.role = "storage";
+    list.push_back(std::move(e));
+  }
+}
+
 void dispatched(DeviceData& d, VkCommandBuffer cmd) {
   if (CmdState* c = cmdState(d, cmd); c && c->copies && c->trackBinds) dispatchCopies(d, cmd, *c);
   CmdState* s = following(d, cmd);
@@ -95,6 +133,7 @@ void dispatched(DeviceData& d, VkCommandBuffer cmd) {
   std::vector<uint32_t> ids;
   readsOf(d, binds, ids);
   for (uint32_t id : ids) readAfter(*s, id);
+  noteStorage(d, *s, binds);
 }
 
 // The camera's buffer by its debug name: the last one of that name bound before the pass ends
@@ -342,23 +381,10 @@ PassReport reportPass(DeviceData& d, const OpenPass& pass) {
     auto img = d.images.find(a.image);
     auto view = d.views.find(a.view);
     if (img == d.images.end()) continue;
-    PassReport::Attachment e;
+    PassReport::Attachment e = describeImage(d, a.image, img->second, view == d.views.end() ? nullptr : &view->second);
     e.role = a.color >= 0 ? "color " + std::to_string(a.color) : a.depth ? "depth" : "other";
-    e.image = img->second.name;
-    e.view = view == d.views.end() ? "" : view->second.name;
-    const uint32_t mip = view == d.views.end() ? 0 : view->second.mip;
-    e.width = std::max(1u, img->second.extent.width >> mip);
-    e.height = std::max(1u, img->second.extent.height >> mip);
-    e.samples = uint32_t(img->second.samples);
-    e.format = formatName(img->second.format);
-    e.storage = formatInfo(img->second.format).storage;
     e.written = a.written;
     e.ops = a.ops;
-    e.depth = formatInfo(img->second.format).depth;
-    e.stencil = formatInfo(img->second.format).stencil;
-    e.presented = img->second.swapchain != VK_NULL_HANDLE;
-    e.imageId = imageId(d, a.image);
-    e.why = refusal(d, img->second, "");
     r.attachments.push_back(e);
   }
   return r;

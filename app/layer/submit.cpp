@@ -29,7 +29,14 @@ void addOnce(std::vector<uint32_t>& ids, const std::vector<uint32_t>& more) {
 // after the frame's pass before it (reads_after), and what it copied into a swapchain image counts
 // as presented.
 void gatherStructure(DeviceData& d, const CmdState& s) {
-  if (!d.frameReports.empty()) addOnce(d.frameReports.back().readsAfter, s.leadingReads);
+  if (!d.frameReports.empty()) {
+    PassReport& before = d.frameReports.back();
+    addOnce(before.readsAfter, s.leadingReads);
+    for (const PassReport::Storage& e : s.leadingStorage)  // (none before the frame's first pass: no pass to name)
+      if (std::none_of(before.storageAfter.begin(), before.storageAfter.end(),
+                       [&](const PassReport::Storage& b) { return b.image.imageId == e.image.imageId; }))
+        before.storageAfter.push_back(e);
+  }
   d.frameReports.insert(d.frameReports.end(), s.reports.begin(), s.reports.end());
   addOnce(d.framePresented, s.intoSwapchain);
 }

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/capture_util.h"
+#include "renderer/core/layout.h"
 #include "views/capture/capture.h"
 
 namespace gb {
@@ -119,6 +120,59 @@ TEST(TilerAttach, AGBufferWrittenByComputeIsItsOwnDumpOfTheFrameAskedFor) {
   const RunResult check = runShell("'" + std::string(GBLENS_BINARY) + "' check '" + dir + "/live'");
   EXPECT_EQ(check.exitCode, 0) << check.output;
   EXPECT_NE(check.output.find("clean: no fault"), std::string::npos) << check.output;
+}
+
+// attach --suggest on --mode compute drafts from render passes only: what a dispatch writes into a
+// storage image is not decided from the frame's structure. It says so, naming each storage image the
+// dispatches bind (the README's resolve set: tiler.albedo at binding 2, tiler.normal at 3) with a
+// source, and none of them is a draft target; a layout of just those sources, as the notes print
+// them, streams each image as the application's own dump of the frame.
+TEST(TilerAttach, SuggestNamesTheStorageImagesComputeWritesWithSourcesThatStreamThem) {
+  const std::string dir = freshDir("attach_tiler_suggest_compute");
+  const RunResult suggested = runShell("cd '" + dir + "' && DISPLAY= WAYLAND_DISPLAY= GBLENS_VALIDATE=1 timeout 120 '" +
+                                       GBLENS_BINARY + "' attach --suggest -o draft.json -- '" + tiler() +
+                                       "' --mode compute --frames 5000");
+  ASSERT_EQ(suggested.exitCode, 0) << suggested.output;
+  const json draft = json::parse(std::ifstream(dir + "/draft.json"));
+  for (const json& t : draft["targets"]) EXPECT_EQ(t["source"]["live"].value("name", "").rfind("tiler.", 0), std::string::npos) << t;
+  const RunResult dump = runShell("GBLENS_VALIDATE=1 '" + tiler() + "' --mode compute --frames 4 --dump '" + dir +
+                                  "/dump' --dump-frame 1");
+  ASSERT_EQ(dump.exitCode, 0) << dump.output;
+  const json frame = json::parse(std::ifstream(dir + "/dump/frame.json"));
+  json layout = {{"format", "gblens-layout"}, {"version", 1}, {"name", "the notes' sources"}, {"targets", json::array()}};
+  size_t notes = 0;
+  for (size_t at = suggested.output.find("not drafted: storage image "); at != std::string::npos;
+       at = suggested.output.find("not drafted: storage image ", at + 1))
+    ++notes;
+  EXPECT_EQ(notes, 2u) << suggested.output;
+  for (const json& t : frame["targets"]) {
+    if (t["render_pass"] != -1) continue;  // the storage images
+    const std::string name = t["debug_name"], note = "not drafted: storage image " + name + " (";
+    const size_t at = suggested.output.find(note);
+    ASSERT_NE(at, std::string::npos) << name << "\n" << suggested.output;
+    const std::string line = suggested.output.substr(at, suggested.output.find('\n', at) - at);
+    const size_t source = line.find("\"source\": ");
+    ASSERT_NE(source, std::string::npos) << line;
+    const std::string format = line.substr(note.size(), line.find(')', note.size()) - note.size());
+    StorageFormat f;
+    ASSERT_TRUE(parseStorageFormat(format, f)) << line;
+    json channels = json::array();
+    for (uint32_t c = 0; c < f.channels; ++c) channels.push_back(c);
+    layout["targets"].push_back({{"name", t["name"]}, {"format", format}, {"source", json::parse(line.substr(source + 10))},
+                                 {"quantities", {{{"quantity", "vector"}, {"name", t["name"].get<std::string>() + "_v"},
+                                                  {"channels", channels}}}}});
+  }
+  ASSERT_EQ(layout["targets"].size(), 2u);
+  std::ofstream(dir + "/notes.json") << layout.dump(2);
+  const RunResult r = runShell("GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout '" + dir +
+                               "/notes.json' --capture-frame 1 -o '" + dir + "/live' -- '" + tiler() + "' --mode compute --frames 4");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  Capture c;
+  std::string error;
+  ASSERT_TRUE(loadCapture(dir + "/live", c, error)) << error;
+  for (const json& t : layout["targets"])
+    for (const json& d : frame["targets"])
+      if (d["name"] == t["name"]) expectDumped(c, t["name"], dir + "/dump/" + d["files"][0].get<std::string>());
 }
 
 // A Vulkan 1.0 application's ring is shared memory too (the layer enables the instance and device

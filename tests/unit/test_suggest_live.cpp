@@ -96,3 +96,60 @@ TEST(SuggestLive, NothingALayoutCanHold) {
 
 }  // namespace
 }  // namespace gb
+
+namespace gb {
+namespace {
+
+// A visibility-buffer frame as the layer reports it, written by hand: pass 0 draws depth and a
+// triangle id, which a dispatch after it reads; that dispatch binds three storage images of the
+// frame's size and one smaller (a histogram); pass 1 lights from them. No render pass's colour
+// targets are read together, so the draft would call it forward rendering: the summary says compute
+// may write the G-buffer, and names each frame-sized storage image, once, with a source (its name;
+// unnamed: its set and binding in the innermost label), drafting none of them.
+TEST(SuggestLive, StorageImagesComputeBindsAreNamedNotDrafted) {
+  auto storage = [](int id, const std::string& image, const std::string& format, uint32_t binding, uint32_t w = 320) {
+    return json{{"image", image}, {"view", ""}, {"image_id", id}, {"format", format}, {"vk_format", "VK_FORMAT_X"},
+                {"width", w}, {"height", 180}, {"samples", 1}, {"set", 1}, {"binding", binding},
+                {"labels", {"frame", "resolve"}}, {"why", ""}};
+  };
+  json p0 = pass(0, {attachment("depth", "d32f"), attachment("color 0", "r32_uint")});
+  p0["attachments"][0]["image_id"] = 1, p0["attachments"][1]["image_id"] = 2;
+  p0["reads"] = json::array(), p0["reads_after"] = {1, 2, 3, 4, 5};
+  p0["storage_after"] = {storage(3, "gb.albedo", "rgba8_unorm", 2), storage(4, "", "rgba16f", 3),
+                         storage(5, "gb.depth", "r32f", 4), storage(6, "histogram", "r32_uint", 5, 64),
+                         storage(3, "gb.albedo", "rgba8_unorm", 2)};
+  json p1 = pass(1, {attachment("color 0", "rgba16f")});
+  p1["attachments"][0]["image_id"] = 7;
+  p1["reads"] = {3, 4, 5}, p1["reads_after"] = json::array();
+  std::vector<std::string> summary;
+  const json report = {{"frame", 0}, {"passes", {p0, p1}}};
+  const json draft = draftLiveLayout(report, summary);
+  ASSERT_EQ(draft["targets"].size(), 3u) << draft.dump(2);  // depth, id, and pass 1's colour: no storage image
+  std::string all;
+  for (const std::string& line : summary) all += line + "\n";
+  EXPECT_NE(all.find("; or compute writes it: dispatches bind 3 storage images of the frame's size (below)"), std::string::npos)
+      << all;
+  EXPECT_NE(all.find("not drafted: storage image gb.albedo (rgba8_unorm) bound by compute after #0: "), std::string::npos) << all;
+  EXPECT_NE(all.find("\"source\": {\"live\":{\"pass\":\"resolve\",\"storage\":{\"binding\":3,\"set\":1}}}"), std::string::npos)
+      << all;
+  EXPECT_NE(all.find("\"source\": {\"live\":{\"name\":\"gb.depth\"}}"), std::string::npos) << all;
+  EXPECT_EQ(all.find("histogram"), std::string::npos) << all;  // another size
+  size_t notes = 0;
+  for (size_t at = all.find("not drafted:"); at != std::string::npos; at = all.find("not drafted:", at + 1)) ++notes;
+  EXPECT_EQ(notes, 3u) << all;
+  // The printed report lists all four where the dispatch binds them.
+  const std::string text = describeLivePasses({{"application", "vb"}, {"device", "llvmpipe"}}, report);
+  EXPECT_NE(text.find("(bound by a compute dispatch after it, set 1 binding 5)"), std::string::npos) << text;
+  // The source printed for the unnamed one streams: it parses as a live pick.
+  json layout = draft;
+  layout["targets"].push_back({{"name", "n"}, {"format", "rgba16f"},
+                               {"source", {{"live", {{"pass", "resolve"}, {"storage", {{"set", 1}, {"binding", 3}}}}}}},
+                               {"quantities", {{{"quantity", "vector"}, {"name", "nv"}, {"channels", {0, 1, 2, 3}}}}}});
+  Layout l;
+  std::string error;
+  ASSERT_TRUE(parseLayout(layout, "draft", l, error)) << error;
+  EXPECT_TRUE(liveLayout(l, error)) << error;
+}
+
+}  // namespace
+}  // namespace gb

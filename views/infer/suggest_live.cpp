@@ -36,6 +36,17 @@ json liveSource(const json& pass, const json& a) {
   return {{"live", pick}};
 }
 
+// The live source that picks a storage image a dispatch binds: its debug name, else where it is
+// bound (in the innermost debug label open at the dispatch, when there is one).
+json storageSource(const json& e) {
+  const std::string name = !e.value("image", "").empty() ? e.value("image", "") : e.value("view", "");
+  if (!name.empty()) return {{"live", {{"name", name}}}};
+  json pick = {{"storage", {{"set", e.value("set", 0)}, {"binding", e.value("binding", 0)}}}};
+  const json labels = e.value("labels", json::array());
+  if (!labels.empty()) pick["pass"] = labels.back();
+  return {{"live", pick}};
+}
+
 // A pass's debug labels and render pass name ("" : none).
 std::string passLabels(const json& p) {
   std::string name;
@@ -86,6 +97,14 @@ std::string describeLivePasses(const json& hello, const json& report) {
                     a.value("height", 0u), notStored(a).c_str(),
                     a.value("why", "").empty() ? "" : ("  * " + a.value("why", "")).c_str());
       if (usable(a)) out += "                source: " + liveSource(p, a).dump() + "\n";
+    }
+    for (const json& e : p.value("storage_after", json::array())) {
+      const std::string image = e.value("image", ""), fmt = e.value("format", "");
+      out += format("       %-8s %-20s %-32s %-14s %ux%u  (bound by a compute dispatch after it, set %u binding %u)%s\n",
+                    "storage", image.empty() ? "(unnamed)" : image.c_str(), e.value("vk_format", "").c_str(),
+                    fmt.empty() ? "-" : fmt.c_str(), e.value("width", 0u), e.value("height", 0u), e.value("set", 0u),
+                    e.value("binding", 0u), e.value("why", "").empty() ? "" : ("  * " + e.value("why", "")).c_str());
+      if (!fmt.empty() && e.value("why", "").empty()) out += "                source: " + storageSource(e).dump() + "\n";
     }
   }
   return out;
@@ -158,6 +177,34 @@ json storedQuantities(const StorageFormat& f) {
   return q;
 }
 
+// Storage images that compute dispatches bind, the size of the draft's targets, none of them: a
+// G-buffer written by compute (a visibility buffer's resolve, compute deferred) is not drafted (a
+// storage image may be read or written; nothing in the frame's structure says which, nor what it
+// holds), so the summary names each with the source that picks it, for the user to add. How many.
+size_t noteStorageImages(const json& report, const json& draft, std::vector<std::string>& summary) {
+  std::set<std::string> sources;
+  for (const json& t : draft["targets"]) sources.insert(t["source"].dump());
+  uint32_t width = 0, height = 0;
+  for (const json& p : listOf(report, "passes"))
+    for (const json& a : listOf(p, "attachments"))
+      if (!width && sources.count(liveSource(p, a).dump())) width = a.value("width", 0u), height = a.value("height", 0u);
+  std::set<int> seen;
+  for (const json& p : listOf(report, "passes"))
+    for (const json& e : listOf(p, "storage_after")) {
+      const json source = storageSource(e);
+      if (e.value("width", 0u) != width || e.value("height", 0u) != height || e.value("format", "").empty() ||
+          !e.value("why", "").empty() || e.value("samples", 1u) != 1u || sources.count(source.dump()) ||
+          !seen.insert(e.value("image_id", 0)).second)
+        continue;
+      const std::string image = e.value("image", "");
+      summary.push_back("not drafted: storage image " + (image.empty() ? "(unnamed)" : image) + " (" + e.value("format", "") +
+                        ") bound by compute after " + passName(p) +
+                        ": what a dispatch writes is not decided from the frame's structure; to see it, add a target with "
+                        "\"format\": \"" + e.value("format", "") + "\", \"source\": " + source.dump());
+    }
+  return seen.size();
+}
+
 }  // namespace
 
 json draftLiveLayout(const json& report, std::vector<std::string>& summary, std::vector<LiveTargetFacts>* facts) {
@@ -198,6 +245,14 @@ json draftLiveLayout(const json& report, std::vector<std::string>& summary, std:
       summary.push_back("target " + draft["targets"].back().value("name", "") + ": written after the G-buffer pass, by " +
                         passName(pass));
   }
+  std::vector<std::string> storage;
+  if (noteStorageImages(report, draft, storage) > 0 && roles.forward)  // a visibility buffer's frame looks forward
+    for (std::string& line : summary)
+      if (line.rfind("no G-buffer:", 0) == 0)
+        line = "no render pass writes a G-buffer" + line.substr(std::string("no G-buffer").size()) +
+               "; or compute writes it: dispatches bind " + std::to_string(storage.size()) +
+               " storage images of the frame's size (below)";
+  summary.insert(summary.end(), storage.begin(), storage.end());
   return draft;
 }
 
