@@ -125,7 +125,7 @@ int runViewerOnStream(const AttachOptions& o, LiveSession& s, const LiveSuggesti
   a.attachFirstInfo = info;
   if (suggested) {
     a.attachPasses = suggested->passes;
-    for (const std::string& line : suggested->summary) a.attachPasses += "\n" + line;
+    a.attachSummary = suggested->summary;
     a.attachDraft = suggested->draft;
   }
   const int status = runViewer(a, Scene{});

@@ -176,6 +176,7 @@ void openAttached(Viewer& v) {
   m.attach.status = statusText(v, v.receiver->state());
   if (!v.args.attachDraft.is_null()) {  // attach --suggest without a layout: the stream's layout is this draft
     m.attach.passes = v.args.attachPasses;
+    m.attach.summary = v.args.attachSummary;
     m.attach.draft = v.args.attachDraft.dump(2);
     m.attach.verdicts = verdictsOf(v.args.attachDraft);
     m.attach.draftStreamed = true;
@@ -228,7 +229,7 @@ bool pollAttached(Viewer& v) {
     std::vector<std::string> summary;
     const nlohmann::json draft = draftLiveLayout(suggestion, summary);
     m.attach.draft = draft.dump(2);
-    for (const std::string& line : summary) m.attach.passes += "\n" + line;
+    m.attach.summary = summary;
     logLine(v.eventLog, {{"event", "attach_suggestion"}, {"draft", draft}});
     changed = true;
   }

@@ -58,6 +58,7 @@ struct ViewerArgs {
   // attach --suggest without a layout: the layer's passes and what was found, and the drafted layout
   // the stream is decoded with (the suggestion window shows them; ctrl+S saves the draft).
   std::string attachPasses;
+  std::vector<std::string> attachSummary;
   nlohmann::json attachDraft;
 };
 

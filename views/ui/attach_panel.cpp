@@ -49,7 +49,14 @@ void attachSuggestionWindow(ViewerModel& m) {
   ImGui::SetNextWindowSize(size, ImGuiCond_FirstUseEver);
   if (!ImGui::Begin("Suggested layout (gblens attach --suggest)")) return ImGui::End();
   ImGui::TextUnformatted("What the layer saw in one frame:");
+  // The report is a table of fixed columns: scrolled sideways, not wrapped.
+  const float lines = float(std::count(m.attach.passes.begin(), m.attach.passes.end(), '\n') + 1);
+  ImGui::BeginChild("report", ImVec2(0.0f, std::min(lines, 14.0f) * ImGui::GetTextLineHeightWithSpacing() + 16.0f), false,
+                    ImGuiWindowFlags_HorizontalScrollbar);
   ImGui::TextUnformatted(m.attach.passes.c_str());
+  ImGui::EndChild();
+  // What was found and left out, wrapped: a line's end (a live source to add) must be readable.
+  for (const std::string& line : m.attach.summary) ImGui::TextWrapped("%s", line.c_str());
   ImGui::Separator();
   ImGui::TextUnformatted(m.attach.draftStreamed
                              ? "The stream is decoded with this draft (every \"guess\" to be checked; save it, edit, attach with --layout):"

@@ -206,6 +206,7 @@ struct ViewerModel {
     std::string frame;           // which application frame is shown, its latency
     std::vector<std::string> reports;  // what the layer said (a target never drawn, a format mismatch)
     std::string passes, draft;   // --suggest: the layer's report of one frame's passes, the layout drafted from it
+    std::vector<std::string> summary;  // what was found and what was left out (shown wrapped: sources end the lines)
     // ... and each drafted quantity's verdict for the table: target, channels, quantity ("unknown" when
     // the evidence did not decide), confidence, the evidence.
     struct Verdict {
