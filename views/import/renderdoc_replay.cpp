@@ -194,6 +194,7 @@ RdcTexture textureFromJson(const nlohmann::json& j) {
   t.layers = j.value("arraysize", 1u);
   t.samples = j.value("samples", 1u);
   t.reads = j.value("reads", std::vector<uint32_t>{});
+  t.computeWrites = j.value("compute_writes", std::vector<uint32_t>{});
   t.presented = j.value("presented", false);
   return t;
 }

@@ -26,6 +26,7 @@ struct RdcTexture {
   uint32_t width = 0, height = 0;
   uint32_t depth = 1, mips = 1, layers = 1, samples = 1;
   std::vector<uint32_t> reads;  // events that read it (sampled, input attachment, copy/blit/resolve source)
+  std::vector<uint32_t> computeWrites;  // dispatches that bind it as a storage image (may write it)
   bool presented = false;       // a swapchain image
 };
 

@@ -139,6 +139,11 @@ class Replay:
         return sorted(set(u.eventId for u in self.controller.GetUsage(self.textures[tex_id].resourceId)
                           if u.usage in READS))
 
+    def compute_writes(self, tex_id):
+        """Dispatches that bind it as a storage image (RenderDoc: CS_RWResource): may write it."""
+        return sorted(set(u.eventId for u in self.controller.GetUsage(self.textures[tex_id].resourceId)
+                          if u.usage == rd.ResourceUsage.CS_RWResource))
+
     def writes(self, tex_id):
         return sorted(u.eventId for u in self.controller.GetUsage(self.textures[tex_id].resourceId)
                       if u.usage in WRITES)
@@ -221,7 +226,7 @@ def describe_texture(replay, tex_id):
     return {"name": replay.names.get(tex_id, "#%d" % tex_id), "id": tex_id, "auto": tex_id in replay.auto,
             "format": describe_format(t.format),
             "width": t.width, "height": t.height, "depth": t.depth, "mips": t.mips, "arraysize": t.arraysize,
-            "samples": t.msSamp, "reads": replay.reads(tex_id),
+            "samples": t.msSamp, "reads": replay.reads(tex_id), "compute_writes": replay.compute_writes(tex_id),
             "presented": bool(int(t.creationFlags) & int(rd.TextureCategory.SwapBuffer))}
 
 

@@ -48,6 +48,20 @@ bool draftFrame(const nlohmann::json& draft, const FrameSnapshot& raw, FrameSnap
   return true;
 }
 
+std::string notDraftedLine(const std::string& what, const std::string& format, const std::string& where,
+                           const nlohmann::json& source) {
+  return "not drafted: " + what + " (" + format + ") " + where +
+         ": what a dispatch writes is not decided from the frame's structure; to see it, add a target with \"format\": \"" +
+         format + "\", \"source\": " + source.dump();
+}
+
+void computeMayWriteTheGBuffer(std::vector<std::string>& summary, size_t images) {
+  for (std::string& line : summary)
+    if (line.rfind("no G-buffer:", 0) == 0)
+      line = "no render pass writes a G-buffer" + line.substr(std::string("no G-buffer").size()) +
+             "; or compute writes it: dispatches bind " + std::to_string(images) + " storage images of the frame's size (below)";
+}
+
 void applyInference(nlohmann::json& draft, const InferOutput& inferred, const std::vector<bool>& unnamed) {
   nlohmann::json& targets = draft["targets"];
   std::set<std::string> names;

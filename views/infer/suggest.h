@@ -41,4 +41,13 @@ bool draftFrame(const nlohmann::json& draft, const FrameSnapshot& raw, FrameSnap
 // source made up (`unnamed`) is named by the first quantity it holds.
 void applyInference(nlohmann::json& draft, const InferOutput& inferred, const std::vector<bool>& unnamed);
 
+// A G-buffer written by compute is not drafted (a storage image may be read or written, and nothing
+// in the frame's structure says which, nor what it holds): the summary line that names such an image
+// (`what`: "storage image NAME", `where`: "bound by compute after #0") with the source that picks
+// it; and, when the render passes write no G-buffer, the roles' "no G-buffer" note saying that
+// compute may write it (`images` of the frame's size). The same words for captures and live frames.
+std::string notDraftedLine(const std::string& what, const std::string& format, const std::string& where,
+                           const nlohmann::json& source);
+void computeMayWriteTheGBuffer(std::vector<std::string>& summary, size_t images);
+
 }  // namespace gb

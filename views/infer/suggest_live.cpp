@@ -197,10 +197,8 @@ size_t noteStorageImages(const json& report, const json& draft, std::vector<std:
           !seen.insert(e.value("image_id", 0)).second)
         continue;
       const std::string image = e.value("image", "");
-      summary.push_back("not drafted: storage image " + (image.empty() ? "(unnamed)" : image) + " (" + e.value("format", "") +
-                        ") bound by compute after " + passName(p) +
-                        ": what a dispatch writes is not decided from the frame's structure; to see it, add a target with "
-                        "\"format\": \"" + e.value("format", "") + "\", \"source\": " + source.dump());
+      summary.push_back(notDraftedLine("storage image " + (image.empty() ? "(unnamed)" : image), e.value("format", ""),
+                                       "bound by compute after " + passName(p), source));
     }
   return seen.size();
 }
@@ -247,11 +245,7 @@ json draftLiveLayout(const json& report, std::vector<std::string>& summary, std:
   }
   std::vector<std::string> storage;
   if (noteStorageImages(report, draft, storage) > 0 && roles.forward)  // a visibility buffer's frame looks forward
-    for (std::string& line : summary)
-      if (line.rfind("no G-buffer:", 0) == 0)
-        line = "no render pass writes a G-buffer" + line.substr(std::string("no G-buffer").size()) +
-               "; or compute writes it: dispatches bind " + std::to_string(storage.size()) +
-               " storage images of the frame's size (below)";
+    computeMayWriteTheGBuffer(summary, storage.size());
   summary.insert(summary.end(), storage.begin(), storage.end());
   return draft;
 }

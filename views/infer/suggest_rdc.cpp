@@ -66,6 +66,24 @@ FrameFacts factsOf(const RdcListing& l, std::vector<const RdcPass*>& passes) {
   return f;
 }
 
+// Textures the size of the draft's that dispatches bind as storage images, none of the draft's: a
+// G-buffer written by compute (suggest.h notDraftedLine), each named with its source. How many.
+size_t noteComputeWritten(const RdcListing& l, const std::vector<const RdcTexture*>& drafted, std::vector<std::string>& summary) {
+  size_t n = 0;
+  for (const RdcTexture& t : l.textures) {
+    if (t.computeWrites.empty() || !holdable(t) || drafted.empty() || t.width != drafted[0]->width ||
+        t.height != drafted[0]->height || std::find(drafted.begin(), drafted.end(), &t) != drafted.end())
+      continue;
+    const std::string events = std::to_string(t.computeWrites.front()) +
+                               (t.computeWrites.size() > 1 ? " and " + std::to_string(t.computeWrites.size() - 1) + " more" : "");
+    summary.push_back(notDraftedLine("texture " + t.name, storageFormatName(t.format),
+                                     "bound for writing by the dispatch at event " + events,
+                                     {{"renderdoc", sourceName(l, t)}}));
+    ++n;
+  }
+  return n;
+}
+
 // The pass --pass names, or the innermost one holding --event (-1: neither given).
 int forcedPass(const SuggestRequest& r, const std::vector<const RdcPass*>& passes, std::string& error) {
   if (r.pass.empty() && !r.event) return -1;
@@ -165,6 +183,10 @@ bool suggestFromRenderDoc(const SuggestRequest& r, Suggestion& out, std::string&
              std::to_string(in.targets.size()) + " targets hold");
   const InferOutput inferred = inferLayout(in);
   out.summary.insert(out.summary.end(), inferred.summary.begin(), inferred.summary.end());
+  std::vector<std::string> computeWritten;
+  if (noteComputeWritten(listing, textures, computeWritten) > 0 && roles.forward)
+    computeMayWriteTheGBuffer(out.summary, computeWritten.size());
+  out.summary.insert(out.summary.end(), computeWritten.begin(), computeWritten.end());
   applyInference(draft, inferred, unnamed);
   for (size_t k = 0; k < roles.targets.size(); ++k) {  // where each target came from, for people and tests
     const PassTarget& role = roles.targets[k];
