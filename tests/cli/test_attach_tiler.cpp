@@ -17,8 +17,8 @@
 #include <sstream>
 #include <nlohmann/json.hpp>
 
+#include "tests/cli/tiler_subject.h"
 #include "tests/support/capture_util.h"
-#include "renderer/core/layout.h"
 #include "views/capture/capture.h"
 
 namespace gb {
@@ -26,43 +26,16 @@ namespace {
 
 using nlohmann::json;
 
-std::string tiler() { return GBLENS_BUILD_DIR + "/tests/subjects/tiler_deferred/tiler_deferred"; }
-std::string tilerDir() { return GBLENS_SOURCE_DIR + "/tests/subjects/tiler_deferred"; }
-
-std::string tilerBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using tiler_test::expectDumped;
+using tiler_test::tiler;
+using tiler_test::tilerBytes;
+using tiler_test::tilerDir;
 
 // attach --capture-frame `frame` of a 4-frame run in `mode` with the subject's own layout.
 RunResult attachTiler(const std::string& dir, const std::string& mode, int frame, const std::string& env = "") {
   return runShell(env + " GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout '" + tilerDir() + "/layout_" +
                   mode + ".json' --capture-frame " + std::to_string(frame) + " -o '" + dir + "/live' -- '" + tiler() +
                   "' --mode " + mode + " --frames 4");
-}
-
-// The capture's texels of `target` (its sample `sample`; -1: the target's image) equal the dump's file `file`.
-void expectDumped(const Capture& c, const std::string& target, const std::string& file, int sample = -1) {
-  SCOPED_TRACE(target + (sample >= 0 ? " sample " + std::to_string(sample) : ""));
-  const int i = c.frame.indexOf(target);
-  ASSERT_GE(i, 0);
-  ASSERT_TRUE(c.frame.images[size_t(i)].present());
-  std::string bytes = tilerBytes(file);
-  const TargetImage& ti = c.frame.images[size_t(i)];
-  if (sample >= 0) ASSERT_LT(size_t(sample), ti.samples.size());
-  const CpuImage& img = sample >= 0 ? ti.samples[size_t(sample)] : ti.image;
-  if (c.frame.layout.targets[size_t(i)].format.name == "rgb10a2_unorm") {  // a capture holds it as 4 x u16 codes
-    std::string unpacked(bytes.size() * 2, '\0');
-    for (size_t t = 0; t + 4 <= bytes.size(); t += 4) {
-      uint32_t v;
-      std::memcpy(&v, bytes.data() + t, 4);
-      const uint16_t codes[4] = {uint16_t(v & 1023), uint16_t(v >> 10 & 1023), uint16_t(v >> 20 & 1023), uint16_t(v >> 30)};
-      std::memcpy(unpacked.data() + t * 2, codes, 8);
-    }
-    bytes = unpacked;
-  }
-  ASSERT_EQ(img.data.size(), bytes.size());
-  EXPECT_EQ(std::memcmp(img.data.data(), bytes.data(), bytes.size()), 0);
 }
 
 // The application's own dump of frame `k` of a 4-frame run in `mode`, then attach --capture-frame k
@@ -120,107 +93,6 @@ TEST(TilerAttach, AGBufferWrittenByComputeIsItsOwnDumpOfTheFrameAskedFor) {
   const RunResult check = runShell("'" + std::string(GBLENS_BINARY) + "' check '" + dir + "/live'");
   EXPECT_EQ(check.exitCode, 0) << check.output;
   EXPECT_NE(check.output.find("clean: no fault"), std::string::npos) << check.output;
-}
-
-// The layout the "not drafted: <what> NAME (FORMAT) ... \"source\": SOURCE" lines of `output`
-// give, a target per storage image of the dump's frame.json (named as the dump names it, found by
-// its debug name), its channels a stored vector; null with a failure when a line is missing.
-json layoutOfNotes(const std::string& output, const std::string& what, const json& frame) {
-  json layout = {{"format", "gblens-layout"}, {"version", 1}, {"name", "the notes' sources"}, {"targets", json::array()}};
-  size_t notes = 0;
-  for (size_t at = output.find("not drafted: "); at != std::string::npos; at = output.find("not drafted: ", at + 1)) ++notes;
-  EXPECT_EQ(notes, 2u) << output;
-  for (const json& t : frame["targets"]) {
-    if (t["render_pass"] != -1) continue;  // the storage images
-    const std::string name = t["debug_name"], note = "not drafted: " + what + " " + name + " (";
-    const size_t at = output.find(note);
-    EXPECT_NE(at, std::string::npos) << name << "\n" << output;
-    if (at == std::string::npos) return json();
-    const std::string line = output.substr(at, output.find('\n', at) - at);
-    const size_t source = line.find("\"source\": ");
-    const std::string format = line.substr(note.size(), line.find(')', note.size()) - note.size());
-    StorageFormat f;
-    EXPECT_TRUE(source != std::string::npos && parseStorageFormat(format, f)) << line;
-    if (source == std::string::npos || !parseStorageFormat(format, f)) return json();
-    json channels = json::array();
-    for (uint32_t c = 0; c < f.channels; ++c) channels.push_back(c);
-    layout["targets"].push_back({{"name", t["name"]}, {"format", format}, {"source", json::parse(line.substr(source + 10))},
-                                 {"quantities", {{{"quantity", "vector"}, {"name", t["name"].get<std::string>() + "_v"},
-                                                  {"channels", channels}}}}});
-  }
-  EXPECT_EQ(layout["targets"].size(), 2u);
-  return layout["targets"].size() == 2u ? layout : json();
-}
-
-// Each target of `layout` in the capture at `dir` equals the dump's file of that name.
-void expectNotesDumped(const std::string& dir, const json& layout, const json& frame) {
-  Capture c;
-  std::string error;
-  ASSERT_TRUE(loadCapture(dir, c, error)) << error;
-  for (const json& t : layout["targets"])
-    for (const json& d : frame["targets"])
-      if (d["name"] == t["name"]) expectDumped(c, t["name"], d["files"][0].get<std::string>());
-}
-
-// The subject's own dump of frame 1 of 3 in --mode compute: its frame.json, the files' paths made whole.
-json dumpFrame1(const std::string& dir) {
-  const RunResult dump = runShell("GBLENS_VALIDATE=1 '" + tiler() + "' --mode compute --frames 3 --dump '" + dir +
-                                  "/dump' --dump-frame 1");
-  EXPECT_EQ(dump.exitCode, 0) << dump.output;
-  json frame = dump.exitCode == 0 ? json::parse(std::ifstream(dir + "/dump/frame.json")) : json();
-  if (frame.is_object())
-    for (json& t : frame["targets"]) t["files"][0] = dir + "/dump/" + t["files"][0].get<std::string>();
-  return frame;
-}
-
-// attach --suggest on --mode compute drafts from render passes only: what a dispatch writes into a
-// storage image is not decided from the frame's structure. It says so, naming each storage image the
-// dispatches bind (the README's resolve set: tiler.albedo at binding 2, tiler.normal at 3) with a
-// source, and none of them is a draft target; a layout of just those sources, as the notes print
-// them, streams each image as the application's own dump of the frame.
-TEST(TilerAttach, SuggestNamesTheStorageImagesComputeWritesWithSourcesThatStreamThem) {
-  const std::string dir = freshDir("attach_tiler_suggest_compute");
-  const RunResult suggested = runShell("cd '" + dir + "' && DISPLAY= WAYLAND_DISPLAY= GBLENS_VALIDATE=1 timeout 120 '" +
-                                       GBLENS_BINARY + "' attach --suggest -o draft.json -- '" + tiler() +
-                                       "' --mode compute --frames 5000");
-  ASSERT_EQ(suggested.exitCode, 0) << suggested.output;
-  const json draft = json::parse(std::ifstream(dir + "/draft.json"));
-  for (const json& t : draft["targets"]) EXPECT_EQ(t["source"]["live"].value("name", "").rfind("tiler.", 0), std::string::npos) << t;
-  const json frame = dumpFrame1(dir);
-  ASSERT_TRUE(frame.is_object());
-  const json layout = layoutOfNotes(suggested.output, "storage image", frame);
-  ASSERT_TRUE(layout.is_object());
-  std::ofstream(dir + "/notes.json") << layout.dump(2);
-  const RunResult r = runShell("GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout '" + dir +
-                               "/notes.json' --capture-frame 1 -o '" + dir + "/live' -- '" + tiler() + "' --mode compute --frames 3");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  expectNotesDumped(dir + "/live", layout, frame);
-}
-
-// The same from a RenderDoc capture of --mode compute (RenderDoc's usage records: CS_RWResource at
-// the resolve dispatch): import --suggest-layout names the two textures the dispatch binds for
-// writing with their sources, drafts neither, and a layout of those sources imports each as the
-// application's own dump of the captured frame.
-TEST(RenderDoc, SuggestNamesTheTexturesComputeWritesWithSourcesThatImportThem) {
-  const std::string dir = freshDir("rdc_tiler_compute");
-  const RunResult rec = runShell("timeout -k 5 120 renderdoccmd capture -w -c '" + dir + "/compute' '" + tiler() +
-                                 "' --mode compute --frames 3 --capture-frame 1 --dump '" + dir + "/dump' --dump-frame 1");
-  ASSERT_NE(rec.output.find("RenderDoc captured frame 1, dumped frame 1"), std::string::npos) << rec.output;
-  const std::string rdc = dir + "/compute_capture.rdc";
-  const RunResult suggested =
-      runShell("'" + std::string(GBLENS_BINARY) + "' import '" + rdc + "' --suggest-layout -o '" + dir + "/draft.json'");
-  ASSERT_EQ(suggested.exitCode, 0) << suggested.output;
-  const json draft = json::parse(std::ifstream(dir + "/draft.json"));
-  for (const json& t : draft["targets"]) EXPECT_EQ(t["source"].value("renderdoc", "").rfind("tiler.", 0), std::string::npos) << t;
-  json frame = json::parse(std::ifstream(dir + "/dump/frame.json"));
-  for (json& t : frame["targets"]) t["files"][0] = dir + "/dump/" + t["files"][0].get<std::string>();
-  const json layout = layoutOfNotes(suggested.output, "texture", frame);
-  ASSERT_TRUE(layout.is_object());
-  std::ofstream(dir + "/notes.json") << layout.dump(2);
-  const RunResult r = runShell("'" + std::string(GBLENS_BINARY) + "' import '" + rdc + "' --layout '" + dir + "/notes.json' -o '" +
-                               dir + "/imported'");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  expectNotesDumped(dir + "/imported", layout, frame);
 }
 
 // A Vulkan 1.0 application's ring is shared memory too (the layer enables the instance and device
