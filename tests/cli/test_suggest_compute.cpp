@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "renderer/core/layout.h"
@@ -107,6 +108,17 @@ TEST(RenderDoc, SuggestNamesTheTexturesComputeWritesWithSourcesThatImportThem) {
                                  "' --mode compute --frames 3 --capture-frame 1 --dump '" + dir + "/dump' --dump-frame 1");
   ASSERT_NE(rec.output.find("RenderDoc captured frame 1, dumped frame 1"), std::string::npos) << rec.output;
   const std::string rdc = dir + "/compute_capture.rdc";
+  // The listing marks the two (and only those) as a dispatch's storage images.
+  const RunResult list = runShell("'" + std::string(GBLENS_BINARY) + "' import '" + rdc + "' --list");
+  ASSERT_EQ(list.exitCode, 0) << list.output;
+  std::istringstream lines(list.output);
+  size_t marked = 0;
+  for (std::string line; std::getline(lines, line);)
+    if (line.find("(a storage image of the dispatch at event ") != std::string::npos) {
+      ++marked;
+      EXPECT_EQ(line.rfind("  tiler.", 0), 0u) << line;
+    }
+  EXPECT_EQ(marked, 2u) << list.output;
   const RunResult suggested =
       runShell("'" + std::string(GBLENS_BINARY) + "' import '" + rdc + "' --suggest-layout -o '" + dir + "/draft.json'");
   ASSERT_EQ(suggested.exitCode, 0) << suggested.output;
