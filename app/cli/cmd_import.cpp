@@ -113,10 +113,8 @@ void printListing(const std::string& rdc, const RdcListing& l, const std::string
     if (t.mips > 1) size += ", " + std::to_string(t.mips) + " mips";
     if (t.samples > 1) size += ", " + std::to_string(t.samples) + " samples";
     // Bound for writing by a dispatch: a G-buffer written by compute is one of these (no pass lists it).
-    std::string compute;
-    if (!t.computeWrites.empty())
-      compute = "  (a storage image of the dispatch at event " + std::to_string(t.computeWrites.front()) +
-                (t.computeWrites.size() > 1 ? " and " + std::to_string(t.computeWrites.size() - 1) + " more" : "") + ")";
+    const std::string compute =
+        t.computeWrites.empty() ? "" : "  (a storage image of the dispatch at event " + computeWriteEvents(t) + ")";
     std::printf("  %-28s #%-6llu %-22s %s%s%s\n", t.name.c_str(), (unsigned long long)t.id, t.format.c_str(), size.c_str(),
                 t.texelFormat ? "" : " *", compute.c_str());
   }

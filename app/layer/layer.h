@@ -483,6 +483,8 @@ void storageBeforePass(DeviceData& d, VkCommandBuffer cmd, CmdState& s);
 std::vector<Hook> storageWriterHooks();
 void flushBeforeWrite(VkCommandBuffer cmd);  // a hooked command that may write an image is about to be recorded
 PassReport reportPass(DeviceData& d, const OpenPass& pass);        // structure.cpp (--suggest)
+// Appends `e` unless `list` holds its image already (structure.cpp): each storage image once a pass.
+void addStorageOnce(std::vector<PassReport::Storage>& list, const PassReport::Storage& e);
 // Why an attachment cannot be streamed as a target of storage format `want` ("" : it can; want ""
 // accepts any format a layout can hold). copy.cpp.
 std::string refusal(DeviceData& d, const ImageInfo& image, const std::string& want);

@@ -115,11 +115,9 @@ void noteStorage(DeviceData& d, CmdState& s, const std::vector<BindEvent>& binds
     auto v = d.views.find(desc.view);
     auto img = v == d.views.end() ? d.images.end() : d.images.find(v->second.image);
     if (img == d.images.end()) continue;
-    const uint32_t id = imageId(d, img->first);
-    if (std::any_of(list.begin(), list.end(), [&](const PassReport::Storage& e) { return e.image.imageId == id; })) continue;
     PassReport::Storage e{describeImage(d, img->first, img->second, &v->second), desc.set, desc.binding, s.labels};
     e.image.role = "storage";
-    list.push_back(std::move(e));
+    addStorageOnce(list, e);
   }
 }
 
@@ -368,6 +366,11 @@ std::vector<Hook> structureHooks(const Request& req) {
       hooks.push_back(h);
   if (req.boundBuffers.on || (req.liveCamera.on && req.cameraPushConstants)) hooks.push_back(GBL_HOOK(CmdPushConstants));
   return hooks;
+}
+
+void addStorageOnce(std::vector<PassReport::Storage>& list, const PassReport::Storage& e) {
+  if (std::none_of(list.begin(), list.end(), [&](const PassReport::Storage& b) { return b.image.imageId == e.image.imageId; }))
+    list.push_back(e);
 }
 
 PassReport reportPass(DeviceData& d, const OpenPass& pass) {

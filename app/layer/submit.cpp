@@ -33,9 +33,7 @@ void gatherStructure(DeviceData& d, const CmdState& s) {
     PassReport& before = d.frameReports.back();
     addOnce(before.readsAfter, s.leadingReads);
     for (const PassReport::Storage& e : s.leadingStorage)  // (none before the frame's first pass: no pass to name)
-      if (std::none_of(before.storageAfter.begin(), before.storageAfter.end(),
-                       [&](const PassReport::Storage& b) { return b.image.imageId == e.image.imageId; }))
-        before.storageAfter.push_back(e);
+      addStorageOnce(before.storageAfter, e);
   }
   d.frameReports.insert(d.frameReports.end(), s.reports.begin(), s.reports.end());
   addOnce(d.framePresented, s.intoSwapchain);

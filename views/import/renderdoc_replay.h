@@ -30,6 +30,13 @@ struct RdcTexture {
   bool presented = false;       // a swapchain image
 };
 
+// computeWrites for people: "27", "27 and 3 more" ("" : none).
+inline std::string computeWriteEvents(const RdcTexture& t) {
+  if (t.computeWrites.empty()) return "";
+  return std::to_string(t.computeWrites.front()) +
+         (t.computeWrites.size() > 1 ? " and " + std::to_string(t.computeWrites.size() - 1) + " more" : "");
+}
+
 // A uniform or storage buffer used at a draw or dispatch: its kind and the stages that read it (from
 // RenderDoc's usage records, in a listing), and where it is bound (set, binding, array index), the
 // bound byte range and the members the shaders' reflection declares (from the pipeline state,

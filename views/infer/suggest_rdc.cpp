@@ -74,10 +74,8 @@ size_t noteComputeWritten(const RdcListing& l, const std::vector<const RdcTextur
     if (t.computeWrites.empty() || !holdable(t) || drafted.empty() || t.width != drafted[0]->width ||
         t.height != drafted[0]->height || std::find(drafted.begin(), drafted.end(), &t) != drafted.end())
       continue;
-    const std::string events = std::to_string(t.computeWrites.front()) +
-                               (t.computeWrites.size() > 1 ? " and " + std::to_string(t.computeWrites.size() - 1) + " more" : "");
     summary.push_back(notDraftedLine("texture " + t.name, storageFormatName(t.format),
-                                     "bound for writing by the dispatch at event " + events,
+                                     "bound for writing by the dispatch at event " + computeWriteEvents(t),
                                      {{"renderdoc", sourceName(l, t)}}));
     ++n;
   }

@@ -17,8 +17,9 @@ constexpr const char* kEnableEnv = "ENABLE_GBLENS_LIVE";
 // 2: the request's "only" (Nth streamed frame) became "only_frame" (the application's frame);
 // 3: a frame's targets carry "samples" and "sample_stride" (planes per sample), the request
 // "ring_off_thread", live picks "subpass" and "attachment"; 4: the request's "last_frame" (with
-// "only_frame": the frames only_frame..last_frame, every one).
-constexpr int kVersion = 4;
+// "only_frame": the frames only_frame..last_frame, every one); 5: each pass of the passes message
+// carries "storage_after" (the storage images the dispatches after it bind).
+constexpr int kVersion = 5;
 
 // Message "type" values. Layer -> receiver: hello, report, passes, buffer (a shared-memory file to
 // map, sent with its descriptor: id 0 the layer's copy of a frame, others ring buffers read in
