@@ -74,7 +74,7 @@ Cell makeCell(const GpuContext& ctx, const Scene& scene, const RenderOptions& ba
 // A method's timed rounds: each burst's frame time (throughput), its counted frames, and the
 // ratio to the reference method's burst of the same round.
 struct Timed {
-  std::vector<double> burstMs, ratios;
+  std::vector<double> burstMs, ratios, steadyMs;
   std::vector<FrameStats> frames;
 };
 
@@ -90,6 +90,7 @@ void timeRounds(std::vector<std::unique_ptr<Renderer>>& rs, Cell& c, int rounds,
       FrameBurst b = renderBurst(*rs[i], c.opts[i], burst);
       t[i] = b.msPerFrame;
       timed[i].burstMs.push_back(b.msPerFrame);
+      if (b.steadyMs > 0.0) timed[i].steadyMs.push_back(b.steadyMs);
       for (FrameStats& f : b.frames) timed[i].frames.push_back(std::move(f));
     }
     for (size_t i = 0; i < n; ++i)
@@ -111,6 +112,7 @@ void summarize(Renderer& r, const RenderOptions& o, MethodRow& row, const Timed&
   row.frames = int(frames.size());
   row.bursts = int(timed.burstMs.size());
   row.frameMs = timingOf(timed.burstMs);
+  if (!timed.steadyMs.empty()) row.steadyMs = timingOf(timed.steadyMs);
   row.gpuMs = timingOf(gpuMs);
   row.cpuMs = timingOf(cpuMs);
   row.passes = passTimings(frames);

@@ -35,6 +35,12 @@ inline constexpr const char* kBurstFrameMs =
     "the one before, at most frames_in_flight submitted); frame ms = wall time from the start of the second frame to "
     "the end of the last / (burst - 1), median over rounds (it includes the pipeline's fill: the smaller of one "
     "frame's CPU and GPU time over burst - 1); gpu ms and cpu ms are the counted frames' medians";
+// How a method's steady ms is measured (methods_settings.steady_ms, bench.md).
+inline constexpr const char* kSteadyMs =
+    "the same bursts' steady state without the pipeline's fill: the GPU clock from the end of the first counted "
+    "frame to the end of the last / (counted frames - 1), median over rounds; frame ms exceeds it by the fill, one "
+    "frame's latency beyond the interval between frames over burst - 1 (larger where a frame's visibility pass runs "
+    "before its compute part, beside the frame before: GBLENS_OVERLAP); absent without GPU timestamps";
 
 // Every method at every (size, lights) of `s` on `scene` (generated lights), from `base`.
 std::vector<MethodRow> methodStudy(GpuContext& ctx, Scene& scene, const RenderOptions& base, const MethodSettings& s);

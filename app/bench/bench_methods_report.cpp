@@ -59,6 +59,7 @@ nlohmann::json methodsJson(const BenchReport& r) {
       o["bursts"] = m.bursts;
       o["frames_in_flight"] = kFrameSlots;  // frame_ms: the bursts' throughput (methods_settings.frame_ms)
       o["frame_ms"] = timingJson(m.frameMs);
+      if (m.steadyMs.median > 0.0) o["steady_ms"] = timingJson(m.steadyMs);  // methods_settings.steady_ms
       o["gpu_ms"] = timingJson(m.gpuMs);
       o["cpu_ms"] = timingJson(m.cpuMs);
       o["light_setup"] = m.lightSetup;
@@ -84,14 +85,15 @@ std::string methodsCsv(const BenchReport& r) {
   for (const MethodRow& m : r.methods) collectPassNames(m.passes, passNames);
   std::ostringstream out;
   out.precision(9);
-  out << "scene,method,size,lights,auto_pick,measured,gbuffer,frames,frame_ms,frame_ms_min,frame_ms_max,gpu_ms,cpu_ms,"
+  out << "scene,method,size,lights,auto_pick,measured,gbuffer,frames,frame_ms,frame_ms_min,frame_ms_max,steady_ms,gpu_ms,cpu_ms,"
          "time_over_default,lighting_ms,invocations,ideal_pairs,work_over_ideal";
   for (const std::string& p : passNames) out << "," << p << "_ms";
   out << ",note\n";
   for (const MethodRow& m : r.methods) {
     out << m.scene << "," << m.method << "," << sizeOf(m) << "," << m.options.lights << "," << (m.autoPick ? 1 : 0) << ","
         << (m.measured ? 1 : 0) << "," << m.gbuffer << "," << m.frames << "," << m.frameMs.median << "," << m.frameMs.min << ","
-        << m.frameMs.max << "," << m.gpuMs.median << "," << m.cpuMs.median << "," << m.overDefault << ","
+        << m.frameMs.max << "," << (m.steadyMs.median > 0.0 ? std::to_string(m.steadyMs.median) : "") << ","
+        << m.gpuMs.median << "," << m.cpuMs.median << "," << m.overDefault << ","
         << lightingMs(m) << ",";
     if (m.cullingValid) out << m.invocations << "," << m.idealPairs << "," << m.workOverIdeal;
     else out << ",,";
@@ -167,7 +169,7 @@ std::string methodsMarkdown(const BenchReport& r) {
     md << "## Lighting methods (" << r.methods.front().scene << ")\n\n"
        << "Each cell: the methods timed in interleaved rounds (one burst of frames in flight of each per round, "
           "order rotated), shadow map reused (a static scene). `frame ms` is a burst's throughput: "
-       << kBurstFrameMs
+       << kBurstFrameMs << ". `steady ms`: " << kSteadyMs
        << ". The defaults are `--method auto`: the row marked (auto) is the method it "
           "runs in that cell on this device. `x defaults` is the median over rounds of the method's frame time / the "
           "auto-picked method's frame time of the same round. `cpu ms`: the frame's CPU time before submission. "
@@ -176,19 +178,20 @@ std::string methodsMarkdown(const BenchReport& r) {
           "coverage_masked / ideal pixel-light pairs, from one more frame with coverage on. `gbuffer`: how the "
           "G-buffer was filled (raster, or visibility: the visibility pass and gbuffer_resolve; --gbuffer).\n\n";
     for (const std::string& size : sizes) {
-      md << "### " << size << "\n\n| lights | method | gbuffer | frame ms (median [min-max]) | frames | x defaults | "
-            "cpu ms | lighting ms | work/ideal | note |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+      md << "### " << size << "\n\n| lights | method | gbuffer | frame ms (median [min-max]) | steady ms | frames | x "
+            "defaults | cpu ms | lighting ms | work/ideal | note |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- "
+            "| --- |\n";
       for (int lights : lightSet)
         for (const auto& [method, flags] : benchMethods())
           for (const MethodRow& m : r.methods) {
             if (sizeOf(m) != size || m.options.lights != lights || m.method != method) continue;
             md << "| " << lights << " | " << method << (m.autoPick ? " (auto)" : "") << " | ";
             if (!m.measured) {
-              md << " | not measured | | | | | | " << m.note << " |\n";
+              md << " | not measured | | | | | | | " << m.note << " |\n";
               continue;
             }
             md << m.gbuffer << " | " << msText(m.frameMs.median) << " [" << msText(m.frameMs.min) << "-" << msText(m.frameMs.max) << "] | "
-               << m.frames << " | " << num(m.overDefault) << "x | " << msText(m.cpuMs.median) << " | "
+               << (m.steadyMs.median > 0.0 ? msText(m.steadyMs.median) : "-") << " | " << m.frames << " | " << num(m.overDefault) << "x | " << msText(m.cpuMs.median) << " | "
                << msText(lightingMs(m)) << " | " << (m.cullingValid ? num(m.workOverIdeal) : "-") << " | " << m.note
                << " |\n";
           }

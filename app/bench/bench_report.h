@@ -122,6 +122,9 @@ struct MethodRow {
   // frameMs: the bursts' throughput (wall time per counted frame, renderBurst); gpuMs, cpuMs: the
   // counted frames' (cpuMs: the CPU's part before submission, FrameStats::cpuMs).
   Timing frameMs, gpuMs, cpuMs;
+  // The bursts' steady state without the pipeline's fill (FrameBurst::steadyMs); median 0: no
+  // GPU timestamps.
+  Timing steadyMs;
   std::string lightSetup;        // where the lights were set up ("cpu", "gpu")
   std::string gbuffer;           // how the G-buffer was filled ("raster", "visibility"; --gbuffer)
   bool overlap = false;          // its visibility pass ran beside the previous frame (GBLENS_OVERLAP)

@@ -301,6 +301,7 @@ BenchReport runBench(GpuContext& ctx, const BenchPlan& p) {
                                        {"burst", s.methods.burst},
                                        {"frames_in_flight", kFrameSlots},
                                        {"frame_ms", kBurstFrameMs},
+                                       {"steady_ms", kSteadyMs},
                                        {"seconds", s.methods.seconds},
                                        {"shadow_map", "reused (a static scene)"}};
     Scene temple = loadScene("builtin:temple", p.defaults.lights);

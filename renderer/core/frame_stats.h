@@ -60,6 +60,9 @@ struct FrameStats {
   // start until it was seen finished, a latency (its throughput is a burst's: FrameBurst).
   double frameMs = 0.0;
   double gpuMs = 0.0;    // first to last GPU timestamp (-1 until a frame in flight is retired)
+  // The GPU clock (ms) when the frame's last pass ended (-1: no timestamps). Comparable between the
+  // frames of one burst: each ends on the same queue (the compute one where the frames overlap).
+  double gpuEndMs = -1.0;
   // CPU time of the frame before submission: per-frame work (camera, draws, light classification,
   // frame data), building the frame graph and recording it.
   double cpuMs = 0.0;
@@ -88,6 +91,12 @@ struct FrameBurst {
   // (the last: to the burst's end). In flight, a frame waits there for its slot, so a frame that
   // stalls (an attached layer's connect) shows as one long interval where the mean would hide it.
   std::vector<double> intervalMs;
+  // The steady state without the fill: the GPU clock between the first and the last counted
+  // frame's end / (counted frames - 1) (-1: no timestamps or fewer than 2 counted frames). Where a
+  // frame's latency exceeds the interval between frames (the frames overlap: one frame's visibility
+  // pass runs before its compute part, beside the frame before), msPerFrame carries the excess
+  // over burst - 1 frames; this does not.
+  double steadyMs = -1.0;
 };
 
 }  // namespace gb

@@ -178,7 +178,7 @@ static void passTimes(GpuContext& ctx, const FrameSlot& s, FrameStats& st) {
     first = std::min(first, t0);
     last = std::max(last, t1);
   }
-  if (last > first) st.gpuMs = last - first;
+  if (last > first) st.gpuMs = last - first, st.gpuEndMs = last;
 }
 
 FrameStats retireFrame(Renderer& r, FrameSlot& s) {
@@ -341,6 +341,9 @@ FrameBurst renderBurst(Renderer& r, const RenderOptions& options, int frames) {
   const Clock::time_point end = Clock::now();
   burst.intervalMs.push_back(msBetween(last, end));
   burst.msPerFrame = msBetween(start, end) / double(frames - 1);
+  const FrameStats &a = burst.frames.front(), &b = burst.frames.back();
+  if (burst.frames.size() >= 2 && a.gpuEndMs >= 0.0 && b.gpuEndMs > a.gpuEndMs)
+    burst.steadyMs = (b.gpuEndMs - a.gpuEndMs) / double(burst.frames.size() - 1);
   GB_ASSERT(burst.frames.size() == size_t(frames - 1));
   return burst;
 }

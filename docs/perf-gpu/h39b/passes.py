@@ -11,6 +11,8 @@ for cell in bench["methods"]:
         continue
     ran = [p for p in cell["passes"] if not p.get("skipped") and "ms" in p]
     print(f"{cell['size']} {cell['lights']} lights: {cell['method']} ({cell.get('gbuffer', '?')}), "
-          f"frame {cell['frame_ms']['median']:.3f} ms, GPU {cell['gpu_ms']['median']:.3f} ms")
+          f"frame {cell['frame_ms']['median']:.3f} ms, "
+          + (f"steady {cell['steady_ms']['median']:.3f} ms, " if "steady_ms" in cell else "")
+          + f"GPU {cell['gpu_ms']['median']:.3f} ms")
     print("   " + ", ".join(f"{p['name']} {p['ms']['median']:.3f} (+{p['before_ms']['median']:.3f} before)"
                             for p in ran if p["ms"]["median"] >= 0.01 or p["before_ms"]["median"] >= 0.01))
