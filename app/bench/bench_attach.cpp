@@ -108,9 +108,9 @@ Attached runAttached(const std::string& layout, int every, const std::vector<std
     return a;
   }
   bool early = false;
+  FrameSnapshot f;
   while (s.running() || s.attached()) {
-    FrameSnapshot f;
-    s.wait(f, 0.5);
+    if (s.wait(f, 0.5)) s.recycle(std::move(f));  // as the viewer gives its frames back
     const uint64_t frames = s.counts().appFrames;
     const auto memory = [&] {
       return nlohmann::json{{"application_frames", frames}, {"rss_kb", rssKb(s.pid())},

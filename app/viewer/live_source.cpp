@@ -204,7 +204,8 @@ bool pollAttached(Viewer& v) {
   FrameSnapshot frame;
   LiveFrameInfo info;
   if (m.playing && !m.attach.detachRequested && receiver.take(frame, info)) {
-    v.captureA.frame = FrameSnapshot{};  // its memory back before the new one's views are decoded
+    receiver.recycle(std::move(v.captureA.frame));  // its buffers hold the frames to come
+    v.captureA.frame = FrameSnapshot{};
     showStreamFrame(v, std::move(frame), info);
     updateLiveTimeline(v);  // the strip on the frame taken among the kept ones
     changed = true;

@@ -1,8 +1,10 @@
 // Packing and unpacking texels (see texels.h).
 #include "renderer/core/texels.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <thread>
 
 #include "renderer/core/assert.h"
 
@@ -44,39 +46,62 @@ static CpuImage emptyImage(TexelFormat f, uint32_t w, uint32_t h) {
   return img;
 }
 
-CpuImage unpackTexels(TexelFormat f, const uint8_t* src, uint32_t w, uint32_t h) {
-  CpuImage img = emptyImage(f, w, h);
+// f(begin, end) over [0, n) in contiguous runs, on up to 8 threads for n of a million or more.
+template <class F>
+static void splitRuns(size_t n, const F& f) {
+  const unsigned threads = n < (1u << 20) ? 1u : std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
+  std::vector<std::thread> pool;
+  for (unsigned i = 1; i < threads; ++i) pool.emplace_back(f, n * i / threads, n * (i + 1) / threads);
+  f(size_t(0), n / threads);
+  for (std::thread& t : pool) t.join();
+}
+
+void unpackTexelsInto(TexelFormat f, const uint8_t* src, uint32_t w, uint32_t h, CpuImage& img) {
+  std::vector<uint8_t> buffer = std::move(img.data);
+  img = emptyImage(f, w, h);
+  img.data = std::move(buffer);
   const size_t texels = size_t(w) * h;
   const TexelFormatInfo& info = texelFormatInfo(f);
   if (info.depth && info.stencil) {  // F32 Depth, F32 Stencil
     img.data.resize(texels * 8);
     float* out = reinterpret_cast<float*>(img.data.data());
     const uint8_t* stencil = src + texels * 4;
-    for (size_t i = 0; i < texels; ++i) {
-      uint32_t bits;
-      std::memcpy(&bits, src + i * 4, 4);
-      float depth;
-      if (f == TexelFormat::D24S8)
-        depth = float(double(bits & 0xFFFFFF) / 16777215.0);
-      else
-        std::memcpy(&depth, &bits, 4);
-      out[2 * i] = depth;
-      out[2 * i + 1] = float(stencil[i]);
-    }
+    splitRuns(texels, [&](size_t i0, size_t i1) {
+      for (size_t i = i0; i < i1; ++i) {
+        uint32_t bits;
+        std::memcpy(&bits, src + i * 4, 4);
+        float depth;
+        if (f == TexelFormat::D24S8)
+          depth = float(double(bits & 0xFFFFFF) / 16777215.0);
+        else
+          std::memcpy(&depth, &bits, 4);
+        out[2 * i] = depth;
+        out[2 * i + 1] = float(stencil[i]);
+      }
+    });
   } else if (f == TexelFormat::Rgb10a2Unorm) {
     img.data.resize(texels * 8);
     uint16_t* out = reinterpret_cast<uint16_t*>(img.data.data());
-    for (size_t i = 0; i < texels; ++i) {
-      uint32_t v;
-      std::memcpy(&v, src + i * 4, 4);
-      out[4 * i + 0] = uint16_t(v & 0x3FF);
-      out[4 * i + 1] = uint16_t((v >> 10) & 0x3FF);
-      out[4 * i + 2] = uint16_t((v >> 20) & 0x3FF);
-      out[4 * i + 3] = uint16_t(v >> 30);
-    }
+    splitRuns(texels, [&](size_t i0, size_t i1) {
+      for (size_t i = i0; i < i1; ++i) {
+        uint32_t v;
+        std::memcpy(&v, src + i * 4, 4);
+        out[4 * i + 0] = uint16_t(v & 0x3FF);
+        out[4 * i + 1] = uint16_t((v >> 10) & 0x3FF);
+        out[4 * i + 2] = uint16_t((v >> 20) & 0x3FF);
+        out[4 * i + 3] = uint16_t(v >> 30);
+      }
+    });
   } else {
-    img.data.assign(src, src + texels * packedTexelBytes(f));
+    const size_t bytes = texels * packedTexelBytes(f);
+    img.data.resize(bytes);  // no fill where the buffer already held as many
+    splitRuns(bytes, [&](size_t b0, size_t b1) { std::memcpy(img.data.data() + b0, src + b0, b1 - b0); });
   }
+}
+
+CpuImage unpackTexels(TexelFormat f, const uint8_t* src, uint32_t w, uint32_t h) {
+  CpuImage img;
+  unpackTexelsInto(f, src, w, h, img);
   return img;
 }
 

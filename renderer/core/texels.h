@@ -20,6 +20,10 @@ size_t packedImageBytes(TexelFormat f, uint32_t width, uint32_t height);
 // Packed bytes -> a CpuImage of that format (type and encoding from texelFormatInfo; name and
 // channel names left to the caller). `src` holds packedImageBytes(f, w, h) bytes.
 CpuImage unpackTexels(TexelFormat f, const uint8_t* src, uint32_t width, uint32_t height);
+// The same into `img`, keeping its buffer where it is large enough (a stream's frames are of one
+// size: a buffer already written once is filled without page faults or zero-filling), large
+// images split over the machine's cores.
+void unpackTexelsInto(TexelFormat f, const uint8_t* src, uint32_t width, uint32_t height, CpuImage& img);
 // The inverse: the CpuImage's texels packed for an upload into an image of format f.
 std::vector<uint8_t> packTexels(const CpuImage& image, TexelFormat f);
 

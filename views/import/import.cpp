@@ -186,12 +186,15 @@ void flipRows(CpuImage& img) {
 // A multisampled attachment's planes, one per sample, each `stride` bytes (app/layer/samples.cpp
 // streams them so, renderdoc_replay.py reads them so); `img` is sample 0.
 bool readSamplePlanes(const uint8_t* data, size_t bytes, uint32_t count, size_t stride, const LayoutTarget& lt, uint32_t w,
-                      uint32_t h, const std::string& where, CpuImage& img, std::vector<CpuImage>& samples, std::string& error) {
+                      uint32_t h, const std::string& where, CpuImage& img, std::vector<CpuImage>& samples, std::string& error,
+                      TexelPool* pool = nullptr) {
   if (stride == 0 || bytes / stride < count) {
     error = where + ": " + std::to_string(count) + " samples do not fit the " + std::to_string(bytes) + " bytes read";
     return false;
   }
   samples.resize(count);
+  for (uint32_t k = 0; k < count; ++k)
+    if (pool) samples[k].data = pool->take(stride);
   for (uint32_t k = 0; k < count; ++k)
     if (!unpackDump(data + k * stride, stride, lt, w, h, where + " (sample " + std::to_string(k) + ")", samples[k], error))
       return false;
@@ -228,9 +231,12 @@ bool readTarget(const ImportInput& in, uint32_t t, LayoutTarget& lt, uint32_t w,
       return false;
     }
     const ImportInput::LiveTexels& live = it->second;
-    if (live.samples <= 1) return unpackDump(live.data, live.bytes, lt, w, h, where + ": source.live", img, error);
+    if (live.samples <= 1) {
+      if (in.pool) img.data = in.pool->take(live.bytes);
+      return unpackDump(live.data, live.bytes, lt, w, h, where + ": source.live", img, error);
+    }
     return readSamplePlanes(live.data, live.bytes, live.samples, live.sampleStride, lt, w, h, where + ": source.live", img, samples,
-                            error);
+                            error, in.pool);
   }
   const std::string path = sourcePath(in, lt);
   if (path.empty()) {
@@ -349,6 +355,26 @@ bool loadImportLayout(const std::string& spec, const LayoutParameters& params, L
   nlohmann::json j;
   if (!parseJson(*text, spec, j, error)) return false;
   return resolveLayoutParameters(j, params, spec, error) && parseLayout(j, spec, out, error);
+}
+
+std::vector<uint8_t> TexelPool::take(size_t bytes) {
+  auto best = spare.end();
+  for (auto it = spare.begin(); it != spare.end(); ++it)
+    if (it->capacity() >= bytes && (best == spare.end() || it->capacity() < best->capacity())) best = it;
+  if (best == spare.end()) return {};
+  std::vector<uint8_t> out = std::move(*best);
+  spare.erase(best);
+  return out;
+}
+
+void TexelPool::give(FrameSnapshot&& frame, size_t keep) {
+  for (TargetImage& t : frame.images) {
+    if (t.image.data.capacity()) spare.push_back(std::move(t.image.data));
+    for (CpuImage& s : t.samples)
+      if (s.data.capacity()) spare.push_back(std::move(s.data));
+  }
+  frame = FrameSnapshot{};
+  if (spare.size() > keep) spare.erase(spare.begin(), spare.end() - long(keep));  // the newest kept
 }
 
 bool importFrame(const ImportInput& in, FrameSnapshot& out, std::string& error) {

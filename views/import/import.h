@@ -15,6 +15,17 @@
 
 namespace gb {
 
+// Byte buffers of frames already shown, for the next frame's texels (ImportInput::pool): a stream's
+// frames are of one size, and a buffer already written once is filled again without the page
+// faults and zero-filling of a fresh allocation (at 4K most of a streamed frame's decoding).
+struct TexelPool {
+  std::vector<std::vector<uint8_t>> spare;
+  // The smallest spare buffer of at least `bytes` capacity (moved out), else an empty one.
+  std::vector<uint8_t> take(size_t bytes);
+  // A frame's image buffers (every target's, every sample plane's), `keep` buffers at most.
+  void give(FrameSnapshot&& frame, size_t keep);
+};
+
 struct ImportInput {
   Layout layout;                    // resolved (layout_json.h)
   std::string layoutDir;            // relative source paths: the layout file's folder ...
@@ -43,6 +54,7 @@ struct ImportInput {
     size_t sampleStride = 0;
   };
   std::map<std::string, LiveTexels> liveTexels;
+  TexelPool* pool = nullptr;  // where the live texels' buffers come from (null: allocated)
   // Targets the source does not hold (e.g. a target without a source whose name no texture of the
   // RenderDoc capture has): absent from the frame ("not captured"), not an error.
   std::set<std::string> leftOut;

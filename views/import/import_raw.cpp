@@ -36,8 +36,9 @@ bool unpackDump(const uint8_t* data, size_t bytes, const LayoutTarget& t, uint32
     return false;
   }
   if (isGpuFormat) {
-    img = unpackTexels(gpu, data, w, h);
+    unpackTexelsInto(gpu, data, w, h, img);  // img's buffer kept (TexelPool)
   } else {
+    img.name.clear();
     img.width = w;
     img.height = h;
     img.type = t.format.type;

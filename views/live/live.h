@@ -17,6 +17,7 @@
 #include "renderer/core/layout.h"
 #include "renderer/core/options.h"
 #include "renderer/core/snapshot.h"
+#include "views/import/import.h"
 #include "views/import/renderdoc_replay.h"
 #include "views/live/frame_history.h"
 
@@ -93,6 +94,9 @@ class LiveSession {
   // draft: targets renamed, other quantities): same targets in the same order, each with the same
   // storage format and live source. False, with the target named, otherwise.
   bool setLayout(const nlohmann::json& layout, std::string& error);
+  // A frame poll() / wait() returned that is no longer needed: its buffers hold the next frames'
+  // texels (TexelPool, import.h), two frames' worth kept.
+  void recycle(FrameSnapshot&& frame);
 
   const LiveCounts& counts() const { return counts_; }
   // What the layer and the decoding said for people since the last call, each once: a target the
@@ -155,6 +159,7 @@ class LiveSession {
   std::set<std::string> said_;
   LiveCounts counts_;
   FrameHistory history_;
+  TexelPool pool_;
 };
 
 // What LiveSession::start resolves before it starts anything: the layout (as given, and as the layer

@@ -182,8 +182,15 @@ std::vector<CpuImage*> planes(TargetImage& t) {  // the image and every sample's
 }
 }  // namespace
 
+void LiveSession::recycle(FrameSnapshot&& frame) {
+  size_t buffers = 0;
+  for (const TargetImage& t : frame.images) buffers += 1 + t.samples.size();
+  pool_.give(std::move(frame), 2 * buffers);
+}
+
 bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFrameInfo* info, std::string& error) {
   ImportInput in;
+  in.pool = &pool_;
   in.layout = layout_;
   in.layoutDir = layoutDir_;
   const Layout& l = layout_;

@@ -26,6 +26,11 @@ bool LiveReceiver::take(FrameSnapshot& out, LiveFrameInfo& info) {
   return true;
 }
 
+void LiveReceiver::recycle(FrameSnapshot&& frame) {
+  std::lock_guard lock(lock_);
+  returned_.push_back(std::move(frame));
+}
+
 void LiveReceiver::setPaused(bool paused) { paused_ = paused; }
 void LiveReceiver::detach() { detach_ = true; }
 
@@ -58,6 +63,12 @@ bool LiveReceiver::takeSuggestion(nlohmann::json& out) {
 void LiveReceiver::run() {
   while (!stop_) {
     if (detach_ && session_.attached()) session_.detach();
+    std::vector<FrameSnapshot> returned;
+    {
+      std::lock_guard lock(lock_);
+      returned.swap(returned_);
+    }
+    for (FrameSnapshot& f : returned) session_.recycle(std::move(f));  // the session is this thread's alone
     FrameSnapshot frame;
     LiveFrameInfo info;
     const bool receiving = !paused_ && !detach_ && (session_.attached() || session_.running());
@@ -67,7 +78,7 @@ void LiveReceiver::run() {
     const bool running = session_.running();
     std::lock_guard lock(lock_);
     if (got) {
-      if (hasLatest_) ++state_.replaced;
+      if (hasLatest_) ++state_.replaced, returned_.push_back(std::move(latest_));  // recycled next loop
       latest_ = std::move(frame);
       latestInfo_ = std::move(info);
       hasLatest_ = true;

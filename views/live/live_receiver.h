@@ -23,6 +23,9 @@ class LiveReceiver {
 
   // The newest frame decoded since the last call, if any (never waits).
   bool take(FrameSnapshot& out, LiveFrameInfo& info);
+  // A frame take() gave that is no longer shown: the thread gives its buffers to the session's
+  // next frames (LiveSession::recycle).
+  void recycle(FrameSnapshot&& frame);
   void setPaused(bool paused);
   void detach();  // the session detaches (the layer goes idle for good; the application runs on)
 
@@ -52,6 +55,7 @@ class LiveReceiver {
   std::atomic<bool> stop_{false}, paused_{false}, detach_{false};
   std::mutex lock_;
   FrameSnapshot latest_;
+  std::vector<FrameSnapshot> returned_;  // recycle()'s, for the thread
   LiveFrameInfo latestInfo_;
   bool hasLatest_ = false;
   State state_;
