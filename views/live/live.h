@@ -95,7 +95,7 @@ class LiveSession {
   // storage format and live source. False, with the target named, otherwise.
   bool setLayout(const nlohmann::json& layout, std::string& error);
   // A frame poll() / wait() returned that is no longer needed: its buffers hold the next frames'
-  // texels (TexelPool, import.h), two frames' worth kept.
+  // texels (TexelPool, import.h), one frame's worth kept (the memory the frame held).
   void recycle(FrameSnapshot&& frame);
 
   const LiveCounts& counts() const { return counts_; }

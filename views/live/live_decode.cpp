@@ -185,7 +185,7 @@ std::vector<CpuImage*> planes(TargetImage& t) {  // the image and every sample's
 void LiveSession::recycle(FrameSnapshot&& frame) {
   size_t buffers = 0;
   for (const TargetImage& t : frame.images) buffers += 1 + t.samples.size();
-  pool_.give(std::move(frame), 2 * buffers);
+  pool_.give(std::move(frame), buffers);  // one frame: the next decode takes them all
 }
 
 bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFrameInfo* info, std::string& error) {
