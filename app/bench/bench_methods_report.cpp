@@ -200,7 +200,8 @@ std::string methodsMarkdown(const BenchReport& r) {
               continue;
             }
             md << m.gbuffer << " | " << msText(m.frameMs.median) << " [" << msText(m.frameMs.min) << "-" << msText(m.frameMs.max) << "] | "
-               << (m.steadyMs.median > 0.0 ? msText(m.steadyMs.median) : "-") << " | " << m.frames << " | " << num(m.overDefault) << "x | " << msText(m.cpuMs.median) << " | "
+               << (m.steadyMs.median > 0.0 ? msText(m.steadyMs.median) : "-") << " | " << m.frames << " | "
+               << num(m.overDefault) << "x | " << msText(m.cpuMs.median) << " | "
                << msText(lightingMs(m)) << " | " << (m.cullingValid ? num(m.workOverIdeal) : "-") << " | " << m.note
                << " |\n";
           }
