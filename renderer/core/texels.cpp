@@ -99,6 +99,14 @@ void unpackTexelsInto(TexelFormat f, const uint8_t* src, uint32_t w, uint32_t h,
   }
 }
 
+void swapRedBlue(CpuImage& img) {
+  GB_ASSERT(img.data.size() % 4 == 0);
+  uint8_t* d = img.data.data();
+  splitRuns(img.data.size() / 4, [d](size_t i0, size_t i1) {
+    for (size_t i = i0; i < i1; ++i) std::swap(d[4 * i], d[4 * i + 2]);
+  });
+}
+
 CpuImage unpackTexels(TexelFormat f, const uint8_t* src, uint32_t w, uint32_t h) {
   CpuImage img;
   unpackTexelsInto(f, src, w, h, img);

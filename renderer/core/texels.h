@@ -24,6 +24,9 @@ CpuImage unpackTexels(TexelFormat f, const uint8_t* src, uint32_t width, uint32_
 // size: a buffer already written once is filled without page faults or zero-filling), large
 // images split over the machine's cores.
 void unpackTexelsInto(TexelFormat f, const uint8_t* src, uint32_t width, uint32_t height, CpuImage& img);
+// Four-byte texels stored B, G, R, A (a B8G8R8A8 attachment copied as the GPU holds it) reordered
+// R, G, B, A in place, split over the machine's cores for large images.
+void swapRedBlue(CpuImage& img);
 // The inverse: the CpuImage's texels packed for an upload into an image of format f.
 std::vector<uint8_t> packTexels(const CpuImage& image, TexelFormat f);
 

@@ -1,12 +1,13 @@
 // A stream's frames decoded into the buffers of frames already shown (TexelPool, import.h): the
 // second frame's texels are the bytes written for it, decoded as computed here (rgba8 bytes,
 // rgb10a2 fields, D24 depth / 16777215 and the stencil byte), in the first frame's buffers, at a
-// size large enough that the unpacking is split over threads; and a larger frame after them still
-// decodes whole.
+// size large enough that the unpacking is split over threads; a larger frame after them still
+// decodes whole; a B8G8R8A8 attachment's R and B swap back at every texel.
 #include <gtest/gtest.h>
 
 #include <cstring>
 
+#include "renderer/core/texels.h"
 #include "views/import/import.h"
 
 namespace gb {
@@ -115,6 +116,19 @@ TEST(TexelPool, AFrameLargerThanTheBuffersGivenBackIsDecodedWhole) {
   EXPECT_EQ(pool.spare.size(), 4u);  // `keep` bounds what is kept
   const FrameSnapshot smaller = import(makeFrame(5, 64, 48), &pool);
   expectFrame(smaller, 5, 64, 48);
+}
+
+// A B8G8R8A8 attachment's texels reordered to RGBA, at a size split over threads: each texel's
+// bytes as written, R and B exchanged.
+TEST(TexelPool, RedAndBlueSwapBackAtEveryTexel) {
+  const Frame f = makeFrame(6, 1280, 820);
+  CpuImage img = unpackTexels(TexelFormat::Rgba8Unorm, f.albedo.data(), f.w, f.h);
+  swapRedBlue(img);
+  for (size_t i = 0; i < size_t(f.w) * f.h; ++i) {
+    const uint8_t* in = &f.albedo[i * 4];
+    const uint8_t* out = &img.data[i * 4];
+    ASSERT_TRUE(out[0] == in[2] && out[1] == in[1] && out[2] == in[0] && out[3] == in[3]) << i;
+  }
 }
 
 }  // namespace

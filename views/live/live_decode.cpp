@@ -4,6 +4,7 @@
 #include <atomic>
 
 #include "renderer/core/layout_json.h"
+#include "renderer/core/texels.h"
 #include "views/import/import.h"
 #include "views/live/live.h"
 #include "views/live/live_wire.h"
@@ -263,8 +264,7 @@ bool LiveSession::decode(const nlohmann::json& frame, FrameSnapshot& out, LiveFr
   for (const nlohmann::json& t : frame.value("targets", nlohmann::json::array()))
     if (t.value("bgra", false) && out.indexOf(t.value("name", "")) >= 0) {
       TargetImage& ti = out.images[size_t(out.indexOf(t.value("name", "")))];
-      for (CpuImage* image : planes(ti))
-        for (size_t i = 0; i + 3 < image->data.size(); i += 4) std::swap(image->data[i], image->data[i + 2]);
+      for (CpuImage* image : planes(ti)) swapRedBlue(*image);
     }
   if (info) {
     info->stream = frame.value("stream", uint64_t(0));
