@@ -72,9 +72,10 @@ bool optionValues(const char* flag, const char* option, const std::string& list,
 nlohmann::json benchMeta(const GpuContext& ctx, const BenchPlan& p) {
   const BenchSettings& s = p.settings;
   // docs/json.md: format_version 2 added each method row's "gbuffer" and each pass's "before_ms"
-  // (version 1 was unversioned), 3 each method row's "overlap"; "version" is gblens's.
+  // (version 1 was unversioned), 3 each method row's "overlap", 4 each method row's "steady_ms" and
+  // methods_settings' "steady_ms" (methods.csv a steady_ms column); "version" is gblens's.
   return {{"format", "gblens-bench"},
-          {"format_version", 3},
+          {"format_version", 4},
           {"device", ctx.deviceName},
           {"driver", ctx.driverName},
           {"git", gitHash()},

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <thread>
 
 #include "renderer/core/assert.h"
+#include "renderer/core/parallel_rows.h"
 
 namespace gb {
 
@@ -46,16 +46,6 @@ static CpuImage emptyImage(TexelFormat f, uint32_t w, uint32_t h) {
   return img;
 }
 
-// f(begin, end) over [0, n) in contiguous runs, on up to 8 threads for n of a million or more.
-template <class F>
-static void splitRuns(size_t n, const F& f) {
-  const unsigned threads = n < (1u << 20) ? 1u : std::clamp(std::thread::hardware_concurrency(), 1u, 8u);
-  std::vector<std::thread> pool;
-  for (unsigned i = 1; i < threads; ++i) pool.emplace_back(f, n * i / threads, n * (i + 1) / threads);
-  f(size_t(0), n / threads);
-  for (std::thread& t : pool) t.join();
-}
-
 void unpackTexelsInto(TexelFormat f, const uint8_t* src, uint32_t w, uint32_t h, CpuImage& img) {
   std::vector<uint8_t> buffer = std::move(img.data);
   img = emptyImage(f, w, h);
@@ -66,8 +56,8 @@ void unpackTexelsInto(TexelFormat f, const uint8_t* src, uint32_t w, uint32_t h,
     img.data.resize(texels * 8);
     float* out = reinterpret_cast<float*>(img.data.data());
     const uint8_t* stencil = src + texels * 4;
-    splitRuns(texels, [&](size_t i0, size_t i1) {
-      for (size_t i = i0; i < i1; ++i) {
+    parallelRows(h, texels, [&](uint32_t y0, uint32_t y1) {
+      for (size_t i = size_t(y0) * w; i < size_t(y1) * w; ++i) {
         uint32_t bits;
         std::memcpy(&bits, src + i * 4, 4);
         float depth;
@@ -82,8 +72,8 @@ void unpackTexelsInto(TexelFormat f, const uint8_t* src, uint32_t w, uint32_t h,
   } else if (f == TexelFormat::Rgb10a2Unorm) {
     img.data.resize(texels * 8);
     uint16_t* out = reinterpret_cast<uint16_t*>(img.data.data());
-    splitRuns(texels, [&](size_t i0, size_t i1) {
-      for (size_t i = i0; i < i1; ++i) {
+    parallelRows(h, texels, [&](uint32_t y0, uint32_t y1) {
+      for (size_t i = size_t(y0) * w; i < size_t(y1) * w; ++i) {
         uint32_t v;
         std::memcpy(&v, src + i * 4, 4);
         out[4 * i + 0] = uint16_t(v & 0x3FF);
@@ -93,17 +83,20 @@ void unpackTexelsInto(TexelFormat f, const uint8_t* src, uint32_t w, uint32_t h,
       }
     });
   } else {
-    const size_t bytes = texels * packedTexelBytes(f);
-    img.data.resize(bytes);  // no fill where the buffer already held as many
-    splitRuns(bytes, [&](size_t b0, size_t b1) { std::memcpy(img.data.data() + b0, src + b0, b1 - b0); });
+    const size_t row = size_t(w) * packedTexelBytes(f);
+    img.data.resize(row * h);  // no fill where the buffer already held as many
+    parallelRows(h, texels, [&](uint32_t y0, uint32_t y1) {
+      std::memcpy(img.data.data() + y0 * row, src + y0 * row, (y1 - y0) * row);
+    });
   }
 }
 
 void swapRedBlue(CpuImage& img) {
-  GB_ASSERT(img.data.size() % 4 == 0);
+  GB_ASSERT(img.data.size() == size_t(img.width) * img.height * 4);
   uint8_t* d = img.data.data();
-  splitRuns(img.data.size() / 4, [d](size_t i0, size_t i1) {
-    for (size_t i = i0; i < i1; ++i) std::swap(d[4 * i], d[4 * i + 2]);
+  const uint32_t w = img.width;
+  parallelRows(img.height, size_t(w) * img.height, [d, w](uint32_t y0, uint32_t y1) {
+    for (size_t i = size_t(y0) * w; i < size_t(y1) * w; ++i) std::swap(d[4 * i], d[4 * i + 2]);
   });
 }
 

@@ -82,7 +82,7 @@ TEST(CliAccuracy, BenchWritesJsonCsvAndPlotsWithOneRowPerVariant) {
   std::ifstream jf(std::filesystem::path(dir) / "bench.json");
   nlohmann::json j = nlohmann::json::parse(jf);
   EXPECT_EQ(j["format"], "gblens-bench");
-  EXPECT_EQ(j["format_version"], 3);  // docs/json.md: 2 added gbuffer and before_ms, 3 overlap
+  EXPECT_EQ(j["format_version"], 4);  // docs/json.md: 2 added gbuffer and before_ms, 3 overlap, 4 steady_ms
   ASSERT_EQ(j["rows"].size(), 5u);  // default, rgba16f normals, lights=0, lights=4, default (repeat)
   for (const auto& row : j["rows"]) {
     EXPECT_TRUE(row["measured"].get<bool>()) << row["variant"];
@@ -131,6 +131,7 @@ TEST(CliAccuracy, BenchComparesTheMethodsSideBySide) {
   EXPECT_EQ(j["methods_settings"]["burst"].get<int>(), 3);
   EXPECT_EQ(j["methods_settings"]["frames_in_flight"].get<int>(), 2);
   EXPECT_NE(j["methods_settings"]["frame_ms"].get<std::string>().find("throughput"), std::string::npos);
+  EXPECT_NE(j["methods_settings"]["steady_ms"].get<std::string>().find("without the pipeline's fill"), std::string::npos);
   ASSERT_EQ(j["methods"].size(), 10u);  // 5 methods x 2 light counts
   std::map<std::string, int> seen;
   for (const auto& m : j["methods"]) {
@@ -148,6 +149,11 @@ TEST(CliAccuracy, BenchComparesTheMethodsSideBySide) {
     EXPECT_EQ(m["frames_in_flight"].get<int>(), 2);
     EXPECT_EQ(m["gbuffer"], "raster") << method;  // --gbuffer auto on a CPU device
     EXPECT_GT(m["frame_ms"]["median"].get<double>(), 0.0);
+    // The steady state (lavapipe has timestamps) never exceeds what the wall clock allows: a burst of 3
+    // counts 2 frames, so steady x 1 <= frame ms x 2 in every round, and the medians keep that.
+    ASSERT_TRUE(m.contains("steady_ms")) << method;
+    EXPECT_GT(m["steady_ms"]["median"].get<double>(), 0.0) << method;
+    EXPECT_LE(m["steady_ms"]["median"].get<double>(), 2.0 * m["frame_ms"]["max"].get<double>()) << method;
     if (m["auto_pick"].get<bool>()) {
       EXPECT_EQ(m["time_over_default"].get<double>(), 1.0);
       ++seen["auto"];

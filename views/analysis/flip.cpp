@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "renderer/core/assert.h"
-#include "views/analysis/parallel_rows.h"
+#include "renderer/core/parallel_rows.h"
 
 namespace gb {
 

@@ -11,7 +11,7 @@
 #include "renderer/core/decode.h"
 #include "renderer/core/statistics.h"
 #include "views/analysis/motion.h"
-#include "views/analysis/parallel_rows.h"
+#include "renderer/core/parallel_rows.h"
 
 namespace gb {
 

@@ -10,7 +10,7 @@
 #include "renderer/core/assert.h"
 #include "renderer/core/decode.h"
 #include "shaders/view_colors.h"
-#include "views/analysis/parallel_rows.h"
+#include "renderer/core/parallel_rows.h"
 
 namespace gb {
 

@@ -193,11 +193,11 @@ bool readSamplePlanes(const uint8_t* data, size_t bytes, uint32_t count, size_t 
     return false;
   }
   samples.resize(count);
-  for (uint32_t k = 0; k < count; ++k)
+  for (uint32_t k = 0; k < count; ++k) {
     if (pool) samples[k].data = pool->take(stride);
-  for (uint32_t k = 0; k < count; ++k)
     if (!unpackDump(data + k * stride, stride, lt, w, h, where + " (sample " + std::to_string(k) + ")", samples[k], error))
       return false;
+  }
   img = samples[0];
   return true;
 }

@@ -1,5 +1,5 @@
-// Row-parallel loops for the analysis functions that map a whole image (FLIP, view images): f(begin,
-// end) over row ranges on up to the machine's cores, inline for small images.
+// Row-parallel loops for functions that map a whole image (FLIP, view images, unpacking a streamed
+// frame's texels): f(begin, end) over row ranges on up to the machine's cores, inline for small images.
 #pragma once
 #include <algorithm>
 #include <cstddef>
