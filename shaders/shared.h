@@ -280,6 +280,68 @@ GB_STRUCT(RangeResult) {
   uvec4 counts;  // x Inf count, y negative count
 };
 
+// ---- the viewer's views decoded on the GPU from a frame's stored texels (view_decode.comp) ----
+// What a view's texel holds (views/analysis/visualize.h viewValue, kind for kind).
+GB_CONST(uint, kDecodeColor, 0);     // linear colour, RGBA (alpha 1 without a fourth channel)
+GB_CONST(uint, kDecodeScalar, 1);    // channel 0 * scale + bias
+GB_CONST(uint, kDecodeVector, 2);    // each channel * scale + bias
+GB_CONST(uint, kDecodeNormal, 3);    // the stored vector decoded (encoding.x), unit, its length in w; surfaces only
+GB_CONST(uint, kDecodeDepth, 4);     // the stored depth (camera distances scaled); where something was drawn
+GB_CONST(uint, kDecodePosition, 5);  // the stored position, the eye distance in w; surfaces only
+GB_CONST(uint, kDecodeMotion, 6);    // pixels toward the previous frame, +y down
+GB_CONST(uint, kDecodeInteger, 7);   // the stored integer (float channels rounded, 0 when not above 0)
+// ViewDecodeParams.mode.z flags.
+GB_CONST(uint, kDecodeFlagSrgb, 1);        // colour: sRGB-encoded values
+GB_CONST(uint, kDecodeFlagSun, 2);         // depth: the shadow map's (stored as is; only the background empty)
+GB_CONST(uint, kDecodeFlagMotionYUp, 4);   // motion: +y up the image
+GB_CONST(uint, kDecodeFlagToNext, 8);      // motion: toward the next frame (negated)
+GB_CONST(uint, kDecodeFlagHardware, 16);   // depth (and surface depth: kDecodeFlagSurfaceHardware): hardware depth
+GB_CONST(uint, kDecodeFlagSurfaceHardware, 32);
+// ViewDecodeParams.mode.w: which pixels hold a surface (decode.h hasSurface).
+GB_CONST(uint, kDecodeSurfaceAll, 0);    // the layout has no camera depth
+GB_CONST(uint, kDecodeSurfaceNone, 1);   // it has one and the frame holds none
+GB_CONST(uint, kDecodeSurfaceDepth, 2);  // where the surface depth (binding 1) holds a drawn value
+// renderer/core/image.h's PixelType and Encoding, as numbered there (checked in view_decode.cpp).
+GB_CONST(uint, kPixelU8, 0);
+GB_CONST(uint, kPixelI8, 1);
+GB_CONST(uint, kPixelU16, 2);
+GB_CONST(uint, kPixelI16, 3);
+GB_CONST(uint, kPixelU32, 4);
+GB_CONST(uint, kPixelF16, 5);
+GB_CONST(uint, kPixelF32, 6);
+GB_CONST(uint, kEncodingUnorm, 0);
+GB_CONST(uint, kEncodingSnorm, 1);
+GB_CONST(uint, kEncodingSrgb, 2);
+GB_CONST(uint, kEncodingFloat, 3);
+GB_CONST(uint, kEncodingUint, 4);
+GB_CONST(uint, kEncodingUnorm10, 5);
+GB_CONST(uint, kEncodingUnorm24, 6);
+// A target's texels in a storage buffer, as the CPU holds them (CpuImage: channels of one type, packed).
+GB_STRUCT(DecodeTexels) {
+  uvec4 size;    // x width, y height, zw target coordinates of texel (0, 0)
+  uvec4 format;  // x kPixel*, y kEncoding*, z channels a texel has, w bytes a texel takes
+};
+// A stored value that marks "nothing drawn" (a background, the far plane), matched as the CPU's
+// double comparison would: float types by value (`value`, when the double is a float), integer codes
+// by code (up to two: snorm's -1), nothing when no stored value equals it.
+GB_STRUCT(DecodeMatch) {
+  uvec4 codes;  // x 1: compare floats, 2: compare codes, 0: never; y, z the codes; w unused
+  vec4 value;   // x the float
+};
+GB_STRUCT(ViewDecodeParams) {
+  DecodeTexels texels;   // the view's target (binding 0)
+  DecodeTexels surface;  // the surface depth's target (binding 1; mode.w kDecodeSurfaceDepth)
+  uvec4 channels;        // the quantity's channels of its target, in component order
+  uvec4 mode;            // x kDecode*, y the quantity's channel count, z kDecodeFlag*, w kDecodeSurface*
+  uvec4 encoding;        // x normal encoding (layout.h order), y the surface depth's channel, z first range slot, w components with range statistics (0: none)
+  vec4 values;           // x scale, y bias; z, w the surface depth's scale and bias
+  vec4 camera;           // x width, y height of the frame's camera (motion units)
+  // Depths: the stored value where nothing was drawn (the layout's background; a hardware depth
+  // without one: the far plane), of the view's quantity and of the surface depth.
+  DecodeMatch background, surfaceBackground;
+  mat4 eyeFromStored;    // positions: the stored point into eye space (its distance, w)
+};
+
 #ifdef __cplusplus
 static_assert(sizeof(FrameData) == 6 * 64 + 25 * 16);
 static_assert(sizeof(LightDesc) == 80);
@@ -290,6 +352,7 @@ static_assert(sizeof(Material) == 8 * 16);
 static_assert(sizeof(DrawGeometry) == 32);
 static_assert(sizeof(PointLight) == 32);
 static_assert(sizeof(ViewParams) == 80);
+static_assert(sizeof(ViewDecodeParams) == 32 * 2 + 16 * 5 + 32 * 2 + 64);
 }  // namespace gb::gpu
 #endif
 

@@ -219,6 +219,19 @@ void recordTransfers(DeviceData& d, VkCommandBuffer cmd, const std::vector<VkIma
                      const std::vector<Copy>& made, const std::vector<BufferCopy>& buffers) {
   const DeviceTable& vk = d.vk;
   if (measureMode() == 2) return;
+  std::vector<std::string> names;  // GBLENS_LAYER_TIMESTAMPS=1: each copy command's time (copy_timing.cpp)
+  if (copyTimingOn()) {
+    std::shared_lock lock(d.objects);
+    for (const Region& r : regions) {
+      auto img = d.images.find(r.image);
+      const VkImageAspectFlags aspect = r.stage ? r.samples.srcSubresource.aspectMask : r.copy.imageSubresource.aspectMask;
+      names.push_back((img != d.images.end() && !img->second.name.empty() ? img->second.name : "image") +
+                      (aspect == VK_IMAGE_ASPECT_STENCIL_BIT ? " stencil" : aspect == VK_IMAGE_ASPECT_DEPTH_BIT ? " depth" : "") +
+                      (r.stage ? " (samples)" : ""));
+    }
+  }
+  const int timing = copyTimingOn() ? beginCopyTiming(d, cmd, names) : -1;
+  stampCopyTiming(d, cmd, timing, 0);
   // Every earlier write before these copies: the buffers' (whoever made them), and the ring's own
   // from an earlier pass or an earlier submission of this command buffer (the copies write the same
   // bytes again).
@@ -227,13 +240,17 @@ void recordTransfers(DeviceData& d, VkCommandBuffer cmd, const std::vector<VkIma
   memory.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
   vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &memory, 0, nullptr,
                         uint32_t(there.size()), there.data());
-  for (const Region& r : regions)
+  stampCopyTiming(d, cmd, timing, 1);
+  uint32_t stamp = 2;
+  for (const Region& r : regions) {
     if (measureMode() == 1)
-      continue;
+      ;
     else if (r.stage)
       vk.CmdCopyImage(cmd, r.image, r.layout, r.stage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r.samples);
     else
       vk.CmdCopyImageToBuffer(cmd, r.image, r.layout, r.buffer, 1, &r.copy);
+    stampCopyTiming(d, cmd, timing, stamp++);
+  }
   for (const BufferCopy& b : buffers) {
     if (b.source) {
       VkBufferCopy bc{b.offset, b.copy.offset, b.size};
@@ -255,8 +272,10 @@ void recordTransfers(DeviceData& d, VkCommandBuffer cmd, const std::vector<VkIma
   };
   for (const Copy& c : made) ring(c.buffer->buffer);
   for (const BufferCopy& b : buffers) ring(b.copy.buffer->buffer);
+  stampCopyTiming(d, cmd, timing, stamp++);
   vk.CmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_HOST_BIT,
                         0, 0, nullptr, uint32_t(toHost.size()), toHost.data(), uint32_t(back.size()), back.data());
+  stampCopyTiming(d, cmd, timing, stamp);
 }
 
 // The recording's copies so far: a target copied again (a later pass writes it too) and a later

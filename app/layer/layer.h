@@ -54,7 +54,8 @@ namespace gbl {
   X(CreateComputePipelines) X(DestroyPipeline) X(CreateDescriptorPool) X(CreateCommandPool) X(CmdBindPipeline)        \
   X(CmdClearColorImage) X(CmdClearDepthStencilImage) X(CmdCopyBufferToImage) X(CmdCopyBufferToImage2)                 \
   X(CmdCopyBufferToImage2KHR) X(CmdExecuteCommands) X(CmdPipelineBarrier2) X(CmdPipelineBarrier2KHR) X(CmdWaitEvents)   \
-  X(CmdWaitEvents2) X(CmdWaitEvents2KHR)                                                                              \
+  X(CmdWaitEvents2) X(CmdWaitEvents2KHR) X(CreateQueryPool) X(DestroyQueryPool) X(CmdResetQueryPool)                 \
+  X(CmdWriteTimestamp) X(GetQueryPoolResults)                                                                         \
 
 struct DeviceTable {
 #define GBL_MEMBER(name) PFN_vk##name name = nullptr;
@@ -400,6 +401,7 @@ struct DeviceData {
   std::atomic<uint64_t> ringBytes{0};
   std::atomic<uint64_t> tileCopies{0};  // attachments copied image to image into the staged ring's tiles
   std::atomic<uint64_t> storageCopies{0};  // storage images copied after dispatches (dispatch_copies.cpp)
+  std::unique_ptr<struct CopyTiming> timing;  // GBLENS_LAYER_TIMESTAMPS=1: the copies' GPU time (copy_timing.cpp)
   VkDeviceSize ringWanted = 0;                // a slot's buffer the layer's thread is to make (growRing)
   std::atomic<uint64_t> droppedForRing{0};    // recordings that went without copies meanwhile
   std::atomic<uint64_t> threadAllocNs{0};     // the thread's time making ring buffers (not the application's)
@@ -476,6 +478,13 @@ void recordPassCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s, const Ope
 // a clear, a copy into an image, a barrier discarding them, secondary command buffers) and at the
 // recording's end; a barrier moving one to another layout keeps it pending there.
 void dispatchCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);
+// copy_timing.cpp (GBLENS_LAYER_TIMESTAMPS=1): a block of copies timed on the GPU: its first query
+// (-1: not timed), a timestamp `index` into it, the means so far (null: none), the query pool gone.
+bool copyTimingOn();
+int beginCopyTiming(DeviceData& d, VkCommandBuffer cmd, std::vector<std::string> copies);
+void stampCopyTiming(DeviceData& d, VkCommandBuffer cmd, int block, uint32_t index);
+nlohmann::json copyTimingJson(DeviceData& d);
+void destroyCopyTiming(DeviceData& d);
 void flushStorageCopies(DeviceData& d, VkCommandBuffer cmd, CmdState& s);
 // A render pass (s.open) is about to begin: a pending image it writes as an attachment is dropped
 // (its end copies it), the others are flushed.

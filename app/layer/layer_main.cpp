@@ -247,6 +247,7 @@ VKAPI_ATTR void VKAPI_CALL DestroyDevice(VkDevice device, const VkAllocationCall
       d->cmds.clear();  // releases the recordings' ring buffers
     }
     destroyRing(*d);
+    destroyCopyTiming(*d);
     destroySamples(*d);
     destroyStaging(*d);
   }

@@ -153,7 +153,8 @@ json statsJson(Stream& st) {
           {"ring_tile_copies", d.tileCopies.load()},
           {"storage_copies", d.storageCopies.load()},
           {"ring_download", !d.staging ? "none" : stagedOwnQueue(d) ? "layer queue" : "application queue"},
-          {"download_ms", st.sent ? st.downloadMs / double(st.sent) : 0.0}};
+          {"download_ms", st.sent ? st.downloadMs / double(st.sent) : 0.0},
+          {"copy_gpu", copyTimingJson(d)}};  // GBLENS_LAYER_TIMESTAMPS=1 only
 }
 
 void process(Stream& st, std::unique_ptr<PendingFrame> f) {

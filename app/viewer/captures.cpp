@@ -230,7 +230,7 @@ void showNextSample(Viewer& v) {
   v.model.regionDirty = v.model.region.has_value();
 }
 
-void setCaptureViews(Viewer& v) {
+void setCaptureViews(Viewer& v, bool decode) {
   ViewerModel& m = v.model;
   const FrameSnapshot& a = v.captureA.frame;
   m.frameLayout = a.layout;
@@ -238,7 +238,9 @@ void setCaptureViews(Viewer& v) {
   std::vector<ViewDef> views = frameViews(a);
   appendTemporalViews(v, views);  // a sequence: the motion check's and flicker's maps (temporal_views.cpp)
   setViews(m, std::move(views));
-  v.decodedA = decodeViews(a, m.views);
+  v.decodedA = decode ? decodeViews(a, m.views) : std::vector<CpuImage>(m.views.size());
+  v.gpuRanges.assign(m.views.size(), {});
+  v.gpuDecoded.assign(m.views.size(), false);
   v.viewsB.clear();
   if (v.hasB) {
     const std::vector<ViewDef> all = layoutViews(v.captureB.frame.layout);
@@ -253,7 +255,7 @@ void setCaptureViews(Viewer& v) {
     m.unavailable[k].clear();
     if (d.quantity < 0) continue;  // a temporal view: fillTemporalViews
     Absent why = a.absences[d.target];
-    if (v.decodedA[k].empty()) m.unavailable[k] = a.layout.targets[d.target].name + ": " + absentText(why == Absent::No ? Absent::NotCaptured : why);
+    if (decode ? v.decodedA[k].empty() : !a.images[d.target].present()) m.unavailable[k] = a.layout.targets[d.target].name + ": " + absentText(why == Absent::No ? Absent::NotCaptured : why);
     else if (v.hasB && v.decodedB[k].empty()) m.unavailable[k] = d.name + " is not in B";
     if (v.hasB) m.differenceMax[k] = largestDifference(v.decodedA[k], v.decodedB[k], d.components);
   }
@@ -291,9 +293,17 @@ void updateCaptureRanges(Viewer& v) {
     const ViewSettings& s = m.settings[size_t(k)];
     const ViewMapping mapping = viewMapping(d, s);
     const std::string key = std::to_string(mapping.mask) + (s.autoRange ? "a" : "m");
-    if (v.rangeKeys[size_t(k)] == key || v.decodedA[size_t(k)].empty()) continue;
+    // A stream's view decoded on the GPU has its statistics when its range was automatic then; one
+    // made automatic since is decoded again (decodeShown, on the next poll).
+    const bool onGpu = size_t(k) < v.gpuDecoded.size() && v.gpuDecoded[size_t(k)];
+    if (onGpu && s.autoRange && v.gpuRanges[size_t(k)].empty()) {
+      v.attachShown.clear();
+      continue;
+    }
+    if (v.rangeKeys[size_t(k)] == key || (v.decodedA[size_t(k)].empty() && !onGpu)) continue;
     v.rangeKeys[size_t(k)] = key;
-    m.ranges[size_t(k)] = {imageRange(v.decodedA[size_t(k)], d, mapping.mask)};
+    m.ranges[size_t(k)] = onGpu ? selectRanges(v.gpuRanges[size_t(k)], d, mapping.mask)
+                                : std::vector<RangeStats>{imageRange(v.decodedA[size_t(k)], d, mapping.mask)};
     m.uiChanged = true;
   }
 }

@@ -4,6 +4,7 @@
 // polled (the layer drops the frames nobody takes; the application runs on); "Capture" writes the
 // frame shown with writeCapture, the format `import` and `attach --capture-frame` write.
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -65,17 +66,30 @@ void refreshDossier(Viewer& v) {
 
 // The views on screen decoded from the frame shown and uploaded; the others are decoded when they
 // come on screen (a stream's frame is shown once: decoding every view of it would halve the frames
-// the viewer keeps up with).
+// the viewer keeps up with). On the GPU where it can (view_decode.h: the decoded image and its
+// ranges), else on the CPU; the probe, hover and regions decode the snapshot on the CPU.
 void decodeShown(Viewer& v) {
   ViewerModel& m = v.model;
   const FrameSnapshot& f = v.captureA.frame;
   v.attachShown = visibleViews(m);
   v.decodedA.assign(m.views.size(), CpuImage{});
-  std::vector<int> due;
-  for (int k : v.attachShown)
-    if (m.unavailable[size_t(k)].empty() && m.views[size_t(k)].quantity >= 0) due.push_back(k);
-  for (int k : due) v.decodedA[size_t(k)] = viewImage(f, m.views[size_t(k)]);  // each on every core
-  uploadViewImages(v.imagesA, v.ctx, v.decodedA);
+  v.gpuRanges.assign(m.views.size(), {});
+  v.gpuDecoded.assign(m.views.size(), false);
+  std::vector<int> cpu, gpu;
+  std::vector<bool> onGpu(m.views.size(), false);
+  for (int k : v.attachShown) {
+    const ViewDef& d = m.views[size_t(k)];
+    if (!m.unavailable[size_t(k)].empty() || d.quantity < 0) continue;
+    const bool there = v.gpuDecode && gpuDecodeRefusal(v.ctx, f, d).empty();
+    (there ? gpu : cpu).push_back(k);
+    onGpu[size_t(k)] = there;
+  }
+  for (int k : cpu) v.decodedA[size_t(k)] = viewImage(f, m.views[size_t(k)]);  // each on every core
+  uploadViewImages(v.imagesA, v.ctx, v.decodedA, onGpu);
+  std::vector<bool> ranges(m.views.size(), false);  // statistics only where a range comes from the data
+  for (int k : gpu) ranges[size_t(k)] = m.settings[size_t(k)].autoRange;
+  if (!gpu.empty()) v.gpuRanges = decodeViewsOnGpu(v.decoder, v.ctx, f, m.views, gpu, ranges, v.imagesA);
+  v.gpuDecoded = onGpu;
   v.rangeKeys.assign(m.views.size(), "");
 }
 
@@ -116,8 +130,8 @@ void showStreamFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info
   v.renderer.camera = v.renderer.unjitteredCamera = f.camera;
   m.rendered = f.options;
   if (!sameViews(frameViews(f), m.views) || v.decodedA.empty()) {
-    setCaptureViews(v);  // every view decoded, the unavailable ones named
-    v.attachShown = visibleViews(m);
+    setCaptureViews(v, false);  // the views and the unavailable ones named
+    decodeShown(v);
   } else {
     m.frameLayout = f.layout;
     for (size_t k = 0; k < m.views.size(); ++k) {
@@ -159,6 +173,9 @@ void openAttached(Viewer& v) {
   v.captureA.dir = v.args.scene;
   v.captureA.frame = *v.args.attachFirst;
   v.receiver = std::make_unique<LiveReceiver>(s);
+  const char* decode = std::getenv("GBLENS_VIEW_DECODE");  // "cpu": the views decoded on the CPU (measuring)
+  v.gpuDecode = !(decode && std::string(decode) == "cpu");
+  if (v.gpuDecode) initViewDecoder(v.decoder, v.ctx);
   v.attachOpened = std::chrono::steady_clock::now();
   v.attachInfo = v.args.attachFirstInfo;
   m.source = FrameSource::Capture;

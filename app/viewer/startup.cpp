@@ -152,6 +152,7 @@ int finishViewer(Viewer& v) {
   destroyViewMapper(v.mapper, v.renderer);
   destroyViewImages(v.imagesA, v.ctx);
   destroyViewImages(v.imagesB, v.ctx);
+  destroyViewDecoder(v.decoder, v.ctx);
   stopCompareFlip(v);
   stopReferenceError(v);
   stopTemporalViews(v);

@@ -26,6 +26,7 @@
 #include "views/capture/sequence.h"
 #include "views/live/live.h"
 #include "views/live/live_receiver.h"
+#include "views/ui/view_decode.h"
 #include "views/ui/view_map.h"
 #include "views/ui/viewer_model.h"
 
@@ -117,6 +118,12 @@ struct Viewer {
   std::vector<ViewDef> viewsB;
   ViewImages imagesA, imagesB;
   std::vector<std::string> rangeKeys;  // per view: the settings its CPU range was computed for
+  // gblens attach: the views on screen of each streamed frame decoded on the GPU (view_decode.h; off
+  // with GBLENS_VIEW_DECODE=cpu), and per view so decoded its range statistics per component.
+  ViewDecoder decoder;
+  bool gpuDecode = false;
+  std::vector<std::vector<RangeStats>> gpuRanges;  // only views with an automatic range have them
+  std::vector<bool> gpuDecoded;
   // --compare: FLIP of each colour view (A the reference, B the test), computed by a worker at open
   // (captures.cpp): per view its per-pixel FLIP (hover) and magma image (imagesFlip); empty: none.
   struct FlipMaps {
@@ -358,7 +365,9 @@ void attachedFramePresented(Viewer& v);
 // Writes attach --suggest's draft layout (./gblens-layout-<date>-<time>.json, atomically).
 bool saveAttachedDraft(const std::string& draft, std::string& written, std::string& error);
 // The views of capture A's layout decoded and uploaded again (captures.cpp; a new frame of a stream).
-void setCaptureViews(Viewer& v);
+// decode: every view decoded on the CPU now (a stream's frame: false, the views on screen are
+// decoded by decodeShown; unavailable says which targets the frame lacks).
+void setCaptureViews(Viewer& v, bool decode = true);
 // X: multisampled targets show their next sample (captures.cpp); the views, probe and statistics follow.
 void showNextSample(Viewer& v);
 // The frame's views: its layout's, then a spread view per multisampled target (sample_views.h).

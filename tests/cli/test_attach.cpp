@@ -133,6 +133,32 @@ TEST(Attach, EveryNthFrameAndStats) {
   EXPECT_GT(stats["layer"]["frame_ms"].get<double>(), 0.0);
 }
 
+// GBLENS_LAYER_TIMESTAMPS=1 (docs/attach.md "Cost"): the layer times its copies on the GPU, each copy
+// command under the image it copies (gblens names its images by target; depth and stencil apart);
+// without it there are no timings. The times themselves are the device's (make bench reports them).
+TEST(Attach, TimestampsTimeEveryCopyOfTheStreamedTargetsOnlyWhenAsked) {
+  auto copyTiming = [](bool on) {
+    if (on) setenv("GBLENS_LAYER_TIMESTAMPS", "1", 1);
+    RunResult r = runGblens("attach --layout builtin:gblens --frames 16 --stats -- " +
+                            app("render " + kFrame + " --frames 40 -o " + freshDir("attach_timestamps") + "/f.png"));
+    unsetenv("GBLENS_LAYER_TIMESTAMPS");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    const size_t json = r.output.find("{\n");
+    if (json == std::string::npos) return nlohmann::json();
+    const nlohmann::json stats = nlohmann::json::parse(r.output.substr(json, r.output.rfind('}') - json + 1), nullptr, false);
+    return stats.is_object() ? stats["layer"]["copy_gpu"] : nlohmann::json();
+  };
+  const nlohmann::json timing = copyTiming(true);
+  ASSERT_TRUE(timing.is_object()) << timing.dump();
+  EXPECT_GE(timing["blocks"].get<int>(), 4);
+  for (const char* copy : {"albedo_specular", "normal_shadow", "depth_stencil depth", "depth_stencil stencil", "final"}) {
+    ASSERT_TRUE(timing["by_copy_ms"].contains(copy)) << copy << ": " << timing.dump();
+    EXPECT_GT(timing["by_copy_ms"][copy].get<double>(), 0.0) << copy;
+  }
+  EXPECT_GT(timing["copies_ms"].get<double>(), 0.0);
+  EXPECT_TRUE(copyTiming(false).is_null());
+}
+
 TEST(Attach, KilledReceiverLeavesTheApplicationRunning) {
   const std::string dir = freshDir("attach_kill");
   const std::string status = dir + "/status";

@@ -96,29 +96,38 @@ std::optional<ViewSource> nativeSource(const Layout& layout, const ViewDef& view
   return s;
 }
 
+void ensureViewImage(GpuContext& ctx, Image& image, bool integer, uint32_t width, uint32_t height, const std::string& name) {
+  const VkFormat format = integer ? VK_FORMAT_R32_UINT : VK_FORMAT_R32G32B32A32_SFLOAT;
+  if (image.image && image.desc.format == format && image.desc.width == width && image.desc.height == height) return;
+  if (image.image) destroyImage(ctx, image);
+  ImageDesc d;
+  d.format = format;
+  d.width = width;
+  d.height = height;
+  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+            (integer ? VK_IMAGE_USAGE_STORAGE_BIT : 0);
+  if (!integer) d.clearFormat = VK_FORMAT_R32G32B32A32_UINT;
+  const std::string label = "view " + name;  // RenderDoc / Nsight name it
+  d.name = label.c_str();
+  image = createImage(ctx, d);
+}
+
 // A stream shows a new frame several times a second: the images of the views that keep their size
 // are written again in place, through one staging buffer kept between frames, in one submission.
-void uploadViewImages(ViewImages& out, GpuContext& ctx, const std::vector<CpuImage>& decoded) {
+void uploadViewImages(ViewImages& out, GpuContext& ctx, const std::vector<CpuImage>& decoded, const std::vector<bool>& leave) {
   if (!out.images.empty()) vkDeviceWaitIdle(ctx.device);  // the views are sampled by frames in flight
   out.images.resize(std::max(out.images.size(), decoded.size()));
   VkDeviceSize bytes = 0;
   for (size_t i = 0; i < out.images.size(); ++i) {
+    if (i < leave.size() && leave[i]) continue;
     const CpuImage* img = i < decoded.size() && !decoded[i].empty() ? &decoded[i] : nullptr;
-    const VkFormat format = img && img->type == PixelType::U32 ? VK_FORMAT_R32_UINT : VK_FORMAT_R32G32B32A32_SFLOAT;
     Image& gi = out.images[i];
-    const bool keep = img && gi.image && gi.desc.format == format && gi.desc.width == img->width && gi.desc.height == img->height;
-    if (gi.image && !keep) destroyImage(ctx, gi);
-    if (!img) continue;
+    if (!img) {
+      if (gi.image) destroyImage(ctx, gi);
+      continue;
+    }
     bytes += (img->data.size() + 15) / 16 * 16;
-    if (keep) continue;
-    ImageDesc d;
-    d.format = format;
-    d.width = img->width;
-    d.height = img->height;
-    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    const std::string label = "view " + img->name;  // RenderDoc / Nsight name it
-    d.name = label.c_str();
-    gi = createImage(ctx, d);
+    ensureViewImage(ctx, gi, img->type == PixelType::U32, img->width, img->height, img->name);
   }
   out.images.resize(decoded.size());
   if (bytes == 0) return;

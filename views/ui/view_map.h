@@ -56,7 +56,13 @@ struct ViewImages {
   std::vector<Image> images;  // one per view; empty where the frame has nothing to show
   Buffer staging;             // the last upload's (kept: a stream uploads every frame shown)
 };
-void uploadViewImages(ViewImages& out, GpuContext& ctx, const std::vector<CpuImage>& decoded);
+// `leave`: views whose images another writer fills (view_decode.h), left as they are.
+void uploadViewImages(ViewImages& out, GpuContext& ctx, const std::vector<CpuImage>& decoded,
+                      const std::vector<bool>& leave = {});
+// `image` made (or kept, when it is one) a decoded view image of this size: RGBA32F (integer views
+// R32_UINT), sampled, written by uploads or by compute (RGBA32F through a storage view in RGBA32_UINT,
+// Image::clearView, so that the bits viewImage writes, kEmptyTexel's NaN among them, are stored as they are).
+void ensureViewImage(GpuContext& ctx, Image& image, bool integer, uint32_t width, uint32_t height, const std::string& name);
 void destroyViewImages(ViewImages& images, GpuContext& ctx);
 ViewImage viewImageOf(const ViewImages& images, size_t view);
 
