@@ -67,8 +67,14 @@ fixtures:
 # The default sweep on the built-in temple and, when present, the shared VC model (a glTF that
 # does not load is skipped with a message). Budgeted to finish within 15 minutes on 2 cores.
 VC_SCENE := $(firstword $(wildcard ../shared/assets/VC/glTF/VC.gltf /work/shared/assets/VC/glTF/VC.gltf))
+# The attach section also measures a Vulkan 1.0 application that is not gblens: the test subject
+# tests/subjects/tiler_deferred at 1280x720, its two-subpass G-buffer of four targets streamed.
+TILER := $(BUILD)/tests/subjects/tiler_deferred/tiler_deferred
 bench: build-gblens
-	$(GBLENS) bench builtin:temple $(VC_SCENE) --out out/bench
+	cmake --build $(BUILD) -j $(JOBS) --target tiler_deferred
+	$(GBLENS) bench builtin:temple $(VC_SCENE) --out out/bench \
+	  --attach-app "$(abspath $(TILER)) --mode subpass --size 1280x720 --frames {frames}" \
+	  --attach-app-layout $(abspath tests/subjects/tiler_deferred/layout_subpass.json)
 
 # The numerical stability suite in full (docs/stability.md holds the table of the last run).
 stress: build-gblens

@@ -56,32 +56,9 @@ long rssKb(pid_t pid) {
 // resident memory.
 nlohmann::json runPlain(const std::vector<std::string>& argv, bool layerLoaded, const std::string& log,
                         long* peakKb = nullptr) {
-  std::vector<std::string> env;
-  for (char** e = environ; *e; ++e)
-    if (std::string(*e).rfind("GBLENS_LIVE_SOCKET=", 0) != 0) env.push_back(*e);
-  if (layerLoaded)
-    env.insert(env.end(), {"ENABLE_GBLENS_LIVE=1", "XDG_DATA_DIRS=" + layerFolder() + ":/usr/local/share:/usr/share"});
-  else
-    env.push_back("DISABLE_GBLENS_LIVE=1");
-  std::vector<char*> args, envp;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  for (const std::string& e : env) envp.push_back(const_cast<char*>(e.c_str()));
-  args.push_back(nullptr);
-  envp.push_back(nullptr);
-  posix_spawn_file_actions_t files;
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&files, 1, 2);
-  pid_t pid = -1;
-  const bool started = posix_spawn(&pid, args[0], &files, nullptr, args.data(), envp.data()) == 0;
-  posix_spawn_file_actions_destroy(&files);
-  int status = 0;
-  rusage usage{};
-  if (!started || wait4(pid, &status, 0, &usage) != pid || !WIFEXITED(status)) return nullptr;
-  if (peakKb) *peakKb = usage.ru_maxrss;
   // Its statistics count even when it could not write its PNG (a GPU machine without OpenImageIO's
   // plugins, docs/perf-gpu/h27_carry.sh): the frames were rendered and timed.
-  return renderStats(log);
+  return runWithoutReceiver(argv, layerLoaded, log, peakKb) >= 0 ? renderStats(log) : nullptr;
 }
 
 struct Attached {
@@ -165,13 +142,64 @@ Phases phases(const nlohmann::json& stats) {
   return p;
 }
 
-nlohmann::json ratioJson(const std::vector<double>& ratios) {
+}  // namespace
+
+int runWithoutReceiver(const std::vector<std::string>& argv, bool layerLoaded, const std::string& log, long* peakKb) {
+  std::vector<std::string> env;
+  for (char** e = environ; *e; ++e)
+    if (std::string(*e).rfind("GBLENS_LIVE_SOCKET=", 0) != 0) env.push_back(*e);
+  if (layerLoaded)
+    env.insert(env.end(), {"ENABLE_GBLENS_LIVE=1", "XDG_DATA_DIRS=" + layerFolder() + ":/usr/local/share:/usr/share"});
+  else
+    env.push_back("DISABLE_GBLENS_LIVE=1");
+  std::vector<char*> args, envp;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  for (const std::string& e : env) envp.push_back(const_cast<char*>(e.c_str()));
+  args.push_back(nullptr);
+  envp.push_back(nullptr);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&files, 1, 2);
+  pid_t pid = -1;
+  const bool started = posix_spawn(&pid, args[0], &files, nullptr, args.data(), envp.data()) == 0;
+  posix_spawn_file_actions_destroy(&files);
+  int status = 0;
+  rusage usage{};
+  if (!started || wait4(pid, &status, 0, &usage) != pid || !WIFEXITED(status)) return -1;
+  if (peakKb) *peakKb = usage.ru_maxrss;
+  return WEXITSTATUS(status);
+}
+
+std::string attachRoundsText(const nlohmann::json& frameMs) {
+  std::string text;
+  char number[32];
+  for (const nlohmann::json& m : frameMs) {
+    std::snprintf(number, sizeof(number), "%s%.1f", text.empty() ? "" : ", ", m.get<double>());
+    text += number;
+  }
+  return text;
+}
+
+const char* attachVariantTarget(const std::string& variant) {
+  return variant == "idle" ? "< 1.01" : variant == "every frame" ? "<= 1.10" : "";
+}
+
+nlohmann::json attachVariantRow(const std::string& name, const std::vector<double>& ms, const std::vector<double>& without,
+                                bool ratio) {
+  nlohmann::json row = {{"name", name}, {"frame_ms", ms}};
+  std::vector<double> ratios;
+  for (size_t r = 0; r < ms.size() && r < without.size(); ++r)
+    if (without[r] > 0.0 && ms[r] > 0.0) ratios.push_back(ms[r] / without[r]);
+  if (ratio && !ratios.empty()) row["ratio"] = attachRatioJson(ratios);
+  return row;
+}
+
+nlohmann::json attachRatioJson(const std::vector<double>& ratios) {
   const AbResult ab = abStatistics(ratios);
   return {{"median", ab.median}, {"min", ab.ratios.front()}, {"max", ab.ratios.back()}, {"ci_low", ab.ciLow},
           {"ci_high", ab.ciHigh}, {"confidence", ab.confidence}, {"per_round", ratios}};
 }
-
-}  // namespace
 
 nlohmann::json attachStudy(const AttachBenchSettings& s) {
   const auto start = std::chrono::steady_clock::now();
@@ -210,11 +238,7 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
     }
   nlohmann::json variants = nlohmann::json::array();
   for (size_t v = 0; v < names.size(); ++v) {
-    nlohmann::json row = {{"name", names[v]}, {"frame_ms", ms[v]}};
-    std::vector<double> ratios;
-    for (int r = 0; r < s.rounds; ++r)
-      if (ms[0][size_t(r)] > 0.0 && ms[v][size_t(r)] > 0.0) ratios.push_back(ms[v][size_t(r)] / ms[0][size_t(r)]);
-    if (v > 0 && !ratios.empty()) row["ratio"] = ratioJson(ratios);
+    nlohmann::json row = attachVariantRow(names[v], ms[v], ms[0], v > 0);
     // The steady state apart from the connect: the median frame after the first kConnectFrames, over
     // the same round's without the layer; the hitch: the longest connect frame over that median.
     std::vector<double> steady, hitch;
@@ -224,7 +248,7 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
       if (p.steadyMs > 0.0 && base.steadyMs > 0.0) steady.push_back(p.steadyMs / base.steadyMs);
       if (p.steadyMs > 0.0) hitch.push_back(p.hitchMs);
     }
-    if (v > 0 && !steady.empty()) row["steady_ratio"] = ratioJson(steady);
+    if (v > 0 && !steady.empty()) row["steady_ratio"] = attachRatioJson(steady);
     if (!hitch.empty()) row["connect_hitch_ms"] = hitch;
     variants.push_back(row);
   }
@@ -278,13 +302,8 @@ std::string attachMarkdown(const nlohmann::json& a) {
   md << "| variant | frame ms (per round) | ratio median | interval | steady ratio | hitch ms | target |\n"
         "| --- | --- | --- | --- | --- | --- | --- |\n";
   for (const nlohmann::json& v : a["variants"]) {
-    std::string ms;
-    for (const nlohmann::json& m : v["frame_ms"]) {
-      std::snprintf(line, sizeof(line), "%s%.1f", ms.empty() ? "" : ", ", m.get<double>());
-      ms += line;
-    }
-    const std::string name = v.value("name", "");
-    const char* target = name == "idle" ? "< 1.01" : name == "every frame" ? "<= 1.10" : "";
+    const std::string ms = attachRoundsText(v["frame_ms"]), name = v.value("name", "");
+    const char* target = attachVariantTarget(name);
     double hitch = 0.0;
     for (const nlohmann::json& h : v.value("connect_hitch_ms", nlohmann::json::array())) hitch = std::max(hitch, h.get<double>());
     const std::string steady = v.contains("steady_ratio") ? std::to_string(v["steady_ratio"].value("median", 0.0)).substr(0, 5) : "";

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <vector>
 
 namespace gb {
 
@@ -18,11 +19,30 @@ struct AttachBenchSettings {
   int soakFrames = 10000;    // the soak: frames streamed at soakSize
   std::string soakSize = "160x90";
   std::string gbuffer = "raster";  // the application's --gbuffer (visibility: three targets written by compute)
+  // Another application (bench_attach_app.cpp): its command line, "{frames}" standing for its frame
+  // count, and the layout it streams under; frames: the shorter of its two runs (the longer: 4x).
+  std::string application, applicationLayout;
+  int applicationFrames = 40;
 };
 
+// The application run to its exit without a receiver: the layer not loaded, or loaded and idle; its
+// output to `log`. Its exit status (-1: it did not start or was killed); `peakKb`: its peak memory.
+int runWithoutReceiver(const std::vector<std::string>& argv, bool layerLoaded, const std::string& log, long* peakKb = nullptr);
+// A variant's bench.json row: its frame ms per round and, with `ratio`, its ratios to `without`'s.
+nlohmann::json attachVariantRow(const std::string& name, const std::vector<double>& ms, const std::vector<double>& without,
+                                bool ratio);
+// bench.md: a variant's frame ms per round ("37.7, 37.5, 38.0"), and its target ("" none).
+std::string attachRoundsText(const nlohmann::json& frameMs);
+const char* attachVariantTarget(const std::string& variant);
+// Per-round ratios as bench.json gives them: median, range, the interval of the median, each round's.
+nlohmann::json attachRatioJson(const std::vector<double>& ratios);
 // Runs the study with the gblens executable this process is (it starts itself as the application).
 nlohmann::json attachStudy(const AttachBenchSettings& s);
 // The bench.md section.
 std::string attachMarkdown(const nlohmann::json& study);
+// The same four variants for another application (null without one), timed from outside: each run
+// at two frame counts, the frame time the difference of their wall times over the difference.
+nlohmann::json attachApplicationStudy(const AttachBenchSettings& s);
+std::string attachApplicationMarkdown(const nlohmann::json& study);
 
 }  // namespace gb

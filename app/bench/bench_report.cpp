@@ -202,6 +202,7 @@ nlohmann::json benchJson(const BenchReport& r) {
                   {"relative_max", d.relMax}, {"relative_mean", d.relMean}});
   j["depth_range"] = dr;
   if (!r.attach.is_null()) j["attach"] = r.attach;
+  if (!r.attachApplication.is_null()) j["attach_application"] = r.attachApplication;
   if (!r.temporal.is_null()) j["motion"] = r.temporal;
   nlohmann::json dt = nlohmann::json::array();
   for (const DepthTestRow& d : r.depthTest)
@@ -365,6 +366,7 @@ std::string benchMarkdown(const BenchReport& r) {
   }
   md << depthTestMarkdown(r);
   md << attachMarkdown(r.attach) << "\n";
+  md << attachApplicationMarkdown(r.attachApplication);
   md << temporalMarkdown(r.temporal) << "\n";
   md << "## Targets\n\n| target | scene | measured | bound | met |\n| --- | --- | --- | --- | --- |\n";
   for (const auto& t : targetsJson(r))

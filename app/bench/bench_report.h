@@ -175,6 +175,7 @@ struct BenchReport {
   BenchTolerances tolerances;
   nlohmann::json temporal;  // gblens motion per pair vs compare (bench_temporal.h); null when not run
   nlohmann::json attach;  // the cost of gblens attach (bench_attach.h); null when not run
+  nlohmann::json attachApplication;  // the same for another application (--attach-app); null without one
 };
 
 nlohmann::json benchJson(const BenchReport& r);

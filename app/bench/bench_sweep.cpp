@@ -75,7 +75,7 @@ nlohmann::json benchMeta(const GpuContext& ctx, const BenchPlan& p) {
   // (version 1 was unversioned), 3 each method row's "overlap", 4 each method row's "steady_ms" and
   // methods_settings' "steady_ms" (methods.csv a steady_ms column); "version" is gblens's.
   return {{"format", "gblens-bench"},
-          {"format_version", 4},
+          {"format_version", 5},
           {"device", ctx.deviceName},
           {"driver", ctx.driverName},
           {"git", gitHash()},
@@ -331,6 +331,7 @@ BenchReport runBench(GpuContext& ctx, const BenchPlan& p) {
     std::fprintf(stderr, "gblens bench: no time left for the depth-range study (--budget)\n");
   if (p.runAttach) {
     report.attach = attachStudy(s.attach);
+    report.attachApplication = attachApplicationStudy(s.attach);
     std::fprintf(stderr, "gblens bench: attach done [%s]\n", minutes(sweepSeconds(run.start)).c_str());
   }
   if (p.runTemporal) {

@@ -215,6 +215,7 @@ int runAttach(const AttachOptions& o) {
         status = 0;
         break;
       }
+      s.recycle(std::move(frame));  // its buffers take the next frame's texels (no fresh pages each frame)
     }
   }
   s.detach();

@@ -132,6 +132,13 @@ Command addBenchCommand(CLI::App& root) {
   cmd->add_option("--attach-frames", s->attach.frames, "gblens attach's cost: frames per run of the application")
       ->check(CLI::Range(3, 100000))
       ->capture_default_str();
+  cmd->add_option("--attach-app", s->attach.application,
+                  "gblens attach's cost for another application: its command line (words split at spaces), {frames} for its frame count "
+                  "(e.g. \"./tiler_deferred --size 1280x720 --frames {frames}\"), with --attach-app-layout");
+  cmd->add_option("--attach-app-layout", s->attach.applicationLayout, "the layout --attach-app's application streams under");
+  cmd->add_option("--attach-app-frames", s->attach.applicationFrames, "--attach-app: frames of its shorter run (the longer: 4x)")
+      ->check(CLI::Range(2, 100000))
+      ->capture_default_str();
   cmd->add_option("--attach-soak", s->attach.soakFrames, "gblens attach's cost: frames of the memory soak")
       ->check(CLI::Range(100, 1000000))
       ->capture_default_str();
@@ -139,6 +146,13 @@ Command addBenchCommand(CLI::App& root) {
             std::string error;
             if (!finishCommonOptions(*o, error)) {
               std::fprintf(stderr, "gblens bench: %s\n", error.c_str());
+              return 2;
+            }
+            const AttachBenchSettings& a = s->attach;
+            if (!a.application.empty() && (a.applicationLayout.empty() || a.application.find("{frames}") == std::string::npos)) {
+              std::fprintf(stderr, "gblens bench: --attach-app \"%s\": %s\n", a.application.c_str(),
+                           a.applicationLayout.empty() ? "needs --attach-app-layout (the layout it streams under)"
+                                                       : "needs {frames} where its frame count goes (it is run at two)");
               return 2;
             }
             return bench(*o, *s);

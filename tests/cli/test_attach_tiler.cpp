@@ -315,4 +315,38 @@ TEST(RenderDoc, AMultisampledCaptureImportsEverySampleAsTheApplicationsOwnDump) 
 }
 
 }  // namespace
+// make bench's attach section for another application (`--attach-app`, bench_attach_app.cpp): the
+// four variants of the Vulkan 1.0 subject, each timed, its frames streamed through shared memory;
+// a command line without {frames}, or without its layout, is refused in one line naming the flag.
+TEST(TilerAttach, TheBenchTimesAnotherApplicationsFourVariants) {
+  const std::string dir = freshDir("attach_tiler_bench");
+  const std::string app = "'" + tiler() + " --mode subpass --size 160x90 --frames {frames}'";
+  const std::string common = "'" + std::string(GBLENS_BINARY) + "' bench --only attach --attach-rounds 1 --attach-soak 100 "
+                             "--attach-frames 3 --attach-size 96x54 --attach-app-frames 4 --out '" + dir + "/out' --attach-app ";
+  const RunResult r = runShell(common + app + " --attach-app-layout '" + tilerDir() + "/layout_subpass.json'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const json bench = json::parse(std::ifstream(dir + "/out/bench.json"), nullptr, false);
+  ASSERT_TRUE(bench.is_object() && bench.contains("attach_application")) << r.output;
+  const json& a = bench["attach_application"];
+  EXPECT_EQ(a["frames"], json::array({4, 16}));
+  std::vector<std::string> names;
+  for (const json& v : a["variants"]) {
+    names.push_back(v["name"]);
+    ASSERT_EQ(v["frame_ms"].size(), 1u) << v.dump();
+    EXPECT_GT(v["frame_ms"][0].get<double>(), 0.0) << v.dump();
+    EXPECT_EQ(v.contains("ratio"), names.size() > 1) << v.dump();
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"without", "idle", "every frame", "every 4th frame"}));
+  EXPECT_GE(a["streaming"]["received"].get<int>(), 8) << a.dump();  // of the longer run's 16 (the first wait for the ring)
+  EXPECT_TRUE(a["streaming"]["layer"]["ring_shared"].get<bool>());    // a Vulkan 1.0 application too
+  std::ifstream md(dir + "/out/bench.md");
+  EXPECT_NE(std::string(std::istreambuf_iterator<char>(md), {}).find("the layer's cost for another application"), std::string::npos);
+  const RunResult noLayout = runShell(common + app);
+  EXPECT_EQ(noLayout.exitCode, 2);
+  EXPECT_NE(noLayout.output.find("needs --attach-app-layout"), std::string::npos) << noLayout.output;
+  const RunResult noFrames = runShell(common + "'" + tiler() + " --frames 4' --attach-app-layout x.json");
+  EXPECT_EQ(noFrames.exitCode, 2);
+  EXPECT_NE(noFrames.output.find("needs {frames}"), std::string::npos) << noFrames.output;
+}
+
 }  // namespace gb

@@ -3,7 +3,7 @@
 # interval, and for each streamed frame shown the latency from the application's frame end to the
 # viewer taking it (attach_frame) and to the present that put it on screen (attach_shown), in ms and
 # in application frames; with the grid of every view of the layout (key 1) or the first view alone.
-# Usage: [SHOT=FILE.png] [GBLENS_VIEW_DECODE=cpu] tests/gui/measure_attach.sh [BUILD_DIR] [one|grid] [SECONDS] [WINDOW] -- APP ARGS...
+# Usage: [SHOT=FILE.png] [CLICK="X Y"] [KEYS="space x"] [GBLENS_VIEW_DECODE=cpu] tests/gui/measure_attach.sh [BUILD_DIR] [one|grid] [SECONDS] [WINDOW] -- APP ARGS...
 #   (defaults: build grid 15 1200x760; APP: the foreign test subject with its layout, 320x180)
 set -eu
 BUILD=${1:-build}; VIEWS=${2:-grid}; SECONDS_=${3:-15}; WINDOW=${4:-1200x760}
@@ -45,6 +45,11 @@ done
 WID=$(xdotool search --onlyvisible --name '^gblens' | head -1)
 [ "$VIEWS" = grid ] && xdotool key --window "$WID" 1
 sleep "$SECONDS_"
+if [ -n "${CLICK:-}" ]; then  # CLICK="X Y": a click there (window coordinates: the probe), then KEYS
+  xdotool mousemove --window "$WID" $CLICK click 1
+  sleep 1
+fi
+for k in ${KEYS:-}; do xdotool key --window "$WID" "$k"; sleep 0.5; done
 if [ -n "${SHOT:-}" ]; then  # SHOT=FILE.png: the window as it was at the end, for people to look at
   xwd -root -silent -display "$DISPLAY" > "$OUT/shot.xwd" && convert "xwd:$OUT/shot.xwd" "$SHOT"
 fi

@@ -107,24 +107,30 @@ TEST_F(GuiCompareTest, TheSwipeFollowsTheMouseAndEachSideIsItsCapture) {
              std::abs(j["views"][0]["split_at"].get<double>() - at) < 2.0 / double(r[2]);
     });
     ASSERT_FALSE(layout.is_null()) << "the swipe did not follow the mouse to " << at;
-    gui::Screenshot shot;
-    std::string error;
-    ASSERT_TRUE(gui::screenshot(xvfb_.display, (dir_ / ("swipe_" + std::to_string(int(at * 100)) + ".png")).string(), shot, error))
-        << error;
     const json& view = layout["views"][0];
     const double split = double(view["rect"][0]) + double(view["rect"][2]) * view["split_at"].get<double>();
     int worstA = 0, worstB = 0, checkedA = 0, checkedB = 0;
-    for (int y = finalA.height / 3; y < finalA.height; y += 2)  // below the labels
-      for (int x = 0; x < finalA.width; x += 2) {
-        const auto [sx, sy] = screenOf(view, x, y);
-        if (std::abs(sx - split) < 8 || std::abs(sx - mx) < 12 && std::abs(sy - my) < 12) continue;  // the line, the mark
-        const Rgb8& side = sx < split ? finalA : finalB;
-        int d = 0;
-        for (int c = 0; c < 3; ++c)
-          d = std::max(d, std::abs(int(std::lround(shot.at(sx, sy)[c] * 255.0f)) - int(side.rgb[(size_t(y) * side.width + x) * 3 + size_t(c)])));
-        (sx < split ? worstA : worstB) = std::max(sx < split ? worstA : worstB, d);
-        ++(sx < split ? checkedA : checkedB);
-      }
+    // The layout event follows the present, but Xvfb may show the frame a little later (a loaded
+    // machine): the screen is read again, up to five times, until it shows the swipe there.
+    for (int attempt = 0; attempt < 5 && (attempt == 0 || worstA > 1 || worstB > 1); ++attempt) {
+      if (attempt) std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      gui::Screenshot shot;
+      std::string error;
+      ASSERT_TRUE(gui::screenshot(xvfb_.display, (dir_ / ("swipe_" + std::to_string(int(at * 100)) + ".png")).string(), shot, error))
+          << error;
+      worstA = worstB = checkedA = checkedB = 0;
+      for (int y = finalA.height / 3; y < finalA.height; y += 2)  // below the labels
+        for (int x = 0; x < finalA.width; x += 2) {
+          const auto [sx, sy] = screenOf(view, x, y);
+          if (std::abs(sx - split) < 8 || std::abs(sx - mx) < 12 && std::abs(sy - my) < 12) continue;  // the line, the mark
+          const Rgb8& side = sx < split ? finalA : finalB;
+          int d = 0;
+          for (int c = 0; c < 3; ++c)
+            d = std::max(d, std::abs(int(std::lround(shot.at(sx, sy)[c] * 255.0f)) - int(side.rgb[(size_t(y) * side.width + x) * 3 + size_t(c)])));
+          (sx < split ? worstA : worstB) = std::max(sx < split ? worstA : worstB, d);
+          ++(sx < split ? checkedA : checkedB);
+        }
+    }
     EXPECT_GT(checkedA, 100);
     EXPECT_GT(checkedB, 100);
     EXPECT_LE(worstA, 1) << "left of the swipe at " << at << " is not A";
