@@ -68,13 +68,13 @@ fixtures:
 # does not load is skipped with a message). Budgeted to finish within 15 minutes on 2 cores.
 VC_SCENE := $(firstword $(wildcard ../shared/assets/VC/glTF/VC.gltf /work/shared/assets/VC/glTF/VC.gltf))
 # The attach section also measures a Vulkan 1.0 application that is not gblens: the test subject
-# tests/subjects/tiler_deferred at 1280x720, its two-subpass G-buffer of four targets streamed.
+# tests/subjects/tiler_deferred at 1280x720, the four targets of its two-subpass G-buffer streamed.
 TILER := $(BUILD)/tests/subjects/tiler_deferred/tiler_deferred
 bench: build-gblens
 	cmake --build $(BUILD) -j $(JOBS) --target tiler_deferred
 	$(GBLENS) bench builtin:temple $(VC_SCENE) --out out/bench \
 	  --attach-app "$(abspath $(TILER)) --mode subpass --size 1280x720 --frames {frames}" \
-	  --attach-app-layout $(abspath tests/subjects/tiler_deferred/layout_subpass.json)
+	  --attach-app-layout $(abspath tests/subjects/tiler_deferred/layout_subpass_gbuffer.json)
 
 # The numerical stability suite in full (docs/stability.md holds the table of the last run).
 stress: build-gblens
