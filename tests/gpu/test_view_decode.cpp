@@ -253,29 +253,66 @@ void fillTexels(FrameSnapshot& f, std::mt19937& rng) {
   }
 }
 
+// The foreign G-buffer's frame: standard Z, or reversed Z with a left-handed view (D3D's), whose
+// hardware depth's far value is 0, not 1.
+FrameSnapshot foreignFrame(const Layout& layout, bool reversed, std::mt19937& rng) {
+  FrameSnapshot f;
+  f.setLayout(layout);
+  CameraDesc desc;
+  desc.worldFromEye = glm::inverse(glm::dmat4(glm::lookAt(glm::dvec3(3, 1, 5), glm::dvec3(0, 0.5, 0), glm::dvec3(0, 1, 0))));
+  f.camera = makeCamera(desc, layout.width, layout.height, reversed);
+  f.options.width = layout.width;
+  f.options.height = layout.height;
+  fillTexels(f, rng);
+  if (reversed) {
+    f.layout.camera.leftHanded = true;
+    for (size_t i = 0; i < f.images[8].image.data.size(); i += 8) std::memset(f.images[8].image.data.data() + i, 0, 4);
+  }
+  return f;
+}
+
+Layout foreignLayout() {
+  Layout layout;
+  std::string error;
+  EXPECT_TRUE(parseLayout(nlohmann::json::parse(kForeignLayout), "foreign.json", layout, error)) << error;
+  return layout;
+}
+
 }  // namespace
 
 TEST_F(GpuTest, AForeignGBuffersViewsDecodeOnTheGpuAsOnTheCpu) {
-  Layout layout;
-  std::string error;
-  ASSERT_TRUE(parseLayout(nlohmann::json::parse(kForeignLayout), "foreign.json", layout, error)) << error;
+  const Layout layout = foreignLayout();
   std::mt19937 rng(34);
   for (bool reversed : {false, true}) {
-    FrameSnapshot f;
-    f.setLayout(layout);
-    CameraDesc desc;
-    desc.worldFromEye = glm::inverse(glm::dmat4(glm::lookAt(glm::dvec3(3, 1, 5), glm::dvec3(0, 0.5, 0), glm::dvec3(0, 1, 0))));
-    f.camera = makeCamera(desc, layout.width, layout.height, reversed);
-    f.options.width = layout.width;
-    f.options.height = layout.height;
-    fillTexels(f, rng);
-    if (reversed) {  // a left-handed view (D3D's) and reversed Z: the far value is 0, not 1
-      f.layout.camera.leftHanded = true;
-      for (size_t i = 0; i < f.images[8].image.data.size(); i += 8) std::memset(f.images[8].image.data.data() + i, 0, 4);
-    }
+    const FrameSnapshot f = foreignFrame(layout, reversed, rng);
     SCOPED_TRACE(reversed ? "reversed Z" : "standard Z");
     EXPECT_EQ(expectEveryViewAsTheCpuDecodesIt(ctx(), f, 2e-5), int(layoutViews(f.layout).size()));
   }
+}
+
+// More views than the decoder's 64 parameter slots (the foreign layout's 18 views four times over)
+// are decoded in turns, each as the CPU decodes it.
+TEST_F(GpuTest, MoreViewsThanParameterSlotsDecodeInTurns) {
+  std::mt19937 rng(7);
+  const FrameSnapshot f = foreignFrame(foreignLayout(), false, rng);
+  std::vector<ViewDef> views;
+  for (int copy = 0; copy < 4; ++copy)
+    for (const ViewDef& v : layoutViews(f.layout)) views.push_back(v);
+  std::vector<int> which(views.size());
+  for (size_t k = 0; k < which.size(); ++k) which[k] = int(k);
+  ASSERT_GT(which.size(), 64u);
+  ViewDecoder decoder;
+  initViewDecoder(decoder, ctx());
+  ViewImages images;
+  const std::vector<std::vector<RangeStats>> ranges =
+      decodeViewsOnGpu(decoder, ctx(), f, views, which, std::vector<bool>(views.size(), true), images);
+  for (int k : which) {
+    const Differences d = compareImages(readBack(ctx(), images.images[size_t(k)], views[size_t(k)]), viewImage(f, views[size_t(k)]), 2e-5);
+    EXPECT_EQ(d.values + d.empties + d.specials, 0u) << views[size_t(k)].name << " (view " << k << ")";
+    EXPECT_FALSE(ranges[size_t(k)].empty()) << k;
+  }
+  destroyViewImages(images, ctx());
+  destroyViewDecoder(decoder, ctx());
 }
 
 }  // namespace gb

@@ -265,7 +265,14 @@ std::vector<std::vector<RangeStats>> decodeViewsOnGpu(ViewDecoder& d, GpuContext
                                                       const std::vector<bool>& ranges, ViewImages& images) {
   std::vector<std::vector<RangeStats>> out(views.size());
   if (which.empty()) return out;
-  GB_ASSERT(which.size() <= kMaxViews);
+  if (which.size() > kMaxViews) {  // a layout of more views than the parameter slots: in turns
+    for (size_t at = 0; at < which.size(); at += kMaxViews) {
+      const std::vector<int> part(which.begin() + long(at), which.begin() + long(std::min(which.size(), at + kMaxViews)));
+      std::vector<std::vector<RangeStats>> some = decodeViewsOnGpu(d, ctx, f, views, part, ranges, images);
+      for (int k : part) out[size_t(k)] = std::move(some[size_t(k)]);
+    }
+    return out;
+  }
   if (!images.images.empty()) vkDeviceWaitIdle(ctx.device);  // the view images are sampled by frames in flight
   images.images.resize(std::max(images.images.size(), views.size()));
   std::vector<bool> used(f.images.size(), false);
