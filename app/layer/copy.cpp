@@ -243,11 +243,9 @@ void recordTransfers(DeviceData& d, VkCommandBuffer cmd, const std::vector<VkIma
   stampCopyTiming(d, cmd, timing, 1);
   uint32_t stamp = 2;
   for (const Region& r : regions) {
-    if (measureMode() == 1)
-      ;
-    else if (r.stage)
+    if (measureMode() != 1 && r.stage)
       vk.CmdCopyImage(cmd, r.image, r.layout, r.stage, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r.samples);
-    else
+    else if (measureMode() != 1)
       vk.CmdCopyImageToBuffer(cmd, r.image, r.layout, r.buffer, 1, &r.copy);
     stampCopyTiming(d, cmd, timing, stamp++);
   }

@@ -20,7 +20,6 @@ struct CopyTiming {
   std::mutex lock;
   VkQueryPool pool = VK_NULL_HANDLE;
   double periodNs = 1.0;
-  uint64_t mask = ~0ull;  // the timestamps' valid bits
   uint32_t next = 0;
   struct Block {
     std::vector<std::string> copies;  // what each copy command copies
@@ -49,7 +48,7 @@ void collect(DeviceData& d, CopyTiming& t, uint32_t block) {
   const uint32_t n = uint32_t(b.copies.size()) + 4;
   uint64_t q[kQueries];
   if (d.vk.GetQueryPoolResults(d.device, t.pool, block * kQueries, n, sizeof q, q, 8, VK_QUERY_RESULT_64_BIT) != VK_SUCCESS) return;
-  auto ns = [&](uint32_t from, uint32_t to) { return double((q[to] - q[from]) & t.mask) * t.periodNs; };
+  auto ns = [&](uint32_t from, uint32_t to) { return double(q[to] - q[from]) * t.periodNs; };
   ++t.measured;
   t.transitionsNs += ns(0, 1);
   for (uint32_t i = 0; i < b.copies.size(); ++i) {
@@ -66,6 +65,8 @@ void collect(DeviceData& d, CopyTiming& t, uint32_t block) {
 
 int beginCopyTiming(DeviceData& d, VkCommandBuffer cmd, std::vector<std::string> copies) {
   if (!copyTimingOn() || copies.size() + 4 > kQueries) return -1;
+  static std::mutex made;  // command buffers may be recorded on several threads at once
+  std::unique_lock once(made);
   if (!d.timing) {
     auto t = std::make_unique<CopyTiming>();
     VkPhysicalDeviceProperties props{};
@@ -78,6 +79,7 @@ int beginCopyTiming(DeviceData& d, VkCommandBuffer cmd, std::vector<std::string>
     if (d.vk.CreateQueryPool(d.device, &qi, nullptr, &t->pool) != VK_SUCCESS) return -1;
     d.timing = std::move(t);
   }
+  once.unlock();
   CopyTiming& t = *d.timing;
   std::lock_guard lock(t.lock);
   const uint32_t block = t.next++ % kBlocks;
