@@ -175,7 +175,8 @@ std::string attachRoundsText(const nlohmann::json& frameMs) {
   std::string text;
   char number[32];
   for (const nlohmann::json& m : frameMs) {
-    std::snprintf(number, sizeof(number), "%s%.1f", text.empty() ? "" : ", ", m.get<double>());
+    if (m.is_number()) std::snprintf(number, sizeof(number), "%s%.1f", text.empty() ? "" : ", ", m.get<double>());
+    else std::snprintf(number, sizeof(number), "%sfailed", text.empty() ? "" : ", ");  // null: the run failed
     text += number;
   }
   return text;

@@ -4,6 +4,7 @@
 // difference of the wall times over the difference of the counts (start-up, pipeline compiles and a
 // receiver's connect cancel).
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -77,7 +78,9 @@ nlohmann::json attachApplicationStudy(const AttachBenchSettings& s) {
         t[i] = v < 2 ? runAlone(argv, v == 1)
                      : runStreamed(s.applicationLayout, v == 2 ? 1 : s.every, argv, v == 2 && i ? &streamed : nullptr);
       }
-      ms[v].push_back(t[0] > 0.0 && t[1] > 0.0 ? (t[1] - t[0]) * 1e3 / double(many - few) : 0.0);
+      // A run that failed: NaN (null in bench.json). On a loaded machine with short runs the
+      // difference can even be negative; it is written as it came.
+      ms[v].push_back(t[0] > 0.0 && t[1] > 0.0 ? (t[1] - t[0]) * 1e3 / double(many - few) : std::nan(""));
     }
   nlohmann::json variants = nlohmann::json::array();
   for (size_t v = 0; v < names.size(); ++v) {
