@@ -30,10 +30,10 @@ std::string fileBytes(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// `gblens attach ARGS -- tiler_deferred --mode subpass --frames 6` with validation on (and `env`).
-RunResult attachTiler(const std::string& args, const std::string& env = "") {
+// `gblens attach ARGS -- tiler_deferred --mode subpass --frames N` (6) with validation on (and `env`).
+RunResult attachTiler(const std::string& args, const std::string& env = "", int frames = 6) {
   return runShell(env + " GBLENS_VALIDATE=1 '" + std::string(GBLENS_BINARY) + "' attach --layout '" + tilerLayout() + "' " +
-                  args + " -- '" + tiler() + "' --mode subpass --frames 6");
+                  args + " -- '" + tiler() + "' --mode subpass --frames " + std::to_string(frames));
 }
 
 // gblens's lines of the output (the application prints its own).
@@ -163,9 +163,9 @@ TEST(AttachSequence, BadRangesAndARangePastTheLastFrameFailInOneLineWithNothingW
 // --history K on a stream of --frames: the last K frames decoded are kept with the application's
 // numbers, and their memory is K frames' bytes.
 TEST(AttachSequence, HistoryKeepsTheLastKFramesWithinKFramesBytes) {
-  // 3 of the application's 6 frames (more than K = 2): its first frames go without copies while the
-  // layer's thread makes the ring and one may be dropped under load, so 4 did not always come.
-  const RunResult r = attachTiler("--frames 3 --history 2 --stats");
+  // 3 of the application's 16 frames (more than K = 2): its first frames go without copies while the
+  // layer's thread makes the ring and some may be dropped under load (3 of 6 did not always come).
+  const RunResult r = attachTiler("--frames 3 --history 2 --stats", "", 16);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const size_t brace = r.output.find("{\n");
   ASSERT_NE(brace, std::string::npos) << r.output;
@@ -176,7 +176,7 @@ TEST(AttachSequence, HistoryKeepsTheLastKFramesWithinKFramesBytes) {
   EXPECT_EQ(h["limit"], 2);
   ASSERT_EQ(h["app_frames"].size(), 2u) << h.dump();
   EXPECT_LT(h["app_frames"][0].get<uint64_t>(), h["app_frames"][1].get<uint64_t>());
-  EXPECT_LE(h["app_frames"][1].get<uint64_t>(), 5u);
+  EXPECT_LE(h["app_frames"][1].get<uint64_t>(), 15u);
   // Six 320x180 targets, each at least a byte a texel; both frames the same size; the sum is the bound.
   const uint64_t one = h["frame_bytes"][0];
   EXPECT_GE(one, 320u * 180u * 6u);
