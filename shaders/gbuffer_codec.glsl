@@ -1,17 +1,6 @@
 // How normal_shadow stores a unit normal and the shadow term, per NORMAL_ENCODING.
 
-// Octahedral mapping (Meyer et al. 2010) of a unit vector to [-1,1]^2 and back.
-vec2 octEncode(vec3 n) {
-  n /= abs(n.x) + abs(n.y) + abs(n.z);
-  vec2 p = n.xy;
-  if (n.z < 0.0) p = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-  return p;
-}
-vec3 octDecode(vec2 p) {
-  vec3 n = vec3(p, 1.0 - abs(p.x) - abs(p.y));
-  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-  return normalize(n);
-}
+#include "octahedral.glsl"
 
 // Precise octahedral encoding (Cigolle et al., JCGT 2014): of the four codes around the projection
 // (floor/ceil of each coordinate, `scale` = the largest snorm code), the one whose decoded direction

@@ -8,6 +8,8 @@
 // Operation for operation the CPU decoder's (renderer/core/decode.cpp), in float.
 // GB_VIEW_UINT: an integer view (one R32_UINT component).
 #include "shared.h"
+#include "octahedral.glsl"
+#include "range_order.glsl"
 
 layout(local_size_x = 16, local_size_y = 16) in;
 // What a view's parameters say about its texels and kind, as specialisation constants (the values of
@@ -106,12 +108,6 @@ bool hasSurface(ViewDecodeParams q, uvec2 target) {
   return drawn(q.surfaceBackground, (FLAGS & kDecodeFlagSurfaceHardware) != 0u, q.values.zw, raw, v);
 }
 
-vec3 octDecode(vec2 p) {
-  vec3 n = vec3(p, 1.0 - abs(p.x) - abs(p.y));
-  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-  return normalize(n);
-}
-
 // decode.cpp decodeNormalValues.
 vec3 normalValues(uint e, vec4 c, uvec4 raw) {
   if (e == kXyz) return c.xyz;
@@ -132,11 +128,6 @@ vec3 normalValues(uint e, vec4 c, uvec4 raw) {
 }
 
 shared uint sMin[4], sMax[4], sCount[4], sNan[4], sInf[4], sNeg[4];
-
-uint orderedFromFloat(float f) {
-  uint b = floatBitsToUint(f);
-  return (b & 0x80000000u) != 0u ? ~b : b | 0x80000000u;
-}
 
 // One invocation's statistics of a component over its texels (in registers: lavapipe runs shared
 // atomics one lane at a time, so they are taken once an invocation, not once a texel).

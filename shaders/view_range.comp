@@ -16,11 +16,7 @@ layout(set = 1, binding = 2, std430) buffer Results { RangeResult results[]; };
 
 shared uint sMin, sMax, sCount, sNan, sInf, sNeg;
 
-// Monotonic map of floats to uints (negative floats below positive ones), so atomicMin/Max work.
-uint orderedFromFloat(float f) {
-  uint b = floatBitsToUint(f);
-  return (b & 0x80000000u) != 0u ? ~b : b | 0x80000000u;
-}
+#include "range_order.glsl"
 
 void main() {
   if (gl_LocalInvocationIndex == 0) {

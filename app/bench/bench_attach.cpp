@@ -61,16 +61,10 @@ nlohmann::json runPlain(const std::vector<std::string>& argv, bool layerLoaded, 
   return runWithoutReceiver(argv, layerLoaded, log, peakKb) >= 0 ? renderStats(log) : nullptr;
 }
 
-struct Attached {
-  nlohmann::json app;   // the application's --stats
-  LiveCounts counts;    // the receiver's, with the layer's figures
-  nlohmann::json soak;  // memory early and late (soak runs)
-  long peakKb = 0;      // the application's peak resident memory
-};
+}  // namespace
 
-// The application under the layer, the receiver decoding every frame it gets until the end.
 Attached runAttached(const std::string& layout, int every, const std::vector<std::string>& argv, const std::string& log,
-                     int soakFrames = 0) {
+                     int soakFrames) {
   Attached a;
   LiveOptions o;
   o.layout = layout;
@@ -100,8 +94,11 @@ Attached runAttached(const std::string& layout, int every, const std::vector<std
   a.counts = s.counts();
   a.app = renderStats(log);
   a.peakKb = s.applicationPeakKb();
+  a.exitStatus = s.exitStatus();
   return a;
 }
+
+namespace {
 
 // The four G-buffer targets of builtin:gblens under the default options, as a layout file.
 std::string writeLayout(const std::string& dir) {

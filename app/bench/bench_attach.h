@@ -6,6 +6,8 @@
 #pragma once
 #include <nlohmann/json.hpp>
 
+#include "views/live/live.h"
+
 #include <string>
 #include <vector>
 
@@ -25,6 +27,18 @@ struct AttachBenchSettings {
   int applicationFrames = 40;
 };
 
+// The application under the layer, the receiver decoding every frame it gets (every Nth) until
+// the application's end, giving each back as the viewer does; its output to `log` (its --stats read
+// from there, gblens render's); soakFrames: its memory early and late too.
+struct Attached {
+  nlohmann::json app;   // the application's --stats (gblens render's; null for another)
+  LiveCounts counts;    // the receiver's, with the layer's figures
+  nlohmann::json soak;  // memory early and late (soak runs)
+  long peakKb = 0;      // the application's peak resident memory
+  int exitStatus = -1;  // the application's (-1: the session did not start)
+};
+Attached runAttached(const std::string& layout, int every, const std::vector<std::string>& argv, const std::string& log,
+                     int soakFrames = 0);
 // The application run to its exit without a receiver: the layer not loaded, or loaded and idle; its
 // output to `log`. Its exit status (-1: it did not start or was killed); `peakKb`: its peak memory.
 int runWithoutReceiver(const std::vector<std::string>& argv, bool layerLoaded, const std::string& log, long* peakKb = nullptr);

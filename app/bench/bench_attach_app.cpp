@@ -10,7 +10,6 @@
 
 #include "app/bench/bench_attach.h"
 #include "app/bench/bench_report.h"
-#include "views/live/live.h"
 
 namespace gb {
 
@@ -36,29 +35,15 @@ double runAlone(const std::vector<std::string>& argv, bool layerLoaded) {
                                                                    : -1.0;
 }
 
-// Seconds to the application's exit under a receiver decoding every frame it gets (every Nth).
+// Seconds to the application's exit under a receiver decoding every frame it gets (every Nth);
+// negative when it failed.
 double runStreamed(const std::string& layout, int every, const std::vector<std::string>& argv, LiveCounts* counts) {
-  LiveOptions o;
-  o.layout = layout;
-  o.argv = argv;
-  o.every = uint32_t(every);
-  o.ringOffThread = true;  // as the viewer streams
-  o.log = "/dev/null";      // its output, as runAlone's
-  LiveSession s;
-  std::string error;
   const auto start = Clock::now();
-  if (!s.start(o, error)) {
-    std::fprintf(stderr, "gblens bench: attach: %s\n", error.c_str());
-    return -1.0;
-  }
-  FrameSnapshot f;
-  while (s.running() || s.attached())
-    if (s.wait(f, 0.5)) s.recycle(std::move(f));
+  const Attached a = runAttached(layout, every, argv, "/dev/null");  // its output, as runAlone's
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  if (counts) *counts = s.counts();
-  return s.exitStatus() == 0 ? seconds : -1.0;
+  if (counts) *counts = a.counts;
+  return a.exitStatus == 0 ? seconds : -1.0;
 }
-
 
 }  // namespace
 

@@ -230,7 +230,7 @@ void recordTransfers(DeviceData& d, VkCommandBuffer cmd, const std::vector<VkIma
                       (r.stage ? " (samples)" : ""));
     }
   }
-  const int timing = copyTimingOn() ? beginCopyTiming(d, cmd, names) : -1;
+  const int timing = beginCopyTiming(d, cmd, std::move(names));  // -1: not timed
   stampCopyTiming(d, cmd, timing, 0);
   // Every earlier write before these copies: the buffers' (whoever made them), and the ring's own
   // from an earlier pass or an earlier submission of this command buffer (the copies write the same

@@ -74,7 +74,6 @@ void decodeShown(Viewer& v) {
   v.attachShown = visibleViews(m);
   v.decodedA.assign(m.views.size(), CpuImage{});
   v.gpuRanges.assign(m.views.size(), {});
-  v.gpuDecoded.assign(m.views.size(), false);
   std::vector<int> cpu, gpu;
   std::vector<bool> onGpu(m.views.size(), false);
   for (int k : v.attachShown) {

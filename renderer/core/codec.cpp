@@ -23,7 +23,7 @@ glm::dvec3 octDecode(glm::dvec2 p) {
   return glm::normalize(n);
 }
 
-// The shader's octEncode/octDecode in float (shaders/gbuffer_codec.glsl), operation for operation.
+// The shader's octEncode/octDecode in float (shaders/octahedral.glsl), operation for operation.
 static glm::vec2 octEncodeFloat(glm::vec3 n) {
   n /= std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
   glm::vec2 p(n.x, n.y);

@@ -25,18 +25,6 @@ static bool packScene(Renderer& r) {
   return visibilityPacking(s.instances.size(), maxTriangles, r.visibilityPacking, r.visibilityRefusal);
 }
 
-static VkDescriptorSetLayout setLayout(GpuContext& ctx, const std::vector<VkDescriptorSetLayoutBinding>& bindings,
-                                       VkDescriptorSetLayoutCreateFlags flags, const char* name) {
-  VkDescriptorSetLayoutCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  ci.flags = flags;
-  ci.bindingCount = uint32_t(bindings.size());
-  ci.pBindings = bindings.data();
-  VkDescriptorSetLayout l;
-  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &ci, nullptr, &l));
-  setName(ctx, uint64_t(l), VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, name);
-  return l;
-}
-
 static void createLayouts(Renderer& r) {
   GpuContext& ctx = *r.ctx;
   const VkShaderStageFlags cs = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -47,9 +35,9 @@ static void createLayouts(Renderer& r) {
     pass.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr});
   for (uint32_t b : {gpu::kResolveBindingBaseTexture, gpu::kResolveBindingNormalTexture})
     pass.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr});
-  r.resolveSetLayout = setLayout(ctx, pass, VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR, "set1.resolve");
+  r.resolveSetLayout = createSetLayout(ctx, pass, VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR, "set1.resolve");
   r.resolveSceneSetLayout =
-      setLayout(ctx,
+      createSetLayout(ctx,
                 {{gpu::kResolveBindingVertices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr},
                  {gpu::kResolveBindingIndices, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr},
                  {gpu::kResolveBindingGeometry, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr}},

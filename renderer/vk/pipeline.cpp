@@ -217,3 +217,19 @@ VkPipeline createComputePipeline(GpuContext& ctx, Shader shader, std::span<const
 }
 
 }  // namespace gb
+
+namespace gb {
+
+VkDescriptorSetLayout createSetLayout(GpuContext& ctx, const std::vector<VkDescriptorSetLayoutBinding>& bindings,
+                                      VkDescriptorSetLayoutCreateFlags flags, const char* name) {
+  VkDescriptorSetLayoutCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  ci.flags = flags;
+  ci.bindingCount = uint32_t(bindings.size());
+  ci.pBindings = bindings.data();
+  VkDescriptorSetLayout l;
+  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &ci, nullptr, &l));
+  setName(ctx, uint64_t(l), VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, name);
+  return l;
+}
+
+}  // namespace gb

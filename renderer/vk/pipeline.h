@@ -58,5 +58,8 @@ std::vector<uint32_t> specValues(std::span<const SpecConstant> spec);
 VkPipeline createGraphicsPipeline(GpuContext& ctx, const GraphicsPipelineDesc& desc);
 VkPipeline createComputePipeline(GpuContext& ctx, Shader shader, std::span<const SpecConstant> spec,
                                  VkPipelineLayout layout);
+// A descriptor set layout of these bindings (flags: push descriptors, say), named for RenderDoc.
+VkDescriptorSetLayout createSetLayout(GpuContext& ctx, const std::vector<VkDescriptorSetLayoutBinding>& bindings,
+                                      VkDescriptorSetLayoutCreateFlags flags, const char* name);
 
 }  // namespace gb

@@ -29,18 +29,11 @@ static constexpr uint32_t kMaxViews = 64, kSlotsPerView = 4;
 static constexpr VkDeviceSize kTexelAlignment = 256;  // >= every device's minStorageBufferOffsetAlignment
 
 void initViewDecoder(ViewDecoder& d, GpuContext& ctx) {
-  VkDescriptorSetLayoutBinding bindings[5] = {
-      {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-  };
-  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  lci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
-  lci.bindingCount = 5;
-  lci.pBindings = bindings;
-  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &d.setLayout));
+  std::vector<VkDescriptorSetLayoutBinding> bindings;  // texels, surface texels, the image, params, results
+  for (uint32_t b = 0; b < 5; ++b)
+    bindings.push_back({b, b == 2 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                        VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+  d.setLayout = createSetLayout(ctx, bindings, VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR, "set0.view_decode");
   VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, 16};
   VkPipelineLayoutCreateInfo pci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   pci.setLayoutCount = 1;
@@ -69,20 +62,22 @@ namespace {
 VkDeviceSize texelBytes(const CpuImage& image) { return (image.data.size() + 3) / 4 * 4; }
 
 // The camera depth that says where surfaces are (decode.cpp hasSurface): the first one whose target
-// the frame holds; kDecodeSurfaceNone when the layout has some and the frame none.
-uint32_t surfaceMode(const FrameSnapshot& f, const Quantity** surface) {
-  bool anyDepth = false;
-  *surface = nullptr;
+// the frame holds (mode kDecodeSurfaceDepth); kDecodeSurfaceNone when the layout has some and the
+// frame none. A property of the frame, read only by the views of normals and positions.
+struct SurfaceDepth {
+  uint32_t mode = kDecodeSurfaceAll;
+  const Quantity* quantity = nullptr;
+};
+SurfaceDepth surfaceDepthOf(const FrameSnapshot& f) {
+  SurfaceDepth s;
   for (const Quantity& q : f.layout.quantities) {
     if (q.kind != QuantityKind::Depth || q.ofSun) continue;
-    anyDepth = true;
-    if (layoutImage(f, q.target)) {
-      *surface = &q;
-      return kDecodeSurfaceDepth;
-    }
+    s.mode = kDecodeSurfaceNone;
+    if (layoutImage(f, q.target)) return {kDecodeSurfaceDepth, &q};
   }
-  return anyDepth ? kDecodeSurfaceNone : kDecodeSurfaceAll;
+  return s;
 }
+bool needsSurface(const ViewDef& view) { return view.visual == Visual::Normal || view.visual == Visual::Position; }
 
 // Which stored values equal `value` as CpuImage::value's double would (decode.cpp compares doubles).
 DecodeMatch matchOf(const CpuImage& image, uint32_t channel, std::optional<double> value) {
@@ -142,7 +137,7 @@ uint32_t decodeKind(Visual v) {
 }
 
 // The view's parameters (its quantity's encodings, the surface depth, the camera where it matters).
-ViewDecodeParams paramsOf(const FrameSnapshot& f, const ViewDef& view, uint32_t slot) {
+ViewDecodeParams paramsOf(const FrameSnapshot& f, const ViewDef& view, const SurfaceDepth& surfaceDepth, uint32_t slot) {
   const Quantity& q = f.layout.quantities[size_t(view.quantity)];
   const TargetImage& ti = f.images[q.target];
   ViewDecodeParams p{};
@@ -157,8 +152,8 @@ ViewDecodeParams paramsOf(const FrameSnapshot& f, const ViewDef& view, uint32_t 
   p.values = glm::vec4(float(q.scale), float(q.bias), 1.0f, 0.0f);
   p.encoding = {uint32_t(q.normal), 0u, slot, 0u};
   if (q.kind == QuantityKind::Depth) p.background = matchOf(ti.image, q.channels[0], nothingDrawn(f, q));
-  const Quantity* s = nullptr;
-  const uint32_t surface = surfaceMode(f, &s);
+  const uint32_t surface = needsSurface(view) ? surfaceDepth.mode : kDecodeSurfaceAll;
+  const Quantity* s = surfaceDepth.quantity;
   p.surface = p.texels;
   if (surface == kDecodeSurfaceDepth) {
     const TargetImage& st = f.images[s->target];
@@ -193,9 +188,9 @@ std::string gpuDecodeRefusal(const GpuContext& ctx, const FrameSnapshot& f, cons
   const Quantity& q = f.layout.quantities[size_t(view.quantity)];
   if (view.visual == Visual::Position && q.kind != QuantityKind::Position) return "a position from depth";
   const uint64_t limit = ctx.properties.limits.maxStorageBufferRange;
-  const Quantity* s = nullptr;
-  const bool surface = surfaceMode(f, &s) == kDecodeSurfaceDepth;
-  if (texelBytes(ti->image) > limit || (surface && texelBytes(f.images[s->target].image) > limit))
+  const SurfaceDepth s = surfaceDepthOf(f);
+  const bool surface = needsSurface(view) && s.mode == kDecodeSurfaceDepth;
+  if (texelBytes(ti->image) > limit || (surface && texelBytes(f.images[s.quantity->target].image) > limit))
     return "its target is larger than the device's storage buffer range";
   return "";
 }
@@ -278,15 +273,15 @@ std::vector<std::vector<RangeStats>> decodeViewsOnGpu(ViewDecoder& d, GpuContext
   std::vector<bool> used(f.images.size(), false);
   auto* params = static_cast<ViewDecodeParams*>(d.params.mapped);
   auto* slots = static_cast<RangeResult*>(d.results.mapped);
-  std::vector<uint32_t> surfaceOf(which.size(), 0);
+  const SurfaceDepth surfaceDepth = surfaceDepthOf(f);
+  std::vector<uint32_t> surfaceOf(which.size(), 0);  // the target bound as the surface texels (none: the view's own)
   for (size_t i = 0; i < which.size(); ++i) {
     const ViewDef& view = views[size_t(which[i])];
     GB_ASSERT(gpuDecodeRefusal(ctx, f, view).empty());
-    params[i] = paramsOf(f, view, uint32_t(i * kSlotsPerView));
+    params[i] = paramsOf(f, view, surfaceDepth, uint32_t(i * kSlotsPerView));
     params[i].encoding.w = size_t(which[i]) < ranges.size() && ranges[size_t(which[i])] ? rangeComponents(view) : 0u;
     used[view.target] = true;
-    const Quantity* s = nullptr;
-    surfaceOf[i] = surfaceMode(f, &s) == kDecodeSurfaceDepth ? s->target : view.target;
+    surfaceOf[i] = params[i].mode.w == kDecodeSurfaceDepth ? surfaceDepth.quantity->target : view.target;
     used[surfaceOf[i]] = true;
     const TargetImage& ti = f.images[view.target];
     ensureViewImage(ctx, images.images[size_t(which[i])], view.integer, ti.image.width, ti.image.height, view.name);

@@ -14,16 +14,11 @@ static constexpr uint32_t kMaxRanges = 64;
 void initViewMapper(ViewMapper& m, Renderer& r) {
   GpuContext& ctx = *r.ctx;
   const VkShaderStageFlags stages = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
-  VkDescriptorSetLayoutBinding bindings[] = {
-      {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
-      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr},
-  };
-  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  lci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
-  lci.bindingCount = 3;
-  lci.pBindings = bindings;
-  VK_CHECK(vkCreateDescriptorSetLayout(ctx.device, &lci, nullptr, &m.setLayout));
+  m.setLayout = createSetLayout(ctx,
+                                {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
+                                 {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
+                                 {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr}},
+                                VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR, "set1.view_map");
   VkDescriptorSetLayout sets[] = {r.sceneSetLayout, m.setLayout};
   VkPushConstantRange push{stages, 0, sizeof(gpu::ViewParams)};
   VkPipelineLayoutCreateInfo pci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
