@@ -38,6 +38,11 @@ void addAttachOptions(CLI::App* cmd, AttachOptions& o) {
   cmd->add_option("--event-log", o.eventLog, "the viewer: append its events (frames received, layout, hover, capture) as JSON lines");
   cmd->add_option("--probe-log", o.probeLog, "the viewer: append each pixel dossier (a click) as one JSON line to FILE");
   cmd->add_flag("--paused", o.paused, "the viewer: start paused on the first frame (Space resumes)");
+  cmd->add_option("--pace", o.pace,
+                  "on: the application copies a frame only when gblens asks for the next (the viewer: when it has shown "
+                  "the one before; --frames: when it has decoded it); off: every frame gblens can take (default: on for "
+                  "the viewer without --history, off for --frames)")
+      ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("APP", o.app, "the application and its arguments (after --)")->required();
 }
 
@@ -78,7 +83,11 @@ bool checkAttachOptions(const AttachOptions& o, LiveOptions& lo, std::string& er
     return refuse("--every: " + captureFlag + (o.sequence() ? " names consecutive frames" : " names one frame") +
                   " of the application");
   if (!(o.timeout > 0.0) || !std::isfinite(o.timeout)) return refuse("--timeout: expected a positive number of seconds");
+  if (!o.pace.empty() && (o.capturing() || (draft && !o.output.empty())))
+    return refuse("--pace: paces the viewer's stream or --frames; " +
+                  (o.capturing() ? captureFlag + " takes the frames it names" : std::string("--suggest -o drafts from one frame")));
   lo = LiveOptions{};
+  lo.paced = o.pace.empty() ? (viewer || (draft && o.output.empty())) && !o.history : o.pace == "on";
   lo.layout = o.layout;
   lo.argv = o.app;
   lo.every = o.every;

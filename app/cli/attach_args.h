@@ -26,6 +26,7 @@ struct AttachOptions {
   double timeout = 300.0;
   std::string window = "1280x800", eventLog, probeLog;  // the viewer's
   bool paused = false;
+  std::string pace;  // --pace on|off ("" : on for the viewer without --history, off otherwise)
 };
 
 // The flags of `gblens attach` on `cmd`, parsed into `o`.

@@ -65,6 +65,7 @@ nlohmann::json statsJson(const LiveSession& s) {
           {"received", c.received},
           {"undecodable", c.undecodable},
           {"dropped", c.dropped},
+          {"not_asked", c.notAsked},
           {"application_frames", c.appFrames},
           {"latency_ms", {{"mean", c.meanLatencyMs}, {"max", c.maxLatencyMs}}},
           {"decode_ms", c.meanDecodeMs},
@@ -216,6 +217,7 @@ int runAttach(const AttachOptions& o) {
         break;
       }
       s.recycle(std::move(frame));  // its buffers take the next frame's texels (no fresh pages each frame)
+      s.ready();                    // --pace on: the next frame may be copied now
     }
   }
   s.detach();

@@ -185,6 +185,7 @@ struct Request {
   int64_t onlyFrame = -1, lastFrame = -1;
   bool suggest = false;            // report the passes and attachments of one frame
   bool ringOffThread = false;      // the layer's thread makes the ring; frames before it go without copies
+  bool paced = false;              // one frame's copies for each `ready` of the receiver's (DeviceData::grants)
   // Some pick names an image (not a pass's attachment by index or format) or a dispatch's storage
   // binding: it may be a storage image written by compute, copied after the dispatches that bind it
   // (dispatch_copies.cpp).
@@ -377,6 +378,16 @@ struct DeviceData {
   // PCIe); two in flight keep up with an application's frames in flight when the receiver is quick.
   std::atomic<int> toReceiver{0};
   std::atomic<bool> receiverBusy{false};
+  // A paced request (the viewer: it asks for each frame, so that no frame is copied that it would not
+  // show): frames copy only while grantsUsed < grants. The connect grants one frame, each `ready`
+  // one or two ("frames") beyond those used (grants = grantsUsed + k where that is more: a repeated
+  // ready grants nothing more). endFrame counts a whole frame with copies against a grant or, when
+  // none is left (it was recorded before the last grant went), does not send it; a granted frame the
+  // thread drops before sending gives its grant back, so the receiver never waits for a frame that
+  // will not come.
+  std::atomic<uint64_t> grants{1}, grantsUsed{0};
+  std::atomic<uint64_t> copiedFrames{0};  // frames that ended with copies, sent or not (what the application paid for)
+  std::atomic<uint64_t> notAsked{0};      // a paced request's frames due but not asked for (not sent; most not copied)
   // --capture-frame N: once frame N ended with copies, a later submission that copies (a reusable
   // recording writes the same ring buffers) waits until the receiver has read frame N, so that the
   // frame written is exactly N (submit.cpp waitForCapture).

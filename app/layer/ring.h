@@ -130,6 +130,8 @@ struct PendingFrame {
   std::vector<HeldRing> held;
   bool due = false;     // streamed (every N); else only its fences are recycled
   bool broken = false;  // a submission of it got no fence: never streamed
+  bool granted = false; // a paced request's frame that took the receiver's grant (layer.h grants)
+  bool reusable = false; // a recording of it may be submitted again (it writes the same ring bytes then)
 };
 
 }  // namespace gbl

@@ -152,9 +152,16 @@ json statsJson(Stream& st) {
           {"ring_staged_shared", d.staging != nullptr && d.stagedShared},
           {"ring_tile_copies", d.tileCopies.load()},
           {"storage_copies", d.storageCopies.load()},
+          {"paced", currentRequest(d) && currentRequest(d)->paced},  // one frame a ready (the viewer's pace)
+          {"copied_frames", d.copiedFrames.load()},
+          {"not_asked", d.notAsked.load()},  // paced: frames due that the receiver had not asked for
           {"ring_download", !d.staging ? "none" : stagedOwnQueue(d) ? "layer queue" : "application queue"},
           {"download_ms", st.sent ? st.downloadMs / double(st.sent) : 0.0},
           {"copy_gpu", copyTimingJson(d)}};  // GBLENS_LAYER_TIMESTAMPS=1 only
+}
+
+void giveBack(DeviceData& d, const PendingFrame& f) {
+  if (f.granted) --d.grantsUsed;
 }
 
 void process(Stream& st, std::unique_ptr<PendingFrame> f) {
@@ -172,7 +179,7 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
     GBL_LOG("frame %llu (streamed %llu): dropped, its ring buffer was submitted again", (unsigned long long)f->appFrame,
             (unsigned long long)f->stream);
     ++st.dropped, ++st.torn;
-    return;
+    return giveBack(d, *f);
   }
   // Busy: it waits for the receiver's ack; a newer one takes its place. A frame of --capture-frames
   // never finds one waiting (the next frame's submission waited until this one was read).
@@ -181,6 +188,7 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
       GBL_LOG("frame %llu: dropped, a newer one waits for the receiver", (unsigned long long)st.waiting->appFrame);
       ++st.dropped;
       --d.toReceiver;
+      giveBack(d, *st.waiting);
     }
     ++d.toReceiver;  // still on its way (stream.cpp run() counts it off when process returns)
     st.waiting = std::move(f);
@@ -189,7 +197,11 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
   const uint64_t ready = gb::wire::monotonicNs();
   const auto start = std::chrono::steady_clock::now();
   json targets = json::array(), camera = nullptr, bound = json::array(), counts = json::array();
-  const bool shared = allShared(*f);
+  // A recording submitted again writes the same ring bytes at its next run: read in place, nearly
+  // every frame of a quick application (vkcube, 2 ms a frame on lavapipe) was written again while
+  // gblens decoded it, and none came. Such a frame is copied out here at once instead (a memcpy,
+  // checked against the submission counts after it).
+  const bool shared = allShared(*f) && !f->reusable;
   // The staged ring on a queue of the layer's: this frame's bytes cross to the host now (only the
   // frames sent ever do).
   if (stagedOwnQueue(d)) {
@@ -202,7 +214,7 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
     if (!unchanged(*f)) {  // the application wrote the device ring again before the download had it
       ++st.dropped, ++st.torn;
       if (only) releaseCapture(d);
-      return;
+      return giveBack(d, *f);
     }
     for (const auto& [buffer, count] : f->writes)
       if (buffer->published) buffer->published->store(count);  // what the receiver will check
@@ -215,7 +227,7 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
     GBL_LOG("frame %llu: dropped, its ring buffer was submitted again while it was read", (unsigned long long)f->appFrame);
     ++st.dropped, ++st.torn;
     if (only) releaseCapture(d);
-    return;
+    return giveBack(d, *f);
   }
   st.copyMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   ++st.sent;

@@ -60,6 +60,7 @@ bool parseRequest(const std::string& text, Request& r) {
   if (r.lastFrame < r.onlyFrame) r.lastFrame = r.onlyFrame;
   r.suggest = j.value("suggest", false);
   r.ringOffThread = j.value("ring_off_thread", false);
+  r.paced = j.value("paced", false) && r.onlyFrame < 0;
   r.giveUp = std::max(1u, j.value("give_up", 120u));
   if (j.contains("camera") && j["camera"].is_object()) {
     r.cameraBuffer = j["camera"].value("buffer", "");
@@ -152,6 +153,10 @@ void readMessages(Stream& st) {
         --st.d->toReceiver;
       }
     }
+    if (type == gb::wire::kReady) {  // a paced receiver wants the next frame (or the next two)
+      const uint64_t want = st.d->grantsUsed + std::clamp(j.value("frames", 1u), 1u, 2u);
+      if (want > st.d->grants) st.d->grants = want;
+    }
     if (type == gb::wire::kDetach) return goIdle(st);
   }
 }
@@ -181,6 +186,7 @@ void run(Stream& st) {
       }
       recycle(d, *front);
       if (r == VK_SUCCESS) process(st, std::move(front));
+      else giveBack(d, *front);
       --d.toReceiver;
       continue;
     }
@@ -239,6 +245,8 @@ void startStream(DeviceData& d, Stream* st) {
     d.request = st->request;
   }
   d.boundBuffersAsked = st->request->boundBuffers.on;
+  d.grantsUsed = 0;  // a paced receiver's first frame is granted at the connect
+  d.grants = 1;
   d.streaming = true;
   st->thread = std::thread(run, std::ref(*st));
 }

@@ -34,6 +34,8 @@ struct Stream {
 // A finished frame: sent if the receiver is free and the ring was not written again meanwhile,
 // else dropped (counted).
 void process(Stream& st, std::unique_ptr<PendingFrame> f);
+// A paced request's granted frame that will not be sent: its grant goes back (DeviceData::grants).
+void giveBack(DeviceData& d, const PendingFrame& f);
 nlohmann::json statsJson(Stream& st);
 
 // stream.cpp

@@ -62,6 +62,7 @@ Submitted gather(DeviceData& d, const std::vector<VkCommandBuffer>& cmds) {
     if (s->copiesMade.empty() || !d.streaming) continue;
     if (!d.building) d.building = std::make_unique<PendingFrame>();
     PendingFrame& f = *d.building;
+    f.reusable |= s->reusable;
     // A later submission's copy of a target replaces an earlier one; its bound buffers replace all earlier ones.
     if (std::any_of(s->copiesMade.begin(), s->copiesMade.end(), [](const Copy& c) { return c.target == kBoundCopy; }))
       std::erase_if(f.copies, [](const Copy& e) { return e.target == kBoundCopy; });
@@ -109,16 +110,23 @@ void endFrame(DeviceData& d, const std::vector<uint32_t>& presentedNow = {}) {
     d.passesThisFrame = false;
     skipped = d.skippedThisFrame;
     d.skippedThisFrame = false;
-    if (d.pacedThisFrame && req && frameDue(*req, number) && !f) ++d.droppedAtSource;  // due, not taken
+    if (d.pacedThisFrame && req && frameDue(*req, number) && !f)  // due, not taken
+      ++(req->paced && d.grantsUsed >= d.grants ? d.notAsked : d.droppedAtSource);
     d.pacedThisFrame = false;
     suggest = req && req->suggest && !d.suggestSent && !reports.empty();
     if (suggest) d.suggestSent = true;
     if (f) {
+      ++d.copiedFrames;
       f->appFrame = number;
       f->endNs = now;
       // A frame one of whose recordings skipped its copies (every slot held, the ring being made)
       // would hold only some targets: never sent as if it were whole.
       f->due = req && frameDue(*req, number) && !f->broken && !skipped;
+      if (f->due && req->paced) {  // one frame a grant; one recorded before the last grant went is not sent
+        f->granted = d.grantsUsed < d.grants;
+        if (f->granted) ++d.grantsUsed;
+        else f->due = false, ++d.notAsked;
+      }
       if (f->due) f->stream = ++d.streamed;
       if (f->due && req->onlyFrame >= 0) holdCapture(d);
     }

@@ -45,6 +45,7 @@ std::string statusText(Viewer& v, const LiveReceiver::State& st) {
                 (unsigned long long)v.attachInfo.appFrame, (unsigned long long)st.counts.received,
                 (unsigned long long)droppedFrames(st), v.attachShownMs);
   std::string line = text;
+  if (st.counts.notAsked > 0) line += std::to_string(st.counts.notAsked) + " not asked for (paced) | ";
   if (st.historyLimit > 0) {
     std::snprintf(text, sizeof text, "history %zu/%zu frames, %.1f MB | ", st.historyFrames, st.historyLimit,
                   double(st.historyBytes) / 1e6);
@@ -160,6 +161,8 @@ void showStreamFrame(Viewer& v, FrameSnapshot&& frame, const LiveFrameInfo& info
                        {"latency_ms", double(wire::monotonicNs() - info.endNs) * 1e-6},
                        {"received", c.received},
                        {"dropped", droppedFrames(st)},
+                       {"copied", c.layer.value("copied_frames", uint64_t(0))},
+                       {"paced", c.layer.value("paced", false)},
                        {"time_s", std::chrono::duration<double>(start - v.attachOpened).count()},
                        {"decode_ms", c.meanDecodeMs},
                        {"show_ms", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()}});

@@ -11,8 +11,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <gtest/gtest.h>
+
 #include "tests/support/capture_util.h"
 #include "views/live/live.h"
+#include "views/live/live_wire.h"
 
 namespace gb::attach {
 
@@ -54,6 +57,39 @@ Report passesReport(const std::vector<std::string>& argv, const std::vector<std:
   if (r.status < 0) s.stop();
   r.log = readText(o.log);
   return r;
+}
+
+void expectPacedStream(LiveOptions o, int cycles, bool oneTime, bool stop) {
+  o.paced = true;
+  o.ringOffThread = true;  // a stream, as the viewer's
+  LiveSession s;
+  std::string error;
+  ASSERT_TRUE(s.start(o, error)) << error;
+  FrameSnapshot f;
+  LiveFrameInfo info;
+  ASSERT_TRUE(s.wait(f, 60.0, &info)) << (s.takeReports().empty() ? "" : s.takeReports()[0]);
+  auto figure = [&](const char* name) { return s.counts().layer.value(name, uint64_t(0)); };
+  EXPECT_TRUE(s.counts().layer.value("paced", false));
+  for (int c = 0; c < cycles; ++c) {
+    SCOPED_TRACE("after frame " + std::to_string(info.appFrame));
+    const uint64_t frames = figure("frames"), copied = figure("copied_frames");
+    if (c == 0) {  // a second of not asking
+      const bool came = s.wait(f, 1.0, &info);
+      EXPECT_FALSE(came) << "frame " << info.appFrame << " came unasked";
+    }
+    const uint64_t asked = wire::monotonicNs();
+    s.ready();
+    ASSERT_TRUE(s.wait(f, 30.0, &info)) << "no frame after ready()";
+    EXPECT_GT(info.endNs, asked) << "frame " << info.appFrame << " ended before it was asked for";
+    if (c == 0) {  // the hold: the application rendered on, and copied only what it had in flight
+      EXPECT_GE(figure("frames") - frames, 5u);
+      if (oneTime) EXPECT_LE(figure("copied_frames") - copied, 3u);  // those in flight, and this one
+    }
+  }
+  for (const std::string& r : s.takeReports()) ADD_FAILURE() << r;
+  if (stop) return s.stop();
+  s.detach();
+  EXPECT_EQ(s.waitApplication(120.0), 0) << readText(o.log);
 }
 
 bool readDump(const std::string& file, Dump& out) {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "views/capture/capture.h"
+#include "views/live/live.h"
 
 namespace gb::attach {
 
@@ -32,6 +33,15 @@ struct Report {
   std::string log, error;
 };
 Report passesReport(const std::vector<std::string>& argv, const std::vector<std::string>& environment, const std::string& dir);
+
+// A paced stream (LiveOptions::paced) of the application `o` runs: its first frame comes; then for
+// a second of not asking, none, though the application renders on (its frame count in the next
+// frame's layer figures); each of `cycles` frames after a ready() ended after that call (CLOCK_MONOTONIC,
+// both processes' clock). With `oneTime` (recordings submitted once, so copies are recorded only for
+// frames asked for) the frames copied across the hold are at most the two the application had in
+// flight when it began. The session is detached and the application let run to its end (status 0:
+// validation clean), or with `stop` ended (one that would run on for minutes).
+void expectPacedStream(LiveOptions o, int cycles, bool oneTime, bool stop = false);
 
 // A present the dump layer wrote: width, height, VkFormat and the raw texels.
 struct Dump {

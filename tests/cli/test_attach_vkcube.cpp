@@ -132,6 +132,21 @@ TEST_F(VkCube, CaptureFramesAreTheFramesItPresents) {
   }
 }
 
+// Its command buffers are recorded once and submitted again, so each of its frames copies; paced, the
+// frames not asked for are not sent (attach_util.h expectPacedStream, test_attach_pacing.cpp). Most
+// frames sent are written again while read in place (vkcube's recordings share one ring slot): each
+// such one asks for the next itself.
+TEST_F(VkCube, APacedStreamSendsOnlyTheFramesAskedForEachEndingAfterItsAsk) {
+  const std::string dir = freshDir("attach_vkcube_paced");
+  LiveOptions o;
+  o.layout = "builtin:vkcube";
+  o.argv = {"vkcube", "--c", "100000", "--validate"};
+  o.environment = {"DISPLAY=" + xvfb_.display, attach::kSyncValidation};
+  o.log = dir + "/vkcube.log";
+  attach::expectPacedStream(o, 3, false, true);
+  EXPECT_EQ(readText(o.log).find("VALIDATION"), std::string::npos) << readText(o.log);
+}
+
 TEST_F(VkCube, FollowsAResizedWindow) {
   const std::string dir = freshDir("attach_vkcube_resize");
   std::ofstream(dir + "/layout.json") << R"({"format": "gblens-layout", "version": 1, "targets": [

@@ -3,7 +3,7 @@
 # interval, and for each streamed frame shown the latency from the application's frame end to the
 # viewer taking it (attach_frame) and to the present that put it on screen (attach_shown), in ms and
 # in application frames; with the grid of every view of the layout (key 1) or the first view alone.
-# Usage: [SHOT=FILE.png] [CLICK="X Y"] [KEYS="space x"] [GBLENS_VIEW_DECODE=cpu] tests/gui/measure_attach.sh [BUILD_DIR] [one|grid] [SECONDS] [WINDOW] -- APP ARGS...
+# Usage: [SHOT=FILE.png] [CLICK="X Y"] [KEYS="space x"] [GBLENS_VIEW_DECODE=cpu] [ATTACH_ARGS="--pace off"] tests/gui/measure_attach.sh [BUILD_DIR] [one|grid] [SECONDS] [WINDOW] -- APP ARGS...
 #   (defaults: build grid 15 1200x760; APP: the foreign test subject with its layout, 320x180)
 set -eu
 BUILD=${1:-build}; VIEWS=${2:-grid}; SECONDS_=${3:-15}; WINDOW=${4:-1200x760}
@@ -36,7 +36,7 @@ EOF
 else
   LAYOUT=${LAYOUT:?give LAYOUT=L.json for your application}
 fi
-"$GBLENS" attach --layout "$LAYOUT" --window "$WINDOW" --event-log "$OUT/events" -- "$@" 2>"$OUT/viewer.log" &
+"$GBLENS" attach ${ATTACH_ARGS:-} --layout "$LAYOUT" --window "$WINDOW" --event-log "$OUT/events" -- "$@" 2>"$OUT/viewer.log" &
 VIEWER=$!
 until grep -q '"ready"' "$OUT/events" 2>/dev/null; do
   kill -0 $VIEWER 2>/dev/null || { cat "$OUT/viewer.log"; exit 1; }
@@ -72,6 +72,8 @@ taken = statistics.median(e["latency_ms"] for e in frames)
 screen = statistics.median(e["latency_ms"] for e in shown)
 print(json.dumps({"application": hello["hello"].get("application"), "views": sys.argv[2], "window": sys.argv[3],
                   "frames_shown": len(shown), "shown_per_s": len(shown) / span, "app_frame_ms": app_ms,
+                  "paced": frames[-1].get("paced"),
+                  "copied_per_shown": (frames[-1].get("copied", 0) - frames[0].get("copied", 0)) / max(1, len(frames) - 1),
                   "taken_latency_ms": taken, "screen_latency_ms": screen,
                   "screen_latency_frames": screen / app_ms, "show_ms": statistics.median(e["show_ms"] for e in frames),
                   "viewer": presented[-1].strip() if presented else ""}, indent=2))

@@ -139,6 +139,10 @@ TEST_F(GuiAttachTest, TheStreamShowsTheLayoutsViewsPausesAndCapturesTheAppsOwnTe
   startViewer("--frames 16384");  // minutes: it runs on while the test pauses, captures and closes
   // Live: frames keep coming.
   ASSERT_FALSE(waitEvent([](const json& j) { return j["event"] == "attach_frame" && j["received"] >= 3; }).is_null());
+  // Paced, the viewer's default (what pacing does: AttachPacing.*, VkCube.APaced...): the layer says so.
+  const json paced = waitEvent([](const json& j) { return j["event"] == "attach_frame"; });
+  ASSERT_FALSE(paced.is_null());
+  EXPECT_TRUE(paced.value("paced", false)) << paced.dump();
 
   // The grid: exactly the layout's quantities, all of them with something to show.
   xdotool("key --window " + wid_ + " 1");

@@ -233,15 +233,18 @@ bool LiveSession::receive(FrameSnapshot& out, LiveFrameInfo* info) {
     if (!ok && error.empty()) {  // read in place while the application's GPU wrote it again
       ++counts_.overwritten;
       wire::send(conn_, nlohmann::json{{"type", wire::kAck}}.dump());
+      if (options_.paced) ready();  // nobody will take this one
       continue;
     }
     wire::send(conn_, nlohmann::json{{"type", wire::kAck}}.dump());  // the layer may fill the memory again
     counts_.layer = m.value("stats", nlohmann::json::object());
     counts_.dropped = counts_.layer.value("dropped", uint64_t(0));
+    counts_.notAsked = counts_.layer.value("not_asked", uint64_t(0));
     counts_.appFrames = counts_.layer.value("frames", uint64_t(0));
     if (!ok) {
       ++counts_.undecodable;
       addReport(error);
+      if (options_.paced) ready();
       continue;
     }
     const double ready = double(m.value("ready_ns", uint64_t(0)) - m.value("end_ns", uint64_t(0))) * 1e-6;
@@ -259,20 +262,25 @@ bool LiveSession::receive(FrameSnapshot& out, LiveFrameInfo* info) {
   return false;
 }
 
+void LiveSession::ready(unsigned frames) {
+  if (conn_ >= 0 && options_.paced) wire::send(conn_, nlohmann::json{{"type", wire::kReady}, {"frames", frames}}.dump());
+}
+
 bool LiveSession::poll(FrameSnapshot& out, LiveFrameInfo* info) {
   accept();
   return receive(out, info);
 }
 
-bool LiveSession::wait(FrameSnapshot& out, double seconds, LiveFrameInfo* info) {
+bool LiveSession::wait(FrameSnapshot& out, double seconds, LiveFrameInfo* info, int wakeFd) {
   const auto start = std::chrono::steady_clock::now();
   for (;;) {
     if (poll(out, info)) return true;
     const bool alive = running();
     if ((!alive && conn_ < 0) || secondsSince(start) >= seconds) return false;
-    pollfd p{conn_ >= 0 ? conn_ : listener_, POLLIN, 0};
-    ::poll(&p, p.fd >= 0 ? 1 : 0, alive ? 10 : 0);
-    if (!alive && conn_ >= 0 && !(p.revents & POLLIN)) {  // the application is gone and said all it had
+    pollfd p[2] = {{conn_ >= 0 ? conn_ : listener_, POLLIN, 0}, {wakeFd, POLLIN, 0}};
+    ::poll(p, wakeFd >= 0 ? 2 : 1, alive ? 10 : 0);
+    if (wakeFd >= 0 && (p[1].revents & POLLIN)) return false;
+    if (!alive && conn_ >= 0 && !(p[0].revents & POLLIN)) {  // the application is gone and said all it had
       close(conn_);
       conn_ = -1;
     }

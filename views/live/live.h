@@ -42,6 +42,10 @@ struct LiveOptions {
   // frames need it, and those frames go without copies, so the application never waits for it.
   // Off: the first frame due is copied, the ring made in the application's thread (a capture, a draft).
   bool ringOffThread = false;
+  // Paced (the viewer): the layer copies one frame, then the next only after ready(), so that the
+  // application pays for no frame the receiver would not use (a frame that does not decode asks for
+  // the next itself). Off: every frame the receiver can take (--frames, the bench, --history).
+  bool paced = false;
   uint32_t giveUpFrames = 120;           // frames with render passes and no target before the layer says so
   // bound_buffers: in each streamed frame the layer also copies, at the end of this render pass (its
   // ordinal in its command buffer; -1: none), every buffer range the descriptor sets bound at the
@@ -67,6 +71,7 @@ struct LiveCounts {
   uint64_t undecodable = 0;  // frames that came but did not decode (the reports say why)
   uint64_t overwritten = 0;  // frames read in place that the application's GPU wrote again meanwhile
   uint64_t dropped = 0;      // frames the layer dropped because this side was still busy (or the ring moved)
+  uint64_t notAsked = 0;     // LiveOptions::paced: frames this side had not asked for (the layer copied none of most)
   uint64_t appFrames = 0;    // frames the application had ended at the last frame received
   double meanLatencyMs = 0.0, maxLatencyMs = 0.0;
   double meanDecodeMs = 0.0;  // this side's time to turn a frame into a FrameSnapshot
@@ -88,8 +93,8 @@ class LiveSession {
   bool start(const LiveOptions& o, std::string& error);
   // The next streamed frame if one has come (never waits): decoded into `out`, true.
   bool poll(FrameSnapshot& out, LiveFrameInfo* info = nullptr);
-  // Waits up to `seconds` for one (less when the application ends first).
-  bool wait(FrameSnapshot& out, double seconds, LiveFrameInfo* info = nullptr);
+  // Waits up to `seconds` for one (less when the application ends first, or `wakeFd` becomes readable).
+  bool wait(FrameSnapshot& out, double seconds, LiveFrameInfo* info = nullptr, int wakeFd = -1);
   // Decodes the frames to come with another layout that streams the same attachments (a refined
   // draft: targets renamed, other quantities): same targets in the same order, each with the same
   // storage format and live source. False, with the target named, otherwise.
@@ -97,6 +102,9 @@ class LiveSession {
   // A frame poll() / wait() returned that is no longer needed: its buffers hold the next frames'
   // texels (TexelPool, import.h), one frame's worth kept (the memory the frame held).
   void recycle(FrameSnapshot&& frame);
+  // LiveOptions::paced: the layer may copy the next frame, or the next two (a stream slower than its
+  // viewer: one on its way while the other is shown), beyond those it sent.
+  void ready(unsigned frames = 1);
 
   const LiveCounts& counts() const { return counts_; }
   // What the layer and the decoding said for people since the last call, each once: a target the
@@ -116,6 +124,7 @@ class LiveSession {
   bool noMatch() const { return noMatch_; }           // the layer gave up finding any target
   const nlohmann::json& hello() const { return hello_; }  // the application and device, once attached
   bool attached() const { return conn_ >= 0; }
+  bool paced() const { return options_.paced; }
 
   bool running();                      // the application has not exited
   int exitStatus() const { return status_; }  // once it exited: its status (128 + signal if killed)

@@ -74,6 +74,7 @@ nlohmann::json liveRequest(const Layout& original, const LiveOptions& o) {
   if (o.captureFrame >= 0) r["only_frame"] = o.captureFrame;
   if (o.captureFrame >= 0 && o.captureLast > o.captureFrame) r["last_frame"] = o.captureLast;
   if (o.ringOffThread) r["ring_off_thread"] = true;
+  if (o.paced) r["paced"] = true;
   if (o.boundBuffersPass >= 0) r["bound_buffers"] = {{"pass", o.boundBuffersPass}, {"max_bytes", o.boundBuffersMaxBytes}};
   return r;
 }

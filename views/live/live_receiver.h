@@ -2,6 +2,12 @@
 // own, which receives and decodes each frame as it comes, so that the layer can send the next one at
 // once and the viewer, whenever it draws, takes the newest (a frame no longer waits in the socket for
 // the viewer's next loop). Paused, the thread takes nothing: the layer drops the application's frames.
+// A paced session (LiveOptions::paced) asks the layer for each frame, so that none is copied, sent or
+// decoded that the viewer would not show: after the viewer takes a frame, timed to come just before
+// the viewer next looks for one (its time from a take to its next look, less a frame's time from
+// the ask to its decoding); where a frame takes longer to come than the viewer to draw one, as soon
+// as the frame before is decoded, two at a time (on their way while the viewer shows this one, as
+// the application makes them in flight).
 #pragma once
 #include <atomic>
 #include <condition_variable>
@@ -21,7 +27,8 @@ class LiveReceiver {
   LiveReceiver(const LiveReceiver&) = delete;
   LiveReceiver& operator=(const LiveReceiver&) = delete;
 
-  // The newest frame decoded since the last call, if any (never waits).
+  // The newest frame decoded since the last call, if any (never waits). Paced: taking it asks for the
+  // next one.
   bool take(FrameSnapshot& out, LiveFrameInfo& info);
   // A frame take() gave that is no longer shown: the thread gives its buffers to the session's
   // next frames (LiveSession::recycle).
@@ -53,6 +60,16 @@ class LiveReceiver {
   LiveSession& session_;
   std::thread thread_;
   std::atomic<bool> stop_{false}, paused_{false}, detach_{false};
+  std::atomic<uint64_t> resumedNs_{0};  // when the viewer last resumed: a frame that ended before is stale
+  // Paced, under lock_: ask for the next frame at askAtNs_ (the session's first frame was taken before
+  // the thread began: at once). The running means: the viewer's time from a take to its next look
+  // (drawMs_), a frame's from the ask to its decoding (comeMs_).
+  bool wantNext_ = true;
+  int wake_ = -1;  // an eventfd: take() wakes the thread to ask for the next frame
+  uint64_t askAtNs_ = 0, takenNs_ = 0, publishedNs_ = 0;
+  double drawMs_ = 0.0, comeMs_ = 0.0;
+  double spareMs_ = 3.0;  // asked that much sooner (more after a frame came late, less while frames wait)
+  uint64_t askedNs_ = 0;  // the thread's: its first ask since the last frame decoded (0: none)
   std::mutex lock_;
   FrameSnapshot latest_;
   std::vector<FrameSnapshot> returned_;  // recycle()'s, for the thread

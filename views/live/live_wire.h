@@ -35,6 +35,7 @@ constexpr const char* kNoMatch = "nomatch";
 constexpr const char* kRequest = "request";
 constexpr const char* kAck = "ack";
 constexpr const char* kDetach = "detach";
+constexpr const char* kReady = "ready";  // a paced receiver (request "paced"): copy the next frame for it
 
 // Sends one message, with a file descriptor when fd >= 0. Never raises SIGPIPE; false when the
 // peer is gone (or the message does not fit a packet).
