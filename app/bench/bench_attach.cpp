@@ -30,13 +30,16 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kTargets[] = {"albedo_specular", "normal_shadow", "depth_stencil", "final"};
+constexpr const char* kViewerPaced = "viewer 60 Hz";
+constexpr const char* kViewerUnpaced = "viewer 60 Hz, unpaced";
 
 std::string self() {
   std::error_code ec;
   return fs::read_symlink("/proc/self/exe", ec).string();
 }
 
-// The JSON `gblens render --stats` printed among its other lines.
+}  // namespace
+
 nlohmann::json renderStats(const std::string& log) {
   std::ifstream in(log);
   const std::string text((std::istreambuf_iterator<char>(in)), {});
@@ -44,6 +47,8 @@ nlohmann::json renderStats(const std::string& log) {
   if (open == std::string::npos || close == std::string::npos) return nullptr;
   return nlohmann::json::parse(text.substr(open, close - open + 1), nullptr, false);
 }
+
+namespace {
 
 long rssKb(pid_t pid) {
   std::ifstream in("/proc/" + std::to_string(pid) + "/status");
@@ -209,7 +214,11 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
   // copied after its dispatches (docs/attach.md "Targets written by compute"): --attach-gbuffer.
   const std::vector<std::string> app = {self(), "render", "builtin:temple", "--size", s.size, "--frames",
                                         std::to_string(s.frames), "--gbuffer", s.gbuffer, "--stats", "-o", (dir / "frame.png").string()};
-  const std::vector<std::string> names = {"without", "idle", "every frame", "every " + std::to_string(s.every) + "th frame"};
+  // The last two: the viewer's receiver with a viewer taking frames at 60 Hz, paced (its default) and
+  // not (what pacing saves the application when it is quicker than the viewer).
+  const std::vector<std::string> names = {"without", "idle", "every frame", "every " + std::to_string(s.every) + "th frame",
+                                          kViewerPaced, kViewerUnpaced};
+  std::vector<nlohmann::json> viewer(names.size(), nlohmann::json::object());
   std::vector<std::vector<double>> ms(names.size());
   std::vector<std::vector<Phases>> phase(names.size());
   std::vector<double> latencyMs, latencyFrames, readyFrames;
@@ -220,6 +229,13 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
       nlohmann::json stats;
       if (v < 2) {
         stats = runPlain(app, v == 1, log);
+      } else if (v >= 4) {
+        uint64_t taken = 0;
+        Attached a = runViewed(layout, app, log, 60.0, v == 4, taken);
+        stats = a.app;
+        viewer[v]["taken"].push_back(taken);
+        viewer[v]["copied_frames"].push_back(a.counts.layer.value("copied_frames", uint64_t(0)));
+        viewer[v]["application_frames"].push_back(a.counts.layer.value("frames", uint64_t(0)));
       } else {
         Attached a = runAttached(layout, v == 2 ? 1 : s.every, app, log);
         stats = a.app;
@@ -248,6 +264,7 @@ nlohmann::json attachStudy(const AttachBenchSettings& s) {
     }
     if (v > 0 && !steady.empty()) row["steady_ratio"] = attachRatioJson(steady);
     if (!hitch.empty()) row["connect_hitch_ms"] = hitch;
+    if (!viewer[v].empty()) row["viewer"] = viewer[v], row["viewer"]["hz"] = 60.0, row["viewer"]["paced"] = v == 4;
     variants.push_back(row);
   }
   const auto median = [](std::vector<double> v) {
@@ -313,6 +330,17 @@ std::string attachMarkdown(const nlohmann::json& a) {
       std::snprintf(line, sizeof(line), "| %s | %s | 1 | | | %.1f | |\n", name.c_str(), ms.c_str(), hitch);
     md << line;
   }
+  for (const nlohmann::json& v : a["variants"])
+    if (v.contains("viewer")) {  // frames copied per frame the viewer took, over the rounds
+      uint64_t taken = 0, copied = 0, frames = 0;
+      for (size_t r = 0; r < v["viewer"]["taken"].size(); ++r)
+        taken += v["viewer"]["taken"][r].get<uint64_t>(), copied += v["viewer"]["copied_frames"][r].get<uint64_t>(),
+            frames += v["viewer"]["application_frames"][r].get<uint64_t>();
+      std::snprintf(line, sizeof(line), "%s: the viewer took %llu frames of %llu, the application copied %llu (%.2f a frame taken).\n",
+                    v.value("name", "").c_str(), (unsigned long long)taken, (unsigned long long)frames, (unsigned long long)copied,
+                    taken ? double(copied) / double(taken) : 0.0);
+      md << (v.value("name", "") == kViewerPaced ? "\n" : "") << line;
+    }
   const nlohmann::json& st = a["streaming"];
   const nlohmann::json layer = st.value("layer", nlohmann::json::object());
   std::snprintf(line, sizeof(line),

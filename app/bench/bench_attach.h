@@ -39,6 +39,13 @@ struct Attached {
 };
 Attached runAttached(const std::string& layout, int every, const std::vector<std::string>& argv, const std::string& log,
                      int soakFrames = 0);
+// The same with the viewer's receiver (LiveReceiver) and a viewer that takes the newest frame `hz`
+// times a second (bench_attach_viewer.cpp), paced or not (LiveOptions::paced); `taken`: the frames it
+// took, `counts.layer` the layer's figures (copied_frames: what the application copied).
+Attached runViewed(const std::string& layout, const std::vector<std::string>& argv, const std::string& log, double hz,
+                   bool paced, uint64_t& taken);
+// The JSON `gblens render --stats` printed among its other lines in `log` (null: none).
+nlohmann::json renderStats(const std::string& log);
 // The application run to its exit without a receiver: the layer not loaded, or loaded and idle; its
 // output to `log`. Its exit status (-1: it did not start or was killed); `peakKb`: its peak memory.
 int runWithoutReceiver(const std::vector<std::string>& argv, bool layerLoaded, const std::string& log, long* peakKb = nullptr);

@@ -73,9 +73,10 @@ nlohmann::json benchMeta(const GpuContext& ctx, const BenchPlan& p) {
   const BenchSettings& s = p.settings;
   // docs/json.md: format_version 2 added each method row's "gbuffer" and each pass's "before_ms"
   // (version 1 was unversioned), 3 each method row's "overlap", 4 each method row's "steady_ms" and
-  // methods_settings' "steady_ms" (methods.csv a steady_ms column); "version" is gblens's.
+  // methods_settings' "steady_ms" (methods.csv a steady_ms column), 5 "attach_application", 6 the
+  // attach variants with a viewer (each row's "viewer"); "version" is gblens's.
   return {{"format", "gblens-bench"},
-          {"format_version", 5},
+          {"format_version", 6},
           {"device", ctx.deviceName},
           {"driver", ctx.driverName},
           {"git", gitHash()},

@@ -117,7 +117,7 @@ Command addBenchCommand(CLI::App& root) {
                   "off: timed frames render the shadow map every frame (a moving sun); on: a static scene reuses it")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
-  cmd->add_option("--attach-rounds", s->attach.rounds, "gblens attach's cost: interleaved rounds of its four variants")
+  cmd->add_option("--attach-rounds", s->attach.rounds, "gblens attach's cost: interleaved rounds of its variants")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   cmd->add_option("--motion-size", s->temporal.size, "gblens motion's cost: the sequence's size")->capture_default_str();

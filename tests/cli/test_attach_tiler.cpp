@@ -327,6 +327,17 @@ TEST(TilerAttach, TheBenchTimesAnotherApplicationsFourVariants) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const json bench = json::parse(std::ifstream(dir + "/out/bench.json"), nullptr, false);
   ASSERT_TRUE(bench.is_object() && bench.contains("attach_application")) << r.output;
+  // gblens's own study has the viewer variants, each saying what the viewer took and the application copied.
+  std::vector<std::string> own;
+  for (const json& v : bench["attach"]["variants"]) {
+    own.push_back(v["name"]);
+    if (!v.contains("viewer")) continue;
+    EXPECT_EQ(v["viewer"]["paced"], v["name"] == "viewer 60 Hz") << v.dump();
+    ASSERT_EQ(v["viewer"]["taken"].size(), 1u) << v.dump();
+    EXPECT_LE(v["viewer"]["copied_frames"][0], v["viewer"]["application_frames"][0]) << v.dump();
+  }
+  EXPECT_EQ(own, (std::vector<std::string>{"without", "idle", "every frame", "every 4th frame", "viewer 60 Hz",
+                                           "viewer 60 Hz, unpaced"}));
   const json& a = bench["attach_application"];
   EXPECT_EQ(a["frames"], json::array({4, 16}));
   std::vector<std::string> names;

@@ -82,7 +82,7 @@ TEST(CliAccuracy, BenchWritesJsonCsvAndPlotsWithOneRowPerVariant) {
   std::ifstream jf(std::filesystem::path(dir) / "bench.json");
   nlohmann::json j = nlohmann::json::parse(jf);
   EXPECT_EQ(j["format"], "gblens-bench");
-  EXPECT_EQ(j["format_version"], 5);  // docs/json.md: 2 added gbuffer and before_ms, 3 overlap, 4 steady_ms, 5 attach_application
+  EXPECT_EQ(j["format_version"], 6);  // docs/json.md: 2 added gbuffer and before_ms, 3 overlap, 4 steady_ms, 5 attach_application, 6 the viewer variants
   ASSERT_EQ(j["rows"].size(), 5u);  // default, rgba16f normals, lights=0, lights=4, default (repeat)
   for (const auto& row : j["rows"]) {
     EXPECT_TRUE(row["measured"].get<bool>()) << row["variant"];
