@@ -68,21 +68,26 @@ nlohmann::json runPlain(const std::vector<std::string>& argv, bool layerLoaded, 
 
 }  // namespace
 
-Attached runAttached(const std::string& layout, int every, const std::vector<std::string>& argv, const std::string& log,
-                     int soakFrames) {
-  Attached a;
+bool startAttached(LiveSession& s, const std::string& layout, const std::vector<std::string>& argv, const std::string& log,
+                   int every, bool paced) {
   LiveOptions o;
   o.layout = layout;
   o.argv = argv;
   o.every = uint32_t(every);
   o.ringOffThread = true;  // as the viewer streams
+  o.paced = paced;
   o.log = log;
-  LiveSession s;
   std::string error;
-  if (!s.start(o, error)) {
-    std::fprintf(stderr, "gblens bench: attach: %s\n", error.c_str());
-    return a;
-  }
+  if (s.start(o, error)) return true;
+  std::fprintf(stderr, "gblens bench: attach: %s\n", error.c_str());
+  return false;
+}
+
+Attached runAttached(const std::string& layout, int every, const std::vector<std::string>& argv, const std::string& log,
+                     int soakFrames) {
+  Attached a;
+  LiveSession s;
+  if (!startAttached(s, layout, argv, log, every, false)) return a;
   bool early = false;
   FrameSnapshot f;
   while (s.running() || s.attached()) {

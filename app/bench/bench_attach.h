@@ -27,6 +27,10 @@ struct AttachBenchSettings {
   int applicationFrames = 40;
 };
 
+// A session streaming `layout` from `argv` (its output to `log`) as the viewer streams (the ring made
+// off the application's thread), every Nth frame, paced or not; false (said on stderr) if it did not start.
+bool startAttached(LiveSession& s, const std::string& layout, const std::vector<std::string>& argv, const std::string& log,
+                   int every, bool paced);
 // The application under the layer, the receiver decoding every frame it gets (every Nth) until
 // the application's end, giving each back as the viewer does; its output to `log` (its --stats read
 // from there, gblens render's); soakFrames: its memory early and late too.

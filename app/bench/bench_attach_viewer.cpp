@@ -5,7 +5,6 @@
 #include "app/bench/bench_attach.h"
 
 #include <chrono>
-#include <cstdio>
 #include <thread>
 
 #include "views/live/live_receiver.h"
@@ -16,18 +15,8 @@ Attached runViewed(const std::string& layout, const std::vector<std::string>& ar
                    bool paced, uint64_t& taken) {
   Attached a;
   taken = 0;
-  LiveOptions o;
-  o.layout = layout;
-  o.argv = argv;
-  o.ringOffThread = true;  // as the viewer streams
-  o.paced = paced;
-  o.log = log;
   LiveSession s;
-  std::string error;
-  if (!s.start(o, error)) {
-    std::fprintf(stderr, "gblens bench: attach: %s\n", error.c_str());
-    return a;
-  }
+  if (!startAttached(s, layout, argv, log, 1, paced)) return a;
   {
     LiveReceiver receiver(s);
     const auto period = std::chrono::duration<double>(1.0 / hz);
