@@ -39,9 +39,9 @@ void addAttachOptions(CLI::App* cmd, AttachOptions& o) {
   cmd->add_option("--probe-log", o.probeLog, "the viewer: append each pixel dossier (a click) as one JSON line to FILE");
   cmd->add_flag("--paused", o.paused, "the viewer: start paused on the first frame (Space resumes)");
   cmd->add_option("--pace", o.pace,
-                  "on: the application copies a frame only when gblens asks for the next (the viewer: when it has shown "
-                  "the one before; --frames: when it has decoded it); off: every frame gblens can take (default: on for "
-                  "the viewer without --history, off for --frames)")
+                  "on: the application copies a frame only when gblens asks for it (the viewer: timed to come when it "
+                  "will show it; --frames: once the one before is decoded); off: every frame gblens can take (default: on "
+                  "for the viewer without --history, off for --frames)")
       ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("APP", o.app, "the application and its arguments (after --)")->required();
 }
