@@ -440,6 +440,8 @@ void logLine(const char* format, ...) __attribute__((format(printf, 1, 2)));
 DeviceData* deviceOf(const void* dispatchable);  // VkDevice, VkQueue or VkCommandBuffer
 InstanceData* instanceOf(const void* dispatchable);
 std::shared_ptr<const Request> currentRequest(DeviceData& d);
+// A paced request's receiver has a frame granted that no frame has taken yet (DeviceData::grants).
+inline bool grantLeft(const DeviceData& d) { return d.grantsUsed < d.grants; }
 
 // ---- hooks: name -> function, per file
 struct Hook {

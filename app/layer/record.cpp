@@ -63,7 +63,7 @@ VKAPI_ATTR VkResult VKAPI_CALL BeginCommandBuffer(VkCommandBuffer cmd, const VkC
     const bool reusable = !(info->flags & VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT);
     // --capture-frame N counts the frames read whole: none is left out for pace.
     s->paced = d.streaming && req && req->onlyFrame < 0 && !reusable &&
-               (d.toReceiver >= (d.receiverBusy ? 1 : 2) || (req->paced && d.grantsUsed >= d.grants));
+               (d.toReceiver >= (d.receiverBusy ? 1 : 2) || (req->paced && !grantLeft(d)));
     s->copies = d.streaming && req && !req->picks.empty() && (reusable || frameDue(*req, d.frame)) && !s->paced;
     s->skipped = d.streaming && req && !req->picks.empty() && !s->copies;
     s->reusable = reusable;

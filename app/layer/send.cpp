@@ -152,7 +152,7 @@ json statsJson(Stream& st) {
           {"ring_staged_shared", d.staging != nullptr && d.stagedShared},
           {"ring_tile_copies", d.tileCopies.load()},
           {"storage_copies", d.storageCopies.load()},
-          {"paced", currentRequest(d) && currentRequest(d)->paced},  // one frame a ready (the viewer's pace)
+          {"paced", st.request && st.request->paced},  // one frame a ready (the viewer's pace)
           {"copied_frames", d.copiedFrames.load()},
           {"not_asked", d.notAsked.load()},  // paced: frames due that the receiver had not asked for
           {"ring_download", !d.staging ? "none" : stagedOwnQueue(d) ? "layer queue" : "application queue"},
@@ -163,6 +163,18 @@ json statsJson(Stream& st) {
 void giveBack(DeviceData& d, const PendingFrame& f) {
   if (f.granted) --d.grantsUsed;
 }
+
+namespace {
+
+// A frame whose ring bytes were written again before it was sent: counted, a capture's hold let go,
+// its grant given back.
+void dropTorn(Stream& st, const PendingFrame& f, bool only) {
+  ++st.dropped, ++st.torn;
+  if (only) releaseCapture(*st.d);
+  giveBack(*st.d, f);
+}
+
+}  // namespace
 
 void process(Stream& st, std::unique_ptr<PendingFrame> f) {
   DeviceData& d = *st.d;
@@ -178,8 +190,7 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
   if (!only && !unchanged(*f)) {
     GBL_LOG("frame %llu (streamed %llu): dropped, its ring buffer was submitted again", (unsigned long long)f->appFrame,
             (unsigned long long)f->stream);
-    ++st.dropped, ++st.torn;
-    return giveBack(d, *f);
+    return dropTorn(st, *f, only);
   }
   // Busy: it waits for the receiver's ack; a newer one takes its place. A frame of --capture-frames
   // never finds one waiting (the next frame's submission waited until this one was read).
@@ -211,11 +222,8 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
       return goIdle(st);
     }
     st.downloadMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - down).count();
-    if (!unchanged(*f)) {  // the application wrote the device ring again before the download had it
-      ++st.dropped, ++st.torn;
-      if (only) releaseCapture(d);
-      return giveBack(d, *f);
-    }
+    // The application wrote the device ring again before the download had it.
+    if (!unchanged(*f)) return dropTorn(st, *f, only);
     for (const auto& [buffer, count] : f->writes)
       if (buffer->published) buffer->published->store(count);  // what the receiver will check
   }
@@ -225,9 +233,7 @@ void process(Stream& st, std::unique_ptr<PendingFrame> f) {
   }
   if (!shared && !unchanged(*f)) {  // the application submitted the ring's buffer again while it was read
     GBL_LOG("frame %llu: dropped, its ring buffer was submitted again while it was read", (unsigned long long)f->appFrame);
-    ++st.dropped, ++st.torn;
-    if (only) releaseCapture(d);
-    return giveBack(d, *f);
+    return dropTorn(st, *f, only);
   }
   st.copyMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   ++st.sent;

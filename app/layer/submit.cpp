@@ -111,7 +111,7 @@ void endFrame(DeviceData& d, const std::vector<uint32_t>& presentedNow = {}) {
     skipped = d.skippedThisFrame;
     d.skippedThisFrame = false;
     if (d.pacedThisFrame && req && frameDue(*req, number) && !f)  // due, not taken
-      ++(req->paced && d.grantsUsed >= d.grants ? d.notAsked : d.droppedAtSource);
+      ++(req->paced && !grantLeft(d) ? d.notAsked : d.droppedAtSource);
     d.pacedThisFrame = false;
     suggest = req && req->suggest && !d.suggestSent && !reports.empty();
     if (suggest) d.suggestSent = true;
@@ -123,7 +123,7 @@ void endFrame(DeviceData& d, const std::vector<uint32_t>& presentedNow = {}) {
       // would hold only some targets: never sent as if it were whole.
       f->due = req && frameDue(*req, number) && !f->broken && !skipped;
       if (f->due && req->paced) {  // one frame a grant; one recorded before the last grant went is not sent
-        f->granted = d.grantsUsed < d.grants;
+        f->granted = grantLeft(d);
         if (f->granted) ++d.grantsUsed;
         else f->due = false, ++d.notAsked;
       }
